@@ -1,0 +1,91 @@
+"""A scripted goalkeeper that intercepts the ball's predicted path in front of its goal."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from estimators import FrictionBallModel
+from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
+
+__all__ = ["ScriptedGoalkeeper"]
+
+
+class ScriptedGoalkeeper:
+    """Keeps to a guard line in front of its goal and moves to where the ball will cross it.
+
+    The policy reads only its observation vector (the layout of
+    :mod:`soccer_env.observations`, found by entry name), so it runs on whatever the
+    observation mode provides. Each step it:
+
+    1. recovers the ball's position and velocity in its team frame from the egocentric
+       entries;
+    2. if the ball moves towards the goal, predicts with :class:`~estimators.FrictionBallModel`
+       (closed-form constant deceleration) where it crosses the guard line
+       ``x = -L/2 + r + guard_offset`` and goes there; otherwise it stands on the guard line
+       where the line from the ball to the goal centre crosses it;
+    3. drives there with the fastest profile its acceleration allows to stop on the spot
+       (``v = min(v_max, sqrt(2 a_max d))``), turning to face the ball;
+    4. kicks the ball away when it sits in front of its kicker.
+
+    Args:
+        field, ball, robot: the specs of the environment (goal geometry, the ball's rolling
+            deceleration, speed limits).
+        names: the observation's entry names (``env.unwrapped.builder.names``).
+        guard_offset: distance of the guard line in front of the goal line, beyond the robot's
+            radius [m].
+    """
+
+    def __init__(self, field: FieldSpec, ball: BallSpec, robot: SSLRobotSpec,
+                 names: Sequence[str], guard_offset: float = 0.05) -> None:
+        self.field, self.ball, self.robot = field, ball, robot
+        self.model = FrictionBallModel(ball.rolling_deceleration)
+        index = {n: i for i, n in enumerate(names)}
+        self._idx = [index[n] for n in ("self.x", "self.y", "self.ax", "self.ay", "ball.dx",
+                                        "ball.dy", "ball.vx", "ball.vy")]
+        self.guard_x = -field.half_length + robot.radius + guard_offset
+
+    @classmethod
+    def for_env(cls, env, **kwargs) -> ScriptedGoalkeeper:
+        """Build the policy for a (possibly wrapped) Goalkeeper environment."""
+        u = env.unwrapped
+        return cls(u.field, u.ball_spec, u.robot_spec, u.builder.names, **kwargs)
+
+    def __call__(self, obs: np.ndarray) -> np.ndarray:
+        f, r = self.field, self.robot
+        px, py, ax, ay, dx, dy, bvx, bvy = (float(obs[i]) for i in self._idx)
+        c, s = ax, -ay  # cos and sin of the heading in the team frame
+        bx, by = px + c * dx - s * dy, py + s * dx + c * dy
+        vx, vy = c * bvx - s * bvy, s * bvx + c * bvy
+        half_goal = 0.5 * f.goal_width + self.ball.radius
+        goal_x = -f.half_length
+        ty = None
+        if vx < -0.05:
+            t = float(self.model.time_to_line(np.array([bx, by, vx, vy]), self.guard_x))
+            if math.isfinite(t):
+                ty = float(self.model.predict(np.array([bx, by, vx, vy]), t)[1])
+        if ty is None:
+            frac = (self.guard_x - goal_x) / max(bx - goal_x, 1e-3)
+            ty = by * min(frac, 1.0)
+        ty = max(-half_goal, min(half_goal, ty))
+
+        # Drive to (guard_x, ty) with a profile that can still stop there.
+        ex, ey = self.guard_x - px, ty - py
+        dist = math.hypot(ex, ey)
+        speed = min(r.max_speed, math.sqrt(2.0 * r.max_acceleration * dist))
+        wx, wy = (ex / dist * speed, ey / dist * speed) if dist > 1e-6 else (0.0, 0.0)
+        # Team frame -> body frame.
+        cmd_x, cmd_y = c * wx + s * wy, -s * wx + c * wy
+
+        heading = math.atan2(s, c)
+        face = math.atan2(by - py, bx - px)
+        face = max(-0.5 * math.pi, min(0.5 * math.pi, face))
+        err = math.remainder(face - heading, 2.0 * math.pi)
+        omega = max(-1.0, min(1.0, 8.0 * err / r.max_angular_speed))
+
+        in_front = 0.0 < dx < r.front_distance + 0.1 and abs(dy) < 0.5 * r.kicker_width
+        kick = 1.0 if in_front else 0.0
+        return np.array([cmd_x / r.max_speed, cmd_y / r.max_speed, omega, kick, -1.0, -1.0],
+                        dtype=np.float32)

@@ -1,0 +1,89 @@
+"""The ``soccer-env`` command line."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+__all__ = ["main"]
+
+
+def _cmd_demo(argv: list[str]) -> int:
+    p = argparse.ArgumentParser(prog="soccer-env demo",
+                                description="Run scripted-keeper episodes of Goalkeeper-v0 and "
+                                            "write their video and figures.")
+    p.add_argument("--out", default="demo_output", help="output folder (default: demo_output)")
+    p.add_argument("--episodes", type=int, default=3, help="number of episodes (default: 3)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the first episode")
+    p.add_argument("--no-video", action="store_true", help="skip rendering the video")
+    args = p.parse_args(argv)
+    if args.episodes < 1:
+        p.error("--episodes must be >= 1")
+    from .demo import run_demo
+
+    summary = run_demo(args.out, args.episodes, args.seed, video=not args.no_video)
+    for ep in summary["episodes"]:
+        shot = ep["shot"]
+        kind = "chip" if shot["chip"] else "flat"
+        print(f"seed {ep['seed']}: {kind} shot at {shot['speed']:.1f} m/s -> {ep['outcome']} "
+              f"after {ep['steps']} steps")
+    for name, path in summary["files"].items():
+        print(f"wrote {name}: {path}")
+    return 0
+
+
+def _cmd_list(argv: list[str]) -> int:
+    p = argparse.ArgumentParser(prog="soccer-env list",
+                                description="List environments and presets.")
+    p.add_argument("--json", action="store_true")
+    p.parse_args(argv)
+    from . import ENV_IDS, PETTINGZOO_IDS, presets
+
+    info = {
+        "gymnasium": sorted(ENV_IDS),
+        "pettingzoo": [*PETTINGZOO_IDS, "soccer_env.parallel_env", "soccer_env.env"],
+        "fields": {k: v.source for k, v in presets.FIELDS.items()},
+        "balls": {k: v.source for k, v in presets.BALLS.items()},
+        "robots": {k: v.source for k, v in presets.ROBOTS.items()},
+    }
+    if "--json" in argv:
+        print(json.dumps(info, indent=2))
+    else:
+        for key, val in info.items():
+            print(f"{key}:")
+            for item in val:
+                extra = f"  ({val[item]})" if isinstance(val, dict) else ""
+                print(f"  {item}{extra}")
+    return 0
+
+
+def _cmd_bench(argv: list[str]) -> int:
+    from .bench import main as bench_main
+
+    return bench_main(argv)
+
+
+_COMMANDS = {
+    "demo": (_cmd_demo, "run the goalkeeper demo and write its video and figures"),
+    "bench": (_cmd_bench, "measure environment step rates against bare pymunk"),
+    "list": (_cmd_list, "list environments and presets"),
+}
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if not argv or argv[0] in ("-h", "--help") or argv[0] not in _COMMANDS:
+        lines = ["usage: soccer-env <command> [options]", "", "commands:"]
+        lines += [f"  {name:8s} {help_}" for name, (_, help_) in _COMMANDS.items()]
+        text = "\n".join(lines)
+        if argv and argv[0] not in ("-h", "--help"):
+            print(f"soccer-env: unknown command {argv[0]!r}\n\n{text}", file=sys.stderr)
+            return 2
+        print(text)
+        return 0
+    return _COMMANDS[argv[0]][0](argv[1:])
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,138 @@
+"""The ``make demo`` episode: the scripted keeper against seeded shots, as video and figures.
+
+Writes to the output folder:
+
+* ``goalkeeper.mp4`` (or ``goalkeeper.gif`` if no ffmpeg is available): the rendered episodes;
+* ``trajectories.png``: ball and keeper paths on the field, one colour per episode;
+* ``ball_speed.png``: ball speed against time, showing the sliding and rolling phases;
+* ``summary.json``: each episode's shot, outcome and length.
+
+Observations come from ``obs_mode="truth"``; the perception stack will switch this demo to
+perceived observations.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+__all__ = ["run_demo"]
+
+
+def run_demo(out: str | Path = "demo_output", episodes: int = 3, seed: int = 0,
+             obs_mode: str = "truth", video: bool = True) -> dict[str, Any]:
+    """Run ``episodes`` Goalkeeper-v0 episodes with the scripted keeper; write the files."""
+    from agents import ScriptedGoalkeeper
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode,
+                   render_mode="rgb_array" if video else None, render_width=640)
+    policy = ScriptedGoalkeeper.for_env(env)
+    frames: list[np.ndarray] = []
+    records = []
+    for ep in range(episodes):
+        obs, info = env.reset(seed=seed + ep)
+        track = [_row(info)]
+        if video:
+            frames.append(env.render())
+        while True:
+            obs, reward, term, trunc, info = env.step(policy(obs))
+            track.append(_row(info))
+            if video:
+                frames.append(env.render())
+            if term or trunc:
+                break
+        records.append({"seed": seed + ep, "shot": info["shot"],
+                        "outcome": info["outcome"] if term else "time limit",
+                        "reward": reward, "steps": len(track) - 1,
+                        "track": np.array(track)})
+    env.close()
+
+    files = {}
+    if video:
+        files["video"] = str(_write_video(frames, out, fps=env.unwrapped.metadata["render_fps"]))
+    files.update(_figures(records, env.unwrapped.field, out))
+    summary = {
+        "obs_mode": obs_mode,
+        "episodes": [{k: v for k, v in r.items() if k != "track"} for r in records],
+        "files": files,
+    }
+    (out / "summary.json").write_text(json.dumps(summary, indent=2))
+    return summary
+
+
+def _row(info: dict[str, Any]) -> list[float]:
+    t = info["truth"]
+    kx, ky, _ = t["robot_pose"]["blue_0"]
+    bx, by = t["ball_position"]
+    vx, vy = t["ball_velocity"]
+    return [t["time"], bx, by, t["ball_height"], vx, vy, kx, ky]
+
+
+def _write_video(frames: list[np.ndarray], out: Path, fps: int) -> Path:
+    import imageio.v2 as imageio
+
+    path = out / "goalkeeper.mp4"
+    try:
+        imageio.mimsave(path, frames, fps=fps, macro_block_size=1)
+    except Exception:  # no ffmpeg backend: fall back to a GIF
+        path = out / "goalkeeper.gif"
+        imageio.mimsave(path, frames[::2], duration=2.0 / fps)
+    return path
+
+
+def _figures(records: list[dict[str, Any]], field, out: Path) -> dict[str, str]:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    hx, hy = field.half_length, field.half_width
+    fig, ax = plt.subplots(figsize=(9, 6.5))
+    ax.add_patch(plt.Rectangle((-hx, -hy), 2 * hx, 2 * hy, fill=True, color="#1e7a34", lw=0))
+    ax.plot([0, 0], [-hy, hy], color="w", lw=1)
+    gw, gd = field.goal_width / 2, field.goal_depth
+    for s in (-1, 1):
+        ax.plot([s * hx, s * (hx + gd), s * (hx + gd), s * hx], [gw, gw, -gw, -gw], color="k")
+        dd, dw = field.defense_depth, field.defense_width / 2
+        ax.plot([s * hx, s * (hx - dd), s * (hx - dd), s * hx], [dw, dw, -dw, -dw], color="w",
+                lw=1)
+    for k, r in enumerate(records):
+        tr = r["track"]
+        colour = f"C{k % 10}"
+        ax.plot(tr[:, 1], tr[:, 2], color=colour, lw=1.5,
+                label=f"seed {r['seed']}: {r['outcome']}")
+        ax.plot(tr[0, 1], tr[0, 2], "o", color=colour)
+        ax.plot(tr[:, 6], tr[:, 7], color=colour, lw=3, alpha=0.6)
+    ax.set_aspect("equal")
+    ax.set_xlim(-hx - field.boundary, hx + field.boundary)
+    ax.set_ylim(-hy - field.boundary, hy + field.boundary)
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title("Goalkeeper-v0: ball paths (thin) and keeper paths (thick)")
+    ax.legend(loc="upper right", fontsize=8)
+    fig.tight_layout()
+    traj = out / "trajectories.png"
+    fig.savefig(traj, dpi=110)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for k, r in enumerate(records):
+        tr = r["track"]
+        ax.plot(tr[:, 0], np.hypot(tr[:, 4], tr[:, 5]), color=f"C{k % 10}",
+                label=f"seed {r['seed']} ({'chip' if r['shot']['chip'] else 'flat'})")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("ball speed [m/s]")
+    ax.set_title("Ball speed: sliding, then rolling, until saved or scored")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    speed = out / "ball_speed.png"
+    fig.savefig(speed, dpi=110)
+    plt.close(fig)
+    return {"trajectories": str(traj), "ball_speed": str(speed)}

@@ -1,0 +1,376 @@
+"""``soccer_env/Goalkeeper-v0``: one keeper robot defends its goal against shots."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+from .. import presets
+from ..config import check_choice, keyword_names, parse_scales, reject_unknown
+from ..observations import ObservationBuilder
+from ..perception import OBS_MODES, make_perception
+from ..physics import World
+from ..presets import BallSpec, FieldSpec, SSLRobotSpec
+from ..referee import classify_exit
+from ..render import RENDER_MODES, Renderer
+from ..robots import OUT_OF_RANGE_MODES, SSLRobot, validate_actions
+
+__all__ = ["GoalkeeperEnv", "ShotDistribution", "GOALKEEPER_SHAPING", "STOP_SPEED",
+           "CLEAR_SPEED"]
+
+#: The ball counts as stopped below this speed [m/s].
+STOP_SPEED = 0.05
+#: The ball counts as cleared once it moves away from the goal faster than this [m/s].
+CLEAR_SPEED = 0.1
+
+#: Shaping terms of the goalkeeper task (all off unless given a scale). Rates are per second
+#: and multiplied by the control step, so their sum over an episode does not depend on it.
+GOALKEEPER_SHAPING = {
+    "intercept": "-|y_keeper - y_cross| / goal_width per second, y_cross where the ball's "
+                 "present line of motion crosses the goal line (0 while the ball is not "
+                 "moving towards the goal)",
+    "ball_distance": "-distance from keeper to ball [m] per second",
+    "action_cost": "-(vx^2 + vy^2 + omega^2) / 3 of the normalised action per second",
+    "outside_area": "-1 per second while the keeper's centre is outside its defense area",
+}
+
+
+@dataclass(frozen=True)
+class ShotDistribution:
+    """The seeded distribution of shots at the keeper's goal (blue's, at ``x = -L/2``).
+
+    A shot starts at rest at a point drawn uniformly from ``x`` in ``x_range`` (default: from
+    0.3 m in front of the defense area to the centre line) and ``y`` in ``y_range`` (default:
+    ``|y| <= W/2 - edge_margin``).
+    After ``delay`` seconds (uniform) an invisible attacker kicks it towards a target on the
+    goal line: with probability ``1 - wide_probability`` uniformly inside the goal mouth
+    (``|y| <= goal_width/2 - r``), otherwise just wide of a post (uniform side, ``r`` to
+    ``r + wide_margin`` outside it). With probability ``chip_probability`` the kick is a chip at
+    the robot preset's ``chip_angle`` with a launch speed uniform in ``chip_speed``; otherwise
+    a flat kick with speed uniform in ``speed`` (it slides, then rolls). Speeds in m/s, times in
+    s, lengths in m.
+    """
+
+    speed: tuple[float, float] = (2.0, 6.5)
+    chip_speed: tuple[float, float] = (2.0, 5.0)
+    chip_probability: float = 0.2
+    wide_probability: float = 0.2
+    wide_margin: float = 0.15
+    delay: tuple[float, float] = (0.0, 0.3)
+    x_range: tuple[float, float] | None = None
+    y_range: tuple[float, float] | None = None
+    edge_margin: float = 0.3
+
+    def __post_init__(self) -> None:
+        for name in ("speed", "chip_speed", "delay"):
+            lo, hi = getattr(self, name)
+            top = 10.0 if name == "delay" else 20.0
+            if not (0.0 <= lo <= hi <= top) or (name != "delay" and lo <= 0.0):
+                raise ValueError(f"shots.{name} must be (low, high) with 0 < low <= high <= "
+                                 f"{top} (delay may start at 0), got {(lo, hi)}")
+        for name in ("chip_probability", "wide_probability"):
+            p = getattr(self, name)
+            if not 0.0 <= p <= 1.0:
+                raise ValueError(f"shots.{name} must be in [0, 1], got {p!r}")
+        if not 0.0 <= self.wide_margin <= 2.0:
+            raise ValueError(f"shots.wide_margin must be in [0, 2] m, got {self.wide_margin!r}")
+        if not 0.0 <= self.edge_margin <= 2.0:
+            raise ValueError(f"shots.edge_margin must be in [0, 2] m, got {self.edge_margin!r}")
+        for name in ("x_range", "y_range"):
+            r = getattr(self, name)
+            if r is not None and not (len(r) == 2 and all(map(math.isfinite, r))
+                                      and r[0] <= r[1]):
+                raise ValueError(f"shots.{name} must be None or (low, high) with low <= high, "
+                                 f"got {r!r}")
+
+    def check_field(self, fld: FieldSpec) -> None:
+        """Raise ``ValueError`` if the shooting region is not inside ``fld``'s field of play."""
+        hx, hy = fld.half_length, fld.half_width
+        x_lo, x_hi = self.x_range or (-hx + fld.defense_depth + 0.3, 0.0)
+        y_lo, y_hi = self.y_range or (-(hy - self.edge_margin), hy - self.edge_margin)
+        if not (-hx < x_lo and x_hi <= hx and -hy <= y_lo and y_hi <= hy and y_lo <= y_hi):
+            raise ValueError(
+                f"shots: the shooting region x in [{x_lo}, {x_hi}], y in [{y_lo}, {y_hi}] "
+                f"must lie inside the field of play (|x| < {hx}, |y| <= {hy} m)")
+
+    @classmethod
+    def create(cls, value: ShotDistribution | Mapping[str, Any] | None) -> ShotDistribution:
+        """Accept an instance, a mapping of its fields (unknown keys rejected) or None."""
+        if value is None:
+            return cls()
+        if isinstance(value, cls):
+            return value
+        if isinstance(value, Mapping):
+            allowed = {f.name for f in dataclasses.fields(cls)}
+            unknown = sorted(set(value) - allowed)
+            if unknown:
+                raise ValueError(f"unknown shots key(s) {unknown}; allowed: {sorted(allowed)}")
+            return cls(**{k: tuple(v) if isinstance(v, list) else v for k, v in value.items()})
+        raise TypeError(f"shots must be a ShotDistribution or a mapping, got "
+                        f"{type(value).__name__}")
+
+    def sample(self, rng: np.random.Generator, fld: FieldSpec, bl: BallSpec) -> dict[str, Any]:
+        """Draw one shot: start point, target, speed, chip flag and delay."""
+        hx, hy, gw = fld.half_length, fld.half_width, 0.5 * fld.goal_width
+        x_lo, x_hi = self.x_range or (-hx + fld.defense_depth + 0.3, 0.0)
+        y_lo, y_hi = self.y_range or (-(hy - self.edge_margin), hy - self.edge_margin)
+        x = rng.uniform(x_lo, x_hi)
+        y = rng.uniform(y_lo, y_hi)
+        wide = bool(rng.random() < self.wide_probability)
+        if wide:
+            side = 1.0 if rng.random() < 0.5 else -1.0
+            ty = side * (gw + bl.radius + rng.uniform(0.0, self.wide_margin))
+        else:
+            ty = rng.uniform(-(gw - bl.radius), gw - bl.radius)
+        chip = bool(rng.random() < self.chip_probability)
+        speed = rng.uniform(*(self.chip_speed if chip else self.speed))
+        delay = rng.uniform(*self.delay)
+        return {"position": (float(x), float(y)), "target": (float(-hx), float(ty)),
+                "speed": float(speed), "chip": chip, "wide": wide, "delay": float(delay)}
+
+
+class GoalkeeperEnv(gym.Env):
+    """A keeper robot defends its goal against one shot per episode.
+
+    ## Description
+    The blue keeper (an SSL robot) starts on its goal line, at ``x = -L/2 + r + 0.05`` and
+    ``y`` uniform in ``+-goal_width/4``, facing the field. An invisible attacker shoots once
+    per episode, drawn from :class:`ShotDistribution` with the environment's seeded generator.
+    Physics, kicks and the chip flight are those of :class:`~soccer_env.physics.World`.
+
+    ## Action space
+    ``Box(-1, 1, (6,), float32)``: ``vx, vy, omega, kick, chip, dribble`` as in
+    :class:`~soccer_env.robots.SSLRobot` (body-frame velocity command scaled to the robot
+    preset's limits; kick power; chip flag; dribbler).
+
+    ## Observation space
+    ``Box((19,), float32)``, the egocentric layout of
+    :mod:`soccer_env.observations` with no team-mates, no opponents and no game state: the
+    keeper's own pose and velocity (7), the ball relative to it and its velocity (4), the four
+    goal posts relative to it (8). ``obs_mode`` chooses where the values come from; only
+    ``"truth"`` exists yet.
+
+    ## Rewards
+    +1 for a save, -1 for a goal, 0 otherwise, plus the shaping terms of
+    :data:`GOALKEEPER_SHAPING` times their scales (all 0 by default). ``info["reward_terms"]``
+    logs every term's scaled value each step (``"outcome"`` is the +-1 term).
+
+    ## Episode end
+    Terminated on a goal (the whole ball in the goal, under the bar), or a save: the ball
+    stopped (speed below 0.05 m/s on the carpet), cleared (moving away from the goal faster
+    than 0.1 m/s) or out of play without a goal (touch line, goal line beside the goal, over
+    the bar). ``info["outcome"]`` names it (``"goal"``, ``"stopped"``, ``"cleared"``,
+    ``"out"``) and ``info["is_success"]`` is True for saves. Truncated by the registration's
+    ``max_episode_steps`` (480 steps, 8 s at the default 60 Hz) if the ball is still moving,
+    e.g. held by the dribbler.
+
+    ## Info
+    Every step: ``truth`` (see :meth:`~soccer_env.state.WorldState.truth_dict`),
+    ``reward_terms``, ``outcome`` (None until the end), ``shot`` (the drawn shot),
+    ``shot_fired``, ``keeper_touched`` (the keeper has touched the ball this episode).
+
+    ## Arguments
+    ``robot`` ("ssl", "ssl-2012" or an :class:`SSLRobotSpec`), ``field`` (preset name or
+    :class:`FieldSpec`, default "ssl-div-b"), ``ball`` (preset or spec; default the field's),
+    ``obs_mode`` ("truth"), ``render_mode`` (None, "rgb_array", "human"), ``shots`` (a
+    :class:`ShotDistribution` or a mapping of its fields), ``shaping`` ({term: scale}),
+    ``control_dt`` (s, default 1/60), ``physics_dt`` (longest substep, s, default 1/240),
+    ``out_of_range_actions`` ("clip", the default, clips actions into [-1, 1]; "raise" rejects
+    them), ``render_width`` (pixels). Unknown arguments raise ``TypeError``.
+
+    ## Version history
+    * v0: first release.
+    """
+
+    metadata = {"render_modes": list(RENDER_MODES), "render_fps": 60}
+
+    def __init__(
+        self,
+        robot: str | SSLRobotSpec = "ssl",
+        field: str | FieldSpec = "ssl-div-b",
+        ball: str | BallSpec | None = None,
+        obs_mode: str = "truth",
+        render_mode: str | None = None,
+        shots: ShotDistribution | Mapping[str, Any] | None = None,
+        shaping: Mapping[str, float] | None = None,
+        control_dt: float = 1.0 / 60.0,
+        physics_dt: float = 1.0 / 240.0,
+        out_of_range_actions: str = "clip",
+        render_width: int = 960,
+        **unknown: Any,
+    ) -> None:
+        reject_unknown("GoalkeeperEnv", unknown, keyword_names(GoalkeeperEnv.__init__))
+        check_choice("obs_mode", obs_mode, OBS_MODES)
+        check_choice("render_mode", render_mode, [None, *RENDER_MODES])
+        check_choice("out_of_range_actions", out_of_range_actions, OUT_OF_RANGE_MODES)
+        self.field = presets.field(field)
+        self.ball_spec = presets.ball(ball if ball is not None else self.field.ball)
+        self.robot_spec = presets.robot(robot)
+        self.shots = ShotDistribution.create(shots)
+        self.shots.check_field(self.field)
+        self.shaping = parse_scales("shaping", shaping, GOALKEEPER_SHAPING)
+        self._shaping_on = any(self.shaping.values())
+        self._zero_shaping = dict.fromkeys(GOALKEEPER_SHAPING, 0.0)
+        self.obs_mode = obs_mode
+        self.render_mode = render_mode
+        self.out_of_range_actions = out_of_range_actions
+        self.world = World(self.field, self.ball_spec, self.robot_spec, 1, 0, control_dt,
+                           physics_dt)
+        self.metadata = {**self.metadata, "render_fps": round(1.0 / self.world.control_dt)}
+        self.robot_model = SSLRobot(self.robot_spec)
+        self.action_space = self.robot_model.action_space()
+        self.builder = ObservationBuilder(self.field, [0], [0])
+        self.observation_space = self.builder.space()
+        self._perception = make_perception(obs_mode)
+        self._render_width = int(render_width)
+        self._renderer: Renderer | None = None
+        self._names = ("blue_0",)
+        self._shot: dict[str, Any] | None = None
+
+    # ------------------------------------------------------------------------------------
+
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        super().reset(seed=seed)
+        rng = self.np_random
+        f, r = self.field, self.robot_spec
+        keeper = (-f.half_length + r.radius + 0.05,
+                  rng.uniform(-0.25 * f.goal_width, 0.25 * f.goal_width), 0.0)
+        self._shot = self.shots.sample(rng, f, self.ball_spec)
+        self.world.reset(np.array([keeper]), self._shot["position"])
+        self._fired = False
+        self._touched = False
+        if self._shot["delay"] <= 0.0:
+            self._fire()
+        state = self.world.snapshot()
+        belief = self._perception.reset(state, rng)
+        obs = self.builder.build(belief)[0]
+        info = self._info(state, dict.fromkeys(("outcome", *self.shaping), 0.0), None)
+        return obs, info
+
+    def step(self, action):
+        if self._shot is None:
+            raise RuntimeError("call reset() before step()")
+        act = np.asarray(action, dtype=np.float64)
+        if act.shape != (6,):
+            raise ValueError(f"action must have shape (6,) (vx, vy, omega, kick, chip, "
+                             f"dribble), got {act.shape}")
+        act = validate_actions(act[None], self._names, self.out_of_range_actions)
+        world = self.world
+        world.step(self.robot_model.commands(act))
+        if not self._fired and world.time >= self._shot["delay"] - 1e-9:
+            self._fire()
+        self._touched = self._touched or world.touched[0]
+        state = world.snapshot()
+        outcome = self._outcome(state)
+        terms = self._reward_terms(state, act[0], outcome)
+        reward = float(sum(terms.values()))
+        belief = self._perception.update(state)
+        obs = self.builder.build(belief)[0]
+        info = self._info(state, terms, outcome)
+        if self.render_mode == "human":
+            self.render()
+        return obs, reward, outcome is not None, False, info
+
+    # ------------------------------------------------------------------------------------
+
+    def _fire(self) -> None:
+        """The invisible attacker kicks the ball from where it lies towards the target."""
+        shot, world = self._shot, self.world
+        bx, by = world.ball_array()[0:2]
+        tx, ty = shot["target"]
+        d = math.hypot(tx - bx, ty - by)
+        ux, uy = (tx - bx) / d, (ty - by) / d
+        v = shot["speed"]
+        if shot["chip"]:
+            a = self.robot_spec.chip_angle
+            world.set_ball(bx, by, v * math.cos(a) * ux, v * math.cos(a) * uy, 0.0,
+                           v * math.sin(a))
+        else:
+            world.set_ball(bx, by, v * ux, v * uy, sliding=True)
+        self._fired = True
+
+    def _outcome(self, state) -> str | None:
+        world = self.world
+        if world.ball_exit is not None:
+            kind = classify_exit(world.ball_exit, self.field, self.ball_spec)
+            return "goal" if kind.kind == "goal" and kind.end < 0 else "out"
+        if not self._fired:
+            return None
+        vx, vy = state.ball[3], state.ball[4]
+        if not world.ball_airborne and vx * vx + vy * vy < STOP_SPEED * STOP_SPEED:
+            return "stopped"
+        if vx > CLEAR_SPEED:
+            return "cleared"
+        return None
+
+    def _reward_terms(self, state, act: np.ndarray, outcome: str | None) -> dict[str, float]:
+        terms = {"outcome": 0.0 if outcome is None else (-1.0 if outcome == "goal" else 1.0)}
+        sc = self.shaping
+        if not self._shaping_on:
+            terms.update(self._zero_shaping)
+            return terms
+        dt = self.world.control_dt
+        f = self.field
+        kx, ky = state.robots[0, 0:2]
+        bx, by, _, vx, vy, _ = state.ball
+        if sc["intercept"]:
+            err = 0.0
+            if vx < -1e-6:
+                y_cross = by + vy * (-f.half_length - bx) / vx
+                err = abs(ky - y_cross) / f.goal_width
+            terms["intercept"] = -sc["intercept"] * err * dt
+        else:
+            terms["intercept"] = 0.0
+        terms["ball_distance"] = (-sc["ball_distance"] * math.hypot(bx - kx, by - ky) * dt
+                                  if sc["ball_distance"] else 0.0)
+        terms["action_cost"] = (-sc["action_cost"] * float(act[0:3] @ act[0:3]) / 3.0 * dt
+                                if sc["action_cost"] else 0.0)
+        if sc["outside_area"]:
+            inside = (kx <= -f.half_length + f.defense_depth
+                      and abs(ky) <= 0.5 * f.defense_width)
+            terms["outside_area"] = 0.0 if inside else -sc["outside_area"] * dt
+        else:
+            terms["outside_area"] = 0.0
+        return terms
+
+    def _info(self, state, terms: dict[str, float], outcome: str | None) -> dict[str, Any]:
+        info = {
+            "truth": state.truth_dict(),
+            "reward_terms": terms,
+            "outcome": outcome,
+            "shot": dict(self._shot),
+            "shot_fired": self._fired,
+            "keeper_touched": self._touched,
+        }
+        if outcome is not None:
+            info["is_success"] = outcome != "goal"
+        return info
+
+    # ------------------------------------------------------------------------------------
+
+    def render(self):
+        if self.render_mode is None:
+            gym.logger.warn("render() called without a render_mode; pass render_mode= to "
+                            "gymnasium.make")
+            return None
+        if self._renderer is None:
+            self._renderer = Renderer(self.field, self.robot_spec, self.ball_spec,
+                                      self.render_mode, self._render_width,
+                                      self.metadata["render_fps"])
+        shot = self._shot or {}
+        kind = "chip" if shot.get("chip") else "flat"
+        hud = [f"t = {self.world.time:5.2f} s",
+               f"shot {shot.get('speed', 0.0):.1f} m/s {kind}"]
+        return self._renderer.draw(self.world.snapshot(), hud)
+
+    def close(self) -> None:
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None
+

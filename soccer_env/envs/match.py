@@ -1,0 +1,309 @@
+"""The PettingZoo match: two teams of SSL robots on one field."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import gymnasium
+import numpy as np
+from pettingzoo import ParallelEnv
+from pettingzoo.utils import parallel_to_aec
+
+from .. import presets
+from ..config import check_choice, check_range, keyword_names, parse_scales, reject_unknown
+from ..observations import ObservationBuilder
+from ..perception import OBS_MODES, make_perception
+from ..physics import World
+from ..presets import BallSpec, FieldSpec, SSLRobotSpec
+from ..referee import classify_exit, place_free_kick, place_kickoff
+from ..render import RENDER_MODES, Renderer
+from ..robots import OUT_OF_RANGE_MODES, SSLRobot, validate_actions
+
+__all__ = ["SoccerParallelEnv", "parallel_env", "env", "MATCH_SHAPING", "GAME_NAMES"]
+
+#: Shaping terms of the match (all off unless given a scale). Rates are per second and
+#: multiplied by the control step.
+MATCH_SHAPING = {
+    "ball_progress": "ball velocity towards the opponent goal [m/s] per second, shared by the "
+                     "team (zero-sum between the teams)",
+    "ball_distance": "-distance from the agent to the ball [m] per second",
+}
+
+#: Game-state entries at the end of every match observation.
+GAME_NAMES = ("game.time_left", "game.goals_for", "game.goals_against", "game.restart")
+
+
+class SoccerParallelEnv(ParallelEnv):
+    """A match between a blue and a yellow team of SSL robots (PettingZoo ``ParallelEnv``).
+
+    ## Agents
+    ``blue_0 .. blue_{n-1}`` and ``yellow_0 .. yellow_{m-1}``; blue attacks ``+x``. With two
+    or more robots, robot 0 of each team starts in the keeper slot. All agents act at once and
+    the physics steps once per parallel step.
+
+    ## Actions
+    ``Box(-1, 1, (6,), float32)`` per agent, as in :class:`~soccer_env.robots.SSLRobot`.
+
+    ## Observations
+    ``Box(float32)`` per agent, laid out as in :mod:`soccer_env.observations` (own pose and
+    velocity, ball, team-mates, opponents, goal posts), followed by the game state
+    :data:`GAME_NAMES`: match time left as a fraction of ``match_duration``, goals for,
+    goals against, and +1 / -1 while a restart awarded to the agent's own team / the opponents
+    waits for its first touch (0 otherwise). Yellow's observations are in its own team frame,
+    so one policy can play both sides.
+
+    ## Rewards
+    Zero-sum on goals: +1 to every agent of the scoring team, -1 to every agent of the other.
+    Shaping terms :data:`MATCH_SHAPING` are off unless ``shaping={name: scale}`` turns them on;
+    ``info[agent]["reward_terms"]`` logs each.
+
+    ## Rules and episode end
+    Goals, outs, free kicks and kick-offs as in :mod:`soccer_env.referee`. All agents are
+    terminated when the match clock reaches ``match_duration`` (the clock is part of the
+    observation, so its end is a terminal state of the game); all are truncated after
+    ``max_cycles`` parallel steps if that is set.
+
+    ## Info
+    Every agent's info holds ``truth`` (the same dict for all agents: ball and every robot in
+    field coordinates), ``reward_terms``, ``score`` ``{"blue": int, "yellow": int}`` and
+    ``event`` (None, ``"goal"``, ``"touch"``, ``"goal_line"`` or ``"over_bar"``).
+
+    ## Arguments
+    ``blue``, ``yellow`` (team sizes, 0..11, at least one robot in all); ``robot``, ``field``,
+    ``ball``, ``obs_mode``, ``render_mode``, ``control_dt``, ``physics_dt``,
+    ``out_of_range_actions`` as in :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`;
+    ``match_duration`` [s]; ``max_cycles``; ``shaping``; ``formation_jitter`` (metres of
+    uniform jitter of the kick-off formation); ``render_width``.
+    """
+
+    metadata = {"name": "soccer_v0", "render_modes": list(RENDER_MODES), "render_fps": 60,
+                "is_parallelizable": True}
+
+    def __init__(
+        self,
+        blue: int = 6,
+        yellow: int = 6,
+        robot: str | SSLRobotSpec = "ssl",
+        field: str | FieldSpec = "ssl-div-b",
+        ball: str | BallSpec | None = None,
+        obs_mode: str = "truth",
+        render_mode: str | None = None,
+        match_duration: float = 300.0,
+        max_cycles: int | None = None,
+        shaping: Mapping[str, float] | None = None,
+        control_dt: float = 1.0 / 60.0,
+        physics_dt: float = 1.0 / 240.0,
+        out_of_range_actions: str = "clip",
+        formation_jitter: float = 0.1,
+        render_width: int = 960,
+        **unknown: Any,
+    ) -> None:
+        reject_unknown("parallel_env", unknown, keyword_names(SoccerParallelEnv.__init__))
+        check_choice("obs_mode", obs_mode, OBS_MODES)
+        check_choice("render_mode", render_mode, [None, *RENDER_MODES])
+        check_choice("out_of_range_actions", out_of_range_actions, OUT_OF_RANGE_MODES)
+        self.match_duration = check_range("match_duration", match_duration, 1e-3, 1e6)
+        if max_cycles is not None and (not isinstance(max_cycles, (int, np.integer))
+                                       or max_cycles < 1):
+            raise ValueError(f"max_cycles must be a positive integer or None, got {max_cycles!r}")
+        self.max_cycles = max_cycles
+        self.formation_jitter = check_range("formation_jitter", formation_jitter, 0.0, 1.0)
+        self.field = presets.field(field)
+        self.ball_spec = presets.ball(ball if ball is not None else self.field.ball)
+        self.robot_spec = presets.robot(robot)
+        self.shaping = parse_scales("shaping", shaping, MATCH_SHAPING)
+        self.obs_mode = obs_mode
+        self.render_mode = render_mode
+        self.out_of_range_actions = out_of_range_actions
+        self.world = World(self.field, self.ball_spec, self.robot_spec, blue, yellow,
+                           control_dt, physics_dt)
+        self.metadata = {**self.metadata, "render_fps": round(1.0 / self.world.control_dt)}
+        self.robot_model = SSLRobot(self.robot_spec)
+        w = self.world
+        self.possible_agents = list(w.names)
+        self.agents: list[str] = []
+        game_low, game_high = (0.0, 0.0, 0.0, -1.0), (1.0, 1000.0, 1000.0, 1.0)
+        self.builder = ObservationBuilder(self.field, w.teams, range(w.n_robots), game_low,
+                                          game_high, GAME_NAMES)
+        self._teams = w.teams.tolist()
+        self._observation_spaces = {a: self.builder.space() for a in self.possible_agents}
+        self._action_spaces = {a: self.robot_model.action_space() for a in self.possible_agents}
+        # One perception for both teams: with obs_mode="truth" both believe the truth.
+        self._perception = make_perception(obs_mode)
+        self.state_space = gymnasium.spaces.Box(-np.inf, np.inf, (6 + 6 * w.n_robots,),
+                                                np.float32)
+        self.score = [0, 0]
+        self.restart_team = -1
+        self.cycles = 0
+        self._render_width = int(render_width)
+        self._renderer: Renderer | None = None
+        self._rng: np.random.Generator | None = None
+
+    # ------------------------------------------------------------------------------------
+    # PettingZoo API
+    # ------------------------------------------------------------------------------------
+
+    def observation_space(self, agent: str) -> gymnasium.spaces.Box:
+        return self._observation_spaces[agent]
+
+    def action_space(self, agent: str) -> gymnasium.spaces.Box:
+        return self._action_spaces[agent]
+
+    def reset(self, seed: int | None = None, options: dict | None = None):
+        if seed is not None or self._rng is None:
+            self._rng = np.random.default_rng(seed)
+        rng = self._rng
+        w = self.world
+        kickoff = int(rng.integers(2))
+        w.reset(place_kickoff(w, kickoff, rng, self.formation_jitter), (0.0, 0.0))
+        self.agents = list(self.possible_agents)
+        self.score = [0, 0]
+        self.restart_team = kickoff
+        self.cycles = 0
+        state = w.snapshot()
+        self._belief = self._perception.reset(state, rng)
+        zero = dict.fromkeys(self.shaping, 0.0)
+        obs = self._observe()
+        truth = state.truth_dict()
+        infos = {a: self._agent_info(truth, dict(zero), None) for a in self.agents}
+        return obs, infos
+
+    def step(self, actions: Mapping[str, Any]):
+        if not self.agents:
+            raise RuntimeError("the match is over (no live agents); call reset()")
+        act = self._gather(actions)
+        w = self.world
+        ball_x_before = float(w.ball_array()[0])
+        w.step(self.robot_model.commands(act))
+        self.cycles += 1
+        if any(w.touched):
+            self.restart_team = -1
+
+        event = None
+        scorer = -1
+        if w.ball_exit is not None:
+            kind = classify_exit(w.ball_exit, self.field, self.ball_spec)
+            event = kind.kind
+            if kind.kind == "goal":
+                scorer = kind.scorer
+                self.score[scorer] += 1
+                self.restart_team = 1 - scorer
+                w.place_all(place_kickoff(w, 1 - scorer, self._rng, self.formation_jitter))
+            else:
+                self.restart_team = place_free_kick(w, w.ball_exit, kind)
+            w.clear_exit()
+
+        state = w.snapshot()
+        rewards, terms = self._rewards(state, event, scorer, ball_x_before)
+        self._belief = self._perception.update(state)
+        obs = self._observe()
+        done = w.time >= self.match_duration - 1e-9
+        trunc = self.max_cycles is not None and self.cycles >= self.max_cycles
+        truth = state.truth_dict()
+        infos = {a: self._agent_info(truth, terms[a], event) for a in self.agents}
+        terminations = dict.fromkeys(self.agents, bool(done))
+        truncations = dict.fromkeys(self.agents, bool(trunc and not done))
+        if done or trunc:
+            self.agents = []
+        if self.render_mode == "human":
+            self.render()
+        return obs, rewards, terminations, truncations, infos
+
+    def state(self) -> np.ndarray:
+        """Global true state for centralised critics: ball ``x, y, z, vx, vy, vz`` then each
+        robot's ``x, y, theta, vx, vy, omega`` (field frame), float32."""
+        s = self.world.snapshot()
+        return np.concatenate([s.ball, s.robots.ravel()]).astype(np.float32)
+
+    def render(self):
+        if self.render_mode is None:
+            gymnasium.logger.warn("render() called without a render_mode")
+            return None
+        if self._renderer is None:
+            self._renderer = Renderer(self.field, self.robot_spec, self.ball_spec,
+                                      self.render_mode, self._render_width,
+                                      self.metadata["render_fps"])
+        hud = [f"blue {self.score[0]} : {self.score[1]} yellow",
+               f"t = {self.world.time:6.2f} s"]
+        return self._renderer.draw(self.world.snapshot(), hud)
+
+    def close(self) -> None:
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None
+
+    # ------------------------------------------------------------------------------------
+
+    def _gather(self, actions: Mapping[str, Any]) -> np.ndarray:
+        """Stack the live agents' actions into ``(N, 6)``; validate before touching the world."""
+        if not isinstance(actions, Mapping):
+            raise TypeError(f"actions must be a dict {{agent: action}}, got "
+                            f"{type(actions).__name__}")
+        agents = self.agents
+        if len(actions) != len(agents) or not all(a in actions for a in agents):
+            unknown = sorted(set(actions) - set(agents))
+            if unknown:
+                raise ValueError(f"actions for unknown or finished agent(s) {unknown}; live "
+                                 f"agents: {agents}")
+            missing = [a for a in agents if a not in actions]
+            raise ValueError(f"missing actions for agent(s) {missing}; every live agent must "
+                             "act")
+        try:
+            act = np.array([actions[a] for a in agents], dtype=np.float64)
+        except (TypeError, ValueError):  # ragged or non-numeric: find the culprit below
+            act = None
+        if act is None or act.shape != (len(agents), SSLRobot.action_size):
+            for a in agents:
+                shape = np.shape(actions[a])
+                if shape != (SSLRobot.action_size,):
+                    raise ValueError(f"action for agent {a!r} must have shape (6,) (vx, vy, "
+                                     f"omega, kick, chip, dribble), got {shape}")
+            raise ValueError("actions must be numeric arrays of shape (6,)")
+        return validate_actions(act, agents, self.out_of_range_actions)
+
+    def _observe(self) -> dict[str, np.ndarray]:
+        time_left = max(0.0, 1.0 - self.world.time / self.match_duration)
+        blue, yellow = self.score
+        restart = self.restart_team
+        flag = 0.0 if restart < 0 else (1.0 if restart == 0 else -1.0)
+        per_team = np.array([(time_left, blue, yellow, flag), (time_left, yellow, blue, -flag)])
+        rows = self.builder.build(self._belief, per_team[self._teams])
+        return dict(zip(self.possible_agents, rows))
+
+    def _rewards(self, state, event: str | None, scorer: int, ball_x_before: float):
+        """Per-agent rewards and their named terms (see :data:`MATCH_SHAPING`)."""
+        sc = self.shaping
+        teams = self._teams
+        n = len(teams)
+        goal = [0.0] * n if scorer < 0 else [1.0 if t == scorer else -1.0 for t in teams]
+        progress = [0.0] * n
+        if sc["ball_progress"] and event is None:
+            # Ball displacement towards the opponent goal this step: velocity times dt.
+            dx = sc["ball_progress"] * (float(state.ball[0]) - ball_x_before)
+            progress = [dx if t == 0 else -dx for t in teams]
+        distance = [0.0] * n
+        if sc["ball_distance"]:
+            d = np.hypot(*(state.robots[:, 0:2] - state.ball[0:2]).T)
+            distance = (-sc["ball_distance"] * self.world.control_dt * d).tolist()
+        rewards, terms = {}, {}
+        for a, g, p, d in zip(self.possible_agents, goal, progress, distance):
+            rewards[a] = g + p + d
+            terms[a] = {"goal": g, "ball_progress": p, "ball_distance": d}
+        return rewards, terms
+
+    def _agent_info(self, truth: dict, terms: dict, event: str | None) -> dict[str, Any]:
+        return {"truth": truth, "reward_terms": terms,
+                "score": {"blue": self.score[0], "yellow": self.score[1]}, "event": event}
+
+
+def parallel_env(**kwargs: Any) -> SoccerParallelEnv:
+    """The match as a PettingZoo ``ParallelEnv`` (see :class:`SoccerParallelEnv`)."""
+    return SoccerParallelEnv(**kwargs)
+
+
+def env(**kwargs: Any):
+    """The match as a PettingZoo AEC environment (agents act in turn; the physics steps
+    once every agent has acted)."""
+    return parallel_to_aec(SoccerParallelEnv(**kwargs))
+

@@ -1,0 +1,221 @@
+"""Egocentric observations, built for all agents of a team with a handful of array operations.
+
+Every agent's observation is a float32 vector laid out as below (``k`` team-mates other than
+itself, ``m`` opponents). "Body frame" means rotated into the agent's heading (``+x`` forward,
+``+y`` left); "team frame" is the field frame rotated so that the agent's team attacks ``+x``
+(identity for blue, a half turn for yellow), so that one policy can play either side.
+
+=================  ==========================================================================
+entries            meaning
+=================  ==========================================================================
+self (7)           ``x, y`` [m] in the team frame; ``ax, ay``: the team's ``+x`` axis in the
+                   body frame, i.e. ``(cos h, -sin h)`` for heading ``h`` in the team frame;
+                   ``vx, vy`` [m/s] body frame; ``omega`` [rad/s]
+ball (4)           position relative to self [m] and velocity [m/s], both body frame
+mate_j (6 each)    relative position [m], ``cos, sin`` of the relative heading, velocity
+                   [m/s], body frame; team-mates in index order, skipping self
+opp_j (6 each)     the same for opponents, in index order
+goals (8)          own goal's left and right post, then the opponent goal's left and right
+                   post (left/right as seen from the centre spot facing the team's ``+x``),
+                   relative position [m] in body frame
+game (g)           task-specific game state (see each environment)
+=================  ==========================================================================
+
+Values are clipped to the observation space's bounds, which are wide enough that only
+pathological states reach them. The builder reads a belief, never the world, so the same
+code serves ``obs_mode="truth"`` and the perception stack.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+from gymnasium import spaces
+
+from .perception import Belief
+from .presets import FieldSpec
+
+__all__ = ["ObservationBuilder", "ROBOT_SPEED_BOUND", "ROBOT_TURN_BOUND", "BALL_SPEED_BOUND"]
+
+#: Observation bound on robot speed components [m/s] (robots can be shoved beyond their drive).
+ROBOT_SPEED_BOUND = 10.0
+#: Observation bound on robot turn rate [rad/s].
+ROBOT_TURN_BOUND = 50.0
+#: Observation bound on ball speed components [m/s].
+BALL_SPEED_BOUND = 20.0
+
+
+class ObservationBuilder:
+    """Builds the observations of the robots ``agents`` (of either team) in one pass.
+
+    Args:
+        field: field geometry (goal posts, bounds).
+        teams: team of every robot of the belief (0 blue, 1 yellow), in robot order.
+        agents: robot indices that get an observation, in the order of the output rows.
+        game_low, game_high: bounds of the task's game-state entries.
+        game_names: names of the game-state entries.
+
+    An agent's team-mates are the other robots of its team and its opponents those of the
+    other team, both in robot order; every agent sees the other ``N - 1`` robots, so the rows
+    have one length even when the teams differ in size (only the entry names differ, see
+    :meth:`names_for`).
+    """
+
+    def __init__(
+        self,
+        field: FieldSpec,
+        teams: Sequence[int],
+        agents: Sequence[int],
+        game_low: Sequence[float] = (),
+        game_high: Sequence[float] = (),
+        game_names: Sequence[str] = (),
+    ) -> None:
+        self.teams = [int(t) for t in teams]
+        self.n_robots = len(self.teams)
+        self.own = list(agents)
+        self.signs = [1.0 if self.teams[i] == 0 else -1.0 for i in self.own]
+        self.others = [[j for j in range(self.n_robots) if self.teams[j] == self.teams[i]
+                        and j != i]
+                       + [j for j in range(self.n_robots) if self.teams[j] != self.teams[i]]
+                       for i in self.own]
+        self.k = self.n_robots - 1
+        self.game_size = len(game_names)
+        hx, gw = field.half_length, 0.5 * field.goal_width
+        # Posts in the team frame: own left, own right, opponent left, opponent right.
+        self.posts_team = [(-hx, gw), (-hx, -gw), (hx, gw), (hx, -gw)]
+
+        ox = field.half_length + field.boundary
+        oy = field.half_width + field.boundary
+        span = math.hypot(2 * ox, 2 * oy)
+        rv, rw, bv = ROBOT_SPEED_BOUND, ROBOT_TURN_BOUND, BALL_SPEED_BOUND
+        high = [ox, oy, 1, 1, rv, rv, rw, span, span, bv, bv]
+        high += [span, span, 1, 1, rv, rv] * self.k + [span, span] * 4
+        low = [-h for h in high] + list(game_low)
+        high += list(game_high)
+        self._game_names = tuple(game_names)
+        self.size = len(high)
+        self.low = np.asarray(low, dtype=np.float32)
+        self.high = np.asarray(high, dtype=np.float32)
+        self._compile()
+
+    def names_for(self, team: int) -> tuple[str, ...]:
+        """Entry names of the observation of an agent of ``team``."""
+        n_mates = sum(1 for t in self.teams if t == team) - 1
+        names = ["self.x", "self.y", "self.ax", "self.ay", "self.vx", "self.vy", "self.omega",
+                 "ball.dx", "ball.dy", "ball.vx", "ball.vy"]
+        for j in range(self.k):
+            tag = f"mate{j}" if j < n_mates else f"opp{j - n_mates}"
+            names += [f"{tag}.{e}" for e in ("dx", "dy", "cos", "sin", "vx", "vy")]
+        for post in ("own_left", "own_right", "opp_left", "opp_right"):
+            names += [f"goal.{post}.dx", f"goal.{post}.dy"]
+        return (*names, *self._game_names)
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Entry names of the first agent's observation."""
+        return self.names_for(self.teams[self.own[0]])
+
+    def _compile(self) -> None:
+        """Precompute the linear part of the observation.
+
+        Writing a planar vector ``(x, y)`` as the complex number ``x + iy``, every vector of
+        the observation except the relative headings is, before rotation into the body frame,
+        a linear function of ``S = [robots.ravel(), ball, 1]``: relative positions are
+        differences of positions, goal posts constants minus the own position, velocities
+        copies, and the team's ``+x`` axis a constant. So the vectors of all agents are
+        ``Z = L @ S`` for one complex matrix ``L`` of shape ``(n, V, 6 N + 7)``, and the
+        rotation into agent ``i``'s body frame is the product of its rows with
+        ``exp(-i theta_i)``. A few unrotated entries (own team-frame position, ``omega``) ride
+        along as extra columns. The whole build is a dozen numpy calls whatever the team
+        sizes, which matters at the step rates these environments run at.
+        """
+        n, k, nr = len(self.own), self.k, self.n_robots
+        d = 6 * nr + 7
+        one, ball = d - 1, 6 * nr
+        # Rotated vectors: 0..k-1 others' positions, k ball, k+1..k+4 posts, k+5..2k+4 others'
+        # velocities, 2k+5 ball velocity, 2k+6 own velocity, 2k+7 team +x axis. Then the
+        # unrotated columns: 2k+8 own team-frame position, 2k+9 omega (+ 0i).
+        n_rot = 2 * k + 8
+        lin = np.zeros((n, n_rot + 2, d), dtype=np.complex128)
+
+        def put(a: int, col: int, index: int, coef: complex = 1.0) -> None:
+            """Add ``coef * (S[index] + i S[index + 1])`` to vector ``col`` of agent ``a``."""
+            lin[a, col, index] += coef
+            lin[a, col, index + 1] += 1j * coef
+
+        for a, i in enumerate(self.own):
+            for j, r in enumerate(self.others[a]):
+                put(a, j, 6 * r)
+                put(a, j, 6 * i, -1.0)
+                put(a, k + 5 + j, 6 * r + 3)
+            put(a, k, ball)
+            put(a, k, 6 * i, -1.0)
+            sign = self.signs[a]
+            for p, (px, py) in enumerate(self.posts_team):
+                lin[a, k + 1 + p, one] = sign * (px + 1j * py)  # field frame
+                put(a, k + 1 + p, 6 * i, -1.0)
+            put(a, 2 * k + 5, ball + 3)
+            put(a, 2 * k + 6, 6 * i + 3)
+            lin[a, 2 * k + 7, one] = sign
+            put(a, 2 * k + 8, 6 * i, sign)
+            lin[a, 2 * k + 9, 6 * i + 5] = 1.0
+        # Single precision suffices (the observation is float32; positions of a few metres
+        # keep micrometre resolution) and saves a cast. S is complex so that the product with
+        # the complex L needs no cast either.
+        self._lin = lin.astype(np.complex64)
+        self._n_rot = n_rot
+        self._s = np.zeros(d, dtype=np.complex64)
+        self._s[one] = 1.0
+        first = self.own[0]
+        contiguous = self.own == list(range(first, first + n))
+        self._own_index = slice(first, first + n) if contiguous else np.asarray(self.own)
+        self._others_index = np.asarray(self.others, dtype=np.int64).reshape(n, k)
+
+        # Columns of the float view [Z (2 (n_rot + 2)), relative headings (2 k), game (g)]
+        # in output order.
+        def z(v: int) -> list[int]:
+            return [2 * v, 2 * v + 1]
+
+        c_rel = 2 * (n_rot + 2)
+        c_game = c_rel + 2 * k
+        perm = [*z(2 * k + 8), *z(2 * k + 7), *z(2 * k + 6), 2 * (2 * k + 9), *z(k),
+                *z(2 * k + 5)]
+        for j in range(k):
+            perm += [*z(j), c_rel + 2 * j, c_rel + 2 * j + 1, *z(k + 5 + j)]
+        for p in range(4):
+            perm += z(k + 1 + p)
+        perm += list(range(c_game, c_game + self.game_size))
+        assert len(perm) == self.size
+        self._perm = np.asarray(perm, dtype=np.int64)
+
+    def space(self) -> spaces.Box:
+        """A fresh ``Box`` for one agent's observation."""
+        return spaces.Box(self.low, self.high, dtype=np.float32)
+
+    def build(self, belief: Belief, game: np.ndarray | None = None) -> np.ndarray:
+        """Observations ``(len(own), size)`` float32 from ``belief``.
+
+        Args:
+            belief: field-frame ``ball`` (6,) and ``robots`` (N, 6).
+            game: ``(len(own), game_size)`` game-state entries, or None if ``game_size`` is 0.
+        """
+        robots = belief.robots
+        s = self._s
+        s[: 6 * self.n_robots] = robots.ravel()
+        s[6 * self.n_robots: -1] = belief.ball
+        rot = np.exp(-1j * robots[self._own_index, 2:3]).astype(np.complex64)  # into body frame
+        z = self._lin @ s
+        z[:, : self._n_rot] *= rot
+        parts = [z.view(np.float32)]
+        if self.k:
+            heading = np.exp(1j * robots[:, 2]).astype(np.complex64)
+            parts.append((heading[self._others_index] * rot).view(np.float32))
+        if self.game_size:
+            parts.append(game.astype(np.float32))
+        flat = np.concatenate(parts, axis=1) if len(parts) > 1 else parts[0]
+        out = flat[:, self._perm]
+        np.maximum(out, self.low, out=out)
+        np.minimum(out, self.high, out=out)
+        return out

@@ -1,0 +1,644 @@
+"""The physical world: a pymunk space with walls, goals, the ball and SSL robots.
+
+pymunk simulates the horizontal plane; this module adds what a top-down rigid-body engine
+lacks:
+
+* **Carpet friction.** The ball is tied to the static body by a pivot joint with zero bias and
+  a maximum force of ``m a``: Coulomb friction that decelerates the ball at exactly ``a`` and
+  stops it without ever reversing it (the "top-down friction" idiom of Chipmunk). ``a`` is the
+  sliding deceleration after a kick until the speed falls to ``k_switch`` times the kick
+  speed, then the rolling deceleration, and zero in flight.
+* **Robot drive.** Each robot is driven by a kinematic control body whose velocity is the
+  commanded one: a pivot joint and a gear joint with zero bias and maximum force
+  ``m a_max`` / torque ``I alpha_max`` make the robot track that velocity with bounded
+  acceleration, and push other bodies with bounded force, like wheels with limited traction.
+* **Height of the ball.** A chipped ball flies ballistically (``z`` is the height of its lowest
+  point); it passes over robots while higher than their height and bounces with the fixed-loss
+  model. Walls stop it at any height, so it can never leave the walled area.
+* **Kicker and dribbler** on the flat front of each robot (see :class:`SSLRobotSpec`).
+
+The control step (``control_dt``) is split into equal physics substeps no longer than
+``physics_dt``. Positions and velocities are read back in one batch per control step
+(:mod:`pymunk.batch`), which keeps per-body Python calls out of the hot loop.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pymunk
+import pymunk.batch as pbatch
+
+# Chipmunk's C functions, called directly in the hot loop: pymunk's property wrappers cost
+# 0.6-0.8 microseconds per access against 0.2-0.3 for the C call, and a Goalkeeper step makes
+# a dozen such accesses. The package pins pymunk 7, whose internals these are.
+from pymunk._chipmunk import lib as _cp
+
+from .presets import GRAVITY, BallSpec, FieldSpec, SSLRobotSpec
+from .state import WorldState
+
+__all__ = ["World", "COMMAND_FIELDS", "idle_commands", "BallExit", "robot_outline"]
+
+_BALL, _ROBOT, _WALL, _OUT = 1, 2, 3, 4
+_BODY_FIELDS = (
+    pbatch.BodyFields.POSITION
+    | pbatch.BodyFields.ANGLE
+    | pbatch.BodyFields.VELOCITY
+    | pbatch.BodyFields.ANGULAR_VELOCITY
+)
+#: Minimum thickness [m] of goal walls in the physics. Real SSL goal walls are 2 cm thick; a
+#: wall that thin could be tunnelled by a fast ball in one substep, so walls are grown outward
+#: (the goal keeps its inner size).
+MIN_GOAL_WALL = 0.05
+#: Thickness [m] of the boundary walls, grown outward from the walled area.
+BOUNDARY_WALL = 1.0
+#: pymunk contact slop [m]: penetration allowed before correction (pymunk's default is 0.1,
+#: which is meant for pixels and far too large in metres).
+COLLISION_SLOP = 5e-4
+#: A resting ball counts as "in the mouth" of a robot if its surface is within this distance
+#: [m] of the flat front (the kicker's light barrier), even without contact.
+MOUTH_TOLERANCE = 5e-3
+
+
+def robot_outline(spec: SSLRobotSpec, n_arc: int = 16) -> list[tuple[float, float]]:
+    """Vertices of the robot's footprint in its body frame: a circle cut flat at the front.
+
+    The arc runs counter-clockwise from ``+acos(d / r)`` to ``2 pi - acos(d / r)`` with
+    ``n_arc`` segments; the polygon closes along the flat front at ``x = d``.
+    """
+    a0 = math.acos(spec.front_distance / spec.radius)
+    return [
+        (spec.radius * math.cos(a), spec.radius * math.sin(a))
+        for a in np.linspace(a0, 2.0 * math.pi - a0, n_arc + 1)
+    ]
+
+
+#: Columns of the ``(N, 6)`` command array of :meth:`World.step`: body-frame velocity ``vx, vy``
+#: [m/s] (``+x`` forward) and ``omega`` [rad/s]; ``kick_speed`` [m/s] (a positive value arms
+#: the kicker, which fires when the ball touches the front within the kicker width); ``chip``
+#: (> 0: the armed kick is a chip); ``dribble`` (> 0: dribbler on).
+COMMAND_FIELDS = ("vx", "vy", "omega", "kick_speed", "chip", "dribble")
+
+
+def idle_commands(n: int) -> np.ndarray:
+    """Commands that stop ``n`` robots and leave kickers and dribblers off."""
+    return np.zeros((n, len(COMMAND_FIELDS)))
+
+
+@dataclass(frozen=True)
+class BallExit:
+    """First moment since :meth:`World.clear_exit` at which the whole ball was past a line.
+
+    ``x, y`` [m] is the ball centre, ``z`` [m] its height and ``time`` [s] the instant, at the
+    physics substep where the ball's centre first lay more than one radius beyond a goal line
+    or a touch line.
+    """
+
+    x: float
+    y: float
+    z: float
+    time: float
+
+
+class World:
+    """Physics of one field with a ball and ``n_blue + n_yellow`` SSL robots.
+
+    Robots are indexed ``0 .. N-1``, blue first; names are ``blue_i`` and ``yellow_i``.
+
+    Args:
+        field: field geometry.
+        ball: ball model.
+        robot: robot model (all robots share it).
+        n_blue: number of blue robots (0..11).
+        n_yellow: number of yellow robots (0..11).
+        control_dt: duration of one :meth:`step` [s].
+        physics_dt: longest physics substep [s].
+    """
+
+    def __init__(
+        self,
+        field: FieldSpec,
+        ball: BallSpec,
+        robot: SSLRobotSpec,
+        n_blue: int,
+        n_yellow: int,
+        control_dt: float = 1.0 / 60.0,
+        physics_dt: float = 1.0 / 240.0,
+    ) -> None:
+        for name, n in (("n_blue", n_blue), ("n_yellow", n_yellow)):
+            if not isinstance(n, (int, np.integer)) or not 0 <= n <= 11:
+                raise ValueError(f"{name} must be an integer in 0..11, got {n!r}")
+        if n_blue + n_yellow < 1:
+            raise ValueError("the world needs at least one robot (n_blue + n_yellow >= 1)")
+        if not (math.isfinite(control_dt) and 1e-3 <= control_dt <= 0.5):
+            raise ValueError(f"control_dt must be in [0.001, 0.5] s, got {control_dt!r}")
+        if not (math.isfinite(physics_dt) and 1e-4 <= physics_dt <= control_dt):
+            raise ValueError(
+                f"physics_dt must be in [0.0001, control_dt={control_dt}] s, got {physics_dt!r}"
+            )
+        self.field = field
+        self.ball_spec = ball
+        self.robot_spec = robot
+        self.n_blue = int(n_blue)
+        self.n_yellow = int(n_yellow)
+        self.n_robots = self.n_blue + self.n_yellow
+        self.names: tuple[str, ...] = (tuple(f"blue_{i}" for i in range(self.n_blue))
+                                       + tuple(f"yellow_{i}" for i in range(self.n_yellow)))
+        self.teams = np.array([0] * self.n_blue + [1] * self.n_yellow, dtype=np.int64)
+        self.teams.flags.writeable = False
+        self.control_dt = float(control_dt)
+        self.n_substeps = max(1, math.ceil(self.control_dt / physics_dt - 1e-9))
+        self.substep_dt = self.control_dt / self.n_substeps
+
+        # Derived constants of the hot loop.
+        self._walls_x = field.half_length + field.boundary
+        self._walls_y = field.half_width + field.boundary
+        self._roll_force = ball.mass * ball.rolling_deceleration
+        self._slide_force = ball.mass * ball.sliding_deceleration
+        self._mouth_lo = robot.front_distance + ball.radius - 0.01
+        self._mouth_hi = robot.front_distance + ball.radius + MOUTH_TOLERANCE
+        self._mouth_half = 0.5 * robot.kicker_width
+        self._chip_cos = math.cos(robot.chip_angle)
+        self._chip_sin = math.sin(robot.chip_angle)
+        self._outline = robot_outline(robot)
+
+        self._buffer = pbatch.Buffer()
+        self._state = np.zeros((1 + self.n_robots, 6))
+        self.space: pymunk.Space | None = None
+        self.time = 0.0
+
+    # ------------------------------------------------------------------------------------
+    # Construction
+    # ------------------------------------------------------------------------------------
+
+    def reset(self, robot_poses: np.ndarray, ball_position: tuple[float, float] = (0.0, 0.0)
+              ) -> None:
+        """Build a fresh space (no cached contacts, so the same inputs give the same episode).
+
+        Args:
+            robot_poses: ``(N, 3)`` initial ``x, y, theta`` of every robot, field frame.
+            ball_position: initial ball ``x, y`` [m], at rest on the carpet.
+        """
+        poses = self._validated_poses(robot_poses)
+        self._check_inside("ball", *ball_position, self.ball_spec.radius)
+        space = pymunk.Space()
+        space.collision_slop = COLLISION_SLOP
+        space.iterations = 10
+        self.space = space
+        self._add_walls(space)
+
+        bs = self.ball_spec
+        ball = pymunk.Body(bs.mass, math.inf)
+        ball_shape = pymunk.Circle(ball, bs.radius)
+        ball_shape.elasticity = 1.0
+        ball_shape.friction = bs.surface_friction
+        ball_shape.collision_type = _BALL
+        space.add(ball, ball_shape)
+        friction = pymunk.PivotJoint(space.static_body, ball, (0.0, 0.0), (0.0, 0.0))
+        friction.max_bias = 0.0
+        friction.max_force = self._roll_force
+        space.add(friction)
+        self._ball, self._friction = ball, friction
+
+        rs = self.robot_spec
+        self._bodies: list[pymunk.Body] = []
+        self._controls: list[pymunk.Body] = []
+        self._shape_index: dict[pymunk.Shape, int] = {}
+        for i in range(self.n_robots):
+            body = pymunk.Body(rs.mass, rs.moment_of_inertia)
+            shape = pymunk.Poly(body, self._outline)
+            shape.elasticity = rs.restitution
+            shape.friction = rs.surface_friction
+            shape.collision_type = _ROBOT
+            space.add(body, shape)
+            self._bodies.append(body)
+            self._shape_index[shape] = i
+        for body in self._bodies:
+            control = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+            drive = pymunk.PivotJoint(control, body, (0.0, 0.0), (0.0, 0.0))
+            drive.max_bias = 0.0
+            drive.max_force = rs.mass * rs.max_acceleration
+            turn = pymunk.GearJoint(control, body, 0.0, 1.0)
+            turn.max_bias = 0.0
+            turn.max_force = rs.moment_of_inertia * rs.max_angular_acceleration
+            space.add(control, drive, turn)
+            self._controls.append(control)
+        space.on_collision(_BALL, _ROBOT, pre_solve=self._ball_robot_contact)
+        space.on_collision(_BALL, _OUT, begin=self._ball_out)
+        # ``Space.step`` spends about 3 microseconds per call on Python housekeeping (deferred
+        # adds and removals, post-step callbacks) that this world never needs, because it
+        # never adds or removes objects while stepping; Chipmunk's own step is equivalent
+        # (tests/test_physics.py checks that both give identical trajectories).
+        self._space_step = functools.partial(_cp.cpSpaceStep, space._space)
+        self._ball_handle = ball._body
+        self._control_handles = [c._body for c in self._controls]
+
+        n = self.n_robots
+        self.time = 0.0
+        self._z = 0.0
+        self._vz = 0.0
+        self._airborne = False
+        self._hops = 0
+        self._sliding = False
+        self._v_switch = 0.0
+        self._armed = [0.0] * n
+        self._chip = [False] * n
+        self._dribble = [False] * n
+        self._ready_at = [0.0] * n
+        self._pending_kick = -1
+        #: Robots that touched the ball during the last step (list of bool, robot order).
+        self.touched = [False] * n
+        #: Robots whose kicker fired during the last step.
+        self.kicked = [False] * n
+        self.last_touch = -1
+        self.ball_exit: BallExit | None = None
+        self.place_all(poses, ball_position)
+
+    def _validated_poses(self, robot_poses: np.ndarray) -> np.ndarray:
+        poses = np.asarray(robot_poses, dtype=np.float64)
+        if poses.shape != (self.n_robots, 3):
+            raise ValueError(f"robot_poses must have shape ({self.n_robots}, 3), got {poses.shape}")
+        for i, (x, y, th) in enumerate(poses):
+            self._check_inside(f"robot {self.names[i]}", x, y, self.robot_spec.radius)
+            if not math.isfinite(th):
+                raise ValueError(f"robot {self.names[i]} heading must be finite, got {th!r}")
+        return poses
+
+    def _add_walls(self, space: pymunk.Space) -> None:
+        f = self.field
+        hx, hy = f.half_length, f.half_width
+        wx, wy, t = self._walls_x, self._walls_y, BOUNDARY_WALL
+        boxes = [
+            (-wx - t, wy, wx + t, wy + t),  # top
+            (-wx - t, -wy - t, wx + t, -wy),  # bottom
+            (wx, -wy, wx + t, wy),  # right
+            (-wx - t, -wy, -wx, wy),  # left
+        ]
+        side = max(f.goal_wall_thickness, MIN_GOAL_WALL)
+        back = min(max(f.goal_wall_thickness, MIN_GOAL_WALL), f.boundary - f.goal_depth)
+        gw = 0.5 * f.goal_width
+        for s in (-1.0, 1.0):
+            x0, x1 = s * hx, s * (hx + f.goal_depth)
+            x2 = s * (hx + f.goal_depth + back)
+            boxes.append((min(x1, x2), -gw - side, max(x1, x2), gw + side))  # back wall
+            boxes.append((min(x0, x2), gw, max(x0, x2), gw + side))  # left side wall
+            boxes.append((min(x0, x2), -gw - side, max(x0, x2), -gw))  # right side wall
+        for x0, y0, x1, y1 in boxes:
+            shape = pymunk.Poly(space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+            shape.elasticity = f.wall_restitution
+            shape.friction = 1.0
+            shape.collision_type = _WALL
+            space.add(shape)
+        # Sensors beyond the lines: the ball overlaps one exactly when its centre is more than
+        # one radius past a goal line or touch line, i.e. the whole ball is out. Their "begin"
+        # callback records the substep at which that first happens, at no cost per substep.
+        d = 2.0 * self.ball_spec.radius
+        for x0, y0, x1, y1 in [(hx + d, -wy, wx, wy), (-wx, -wy, -hx - d, wy),
+                               (-wx, hy + d, wx, wy), (-wx, -wy, wx, -hy - d)]:
+            sensor = pymunk.Poly(space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+            sensor.sensor = True
+            sensor.collision_type = _OUT
+            space.add(sensor)
+
+    # ------------------------------------------------------------------------------------
+    # Placement
+    # ------------------------------------------------------------------------------------
+
+    def _check_inside(self, what: str, x: float, y: float, margin: float) -> None:
+        lx, ly = self._walls_x - margin, self._walls_y - margin
+        if not (math.isfinite(x) and math.isfinite(y) and abs(x) <= lx and abs(y) <= ly):
+            raise ValueError(
+                f"{what} position must be finite and inside the walls, |x| <= {lx:.3f} and "
+                f"|y| <= {ly:.3f} m, got ({x!r}, {y!r})"
+            )
+
+    def set_robot(self, i: int, x: float, y: float, theta: float,
+                  vx: float = 0.0, vy: float = 0.0, omega: float = 0.0) -> None:
+        """Teleport robot ``i`` to pose ``(x, y, theta)`` with velocity ``(vx, vy, omega)``."""
+        self._check_inside(f"robot {self.names[i]}", x, y, self.robot_spec.radius)
+        vals = (theta, vx, vy, omega)
+        if not all(math.isfinite(v) for v in vals):
+            raise ValueError(f"robot {self.names[i]} state must be finite, got {vals}")
+        body = self._bodies[i]
+        body.position = (float(x), float(y))
+        body.angle = float(theta)
+        body.velocity = (float(vx), float(vy))
+        body.angular_velocity = float(omega)
+        self._controls[i].velocity = (float(vx), float(vy))
+        self._controls[i].angular_velocity = float(omega)
+        self._state[1 + i] = (x, y, math.remainder(theta, 2.0 * math.pi), vx, vy, omega)
+        self.space.reindex_shapes_for_body(body)
+
+    def set_ball(self, x: float, y: float, vx: float = 0.0, vy: float = 0.0,
+                 z: float = 0.0, vz: float = 0.0, sliding: bool = False) -> None:
+        """Teleport the ball.
+
+        Args:
+            x, y: position [m].
+            vx, vy: horizontal velocity [m/s].
+            z: height of the ball's lowest point [m] (0 on the carpet).
+            vz: vertical velocity [m/s]; with ``z > 0`` or ``vz > 0`` the ball is in flight.
+            sliding: start in the sliding phase (as right after a kick), switching to rolling
+                at ``k_switch`` times the current speed.
+        """
+        self._check_inside("ball", x, y, self.ball_spec.radius)
+        if not all(math.isfinite(v) for v in (vx, vy, z, vz)) or z < 0.0:
+            raise ValueError(f"ball velocity and height must be finite with z >= 0, got "
+                             f"{(vx, vy, z, vz)}")
+        ball = self._ball
+        ball.position = (float(x), float(y))
+        ball.velocity = (float(vx), float(vy))
+        self.space.reindex_shapes_for_body(ball)
+        self._z, self._vz, self._hops = float(z), float(vz), 0
+        self._airborne = z > 0.0 or vz > 0.0
+        if self._airborne:
+            self._sliding = False
+            self._friction.max_force = 0.0
+        else:
+            self._z = self._vz = 0.0
+            self._set_sliding(sliding, math.hypot(vx, vy))
+        self._state[0] = (x, y, 0.0, vx, vy, 0.0)
+
+    def place_all(self, robot_poses: np.ndarray, ball_position: tuple[float, float] = (0.0, 0.0)
+                  ) -> None:
+        """Teleport every robot (at rest) and the ball (at rest) without resetting the clock."""
+        poses = self._validated_poses(robot_poses)
+        self._check_inside("ball", *ball_position, self.ball_spec.radius)
+        for i in range(self.n_robots):
+            self.set_robot(i, *poses[i])
+        self.set_ball(*ball_position)
+
+    def _set_sliding(self, sliding: bool, speed: float) -> None:
+        self._sliding = bool(sliding) and speed > 0.0
+        if self._sliding:
+            self._v_switch = self.ball_spec.k_switch * speed
+            self._friction.max_force = self._slide_force
+        else:
+            self._friction.max_force = self._roll_force
+
+    def clear_exit(self) -> None:
+        """Forget the recorded :attr:`ball_exit` (after the referee has handled it)."""
+        self.ball_exit = None
+
+    # ------------------------------------------------------------------------------------
+    # Stepping
+    # ------------------------------------------------------------------------------------
+
+    def step(self, commands: np.ndarray) -> None:
+        """Advance the world by one control step of :attr:`control_dt` seconds.
+
+        Args:
+            commands: ``(N, 6)`` array with columns :data:`COMMAND_FIELDS`. The translational
+                velocity's norm is clipped to ``max_speed``, ``omega`` to
+                ``max_angular_speed`` and the kick speed to ``kick_speed_cap``.
+        """
+        rs = self.robot_spec
+        vmax, wmax, cap = rs.max_speed, rs.max_angular_speed, rs.kick_speed_cap
+        half = 0.5 * self.control_dt
+        commands = np.asarray(commands, dtype=np.float64)
+        if commands.shape != (self.n_robots, 6):
+            raise ValueError(f"commands must have shape ({self.n_robots}, 6), got "
+                             f"{commands.shape}")
+        rows = commands.tolist()
+        armed, chip, dribble = self._armed, self._chip, self._dribble
+        set_velocity, set_omega = _cp.cpBodySetVelocity, _cp.cpBodySetAngularVelocity
+        # Plain-Python loop: at these sizes it is several times cheaper than numpy calls.
+        for i, (control, (vx, vy, w, kick, ch, dr), th) in enumerate(
+                zip(self._control_handles, rows, self._state[1:, 2].tolist())):
+            speed = math.hypot(vx, vy)
+            if speed > vmax:
+                vx, vy = vx * vmax / speed, vy * vmax / speed
+            w = wmax if w > wmax else (-wmax if w < -wmax else w)
+            # Body frame -> field frame with the heading expected at mid-step.
+            h = th + half * w
+            c, s = math.cos(h), math.sin(h)
+            set_velocity(control, (c * vx - s * vy, s * vx + c * vy))
+            set_omega(control, w)
+            armed[i] = (kick if kick < cap else cap) if kick > 0.0 else 0.0
+            chip[i] = ch > 0.0
+            dribble[i] = dr > 0.0
+        self.touched = [False] * self.n_robots
+        self.kicked = [False] * self.n_robots
+        if any(armed):
+            self._kick_resting_ball()
+        dribbling = self._dribble_candidates() if any(dribble) else ()
+
+        ball = self._ball_handle
+        get_velocity = _cp.cpBodyGetVelocity
+        h = self.substep_dt
+        space_step = self._space_step
+        for _ in range(self.n_substeps):
+            for i in dribbling:
+                self._apply_dribbler(i)
+            space_step(h)
+            self.time += h
+            if self._pending_kick >= 0:
+                self._fire(self._pending_kick)
+                self._pending_kick = -1
+            if self._airborne:
+                self._fly(h)
+            elif self._sliding:
+                v = get_velocity(ball)
+                if v.x * v.x + v.y * v.y <= self._v_switch * self._v_switch:
+                    self._set_sliding(False, 0.0)
+
+        self._buffer.clear()
+        pbatch.get_space_bodies(self.space, _BODY_FIELDS, self._buffer)
+        state = self._state
+        state[:] = np.frombuffer(self._buffer.float_buf(), dtype=np.float64).reshape(-1, 6)[
+            : 1 + self.n_robots]
+        # pymunk's angle is unbounded: keep bodies (and so the reported headings) in
+        # [-pi, pi] by turning a body a full turn back when it leaves that range.
+        for i, th in enumerate(state[1:, 2].tolist()):
+            if th > math.pi or th < -math.pi:
+                th = math.remainder(th, 2.0 * math.pi)
+                self._bodies[i].angle = th
+                state[1 + i, 2] = th
+
+    def _ball_out(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
+        """``begin`` of the ball with a sensor beyond a line: record the first exit."""
+        if self.ball_exit is None:
+            x, y = self._ball.position
+            # The callback runs inside the substep, before ``time`` is advanced past it.
+            self.ball_exit = BallExit(x, y, self._z, self.time + self.substep_dt)
+
+    def _ball_robot_contact(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
+        """pre_solve for ball-robot contacts: fly-over, touches, kicker and dribbler."""
+        if self._z > self.robot_spec.height:
+            arbiter.process_collision = False
+            return
+        i = self._shape_index[arbiter.shapes[1]]
+        self.touched[i] = True
+        self.last_touch = i
+        armed = self._armed[i] > 0.0 and self.time >= self._ready_at[i]
+        if (armed or self._dribble[i]) and self._in_mouth(i):
+            if armed:
+                self._pending_kick = i
+            else:
+                # A spinning dribbler bar damps the ball's bounce off the front.
+                arbiter.restitution = self.robot_spec.dribbler_restitution
+
+    def _in_mouth(self, i: int) -> bool:
+        body = self._bodies[i]
+        rx, ry = body.position
+        bx, by = self._ball.position
+        a = body.angle
+        c, s = math.cos(a), math.sin(a)
+        dx, dy = bx - rx, by - ry
+        u = c * dx + s * dy
+        v = -s * dx + c * dy
+        return self._mouth_lo <= u <= self._mouth_hi and abs(v) <= self._mouth_half
+
+    def _kick_resting_ball(self) -> None:
+        """Fire an armed kicker whose mouth already holds the ball (no new contact needed).
+
+        Uses the state read at the end of the previous step.
+        """
+        if self._z > self.robot_spec.height:
+            return
+        bx, by = self._state[0, 0:2].tolist()
+        reach2 = (self.robot_spec.radius + self.ball_spec.radius + MOUTH_TOLERANCE) ** 2
+        for i, ((rx, ry, a), speed) in enumerate(zip(self._state[1:, 0:3].tolist(), self._armed)):
+            dx, dy = bx - rx, by - ry
+            if speed > 0.0 and dx * dx + dy * dy < reach2 and self.time >= self._ready_at[i]:
+                c, s = math.cos(a), math.sin(a)
+                u, v = c * dx + s * dy, c * dy - s * dx
+                if self._mouth_lo <= u <= self._mouth_hi and abs(v) <= self._mouth_half:
+                    self.touched[i] = True
+                    self.last_touch = i
+                    self._fire(i)
+                    return
+
+    def _fire(self, i: int) -> None:
+        rs = self.robot_spec
+        speed = self._armed[i]
+        a = self._bodies[i].angle
+        c, s = math.cos(a), math.sin(a)
+        ball = self._ball
+        if self._chip[i]:
+            horizontal = speed * self._chip_cos
+            ball.velocity = (horizontal * c, horizontal * s)
+            self._z = 0.0
+            self._vz = speed * self._chip_sin
+            self._airborne = True
+            self._hops = 0
+            self._sliding = False
+            self._friction.max_force = 0.0
+        else:
+            ball.velocity = (speed * c, speed * s)
+            self._set_sliding(True, speed)
+        self._armed[i] = 0.0
+        self._ready_at[i] = self.time + rs.kick_cooldown
+        self.kicked[i] = True
+        self.touched[i] = True
+        self.last_touch = i
+
+    def _fly(self, h: float) -> None:
+        """Ballistic height update over one substep, with fixed-loss bounces."""
+        z = self._z + self._vz * h - 0.5 * GRAVITY * h * h
+        vz = self._vz - GRAVITY * h
+        if z > 0.0:
+            self._z, self._vz = z, vz
+            return
+        # Touchdown inside this substep: bounce with the vertical speed at impact.
+        bs = self.ball_spec
+        impact = math.sqrt(self._vz * self._vz + 2.0 * GRAVITY * self._z)
+        damp = bs.chip_damping_xy_first if self._hops == 0 else bs.chip_damping_xy_other
+        self._hops += 1
+        vx, vy = self._ball.velocity
+        self._ball.velocity = (vx * damp, vy * damp)
+        vz = impact * bs.chip_damping_z
+        if vz * vz / (2.0 * GRAVITY) < bs.min_hop_height:
+            self._z = self._vz = 0.0
+            self._airborne = False
+            self._set_sliding(False, 0.0)
+        else:
+            self._z, self._vz = 0.0, vz
+
+    def _dribble_candidates(self) -> list[int]:
+        """Robots with the dribbler on whose mouth is near enough to the ball to reach it
+        within this step (checked from the last state, so only these are checked per
+        substep)."""
+        bx, by, _, bvx, bvy, _ = self._state[0].tolist()
+        reach = self.robot_spec.front_distance + self.ball_spec.radius
+        near = 0.05 + (math.hypot(bvx, bvy) + 2.0 * self.robot_spec.max_speed) * self.control_dt
+        out = []
+        near2 = (near + reach) ** 2
+        robots = self._state[1:, 0:3].tolist()
+        for i, ((rx, ry, a), on) in enumerate(zip(robots, self._dribble)):
+            if not on or (bx - rx) ** 2 + (by - ry) ** 2 > near2:
+                continue
+            mouth_x, mouth_y = rx + reach * math.cos(a), ry + reach * math.sin(a)
+            if math.hypot(bx - mouth_x, by - mouth_y) < near:
+                out.append(i)
+        return out
+
+    def _apply_dribbler(self, i: int) -> None:
+        """Hold the ball against robot ``i``'s front for the next substep (see SSLRobotSpec).
+
+        Acts while the ball is in the mouth (touching the flat front within the kicker width,
+        or within the light barrier's tolerance of it) and on the carpet below the robot's
+        height.
+        """
+        if self._z > self.robot_spec.height or not self._in_mouth(i):
+            return
+        body, ball = self._bodies[i], self._ball
+        rx, ry = body.position
+        bx, by = ball.position
+        a = body.angle
+        c, s = math.cos(a), math.sin(a)
+        dx, dy = bx - rx, by - ry
+        rvx, rvy = body.velocity
+        w = body.angular_velocity
+        bvx, bvy = ball.velocity
+        # Sideways slip of the ball relative to the robot's surface point under it.
+        slip = -s * (bvx - (rvx - w * dy)) + c * (bvy - (rvy + w * dx))
+        force = self.robot_spec.dribbler_force
+        lateral = max(-force, min(force, -self.ball_spec.mass * slip / self.substep_dt))
+        fx = -force * c - lateral * s
+        fy = -force * s + lateral * c
+        ball.force = (fx, fy)
+        body.force = (-fx, -fy)
+        self.touched[i] = True
+        self.last_touch = i
+
+    # ------------------------------------------------------------------------------------
+    # Reading
+    # ------------------------------------------------------------------------------------
+
+    @property
+    def ball_height(self) -> float:
+        """Height of the ball's lowest point above the carpet [m]."""
+        return self._z
+
+    @property
+    def ball_airborne(self) -> bool:
+        """Whether the ball is in flight after a chip."""
+        return self._airborne
+
+    @property
+    def ball_sliding(self) -> bool:
+        """Whether the ball is in its sliding phase."""
+        return self._sliding
+
+    def robot_array(self) -> np.ndarray:
+        """``(N, 6)`` view of the robots' ``x, y, theta, vx, vy, omega`` (do not modify)."""
+        return self._state[1:]
+
+    def ball_array(self) -> np.ndarray:
+        """``(6,)`` copy of the ball's ``x, y, z, vx, vy, vz``."""
+        b = self._state[0].copy()
+        b[2] = self._z
+        b[5] = self._vz
+        return b
+
+    def snapshot(self) -> WorldState:
+        """An immutable :class:`WorldState` of the present truth."""
+        robots = self._state[1:].copy()
+        robots.flags.writeable = False
+        ball = self.ball_array()
+        ball.flags.writeable = False
+        return WorldState(self.time, ball, robots, self.names, self.teams)

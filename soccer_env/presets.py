@@ -1,0 +1,381 @@
+"""Presets: the single source of truth for every physical constant of the package.
+
+Each preset names its source. Units are SI throughout (metres, seconds, kilograms, radians).
+A preset is a frozen dataclass; derive a variant with :func:`field`, :func:`ball` or
+:func:`robot`, which validate the overrides::
+
+    >>> from soccer_env import presets
+    >>> presets.robot("ssl", kick_speed_cap=8.0).kick_speed_cap
+    8.0
+
+Conventions: the field frame has its origin at the centre spot, +x towards the goal that the
+blue team attacks, +y to the left of +x, angles counter-clockwise in radians. Blue defends the
+goal at ``x = -length / 2``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any, TypeVar
+
+__all__ = [
+    "FieldSpec",
+    "BallSpec",
+    "SSLRobotSpec",
+    "FIELDS",
+    "BALLS",
+    "ROBOTS",
+    "field",
+    "ball",
+    "robot",
+    "GRAVITY",
+]
+
+#: Standard gravity [m/s^2] (ISO 80000-3).
+GRAVITY = 9.80665
+
+
+def _check(name: str, value: float, low: float, high: float, *, low_open: bool = False) -> None:
+    """Raise ``ValueError`` unless ``low <(=) value <= high`` (and finite)."""
+    ok = math.isfinite(value) and (value > low if low_open else value >= low) and value <= high
+    if not ok:
+        bracket = "(" if low_open else "["
+        raise ValueError(f"{name} must be in {bracket}{low}, {high}], got {value!r}")
+
+
+@dataclass(frozen=True)
+class FieldSpec:
+    """Geometry of a field, its goals and its boundary walls.
+
+    All lengths in metres. ``length`` and ``width`` are the field of play between the outer
+    edges of the goal lines and touch lines. Walls stand ``boundary`` beyond those lines, so the
+    walled area is ``(length + 2 boundary) x (width + 2 boundary)``. Goals sit behind the goal
+    lines, ``goal_width`` between the inner edges of the posts and ``goal_depth`` deep inside.
+    The defense (goal) area is modelled as a rectangle ``defense_width`` (along y) by
+    ``defense_depth`` (along x from the goal line).
+    """
+
+    name: str
+    length: float
+    width: float
+    boundary: float
+    goal_width: float
+    goal_depth: float
+    goal_height: float
+    goal_wall_thickness: float
+    defense_width: float
+    defense_depth: float
+    center_circle_radius: float
+    line_width: float
+    wall_restitution: float
+    ball: str
+    source: str
+
+    def __post_init__(self) -> None:
+        _check("length", self.length, 0.5, 50.0)
+        _check("width", self.width, 0.5, 50.0)
+        _check("boundary", self.boundary, 0.05, 5.0)
+        _check("goal_width", self.goal_width, 0.1, self.width)
+        _check("goal_depth", self.goal_depth, 0.05, self.boundary - 0.01)
+        _check("goal_height", self.goal_height, 0.05, 5.0)
+        _check("goal_wall_thickness", self.goal_wall_thickness, 0.001, 0.5)
+        _check("defense_width", self.defense_width, 0.0, self.width)
+        _check("defense_depth", self.defense_depth, 0.0, self.length / 2)
+        _check("center_circle_radius", self.center_circle_radius, 0.0, self.width / 2)
+        _check("line_width", self.line_width, 0.0, 0.5)
+        _check("wall_restitution", self.wall_restitution, 0.0, 1.0)
+
+    @property
+    def half_length(self) -> float:
+        """Distance from the centre spot to a goal line [m]."""
+        return 0.5 * self.length
+
+    @property
+    def half_width(self) -> float:
+        """Distance from the centre spot to a touch line [m]."""
+        return 0.5 * self.width
+
+
+@dataclass(frozen=True)
+class BallSpec:
+    """The ball and its contact with the carpet.
+
+    Straight two-phase model (the SSL vision ``BallModelStraightTwoPhase``, described in
+    ER-Force's 2016 team description paper): after a kick the ball slides with constant
+    deceleration ``sliding_deceleration`` until its speed falls to ``k_switch`` times the
+    kick speed, then rolls with ``rolling_deceleration``. Deceleration acts against the
+    velocity and stops the ball; it never reverses it.
+
+    Chip kicks follow the fixed-loss model (SSL vision ``BallModelChipFixedLoss``): ballistic
+    flight under gravity; at each bounce the vertical speed is multiplied by ``chip_damping_z``
+    and the horizontal speed by ``chip_damping_xy_first`` (first bounce) or
+    ``chip_damping_xy_other``; a hop lower than ``min_hop_height`` ends the flight.
+
+    ``surface_friction`` is the ball's Coulomb friction coefficient in pymunk, which multiplies
+    the coefficients of the two shapes in contact (walls have 1, robots their own).
+    """
+
+    name: str
+    radius: float
+    mass: float
+    sliding_deceleration: float
+    rolling_deceleration: float
+    k_switch: float
+    chip_damping_xy_first: float
+    chip_damping_xy_other: float
+    chip_damping_z: float
+    min_hop_height: float
+    surface_friction: float
+    source: str
+
+    def __post_init__(self) -> None:
+        _check("radius", self.radius, 0.005, 0.5)
+        _check("mass", self.mass, 0.001, 5.0)
+        _check("sliding_deceleration", self.sliding_deceleration, 0.0, 50.0)
+        _check("rolling_deceleration", self.rolling_deceleration, 0.0, 50.0)
+        _check("k_switch", self.k_switch, 0.0, 1.0)
+        _check("chip_damping_xy_first", self.chip_damping_xy_first, 0.0, 1.0)
+        _check("chip_damping_xy_other", self.chip_damping_xy_other, 0.0, 1.0)
+        _check("chip_damping_z", self.chip_damping_z, 0.0, 0.99)
+        _check("min_hop_height", self.min_hop_height, 0.0, 1.0)
+        _check("surface_friction", self.surface_friction, 0.0, 2.0)
+
+    @property
+    def diameter(self) -> float:
+        """Ball diameter [m]."""
+        return 2.0 * self.radius
+
+
+@dataclass(frozen=True)
+class SSLRobotSpec:
+    """A Small Size League omnidirectional robot.
+
+    The body is a cylinder of ``radius`` with its front cut flat at ``front_distance`` from the
+    centre; the kicker and the dribbler sit on that flat front, ``kicker_width`` wide. The action
+    is a body-frame velocity command scaled from [-1, 1] to ``max_speed`` (the translational
+    command's norm is capped at ``max_speed``) and ``max_angular_speed``; the wheels reach it
+    with at most ``max_acceleration`` [m/s^2] and ``max_angular_acceleration`` [rad/s^2], and
+    push other bodies with at most ``mass * max_acceleration`` newtons.
+
+    A flat kick sends the ball along the heading at ``power * kicker_max_speed``, capped at
+    ``kick_speed_cap`` (the rules' 6.5 m/s ball speed limit); a chip kick launches it at
+    ``chip_angle`` above the ground at ``power * chip_max_speed`` (3D speed, same cap). After
+    firing, the kicker needs ``kick_cooldown`` seconds before it can fire again. The dribbler
+    pulls a ball touching the front towards the robot with ``dribbler_force`` newtons and
+    resists its sideways slip with up to the same force; anything pushing harder steals it.
+
+    ``restitution`` and ``surface_friction`` are the robot shape's pymunk coefficients, which
+    pymunk multiplies with those of the other shape in a contact (the ball has restitution 1).
+    """
+
+    name: str
+    radius: float
+    front_distance: float
+    height: float
+    mass: float
+    moment_of_inertia: float
+    max_speed: float
+    max_acceleration: float
+    max_angular_speed: float
+    max_angular_acceleration: float
+    kicker_width: float
+    kicker_max_speed: float
+    kick_speed_cap: float
+    chip_max_speed: float
+    chip_angle: float
+    kick_cooldown: float
+    dribbler_force: float
+    dribbler_restitution: float
+    restitution: float
+    surface_friction: float
+    source: str
+
+    kind = "ssl"
+
+    def __post_init__(self) -> None:
+        _check("radius", self.radius, 0.02, 1.0)
+        _check("front_distance", self.front_distance, 0.3 * self.radius, self.radius)
+        _check("height", self.height, 0.01, 2.0)
+        _check("mass", self.mass, 0.1, 100.0)
+        _check("moment_of_inertia", self.moment_of_inertia, 0.0, 100.0, low_open=True)
+        _check("max_speed", self.max_speed, 0.0, 20.0, low_open=True)
+        _check("max_acceleration", self.max_acceleration, 0.0, 100.0, low_open=True)
+        _check("max_angular_speed", self.max_angular_speed, 0.0, 100.0, low_open=True)
+        _check("max_angular_acceleration", self.max_angular_acceleration, 0.0, 1000.0,
+               low_open=True)
+        chord = 2.0 * math.sqrt(self.radius**2 - self.front_distance**2)
+        _check("kicker_width", self.kicker_width, 0.0, chord, low_open=True)
+        _check("kicker_max_speed", self.kicker_max_speed, 0.0, 20.0)
+        _check("kick_speed_cap", self.kick_speed_cap, 0.0, 20.0, low_open=True)
+        _check("chip_max_speed", self.chip_max_speed, 0.0, 20.0)
+        _check("chip_angle", self.chip_angle, 0.0, 0.5 * math.pi, low_open=True)
+        _check("kick_cooldown", self.kick_cooldown, 0.0, 60.0)
+        _check("dribbler_force", self.dribbler_force, 0.0, 100.0)
+        _check("dribbler_restitution", self.dribbler_restitution, 0.0, 1.0)
+        _check("restitution", self.restitution, 0.0, 1.0)
+        _check("surface_friction", self.surface_friction, 0.0, 2.0)
+
+    @property
+    def front_width(self) -> float:
+        """Length of the flat front (chord of the cut) [m]."""
+        return 2.0 * math.sqrt(self.radius**2 - self.front_distance**2)
+
+
+# --------------------------------------------------------------------------------------------
+# Fields
+# --------------------------------------------------------------------------------------------
+
+FIELDS: dict[str, FieldSpec] = {
+    # Paper 002 (Zhao, Wang, Li 2012): "a 6.1 m x 4.7 m green carpet", the SSL 5 vs 5 field of
+    # 2012. Goal 0.7 m wide, 0.18 m deep, 0.16 m high (SSL rules 2012). The 2012 defense area
+    # was two quarter circles of radius 0.8 m around the posts joined by a 0.35 m line; it is
+    # approximated by its bounding rectangle, 0.35 + 2 * 0.8 = 1.95 m by 0.8 m. The paper does not
+    # give the boundary; 0.25 m is assumed.
+    "ssl-2012": FieldSpec(
+        name="ssl-2012", length=6.1, width=4.7, boundary=0.25,
+        goal_width=0.7, goal_depth=0.18, goal_height=0.16, goal_wall_thickness=0.02,
+        defense_width=1.95, defense_depth=0.8, center_circle_radius=0.5, line_width=0.01,
+        wall_restitution=0.5, ball="ssl-2012",
+        source="paper 002 (6.1 x 4.7 m carpet); SSL rules 2012 (goal, defense area)",
+    ),
+    # SSL rules (2023 onwards), Division B: 9 x 6 m, boundary 0.3 m, goal 1.0 m wide,
+    # 0.18 m deep, 0.155 m high inside, walls 0.02 m; defense area 2 x 1 m; centre circle 0.5 m.
+    "ssl-div-b": FieldSpec(
+        name="ssl-div-b", length=9.0, width=6.0, boundary=0.3,
+        goal_width=1.0, goal_depth=0.18, goal_height=0.155, goal_wall_thickness=0.02,
+        defense_width=2.0, defense_depth=1.0, center_circle_radius=0.5, line_width=0.01,
+        wall_restitution=0.5, ball="ssl",
+        source="SSL rules 2023+, Division B",
+    ),
+    # SSL rules (2023 onwards), Division A: 12 x 9 m, goal 1.8 m, defense area 3.6 x 1.8 m.
+    "ssl-div-a": FieldSpec(
+        name="ssl-div-a", length=12.0, width=9.0, boundary=0.3,
+        goal_width=1.8, goal_depth=0.18, goal_height=0.155, goal_wall_thickness=0.02,
+        defense_width=3.6, defense_depth=1.8, center_circle_radius=0.5, line_width=0.01,
+        wall_restitution=0.5, ball="ssl",
+        source="SSL rules 2023+, Division A",
+    ),
+    # Paper 000 (Xu et al. 2012): "RoboCup standard, 4 m x 6 m" humanoid field. Other
+    # dimensions from the RoboCup Humanoid League KidSize rules of 2012: goal 1.5 m wide,
+    # 0.5 m deep, 0.8 m high; goal area 2.2 x 0.6 m; centre circle 1.2 m diameter; border
+    # strip 0.7 m.
+    "humanoid-2012": FieldSpec(
+        name="humanoid-2012", length=6.0, width=4.0, boundary=0.7,
+        goal_width=1.5, goal_depth=0.5, goal_height=0.8, goal_wall_thickness=0.05,
+        defense_width=2.2, defense_depth=0.6, center_circle_radius=0.6, line_width=0.05,
+        wall_restitution=0.3, ball="ssl",
+        source="paper 000 (6 x 4 m); RoboCup Humanoid KidSize rules 2012",
+    ),
+    # RoboCup Humanoid League KidSize rules (2020 onwards): 9 x 6 m, goal 2.6 m wide, 0.6 m
+    # deep, 1.2 m high; goal area 3 x 1 m; centre circle 1.5 m diameter; border strip 1 m.
+    "humanoid-kid": FieldSpec(
+        name="humanoid-kid", length=9.0, width=6.0, boundary=1.0,
+        goal_width=2.6, goal_depth=0.6, goal_height=1.2, goal_wall_thickness=0.1,
+        defense_width=3.0, defense_depth=1.0, center_circle_radius=0.75, line_width=0.05,
+        wall_restitution=0.3, ball="ssl",
+        source="RoboCup Humanoid KidSize rules 2020+",
+    ),
+}
+
+# --------------------------------------------------------------------------------------------
+# Balls
+# --------------------------------------------------------------------------------------------
+
+BALLS: dict[str, BallSpec] = {
+    # Orange golf ball of the SSL rules: 42.7-43 mm, 46 g. Two-phase deceleration as used by
+    # SSL teams' ball models: sliding about 3 m/s^2, rolling 0.26-0.35 m/s^2 (we take 0.3), and
+    # k_switch 0.64 (TIGERs Mannheim's measured value). Chip losses are TIGERs Mannheim's
+    # fixed-loss defaults (0.75 / 0.95 horizontal, 0.6 vertical, 10 mm minimum hop).
+    "ssl": BallSpec(
+        name="ssl", radius=0.0215, mass=0.046,
+        sliding_deceleration=3.0, rolling_deceleration=0.3, k_switch=0.64,
+        chip_damping_xy_first=0.75, chip_damping_xy_other=0.95, chip_damping_z=0.6,
+        min_hop_height=0.01, surface_friction=0.2,
+        source="SSL rules (golf ball); SSL teams' two-phase and fixed-loss ball models",
+    ),
+    # Paper 002: the ball of 2012 on that carpet rolls with a_f = 0.23 m/s^2 (measured); the
+    # sliding phase is not modelled there, we keep the current SSL values for it.
+    "ssl-2012": BallSpec(
+        name="ssl-2012", radius=0.0215, mass=0.046,
+        sliding_deceleration=3.0, rolling_deceleration=0.23, k_switch=0.64,
+        chip_damping_xy_first=0.75, chip_damping_xy_other=0.95, chip_damping_z=0.6,
+        min_hop_height=0.01, surface_friction=0.2,
+        source="paper 002 (a_f = 0.23 m/s^2); otherwise as 'ssl'",
+    ),
+}
+
+# --------------------------------------------------------------------------------------------
+# Robots
+# --------------------------------------------------------------------------------------------
+
+ROBOTS: dict[str, SSLRobotSpec] = {
+    # SSL rules: diameter at most 0.18 m, height at most 0.15 m. Flat front 0.073 m from the
+    # centre with an 0.08 m kicker (grSim's default robot). Mass 2.5 kg; moment of inertia of a
+    # uniform disc, m r^2 / 2. Speed 3 m/s and acceleration 3 m/s^2: the "about 3 m/s, a few
+    # m/s^2" of current SSL robots. Kicker up to 8 m/s, limited to the rules' 6.5 m/s; chip at
+    # 45 degrees up to 6 m/s (about 3.7 m of flight). Dribbler force 0.15 N holds the 46 g ball
+    # against about 3 m/s^2 of backward acceleration.
+    "ssl": SSLRobotSpec(
+        name="ssl", radius=0.09, front_distance=0.073, height=0.15, mass=2.5,
+        moment_of_inertia=0.5 * 2.5 * 0.09**2,
+        max_speed=3.0, max_acceleration=3.0, max_angular_speed=10.0,
+        max_angular_acceleration=50.0,
+        kicker_width=0.08, kicker_max_speed=8.0, kick_speed_cap=6.5,
+        chip_max_speed=6.0, chip_angle=math.radians(45.0), kick_cooldown=0.5,
+        dribbler_force=0.15, dribbler_restitution=0.1, restitution=0.5, surface_friction=0.5,
+        source="SSL rules (size, 6.5 m/s); grSim default robot (front, kicker)",
+    ),
+    # Paper 002: SSL robots of 2012 reach more than 2.5 m/s with more than 2.5 m/s^2 and kick
+    # at 5.0 m/s or more; the paper's decision cycle is 40 ms. Body as 'ssl'.
+    "ssl-2012": SSLRobotSpec(
+        name="ssl-2012", radius=0.09, front_distance=0.073, height=0.15, mass=2.5,
+        moment_of_inertia=0.5 * 2.5 * 0.09**2,
+        max_speed=2.5, max_acceleration=2.5, max_angular_speed=8.0,
+        max_angular_acceleration=40.0,
+        kicker_width=0.08, kicker_max_speed=5.0, kick_speed_cap=6.5,
+        chip_max_speed=5.0, chip_angle=math.radians(45.0), kick_cooldown=0.5,
+        dribbler_force=0.15, dribbler_restitution=0.1, restitution=0.5, surface_friction=0.5,
+        source="paper 002 (2.5 m/s, 2.5 m/s^2, 5 m/s kicks); body as 'ssl'",
+    ),
+}
+
+_S = TypeVar("_S")
+
+
+def _resolve(kind: str, table: Mapping[str, _S], value: str | _S, overrides: dict[str, Any]) -> _S:
+    if isinstance(value, str):
+        if value not in table:
+            raise ValueError(f"unknown {kind} preset {value!r}; known: {sorted(table)}")
+        spec = table[value]
+    elif any(isinstance(value, type(s)) for s in table.values()):
+        spec = value
+    else:
+        raise TypeError(
+            f"{kind} must be a preset name ({sorted(table)}) or a "
+            f"{type(next(iter(table.values()))).__name__}, got {type(value).__name__}"
+        )
+    if overrides:
+        allowed = {f.name for f in dataclasses.fields(spec)} - {"name", "source"}
+        unknown = sorted(set(overrides) - allowed)
+        if unknown:
+            raise TypeError(f"unknown {kind} parameter(s) {unknown}; allowed: {sorted(allowed)}")
+        spec = dataclasses.replace(spec, **overrides)
+    return spec
+
+
+def field(spec: str | FieldSpec = "ssl-div-b", **overrides: Any) -> FieldSpec:
+    """Return a field preset (by name or spec) with optional validated overrides."""
+    return _resolve("field", FIELDS, spec, overrides)
+
+
+def ball(spec: str | BallSpec = "ssl", **overrides: Any) -> BallSpec:
+    """Return a ball preset (by name or spec) with optional validated overrides."""
+    return _resolve("ball", BALLS, spec, overrides)
+
+
+def robot(spec: str | SSLRobotSpec = "ssl", **overrides: Any) -> SSLRobotSpec:
+    """Return a robot preset (by name or spec) with optional validated overrides."""
+    return _resolve("robot", ROBOTS, spec, overrides)

@@ -1,0 +1,60 @@
+"""Immutable snapshots of the true world state."""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+__all__ = ["WorldState", "BALL_FIELDS", "ROBOT_FIELDS"]
+
+#: Columns of :attr:`WorldState.ball`.
+BALL_FIELDS = ("x", "y", "z", "vx", "vy", "vz")
+#: Columns of :attr:`WorldState.robots`.
+ROBOT_FIELDS = ("x", "y", "theta", "vx", "vy", "omega")
+
+
+class WorldState(NamedTuple):
+    """The truth at one instant, in the field frame.
+
+    Attributes:
+        time: simulated time since the world was reset [s].
+        ball: ``(6,)`` ball ``x, y`` [m], height ``z`` of its lowest point above the carpet
+            [m], velocity ``vx, vy, vz`` [m/s].
+        robots: ``(N, 6)`` robot poses ``x, y, theta`` [m, rad] and velocities
+            ``vx, vy, omega`` [m/s, rad/s], field frame, one row per robot in ``names`` order.
+        names: robot names (``blue_0``, ..., ``yellow_0``, ...).
+        teams: ``(N,)`` 0 for blue, 1 for yellow.
+
+    The arrays are read-only copies; holding a snapshot is safe while the world steps on.
+    (A ``NamedTuple``: immutable, and several times cheaper to create than a frozen dataclass,
+    which matters since every step makes one.)
+    """
+
+    time: float
+    ball: np.ndarray
+    robots: np.ndarray
+    names: tuple[str, ...]
+    teams: np.ndarray
+
+    def robot(self, name: str) -> np.ndarray:
+        """Row of :attr:`robots` for robot ``name``."""
+        return self.robots[self.names.index(name)]
+
+    def truth_dict(self) -> dict[str, object]:
+        """The ``info["truth"]`` entry: ball and every robot in field coordinates.
+
+        Keys: ``time`` [s]; ``ball_position`` (x, y) [m]; ``ball_velocity`` (vx, vy) [m/s];
+        ``ball_height`` [m]; ``robot_pose`` {name: (x, y, theta)}; ``robot_velocity``
+        {name: (vx, vy, omega)}. The perception issues add ``info["estimate"]`` with the same
+        keys.
+        """
+        robots = self.robots
+        return {
+            "time": self.time,
+            "ball_position": self.ball[0:2],
+            "ball_velocity": self.ball[3:5],
+            "ball_height": float(self.ball[2]),
+            "robot_pose": {n: robots[i, 0:3] for i, n in enumerate(self.names)},
+            "robot_velocity": {n: robots[i, 3:6] for i, n in enumerate(self.names)},
+        }

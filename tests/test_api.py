@@ -1,0 +1,176 @@
+"""API contracts: Gymnasium, PettingZoo and stable-baselines3 checkers, seeding, rendering."""
+
+import warnings
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+from pettingzoo.test import api_test, parallel_api_test, parallel_seed_test
+
+import soccer_env
+
+
+def test_goalkeeper_passes_check_env_without_warnings():
+    env = gym.make("soccer_env/Goalkeeper-v0")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        check_env(env.unwrapped)
+        check_env(gym.make("soccer_env/Goalkeeper-v0", render_mode="rgb_array").unwrapped)
+
+
+def test_goalkeeper_passes_sb3_check_env():
+    pytest.importorskip("stable_baselines3")
+    from stable_baselines3.common.env_checker import check_env as sb3_check_env
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        sb3_check_env(gym.make("soccer_env/Goalkeeper-v0").unwrapped)
+
+
+def test_goalkeeper_registration():
+    env = gym.make("soccer_env/Goalkeeper-v0")
+    assert env.spec.max_episode_steps == 480
+    assert env.observation_space.shape == (19,) and env.action_space.shape == (6,)
+
+
+@pytest.mark.parametrize("blue,yellow", [(1, 1), (3, 2), (6, 6)])
+def test_parallel_api(blue, yellow):
+    env = soccer_env.parallel_env(blue=blue, yellow=yellow, match_duration=10.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        parallel_api_test(env, num_cycles=400)
+
+
+def test_parallel_seed_test():
+    parallel_seed_test(lambda: soccer_env.parallel_env(blue=2, yellow=2), num_cycles=200)
+
+
+def test_aec_api():
+    env = soccer_env.env(blue=2, yellow=2, match_duration=5.0)
+    api_test(env, num_cycles=200)
+
+
+def test_spaces_are_memoised():
+    env = soccer_env.parallel_env(blue=2, yellow=1)
+    for a in env.possible_agents:
+        assert env.observation_space(a) is env.observation_space(a)
+        assert env.action_space(a) is env.action_space(a)
+    obs, _ = env.reset(seed=0)
+    for a in env.agents:
+        assert env.observation_space(a).contains(obs[a])
+
+
+def test_state_space():
+    env = soccer_env.parallel_env(blue=2, yellow=2)
+    env.reset(seed=0)
+    assert env.state().shape == env.state_space.shape
+
+
+def rollout_goalkeeper(env, seed, steps=200):
+    obs, info = env.reset(seed=seed)
+    env.action_space.seed(seed)
+    out = [obs]
+    for _ in range(steps):
+        obs, r, term, trunc, info = env.step(env.action_space.sample())
+        out.append(np.append(obs, r))
+        if term or trunc:
+            obs, info = env.reset()
+            out.append(obs)
+    return np.concatenate(out)
+
+
+def test_goalkeeper_same_seed_same_episode():
+    a = gym.make("soccer_env/Goalkeeper-v0")
+    b = gym.make("soccer_env/Goalkeeper-v0")
+    first = rollout_goalkeeper(a, 7)
+    np.testing.assert_array_equal(first, rollout_goalkeeper(b, 7))
+    rollout_goalkeeper(a, 3, steps=57)  # other history
+    np.testing.assert_array_equal(first, rollout_goalkeeper(a, 7))
+    assert not np.array_equal(first, rollout_goalkeeper(a, 8))
+
+
+def rollout_match(env, seed, steps=150):
+    obs, _ = env.reset(seed=seed)
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(steps):
+        obs, rew, *_ = env.step({a: rng.uniform(-1, 1, 6) for a in env.agents})
+        out.append(np.concatenate([obs[a] for a in env.possible_agents]))
+    return np.array(out)
+
+
+def test_match_same_seed_same_episode():
+    env = soccer_env.parallel_env(blue=3, yellow=3)
+    first = rollout_match(env, 11)
+    rollout_match(env, 5, steps=40)
+    np.testing.assert_array_equal(first, rollout_match(env, 11))
+    np.testing.assert_array_equal(first, rollout_match(soccer_env.parallel_env(blue=3, yellow=3),
+                                                       11))
+
+
+def test_no_global_random_state_used():
+    state = np.random.get_state()[1].copy()  # noqa: NPY002 (checking the legacy global)
+    env = gym.make("soccer_env/Goalkeeper-v0")
+    rollout_goalkeeper(env, 1, steps=50)
+    rollout_match(soccer_env.parallel_env(blue=1, yellow=1), 1, steps=20)
+    np.testing.assert_array_equal(state, np.random.get_state()[1])  # noqa: NPY002
+
+
+def test_info_truth_and_reward_terms():
+    env = gym.make("soccer_env/Goalkeeper-v0", shaping={"ball_distance": 1.0})
+    obs, info = env.reset(seed=0)
+    truth = info["truth"]
+    assert set(truth) == {"time", "ball_position", "ball_velocity", "ball_height", "robot_pose",
+                          "robot_velocity"}
+    assert set(truth["robot_pose"]) == {"blue_0"}
+    obs, r, term, trunc, info = env.step(np.zeros(6, np.float32))
+    terms = info["reward_terms"]
+    assert set(terms) == {"outcome", "intercept", "ball_distance", "action_cost", "outside_area"}
+    assert terms["ball_distance"] < 0.0 and terms["intercept"] == 0.0
+    assert r == pytest.approx(sum(terms.values()))
+    # The observation agrees with the truth (obs_mode="truth").
+    kx, ky = truth["robot_pose"]["blue_0"][:2]
+    names = env.unwrapped.builder.names
+    assert obs[names.index("self.x")] == pytest.approx(info["truth"]["robot_pose"]["blue_0"][0],
+                                                       abs=1e-5)
+    assert kx < 0
+
+
+def test_rgb_array_rendering():
+    env = gym.make("soccer_env/Goalkeeper-v0", render_mode="rgb_array", render_width=480)
+    env.reset(seed=0)
+    frame = env.render()
+    assert frame.dtype == np.uint8 and frame.ndim == 3 and frame.shape[1] == 480
+    assert frame.shape[2] == 3 and frame.std() > 0
+    match = soccer_env.parallel_env(blue=2, yellow=2, render_mode="rgb_array")
+    match.reset(seed=0)
+    assert match.render().shape[2] == 3
+
+
+def test_human_rendering_with_dummy_video_driver():
+    env = gym.make("soccer_env/Goalkeeper-v0", render_mode="human")
+    env.reset(seed=0)
+    env.step(np.zeros(6, np.float32))
+    env.close()
+
+
+def test_pettingzoo_registry():
+    import pettingzoo
+
+    env = pettingzoo.make("parallel", "soccer_env/Match-v0", blue=1, yellow=1)
+    assert env.possible_agents == ["blue_0", "yellow_0"]
+    aec = pettingzoo.make("aec", "soccer_env/Match-v0", blue=1, yellow=1)
+    aec.reset(seed=0)
+    assert aec.agent_selection == "blue_0"
+
+
+def test_readme_training_snippet_runs():
+    """The README's stable-baselines3 quick start, shortened."""
+    sb3 = pytest.importorskip("stable_baselines3")
+    env = gym.make("soccer_env/Goalkeeper-v0")
+    model = sb3.PPO("MlpPolicy", env, n_steps=128, batch_size=64, seed=0, device="cpu")
+    model.learn(total_timesteps=256)
+    obs, _ = env.reset(seed=0)
+    action, _ = model.predict(obs, deterministic=True)
+    assert env.action_space.contains(action)

@@ -1,0 +1,164 @@
+"""Bad input gets a clear error naming the argument and what is allowed, and never corrupts the
+world."""
+
+import math
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from conftest import make_world
+
+import soccer_env
+from soccer_env import presets
+
+
+def keeper(**kw):
+    env = gym.make("soccer_env/Goalkeeper-v0", **kw)
+    env.reset(seed=0)
+    return env
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_goalkeeper_nonfinite_action_raises_and_leaves_world_intact(bad):
+    env, ref = keeper(), keeper()
+    action = np.zeros(6, np.float32)
+    action[2] = bad
+    before = env.unwrapped.world.snapshot()
+    with pytest.raises(ValueError, match="blue_0.*non-finite"):
+        env.step(action)
+    after = env.unwrapped.world.snapshot()
+    np.testing.assert_array_equal(before.robots, after.robots)
+    assert before.time == after.time
+    # The episode continues exactly as if the bad call never happened.
+    rng = np.random.default_rng(0)
+    for _ in range(50):
+        a = rng.uniform(-1, 1, 6).astype(np.float32)
+        o1, r1, t1, tr1, _ = env.step(a)
+        o2, r2, t2, tr2, _ = ref.step(a)
+        np.testing.assert_array_equal(o1, o2)
+        if t1 or tr1:
+            break
+
+
+def test_out_of_range_actions_are_clipped_by_default():
+    env, ref = keeper(), keeper()
+    o1, *_ = env.step(np.array([5.0, -7.0, 2.0, 3.0, 1.0, 1.0], np.float32))
+    o2, *_ = ref.step(np.array([1.0, -1.0, 1.0, 1.0, 1.0, 1.0], np.float32))
+    np.testing.assert_array_equal(o1, o2)
+
+
+def test_out_of_range_actions_rejected_on_request():
+    env = keeper(out_of_range_actions="raise")
+    with pytest.raises(ValueError, match=r"blue_0.*outside the allowed range \[-1, 1\]"):
+        env.step(np.array([0, 0, 0, 1.5, 0, 0], np.float32))
+    env.step(np.array([0, 0, 0, 1.0, 0, 0], np.float32))  # the boundary is allowed
+
+
+@pytest.mark.parametrize("shape", [(5,), (7,), (1, 6), (2, 3)])
+def test_wrong_action_shape(shape):
+    env = keeper()
+    with pytest.raises(ValueError, match=r"shape \(6,\)"):
+        env.step(np.zeros(shape, np.float32))
+
+
+def test_step_before_reset():
+    env = gym.make("soccer_env/Goalkeeper-v0").unwrapped
+    with pytest.raises(RuntimeError, match="reset"):
+        env.step(np.zeros(6, np.float32))
+
+
+def test_unknown_keyword_lists_allowed():
+    with pytest.raises(TypeError, match=r"\['colour'\].*allowed: .*'field'"):
+        gym.make("soccer_env/Goalkeeper-v0", colour="red")
+    with pytest.raises(TypeError, match=r"\['team_size'\].*allowed: .*'blue'"):
+        soccer_env.parallel_env(team_size=3)
+
+
+@pytest.mark.parametrize("kwargs,match", [
+    ({"field": "ssl-div-c"}, r"unknown field preset 'ssl-div-c'; known: \['humanoid-2012'"),
+    ({"robot": "humanoid"}, r"unknown robot preset 'humanoid'; known: \['ssl', 'ssl-2012'\]"),
+    ({"ball": "tennis"}, r"unknown ball preset 'tennis'; known"),
+    ({"obs_mode": "perceived"}, r"obs_mode must be one of \['truth'\]"),
+    ({"render_mode": "ansi"}, r"render_mode must be one of \[None, 'human', 'rgb_array'\]"),
+    ({"out_of_range_actions": "ignore"}, r"out_of_range_actions must be one of"),
+    ({"shaping": {"speed": 1.0}}, r"unknown shaping term\(s\) \['speed'\]; known"),
+    ({"shaping": {"intercept": float("nan")}}, r"shaping\['intercept'\] must be in"),
+    ({"shots": {"speed": (5.0, 2.0)}}, r"shots.speed must be \(low, high\)"),
+    ({"shots": {"power": 3}}, r"unknown shots key\(s\) \['power'\]"),
+    ({"shots": {"x_range": (-9.0, 0.0)}}, r"inside the field of play"),
+    ({"control_dt": 0.0}, r"control_dt must be in \[0.001, 0.5\]"),
+    ({"physics_dt": 1.0}, r"physics_dt must be in"),
+])
+def test_goalkeeper_bad_arguments(kwargs, match):
+    with pytest.raises((ValueError, TypeError), match=match):
+        gym.make("soccer_env/Goalkeeper-v0", **kwargs)
+
+
+@pytest.mark.parametrize("kwargs,match", [
+    ({"blue": 12}, r"n_blue must be an integer in 0..11, got 12"),
+    ({"yellow": -1}, r"n_yellow must be an integer in 0..11, got -1"),
+    ({"blue": 2.5}, r"n_blue must be an integer"),
+    ({"blue": 0, "yellow": 0}, r"at least one robot"),
+    ({"match_duration": -3}, r"match_duration must be in"),
+    ({"max_cycles": 0}, r"max_cycles must be a positive integer or None"),
+    ({"formation_jitter": 2.0}, r"formation_jitter must be in \[0.0, 1.0\]"),
+])
+def test_match_bad_arguments(kwargs, match):
+    with pytest.raises((ValueError, TypeError), match=match):
+        soccer_env.parallel_env(**kwargs)
+
+
+def test_preset_overrides_validated():
+    with pytest.raises(TypeError, match=r"unknown robot parameter\(s\) \['wheels'\]; allowed"):
+        presets.robot("ssl", wheels=4)
+    with pytest.raises(ValueError, match=r"max_speed must be in \(0.0, 20.0\], got -1"):
+        presets.robot("ssl", max_speed=-1)
+    with pytest.raises(ValueError, match=r"kick_speed_cap must be in"):
+        presets.robot("ssl", kick_speed_cap=math.nan)
+    with pytest.raises(ValueError, match=r"goal_depth must be in"):
+        presets.field("ssl-div-b", goal_depth=0.5)
+    with pytest.raises(TypeError, match="field must be a preset name"):
+        presets.field(42)
+    assert presets.ball("ssl", rolling_deceleration=0.26).rolling_deceleration == 0.26
+
+
+def test_match_action_dict_errors_leave_world_intact():
+    env = soccer_env.parallel_env(blue=2, yellow=1)
+    env.reset(seed=0)
+    good = {a: np.zeros(6) for a in env.agents}
+    before = env.world.snapshot()
+    with pytest.raises(ValueError, match=r"missing actions for agent\(s\) \['yellow_0'\]"):
+        env.step({a: v for a, v in good.items() if a != "yellow_0"})
+    with pytest.raises(ValueError, match=r"unknown or finished agent\(s\) \['red_0'\]"):
+        env.step({**good, "red_0": np.zeros(6)})
+    with pytest.raises(ValueError, match=r"agent 'blue_1' must have shape \(6,\)"):
+        env.step({**good, "blue_1": np.zeros(4)})
+    with pytest.raises(ValueError, match=r"agent 'blue_0' contains a non-finite value"):
+        env.step({**good, "blue_0": np.array([0, 0, np.nan, 0, 0, 0])})
+    with pytest.raises(TypeError, match="actions must be a dict"):
+        env.step([np.zeros(6)] * 3)
+    after = env.world.snapshot()
+    np.testing.assert_array_equal(before.robots, after.robots)
+    assert before.time == after.time and env.cycles == 0
+    env.step(good)
+
+
+def test_step_after_match_end():
+    env = soccer_env.parallel_env(blue=1, yellow=1, max_cycles=1)
+    env.reset(seed=0)
+    env.step({a: np.zeros(6) for a in env.agents})
+    with pytest.raises(RuntimeError, match="reset"):
+        env.step({})
+
+
+def test_world_placement_validated():
+    w = make_world()
+    w.reset(np.array([[0.0, 0.0, 0.0]]))
+    with pytest.raises(ValueError, match=r"ball position must be finite and inside the walls"):
+        w.set_ball(100.0, 0.0)
+    with pytest.raises(ValueError, match=r"ball velocity and height must be finite"):
+        w.set_ball(0.0, 0.5, math.nan, 0.0)
+    with pytest.raises(ValueError, match=r"robot_poses must have shape \(1, 3\)"):
+        w.reset(np.zeros((2, 3)))
+    with pytest.raises(ValueError, match=r"commands must have shape \(1, 6\)"):
+        w.step(np.zeros((1, 4)))

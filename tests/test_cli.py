@@ -1,0 +1,64 @@
+"""The command line a user runs: list, bench and demo."""
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from soccer_env.cli import main
+
+
+def test_list(capsys):
+    assert main(["list", "--json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    assert "soccer_env/Goalkeeper-v0" in info["gymnasium"]
+    assert set(info["fields"]) == {"ssl-2012", "ssl-div-b", "ssl-div-a", "humanoid-2012",
+                                   "humanoid-kid"}
+
+
+def test_unknown_command(capsys):
+    assert main(["fly"]) == 2
+    assert "unknown command 'fly'" in capsys.readouterr().err
+
+
+def test_bench_json(capsys):
+    assert main(["bench", "--json", "--steps", "300", "--match-steps", "30",
+                 "--repeats", "1"]) == 0
+    res = json.loads(capsys.readouterr().out)
+    for key in ("goalkeeper", "match_6v6_div_b"):
+        assert res[key]["steps_per_s"] > 0 and res[key]["bare_pymunk_steps_per_s"] > 0
+        assert res[key]["rsoccer_steps_per_s"] in (1700, 470)
+
+
+def test_bench_rejects_bad_counts():
+    with pytest.raises(SystemExit):
+        main(["bench", "--steps", "0"])
+
+
+def test_demo_writes_video_and_figures(tmp_path: Path, capsys):
+    assert main(["demo", "--out", str(tmp_path), "--episodes", "1"]) == 0
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert summary["episodes"][0]["outcome"] in ("goal", "stopped", "cleared", "out",
+                                                  "time limit")
+    for path in summary["files"].values():
+        assert Path(path).stat().st_size > 1000
+    assert (tmp_path / "trajectories.png").exists() and (tmp_path / "ball_speed.png").exists()
+
+
+def test_console_script_installed():
+    exe = shutil.which("soccer-env") or str(Path(sys.executable).parent / "soccer-env")
+    out = subprocess.run([exe, "--help"], capture_output=True, text=True, check=True)
+    assert "demo" in out.stdout and "bench" in out.stdout
+
+
+def test_ruff_clean():
+    ruff = shutil.which("ruff") or str(Path(sys.executable).parent / "ruff")
+    if not Path(ruff).exists():
+        pytest.skip("ruff not installed")
+    root = Path(__file__).resolve().parents[1]
+    res = subprocess.run([ruff, "check", "soccer_env", "estimators", "agents", "tests",
+                          "benchmarks"], cwd=root, capture_output=True, text=True)
+    assert res.returncode == 0, res.stdout + res.stderr
