@@ -189,6 +189,10 @@ class ObservationBuilder:
         perm += list(range(c_game, c_game + self.game_size))
         assert len(perm) == self.size
         self._perm = np.asarray(perm, dtype=np.int64)
+        # Few agents seeing few robots: plain Python beats numpy's per-call overhead.
+        self._small = n * (k + 2) <= 8
+        self._low_list = self.low.tolist()
+        self._high_list = self.high.tolist()
 
     def space(self) -> spaces.Box:
         """A fresh ``Box`` for one agent's observation."""
@@ -200,7 +204,47 @@ class ObservationBuilder:
         Args:
             belief: field-frame ``ball`` (6,) and ``robots`` (N, 6).
             game: ``(len(own), game_size)`` game-state entries, or None if ``game_size`` is 0.
+
+        Two implementations of the same layout: plain Python floats for few agents and few
+        robots (a single keeper: about 5 microseconds against 12 for the array version, whose
+        cost is the fixed overhead of a dozen numpy calls), and the linear-map version for
+        teams (a 6 vs 6 match: about 30 microseconds for all twelve agents, against several
+        times that in Python). ``tests/test_observations.py`` checks both against a direct
+        reading of the documentation.
         """
+        if self._small:
+            return self._build_python(belief, game)
+        return self._build_arrays(belief, game)
+
+    def _build_python(self, belief: Belief, game: np.ndarray | None) -> np.ndarray:
+        robots = belief.robots.tolist()
+        bx, by, _, bvx, bvy, _ = belief.ball.tolist()
+        games = game.tolist() if self.game_size else None
+        cos, sin = math.cos, math.sin
+        low, high = self._low_list, self._high_list
+        rows = []
+        for a, i in enumerate(self.own):
+            sign = self.signs[a]
+            x, y, th, vx, vy, om = robots[i]
+            c, s = cos(th), sin(th)
+            dx, dy = bx - x, by - y
+            out = [sign * x, sign * y, sign * c, -sign * s, c * vx + s * vy, c * vy - s * vx, om,
+                   c * dx + s * dy, c * dy - s * dx, c * bvx + s * bvy, c * bvy - s * bvx]
+            for j in self.others[a]:
+                xj, yj, thj, vxj, vyj, _ = robots[j]
+                dx, dy = xj - x, yj - y
+                out += (c * dx + s * dy, c * dy - s * dx, cos(thj - th), sin(thj - th),
+                        c * vxj + s * vyj, c * vyj - s * vxj)
+            for px, py in self.posts_team:
+                dx, dy = sign * px - x, sign * py - y
+                out += (c * dx + s * dy, c * dy - s * dx)
+            if games is not None:
+                out += games[a]
+            rows.append([lo if v < lo else (hi if v > hi else v)
+                         for v, lo, hi in zip(out, low, high)])
+        return np.array(rows, dtype=np.float32)
+
+    def _build_arrays(self, belief: Belief, game: np.ndarray | None) -> np.ndarray:
         robots = belief.robots
         s = self._s
         s[: 6 * self.n_robots] = robots.ravel()

@@ -32,8 +32,9 @@ def reference(field, team, own_i, mates, opponents, robots, ball):
     return np.array(out)
 
 
-@pytest.mark.parametrize("n_blue,n_yellow", [(1, 0), (2, 3), (6, 6), (0, 2)])
-def test_builder_matches_reference(n_blue, n_yellow):
+@pytest.mark.parametrize("n_blue,n_yellow", [(1, 0), (1, 1), (2, 3), (6, 6), (0, 2)])
+@pytest.mark.parametrize("path", ["python", "arrays"])
+def test_builder_matches_reference(n_blue, n_yellow, path):
     field = presets.field("ssl-div-b")
     rng = np.random.default_rng(3)
     n = n_blue + n_yellow
@@ -46,6 +47,7 @@ def test_builder_matches_reference(n_blue, n_yellow):
     teams = [0] * n_blue + [1] * n_yellow
     agents = list(range(n))[::-1]  # any order
     b = ObservationBuilder(field, teams, agents, (-5, -5), (5, 5), ("g0", "g1"))
+    b._small = path == "python"  # force the implementation under test
     game = rng.uniform(-1, 1, (n, 2))
     obs = b.build(state, game)
     assert obs.shape == (n, b.size) and obs.dtype == np.float32
@@ -62,11 +64,19 @@ def test_builder_matches_reference(n_blue, n_yellow):
         assert mates == n_yellow - 1
 
 
-def test_values_clipped_to_bounds():
+@pytest.mark.parametrize("path", ["python", "arrays"])
+def test_values_clipped_to_bounds(path):
     field = presets.field("ssl-div-b")
     b = ObservationBuilder(field, [0], [0])
+    b._small = path == "python"
     robots = np.array([[0.0, 0.0, 0.0, 0.0, 0.0, 0.0]])
     ball = np.array([0.0, 0.0, 0.0, 1e6, 0.0, 0.0])  # absurd ball speed
     obs = b.build(WorldState(0.0, ball, robots, ("blue_0",), np.zeros(1)))[0]
     assert obs[b.names.index("ball.vx")] == pytest.approx(b.high[b.names.index("ball.vx")])
     assert b.space().contains(obs)
+
+
+def test_implementation_choice():
+    field = presets.field("ssl-div-b")
+    assert ObservationBuilder(field, [0], [0])._small
+    assert not ObservationBuilder(field, [0] * 6 + [1] * 6, range(12))._small
