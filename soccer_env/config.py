@@ -7,7 +7,10 @@ import math
 from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
-__all__ = ["reject_unknown", "keyword_names", "check_choice", "check_range", "parse_scales"]
+import numpy as np
+
+__all__ = ["reject_unknown", "keyword_names", "check_choice", "check_range", "check_int",
+           "parse_scales"]
 
 
 def keyword_names(func: Callable[..., Any]) -> list[str]:
@@ -42,6 +45,15 @@ def check_range(name: str, value: float, low: float, high: float) -> float:
     if not (math.isfinite(v) and low <= v <= high):
         raise ValueError(f"{name} must be in [{low}, {high}], got {value!r}")
     return v
+
+
+def check_int(name: str, value: Any, low: int, high: int) -> int:
+    """Return ``int(value)``; raise ``ValueError`` unless an integer (not a bool) in
+    ``[low, high]``."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not (
+            low <= value <= high):
+        raise ValueError(f"{name} must be an integer in {low}..{high}, got {value!r}")
+    return int(value)
 
 
 def parse_scales(name: str, given: Mapping[str, float] | None, known: Mapping[str, str]

@@ -37,6 +37,7 @@ import pymunk.batch as pbatch
 # a dozen such accesses. The package pins pymunk 7, whose internals these are.
 from pymunk._chipmunk import lib as _cp
 
+from .config import check_int, check_range
 from .presets import GRAVITY, BallSpec, FieldSpec, SSLRobotSpec
 from .state import WorldState
 
@@ -58,6 +59,8 @@ BOUNDARY_WALL = 1.0
 #: pymunk contact slop [m]: penetration allowed before correction (pymunk's default is 0.1,
 #: which is meant for pixels and far too large in metres).
 COLLISION_SLOP = 5e-4
+#: Largest team size (SSL Division A plays 11 vs 11).
+MAX_TEAM_SIZE = 11
 #: A resting ball counts as "in the mouth" of a robot if its surface is within this distance
 #: [m] of the flat front (the kicker's light barrier), even without contact.
 MOUTH_TOLERANCE = 5e-3
@@ -128,22 +131,17 @@ class World:
         control_dt: float = 1.0 / 60.0,
         physics_dt: float = 1.0 / 240.0,
     ) -> None:
-        for name, n in (("n_blue", n_blue), ("n_yellow", n_yellow)):
-            if not isinstance(n, (int, np.integer)) or not 0 <= n <= 11:
-                raise ValueError(f"{name} must be an integer in 0..11, got {n!r}")
+        n_blue = check_int("n_blue", n_blue, 0, MAX_TEAM_SIZE)
+        n_yellow = check_int("n_yellow", n_yellow, 0, MAX_TEAM_SIZE)
         if n_blue + n_yellow < 1:
             raise ValueError("the world needs at least one robot (n_blue + n_yellow >= 1)")
-        if not (math.isfinite(control_dt) and 1e-3 <= control_dt <= 0.5):
-            raise ValueError(f"control_dt must be in [0.001, 0.5] s, got {control_dt!r}")
-        if not (math.isfinite(physics_dt) and 1e-4 <= physics_dt <= control_dt):
-            raise ValueError(
-                f"physics_dt must be in [0.0001, control_dt={control_dt}] s, got {physics_dt!r}"
-            )
+        control_dt = check_range("control_dt", control_dt, 1e-3, 0.5)
+        physics_dt = check_range("physics_dt", physics_dt, 1e-4, control_dt)
         self.field = field
         self.ball_spec = ball
         self.robot_spec = robot
-        self.n_blue = int(n_blue)
-        self.n_yellow = int(n_yellow)
+        self.n_blue = n_blue
+        self.n_yellow = n_yellow
         self.n_robots = self.n_blue + self.n_yellow
         self.names: tuple[str, ...] = (tuple(f"blue_{i}" for i in range(self.n_blue))
                                        + tuple(f"yellow_{i}" for i in range(self.n_yellow)))
@@ -315,9 +313,14 @@ class World:
                 f"|y| <= {ly:.3f} m, got ({x!r}, {y!r})"
             )
 
+    def _require_space(self) -> None:
+        if self.space is None:
+            raise RuntimeError("call World.reset() before placing or stepping")
+
     def set_robot(self, i: int, x: float, y: float, theta: float,
                   vx: float = 0.0, vy: float = 0.0, omega: float = 0.0) -> None:
         """Teleport robot ``i`` to pose ``(x, y, theta)`` with velocity ``(vx, vy, omega)``."""
+        self._require_space()
         self._check_inside(f"robot {self.names[i]}", x, y, self.robot_spec.radius)
         vals = (theta, vx, vy, omega)
         if not all(math.isfinite(v) for v in vals):
@@ -344,6 +347,7 @@ class World:
             sliding: start in the sliding phase (as right after a kick), switching to rolling
                 at ``k_switch`` times the current speed.
         """
+        self._require_space()
         self._check_inside("ball", x, y, self.ball_spec.radius)
         if not all(math.isfinite(v) for v in (vx, vy, z, vz)) or z < 0.0:
             raise ValueError(f"ball velocity and height must be finite with z >= 0, got "
@@ -398,6 +402,7 @@ class World:
         rs = self.robot_spec
         vmax, wmax, cap = rs.max_speed, rs.max_angular_speed, rs.kick_speed_cap
         half = 0.5 * self.control_dt
+        self._require_space()
         commands = np.asarray(commands, dtype=np.float64)
         if commands.shape != (self.n_robots, 6):
             raise ValueError(f"commands must have shape ({self.n_robots}, 6), got "
@@ -481,16 +486,22 @@ class World:
                 # A spinning dribbler bar damps the ball's bounce off the front.
                 arbiter.restitution = self.robot_spec.dribbler_restitution
 
+    def _mouth_holds(self, rx: float, ry: float, a: float, bx: float, by: float) -> bool:
+        """Whether a ball at ``(bx, by)`` is in the mouth of a robot at pose ``(rx, ry, a)``:
+        its surface within :data:`MOUTH_TOLERANCE` of the flat front (or pressed into it)
+        and its centre within half the kicker width of the front's middle."""
+        c, s = math.cos(a), math.sin(a)
+        dx, dy = bx - rx, by - ry
+        u = c * dx + s * dy  # along the heading
+        v = c * dy - s * dx  # sideways
+        return self._mouth_lo <= u <= self._mouth_hi and abs(v) <= self._mouth_half
+
     def _in_mouth(self, i: int) -> bool:
+        """:meth:`_mouth_holds` for robot ``i`` and the ball, from the live bodies."""
         body = self._bodies[i]
         rx, ry = body.position
         bx, by = self._ball.position
-        a = body.angle
-        c, s = math.cos(a), math.sin(a)
-        dx, dy = bx - rx, by - ry
-        u = c * dx + s * dy
-        v = -s * dx + c * dy
-        return self._mouth_lo <= u <= self._mouth_hi and abs(v) <= self._mouth_half
+        return self._mouth_holds(rx, ry, body.angle, bx, by)
 
     def _kick_resting_ball(self) -> None:
         """Fire an armed kicker whose mouth already holds the ball (no new contact needed).
@@ -502,15 +513,10 @@ class World:
         bx, by = self._state[0, 0:2].tolist()
         reach2 = (self.robot_spec.radius + self.ball_spec.radius + MOUTH_TOLERANCE) ** 2
         for i, ((rx, ry, a), speed) in enumerate(zip(self._state[1:, 0:3].tolist(), self._armed)):
-            dx, dy = bx - rx, by - ry
-            if speed > 0.0 and dx * dx + dy * dy < reach2 and self.time >= self._ready_at[i]:
-                c, s = math.cos(a), math.sin(a)
-                u, v = c * dx + s * dy, c * dy - s * dx
-                if self._mouth_lo <= u <= self._mouth_hi and abs(v) <= self._mouth_half:
-                    self.touched[i] = True
-                    self.last_touch = i
-                    self._fire(i)
-                    return
+            if (speed > 0.0 and (bx - rx) ** 2 + (by - ry) ** 2 < reach2
+                    and self.time >= self._ready_at[i] and self._mouth_holds(rx, ry, a, bx, by)):
+                self._fire(i)
+                return
 
     def _fire(self, i: int) -> None:
         rs = self.robot_spec
@@ -528,7 +534,10 @@ class World:
             self._sliding = False
             self._friction.max_force = 0.0
         else:
+            # A flat kick drives the ball along the carpet (a low bouncing ball included).
             ball.velocity = (speed * c, speed * s)
+            self._z = self._vz = 0.0
+            self._airborne = False
             self._set_sliding(True, speed)
         self._armed[i] = 0.0
         self._ready_at[i] = self.time + rs.kick_cooldown

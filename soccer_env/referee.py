@@ -112,11 +112,33 @@ def formation(field: FieldSpec, team: int, n: int, kickoff: bool, robot_radius: 
 
 def place_kickoff(world: World, kickoff_team: int, rng: np.random.Generator, jitter: float
                   ) -> np.ndarray:
-    """Kick-off poses ``(N, 3)`` of all robots of ``world`` (blue first)."""
+    """Kick-off poses ``(N, 3)`` of all robots of ``world`` (blue first), no two closer than
+    ``2 r + 0.05`` m (jittered slots can come close on small fields; they are pushed apart)."""
     r = world.robot_spec.radius
     blue = formation(world.field, 0, world.n_blue, kickoff_team == 0, r, rng, jitter)
     yellow = formation(world.field, 1, world.n_yellow, kickoff_team == 1, r, rng, jitter)
-    return np.concatenate([blue, yellow])
+    poses = np.concatenate([blue, yellow])
+    _separate(poses, 2.0 * r + 0.05)
+    return poses
+
+
+def _separate(poses: np.ndarray, gap: float, rounds: int = 20) -> None:
+    """Push pairs of robots closer than ``gap`` apart, in place: each moves half the shortfall
+    along the line joining them, for up to ``rounds`` sweeps."""
+    for _ in range(rounds):
+        moved = False
+        for i in range(len(poses)):
+            for j in range(i + 1, len(poses)):
+                d = poses[j, 0:2] - poses[i, 0:2]
+                dist = math.hypot(*d)
+                if dist < gap:
+                    u = d / dist if dist > 1e-9 else np.array([0.0, 1.0])
+                    push = 0.5 * (gap - dist) * u
+                    poses[i, 0:2] -= push
+                    poses[j, 0:2] += push
+                    moved = True
+        if not moved:
+            return
 
 
 def free_kick_spot(exit: BallExit, kind: ExitKind, field: FieldSpec) -> tuple[float, float]:

@@ -18,7 +18,7 @@ from .physics import robot_outline
 from .presets import BallSpec, FieldSpec, SSLRobotSpec
 from .state import WorldState
 
-__all__ = ["Renderer", "RENDER_MODES", "TEAM_COLOURS"]
+__all__ = ["Renderer", "RenderingMixin", "RENDER_MODES", "TEAM_COLOURS"]
 
 RENDER_MODES = ("human", "rgb_array")
 TEAM_COLOURS = ((40, 100, 255), (245, 215, 0))
@@ -142,3 +142,37 @@ class Renderer:
         if self._window is not None:
             self.pg.display.quit()
             self._window = None
+
+
+class RenderingMixin:
+    """``render()`` and ``close()`` for the environments.
+
+    Expects ``render_mode``, ``field``, ``robot_spec``, ``ball_spec``, ``world``,
+    ``metadata["render_fps"]`` and ``_render_width`` on the environment, and a ``_hud()``
+    method returning the lines of text to overlay. The renderer is created on first use.
+    """
+
+    _renderer: Renderer | None = None
+
+    def _hud(self) -> list[str]:
+        return []
+
+    def render(self):
+        """The current frame (``rgb_array``), or draw it in the window (``human``)."""
+        if self.render_mode is None:
+            import gymnasium
+
+            gymnasium.logger.warn("render() called without a render_mode; pass render_mode= "
+                                  "when creating the environment")
+            return None
+        if self._renderer is None:
+            self._renderer = Renderer(self.field, self.robot_spec, self.ball_spec,
+                                      self.render_mode, self._render_width,
+                                      self.metadata["render_fps"])
+        return self._renderer.draw(self.world.snapshot(), self._hud())
+
+    def close(self) -> None:
+        """Close the window, if any."""
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None

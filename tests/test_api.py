@@ -61,6 +61,17 @@ def test_spaces_are_memoised():
         assert env.observation_space(a).contains(obs[a])
 
 
+def test_match_info_keys_stable_from_reset():
+    env = soccer_env.parallel_env(blue=1, yellow=1, shaping={"ball_distance": 0.1})
+    _, infos = env.reset(seed=0)
+    _, rewards, _, _, step_infos = env.step({a: np.zeros(6) for a in env.agents})
+    for a in env.agents:
+        assert set(infos[a]) == set(step_infos[a]) == {"truth", "reward_terms", "score", "event"}
+        assert set(infos[a]["reward_terms"]) == set(step_infos[a]["reward_terms"])
+        assert rewards[a] == pytest.approx(sum(step_infos[a]["reward_terms"].values()))
+        assert step_infos[a]["reward_terms"]["ball_distance"] < 0
+
+
 def test_state_space():
     env = soccer_env.parallel_env(blue=2, yellow=2)
     env.reset(seed=0)

@@ -87,6 +87,7 @@ def test_unknown_keyword_lists_allowed():
     ({"shots": {"power": 3}}, r"unknown shots key\(s\) \['power'\]"),
     ({"shots": {"x_range": (-9.0, 0.0)}}, r"inside the field of play"),
     ({"control_dt": 0.0}, r"control_dt must be in \[0.001, 0.5\]"),
+    ({"control_dt": "fast"}, r"control_dt must be a number in \[0.001, 0.5\]"),
     ({"physics_dt": 1.0}, r"physics_dt must be in"),
 ])
 def test_goalkeeper_bad_arguments(kwargs, match):
@@ -95,12 +96,13 @@ def test_goalkeeper_bad_arguments(kwargs, match):
 
 
 @pytest.mark.parametrize("kwargs,match", [
-    ({"blue": 12}, r"n_blue must be an integer in 0..11, got 12"),
-    ({"yellow": -1}, r"n_yellow must be an integer in 0..11, got -1"),
-    ({"blue": 2.5}, r"n_blue must be an integer"),
-    ({"blue": 0, "yellow": 0}, r"at least one robot"),
+    ({"blue": 12}, r"blue must be an integer in 0..11, got 12"),
+    ({"yellow": -1}, r"yellow must be an integer in 0..11, got -1"),
+    ({"blue": 2.5}, r"blue must be an integer"),
+    ({"blue": True}, r"blue must be an integer"),
+    ({"blue": 0, "yellow": 0}, r"blue \+ yellow must be >= 1"),
     ({"match_duration": -3}, r"match_duration must be in"),
-    ({"max_cycles": 0}, r"max_cycles must be a positive integer or None"),
+    ({"max_cycles": 0}, r"max_cycles \(a positive integer or None\) must be an integer"),
     ({"formation_jitter": 2.0}, r"formation_jitter must be in \[0.0, 1.0\]"),
 ])
 def test_match_bad_arguments(kwargs, match):

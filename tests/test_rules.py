@@ -9,7 +9,7 @@ from conftest import make_world, park
 
 import soccer_env
 from soccer_env.physics import idle_commands
-from soccer_env.referee import STOP_DISTANCE, classify_exit
+from soccer_env.referee import STOP_DISTANCE, classify_exit, place_kickoff
 
 
 def straight_shot(speed=4.0, y=0.0, chip=False, x=-2.0, delay=0.0):
@@ -183,3 +183,24 @@ def test_ball_never_leaves_the_walls():
             w.set_ball(rng.uniform(-3, 3), rng.uniform(-2, 2), 6.5 * math.cos(ang),
                        6.5 * math.sin(ang), sliding=True)
     assert events > 50  # the ball did reach the lines and walls many times
+
+
+@pytest.mark.parametrize("field", ["ssl-2012", "ssl-div-b", "ssl-div-a", "humanoid-2012"])
+def test_kickoff_formations_are_legal(field):
+    """11 vs 11 kick-offs: each team in its half, no overlapping robots, the kick-off taker
+    next to the ball and the other team outside the centre circle."""
+    env = soccer_env.parallel_env(blue=11, yellow=11, field=field)
+    w, f = env.world, env.field
+    r = w.robot_spec.radius
+    for seed in range(50):
+        team = seed % 2
+        p = place_kickoff(w, team, np.random.default_rng(seed), 0.1)
+        gaps = np.hypot(*(p[:, None, :2] - p[None, :, :2]).transpose(2, 0, 1))
+        assert (gaps + 9 * np.eye(22)).min() >= 2 * r
+        assert (p[:11, 0] < 0).all() and (p[11:, 0] > 0).all()
+        assert (np.abs(p[:, 0]) <= f.half_length).all() and (np.abs(p[:, 1]) <= f.half_width).all()
+        dist = np.hypot(p[:, 0], p[:, 1])
+        kicking = slice(0, 11) if team == 0 else slice(11, 22)
+        other = slice(11, 22) if team == 0 else slice(0, 11)
+        assert dist[kicking].min() < 0.2
+        assert dist[other].min() >= f.center_circle_radius

@@ -18,7 +18,7 @@ from ..perception import OBS_MODES, make_perception
 from ..physics import World
 from ..presets import BallSpec, FieldSpec, SSLRobotSpec
 from ..referee import classify_exit
-from ..render import RENDER_MODES, Renderer
+from ..render import RENDER_MODES, RenderingMixin
 from ..robots import OUT_OF_RANGE_MODES, SSLRobot, validate_actions
 
 __all__ = ["GoalkeeperEnv", "ShotDistribution", "GOALKEEPER_SHAPING", "STOP_SPEED",
@@ -135,7 +135,7 @@ class ShotDistribution:
                 "speed": float(speed), "chip": chip, "wide": wide, "delay": float(delay)}
 
 
-class GoalkeeperEnv(gym.Env):
+class GoalkeeperEnv(RenderingMixin, gym.Env):
     """A keeper robot defends its goal against one shot per episode.
 
     ## Description
@@ -229,7 +229,6 @@ class GoalkeeperEnv(gym.Env):
         self.observation_space = self.builder.space()
         self._perception = make_perception(obs_mode)
         self._render_width = int(render_width)
-        self._renderer: Renderer | None = None
         self._names = ("blue_0",)
         self._shot: dict[str, Any] | None = None
 
@@ -354,23 +353,8 @@ class GoalkeeperEnv(gym.Env):
 
     # ------------------------------------------------------------------------------------
 
-    def render(self):
-        if self.render_mode is None:
-            gym.logger.warn("render() called without a render_mode; pass render_mode= to "
-                            "gymnasium.make")
-            return None
-        if self._renderer is None:
-            self._renderer = Renderer(self.field, self.robot_spec, self.ball_spec,
-                                      self.render_mode, self._render_width,
-                                      self.metadata["render_fps"])
+    def _hud(self) -> list[str]:
         shot = self._shot or {}
         kind = "chip" if shot.get("chip") else "flat"
-        hud = [f"t = {self.world.time:5.2f} s",
-               f"shot {shot.get('speed', 0.0):.1f} m/s {kind}"]
-        return self._renderer.draw(self.world.snapshot(), hud)
-
-    def close(self) -> None:
-        if self._renderer is not None:
-            self._renderer.close()
-            self._renderer = None
+        return [f"t = {self.world.time:5.2f} s", f"shot {shot.get('speed', 0.0):.1f} m/s {kind}"]
 

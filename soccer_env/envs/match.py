@@ -11,13 +11,20 @@ from pettingzoo import ParallelEnv
 from pettingzoo.utils import parallel_to_aec
 
 from .. import presets
-from ..config import check_choice, check_range, keyword_names, parse_scales, reject_unknown
+from ..config import (
+    check_choice,
+    check_int,
+    check_range,
+    keyword_names,
+    parse_scales,
+    reject_unknown,
+)
 from ..observations import ObservationBuilder
 from ..perception import OBS_MODES, make_perception
-from ..physics import World
+from ..physics import MAX_TEAM_SIZE, World
 from ..presets import BallSpec, FieldSpec, SSLRobotSpec
 from ..referee import classify_exit, place_free_kick, place_kickoff
-from ..render import RENDER_MODES, Renderer
+from ..render import RENDER_MODES, RenderingMixin
 from ..robots import OUT_OF_RANGE_MODES, SSLRobot, validate_actions
 
 __all__ = ["SoccerParallelEnv", "parallel_env", "env", "MATCH_SHAPING", "GAME_NAMES"]
@@ -34,7 +41,7 @@ MATCH_SHAPING = {
 GAME_NAMES = ("game.time_left", "game.goals_for", "game.goals_against", "game.restart")
 
 
-class SoccerParallelEnv(ParallelEnv):
+class SoccerParallelEnv(RenderingMixin, ParallelEnv):
     """A match between a blue and a yellow team of SSL robots (PettingZoo ``ParallelEnv``).
 
     ## Agents
@@ -100,13 +107,18 @@ class SoccerParallelEnv(ParallelEnv):
         **unknown: Any,
     ) -> None:
         reject_unknown("parallel_env", unknown, keyword_names(SoccerParallelEnv.__init__))
+        blue = check_int("blue", blue, 0, MAX_TEAM_SIZE)
+        yellow = check_int("yellow", yellow, 0, MAX_TEAM_SIZE)
+        if blue + yellow < 1:
+            raise ValueError(f"a match needs at least one robot: blue + yellow must be >= 1, "
+                             f"got {blue} + {yellow}")
         check_choice("obs_mode", obs_mode, OBS_MODES)
         check_choice("render_mode", render_mode, [None, *RENDER_MODES])
         check_choice("out_of_range_actions", out_of_range_actions, OUT_OF_RANGE_MODES)
         self.match_duration = check_range("match_duration", match_duration, 1e-3, 1e6)
-        if max_cycles is not None and (not isinstance(max_cycles, (int, np.integer))
-                                       or max_cycles < 1):
-            raise ValueError(f"max_cycles must be a positive integer or None, got {max_cycles!r}")
+        if max_cycles is not None:
+            max_cycles = check_int("max_cycles (a positive integer or None)", max_cycles, 1,
+                                   10**12)
         self.max_cycles = max_cycles
         self.formation_jitter = check_range("formation_jitter", formation_jitter, 0.0, 1.0)
         self.field = presets.field(field)
@@ -137,7 +149,6 @@ class SoccerParallelEnv(ParallelEnv):
         self.restart_team = -1
         self.cycles = 0
         self._render_width = int(render_width)
-        self._renderer: Renderer | None = None
         self._rng: np.random.Generator | None = None
 
     # ------------------------------------------------------------------------------------
@@ -163,10 +174,10 @@ class SoccerParallelEnv(ParallelEnv):
         self.cycles = 0
         state = w.snapshot()
         self._belief = self._perception.reset(state, rng)
-        zero = dict.fromkeys(self.shaping, 0.0)
         obs = self._observe()
         truth = state.truth_dict()
-        infos = {a: self._agent_info(truth, dict(zero), None) for a in self.agents}
+        infos = {a: self._agent_info(truth, dict.fromkeys(("goal", *MATCH_SHAPING), 0.0), None)
+                 for a in self.agents}
         return obs, infos
 
     def step(self, actions: Mapping[str, Any]):
@@ -216,22 +227,8 @@ class SoccerParallelEnv(ParallelEnv):
         s = self.world.snapshot()
         return np.concatenate([s.ball, s.robots.ravel()]).astype(np.float32)
 
-    def render(self):
-        if self.render_mode is None:
-            gymnasium.logger.warn("render() called without a render_mode")
-            return None
-        if self._renderer is None:
-            self._renderer = Renderer(self.field, self.robot_spec, self.ball_spec,
-                                      self.render_mode, self._render_width,
-                                      self.metadata["render_fps"])
-        hud = [f"blue {self.score[0]} : {self.score[1]} yellow",
-               f"t = {self.world.time:6.2f} s"]
-        return self._renderer.draw(self.world.snapshot(), hud)
-
-    def close(self) -> None:
-        if self._renderer is not None:
-            self._renderer.close()
-            self._renderer = None
+    def _hud(self) -> list[str]:
+        return [f"blue {self.score[0]} : {self.score[1]} yellow", f"t = {self.world.time:6.2f} s"]
 
     # ------------------------------------------------------------------------------------
 
