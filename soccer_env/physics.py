@@ -59,6 +59,8 @@ BOUNDARY_WALL = 1.0
 #: pymunk contact slop [m]: penetration allowed before correction (pymunk's default is 0.1,
 #: which is meant for pixels and far too large in metres).
 COLLISION_SLOP = 5e-4
+#: Up to this many robots the state is read body by body rather than in one batch.
+_DIRECT_READ_MAX_ROBOTS = 3
 #: Largest team size (SSL Division A plays 11 vs 11).
 MAX_TEAM_SIZE = 11
 #: A resting ball counts as "in the mouth" of a robot if its surface is within this distance
@@ -233,6 +235,7 @@ class World:
         self._space_step = functools.partial(_cp.cpSpaceStep, space._space)
         self._ball_handle = ball._body
         self._control_handles = [c._body for c in self._controls]
+        self._body_handles = [ball._body] + [b._body for b in self._bodies]
 
         n = self.n_robots
         self.time = 0.0
@@ -450,11 +453,29 @@ class World:
                 if v.x * v.x + v.y * v.y <= self._v_switch * self._v_switch:
                     self._set_sliding(False, 0.0)
 
-        self._buffer.clear()
-        pbatch.get_space_bodies(self.space, _BODY_FIELDS, self._buffer)
+        self._read_state()
+
+    def _read_state(self) -> None:
+        """Copy the ball's and robots' positions and velocities into ``self._state``.
+
+        With many robots one :mod:`pymunk.batch` call is cheapest; with a few, reading each
+        body through Chipmunk's getters costs less than the batch call's fixed overhead
+        (about 3 against 6 microseconds for a keeper and the ball).
+        """
         state = self._state
-        state[:] = np.frombuffer(self._buffer.float_buf(), dtype=np.float64).reshape(-1, 6)[
-            : 1 + self.n_robots]
+        if self.n_robots <= _DIRECT_READ_MAX_ROBOTS:
+            pos, vel = _cp.cpBodyGetPosition, _cp.cpBodyGetVelocity
+            ang, spin = _cp.cpBodyGetAngle, _cp.cpBodyGetAngularVelocity
+            rows = []
+            for handle in self._body_handles:
+                p, v = pos(handle), vel(handle)
+                rows.append((p.x, p.y, ang(handle), v.x, v.y, spin(handle)))
+            state[:] = rows
+        else:
+            self._buffer.clear()
+            pbatch.get_space_bodies(self.space, _BODY_FIELDS, self._buffer)
+            state[:] = np.frombuffer(self._buffer.float_buf(), dtype=np.float64).reshape(
+                -1, 6)[: 1 + self.n_robots]
         # pymunk's angle is unbounded: keep bodies (and so the reported headings) in
         # [-pi, pi] by turning a body a full turn back when it leaves that range.
         for i, th in enumerate(state[1:, 2].tolist()):
@@ -510,9 +531,10 @@ class World:
         """
         if self._z > self.robot_spec.height:
             return
-        bx, by = self._state[0, 0:2].tolist()
+        rows = self._state.tolist()
+        bx, by = rows[0][0:2]
         reach2 = (self.robot_spec.radius + self.ball_spec.radius + MOUTH_TOLERANCE) ** 2
-        for i, ((rx, ry, a), speed) in enumerate(zip(self._state[1:, 0:3].tolist(), self._armed)):
+        for i, ((rx, ry, a, *_), speed) in enumerate(zip(rows[1:], self._armed)):
             if (speed > 0.0 and (bx - rx) ** 2 + (by - ry) ** 2 < reach2
                     and self.time >= self._ready_at[i] and self._mouth_holds(rx, ry, a, bx, by)):
                 self._fire(i)

@@ -19,6 +19,21 @@ def test_goalkeeper_passes_check_env_without_warnings():
         check_env(gym.make("soccer_env/Goalkeeper-v0", render_mode="rgb_array").unwrapped)
 
 
+@pytest.mark.parametrize("field", list(soccer_env.presets.FIELDS))
+@pytest.mark.parametrize("robot", list(soccer_env.presets.ROBOTS))
+def test_goalkeeper_on_every_preset(field, robot):
+    env = gym.make("soccer_env/Goalkeeper-v0", field=field, robot=robot)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        check_env(env.unwrapped, skip_render_check=True)
+    obs, info = env.reset(seed=0)
+    for _ in range(30):
+        obs, r, term, trunc, info = env.step(env.action_space.sample())
+        assert env.observation_space.contains(obs)
+        if term:
+            break
+
+
 def test_goalkeeper_passes_sb3_check_env():
     pytest.importorskip("stable_baselines3")
     from stable_baselines3.common.env_checker import check_env as sb3_check_env

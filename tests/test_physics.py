@@ -140,6 +140,15 @@ def test_chip_flight_time_and_distance():
     assert max(heights) == pytest.approx(vz**2 / (2 * GRAVITY), rel=0.02)
     assert w.time - t0 == pytest.approx(flight, rel=0.01)
     assert w.ball_array()[0] - x0 == pytest.approx(vxy * flight, rel=0.01)
+    # First bounce of the fixed-loss model: vertical speed times damping_z, horizontal speed
+    # times damping_xy_first, so the next apex is damping_z^2 times as high.
+    bs = w.ball_spec
+    assert w.ball_array()[3] == pytest.approx(vxy * bs.chip_damping_xy_first, rel=0.01)
+    second = []
+    while w.ball_airborne and len(second) < 2000:
+        w.step(idle_commands(1))
+        second.append(w.ball_height)
+    assert max(second) == pytest.approx(bs.chip_damping_z**2 * vz**2 / (2 * GRAVITY), rel=0.05)
 
 
 def test_chip_passes_over_robots_but_flat_kick_does_not():
@@ -316,3 +325,23 @@ def test_world_snapshot_is_immutable_copy(world):
 
 def test_pymunk_version_pinned():
     assert pymunk.version.startswith("7.")
+
+
+@pytest.mark.parametrize("n_blue,n_yellow", [(1, 0), (2, 1), (3, 3)])
+def test_direct_and_batch_state_reads_agree(n_blue, n_yellow):
+    import soccer_env.physics as physics
+
+    w = park(make_world(n_blue, n_yellow))
+    w.set_ball(0.0, 0.0, 2.0, 1.0, sliding=True)
+    rng = np.random.default_rng(0)
+    run(w, 20, rng.uniform(-1, 1, (w.n_robots, 6)) * (3, 3, 10, 0, 0, 0))
+    limit = physics._DIRECT_READ_MAX_ROBOTS
+    try:
+        physics._DIRECT_READ_MAX_ROBOTS = 99
+        w._read_state()
+        direct = w._state.copy()
+        physics._DIRECT_READ_MAX_ROBOTS = -1
+        w._read_state()
+        np.testing.assert_array_equal(direct, w._state)
+    finally:
+        physics._DIRECT_READ_MAX_ROBOTS = limit
