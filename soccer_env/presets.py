@@ -284,25 +284,24 @@ FIELDS: dict[str, FieldSpec] = {
 # Balls
 # --------------------------------------------------------------------------------------------
 
+# Orange golf ball of the SSL rules: 42.7-43 mm, 46 g. Two-phase deceleration as used by SSL
+# teams' ball models: sliding about 3 m/s^2, rolling 0.26-0.35 m/s^2 (we take 0.3), and
+# k_switch 0.64 (TIGERs Mannheim's measured value). Chip losses are TIGERs Mannheim's fixed-loss
+# defaults (0.75 / 0.95 horizontal, 0.6 vertical, 10 mm minimum hop).
+_SSL_BALL = BallSpec(
+    name="ssl", radius=0.0215, mass=0.046,
+    sliding_deceleration=3.0, rolling_deceleration=0.3, k_switch=0.64,
+    chip_damping_xy_first=0.75, chip_damping_xy_other=0.95, chip_damping_z=0.6,
+    min_hop_height=0.01, surface_friction=0.2,
+    source="SSL rules (golf ball); SSL teams' two-phase and fixed-loss ball models",
+)
+
 BALLS: dict[str, BallSpec] = {
-    # Orange golf ball of the SSL rules: 42.7-43 mm, 46 g. Two-phase deceleration as used by
-    # SSL teams' ball models: sliding about 3 m/s^2, rolling 0.26-0.35 m/s^2 (we take 0.3), and
-    # k_switch 0.64 (TIGERs Mannheim's measured value). Chip losses are TIGERs Mannheim's
-    # fixed-loss defaults (0.75 / 0.95 horizontal, 0.6 vertical, 10 mm minimum hop).
-    "ssl": BallSpec(
-        name="ssl", radius=0.0215, mass=0.046,
-        sliding_deceleration=3.0, rolling_deceleration=0.3, k_switch=0.64,
-        chip_damping_xy_first=0.75, chip_damping_xy_other=0.95, chip_damping_z=0.6,
-        min_hop_height=0.01, surface_friction=0.2,
-        source="SSL rules (golf ball); SSL teams' two-phase and fixed-loss ball models",
-    ),
+    "ssl": _SSL_BALL,
     # Paper 002: the ball of 2012 on that carpet rolls with a_f = 0.23 m/s^2 (measured); the
-    # sliding phase is not modelled there, we keep the current SSL values for it.
-    "ssl-2012": BallSpec(
-        name="ssl-2012", radius=0.0215, mass=0.046,
-        sliding_deceleration=3.0, rolling_deceleration=0.23, k_switch=0.64,
-        chip_damping_xy_first=0.75, chip_damping_xy_other=0.95, chip_damping_z=0.6,
-        min_hop_height=0.01, surface_friction=0.2,
+    # paper does not model a sliding phase, so that keeps the current SSL values.
+    "ssl-2012": dataclasses.replace(
+        _SSL_BALL, name="ssl-2012", rolling_deceleration=0.23,
         source="paper 002 (a_f = 0.23 m/s^2); otherwise as 'ssl'",
     ),
 }
@@ -311,33 +310,31 @@ BALLS: dict[str, BallSpec] = {
 # Robots
 # --------------------------------------------------------------------------------------------
 
+# SSL rules: diameter at most 0.18 m, height at most 0.15 m. Flat front 0.073 m from the centre
+# with an 0.08 m kicker (grSim's default robot). Mass 2.5 kg; moment of inertia of a uniform
+# disc, m r^2 / 2. Speed 3 m/s and acceleration 3 m/s^2: the "about 3 m/s, a few m/s^2" of
+# current SSL robots. Kicker up to 8 m/s, limited to the rules' 6.5 m/s; chip at 45 degrees up
+# to 6 m/s (about 3.7 m of flight). Dribbler force 0.15 N holds the 46 g ball against about
+# 3 m/s^2 of backward acceleration.
+_SSL_ROBOT = SSLRobotSpec(
+    name="ssl", radius=0.09, front_distance=0.073, height=0.15, mass=2.5,
+    moment_of_inertia=0.5 * 2.5 * 0.09**2,
+    max_speed=3.0, max_acceleration=3.0, max_angular_speed=10.0,
+    max_angular_acceleration=50.0,
+    kicker_width=0.08, kicker_max_speed=8.0, kick_speed_cap=6.5,
+    chip_max_speed=6.0, chip_angle=math.radians(45.0), kick_cooldown=0.5,
+    dribbler_force=0.15, dribbler_restitution=0.1, restitution=0.5, surface_friction=0.5,
+    source="SSL rules (size, 6.5 m/s); grSim default robot (front, kicker)",
+)
+
 ROBOTS: dict[str, SSLRobotSpec] = {
-    # SSL rules: diameter at most 0.18 m, height at most 0.15 m. Flat front 0.073 m from the
-    # centre with an 0.08 m kicker (grSim's default robot). Mass 2.5 kg; moment of inertia of a
-    # uniform disc, m r^2 / 2. Speed 3 m/s and acceleration 3 m/s^2: the "about 3 m/s, a few
-    # m/s^2" of current SSL robots. Kicker up to 8 m/s, limited to the rules' 6.5 m/s; chip at
-    # 45 degrees up to 6 m/s (about 3.7 m of flight). Dribbler force 0.15 N holds the 46 g ball
-    # against about 3 m/s^2 of backward acceleration.
-    "ssl": SSLRobotSpec(
-        name="ssl", radius=0.09, front_distance=0.073, height=0.15, mass=2.5,
-        moment_of_inertia=0.5 * 2.5 * 0.09**2,
-        max_speed=3.0, max_acceleration=3.0, max_angular_speed=10.0,
-        max_angular_acceleration=50.0,
-        kicker_width=0.08, kicker_max_speed=8.0, kick_speed_cap=6.5,
-        chip_max_speed=6.0, chip_angle=math.radians(45.0), kick_cooldown=0.5,
-        dribbler_force=0.15, dribbler_restitution=0.1, restitution=0.5, surface_friction=0.5,
-        source="SSL rules (size, 6.5 m/s); grSim default robot (front, kicker)",
-    ),
+    "ssl": _SSL_ROBOT,
     # Paper 002: SSL robots of 2012 reach more than 2.5 m/s with more than 2.5 m/s^2 and kick
     # at 5.0 m/s or more; the paper's decision cycle is 40 ms. Body as 'ssl'.
-    "ssl-2012": SSLRobotSpec(
-        name="ssl-2012", radius=0.09, front_distance=0.073, height=0.15, mass=2.5,
-        moment_of_inertia=0.5 * 2.5 * 0.09**2,
-        max_speed=2.5, max_acceleration=2.5, max_angular_speed=8.0,
-        max_angular_acceleration=40.0,
-        kicker_width=0.08, kicker_max_speed=5.0, kick_speed_cap=6.5,
-        chip_max_speed=5.0, chip_angle=math.radians(45.0), kick_cooldown=0.5,
-        dribbler_force=0.15, dribbler_restitution=0.1, restitution=0.5, surface_friction=0.5,
+    "ssl-2012": dataclasses.replace(
+        _SSL_ROBOT, name="ssl-2012", max_speed=2.5, max_acceleration=2.5,
+        max_angular_speed=8.0, max_angular_acceleration=40.0, kicker_max_speed=5.0,
+        chip_max_speed=5.0,
         source="paper 002 (2.5 m/s, 2.5 m/s^2, 5 m/s kicks); body as 'ssl'",
     ),
 }

@@ -37,10 +37,6 @@ class WorldState(NamedTuple):
     names: tuple[str, ...]
     teams: np.ndarray
 
-    def robot(self, name: str) -> np.ndarray:
-        """Row of :attr:`robots` for robot ``name``."""
-        return self.robots[self.names.index(name)]
-
     def truth_dict(self) -> dict[str, object]:
         """The ``info["truth"]`` entry: ball and every robot in field coordinates.
 

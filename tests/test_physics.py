@@ -41,7 +41,9 @@ def test_two_phase_deceleration_after_a_kick(world):
     bs = world.ball_spec
     v0 = 3.0
     world.set_ball(-4.0, 0.5, v0, 0.0, sliding=True)
+    assert world.ball_sliding
     track = ball_track(world, 180)
+    assert not world.ball_sliding
     t, speed = track[:, 0], np.hypot(track[:, 4], track[:, 5])
     slide = speed > bs.k_switch * v0 + 0.05
     roll = (speed < bs.k_switch * v0 - 0.05) & (speed > 0.1)

@@ -185,7 +185,7 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
             raise RuntimeError("the match is over (no live agents); call reset()")
         act = self._gather(actions)
         w = self.world
-        ball_x_before = float(w.ball_array()[0])
+        ball_x_before = float(w.ball_array()[0]) if self.shaping["ball_progress"] else 0.0
         w.step(self.robot_model.commands(act))
         self.cycles += 1
         if any(w.touched):
