@@ -258,10 +258,10 @@ FIELDS: dict[str, FieldSpec] = {
         wall_restitution=0.5, ball="ssl",
         source="SSL rules 2023+, Division A",
     ),
-    # Paper 000 (Xu et al. 2012): "RoboCup standard, 4 m x 6 m" humanoid field. Other
-    # dimensions from the RoboCup Humanoid League KidSize rules of 2012: goal 1.5 m wide,
-    # 0.5 m deep, 0.8 m high; goal area 2.2 x 0.6 m; centre circle 1.2 m diameter; border
-    # strip 0.7 m.
+    # Paper 000 (Xu et al. 2012): "RoboCup standard, 4 m x 6 m" humanoid field. The paper gives
+    # nothing else; the other dimensions are our reading of the RoboCup Humanoid League KidSize
+    # rules of that era (goal 1.5 m wide, goal area 2.2 x 0.6 m, centre circle 1.2 m diameter,
+    # border strip 0.7 m) and assumptions where we found no figure (goal 0.5 m deep, 0.8 m high).
     "humanoid-2012": FieldSpec(
         name="humanoid-2012", length=6.0, width=4.0, boundary=0.7,
         goal_width=1.5, goal_depth=0.5, goal_height=0.8, goal_wall_thickness=0.05,
