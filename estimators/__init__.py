@@ -4,6 +4,31 @@ Everything here takes and returns numpy arrays, depends on numpy only, and never
 ``soccer_env``. Random draws come from explicit ``numpy.random.Generator`` arguments.
 """
 
+from .ball import CHI2_2DOF_999, BallFilterConfig, BallTracker, LeastSquaresBall
 from .ball_models import FrictionBallModel
+from .kalman import KalmanFilter
+from .models import (
+    PAPER_CYCLE,
+    ConstantVelocityMotion,
+    FrictionBallMotion,
+    PoseMeasurement,
+    PositionMeasurement,
+    wrap_angle,
+)
+from .robots import RobotTracker
 
-__all__ = ["FrictionBallModel"]
+__all__ = [
+    "KalmanFilter",
+    "FrictionBallModel",
+    "FrictionBallMotion",
+    "ConstantVelocityMotion",
+    "PositionMeasurement",
+    "PoseMeasurement",
+    "wrap_angle",
+    "PAPER_CYCLE",
+    "BallFilterConfig",
+    "BallTracker",
+    "LeastSquaresBall",
+    "RobotTracker",
+    "CHI2_2DOF_999",
+]

@@ -1,0 +1,439 @@
+"""Ball trackers for delayed overhead-camera detections: the EKF of paper 002 and its baselines.
+
+Every tracker takes detection frames ``add(t, detections, obstacles)`` (capture time ``t`` [s],
+detected ball positions ``(k, 2)`` [m], robot positions ``(j, 2)`` seen in the same frame) and
+answers ``estimate(t) -> (x, y, vx, vy)`` for any later time ``t``.
+
+Latency compensation (paper 002, SPEC 1.3): a measurement corrects the state *at its capture
+time*, and the estimate is predicted from there to whatever time is asked, the present or the
+present plus the actuation latency. Frames may arrive out of order (several cameras): the
+tracker keeps a short history and replays it in capture-time order. A tracker given arrival
+times instead of capture times is the "no latency compensation" baseline.
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from .models import FrictionBallMotion, PositionMeasurement
+
+__all__ = ["BallFilterConfig", "BallTracker", "LeastSquaresBall", "CHI2_2DOF_999"]
+
+#: 99.9 % quantile of the chi-square distribution with 2 degrees of freedom.
+CHI2_2DOF_999 = 13.815510557964274
+
+
+@dataclass(frozen=True)
+class BallFilterConfig:
+    """Configuration of :class:`BallTracker`. Defaults are paper 002's parameters.
+
+    Attributes:
+        deceleration: carpet friction ``a_f`` [m/s^2] (paper: 0.23); 0 makes a
+            constant-velocity Kalman filter.
+        propagation: ``"jacobian"`` (basic EKF) or ``"rk"`` (improved EKF), see
+            :class:`~estimators.models.FrictionBallMotion`.
+        sigma_xy: measurement noise the filter assumes [m] (paper: ``delta_xy`` = 25 mm).
+        tau: initial standard deviation of every state component [m, m/s] (paper: 100 mm,
+            100 mm/s).
+        sigma_r: velocity noise per 40 ms cycle far from robots [m/s] (paper:
+            ``delta_R`` = 100 mm/s).
+        collision_noise: use eq. 19, ``sigma_v = max(k (R + r) / d sigma_R, sigma_R)`` with
+            ``d`` the distance from the ball to the nearest robot, so the filter trusts the
+            model less where the ball may be hit.
+        gain_k, robot_radius, ball_radius: ``k`` = 10, ``R`` = 75 mm, ``r`` = 20 mm of eq. 19.
+        gate: reject detections whose squared Mahalanobis distance exceeds this (false
+            detections, outliers); None fuses everything.
+        reset_after: after this many consecutive gated-out detections that agree with each
+            other (a kick or a collision moved the ball), restart the track from them with the
+            finite-difference velocity; None never resets.
+        two_phase: ``(sliding_deceleration, k_switch)``: after a reset faster than
+            ``kick_speed`` the ball slides at the first deceleration until its speed falls to
+            ``k_switch`` times the reset speed, then rolls at ``deceleration``. None: one
+            phase, as in the paper.
+        kick_speed: reset speed [m/s] above which a reset counts as a kick (two-phase model).
+        history: seconds of frames kept to replay out-of-order arrivals.
+    """
+
+    deceleration: float = 0.23
+    propagation: str = "jacobian"
+    sigma_xy: float = 0.025
+    tau: float = 0.1
+    sigma_r: float = 0.1
+    collision_noise: bool = True
+    gain_k: float = 10.0
+    robot_radius: float = 0.075
+    ball_radius: float = 0.02
+    gate: float | None = CHI2_2DOF_999
+    reset_after: int | None = 2
+    two_phase: tuple[float, float] | None = None
+    kick_speed: float = 1.0
+    history: float = 0.5
+
+    def __post_init__(self) -> None:
+        for name in ("sigma_xy", "tau", "sigma_r", "gain_k", "robot_radius", "ball_radius",
+                     "kick_speed", "history"):
+            v = getattr(self, name)
+            if not (math.isfinite(v) and v > 0.0):
+                raise ValueError(f"{name} must be finite and > 0, got {v!r}")
+        if self.gate is not None and not self.gate > 0:
+            raise ValueError(f"gate must be > 0 or None, got {self.gate!r}")
+        if self.reset_after is not None and (not isinstance(self.reset_after, int)
+                                             or self.reset_after < 1):
+            raise ValueError(f"reset_after must be a positive integer or None, got "
+                             f"{self.reset_after!r}")
+        if self.reset_after is not None and self.gate is None:
+            raise ValueError("reset_after needs a gate: only gated-out detections trigger resets")
+        if self.two_phase is not None:
+            a_slide, k = self.two_phase
+            if not (a_slide >= 0 and 0 < k < 1):
+                raise ValueError(f"two_phase must be (sliding deceleration >= 0, 0 < k_switch "
+                                 f"< 1), got {self.two_phase!r}")
+        FrictionBallMotion(self.deceleration, self.propagation)  # validates both
+
+
+def _points(name: str, value) -> list:
+    """``value`` (an ``(k, 2)`` array-like, k may be 0) as a list of ``[x, y]`` lists;
+    ``ValueError`` for other shapes or non-finite values."""
+    if isinstance(value, np.ndarray) and value.ndim == 2 and value.shape[1] == 2:
+        rows = value.tolist()
+    else:
+        arr = np.asarray(value, dtype=np.float64)
+        if arr.size == 0:
+            return []
+        if arr.ndim != 2 or arr.shape[1] != 2:
+            raise ValueError(f"{name} must have shape (k, 2), got {arr.shape}")
+        rows = arr.tolist()
+    if rows and not math.isfinite(sum(map(sum, rows))):
+        raise ValueError(f"{name} must be finite (NaN measurements are refused)")
+    return rows
+
+
+# --------------------------------------------------------------------------------------------
+# The filter arithmetic in plain floats.
+#
+# The ball filter runs for every camera frame, often several times per environment step, and a
+# 4-state filter is a few dozen multiply-adds: numpy's per-call overhead (about a microsecond
+# per operation, some twenty operations per update) would cost ten times the arithmetic. So
+# the state is a 4-tuple and the covariance three 2 x 2 row-major blocks
+# ``P = [[P11, P12], [P12^T, P22]]``; with ``F = [[I, A], [0, B]]`` and ``H = [I 0]`` the
+# equations of :class:`~estimators.kalman.KalmanFilter` reduce to the block forms below.
+# tests/test_ball_filters.py checks them against that class to 1e-10.
+# --------------------------------------------------------------------------------------------
+
+_Mat = tuple[float, float, float, float]
+
+
+def _mul(a: _Mat, b: _Mat) -> _Mat:
+    return (a[0] * b[0] + a[1] * b[2], a[0] * b[1] + a[1] * b[3],
+            a[2] * b[0] + a[3] * b[2], a[2] * b[1] + a[3] * b[3])
+
+
+def _mul_t(a: _Mat, b: _Mat) -> _Mat:
+    """``a b^T``."""
+    return (a[0] * b[0] + a[1] * b[1], a[0] * b[2] + a[1] * b[3],
+            a[2] * b[0] + a[3] * b[1], a[2] * b[2] + a[3] * b[3])
+
+
+def _t(a: _Mat) -> _Mat:
+    return (a[0], a[2], a[1], a[3])
+
+
+def _add(a: _Mat, b: _Mat) -> _Mat:
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3])
+
+
+def _axpy(s: float, a: _Mat, b: _Mat) -> _Mat:
+    """``s a + b``."""
+    return (s * a[0] + b[0], s * a[1] + b[1], s * a[2] + b[2], s * a[3] + b[3])
+
+
+def _sym(a: _Mat) -> _Mat:
+    off = 0.5 * (a[1] + a[2])
+    return (a[0], off, off, a[3])
+
+
+def _predict(x, P, A: _Mat, B: _Mat, q: float):
+    """``P = F P F^T + Q`` for ``F = [[I, A], [0, B]]``, ``Q = diag(0, 0, q, q)``."""
+    P11, P12, P22 = P
+    AP22 = _mul(A, P22)
+    AP21 = _mul(A, _t(P12))
+    P11n = _sym(_add(_add(P11, _t(AP21)), _add(AP21, _mul_t(AP22, A))))
+    P12n = _mul_t(_add(P12, AP22), B)
+    b = _mul_t(_mul(B, P22), B)
+    P22n = _sym((b[0] + q, b[1], b[2], b[3] + q))
+    return (P11n, P12n, P22n)
+
+
+def _innovation(x, P, z, r: float) -> tuple[float, float, _Mat, float]:
+    """``(y, S^-1, d^2)`` of a position measurement ``z`` with noise variance ``r``."""
+    P11 = P[0]
+    s0, s1, s3 = P11[0] + r, P11[1], P11[3] + r
+    det = s0 * s3 - s1 * s1
+    Si = (s3 / det, -s1 / det, -s1 / det, s0 / det)
+    y0, y1 = z[0] - x[0], z[1] - x[1]
+    d2 = y0 * (Si[0] * y0 + Si[1] * y1) + y1 * (Si[2] * y0 + Si[3] * y1)
+    return (y0, y1), Si, d2
+
+
+def _update(x, P, y, Si: _Mat, r: float):
+    """Kalman gain, mean and Joseph-form covariance for ``H = [I 0]``, ``R = r I``."""
+    P11, P12, P22 = P
+    K1 = _mul(P11, Si)  # K = P H^T S^-1 = [P11; P21] S^-1
+    K2 = _mul(_t(P12), Si)
+    y0, y1 = y
+    xn = (x[0] + K1[0] * y0 + K1[1] * y1, x[1] + K1[2] * y0 + K1[3] * y1,
+          x[2] + K2[0] * y0 + K2[1] * y1, x[3] + K2[2] * y0 + K2[3] * y1)
+    # (I - K H) = [[M, 0], [N, I]] with M = I - K1, N = -K2.
+    M = (1.0 - K1[0], -K1[1], -K1[2], 1.0 - K1[3])
+    N = (-K2[0], -K2[1], -K2[2], -K2[3])
+    MP11 = _mul(M, P11)
+    NP11_P21 = _add(_mul(N, P11), _t(P12))
+    P11n = _sym(_axpy(r, _mul_t(K1, K1), _mul_t(MP11, M)))
+    P12n = _axpy(r, _mul_t(K1, K2), _add(_mul_t(MP11, N), _mul(M, P12)))
+    P22n = _sym(_axpy(r, _mul_t(K2, K2), _add(_add(_mul_t(NP11_P21, N), _mul(N, P12)), P22)))
+    return xn, (P11n, P12n, P22n)
+
+
+def _full(P) -> np.ndarray:
+    P11, P12, P22 = P
+    return np.block([[np.reshape(P11, (2, 2)), np.reshape(P12, (2, 2))],
+                     [np.reshape(_t(P12), (2, 2)), np.reshape(P22, (2, 2))]])
+
+
+class _Track(NamedTuple):
+    """Everything a replay must restore (immutable, so snapshots need no copies): the filter
+    at capture time ``t``, gated-out detections that may start a new track, and the two-phase
+    switch speed."""
+
+    t: float = -math.inf
+    x: tuple | None = None
+    P: tuple | None = None
+    candidates: tuple = ()
+    v_switch: float = 0.0
+
+
+class BallTracker:
+    """Kalman / extended Kalman ball tracker with latency compensation (paper 002).
+
+    Args:
+        config: filter configuration (paper 002's EKF by default).
+
+    Attributes:
+        fused, rejected, resets, late: counters of detections fused, gated out, track resets
+            and frames too old to replay (older than ``history``).
+    """
+
+    def __init__(self, config: BallFilterConfig | None = None) -> None:
+        self.config = config or BallFilterConfig()
+        c = self.config
+        self.motion = FrictionBallMotion(c.deceleration, c.propagation)
+        self.measurement = PositionMeasurement(c.sigma_xy, 4)
+        self._r = float(self.measurement.R[0, 0])
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget everything (a new episode)."""
+        self._track = _Track()
+        self._base = _Track()  # state before the oldest frame still in the log
+        self._log: list[tuple[float, list, list, _Track]] = []
+        self.fused = self.rejected = self.resets = self.late = 0
+
+    @property
+    def initialized(self) -> bool:
+        return self._track.x is not None
+
+    @property
+    def time(self) -> float:
+        """Capture time of the latest processed frame (``-inf`` before the first)."""
+        return self._track.t
+
+    # ------------------------------------------------------------------------------------
+
+    def add(self, t: float, detections, obstacles=None) -> None:
+        """Process one frame captured at ``t`` with ball detections ``(k, 2)`` (k may be 0)
+        and robot positions ``(j, 2)`` seen in it (for eq. 19)."""
+        dets = _points("detections", detections)
+        obs = _points("obstacles", obstacles) if obstacles is not None else []
+        if not math.isfinite(t):
+            raise ValueError(f"t must be finite, got {t!r}")
+        if t >= self._track.t:
+            self._track = self._process(self._track, t, dets, obs)
+            self._log.append((t, dets, obs, self._track))
+        elif t < self._base.t:
+            self.late += 1
+            return
+        else:  # out of order: rewind to the state before t and replay
+            i = bisect.bisect_right([entry[0] for entry in self._log], t)
+            track = self._log[i - 1][3] if i > 0 else self._base
+            self._log.insert(i, (t, dets, obs, track))
+            for j in range(i, len(self._log)):
+                tj, dj, oj, _ = self._log[j]
+                track = self._process(track, tj, dj, oj)
+                self._log[j] = (tj, dj, oj, track)
+            self._track = track
+        # Drop what is older than the replay window.
+        horizon = self._log[-1][0] - self.config.history
+        while len(self._log) > 1 and self._log[0][0] < horizon:
+            self._base = self._log.pop(0)[3]
+
+    def estimate(self, t: float) -> np.ndarray | None:
+        """State ``(x, y, vx, vy)`` predicted to time ``t`` (None before the first frame)."""
+        tr = self._track
+        if tr.x is None:
+            return None
+        dt = t - tr.t
+        if dt <= 0.0:
+            return np.array(tr.x)
+        return np.array(self._step(tr, dt)[0])
+
+    def estimate_with_covariance(self, t: float) -> tuple[np.ndarray, np.ndarray] | None:
+        """``(x, P)`` predicted to time ``t`` without changing the tracker."""
+        tr = self._track
+        if tr.x is None:
+            return None
+        dt = t - tr.t
+        if dt <= 0.0:
+            return np.array(tr.x), _full(tr.P)
+        x, A, B = self._step(tr, dt)
+        q = self.motion.velocity_noise(dt, self.config.sigma_r)
+        return np.array(x), _full(_predict(tr.x, tr.P, A, B, q))
+
+    # ------------------------------------------------------------------------------------
+
+    def _step(self, tr: _Track, dt: float):
+        c = self.config
+        decel = None
+        if c.two_phase is not None and math.hypot(tr.x[2], tr.x[3]) > tr.v_switch:
+            decel = c.two_phase[0]
+        return self.motion.step(*tr.x, dt, decel)
+
+    def _sigma_v(self, position, obstacles: list) -> float:
+        """Eq. 19 of paper 002."""
+        c = self.config
+        if not c.collision_noise or not obstacles:
+            return c.sigma_r
+        d = min(math.hypot(ox - position[0], oy - position[1]) for ox, oy in obstacles)
+        return max(c.gain_k * (c.robot_radius + c.ball_radius) / max(d, 1e-6) * c.sigma_r,
+                   c.sigma_r)
+
+    def _process(self, tr: _Track, t: float, dets: list, obstacles: list) -> _Track:
+        c, r = self.config, self._r
+        if tr.x is None:
+            if not dets:
+                return tr
+            zx, zy = dets[0]
+            var = c.tau**2
+            return _Track(t, (zx, zy, 0.0, 0.0), ((var, 0.0, 0.0, var), (0.0,) * 4,
+                                                   (var, 0.0, 0.0, var)))
+        x, P = tr.x, tr.P
+        dt = t - tr.t
+        if dt > 0.0:
+            sigma_v = self._sigma_v(x, obstacles)
+            x, A, B = self._step(tr, dt)
+            P = _predict(tr.x, P, A, B, self.motion.velocity_noise(dt, sigma_v))
+        if not dets:
+            return _Track(t, x, P, tr.candidates, tr.v_switch)
+        # The detection nearest the prediction (Mahalanobis) is this frame's ball.
+        best = None
+        for z in dets:
+            y, Si, d2 = _innovation(x, P, z, r)
+            if best is None or d2 < best[3]:
+                best = (z, y, Si, d2)
+        z, y, Si, d2 = best
+        if c.gate is None or d2 <= c.gate:
+            self.fused += 1
+            x, P = _update(x, P, y, Si, r)
+            return _Track(t, x, P, (), tr.v_switch)
+        self.rejected += 1
+        return self._outlier(_Track(t, x, P, tr.candidates, tr.v_switch), t, z)
+
+    def _outlier(self, tr: _Track, t: float, z: list[float]) -> _Track:
+        """Keep gated-out detections; restart the track once enough of them agree."""
+        c = self.config
+        if c.reset_after is None:
+            return tr
+        candidates = tr.candidates
+        if candidates:
+            t0, z0 = candidates[-1]
+            # Two detections belong to one moving ball if a ball at most 10 m/s could
+            # connect them (plus noise); otherwise the older one was spurious.
+            if math.hypot(z[0] - z0[0], z[1] - z0[1]) > 10.0 * (t - t0) + 5.0 * c.sigma_xy:
+                candidates = ()
+        candidates = (*candidates, (t, tuple(z)))
+        if len(candidates) < c.reset_after:
+            return _Track(tr.t, tr.x, tr.P, candidates, tr.v_switch)
+        (t0, z0), (t1, z1) = candidates[0], candidates[-1]
+        span = t1 - t0
+        vx, vy = ((z1[0] - z0[0]) / span, (z1[1] - z0[1]) / span) if span > 1e-9 else (0.0, 0.0)
+        # Finite-difference velocity variance: 2 sigma^2 / span^2 (no velocity known: tau^2).
+        var_v = (2.0 * c.sigma_xy**2 / span**2 if span > 1e-9 else c.tau**2) + c.sigma_r**2
+        var_p = c.sigma_xy**2
+        speed = math.hypot(vx, vy)
+        v_switch = (c.two_phase[1] * speed if c.two_phase is not None and speed > c.kick_speed
+                    else 0.0)
+        self.resets += 1
+        return _Track(tr.t, (z1[0], z1[1], vx, vy),
+                      ((var_p, 0.0, 0.0, var_p), (0.0,) * 4, (var_v, 0.0, 0.0, var_v)), (),
+                      v_switch)
+
+
+class LeastSquaresBall:
+    """The least-squares trajectory predictor of paper 002's comparison.
+
+    Fits ``p(t) = p0 + v (t - t_last)`` to the last ``window`` detections by least squares
+    (separately in ``x`` and ``y``) and extrapolates to the requested time. Of several
+    detections in one frame it keeps the one nearest to the extrapolation.
+    """
+
+    def __init__(self, window: int = 6) -> None:
+        if not isinstance(window, int) or window < 2:
+            raise ValueError(f"window must be an integer >= 2, got {window!r}")
+        self.window = window
+        self.reset()
+
+    def reset(self) -> None:
+        self._t: list[float] = []
+        self._z: list[np.ndarray] = []
+
+    @property
+    def initialized(self) -> bool:
+        return bool(self._t)
+
+    @property
+    def time(self) -> float:
+        return self._t[-1] if self._t else -math.inf
+
+    def add(self, t: float, detections, obstacles=None) -> None:
+        dets = np.asarray(detections, dtype=np.float64).reshape(-1, 2) if len(
+            detections) else np.zeros((0, 2))
+        if not (math.isfinite(t) and np.isfinite(dets).all()):
+            raise ValueError("t and detections must be finite (NaN measurements are refused)")
+        if not len(dets):
+            return
+        z = dets[0]
+        if len(dets) > 1 and self._t:
+            guess = self.estimate(t)[:2]
+            z = dets[np.argmin(np.hypot(*(dets - guess).T))]
+        i = bisect.bisect_right(self._t, t)
+        self._t.insert(i, t)
+        self._z.insert(i, z.copy())
+        del self._t[: -self.window], self._z[: -self.window]
+
+    def estimate(self, t: float) -> np.ndarray | None:
+        if not self._t:
+            return None
+        if len(self._t) == 1:
+            z = self._z[0]
+            return np.array([z[0], z[1], 0.0, 0.0])
+        ts = np.asarray(self._t) - self._t[-1]
+        zs = np.asarray(self._z)
+        A = np.column_stack([np.ones_like(ts), ts])
+        coef, *_ = np.linalg.lstsq(A, zs, rcond=None)  # rows: p0, v
+        p0, v = coef
+        dt = t - self._t[-1]
+        return np.array([p0[0] + v[0] * dt, p0[1] + v[1] * dt, v[0], v[1]])

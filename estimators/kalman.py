@@ -1,0 +1,145 @@
+"""Kalman filter core: one set of equations for the linear filter and the EKF.
+
+The state is Gaussian, ``x ~ N(x, P)``. A prediction maps it through the transition
+``x' = f(x)`` with Jacobian ``F`` (``f(x) = F x`` for the linear filter) and adds process noise
+``Q``; an update fuses a measurement ``z = h(x) + v``, ``v ~ N(0, R)``, with measurement
+Jacobian ``H``. The extended filter is the same filter with ``f(x)``, ``h(x)`` and the Jacobians
+supplied by a model (:mod:`estimators.models`), so there is one copy of the maths:
+
+=====================  ===========================================================
+predict                ``x = f(x)``; ``P = F P F^T + Q``
+innovation             ``y = r(z, h(x))`` (``r`` is ``z - h(x)`` unless the model wraps
+                       angles); ``S = H P H^T + R``
+gate                   ``d^2 = y^T S^-1 y`` (squared Mahalanobis distance); reject if
+                       ``d^2 > gate``
+gain                   ``K = P H^T S^-1``
+update                 ``x = x + K y``; ``P = (I - K H) P (I - K H)^T + K R K^T`` (Joseph
+                       form: symmetric and positive definite whatever the rounding)
+=====================  ===========================================================
+
+The innovation ``y``, its covariance ``S`` and ``d^2`` of the last update are kept for
+diagnostics and gating, as in FilterPy. ``update(None)`` records a missed detection and leaves
+the state alone.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+__all__ = ["KalmanFilter", "check_vector", "check_matrix"]
+
+
+def check_vector(name: str, value, n: int) -> np.ndarray:
+    """``value`` as a finite float array of shape ``(n,)``; ``ValueError`` naming ``name``
+    otherwise."""
+    arr = np.asarray(value, dtype=np.float64)
+    if arr.shape != (n,):
+        raise ValueError(f"{name} must have shape ({n},), got {arr.shape}")
+    if not np.isfinite(arr).all():
+        raise ValueError(f"{name} must be finite, got {arr}")
+    return arr
+
+
+def check_matrix(name: str, value, n: int, m: int | None = None) -> np.ndarray:
+    """``value`` as a finite float array of shape ``(n, m)`` (``m = n`` by default)."""
+    m = n if m is None else m
+    arr = np.asarray(value, dtype=np.float64)
+    if arr.shape != (n, m):
+        raise ValueError(f"{name} must have shape ({n}, {m}), got {arr.shape}")
+    if not np.isfinite(arr).all():
+        raise ValueError(f"{name} must be finite")
+    return arr
+
+
+class KalmanFilter:
+    """A Kalman filter (linear, or extended when ``f(x)`` / ``h(x)`` are supplied).
+
+    Args:
+        x: initial state mean, shape ``(n,)``.
+        P: initial covariance, ``(n, n)``, symmetric positive definite.
+
+    Attributes:
+        x, P: the state mean and covariance.
+        y, S, d2: innovation, its covariance and squared Mahalanobis distance of the last
+            update (None before the first).
+        missed: number of ``update(None)`` calls (missed detections) since the last accepted
+            measurement.
+        rejected: number of measurements rejected by the gate since the last accepted one.
+    """
+
+    def __init__(self, x, P) -> None:
+        x = np.asarray(x, dtype=np.float64)
+        if x.ndim != 1:
+            raise ValueError(f"x must be a vector, got shape {x.shape}")
+        self.dim = x.shape[0]
+        self.x = check_vector("x", x, self.dim).copy()
+        self.P = check_matrix("P", P, self.dim).copy()
+        if not np.allclose(self.P, self.P.T) or np.linalg.eigvalsh(self.P).min() <= 0:
+            raise ValueError("P must be symmetric positive definite")
+        self._eye = np.eye(self.dim)
+        self.y: np.ndarray | None = None
+        self.S: np.ndarray | None = None
+        self.d2: float | None = None
+        self.missed = 0
+        self.rejected = 0
+
+    def predict(self, F: np.ndarray, Q: np.ndarray, x_pred: np.ndarray | None = None) -> None:
+        """Time update: ``x = F x`` (or ``x_pred = f(x)`` for the EKF), ``P = F P F^T + Q``."""
+        self.x = F @ self.x if x_pred is None else np.asarray(x_pred, dtype=np.float64)
+        P = F @ self.P @ F.T + Q
+        self.P = 0.5 * (P + P.T)
+
+    def innovation(self, z: np.ndarray, H: np.ndarray, R: np.ndarray,
+                   z_pred: np.ndarray | None = None,
+                   residual: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
+                   ) -> tuple[np.ndarray, np.ndarray, float]:
+        """``(y, S, d2)`` of measurement ``z`` without changing the filter."""
+        z_hat = H @ self.x if z_pred is None else z_pred
+        y = z - z_hat if residual is None else residual(z, z_hat)
+        S = H @ self.P @ H.T + R
+        d2 = float(y @ np.linalg.solve(S, y))
+        return y, S, d2
+
+    def update(self, z: np.ndarray | None, H: np.ndarray, R: np.ndarray,
+               z_pred: np.ndarray | None = None,
+               residual: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+               gate: float | None = None) -> bool:
+        """Measurement update; returns whether the measurement was fused.
+
+        Args:
+            z: the measurement ``(m,)``, or None for a missed detection.
+            H: measurement Jacobian ``(m, n)``.
+            R: measurement noise covariance ``(m, m)``.
+            z_pred: ``h(x)`` for a nonlinear measurement (default ``H x``).
+            residual: ``r(z, z_pred)`` replacing the subtraction (e.g. to wrap angles).
+            gate: reject the measurement if ``d^2`` exceeds this (chi-square quantile).
+        """
+        if z is None:
+            self.missed += 1
+            return False
+        m = H.shape[0]
+        z = check_vector("z", z, m)
+        y, S, d2 = self.innovation(z, H, R, z_pred, residual)
+        self.y, self.S, self.d2 = y, S, d2
+        if gate is not None and d2 > gate:
+            self.rejected += 1
+            return False
+        PHt = self.P @ H.T
+        K = np.linalg.solve(S, PHt.T).T  # K = P H^T S^-1 (S is symmetric)
+        self.x = self.x + K @ y
+        I_KH = self._eye - K @ H
+        P = I_KH @ self.P @ I_KH.T + K @ R @ K.T
+        self.P = 0.5 * (P + P.T)
+        self.missed = 0
+        self.rejected = 0
+        return True
+
+    def copy(self) -> KalmanFilter:
+        """An independent copy (state, covariance and diagnostics)."""
+        other = object.__new__(type(self))
+        other.__dict__.update(self.__dict__)
+        other.x = self.x.copy()
+        other.P = self.P.copy()
+        return other

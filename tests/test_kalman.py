@@ -1,0 +1,142 @@
+"""The Kalman filter core against FilterPy, and the batched robot tracker against the core."""
+
+import math
+
+import numpy as np
+import pytest
+from filterpy.kalman import KalmanFilter as FilterPyKF
+
+from estimators import ConstantVelocityMotion, KalmanFilter, PoseMeasurement, RobotTracker
+from estimators.models import wrap_angle
+
+
+def cv_data(n=200, dt=0.04, seed=0):
+    rng = np.random.default_rng(seed)
+    p = np.array([0.0, 0.0])
+    v = np.array([1.5, -0.7])
+    out = []
+    for _ in range(n):
+        v = v + rng.normal(0, 0.05, 2)
+        p = p + v * dt
+        out.append(p + rng.normal(0, 0.02, 2))
+    return np.array(out)
+
+
+def test_matches_filterpy_on_constant_velocity_data():
+    dt = 0.04
+    motion = ConstantVelocityMotion(2, q=0.5)
+    _, F, Q = motion.transition(np.zeros(4), dt)
+    H = np.hstack([np.eye(2), np.zeros((2, 2))])
+    R = 0.02**2 * np.eye(2)
+    x0, P0 = np.zeros(4), np.eye(4)
+
+    ours = KalmanFilter(x0, P0)
+    ref = FilterPyKF(dim_x=4, dim_z=2)
+    ref.x, ref.P, ref.F, ref.Q, ref.H, ref.R = x0.copy(), P0.copy(), F, Q, H, R
+    for k, z in enumerate(cv_data()):
+        ours.predict(F, Q)
+        ref.predict()
+        if k % 7 == 3:  # a missed detection now and then
+            ours.update(None, H, R)
+            ref.update(None)
+        else:
+            ours.update(z, H, R)
+            ref.update(z)
+            np.testing.assert_allclose(ours.y, ref.y.ravel(), atol=1e-9)
+            np.testing.assert_allclose(ours.S, ref.S, atol=1e-9)
+            assert ours.d2 == pytest.approx(float(ref.mahalanobis) ** 2, rel=1e-9)
+        np.testing.assert_allclose(ours.x, ref.x.ravel(), rtol=0, atol=1e-9)
+        np.testing.assert_allclose(ours.P, ref.P, rtol=0, atol=1e-9)
+
+
+def test_gate_rejects_outliers_and_counts_misses():
+    kf = KalmanFilter(np.zeros(4), np.eye(4) * 0.01)
+    H = np.hstack([np.eye(2), np.zeros((2, 2))])
+    R = 1e-4 * np.eye(2)
+    assert not kf.update(np.array([5.0, 5.0]), H, R, gate=13.8)
+    assert kf.rejected == 1 and np.all(kf.x == 0) and kf.d2 > 13.8
+    assert not kf.update(None, H, R) and kf.missed == 1
+    assert kf.update(np.array([0.01, 0.0]), H, R, gate=13.8)
+    assert kf.rejected == 0 and kf.missed == 0
+
+
+@pytest.mark.parametrize("bad,match", [
+    (np.array([np.nan, 0.0]), "z must be finite"),
+    (np.zeros(3), r"z must have shape \(2,\)"),
+])
+def test_bad_measurements_refused(bad, match):
+    kf = KalmanFilter(np.zeros(4), np.eye(4))
+    H = np.hstack([np.eye(2), np.zeros((2, 2))])
+    with pytest.raises(ValueError, match=match):
+        kf.update(bad, H, np.eye(2))
+    np.testing.assert_array_equal(kf.x, np.zeros(4))
+
+
+def test_bad_construction():
+    with pytest.raises(ValueError, match="symmetric positive definite"):
+        KalmanFilter(np.zeros(2), np.array([[1.0, 2.0], [2.0, 1.0]]))
+    with pytest.raises(ValueError, match=r"P must have shape \(2, 2\)"):
+        KalmanFilter(np.zeros(2), np.eye(3))
+
+
+def test_robot_tracker_equals_six_state_filter():
+    """The decoupled, batched equations are the 6-state Kalman filter exactly."""
+    q_xy, q_th, s_xy, s_th, s_v0 = 4.0, 30.0, 0.01, 0.03, 2.0
+    tracker = RobotTracker(2, q_xy, q_th, s_xy, s_th, s_v0)
+    motion = ConstantVelocityMotion(3, q=[q_xy, q_xy, q_th], angle_axes=(2,))
+    meas = PoseMeasurement(s_xy, s_th)
+    rng = np.random.default_rng(1)
+    filters = [None, None]
+    t_last = [0.0, 0.0]
+    t = 0.0
+    for _ in range(300):
+        t += rng.uniform(0.01, 0.03)
+        who = [i for i in range(2) if rng.random() < 0.8]
+        z = np.column_stack([rng.uniform(-1, 1, (len(who), 2)),
+                             wrap_angle(rng.uniform(-4, 4, len(who)))])
+        tracker.update(who, t, z)
+        for k, i in enumerate(who):
+            if filters[i] is None:
+                filters[i] = KalmanFilter(np.concatenate([z[k], np.zeros(3)]),
+                                          np.diag(list(meas.R.diagonal()) + [s_v0**2] * 3))
+            else:
+                x_pred, F, Q = motion.transition(filters[i].x, t - t_last[i])
+                filters[i].predict(F, Q, x_pred)
+                filters[i].update(z[k], meas.H, meas.R, z_pred=meas.expected(filters[i].x),
+                                  residual=meas.residual)
+                filters[i].x[2] = wrap_angle(filters[i].x[2])
+            t_last[i] = t
+        for i in range(2):
+            if filters[i] is not None:
+                np.testing.assert_allclose(tracker.p[i], filters[i].x[:3], atol=1e-9)
+                np.testing.assert_allclose(tracker.v[i], filters[i].x[3:], atol=1e-9)
+                np.testing.assert_allclose(tracker.covariance(i), filters[i].P, atol=1e-9)
+
+
+def test_robot_tracker_follows_a_turning_robot_across_the_angle_wrap():
+    tracker = RobotTracker(1, q_theta=5.0, sigma_xy=0.002, sigma_theta=0.01)
+    rng = np.random.default_rng(2)
+    errs, omegas = [], []
+    for k in range(200):
+        t = k / 60
+        truth = np.array([math.cos(t), math.sin(t), wrap_angle(3.0 + 4.0 * t)])
+        z = truth + rng.normal(0, [0.002, 0.002, 0.01])
+        tracker.update([0], t, z[None])
+        pose, vel = tracker.estimate(t)
+        errs.append(abs(wrap_angle(pose[0, 2] - truth[2])))
+        omegas.append(vel[0, 2])
+    assert max(errs[50:]) < 0.05
+    assert np.mean(omegas[100:]) == pytest.approx(4.0, rel=0.05)
+
+
+def test_robot_tracker_bad_input():
+    tr = RobotTracker(2)
+    with pytest.raises(ValueError, match="index must not repeat"):
+        tr.update([0, 0], 0.0, np.zeros((2, 3)))
+    with pytest.raises(ValueError, match=r"index must be in 0..1"):
+        tr.update([2], 0.0, np.zeros((1, 3)))
+    with pytest.raises(ValueError, match="NaN measurements are refused"):
+        tr.update([0], 0.0, np.array([[np.nan, 0, 0]]))
+    with pytest.raises(ValueError, match=r"z must have shape \(1, 3\)"):
+        tr.update([0], 0.0, np.zeros((1, 2)))
+    assert not tr.seen.any()
