@@ -208,6 +208,11 @@ class PositionMeasurement:
         truth = np.asarray(truth, dtype=np.float64)
         return truth + self.sigma * rng.standard_normal(truth.shape)
 
+    def perturb(self, x: float, y: float, n0: float, n1: float) -> tuple[float, float]:
+        """One measurement of ``(x, y)`` from standard normal draws ``n0, n1`` (for sensors
+        that draw their random numbers in bulk)."""
+        return x + self.sigma * n0, y + self.sigma * n1
+
     def log_likelihood(self, z: np.ndarray, x: np.ndarray) -> float:
         y = z - x[:2]
         s2 = self.R[0, 0]
@@ -248,6 +253,13 @@ class PoseMeasurement:
         z = truth + noise * np.array([self.sigma_xy, self.sigma_xy, self.sigma_theta])
         z[..., 2] = wrap_angle(z[..., 2])
         return z
+
+    def perturb(self, x: float, y: float, theta: float, n0: float, n1: float, n2: float
+                ) -> tuple[float, float, float]:
+        """One measurement of pose ``(x, y, theta)`` from standard normal draws (for sensors
+        that draw their random numbers in bulk); the heading is wrapped."""
+        s, st = self.sigma_xy, self.sigma_theta
+        return x + s * n0, y + s * n1, math.remainder(theta + st * n2, 2.0 * math.pi)
 
     def log_likelihood(self, z: np.ndarray, x: np.ndarray) -> float:
         y = self.residual(np.asarray(z, dtype=np.float64), x[:3])

@@ -1,29 +1,65 @@
 """Perception: what a team believes about the world, fed to the observation builder.
 
-A perception pipeline turns the true :class:`~soccer_env.state.WorldState` into a belief with
-the same ``ball`` and ``robots`` arrays (field frame). ``obs_mode="truth"`` uses
-:class:`TruthPerception`, the oracle that passes the truth through. The sensor models and
-estimators of the perception stack (``obs_mode="raw"`` and ``"perceived"``) implement the
-same protocol.
+Three observation modes share one observation layout:
+
+* ``"truth"``: the oracle, the true state itself;
+* ``"raw"``: the latest delayed detections of the overhead vision, unfiltered (positions as
+  last seen; velocities as the difference of the last two sightings);
+* ``"perceived"``: the estimation stack's belief: the ball tracker chosen by
+  ``ball_filter`` (paper 002's EKF by default) and batched robot pose filters, fed with the
+  vision's frames by capture time and predicted to the present plus the actuation latency,
+  so that the policy acts on where things will be when its command takes effect.
+
+``perception=`` chooses the vision preset (:data:`soccer_env.vision.VISION`), which also sets
+the actuation latency and command loss that apply in every mode, and the ball filter. Its
+default is ``"ideal"`` for ``obs_mode="truth"`` and ``"realistic"`` otherwise.
+
+Every pipeline returns two beliefs per step: the one the observation is built from (predicted
+ahead by the actuation latency) and the one at the present time, reported in
+``info["estimate"]`` with the keys of ``info["truth"]`` so that errors can be measured.
 """
 
 from __future__ import annotations
 
-from typing import Protocol
+import dataclasses
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 
+from estimators import BallFilterConfig, BallTracker, LeastSquaresBall, RobotTracker
+
+from .presets import BallSpec, FieldSpec, SSLRobotSpec
 from .state import WorldState
+from .vision import DetectionFrame, OverheadVision, VisionSpec, vision
 
-__all__ = ["Belief", "Perception", "TruthPerception", "OBS_MODES", "make_perception"]
+__all__ = ["Belief", "Perception", "PerceptionConfig", "TruthPerception", "RawPerception",
+           "FilteredPerception", "OBS_MODES", "BALL_FILTERS", "make_perception",
+           "ball_filter_config"]
 
-#: Observation modes available now.
-OBS_MODES = ("truth",)
+#: Observation modes.
+OBS_MODES = ("truth", "raw", "perceived")
+
+#: Ball filter configurations of ``obs_mode="perceived"``.
+BALL_FILTERS = {
+    "kf": "constant-velocity Kalman filter fed arrival times (no latency compensation), "
+          "no gating",
+    "kf-comp": "the same with latency compensation",
+    "ekf": "paper 002's friction EKF (analytic Jacobian), latency compensation, eq. 19 "
+           "collision-aware noise, gating and reset on kicks (default)",
+    "ekf-improved": "paper 002's improved EKF (Runge-Kutta propagation, F = M), otherwise "
+                    "as 'ekf'",
+    "ekf-2phase": "'ekf' with the two-phase sliding/rolling model after detected kicks",
+    "ls": "paper 002's least-squares predictor (line fit to the last 6 detections)",
+}
 
 
-class Belief(Protocol):
-    """Anything with field-frame ``ball`` ``(6,)`` and ``robots`` ``(N, 6)`` arrays laid out as
-    in :class:`~soccer_env.state.WorldState`, and the ``time`` they refer to."""
+class Belief(NamedTuple):
+    """A belief laid out like :class:`~soccer_env.state.WorldState`'s arrays: ``ball`` (6,)
+    ``x, y, z, vx, vy, vz`` and ``robots`` (N, 6) ``x, y, theta, vx, vy, omega``, at
+    ``time``."""
 
     time: float
     ball: np.ndarray
@@ -31,29 +67,255 @@ class Belief(Protocol):
 
 
 class Perception(Protocol):
-    """One team's perception pipeline."""
+    """One perception pipeline (shared by both teams of a match)."""
 
-    def reset(self, state: WorldState, rng: np.random.Generator) -> Belief:
-        """Start a new episode at ``state``; return the first belief."""
+    vision_spec: VisionSpec
+
+    def reset(self, state: WorldState, rng: np.random.Generator) -> tuple[Any, Any]:
+        """Start an episode at ``state``; return ``(belief for the observation, belief now)``."""
         ...
 
-    def update(self, state: WorldState) -> Belief:
-        """Advance to ``state`` (one control step later); return the new belief."""
+    def update(self, state: WorldState) -> tuple[Any, Any]:
+        """Advance to ``state``; return ``(belief for the observation, belief now)``."""
         ...
+
+
+@dataclass(frozen=True)
+class PerceptionConfig:
+    """What a team perceives with: a vision preset and a ball filter.
+
+    Attributes:
+        vision: a :class:`~soccer_env.vision.VisionSpec` (or preset name).
+        ball_filter: one of :data:`BALL_FILTERS` (used by ``obs_mode="perceived"``).
+    """
+
+    vision: VisionSpec
+    ball_filter: str = "ekf"
+
+    def __post_init__(self) -> None:
+        if isinstance(self.vision, str):
+            object.__setattr__(self, "vision", vision(self.vision))
+        elif not isinstance(self.vision, VisionSpec):
+            raise TypeError(f"perception vision must be a preset name or a VisionSpec, got "
+                            f"{type(self.vision).__name__}")
+        if self.ball_filter not in BALL_FILTERS:
+            raise ValueError(f"ball_filter must be one of {list(BALL_FILTERS)}, got "
+                             f"{self.ball_filter!r}")
+
+    @classmethod
+    def create(cls, value: Any, obs_mode: str) -> PerceptionConfig:
+        """From ``perception=``: None (``"ideal"`` for truth, else ``"realistic"``), a vision
+        preset name, a :class:`VisionSpec`, a mapping of this class's fields, or an
+        instance."""
+        if value is None:
+            return cls(vision("ideal" if obs_mode == "truth" else "realistic"))
+        if isinstance(value, cls):
+            return value
+        if isinstance(value, (str, VisionSpec)):
+            return cls(vision(value))
+        if isinstance(value, Mapping):
+            allowed = {f.name for f in dataclasses.fields(cls)}
+            unknown = sorted(set(value) - allowed)
+            if unknown:
+                raise ValueError(f"unknown perception key(s) {unknown}; allowed: "
+                                 f"{sorted(allowed)}")
+            return cls(**{"vision": "realistic", **value})
+        raise TypeError(f"perception must be a vision preset name, a VisionSpec, a mapping or a "
+                        f"PerceptionConfig, got {type(value).__name__}")
+
+
+def ball_filter_config(name: str, ball: BallSpec, spec: VisionSpec
+                       ) -> tuple[BallFilterConfig | None, bool]:
+    """The :class:`~estimators.BallFilterConfig` of ball filter ``name`` for this ball and
+    sensor (None for ``"ls"``), and whether it is fed capture times (latency compensation).
+
+    The filters assume the sensor's noise (at least 1 mm) and the ball's rolling
+    deceleration; the other parameters are paper 002's.
+    """
+    sigma = max(spec.ball_sigma, 1e-3)
+    if name == "ls":
+        return None, True
+    if name in ("kf", "kf-comp"):
+        cfg = BallFilterConfig(deceleration=0.0, sigma_xy=sigma, collision_noise=False,
+                               gate=None, reset_after=None)
+        return cfg, name == "kf-comp"
+    two_phase = (ball.sliding_deceleration, ball.k_switch) if name == "ekf-2phase" else None
+    propagation = "rk" if name == "ekf-improved" else "jacobian"
+    return BallFilterConfig(deceleration=ball.rolling_deceleration, propagation=propagation,
+                            sigma_xy=sigma, two_phase=two_phase), True
 
 
 class TruthPerception:
     """The oracle of ``obs_mode="truth"``: the belief is the true state itself."""
 
-    def reset(self, state: WorldState, rng: np.random.Generator) -> Belief:
-        return state
+    def __init__(self, config: PerceptionConfig) -> None:
+        self.vision_spec = config.vision
 
-    def update(self, state: WorldState) -> Belief:
-        return state
+    def reset(self, state: WorldState, rng: np.random.Generator):
+        return state, state
+
+    def update(self, state: WorldState):
+        return state, state
 
 
-def make_perception(obs_mode: str) -> Perception:
-    """Perception pipeline for ``obs_mode``; unknown modes raise ``ValueError``."""
+class _VisionPerception:
+    """Shared part of the pipelines fed by the overhead vision."""
+
+    def __init__(self, config: PerceptionConfig, field: FieldSpec, robot: SSLRobotSpec,
+                 ball: BallSpec, n_robots: int) -> None:
+        self.config = config
+        self.vision_spec = config.vision
+        self.sensor = OverheadVision(config.vision, field, robot, ball, n_robots)
+        self.n_robots = n_robots
+
+    def reset(self, state: WorldState, rng: np.random.Generator):
+        self._clear()
+        self._consume(self.sensor.reset(state, rng), state.time)
+        return self._beliefs(state.time)
+
+    def update(self, state: WorldState):
+        self._consume(self.sensor.step(state), state.time)
+        return self._beliefs(state.time)
+
+    def _clear(self) -> None:
+        raise NotImplementedError
+
+    def _consume(self, frames: list[DetectionFrame], now: float) -> None:
+        raise NotImplementedError
+
+    def _beliefs(self, now: float):
+        raise NotImplementedError
+
+
+class RawPerception(_VisionPerception):
+    """``obs_mode="raw"``: the latest delayed detections, no filtering.
+
+    The ball is its most recent detection (of several in a frame, the one nearest the previous
+    raw ball); a robot is its most recent detection. Velocities are the differences of the last
+    two sightings of different capture times. Objects never seen read as zeros.
+    """
+
+    def _clear(self) -> None:
+        n = self.n_robots
+        self._ball = [None, None]  # last two (t, x, y)
+        self._robots = [[None, None] for _ in range(n)]
+
+    def _consume(self, frames: list[DetectionFrame], now: float) -> None:
+        for f in sorted(frames, key=lambda f: f.t_capture):
+            t = f.t_capture
+            if len(f.balls):
+                last = self._ball[1]
+                balls = f.balls.tolist()
+                if last is not None and len(balls) > 1:
+                    bx, by = min(balls, key=lambda b: math.hypot(b[0] - last[1], b[1] - last[2]))
+                else:
+                    bx, by = balls[0]
+                _push(self._ball, (t, bx, by))
+            for i, pose in zip(f.robot_ids.tolist(), f.robots.tolist()):
+                _push(self._robots[i], (t, *pose))
+
+    def _beliefs(self, now: float):
+        ball = np.zeros(6)
+        ball[0:2], ball[3:5] = _last_and_rate(self._ball, 2)
+        robots = np.zeros((self.n_robots, 6))
+        for i, hist in enumerate(self._robots):
+            pose, rate = _last_and_rate(hist, 3)
+            robots[i, 0:3], robots[i, 3:6] = pose, rate
+        belief = Belief(now, ball, robots)
+        return belief, belief
+
+
+def _push(hist: list, item: tuple) -> None:
+    """Keep the last two sightings with distinct capture times, newest last."""
+    if hist[1] is not None and item[0] <= hist[1][0]:
+        if item[0] == hist[1][0]:
+            hist[1] = item  # same capture time (camera overlap): keep the later report
+        return
+    hist[0], hist[1] = hist[1], item
+
+
+def _last_and_rate(hist: list, dims: int) -> tuple[list, list]:
+    prev, last = hist
+    if last is None:
+        return [0.0] * dims, [0.0] * dims
+    if prev is None:
+        return list(last[1:]), [0.0] * dims
+    dt = last[0] - prev[0]
+    rate = [(a - b) / dt for a, b in zip(last[1:], prev[1:])]
+    if dims == 3:
+        rate[2] = math.remainder(last[3] - prev[3], 2.0 * math.pi) / dt
+    return list(last[1:]), rate
+
+
+class FilteredPerception(_VisionPerception):
+    """``obs_mode="perceived"``: batched robot pose filters and a ball tracker.
+
+    Frames are processed in capture-time order: the robots first (their detections in the same
+    frame give the ball filter's eq. 19 its nearest-robot distance), then the ball. The belief
+    for the observation is predicted to ``now + actuation_latency``.
+    """
+
+    def __init__(self, config: PerceptionConfig, field: FieldSpec, robot: SSLRobotSpec,
+                 ball: BallSpec, n_robots: int) -> None:
+        super().__init__(config, field, robot, ball, n_robots)
+        spec = config.vision
+        self.robot_tracker = RobotTracker(n_robots, sigma_xy=max(spec.robot_sigma, 1e-3),
+                                          sigma_theta=max(spec.robot_sigma_theta, 1e-3))
+        cfg, self._capture_times = ball_filter_config(config.ball_filter, ball, spec)
+        self.ball_tracker = LeastSquaresBall() if cfg is None else BallTracker(cfg)
+        self.ahead = spec.actuation_latency
+
+    def _clear(self) -> None:
+        self.robot_tracker.reset()
+        self.ball_tracker.reset()
+
+    def _consume(self, frames: list[DetectionFrame], now: float) -> None:
+        if not frames:
+            return
+        frames = sorted(frames, key=lambda f: f.t_capture)
+        # Robots: one batched update per distinct detection of a robot (usually one).
+        ids = [f.robot_ids for f in frames if len(f.robot_ids)]
+        if ids:
+            ids = np.concatenate(ids)
+            poses = np.concatenate([f.robots for f in frames if len(f.robot_ids)])
+            times = np.concatenate([np.full(len(f.robot_ids), f.t_capture) for f in frames
+                                    if len(f.robot_ids)])
+            order = np.argsort(times, kind="stable")
+            ids, poses, times = ids[order], poses[order], times[order]
+            while len(ids):
+                first = np.unique(ids, return_index=True)[1]
+                self.robot_tracker.update(ids[first], times[first], poses[first])
+                rest = np.ones(len(ids), dtype=bool)
+                rest[first] = False
+                ids, poses, times = ids[rest], poses[rest], times[rest]
+        # Ball: frames that saw a ball, by capture time (or by arrival time without latency
+        # compensation, as a naive pipeline would stamp them).
+        tracker = self.ball_tracker
+        for f in frames:
+            if len(f.balls):
+                t = f.t_capture if self._capture_times else f.t_delivered
+                tracker.add(t, f.balls, f.robots[:, 0:2] if len(f.robot_ids) else None)
+
+    def _beliefs(self, now: float):
+        current = self._belief(now)
+        return (self._belief(now + self.ahead) if self.ahead else current), current
+
+    def _belief(self, t: float) -> Belief:
+        ball = np.zeros(6)
+        est = self.ball_tracker.estimate(t)
+        if est is not None:
+            ball[0:2], ball[3:5] = est[0:2], est[2:4]
+        pose, vel = self.robot_tracker.estimate(t)
+        return Belief(t, ball, np.concatenate([pose, vel], axis=1))
+
+
+def make_perception(obs_mode: str, config: PerceptionConfig, field: FieldSpec,
+                    robot: SSLRobotSpec, ball: BallSpec, n_robots: int) -> Perception:
+    """The pipeline of ``obs_mode``; unknown modes raise ``ValueError``."""
     if obs_mode == "truth":
-        return TruthPerception()
+        return TruthPerception(config)
+    if obs_mode == "raw":
+        return RawPerception(config, field, robot, ball, n_robots)
+    if obs_mode == "perceived":
+        return FilteredPerception(config, field, robot, ball, n_robots)
     raise ValueError(f"obs_mode must be one of {list(OBS_MODES)}, got {obs_mode!r}")

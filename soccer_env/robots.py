@@ -8,13 +8,14 @@ humanoid walk engine will implement the same interface.
 from __future__ import annotations
 
 import math
+from collections import deque
 
 import numpy as np
 from gymnasium import spaces
 
 from .presets import SSLRobotSpec
 
-__all__ = ["SSLRobot", "validate_actions", "OUT_OF_RANGE_MODES"]
+__all__ = ["SSLRobot", "CommandChannel", "validate_actions", "OUT_OF_RANGE_MODES"]
 
 #: Allowed values of the ``out_of_range_actions`` argument of the environments.
 OUT_OF_RANGE_MODES = ("clip", "raise")
@@ -87,3 +88,42 @@ def validate_actions(actions: np.ndarray, names: list[str] | tuple[str, ...], mo
             "outside the allowed range [-1, 1] (pass out_of_range_actions='clip' to clip)"
         )
     return np.clip(actions, -1.0, 1.0)
+
+
+class CommandChannel:
+    """The radio and firmware between a policy and its robots: commands take effect
+    ``delay_steps`` control steps late, and each robot misses a command with probability
+    ``loss`` (it keeps executing the previous one, as SSL robots do).
+
+    Args:
+        n_robots: robots in the world.
+        delay_steps: actuation latency in control steps (0: immediate).
+        loss: per-robot, per-command loss probability.
+    """
+
+    def __init__(self, n_robots: int, delay_steps: int, loss: float) -> None:
+        self.n = n_robots
+        self.delay_steps = int(delay_steps)
+        self.loss = float(loss)
+        self.passthrough = self.delay_steps == 0 and self.loss == 0.0
+        self.reset(None)
+
+    def reset(self, rng: np.random.Generator | None) -> None:
+        """Empty the pipe: until the first commands arrive the robots stand still."""
+        self._rng = rng
+        idle = np.zeros((self.n, 6))
+        self._queue = deque([idle] * self.delay_steps)
+        self._last = idle
+
+    def send(self, commands: np.ndarray) -> np.ndarray:
+        """Queue ``commands`` ``(N, 6)``; return those the robots execute now."""
+        if self.passthrough:
+            return commands
+        self._queue.append(commands)
+        out = self._queue.popleft()
+        if self.loss > 0.0:
+            lost = self._rng.random(self.n) < self.loss
+            if lost.any():
+                out = np.where(lost[:, None], self._last, out)
+        self._last = out
+        return out

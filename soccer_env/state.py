@@ -6,7 +6,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["WorldState", "BALL_FIELDS", "ROBOT_FIELDS"]
+__all__ = ["WorldState", "state_dict", "BALL_FIELDS", "ROBOT_FIELDS"]
 
 #: Columns of :attr:`WorldState.ball`.
 BALL_FIELDS = ("x", "y", "z", "vx", "vy", "vz")
@@ -42,15 +42,20 @@ class WorldState(NamedTuple):
 
         Keys: ``time`` [s]; ``ball_position`` (x, y) [m]; ``ball_velocity`` (vx, vy) [m/s];
         ``ball_height`` [m]; ``robot_pose`` {name: (x, y, theta)}; ``robot_velocity``
-        {name: (vx, vy, omega)}. The perception issues add ``info["estimate"]`` with the same
-        keys.
+        {name: (vx, vy, omega)}. ``info["estimate"]`` has the same keys.
         """
-        robots = self.robots
-        return {
-            "time": self.time,
-            "ball_position": self.ball[0:2],
-            "ball_velocity": self.ball[3:5],
-            "ball_height": float(self.ball[2]),
-            "robot_pose": {n: robots[i, 0:3] for i, n in enumerate(self.names)},
-            "robot_velocity": {n: robots[i, 3:6] for i, n in enumerate(self.names)},
-        }
+        return state_dict(self.time, self.ball, self.robots, self.names)
+
+
+def state_dict(time: float, ball: np.ndarray, robots: np.ndarray, names: tuple[str, ...]
+               ) -> dict[str, object]:
+    """Ball and robot arrays (layouts :data:`BALL_FIELDS`, :data:`ROBOT_FIELDS`) as the dict of
+    ``info["truth"]`` / ``info["estimate"]`` (values are views of the arrays)."""
+    return {
+        "time": time,
+        "ball_position": ball[0:2],
+        "ball_velocity": ball[3:5],
+        "ball_height": float(ball[2]),
+        "robot_pose": {n: robots[i, 0:3] for i, n in enumerate(names)},
+        "robot_velocity": {n: robots[i, 3:6] for i, n in enumerate(names)},
+    }

@@ -34,6 +34,35 @@ def test_goalkeeper_on_every_preset(field, robot):
             break
 
 
+@pytest.mark.parametrize("obs_mode,perception", [("raw", "realistic"), ("perceived", "realistic"),
+                                                 ("perceived", "harsh"), ("raw", "ssl-2012")])
+def test_goalkeeper_check_env_in_every_mode(obs_mode, perception):
+    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode, perception=perception)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        check_env(env.unwrapped, skip_render_check=True)
+
+
+@pytest.mark.parametrize("obs_mode", ["raw", "perceived"])
+def test_match_api_in_every_mode(obs_mode):
+    env = soccer_env.parallel_env(blue=2, yellow=2, obs_mode=obs_mode, perception="harsh",
+                                  match_duration=5.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        parallel_api_test(env, num_cycles=200)
+    parallel_seed_test(lambda: soccer_env.parallel_env(blue=2, yellow=2, obs_mode=obs_mode),
+                       num_cycles=100)
+
+
+def test_same_shots_in_every_observation_mode():
+    """Sensor noise has its own random stream: the seeded shots do not depend on the mode."""
+    shots = []
+    for mode, per in (("truth", None), ("raw", "harsh"), ("perceived", "realistic")):
+        env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=mode, perception=per)
+        shots.append([env.reset(seed=s)[1]["shot"] for s in range(5)])
+    assert shots[0] == shots[1] == shots[2]
+
+
 def test_goalkeeper_passes_sb3_check_env():
     pytest.importorskip("stable_baselines3")
     from stable_baselines3.common.env_checker import check_env as sb3_check_env
@@ -81,7 +110,8 @@ def test_match_info_keys_stable_from_reset():
     _, infos = env.reset(seed=0)
     _, rewards, _, _, step_infos = env.step({a: np.zeros(6) for a in env.agents})
     for a in env.agents:
-        assert set(infos[a]) == set(step_infos[a]) == {"truth", "reward_terms", "score", "event"}
+        assert set(infos[a]) == set(step_infos[a]) == {"truth", "estimate", "reward_terms",
+                                                        "score", "event"}
         assert set(infos[a]["reward_terms"]) == set(step_infos[a]["reward_terms"])
         assert rewards[a] == pytest.approx(sum(step_infos[a]["reward_terms"].values()))
         assert step_infos[a]["reward_terms"]["ball_distance"] < 0
@@ -106,9 +136,11 @@ def rollout_goalkeeper(env, seed, steps=200):
     return np.concatenate(out)
 
 
-def test_goalkeeper_same_seed_same_episode():
-    a = gym.make("soccer_env/Goalkeeper-v0")
-    b = gym.make("soccer_env/Goalkeeper-v0")
+@pytest.mark.parametrize("obs_mode", ["truth", "raw", "perceived"])
+def test_goalkeeper_same_seed_same_episode(obs_mode):
+    per = None if obs_mode == "truth" else "harsh"
+    a = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode, perception=per)
+    b = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode, perception=per)
     first = rollout_goalkeeper(a, 7)
     np.testing.assert_array_equal(first, rollout_goalkeeper(b, 7))
     rollout_goalkeeper(a, 3, steps=57)  # other history

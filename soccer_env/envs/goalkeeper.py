@@ -14,12 +14,13 @@ import numpy as np
 from .. import presets
 from ..config import check_choice, keyword_names, parse_scales, reject_unknown
 from ..observations import ObservationBuilder
-from ..perception import OBS_MODES, make_perception
+from ..perception import OBS_MODES, PerceptionConfig, make_perception
 from ..physics import World
 from ..presets import BallSpec, FieldSpec, SSLRobotSpec
 from ..referee import classify_exit
 from ..render import RENDER_MODES, RenderingMixin
-from ..robots import OUT_OF_RANGE_MODES, SSLRobot, validate_actions
+from ..robots import OUT_OF_RANGE_MODES, CommandChannel, SSLRobot, validate_actions
+from ..state import state_dict
 
 __all__ = ["GoalkeeperEnv", "ShotDistribution", "GOALKEEPER_SHAPING", "STOP_SPEED",
            "CLEAR_SPEED"]
@@ -153,8 +154,10 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
     ``Box((19,), float32)``, the egocentric layout of
     :mod:`soccer_env.observations` with no team-mates, no opponents and no game state: the
     keeper's own pose and velocity (7), the ball relative to it and its velocity (4), the four
-    goal posts relative to it (8). ``obs_mode`` chooses where the values come from; only
-    ``"truth"`` exists yet.
+    goal posts relative to it (8). ``obs_mode`` chooses where the values come from:
+    ``"truth"``, ``"raw"`` (latest delayed camera detections) or ``"perceived"`` (the
+    estimation stack, predicted ahead by the actuation latency); see
+    :mod:`soccer_env.perception`.
 
     ## Rewards
     +1 for a save, -1 for a goal, 0 otherwise, plus the shaping terms of
@@ -171,14 +174,18 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
     e.g. held by the dribbler.
 
     ## Info
-    Every step: ``truth`` (see :meth:`~soccer_env.state.WorldState.truth_dict`),
+    Every step: ``truth`` (see :meth:`~soccer_env.state.WorldState.truth_dict`), ``estimate``
+    (the perception's belief at the present time, same keys; the truth itself in truth mode),
     ``reward_terms``, ``outcome`` (None until the end), ``shot`` (the drawn shot),
     ``shot_fired``, ``keeper_touched`` (the keeper has touched the ball this episode).
 
     ## Arguments
     ``robot`` ("ssl", "ssl-2012" or an :class:`SSLRobotSpec`), ``field`` (preset name or
     :class:`FieldSpec`, default "ssl-div-b"), ``ball`` (preset or spec; default the field's),
-    ``obs_mode`` ("truth"), ``render_mode`` (None, "rgb_array", "human"), ``shots`` (a
+    ``obs_mode`` ("truth", "raw", "perceived"), ``perception`` (a vision preset name,
+    a :class:`~soccer_env.perception.PerceptionConfig` or a mapping of its fields; it also sets
+    the actuation latency and command loss, in every mode), ``render_mode`` (None,
+    "rgb_array", "human"), ``shots`` (a
     :class:`ShotDistribution` or a mapping of its fields), ``shaping`` ({term: scale}),
     ``control_dt`` (s, default 1/60), ``physics_dt`` (longest substep, s, default 1/240),
     ``out_of_range_actions`` ("clip", the default, clips actions into [-1, 1]; "raise" rejects
@@ -196,6 +203,7 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         field: str | FieldSpec = "ssl-div-b",
         ball: str | BallSpec | None = None,
         obs_mode: str = "truth",
+        perception: Any = None,
         render_mode: str | None = None,
         shots: ShotDistribution | Mapping[str, Any] | None = None,
         shaping: Mapping[str, float] | None = None,
@@ -227,7 +235,12 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         self.action_space = self.robot_model.action_space()
         self.builder = ObservationBuilder(self.field, [0], [0])
         self.observation_space = self.builder.space()
-        self._perception = make_perception(obs_mode)
+        self.perception = PerceptionConfig.create(perception, obs_mode)
+        self._perception = make_perception(obs_mode, self.perception, self.field,
+                                           self.robot_spec, self.ball_spec, 1)
+        spec = self.perception.vision
+        self._channel = CommandChannel(1, round(spec.actuation_latency / self.world.control_dt),
+                                       spec.command_loss)
         self._render_width = int(render_width)
         self._names = ("blue_0",)
         self._shot: dict[str, Any] | None = None
@@ -241,15 +254,19 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         keeper = (-f.half_length + r.radius + 0.05,
                   rng.uniform(-0.25 * f.goal_width, 0.25 * f.goal_width), 0.0)
         self._shot = self.shots.sample(rng, f, self.ball_spec)
+        # Sensors and radio draw from their own stream, seeded from the episode's: the shots
+        # and the keeper's start are then the same whatever the perception configuration.
+        sensor_rng = np.random.default_rng(rng.integers(2**63))
         self.world.reset(np.array([keeper]), self._shot["position"])
         self._fired = False
         self._touched = False
         if self._shot["delay"] <= 0.0:
             self._fire()
         state = self.world.snapshot()
-        belief = self._perception.reset(state, rng)
-        obs = self.builder.build(belief)[0]
-        info = self._info(state, dict.fromkeys(("outcome", *self.shaping), 0.0), None)
+        self._channel.reset(sensor_rng)
+        seen, current = self._perception.reset(state, sensor_rng)
+        obs = self.builder.build(seen)[0]
+        info = self._info(state, current, dict.fromkeys(("outcome", *self.shaping), 0.0), None)
         return obs, info
 
     def step(self, action):
@@ -261,7 +278,7 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
                              f"dribble), got {act.shape}")
         act = validate_actions(act[None], self._names, self.out_of_range_actions)
         world = self.world
-        world.step(self.robot_model.commands(act))
+        world.step(self._channel.send(self.robot_model.commands(act)))
         if not self._fired and world.time >= self._shot["delay"] - 1e-9:
             self._fire()
         self._touched = self._touched or world.touched[0]
@@ -269,9 +286,9 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         outcome = self._outcome(state)
         terms = self._reward_terms(state, act[0], outcome)
         reward = float(sum(terms.values()))
-        belief = self._perception.update(state)
-        obs = self.builder.build(belief)[0]
-        info = self._info(state, terms, outcome)
+        seen, current = self._perception.update(state)
+        obs = self.builder.build(seen)[0]
+        info = self._info(state, current, terms, outcome)
         if self.render_mode == "human":
             self.render()
         return obs, reward, outcome is not None, False, info
@@ -338,9 +355,13 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
             terms["outside_area"] = 0.0
         return terms
 
-    def _info(self, state, terms: dict[str, float], outcome: str | None) -> dict[str, Any]:
+    def _info(self, state, belief, terms: dict[str, float], outcome: str | None
+              ) -> dict[str, Any]:
+        truth = state.truth_dict()
         info = {
-            "truth": state.truth_dict(),
+            "truth": truth,
+            "estimate": truth if belief is state else state_dict(
+                belief.time, belief.ball, belief.robots, self._names),
             "reward_terms": terms,
             "outcome": outcome,
             "shot": dict(self._shot),

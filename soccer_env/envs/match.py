@@ -20,12 +20,13 @@ from ..config import (
     reject_unknown,
 )
 from ..observations import ObservationBuilder
-from ..perception import OBS_MODES, make_perception
+from ..perception import OBS_MODES, PerceptionConfig, make_perception
 from ..physics import MAX_TEAM_SIZE, World
 from ..presets import BallSpec, FieldSpec, SSLRobotSpec
 from ..referee import classify_exit, place_free_kick, place_kickoff
 from ..render import RENDER_MODES, RenderingMixin
-from ..robots import OUT_OF_RANGE_MODES, SSLRobot, validate_actions
+from ..robots import OUT_OF_RANGE_MODES, CommandChannel, SSLRobot, validate_actions
+from ..state import state_dict
 
 __all__ = ["SoccerParallelEnv", "parallel_env", "env", "MATCH_SHAPING", "GAME_NAMES"]
 
@@ -73,12 +74,13 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
 
     ## Info
     Every agent's info holds ``truth`` (the same dict for all agents: ball and every robot in
-    field coordinates), ``reward_terms``, ``score`` ``{"blue": int, "yellow": int}`` and
-    ``event`` (None, ``"goal"``, ``"touch"``, ``"goal_line"`` or ``"over_bar"``).
+    field coordinates), ``estimate`` (the perception's present-time belief, same keys),
+    ``reward_terms``, ``score`` ``{"blue": int, "yellow": int}`` and ``event`` (None,
+    ``"goal"``, ``"touch"``, ``"goal_line"`` or ``"over_bar"``).
 
     ## Arguments
     ``blue``, ``yellow`` (team sizes, 0..11, at least one robot in all); ``robot``, ``field``,
-    ``ball``, ``obs_mode``, ``render_mode``, ``control_dt``, ``physics_dt``,
+    ``ball``, ``obs_mode``, ``perception``, ``render_mode``, ``control_dt``, ``physics_dt``,
     ``out_of_range_actions`` as in :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`;
     ``match_duration`` [s]; ``max_cycles``; ``shaping``; ``formation_jitter`` (metres of
     uniform jitter of the kick-off formation); ``render_width``.
@@ -95,6 +97,7 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         field: str | FieldSpec = "ssl-div-b",
         ball: str | BallSpec | None = None,
         obs_mode: str = "truth",
+        perception: Any = None,
         render_mode: str | None = None,
         match_duration: float = 300.0,
         max_cycles: int | None = None,
@@ -141,8 +144,15 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         self._teams = w.teams.tolist()
         self._observation_spaces = {a: self.builder.space() for a in self.possible_agents}
         self._action_spaces = {a: self.robot_model.action_space() for a in self.possible_agents}
-        # One perception for both teams: with obs_mode="truth" both believe the truth.
-        self._perception = make_perception(obs_mode)
+        # Both teams receive the same camera frames (SSL-Vision serves both) and run the same
+        # estimation stack, so their beliefs coincide: one pipeline serves both.
+        self.perception = PerceptionConfig.create(perception, obs_mode)
+        self._perception = make_perception(obs_mode, self.perception, self.field,
+                                           self.robot_spec, self.ball_spec, w.n_robots)
+        spec = self.perception.vision
+        self._channel = CommandChannel(w.n_robots,
+                                       round(spec.actuation_latency / w.control_dt),
+                                       spec.command_loss)
         self.state_space = gymnasium.spaces.Box(-np.inf, np.inf, (6 + 6 * w.n_robots,),
                                                 np.float32)
         self.score = [0, 0]
@@ -173,10 +183,14 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         self.restart_team = kickoff
         self.cycles = 0
         state = w.snapshot()
-        self._belief = self._perception.reset(state, rng)
+        # Sensors and radio draw from their own stream (see GoalkeeperEnv.reset).
+        sensor_rng = np.random.default_rng(rng.integers(2**63))
+        self._channel.reset(sensor_rng)
+        self._belief, current = self._perception.reset(state, sensor_rng)
         obs = self._observe()
-        truth = state.truth_dict()
-        infos = {a: self._agent_info(truth, dict.fromkeys(("goal", *MATCH_SHAPING), 0.0), None)
+        truth, estimate = self._truth_and_estimate(state, current)
+        infos = {a: self._agent_info(truth, estimate,
+                                     dict.fromkeys(("goal", *MATCH_SHAPING), 0.0), None)
                  for a in self.agents}
         return obs, infos
 
@@ -186,7 +200,7 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         act = self._gather(actions)
         w = self.world
         ball_x_before = float(w.ball_array()[0]) if self.shaping["ball_progress"] else 0.0
-        w.step(self.robot_model.commands(act))
+        w.step(self._channel.send(self.robot_model.commands(act)))
         self.cycles += 1
         if any(w.touched):
             self.restart_team = -1
@@ -207,12 +221,12 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
 
         state = w.snapshot()
         rewards, terms = self._rewards(state, event, scorer, ball_x_before)
-        self._belief = self._perception.update(state)
+        self._belief, current = self._perception.update(state)
         obs = self._observe()
         done = w.time >= self.match_duration - 1e-9
         trunc = self.max_cycles is not None and self.cycles >= self.max_cycles
-        truth = state.truth_dict()
-        infos = {a: self._agent_info(truth, terms[a], event) for a in self.agents}
+        truth, estimate = self._truth_and_estimate(state, current)
+        infos = {a: self._agent_info(truth, estimate, terms[a], event) for a in self.agents}
         terminations = dict.fromkeys(self.agents, bool(done))
         truncations = dict.fromkeys(self.agents, bool(trunc and not done))
         if done or trunc:
@@ -289,8 +303,15 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
             terms[a] = {"goal": g, "ball_progress": p, "ball_distance": d}
         return rewards, terms
 
-    def _agent_info(self, truth: dict, terms: dict, event: str | None) -> dict[str, Any]:
-        return {"truth": truth, "reward_terms": terms,
+    def _truth_and_estimate(self, state, belief) -> tuple[dict, dict]:
+        truth = state.truth_dict()
+        if belief is state:
+            return truth, truth
+        return truth, state_dict(belief.time, belief.ball, belief.robots, state.names)
+
+    def _agent_info(self, truth: dict, estimate: dict, terms: dict, event: str | None
+                    ) -> dict[str, Any]:
+        return {"truth": truth, "estimate": estimate, "reward_terms": terms,
                 "score": {"blue": self.score[0], "yellow": self.score[1]}, "event": event}
 
 
