@@ -1,0 +1,187 @@
+"""The overhead vision sensor: timing, noise, losses, occlusion, chip projection, overlap."""
+
+import math
+
+import numpy as np
+import pytest
+from conftest import make_world, park
+
+from soccer_env.physics import idle_commands
+from soccer_env.state import WorldState
+from soccer_env.vision import Camera, OverheadVision, default_cameras, vision
+
+
+def static_states(world, steps):
+    states = [world.snapshot()]
+    for _ in range(steps):
+        world.step(idle_commands(world.n_robots))
+        states.append(world.snapshot())
+    return states
+
+
+def sensor(world, spec, cameras=None, seed=0, state=None):
+    v = OverheadVision(spec, world.field, world.robot_spec, world.ball_spec, world.n_robots,
+                       cameras)
+    warm = v.reset(state or world.snapshot(), np.random.default_rng(seed))
+    return v, warm
+
+
+def run_frames(v, states):
+    out = []
+    for s in states:
+        out.extend(v.step(s))
+    return out
+
+
+def test_frame_rate_timestamps_and_latency():
+    w = park(make_world(field="ssl-2012", control_dt=0.04, physics_dt=0.01))
+    spec = vision("ssl-2012")
+    v, warm = sensor(w, spec)
+    assert len(warm) == 1 and warm[0].t_capture == pytest.approx(-spec.latency)
+    states = static_states(w, 100)  # 4 s
+    frames = run_frames(v, states[1:])
+    caps = np.array([f.t_capture for f in frames])
+    assert len(frames) == pytest.approx(4.0 * 25 - 2, abs=2)  # minus the 80 ms in flight
+    np.testing.assert_allclose(np.diff(caps), 1 / 25, atol=1e-9)
+    for f in frames:
+        assert f.t_delivered == pytest.approx(f.t_capture + spec.latency)
+
+
+def test_ideal_vision_reports_the_truth_at_once():
+    w = park(make_world(n_blue=2, n_yellow=1))
+    w.set_ball(0.5, -0.5, 1.0, 0.0)
+    v, _ = sensor(w, vision("ideal"))
+    w.step(idle_commands(3))
+    frames = v.step(w.snapshot())
+    truth = w.snapshot()
+    assert frames and all(f.t_capture == f.t_delivered == truth.time for f in frames)
+    seen = {i for f in frames for i in f.robot_ids.tolist()}
+    assert seen == {0, 1, 2}
+    for f in frames:
+        for i, pose in zip(f.robot_ids, f.robots):
+            np.testing.assert_allclose(pose, truth.robots[i, 0:3], atol=1e-12)
+        for b in f.balls:
+            np.testing.assert_allclose(b, truth.ball[0:2], atol=1e-12)
+
+
+def test_noise_matches_the_shared_measurement_model():
+    w = park(make_world(field="ssl-2012"))
+    w.set_ball(1.0, 0.5)
+    spec = vision("ssl-2012")
+    v, _ = sensor(w, spec)
+    state = w.snapshot()
+    later = [WorldState(state.time + k * 0.04, state.ball, state.robots, state.names,
+                        state.teams) for k in range(1, 2001)]
+    balls = np.concatenate([f.balls for f in run_frames(v, later)])
+    err = balls - state.ball[0:2]
+    assert np.std(err, axis=0) == pytest.approx([spec.ball_sigma] * 2, rel=0.1)
+    assert np.abs(np.mean(err, axis=0)).max() < 0.003
+    assert v.ball_model.sigma == spec.ball_sigma  # the filters' model, not a copy of numbers
+
+
+def test_missed_detections_at_the_configured_rate():
+    w = park(make_world(n_blue=3))
+    w.set_ball(-2.0, 1.0)
+    spec = vision("realistic", ball_detection=0.7, robot_detection=0.9, dribbler_false_rate=0.0)
+    v, _ = sensor(w, spec, cameras=[Camera(0, 0, 4, -10, 10, -10, 10)])
+    frames = run_frames(v, static_states(w, 600)[1:])
+    assert np.mean([len(f.balls) for f in frames]) == pytest.approx(0.7, abs=0.05)
+    assert np.mean([len(f.robot_ids) for f in frames]) / 3 == pytest.approx(0.9, abs=0.03)
+
+
+def test_ball_hidden_behind_a_robot_but_not_in_front():
+    """One camera above the centre; a robot at x = 2 m. Seen from the camera, a ball just
+    beyond the robot is hidden, a ball on the camera's side of it is not."""
+    w = park(make_world(), poses=[(2.0, 0.0, 0.0)])
+    cam = [Camera(0.0, 0.0, 4.0, -10, 10, -10, 10)]
+    spec = vision("realistic", ball_detection=1.0, robot_detection=1.0, ball_sigma=0.0,
+                  dribbler_false_rate=0.0)
+    gap = w.robot_spec.radius + w.ball_spec.radius + 0.002
+    for x, visible in ((2.0 + gap, False), (2.0 - gap, True), (0.5, True)):
+        w.set_ball(x, 0.0)
+        v, warm = sensor(w, spec, cameras=cam)
+        assert (len(warm[0].balls) == 1) == visible, x
+
+
+def test_chipped_ball_seen_along_the_camera_ray():
+    w = park(make_world())
+    cam = [Camera(0.0, 0.0, 4.0, -10, 10, -10, 10)]
+    spec = vision("ideal")
+    r = w.ball_spec.radius
+    w.set_ball(1.0, 0.0, 0.0, 0.0, z=1.0, vz=0.0)
+    v, warm = sensor(w, spec, cameras=cam)
+    seen = warm[0].balls[0]
+    k = (4.0 - r) / (4.0 - (1.0 + r))
+    np.testing.assert_allclose(seen, [1.0 * k, 0.0], atol=1e-12)
+    assert seen[0] > 1.3  # a metre up, it appears a third of a metre further out
+
+
+def test_overlapping_cameras_both_report_the_ball():
+    w = park(make_world())  # Division B: four cameras
+    f = w.field
+    cams = default_cameras(f, 4.0, 1.0)
+    assert len(cams) == 4
+    w.set_ball(0.3, -0.2)  # near the centre: inside all four (overlapping) views
+    _, warm = sensor(w, vision("ideal", camera_overlap=1.0))
+    assert sum(len(fr.balls) for fr in warm) == 4
+    w.set_ball(-3.5, -2.0)  # deep in one quadrant
+    _, warm = sensor(w, vision("ideal", camera_overlap=1.0))
+    assert sum(len(fr.balls) for fr in warm) == 1
+    assert len(default_cameras(make_world(field="ssl-2012").field, 4.0, 0.3)) == 1
+
+
+def test_spurious_balls_at_dribblers_and_anywhere():
+    w = park(make_world(n_blue=2), poses=[(-1.0, 0.0, 0.0), (1.0, 1.0, math.pi / 2)])
+    w.set_ball(-3.0, -2.0)
+    spec = vision("realistic", dribbler_false_rate=60.0, random_false_rate=0.0,
+                  ball_detection=0.0)
+    v, _ = sensor(w, spec, cameras=[Camera(0, 0, 4, -10, 10, -10, 10)])
+    balls = np.concatenate([fr.balls for fr in run_frames(v, static_states(w, 60)[1:])])
+    d = w.robot_spec.front_distance + w.ball_spec.radius
+    fronts = np.array([[-1.0 + d, 0.0], [1.0, 1.0 + d]])
+    near = np.min(np.hypot(*(balls[:, None, :] - fronts[None]).transpose(2, 0, 1)), axis=1)
+    assert len(balls) > 40 and near.max() < 0.02
+    spec = vision("realistic", dribbler_false_rate=0.0, random_false_rate=60.0,
+                  ball_detection=0.0)
+    v, _ = sensor(w, spec, cameras=[Camera(0, 0, 4, -2, 2, -1, 1)])
+    frames = run_frames(v, static_states(w, 60)[1:])
+    balls = np.concatenate([fr.balls for fr in frames])
+    # 60 per second at 60 frames per second: one in a frame with probability 1 - 1/e.
+    assert len(balls) / len(frames) == pytest.approx(1 - math.exp(-1), abs=0.15)
+    assert (np.abs(balls[:, 0]) <= 2).all() and (np.abs(balls[:, 1]) <= 1).all()
+
+
+def test_latency_jitter_delivers_in_delivery_order_possibly_out_of_capture_order():
+    w = park(make_world())
+    spec = vision("harsh", latency_jitter=0.05)
+    v, _ = sensor(w, spec)
+    frames = run_frames(v, static_states(w, 300)[1:])
+    delivered = [f.t_delivered for f in frames]
+    captured = [f.t_capture for f in frames]
+    assert delivered == sorted(delivered)
+    assert captured != sorted(captured)  # some frames overtake others
+    for f in frames:
+        assert spec.latency <= f.t_delivered - f.t_capture <= spec.latency + 0.05 + 1e-12
+
+
+def test_same_seed_same_frames():
+    w = park(make_world(n_blue=2))
+    w.set_ball(0.0, 0.0, 2.0, 1.0)
+    states = static_states(w, 60)
+    a, _ = sensor(w, vision("harsh"), seed=3, state=states[0])
+    b, _ = sensor(w, vision("harsh"), seed=3, state=states[0])
+    fa, fb = run_frames(a, states[1:]), run_frames(b, states[1:])
+    assert len(fa) == len(fb)
+    for x, y in zip(fa, fb):
+        assert x.t_capture == y.t_capture
+        np.testing.assert_array_equal(x.balls, y.balls)
+        np.testing.assert_array_equal(x.robots, y.robots)
+
+
+def test_vision_preset_validation():
+    with pytest.raises(ValueError, match=r"vision.latency must be in \[0.0, 2.0\], got -1"):
+        vision("realistic", latency=-1.0)
+    with pytest.raises(ValueError, match=r"vision.ball_detection must be in \[0.0, 1.0\]"):
+        vision("realistic", ball_detection=1.5)
+    with pytest.raises(TypeError, match=r"unknown vision parameter\(s\) \['fps'\]"):
+        vision("realistic", fps=60)
