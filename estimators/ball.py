@@ -96,19 +96,28 @@ class BallFilterConfig:
         FrictionBallMotion(self.deceleration, self.propagation)  # validates both
 
 
-def _points(name: str, value) -> list:
-    """``value`` (an ``(k, 2)`` array-like, k may be 0) as a list of ``[x, y]`` lists;
-    ``ValueError`` for other shapes or non-finite values."""
-    if isinstance(value, np.ndarray) and value.ndim == 2 and value.shape[1] == 2:
-        rows = value.tolist()
-    else:
-        arr = np.asarray(value, dtype=np.float64)
-        if arr.size == 0:
+def _points(name: str, value, exact: bool = True) -> list:
+    """``value`` (``k`` points, k may be 0: an array ``(k, 2)`` or a sequence of ``(x, y)``
+    sequences; with ``exact=False`` longer rows whose first two entries are ``x, y``, such as
+    poses) as a list of rows; ``ValueError`` for other shapes or non-finite values."""
+    if isinstance(value, np.ndarray):
+        if value.size == 0:
             return []
-        if arr.ndim != 2 or arr.shape[1] != 2:
-            raise ValueError(f"{name} must have shape (k, 2), got {arr.shape}")
-        rows = arr.tolist()
-    if rows and not math.isfinite(sum(map(sum, rows))):
+        if value.ndim != 2 or value.shape[1] < 2 or (exact and value.shape[1] != 2):
+            raise ValueError(f"{name} must have shape (k, 2), got {value.shape}")
+        rows = value.tolist()
+    elif isinstance(value, (list, tuple)):
+        rows = value
+    else:
+        raise TypeError(f"{name} must be an array or a sequence of points, got "
+                        f"{type(value).__name__}")
+    total = 0.0
+    for p in rows:
+        n = len(p)
+        if n < 2 or (exact and n != 2):
+            raise ValueError(f"{name} must have shape (k, 2); got a point of length {n}")
+        total += p[0] + p[1]
+    if not math.isfinite(total):
         raise ValueError(f"{name} must be finite (NaN measurements are refused)")
     return rows
 
@@ -256,9 +265,10 @@ class BallTracker:
 
     def add(self, t: float, detections, obstacles=None) -> None:
         """Process one frame captured at ``t`` with ball detections ``(k, 2)`` (k may be 0)
-        and robot positions ``(j, 2)`` seen in it (for eq. 19)."""
+        and robot positions seen in it (for eq. 19; ``(j, 2)``, or poses whose first two
+        entries are the position)."""
         dets = _points("detections", detections)
-        obs = _points("obstacles", obstacles) if obstacles is not None else []
+        obs = _points("obstacles", obstacles, exact=False) if obstacles is not None else []
         if not math.isfinite(t):
             raise ValueError(f"t must be finite, got {t!r}")
         if t >= self._track.t:
@@ -317,7 +327,8 @@ class BallTracker:
         c = self.config
         if not c.collision_noise or not obstacles:
             return c.sigma_r
-        d = min(math.hypot(ox - position[0], oy - position[1]) for ox, oy in obstacles)
+        px, py = position[0], position[1]
+        d = min(math.hypot(o[0] - px, o[1] - py) for o in obstacles)
         return max(c.gain_k * (c.robot_radius + c.ball_radius) / max(d, 1e-6) * c.sigma_r,
                    c.sigma_r)
 

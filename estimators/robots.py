@@ -1,12 +1,10 @@
-"""Pose trackers for many robots at once: a batched constant-velocity Kalman filter.
+"""Pose trackers for many robots: decoupled constant-velocity Kalman filters.
 
 Each robot's state is ``(x, y, theta, vx, vy, omega)``. With the constant-velocity model of
 :class:`~estimators.models.ConstantVelocityMotion` and the pose measurement of
 :class:`~estimators.models.PoseMeasurement` (independent noise per axis), the three axes
-decouple into independent two-state filters ``(p, v)`` with a scalar measurement of ``p``, so
-every robot and every axis is updated together with a few element-wise array operations (the
-equations below, Joseph form), rather than a 6 x 6 filter per robot. The heading axis wraps
-its residuals and estimates to ``[-pi, pi)``.
+decouple into independent two-state filters ``(p, v)`` with a scalar measurement of ``p``. The
+heading axis wraps its residuals and estimates to ``[-pi, pi)``.
 
 Per axis, predicting over ``T`` with white-noise acceleration density ``q``:
 
@@ -16,11 +14,16 @@ Per axis, predicting over ``T`` with white-noise acceleration density ``q``:
 and updating with ``z`` of variance ``r``: ``y = z - p``, ``S = P00 + r``, ``K = (P00, P01) / S``,
 
     ``P00' = (1 - K0)^2 P00 + K0^2 r``;  ``P01' = (1 - K0)(P01 - K1 P00) + K0 K1 r``;
-    ``P11' = P11 - 2 K1 P01 + K1^2 (P00 + r)``.
+    ``P11' = P11 - 2 K1 P01 + K1^2 (P00 + r)``   (Joseph form).
 
-Measurements carry their capture time; each robot is predicted to it before the update, so
-delayed frames are handled. A frame older than a robot's latest update is dropped for that robot
-(robots are many and slow next to the camera rate, so a replay is not worth its cost).
+These are a dozen multiply-adds per axis, so they run in plain Python floats: a camera frame
+brings a handful of detections, sizes at which numpy's per-call overhead would cost more than
+the arithmetic. ``tests/test_kalman.py`` checks them against the 6-state
+:class:`~estimators.kalman.KalmanFilter` to 1e-9.
+
+Measurements carry their capture time; a robot is predicted to it before the update, so
+delayed frames are handled. A detection older than the robot's latest update is dropped
+(robots are slow next to the camera rate, so a replay is not worth its cost).
 """
 
 from __future__ import annotations
@@ -29,13 +32,13 @@ import math
 
 import numpy as np
 
-from .models import wrap_angle
-
 __all__ = ["RobotTracker"]
+
+_TWO_PI = 2.0 * math.pi
 
 
 class RobotTracker:
-    """Batched pose tracker for ``n`` robots.
+    """Pose tracker for ``n`` robots.
 
     Args:
         n: number of robots (targets are indexed ``0 .. n-1``).
@@ -44,6 +47,10 @@ class RobotTracker:
         sigma_xy: position measurement noise [m].
         sigma_theta: heading measurement noise [rad].
         sigma_v0: initial velocity standard deviation [m/s and rad/s].
+
+    Attributes:
+        seen: ``(n,)`` whether each robot has been detected.
+        dropped: detections older than their robot's latest update.
     """
 
     def __init__(self, n: int, q_xy: float = 4.0, q_theta: float = 20.0,
@@ -56,25 +63,26 @@ class RobotTracker:
             if not (math.isfinite(v) and v >= 0.0):
                 raise ValueError(f"{name} must be finite and >= 0, got {v!r}")
         self.n = int(n)
-        self.q = np.array([q_xy, q_xy, q_theta])
-        self.r = np.array([max(sigma_xy, 1e-4) ** 2] * 2 + [max(sigma_theta, 1e-4) ** 2])
-        self.var_v0 = sigma_v0**2
+        self.q = (float(q_xy), float(q_xy), float(q_theta))
+        self.r = (max(sigma_xy, 1e-4) ** 2,) * 2 + (max(sigma_theta, 1e-4) ** 2,)
+        self.var_v0 = float(sigma_v0) ** 2
         self.reset()
 
     def reset(self) -> None:
         """Forget all robots."""
         n = self.n
-        self.p = np.zeros((n, 3))
-        self.v = np.zeros((n, 3))
-        self.P00 = np.zeros((n, 3))
-        self.P01 = np.zeros((n, 3))
-        self.P11 = np.zeros((n, 3))
-        self.t = np.full(n, -np.inf)
-        self.seen = np.zeros(n, dtype=bool)
+        # Per robot: 3 axes of (p, v, P00, P01, P11), and the time of the last update.
+        self._axes: list[list[list[float]] | None] = [None] * n
+        self._t = [-math.inf] * n
+        self.dropped = 0
+
+    @property
+    def seen(self) -> np.ndarray:
+        return np.array([a is not None for a in self._axes], dtype=bool)
 
     def update(self, index, t, z) -> None:
         """Fuse pose detections ``z`` ``(k, 3)`` of robots ``index`` ``(k,)`` captured at
-        times ``t`` ``(k,)`` (or one time for all). Indices must be distinct within a call."""
+        times ``t`` (``(k,)`` or one time for all), in the given order."""
         index = np.asarray(index, dtype=np.int64).reshape(-1)
         z = np.asarray(z, dtype=np.float64)
         k = len(index)
@@ -85,56 +93,80 @@ class RobotTracker:
             raise ValueError("z and t must be finite (NaN measurements are refused)")
         if k and (index.min() < 0 or index.max() >= self.n):
             raise ValueError(f"index must be in 0..{self.n - 1}, got {index.tolist()}")
-        if len(np.unique(index)) != k:
-            raise ValueError("index must not repeat within one update")
-        new = ~self.seen[index]
-        if new.any():
-            i = index[new]
-            self.p[i] = z[new]
-            self.v[i] = 0.0
-            self.P00[i] = self.r
-            self.P01[i] = 0.0
-            self.P11[i] = self.var_v0
-            self.t[i] = t[new]
-            self.seen[i] = True
-        old = ~new & (t >= self.t[index])
-        if not old.any():
+        for i, ti, zi in zip(index.tolist(), t.tolist(), z.tolist()):
+            self.update_one(i, ti, zi)
+
+    def update_one(self, i: int, t: float, z) -> None:
+        """Fuse one pose detection ``z = (x, y, theta)`` of robot ``i`` captured at ``t``
+        (unchecked: callers with validated data avoid the array round trip)."""
+        axes = self._axes[i]
+        if axes is None:
+            self._axes[i] = [[z[a], 0.0, self.r[a], 0.0, self.var_v0] for a in range(3)]
+            self._t[i] = t
             return
-        i, zi = index[old], z[old]
-        T = (t[old] - self.t[i])[:, None]
-        q, r = self.q, self.r
-        # Predict to the capture time.
-        p = self.p[i] + self.v[i] * T
-        P00 = self.P00[i] + 2.0 * T * self.P01[i] + T * T * self.P11[i] + q * T**3 / 3.0
-        P01 = self.P01[i] + T * self.P11[i] + q * T * T / 2.0
-        P11 = self.P11[i] + q * T
-        # Update (Joseph form, per axis).
-        y = zi - p
-        y[:, 2] = wrap_angle(y[:, 2])
-        S = P00 + r
-        K0, K1 = P00 / S, P01 / S
-        p = p + K0 * y
-        p[:, 2] = wrap_angle(p[:, 2])
-        self.p[i] = p
-        self.v[i] = self.v[i] + K1 * y
-        self.P00[i] = (1.0 - K0) ** 2 * P00 + K0 * K0 * r
-        self.P01[i] = (1.0 - K0) * (P01 - K1 * P00) + K0 * K1 * r
-        self.P11[i] = P11 - 2.0 * K1 * P01 + K1 * K1 * S
-        self.t[i] = t[old]
+        T = t - self._t[i]
+        if T < 0.0:
+            self.dropped += 1
+            return
+        self._t[i] = t
+        T2, T3 = T * T, T * T * T
+        for a in (0, 1, 2):
+            p, v, P00, P01, P11 = axes[a]
+            q, r = self.q[a], self.r[a]
+            # Predict to the capture time.
+            p += v * T
+            P00 += 2.0 * T * P01 + T2 * P11 + q * T3 / 3.0
+            P01 += T * P11 + 0.5 * q * T2
+            P11 += q * T
+            # Update (Joseph form).
+            y = z[a] - p
+            if a == 2:
+                y = math.remainder(y, _TWO_PI)
+                p = math.remainder(p, _TWO_PI)
+            S = P00 + r
+            K0, K1 = P00 / S, P01 / S
+            axes[a] = [p + K0 * y, v + K1 * y,
+                       (1.0 - K0) ** 2 * P00 + K0 * K0 * r,
+                       (1.0 - K0) * (P01 - K1 * P00) + K0 * K1 * r,
+                       P11 - 2.0 * K1 * P01 + K1 * K1 * S]
+        axes[2][0] = math.remainder(axes[2][0], _TWO_PI)
 
     def estimate(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         """Poses ``(n, 3)`` and velocities ``(n, 3)`` predicted to time ``t`` (robots never
-        seen stay at zero; see :attr:`seen`)."""
-        dt = np.where(self.seen, np.maximum(t - self.t, 0.0), 0.0)[:, None]
-        pose = self.p + self.v * dt
-        pose[:, 2] = wrap_angle(pose[:, 2])
-        return pose, self.v.copy()
+        seen read as zeros; see :attr:`seen`)."""
+        both = self.estimate_array(t)
+        return both[:, 0:3], both[:, 3:6]
+
+    def estimate_array(self, t: float) -> np.ndarray:
+        """``(n, 6)`` rows ``x, y, theta, vx, vy, omega`` predicted to time ``t``."""
+        rows = []
+        for axes, ti in zip(self._axes, self._t):
+            if axes is None:
+                rows.append((0.0, 0.0, 0.0, 0.0, 0.0, 0.0))
+                continue
+            dt = t - ti if t > ti else 0.0
+            (px, vx, *_), (py, vy, *_), (pt, vt, *_) = axes
+            rows.append((px + vx * dt, py + vy * dt, math.remainder(pt + vt * dt, _TWO_PI),
+                         vx, vy, vt))
+        return np.array(rows).reshape(-1, 6)
+
+    @property
+    def p(self) -> np.ndarray:
+        """``(n, 3)`` poses at each robot's latest update."""
+        return np.array([[a[0] for a in axes] if axes else [0.0] * 3
+                         for axes in self._axes]).reshape(-1, 3)
+
+    @property
+    def v(self) -> np.ndarray:
+        """``(n, 3)`` velocities at each robot's latest update."""
+        return np.array([[a[1] for a in axes] if axes else [0.0] * 3
+                         for axes in self._axes]).reshape(-1, 3)
 
     def covariance(self, i: int) -> np.ndarray:
         """The 6 x 6 covariance of robot ``i`` (order ``x, y, theta, vx, vy, omega``)."""
         P = np.zeros((6, 6))
-        for ax in range(3):
-            P[ax, ax] = self.P00[i, ax]
-            P[ax, ax + 3] = P[ax + 3, ax] = self.P01[i, ax]
-            P[ax + 3, ax + 3] = self.P11[i, ax]
+        for ax, (_, _, P00, P01, P11) in enumerate(self._axes[i] or []):
+            P[ax, ax] = P00
+            P[ax, ax + 3] = P[ax + 3, ax] = P01
+            P[ax + 3, ax + 3] = P11
         return P

@@ -203,15 +203,15 @@ class RawPerception(_VisionPerception):
     def _consume(self, frames: list[DetectionFrame], now: float) -> None:
         for f in sorted(frames, key=lambda f: f.t_capture):
             t = f.t_capture
-            if len(f.balls):
+            if f.balls:
                 last = self._ball[1]
-                balls = f.balls.tolist()
+                balls = f.balls
                 if last is not None and len(balls) > 1:
                     bx, by = min(balls, key=lambda b: math.hypot(b[0] - last[1], b[1] - last[2]))
                 else:
                     bx, by = balls[0]
                 _push(self._ball, (t, bx, by))
-            for i, pose in zip(f.robot_ids.tolist(), f.robots.tolist()):
+            for i, pose in zip(f.robot_ids, f.robots):
                 _push(self._robots[i], (t, *pose))
 
     def _beliefs(self, now: float):
@@ -272,41 +272,25 @@ class FilteredPerception(_VisionPerception):
     def _consume(self, frames: list[DetectionFrame], now: float) -> None:
         if not frames:
             return
-        frames = sorted(frames, key=lambda f: f.t_capture)
-        # Robots: one batched update per distinct detection of a robot (usually one).
-        ids = [f.robot_ids for f in frames if len(f.robot_ids)]
-        if ids:
-            ids = np.concatenate(ids)
-            poses = np.concatenate([f.robots for f in frames if len(f.robot_ids)])
-            times = np.concatenate([np.full(len(f.robot_ids), f.t_capture) for f in frames
-                                    if len(f.robot_ids)])
-            order = np.argsort(times, kind="stable")
-            ids, poses, times = ids[order], poses[order], times[order]
-            while len(ids):
-                first = np.unique(ids, return_index=True)[1]
-                self.robot_tracker.update(ids[first], times[first], poses[first])
-                rest = np.ones(len(ids), dtype=bool)
-                rest[first] = False
-                ids, poses, times = ids[rest], poses[rest], times[rest]
-        # Ball: frames that saw a ball, by capture time (or by arrival time without latency
-        # compensation, as a naive pipeline would stamp them).
-        tracker = self.ball_tracker
-        for f in frames:
-            if len(f.balls):
-                t = f.t_capture if self._capture_times else f.t_delivered
-                tracker.add(t, f.balls, f.robots[:, 0:2] if len(f.robot_ids) else None)
+        robots, ball = self.robot_tracker, self.ball_tracker
+        for f in sorted(frames, key=lambda f: f.t_capture):
+            t = f.t_capture
+            for i, pose in zip(f.robot_ids, f.robots):
+                robots.update_one(i, t, pose)
+            if f.balls:
+                # Without latency compensation a pipeline stamps frames when they arrive.
+                stamp = t if self._capture_times else f.t_delivered
+                ball.add(stamp, f.balls, f.robots)
 
     def _beliefs(self, now: float):
         current = self._belief(now)
         return (self._belief(now + self.ahead) if self.ahead else current), current
 
     def _belief(self, t: float) -> Belief:
-        ball = np.zeros(6)
         est = self.ball_tracker.estimate(t)
-        if est is not None:
-            ball[0:2], ball[3:5] = est[0:2], est[2:4]
-        pose, vel = self.robot_tracker.estimate(t)
-        return Belief(t, ball, np.concatenate([pose, vel], axis=1))
+        ball = np.zeros(6) if est is None else np.array((est[0], est[1], 0.0, est[2], est[3],
+                                                         0.0))
+        return Belief(t, ball, self.robot_tracker.estimate_array(t))
 
 
 def make_perception(obs_mode: str, config: PerceptionConfig, field: FieldSpec,

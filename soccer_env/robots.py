@@ -114,6 +114,7 @@ class CommandChannel:
         idle = np.zeros((self.n, 6))
         self._queue = deque([idle] * self.delay_steps)
         self._last = idle
+        self._losses: list[list[int]] = []
 
     def send(self, commands: np.ndarray) -> np.ndarray:
         """Queue ``commands`` ``(N, 6)``; return those the robots execute now."""
@@ -122,8 +123,12 @@ class CommandChannel:
         self._queue.append(commands)
         out = self._queue.popleft()
         if self.loss > 0.0:
-            lost = self._rng.random(self.n) < self.loss
-            if lost.any():
-                out = np.where(lost[:, None], self._last, out)
+            if not self._losses:  # draw the losses of the next 256 steps at once
+                draws = self._rng.random((256, self.n)) < self.loss
+                self._losses = [np.flatnonzero(row).tolist() for row in draws][::-1]
+            lost = self._losses.pop()
+            if lost:
+                out = out.copy()
+                out[lost] = self._last[lost]
         self._last = out
         return out

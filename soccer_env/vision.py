@@ -22,6 +22,7 @@ Between two environment steps the truth is interpolated linearly to each capture
 
 from __future__ import annotations
 
+import heapq
 import math
 from dataclasses import dataclass
 from typing import NamedTuple
@@ -186,21 +187,24 @@ def default_cameras(field: FieldSpec, height: float, overlap: float) -> list[Cam
 class DetectionFrame(NamedTuple):
     """One camera frame, as a team's software receives it.
 
+    Detections are tuples (cheap to build for every frame; ``np.reshape(frame.balls, (-1,
+    2))`` gives an array).
+
     Attributes:
         camera: camera index.
         t_capture: when the image was taken [s, episode time].
         t_delivered: when the frame reaches the team's software [s].
-        balls: ``(k, 2)`` ball detections [m] (true and spurious; k may be 0).
-        robot_ids: ``(m,)`` indices of the detected robots (blue first, as in the world).
-        robots: ``(m, 3)`` detected poses ``x, y, theta``.
+        balls: ball detections ``(x, y)`` [m] (true and spurious; may be empty).
+        robot_ids: indices of the detected robots (blue first, as in the world).
+        robots: detected poses ``(x, y, theta)``, in the order of ``robot_ids``.
     """
 
     camera: int
     t_capture: float
     t_delivered: float
-    balls: np.ndarray
-    robot_ids: np.ndarray
-    robots: np.ndarray
+    balls: tuple
+    robot_ids: tuple
+    robots: tuple
 
 
 # Points on the ball's disc (centre and two rings), in radii, for the hidden fraction.
@@ -231,7 +235,8 @@ class OverheadVision:
                                                   spec.camera_overlap)
         self.ball_model = PositionMeasurement(spec.ball_sigma)
         self.robot_model = PoseMeasurement(spec.robot_sigma, spec.robot_sigma_theta)
-        self._queue: list[DetectionFrame] = []
+        # Frames in flight, a heap ordered by delivery time.
+        self._queue: list[tuple[float, float, int, DetectionFrame]] = []
         self._prev: WorldState | None = None
         self._rng: np.random.Generator | None = None
 
@@ -242,6 +247,7 @@ class OverheadVision:
         still: one frame per camera, captured ``latency`` ago of the initial (static) scene,
         is delivered at once and returned."""
         self._rng = rng
+        self._draws = _Draws(rng)
         self._queue = []
         self._prev = state
         period = self._period()
@@ -275,12 +281,12 @@ class OverheadVision:
             new = self._capture(prev, state, np.array(cams, dtype=np.int64),
                                 np.array(times)) if cams else []
         self._prev = state
-        self._queue.extend(new)
-        self._queue.sort(key=lambda f: f.t_delivered)
-        i = 0
-        while i < len(self._queue) and self._queue[i].t_delivered <= now + 1e-12:
-            i += 1
-        out, self._queue = self._queue[:i], self._queue[i:]
+        queue = self._queue
+        for frame in new:
+            heapq.heappush(queue, (frame.t_delivered, frame.t_capture, frame.camera, frame))
+        out = []
+        while queue and queue[0][0] <= now + 1e-12:
+            out.append(heapq.heappop(queue)[3])
         return out
 
     # ------------------------------------------------------------------------------------
@@ -289,36 +295,50 @@ class OverheadVision:
                  times: np.ndarray) -> list[DetectionFrame]:
         """Frames of cameras ``cams`` captured at ``times`` (between ``prev`` and ``cur``).
 
-        Plain Python over cameras and robots, with the random draws of the whole call made in
-        two numpy calls: a step has a handful of frames with a dozen robots each, sizes at
-        which numpy's per-call overhead would dominate.
+        Plain Python over cameras and robots, with random numbers drawn in blocks: a step has
+        a handful of frames with a dozen robots each, sizes at which numpy's per-call overhead
+        would dominate.
         """
-        spec, rng, rs = self.spec, self._rng, self.robot_spec
+        spec, rs = self.spec, self.robot_spec
         F, N = len(cams), self.n_robots
         r = self.ball_spec.radius
         span = cur.time - prev.time
         pb, cb = prev.ball.tolist(), cur.ball.tolist()
-        pr, cr = prev.robots.tolist(), cur.robots.tolist()
-        # Noise and uniform draws for everything this call may need.
-        # Uniforms per frame: robot detection (N), dribbler reflection (N), ball detection,
-        # spurious ball, its x and y, latency jitter.
-        noise = rng.standard_normal((F, N + 2, 3)).tolist()
-        u = rng.random((F, 2 * N + 5)).tolist()
+        # Robot poses at every capture time (linear interpolation, headings on the short
+        # arc).
+        t0 = prev.time
+        weights = [(t - t0) / span if span > 0 else 1.0 for t in times.tolist()]
+        if F * N <= 16:
+            pr, cr = prev.robots.tolist(), cur.robots.tolist()
+            moves = [(a[0], a[1], a[2], b[0] - a[0], b[1] - a[1],
+                      math.remainder(b[2] - a[2], 2.0 * math.pi)) for a, b in zip(pr, cr)]
+            interpolated = [[(x + w * dx, y + w * dy, th + w * dth)
+                             for x, y, th, dx, dy, dth in moves] for w in weights]
+        else:  # one array expression for many robots
+            delta = cur.robots[:, 0:3] - prev.robots[:, 0:3]
+            delta[:, 2] = np.remainder(delta[:, 2] + math.pi, 2.0 * math.pi) - math.pi
+            interpolated = (prev.robots[None, :, 0:3]
+                            + np.array(weights)[:, None, None] * delta).tolist()
+        # Noise and uniform draws for everything this call may need. Uniforms per frame:
+        # robot detection (N), dribbler reflection (N), ball detection, spurious ball, its x
+        # and y, latency jitter.
+        draws = self._draws
+        noise = draws.normals(F * (N + 2) * 3)
+        u = draws.uniforms(F * (2 * N + 5))
         ball_noise, robot_noise = self.ball_model.perturb, self.robot_model.perturb
         period = self._period() or 0.0
         p_dribbler = 1.0 - math.exp(-spec.dribbler_false_rate * period)
         p_random = 1.0 - math.exp(-spec.random_false_rate * period)
         front = rs.front_distance + r
         frames = []
+        nn, nu = 3 * (N + 2), 2 * N + 5
         for f, (cam, t) in enumerate(zip(cams.tolist(), times.tolist())):
             cx, cy, h, x0, x1, y0, y1 = self.cameras[cam]
-            w = (t - prev.time) / span if span > 0 else 1.0
-            nf, uf = noise[f], u[f]
-            # Truth at the capture time (linear interpolation; headings on the short arc).
-            robots = []
-            for (ax, ay, ath, *_), (bx_, by_, bth, *_) in zip(pr, cr):
-                robots.append((ax + w * (bx_ - ax), ay + w * (by_ - ay),
-                               ath + w * math.remainder(bth - ath, 2.0 * math.pi)))
+            w = weights[f]
+            flat = noise[f * nn:(f + 1) * nn]
+            nf = [flat[3 * j:3 * j + 3] for j in range(N + 2)]
+            uf = u[f * nu:(f + 1) * nu]
+            robots = interpolated[f]
             ids, poses, balls = [], [], []
             for i, (x, y, th) in enumerate(robots):
                 if not (x0 <= x <= x1 and y0 <= y <= y1):
@@ -343,10 +363,8 @@ class OverheadVision:
             if uf[2 * N + 1] < p_random:  # a spurious ball anywhere in view
                 balls.append((x0 + (x1 - x0) * uf[2 * N + 2], y0 + (y1 - y0) * uf[2 * N + 3]))
             delay = spec.latency + spec.latency_jitter * uf[2 * N + 4]
-            frames.append(DetectionFrame(cam, t, t + delay,
-                                         np.array(balls).reshape(-1, 2),
-                                         np.array(ids, dtype=np.int64),
-                                         np.array(poses).reshape(-1, 3)))
+            frames.append(DetectionFrame(cam, t, t + delay, tuple(balls), tuple(ids),
+                                         tuple(poses)))
         return frames
 
     def _hidden(self, bx: float, by: float, zc: float, robots: list, cx: float, cy: float,
@@ -388,3 +406,35 @@ class OverheadVision:
                 qx, qy = px - s * sx, py - s * sy
                 hidden[j] = qx * qx + qy * qy <= radius * radius
         return 0.0 if hidden is None else sum(hidden) / len(hidden)
+
+
+class _Draws:
+    """Random numbers drawn from a generator in blocks and handed out as Python floats: a
+    frame needs a few dozen, and one numpy call per frame would cost more than using them.
+    The sequence is a function of the generator's state and the requests alone, so runs stay
+    reproducible."""
+
+    BLOCK = 4096
+
+    def __init__(self, rng: np.random.Generator) -> None:
+        self._rng = rng
+        self._normal: list[float] = []
+        self._n = 0
+        self._uniform: list[float] = []
+        self._u = 0
+
+    def normals(self, k: int) -> list[float]:
+        if self._n + k > len(self._normal):
+            self._normal = self._normal[self._n:] + self._rng.standard_normal(
+                max(k, self.BLOCK)).tolist()
+            self._n = 0
+        self._n += k
+        return self._normal[self._n - k:self._n]
+
+    def uniforms(self, k: int) -> list[float]:
+        if self._u + k > len(self._uniform):
+            self._uniform = self._uniform[self._u:] + self._rng.random(
+                max(k, self.BLOCK)).tolist()
+            self._u = 0
+        self._u += k
+        return self._uniform[self._u - k:self._u]
