@@ -24,6 +24,10 @@ from .models import FrictionBallMotion, PositionMeasurement
 
 __all__ = ["BallFilterConfig", "BallTracker", "LeastSquaresBall", "CHI2_2DOF_999"]
 
+#: Largest change of the ball's velocity a kick or a bounce can make [m/s] (a 6.5 m/s ball
+#: reversing off a robot moving towards it).
+MAX_SPEED_CHANGE = 10.0
+
 #: 99.9 % quantile of the chi-square distribution with 2 degrees of freedom.
 CHI2_2DOF_999 = 13.815510557964274
 
@@ -51,6 +55,12 @@ class BallFilterConfig:
         reset_after: after this many consecutive gated-out detections that agree with each
             other (a kick or a collision moved the ball), restart the track from them with the
             finite-difference velocity; None never resets.
+        maneuver_radius: a gated-out detection within this distance [m] of the predicted
+            position is taken as the ball changing its motion where it is (a kick, a bounce):
+            the velocity variance is raised by ``maneuver_speed^2`` and the detection fused at
+            once, instead of waiting for ``reset_after`` detections. None disables this.
+        maneuver_speed: standard deviation [m/s] of the velocity change assumed at a
+            maneuver.
         two_phase: ``(sliding_deceleration, k_switch)``: after a reset faster than
             ``kick_speed`` the ball slides at the first deceleration until its speed falls to
             ``k_switch`` times the reset speed, then rolls at ``deceleration``. None: one
@@ -70,13 +80,15 @@ class BallFilterConfig:
     ball_radius: float = 0.02
     gate: float | None = CHI2_2DOF_999
     reset_after: int | None = 2
+    maneuver_radius: float | None = 0.15
+    maneuver_speed: float = 3.0
     two_phase: tuple[float, float] | None = None
     kick_speed: float = 1.0
     history: float = 0.5
 
     def __post_init__(self) -> None:
         for name in ("sigma_xy", "tau", "sigma_r", "gain_k", "robot_radius", "ball_radius",
-                     "kick_speed", "history"):
+                     "kick_speed", "history", "maneuver_speed"):
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0.0):
                 raise ValueError(f"{name} must be finite and > 0, got {v!r}")
@@ -233,8 +245,9 @@ class BallTracker:
         config: filter configuration (paper 002's EKF by default).
 
     Attributes:
-        fused, rejected, resets, late: counters of detections fused, gated out, track resets
-            and frames too old to replay (older than ``history``).
+        fused, rejected, resets, maneuvers, late: counters of detections fused, gated out,
+            track resets, maneuvers (see ``maneuver_radius``) and frames too old to replay
+            (older than ``history``).
     """
 
     def __init__(self, config: BallFilterConfig | None = None) -> None:
@@ -250,7 +263,7 @@ class BallTracker:
         self._track = _Track()
         self._base = _Track()  # state before the oldest frame still in the log
         self._log: list[tuple[float, list, list, _Track]] = []
-        self.fused = self.rejected = self.resets = self.late = 0
+        self.fused = self.rejected = self.resets = self.maneuvers = self.late = 0
 
     @property
     def initialized(self) -> bool:
@@ -343,10 +356,12 @@ class BallTracker:
                                                    (var, 0.0, 0.0, var)))
         x, P = tr.x, tr.P
         dt = t - tr.t
+        A = B = None
         if dt > 0.0:
             sigma_v = self._sigma_v(x, obstacles)
             x, A, B = self._step(tr, dt)
-            P = _predict(tr.x, P, A, B, self.motion.velocity_noise(dt, sigma_v))
+            q_step = self.motion.velocity_noise(dt, sigma_v)
+            P = _predict(tr.x, P, A, B, q_step)
         if not dets:
             return _Track(t, x, P, tr.candidates, tr.v_switch)
         # The detection nearest the prediction (Mahalanobis) is this frame's ball.
@@ -360,6 +375,26 @@ class BallTracker:
             self.fused += 1
             x, P = _update(x, P, y, Si, r)
             return _Track(t, x, P, (), tr.v_switch)
+        # A maneuver must be near the prediction and reachable: a velocity change of at
+        # most MAX_SPEED_CHANGE over the time since the last frame, plus noise.
+        jump = math.hypot(*y)
+        if (c.maneuver_radius is not None and jump <= c.maneuver_radius
+                and jump <= MAX_SPEED_CHANGE * dt + 3.0 * c.sigma_xy):
+            # The ball changed its motion where it is: redo the prediction with a velocity
+            # change of maneuver_speed at the previous frame, so that the uncertainty reaches
+            # the position through the motion, then fuse.
+            self.maneuvers += 1
+            m = c.maneuver_speed**2
+            P11, P12, P22 = tr.P
+            P = (P11, P12, (P22[0] + m, P22[1], P22[2], P22[3] + m))
+            if A is not None:
+                P = _predict(tr.x, P, A, B, q_step)
+            y, Si, _ = _innovation(x, P, z, r)
+            x, P = _update(x, P, y, Si, r)
+            speed = math.hypot(x[2], x[3])
+            v_switch = (c.two_phase[1] * speed if c.two_phase is not None
+                        and speed > c.kick_speed else tr.v_switch)
+            return _Track(t, x, P, (), v_switch)
         self.rejected += 1
         return self._outlier(_Track(t, x, P, tr.candidates, tr.v_switch), t, z)
 
@@ -373,8 +408,11 @@ class BallTracker:
             t0, z0 = candidates[-1]
             # Two detections belong to one moving ball if a ball at most 10 m/s could
             # connect them (plus noise); otherwise the older one was spurious.
-            if math.hypot(z[0] - z0[0], z[1] - z0[1]) > 10.0 * (t - t0) + 5.0 * c.sigma_xy:
+            gap = math.hypot(z[0] - z0[0], z[1] - z0[1])
+            if gap > MAX_SPEED_CHANGE * (t - t0) + 5.0 * c.sigma_xy:
                 candidates = ()
+            elif t <= t0:  # a second camera's view of the same instant: no new information
+                return _Track(tr.t, tr.x, tr.P, candidates, tr.v_switch)
         candidates = (*candidates, (t, tuple(z)))
         if len(candidates) < c.reset_after:
             return _Track(tr.t, tr.x, tr.P, candidates, tr.v_switch)

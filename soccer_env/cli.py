@@ -58,6 +58,36 @@ def _cmd_list(argv: list[str]) -> int:
     return 0
 
 
+def _cmd_paper(argv: list[str]) -> int:
+    from .papers import PAPERS
+
+    p = argparse.ArgumentParser(prog="soccer-env paper",
+                                description="Reproduce a source paper's claims.")
+    p.add_argument("name", choices=sorted(PAPERS), help="; ".join(
+        f"{k}: {v}" for k, v in PAPERS.items()))
+    p.add_argument("--out", default="paper_output", help="output folder")
+    p.add_argument("--episodes", type=int, default=200, help="open-loop episodes")
+    p.add_argument("--shots", type=int, default=1000, help="closed-loop shots per cell")
+    p.add_argument("--workers", type=int, default=None, help="processes (default: all cores)")
+    p.add_argument("--no-closed-loop", action="store_true", help="skip the closed loop")
+    p.add_argument("--seed", type=int, default=0)
+    args = p.parse_args(argv)
+    for name in ("episodes", "shots"):
+        if getattr(args, name) < 1:
+            p.error(f"--{name} must be >= 1")
+    if args.workers is not None and args.workers < 1:
+        p.error("--workers must be >= 1")
+    from .papers import ekf
+
+    res = ekf.run(args.out, args.episodes, args.shots, args.workers,
+                  closed=not args.no_closed_loop, seed=args.seed)
+    print(res["text"])
+    for path in res["files"]:
+        print(f"wrote {path}")
+    print(f"tables and summary in {args.out}/ ({res['seconds']:.0f} s)")
+    return 0
+
+
 def _cmd_bench(argv: list[str]) -> int:
     from .bench import main as bench_main
 
@@ -67,6 +97,7 @@ def _cmd_bench(argv: list[str]) -> int:
 _COMMANDS = {
     "demo": (_cmd_demo, "run the goalkeeper demo and write its video and figures"),
     "bench": (_cmd_bench, "measure environment step rates against bare pymunk"),
+    "paper": (_cmd_paper, "reproduce a source paper's claims (tables and plots)"),
     "list": (_cmd_list, "list environments and presets"),
 }
 

@@ -1,0 +1,9 @@
+"""Reproductions of the source papers' claims, run by ``soccer-env paper <name>``.
+
+Each module simulates the paper's setting, prints the paper's figures beside ours and writes
+tables (Markdown and CSV) and PNG plots to an output folder.
+"""
+
+PAPERS = {
+    "ekf": "paper 002: EKF ball prediction with latency compensation (open and closed loop)",
+}
