@@ -179,15 +179,30 @@ def _sym(a: _Mat) -> _Mat:
 
 
 def _predict(x, P, A: _Mat, B: _Mat, q: float):
-    """``P = F P F^T + Q`` for ``F = [[I, A], [0, B]]``, ``Q = diag(0, 0, q, q)``."""
-    P11, P12, P22 = P
-    AP22 = _mul(A, P22)
-    AP21 = _mul(A, _t(P12))
-    P11n = _sym(_add(_add(P11, _t(AP21)), _add(AP21, _mul_t(AP22, A))))
-    P12n = _mul_t(_add(P12, AP22), B)
-    b = _mul_t(_mul(B, P22), B)
-    P22n = _sym((b[0] + q, b[1], b[2], b[3] + q))
-    return (P11n, P12n, P22n)
+    """``P = F P F^T + Q`` for ``F = [[I, A], [0, B]]``, ``Q = diag(0, 0, q, q)``.
+
+    With ``P21 = P12^T``: ``P11' = P11 + A P21 + P12 A^T + A P22 A^T``,
+    ``P12' = (P12 + A P22) B^T``, ``P22' = B P22 B^T + q I`` (written out element by element).
+    """
+    (p0, p1, _, p3), (m0, m1, m2, m3), (n0, n1, _, n3) = P
+    a0, a1, a2, a3 = A
+    b0, b1, b2, b3 = B
+    # A P22 (P22 symmetric: n2 = n1)
+    t0, t1 = a0 * n0 + a1 * n1, a0 * n1 + a1 * n3
+    t2, t3 = a2 * n0 + a3 * n1, a2 * n1 + a3 * n3
+    # A P21 with P21 = P12^T = (m0, m2, m1, m3)
+    s0, s1 = a0 * m0 + a1 * m1, a0 * m2 + a1 * m3
+    s2, s3 = a2 * m0 + a3 * m1, a2 * m2 + a3 * m3
+    q00 = p0 + 2.0 * s0 + t0 * a0 + t1 * a1
+    q01 = p1 + s1 + s2 + 0.5 * (t0 * a2 + t1 * a3 + t2 * a0 + t3 * a1)
+    q11 = p3 + 2.0 * s3 + t2 * a2 + t3 * a3
+    w0, w1, w2, w3 = m0 + t0, m1 + t1, m2 + t2, m3 + t3
+    P12n = (w0 * b0 + w1 * b1, w0 * b2 + w1 * b3, w2 * b0 + w3 * b1, w2 * b2 + w3 * b3)
+    u0, u1 = b0 * n0 + b1 * n1, b0 * n1 + b1 * n3
+    u2, u3 = b2 * n0 + b3 * n1, b2 * n1 + b3 * n3
+    r01 = 0.5 * (u0 * b2 + u1 * b3 + u2 * b0 + u3 * b1)
+    return ((q00, q01, q01, q11), P12n,
+            (u0 * b0 + u1 * b1 + q, r01, r01, u2 * b2 + u3 * b3 + q))
 
 
 def _innovation(x, P, z, r: float) -> tuple[float, float, _Mat, float]:
@@ -202,14 +217,18 @@ def _innovation(x, P, z, r: float) -> tuple[float, float, _Mat, float]:
 
 
 def _update(x, P, y, Si: _Mat, r: float):
-    """Kalman gain, mean and Joseph-form covariance for ``H = [I 0]``, ``R = r I``."""
+    """Kalman gain, mean and Joseph-form covariance for ``H = [I 0]``, ``R = r I``.
+
+    ``K1 = P11 S^-1``, ``K2 = P21 S^-1``; with ``M = I - K1``, ``N = -K2``:
+    ``P11' = M P11 M^T + r K1 K1^T``, ``P12' = M P11 N^T + M P12 + r K1 K2^T``,
+    ``P22' = (N P11 + P21) N^T + N P12 + P22 + r K2 K2^T``.
+    """
     P11, P12, P22 = P
     K1 = _mul(P11, Si)  # K = P H^T S^-1 = [P11; P21] S^-1
     K2 = _mul(_t(P12), Si)
     y0, y1 = y
     xn = (x[0] + K1[0] * y0 + K1[1] * y1, x[1] + K1[2] * y0 + K1[3] * y1,
           x[2] + K2[0] * y0 + K2[1] * y1, x[3] + K2[2] * y0 + K2[3] * y1)
-    # (I - K H) = [[M, 0], [N, I]] with M = I - K1, N = -K2.
     M = (1.0 - K1[0], -K1[1], -K1[2], 1.0 - K1[3])
     N = (-K2[0], -K2[1], -K2[2], -K2[3])
     MP11 = _mul(M, P11)

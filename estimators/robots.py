@@ -37,6 +37,28 @@ __all__ = ["RobotTracker"]
 _TWO_PI = 2.0 * math.pi
 
 
+def _predict_update(axis: list, z: float, T: float, q: float, r: float, angle: bool) -> None:
+    """One axis ``[p, v, P00, P01, P11]``: predict over ``T``, fuse ``z`` (in place)."""
+    p, v, P00, P01, P11 = axis
+    qT = q * T
+    P00 += T * (2.0 * P01 + T * (P11 + qT / 3.0))
+    P01 += T * (P11 + 0.5 * qT)
+    P11 += qT
+    p += v * T
+    y = z - p
+    if angle:
+        y = math.remainder(y, _TWO_PI)
+    S = P00 + r
+    K0, K1 = P00 / S, P01 / S
+    p += K0 * y
+    axis[0] = math.remainder(p, _TWO_PI) if angle else p
+    axis[1] = v + K1 * y
+    c = 1.0 - K0
+    axis[2] = c * c * P00 + K0 * K0 * r
+    axis[3] = c * (P01 - K1 * P00) + K0 * K1 * r
+    axis[4] = P11 - 2.0 * K1 * P01 + K1 * K1 * S
+
+
 class RobotTracker:
     """Pose tracker for ``n`` robots.
 
@@ -109,27 +131,8 @@ class RobotTracker:
             self.dropped += 1
             return
         self._t[i] = t
-        T2, T3 = T * T, T * T * T
         for a in (0, 1, 2):
-            p, v, P00, P01, P11 = axes[a]
-            q, r = self.q[a], self.r[a]
-            # Predict to the capture time.
-            p += v * T
-            P00 += 2.0 * T * P01 + T2 * P11 + q * T3 / 3.0
-            P01 += T * P11 + 0.5 * q * T2
-            P11 += q * T
-            # Update (Joseph form).
-            y = z[a] - p
-            if a == 2:
-                y = math.remainder(y, _TWO_PI)
-                p = math.remainder(p, _TWO_PI)
-            S = P00 + r
-            K0, K1 = P00 / S, P01 / S
-            axes[a] = [p + K0 * y, v + K1 * y,
-                       (1.0 - K0) ** 2 * P00 + K0 * K0 * r,
-                       (1.0 - K0) * (P01 - K1 * P00) + K0 * K1 * r,
-                       P11 - 2.0 * K1 * P01 + K1 * K1 * S]
-        axes[2][0] = math.remainder(axes[2][0], _TWO_PI)
+            _predict_update(axes[a], z[a], T, self.q[a], self.r[a], a == 2)
 
     def estimate(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         """Poses ``(n, 3)`` and velocities ``(n, 3)`` predicted to time ``t`` (robots never

@@ -19,7 +19,10 @@ import gymnasium as gym
 import numpy as np
 import pymunk
 
-__all__ = ["run_benchmarks", "format_table", "REFERENCE"]
+__all__ = ["run_benchmarks", "format_table", "REFERENCE", "PERCEIVED_PRESETS"]
+
+#: Sensor presets timed with ``obs_mode="perceived"`` (default EKF), against truth.
+PERCEIVED_PRESETS = ("realistic", "ssl-2012")
 
 #: rSoccer (ODE, Gymnasium, ground truth only) on this kind of machine, for reference, and the
 #: aims of the foundation issue (ten times rSoccer).
@@ -40,9 +43,10 @@ def _median_rate(run: Callable[[], None], steps: int, repeats: int) -> float:
     return statistics.median(rates)
 
 
-def bench_goalkeeper(steps: int, repeats: int, seed: int = 0) -> dict[str, Any]:
+def bench_goalkeeper(steps: int, repeats: int, seed: int = 0, obs_mode: str = "truth",
+                     perception: str | None = None) -> dict[str, Any]:
     """Steps per second of ``gymnasium.make("soccer_env/Goalkeeper-v0")``, random actions."""
-    env = gym.make("soccer_env/Goalkeeper-v0")
+    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode, perception=perception)
     actions = np.random.default_rng(seed).uniform(-1, 1, (steps, 6)).astype(np.float32)
     env.reset(seed=seed)
     episodes = [0]
@@ -62,11 +66,13 @@ def bench_goalkeeper(steps: int, repeats: int, seed: int = 0) -> dict[str, Any]:
 
 
 def bench_match(steps: int, repeats: int, blue: int = 6, yellow: int = 6,
-                field: str = "ssl-div-b", seed: int = 0) -> dict[str, Any]:
+                field: str = "ssl-div-b", seed: int = 0, obs_mode: str = "truth",
+                perception: str | None = None) -> dict[str, Any]:
     """Parallel steps per second of ``soccer_env.parallel_env``, random actions."""
     from . import parallel_env
 
-    env = parallel_env(blue=blue, yellow=yellow, field=field, match_duration=1e6)
+    env = parallel_env(blue=blue, yellow=yellow, field=field, match_duration=1e6,
+                       obs_mode=obs_mode, perception=perception)
     env.reset(seed=seed)
     agents = list(env.agents)
     actions = np.random.default_rng(seed).uniform(-1, 1, (steps, len(agents), 6))
@@ -111,9 +117,20 @@ def run_benchmarks(steps: int = 20000, match_steps: int = 5000, repeats: int = 3
         res.update(REFERENCE[name])
         res["ratio_to_rsoccer"] = res["steps_per_s"] / res["rsoccer_steps_per_s"]
         res["ratio_to_bare_pymunk"] = res["steps_per_s"] / res["bare_pymunk_steps_per_s"]
+    perceived = {}
+    for preset in PERCEIVED_PRESETS:
+        g = bench_goalkeeper(steps // 2, repeats, obs_mode="perceived", perception=preset)
+        m = bench_match(match_steps // 2, repeats, obs_mode="perceived", perception=preset)
+        perceived[preset] = {
+            "goalkeeper_steps_per_s": g["steps_per_s"],
+            "goalkeeper_cost_vs_truth": gk["steps_per_s"] / g["steps_per_s"],
+            "match_steps_per_s": m["steps_per_s"],
+            "match_cost_vs_truth": match["steps_per_s"] / m["steps_per_s"],
+        }
     return {
         "goalkeeper": gk,
         "match_6v6_div_b": match,
+        "perceived": perceived,
         "settings": {"steps": steps, "match_steps": match_steps, "repeats": repeats,
                      "statistic": "median of repeats"},
         "machine": {"python": platform.python_version(), "pymunk": pymunk.version,
@@ -130,6 +147,19 @@ def format_table(res: dict[str, Any]) -> str:
         rows.append((label, f"{r['steps_per_s']:,.0f}", f"{r['bare_pymunk_steps_per_s']:,.0f}",
                      f"{r['ratio_to_bare_pymunk']:.2f}", f"{r['rsoccer_steps_per_s']:,}",
                      f"{r['ratio_to_rsoccer']:.1f}", f"{r['aim_steps_per_s']:,}"))
+    text = _table(rows)
+    if res.get("perceived"):
+        rows = [("obs_mode='perceived'", "Goalkeeper steps/s", "cost vs truth",
+                 "6v6 steps/s", "cost vs truth")]
+        for preset, r in res["perceived"].items():
+            rows.append((f"perception={preset!r}", f"{r['goalkeeper_steps_per_s']:,.0f}",
+                         f"{r['goalkeeper_cost_vs_truth']:.2f}", f"{r['match_steps_per_s']:,.0f}",
+                         f"{r['match_cost_vs_truth']:.2f}"))
+        text += "\n\n" + _table(rows)
+    return text
+
+
+def _table(rows: list[tuple[str, ...]]) -> str:
     widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
     lines = ["  ".join(c.ljust(w) if i == 0 else c.rjust(w) for i, (c, w) in
                        enumerate(zip(row, widths))) for row in rows]

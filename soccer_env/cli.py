@@ -27,7 +27,8 @@ def _cmd_demo(argv: list[str]) -> int:
         shot = ep["shot"]
         kind = "chip" if shot["chip"] else "flat"
         print(f"seed {ep['seed']}: {kind} shot at {shot['speed']:.1f} m/s -> {ep['outcome']} "
-              f"after {ep['steps']} steps")
+              f"after {ep['steps']} steps (median ball estimate error "
+              f"{1000 * ep['ball_error_median_m']:.1f} mm)")
     for name, path in summary["files"].items():
         print(f"wrote {name}: {path}")
     return 0

@@ -2,13 +2,15 @@
 
 Writes to the output folder:
 
-* ``goalkeeper.mp4`` (or ``goalkeeper.gif`` if no ffmpeg is available): the rendered episodes;
-* ``trajectories.png``: ball and keeper paths on the field, one colour per episode;
+* ``goalkeeper.mp4`` (or ``goalkeeper.gif`` if no ffmpeg is available): the rendered episodes,
+  the team's belief drawn in cyan over the truth;
+* ``trajectories.png``: true ball paths, the believed ball paths and the keeper's paths;
 * ``ball_speed.png``: ball speed against time, showing the sliding and rolling phases;
-* ``summary.json``: each episode's shot, outcome and length.
+* ``estimate_error.png``: distance between the believed and the true ball over time;
+* ``summary.json``: each episode's shot, outcome, length and estimation error.
 
-Observations come from ``obs_mode="truth"``; the perception stack will switch this demo to
-perceived observations.
+The keeper plays from perceived observations: the overhead vision's late, noisy frames
+filtered by the ball EKF (``obs_mode="perceived"``, ``perception="realistic"``).
 """
 
 from __future__ import annotations
@@ -24,13 +26,15 @@ __all__ = ["run_demo"]
 
 
 def run_demo(out: str | Path = "demo_output", episodes: int = 3, seed: int = 0,
-             obs_mode: str = "truth", video: bool = True) -> dict[str, Any]:
+             obs_mode: str = "perceived", perception: str = "realistic", video: bool = True
+             ) -> dict[str, Any]:
     """Run ``episodes`` Goalkeeper-v0 episodes with the scripted keeper; write the files."""
     from agents import ScriptedGoalkeeper
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode,
+                   perception=None if obs_mode == "truth" else perception,
                    render_mode="rgb_array" if video else None, render_width=640)
     policy = ScriptedGoalkeeper.for_env(env)
     frames: list[np.ndarray] = []
@@ -47,10 +51,13 @@ def run_demo(out: str | Path = "demo_output", episodes: int = 3, seed: int = 0,
                 frames.append(env.render())
             if term or trunc:
                 break
+        track = np.array(track)
+        err = np.hypot(track[:, 8] - track[:, 1], track[:, 9] - track[:, 2])
         records.append({"seed": seed + ep, "shot": info["shot"],
                         "outcome": info["outcome"] if term else "time limit",
                         "reward": reward, "steps": len(track) - 1,
-                        "track": np.array(track)})
+                        "ball_error_median_m": float(np.median(err)),
+                        "ball_error_max_m": float(np.max(err)), "track": track})
     env.close()
 
     files = {}
@@ -59,6 +66,7 @@ def run_demo(out: str | Path = "demo_output", episodes: int = 3, seed: int = 0,
     files.update(_figures(records, env.unwrapped.field, out))
     summary = {
         "obs_mode": obs_mode,
+        "perception": None if obs_mode == "truth" else perception,
         "episodes": [{k: v for k, v in r.items() if k != "track"} for r in records],
         "files": files,
     }
@@ -67,11 +75,13 @@ def run_demo(out: str | Path = "demo_output", episodes: int = 3, seed: int = 0,
 
 
 def _row(info: dict[str, Any]) -> list[float]:
+    """time, true ball x y z vx vy, keeper x y, believed ball x y."""
     t = info["truth"]
     kx, ky, _ = t["robot_pose"]["blue_0"]
     bx, by = t["ball_position"]
     vx, vy = t["ball_velocity"]
-    return [t["time"], bx, by, t["ball_height"], vx, vy, kx, ky]
+    ex, ey = info["estimate"]["ball_position"]
+    return [t["time"], bx, by, t["ball_height"], vx, vy, kx, ky, ex, ey]
 
 
 def _write_video(frames: list[np.ndarray], out: Path, fps: int) -> Path:
@@ -107,6 +117,7 @@ def _figures(records: list[dict[str, Any]], field, out: Path) -> dict[str, str]:
         colour = f"C{k % 10}"
         ax.plot(tr[:, 1], tr[:, 2], color=colour, lw=1.5,
                 label=f"seed {r['seed']}: {r['outcome']}")
+        ax.plot(tr[:, 8], tr[:, 9], color=colour, lw=1, ls="--")
         ax.plot(tr[0, 1], tr[0, 2], "o", color=colour)
         ax.plot(tr[:, 6], tr[:, 7], color=colour, lw=3, alpha=0.6)
     ax.set_aspect("equal")
@@ -114,7 +125,7 @@ def _figures(records: list[dict[str, Any]], field, out: Path) -> dict[str, str]:
     ax.set_ylim(-hy - field.boundary, hy + field.boundary)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    ax.set_title("Goalkeeper-v0: ball paths (thin) and keeper paths (thick)")
+    ax.set_title("Goalkeeper-v0: true ball (solid), believed ball (dashed), keeper (thick)")
     ax.legend(loc="upper right", fontsize=8)
     fig.tight_layout()
     traj = out / "trajectories.png"
@@ -135,4 +146,20 @@ def _figures(records: list[dict[str, Any]], field, out: Path) -> dict[str, str]:
     speed = out / "ball_speed.png"
     fig.savefig(speed, dpi=110)
     plt.close(fig)
-    return {"trajectories": str(traj), "ball_speed": str(speed)}
+
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for k, r in enumerate(records):
+        tr = r["track"]
+        err = np.hypot(tr[:, 8] - tr[:, 1], tr[:, 9] - tr[:, 2]) * 1000
+        ax.plot(tr[:, 0], np.maximum(err, 1e-3), color=f"C{k % 10}", label=f"seed {r['seed']}")
+    ax.set_yscale("log")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("believed - true ball position [mm]")
+    ax.set_title("Estimation error (large right after the kick: it is seen late)")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    error = out / "estimate_error.png"
+    fig.savefig(error, dpi=110)
+    plt.close(fig)
+    return {"trajectories": str(traj), "ball_speed": str(speed), "estimate_error": str(error)}

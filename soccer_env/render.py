@@ -27,6 +27,7 @@ _SURROUND = (16, 88, 36)
 _LINE = (235, 235, 235)
 _GOAL = (60, 60, 60)
 _BALL = (255, 120, 0)
+_BELIEF = (0, 230, 255)
 
 
 def _import_pygame():
@@ -98,8 +99,11 @@ class Renderer:
         pg.draw.rect(surf, (90, 60, 30), (0, 0, *self.size), 3)
         return surf
 
-    def draw(self, state: WorldState, hud: Sequence[str] = ()) -> np.ndarray | None:
-        """Draw ``state``; return an ``(H, W, 3)`` uint8 frame (``rgb_array``) or None."""
+    def draw(self, state: WorldState, hud: Sequence[str] = (), belief=None
+             ) -> np.ndarray | None:
+        """Draw ``state`` (and, if given, what the team believes: ``belief.ball`` and
+        ``belief.robots`` in the layout of the state, drawn as outlines in cyan); return an
+        ``(H, W, 3)`` uint8 frame (``rgb_array``) or None."""
         pg, s = self.pg, self.scale
         surf = self._background.copy()
         for (x, y, th, *_), team, name in zip(state.robots, state.teams, state.names):
@@ -122,6 +126,16 @@ class Renderer:
             r = int(r * (1.0 + min(bz, 2.0)))
         pg.draw.circle(surf, _BALL, centre, r)
         pg.draw.circle(surf, (60, 30, 0), centre, r, 1)
+        if belief is not None:
+            for x, y, th, *_ in belief.robots.tolist():
+                c, sn = math.cos(th), math.sin(th)
+                pts = [self._px(x + c * u - sn * v, y + sn * u + c * v) for u, v in self._outline]
+                pg.draw.polygon(surf, _BELIEF, pts, 1)
+            bx, by = belief.ball[0:2]
+            pg.draw.circle(surf, _BELIEF, self._px(bx, by), max(4, int(round(
+                self.ball.radius * s))) + 2, 2)
+            ex, ey = bx + 0.2 * belief.ball[3], by + 0.2 * belief.ball[4]
+            pg.draw.line(surf, _BELIEF, self._px(bx, by), self._px(ex, ey), 1)
         for row, text in enumerate(hud):
             surf.blit(self._hud.render(text, True, (255, 255, 255)), (8, 6 + 20 * row))
         if self.mode == "human":
@@ -149,7 +163,8 @@ class RenderingMixin:
 
     Expects ``render_mode``, ``field``, ``robot_spec``, ``ball_spec``, ``world``,
     ``metadata["render_fps"]`` and ``_render_width`` on the environment, and a ``_hud()``
-    method returning the lines of text to overlay. The renderer is created on first use.
+    method returning the lines of text to overlay; ``_shown_belief``, if set, is drawn over
+    the truth (the perception's present-time belief). The renderer is created on first use.
     """
 
     _renderer: Renderer | None = None
@@ -169,7 +184,10 @@ class RenderingMixin:
             self._renderer = Renderer(self.field, self.robot_spec, self.ball_spec,
                                       self.render_mode, self._render_width,
                                       self.metadata["render_fps"])
-        return self._renderer.draw(self.world.snapshot(), self._hud())
+        state = self.world.snapshot()
+        belief = getattr(self, "_shown_belief", None)
+        return self._renderer.draw(state, self._hud(), None if belief is None
+                                   or belief is state else belief)
 
     def close(self) -> None:
         """Close the window, if any."""

@@ -124,8 +124,8 @@ class CommandChannel:
         out = self._queue.popleft()
         if self.loss > 0.0:
             if not self._losses:  # draw the losses of the next 256 steps at once
-                draws = self._rng.random((256, self.n)) < self.loss
-                self._losses = [np.flatnonzero(row).tolist() for row in draws][::-1]
+                draws = (self._rng.random((256, self.n)) < self.loss).tolist()
+                self._losses = [[i for i, lost in enumerate(row) if lost] for row in draws]
             lost = self._losses.pop()
             if lost:
                 out = out.copy()

@@ -252,11 +252,10 @@ class OverheadVision:
         self._prev = state
         period = self._period()
         n = len(self.cameras)
-        self._next = (rng.uniform(0.0, period, n) if period is not None
-                      else np.zeros(n)) + state.time
-        if period is None:
-            self._next[:] = np.inf  # "ideal": captured in step(), not on a schedule
-        warm = self._capture(state, state, np.arange(n), np.full(n, state.time))
+        # Capture schedule per camera ("ideal" captures in step(), not on a schedule).
+        self._next = ((rng.uniform(0.0, period, n) + state.time).tolist() if period is not None
+                      else [math.inf] * n)
+        warm = self._capture(state, state, list(range(n)), [state.time] * n, emit_empty=True)
         return [f._replace(t_capture=state.time - self.spec.latency, t_delivered=state.time)
                 for f in warm]
 
@@ -269,17 +268,17 @@ class OverheadVision:
         prev, now = self._prev, state.time
         period = self._period()
         if period is None:
-            new = self._capture(prev, state, np.arange(len(self.cameras)),
-                                np.full(len(self.cameras), now))
+            n = len(self.cameras)
+            new = self._capture(prev, state, list(range(n)), [now] * n)
         else:
             cams, times = [], []
-            for c in range(len(self.cameras)):
-                while self._next[c] <= now + 1e-12:
+            nxt = self._next
+            for c in range(len(nxt)):
+                while nxt[c] <= now + 1e-12:
                     cams.append(c)
-                    times.append(self._next[c])
-                    self._next[c] += period
-            new = self._capture(prev, state, np.array(cams, dtype=np.int64),
-                                np.array(times)) if cams else []
+                    times.append(nxt[c])
+                    nxt[c] += period
+            new = self._capture(prev, state, cams, times) if cams else []
         self._prev = state
         queue = self._queue
         for frame in new:
@@ -291,9 +290,11 @@ class OverheadVision:
 
     # ------------------------------------------------------------------------------------
 
-    def _capture(self, prev: WorldState, cur: WorldState, cams: np.ndarray,
-                 times: np.ndarray) -> list[DetectionFrame]:
+    def _capture(self, prev: WorldState, cur: WorldState, cams: list[int],
+                 times: list[float], emit_empty: bool = False) -> list[DetectionFrame]:
         """Frames of cameras ``cams`` captured at ``times`` (between ``prev`` and ``cur``).
+        Frames that detected nothing are dropped unless ``emit_empty`` (they carry no
+        information for a tracker; the warm-up frames at reset are always kept).
 
         Plain Python over cameras and robots, with random numbers drawn in blocks: a step has
         a handful of frames with a dozen robots each, sizes at which numpy's per-call overhead
@@ -307,7 +308,7 @@ class OverheadVision:
         # Robot poses at every capture time (linear interpolation, headings on the short
         # arc).
         t0 = prev.time
-        weights = [(t - t0) / span if span > 0 else 1.0 for t in times.tolist()]
+        weights = [(t - t0) / span if span > 0 else 1.0 for t in times]
         if F * N <= 16:
             pr, cr = prev.robots.tolist(), cur.robots.tolist()
             moves = [(a[0], a[1], a[2], b[0] - a[0], b[1] - a[1],
@@ -332,11 +333,10 @@ class OverheadVision:
         front = rs.front_distance + r
         frames = []
         nn, nu = 3 * (N + 2), 2 * N + 5
-        for f, (cam, t) in enumerate(zip(cams.tolist(), times.tolist())):
+        for f, (cam, t) in enumerate(zip(cams, times)):
             cx, cy, h, x0, x1, y0, y1 = self.cameras[cam]
             w = weights[f]
-            flat = noise[f * nn:(f + 1) * nn]
-            nf = [flat[3 * j:3 * j + 3] for j in range(N + 2)]
+            nf = noise[f * nn:(f + 1) * nn]  # 3 normals per robot, then 3 + 3 for balls
             uf = u[f * nu:(f + 1) * nu]
             robots = interpolated[f]
             ids, poses, balls = [], [], []
@@ -345,10 +345,10 @@ class OverheadVision:
                     continue
                 if uf[i] < spec.robot_detection:
                     ids.append(i)
-                    poses.append(robot_noise(x, y, th, *nf[i]))
+                    poses.append(robot_noise(x, y, th, nf[3 * i], nf[3 * i + 1], nf[3 * i + 2]))
                 if uf[N + i] < p_dribbler:  # a spurious ball at this robot's dribbler
                     balls.append(ball_noise(x + front * math.cos(th), y + front * math.sin(th),
-                                            *nf[N][0:2]))
+                                            nf[3 * N], nf[3 * N + 1]))
             # The ball, where this camera's ray through it meets the resting-ball plane.
             bx = pb[0] + w * (cb[0] - pb[0])
             by = pb[1] + w * (cb[1] - pb[1])
@@ -359,9 +359,11 @@ class OverheadVision:
                     and (spec.occlusion_threshold > 1.0
                          or self._hidden(sx, sy, zc, robots, cx, cy, h)
                          < spec.occlusion_threshold)):
-                balls.insert(0, ball_noise(sx, sy, *nf[N + 1][0:2]))
+                balls.insert(0, ball_noise(sx, sy, nf[3 * N + 3], nf[3 * N + 4]))
             if uf[2 * N + 1] < p_random:  # a spurious ball anywhere in view
                 balls.append((x0 + (x1 - x0) * uf[2 * N + 2], y0 + (y1 - y0) * uf[2 * N + 3]))
+            if not (balls or ids) and not emit_empty:
+                continue  # nothing seen: no frame to process downstream
             delay = spec.latency + spec.latency_jitter * uf[2 * N + 4]
             frames.append(DetectionFrame(cam, t, t + delay, tuple(balls), tuple(ids),
                                          tuple(poses)))
@@ -384,8 +386,14 @@ class OverheadVision:
         k = (h - zc) / (h - H)
         radius = R * k
         reach2 = (radius + r) ** 2
+        # No robot farther than this from the ball can cover it: its capsule reaches
+        # ``radius + |top - p|`` from it, and ``|top - p| = (k - 1) |p - c|`` with the
+        # robot's distance to the camera's foot, under 10 m on any field.
+        near2 = (radius + r + 10.0 * (k - 1.0) + 0.01) ** 2
         hidden = None
         for x, y, _ in robots:
+            if (x - bx) ** 2 + (y - by) ** 2 > near2:
+                continue
             tx, ty = cx + (x - cx) * k, cy + (y - cy) * k
             sx, sy = tx - x, ty - y
             seg2 = sx * sx + sy * sy

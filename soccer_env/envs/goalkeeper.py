@@ -265,6 +265,7 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         state = self.world.snapshot()
         self._channel.reset(sensor_rng)
         seen, current = self._perception.reset(state, sensor_rng)
+        self._shown_belief = current
         obs = self.builder.build(seen)[0]
         info = self._info(state, current, dict.fromkeys(("outcome", *self.shaping), 0.0), None)
         return obs, info
@@ -287,6 +288,7 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         terms = self._reward_terms(state, act[0], outcome)
         reward = float(sum(terms.values()))
         seen, current = self._perception.update(state)
+        self._shown_belief = current
         obs = self.builder.build(seen)[0]
         info = self._info(state, current, terms, outcome)
         if self.render_mode == "human":

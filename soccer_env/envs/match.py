@@ -187,6 +187,7 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         sensor_rng = np.random.default_rng(rng.integers(2**63))
         self._channel.reset(sensor_rng)
         self._belief, current = self._perception.reset(state, sensor_rng)
+        self._shown_belief = current
         obs = self._observe()
         truth, estimate = self._truth_and_estimate(state, current)
         infos = {a: self._agent_info(truth, estimate,
@@ -222,6 +223,7 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         state = w.snapshot()
         rewards, terms = self._rewards(state, event, scorer, ball_x_before)
         self._belief, current = self._perception.update(state)
+        self._shown_belief = current
         obs = self._observe()
         done = w.time >= self.match_duration - 1e-9
         trunc = self.max_cycles is not None and self.cycles >= self.max_cycles

@@ -1,0 +1,129 @@
+"""Perception pipelines and the command channel, end to end in the environments."""
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import soccer_env
+from soccer_env.perception import PerceptionConfig
+from soccer_env.robots import CommandChannel
+from soccer_env.vision import vision
+
+
+def rollout(env, steps, action=None, seed=0):
+    obs, info = env.reset(seed=seed)
+    infos = [info]
+    a = np.zeros(6, np.float32) if action is None else action
+    for _ in range(steps):
+        obs, r, term, trunc, info = env.step(a)
+        infos.append(info)
+        if term or trunc:
+            break
+    return infos
+
+
+def ball_errors(infos):
+    return np.array([np.hypot(*(i["estimate"]["ball_position"] - i["truth"]["ball_position"]))
+                     for i in infos])
+
+
+@pytest.mark.parametrize("mode", ["raw", "perceived"])
+def test_ideal_vision_sees_the_truth(mode):
+    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=mode, perception="ideal")
+    infos = rollout(env, 40)
+    errs = ball_errors(infos[5:])
+    assert errs.max() < 1e-3 if mode == "perceived" else errs.max() < 1e-9
+    for info in infos:
+        assert set(info["estimate"]) == set(info["truth"])
+        assert set(info["estimate"]["robot_pose"]) == {"blue_0"}
+
+
+def test_raw_detections_are_as_old_as_the_latency():
+    """Raw ball positions are where the ball was when the frame was taken."""
+    shots = {"speed": (4.0, 4.0), "chip_probability": 0.0, "wide_probability": 0.0,
+             "delay": (0.0, 0.0), "x_range": (-1.5, -1.5), "y_range": (0.0, 0.0)}
+    spec = {"vision": vision("ssl-2012", occlusion_threshold=2.0)}
+    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode="raw", perception=spec, shots=shots)
+    infos = rollout(env, 30)
+    truth = {round(i["truth"]["time"], 6): i["truth"]["ball_position"] for i in infos}
+    latency = spec["vision"].latency
+    lagged = []
+    for i in infos[10:25]:
+        est = i["estimate"]["ball_position"]
+        # The estimate is the truth at some capture time between latency and latency plus one
+        # frame period ago, plus 25 mm noise.
+        times = [t for t in truth if i["truth"]["time"] - latency - 0.041 <= t
+                 <= i["truth"]["time"] - latency + 1e-9]
+        lagged.append(min(np.hypot(*(est - truth[t])) for t in times))
+    assert np.median(lagged) < 0.05
+    assert np.median(ball_errors(infos[10:25])) > 0.25  # 4 m/s x 80-120 ms
+
+
+def test_perceived_ball_is_far_better_than_raw_under_realistic_vision():
+    shots = {"speed": (3.0, 3.0), "chip_probability": 0.0, "wide_probability": 1.0,
+             "delay": (0.0, 0.0), "x_range": (-2.0, -2.0), "y_range": (2.0, 2.0)}
+    errs = {}
+    for mode in ("raw", "perceived"):
+        env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=mode, perception="realistic",
+                       shots=shots)
+        errs[mode] = np.median(ball_errors(rollout(env, 60)[15:]))
+    assert errs["perceived"] < 0.01
+    assert errs["raw"] > 5 * errs["perceived"]
+
+
+def test_perceived_robots_track_the_truth_in_a_match():
+    env = soccer_env.parallel_env(blue=3, yellow=3, obs_mode="perceived",
+                                  perception="realistic")
+    env.reset(seed=0)
+    rng = np.random.default_rng(0)
+    errs = []
+    for _ in range(120):
+        *_, infos = env.step({a: rng.uniform(-1, 1, 6) * [1, 1, 1, 0, 0, 0]
+                              for a in env.agents})
+        info = infos["blue_0"]
+        for name, pose in info["truth"]["robot_pose"].items():
+            errs.append(np.hypot(*(info["estimate"]["robot_pose"][name][:2] - pose[:2])))
+    assert np.median(errs) < 0.01  # millimetre noise, 45 ms latency, compensated
+
+
+def test_actuation_latency_delays_commands():
+    spec = vision("ideal", actuation_latency=0.05)
+    env = gym.make("soccer_env/Goalkeeper-v0", perception={"vision": spec}).unwrapped
+    env.reset(seed=0)
+    speeds = []
+    for _ in range(6):
+        _, _, _, _, info = env.step(np.array([1, 0, 0, 0, 0, 0], np.float32))
+        speeds.append(np.hypot(*info["truth"]["robot_velocity"]["blue_0"][:2]))
+    # 50 ms at 60 Hz rounds to 3 steps: the robot starts moving in the 4th step.
+    assert speeds[:3] == [0.0, 0.0, 0.0] and speeds[3] > 0.0
+
+
+def test_command_channel_delay_and_loss():
+    ch = CommandChannel(2, delay_steps=2, loss=0.0)
+    ch.reset(np.random.default_rng(0))
+    outs = [ch.send(np.full((2, 6), k, dtype=float)) for k in range(1, 5)]
+    assert [o[0, 0] for o in outs] == [0.0, 0.0, 1.0, 2.0]
+    lossy = CommandChannel(200, delay_steps=0, loss=0.3)
+    lossy.reset(np.random.default_rng(1))
+    lossy.send(np.zeros((200, 6)))
+    out = lossy.send(np.ones((200, 6)))
+    assert np.mean(out[:, 0] == 0.0) == pytest.approx(0.3, abs=0.08)  # kept the old command
+    assert CommandChannel(3, 0, 0.0).passthrough
+
+
+def test_perception_config_defaults_and_forms():
+    assert PerceptionConfig.create(None, "truth").vision.name == "ideal"
+    assert PerceptionConfig.create(None, "perceived").vision.name == "realistic"
+    cfg = PerceptionConfig.create({"vision": "harsh", "ball_filter": "ls"}, "raw")
+    assert cfg.vision.name == "harsh" and cfg.ball_filter == "ls"
+
+
+@pytest.mark.parametrize("ball_filter", ["kf", "kf-comp", "ekf", "ekf-improved",
+                                         "ekf-2phase", "ls"])
+def test_every_ball_filter_runs_in_the_environment(ball_filter):
+    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived",
+                   perception={"vision": "realistic", "ball_filter": ball_filter})
+    infos = rollout(env, 60)
+    # Without latency compensation the estimate trails a 4-6 m/s shot by some 45 ms.
+    limit = 0.35 if ball_filter == "kf" else 0.1
+    assert np.median(ball_errors(infos[10:])) < limit
