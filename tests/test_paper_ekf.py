@@ -1,0 +1,50 @@
+"""The paper 002 benchmark: its claims as testable orderings, and its command line."""
+
+import json
+from pathlib import Path
+
+import pytest
+
+from soccer_env.cli import main
+from soccer_env.papers import ekf
+
+
+def test_open_loop_orderings():
+    res = ekf.open_loop(episodes=12, seed=1)["estimators"]
+    steady = {k: v["position_rmse_steady_m"] for k, v in res.items()}
+    # Latency compensation is what matters between collisions...
+    assert steady["kf-comp"] < 0.6 * steady["kf"]
+    assert steady["ekf"] < 0.5 * steady["raw"]
+    # ...and the friction model helps a little on top of it.
+    assert steady["ekf"] <= steady["kf-comp"] * 1.05
+    for r in res.values():
+        assert r["position_rmse_now_m"] > 0 and r["lock_on_after_shot_cycles"] >= 0
+
+
+def test_closed_loop_structure():
+    res = ekf.closed_loop(shots=4, workers=1, presets_=("realistic",))
+    row = res["presets"]["realistic"]
+    assert set(row) == set(ekf.CLOSED_LOOP_MODES)
+    for cell in row.values():
+        assert cell["shots"] == 4 and 0 <= cell["ci_low"] <= cell["save_rate"] <= cell["ci_high"]
+
+
+def test_wilson_interval():
+    lo, hi = ekf.wilson(90, 100)
+    assert lo == pytest.approx(0.8256, abs=1e-3) and hi == pytest.approx(0.9448, abs=1e-3)
+
+
+@pytest.mark.slow
+def test_paper_command_writes_tables_and_plots(tmp_path: Path, capsys):
+    assert main(["paper", "ekf", "--out", str(tmp_path), "--episodes", "4", "--shots", "2",
+                 "--workers", "1"]) == 0
+    out = capsys.readouterr().out
+    assert "Paper 002 reports" in out and "| sensor preset |" in out
+    for name in ("paper_ekf_open_loop.md", "paper_ekf_open_loop.csv",
+                 "paper_ekf_closed_loop.md", "paper_ekf_closed_loop.csv",
+                 "paper_ekf_trace.png", "paper_ekf_save_rates.png"):
+        assert (tmp_path / name).stat().st_size > 100, name
+    summary = json.loads((tmp_path / "paper_ekf_summary.json").read_text())
+    assert summary["closed_loop"]["shots"] == 2
+    with pytest.raises(SystemExit):
+        main(["paper", "ekf", "--shots", "0"])
