@@ -262,6 +262,8 @@ class BallTracker:
 
     Args:
         config: filter configuration (paper 002's EKF by default).
+        measurement: the sensor's :class:`~estimators.models.PositionMeasurement` (the same
+            object that simulates the detections); by default one with ``config.sigma_xy``.
 
     Attributes:
         fused, rejected, resets, maneuvers, late: counters of detections fused, gated out,
@@ -269,11 +271,13 @@ class BallTracker:
             (older than ``history``).
     """
 
-    def __init__(self, config: BallFilterConfig | None = None) -> None:
+    def __init__(self, config: BallFilterConfig | None = None,
+                 measurement: PositionMeasurement | None = None) -> None:
         self.config = config or BallFilterConfig()
         c = self.config
         self.motion = FrictionBallMotion(c.deceleration, c.propagation)
-        self.measurement = PositionMeasurement(c.sigma_xy, 4)
+        # The sensor's own measurement model when given (its R), else one from sigma_xy.
+        self.measurement = measurement or PositionMeasurement(c.sigma_xy, 4)
         self._r = float(self.measurement.R[0, 0])
         self.reset()
 

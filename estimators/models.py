@@ -22,6 +22,11 @@ __all__ = [
     "PAPER_CYCLE",
 ]
 
+#: Smallest measurement noise a filter assumes [m, rad], so that a noiseless sensor still
+#: gives a well-conditioned update.
+MIN_SIGMA_XY = 1e-3
+MIN_SIGMA_THETA = 1e-3
+
 #: The decision cycle of paper 002 [s]. The paper's velocity noise ``sigma_v`` is per cycle;
 #: for other step lengths its variance scales with ``dt / PAPER_CYCLE`` (a velocity random
 #: walk), so that the filter's behaviour does not depend on how often it is predicted.
@@ -190,8 +195,8 @@ class PositionMeasurement:
         self.state_dim = state_dim
         self.H = np.zeros((2, state_dim))
         self.H[0, 0] = self.H[1, 1] = 1.0
-        # A zero-noise sensor still needs a positive R for the filter.
-        s2 = max(self.sigma, 1e-4) ** 2
+        # A zero-noise sensor still needs a positive R for a filter: at least 1 mm.
+        s2 = max(self.sigma, MIN_SIGMA_XY) ** 2
         self.R = s2 * np.eye(2)
 
     def expected(self, x: np.ndarray) -> np.ndarray:
@@ -233,7 +238,8 @@ class PoseMeasurement:
         self.sigma_xy, self.sigma_theta = float(sigma_xy), float(sigma_theta)
         self.H = np.zeros((3, state_dim))
         self.H[0, 0] = self.H[1, 1] = self.H[2, 2] = 1.0
-        self.R = np.diag([max(self.sigma_xy, 1e-4) ** 2] * 2 + [max(self.sigma_theta, 1e-4) ** 2])
+        self.R = np.diag([max(self.sigma_xy, MIN_SIGMA_XY) ** 2] * 2
+                         + [max(self.sigma_theta, MIN_SIGMA_THETA) ** 2])
 
     def expected(self, x: np.ndarray) -> np.ndarray:
         return x[:3]

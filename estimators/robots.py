@@ -32,6 +32,8 @@ import math
 
 import numpy as np
 
+from .models import MIN_SIGMA_THETA, MIN_SIGMA_XY, PoseMeasurement
+
 __all__ = ["RobotTracker"]
 
 _TWO_PI = 2.0 * math.pi
@@ -69,6 +71,8 @@ class RobotTracker:
         sigma_xy: position measurement noise [m].
         sigma_theta: heading measurement noise [rad].
         sigma_v0: initial velocity standard deviation [m/s and rad/s].
+        measurement: the sensor's :class:`~estimators.models.PoseMeasurement`; its ``R``
+            replaces ``sigma_xy`` and ``sigma_theta``.
 
     Attributes:
         seen: ``(n,)`` whether each robot has been detected.
@@ -77,7 +81,7 @@ class RobotTracker:
 
     def __init__(self, n: int, q_xy: float = 4.0, q_theta: float = 20.0,
                  sigma_xy: float = 0.005, sigma_theta: float = 0.02,
-                 sigma_v0: float = 2.0) -> None:
+                 sigma_v0: float = 2.0, measurement: PoseMeasurement | None = None) -> None:
         if not isinstance(n, (int, np.integer)) or n < 0:
             raise ValueError(f"n must be a non-negative integer, got {n!r}")
         for name, v in (("q_xy", q_xy), ("q_theta", q_theta), ("sigma_xy", sigma_xy),
@@ -86,7 +90,11 @@ class RobotTracker:
                 raise ValueError(f"{name} must be finite and >= 0, got {v!r}")
         self.n = int(n)
         self.q = (float(q_xy), float(q_xy), float(q_theta))
-        self.r = (max(sigma_xy, 1e-4) ** 2,) * 2 + (max(sigma_theta, 1e-4) ** 2,)
+        if measurement is not None:  # the sensor's own model: its R, not a copy of numbers
+            self.r = tuple(float(v) for v in np.diag(measurement.R))
+        else:
+            self.r = (max(sigma_xy, MIN_SIGMA_XY) ** 2,) * 2 + (max(sigma_theta,
+                                                                   MIN_SIGMA_THETA) ** 2,)
         self.var_v0 = float(sigma_v0) ** 2
         self.reset()
 

@@ -30,6 +30,7 @@ from typing import Any, NamedTuple, Protocol
 import numpy as np
 
 from estimators import BallFilterConfig, BallTracker, LeastSquaresBall, RobotTracker
+from estimators.models import MIN_SIGMA_XY
 
 from .presets import BallSpec, FieldSpec, SSLRobotSpec
 from .state import WorldState
@@ -132,7 +133,7 @@ def ball_filter_config(name: str, ball: BallSpec, spec: VisionSpec
     The filters assume the sensor's noise (at least 1 mm) and the ball's rolling
     deceleration; the other parameters are paper 002's.
     """
-    sigma = max(spec.ball_sigma, 1e-3)
+    sigma = max(spec.ball_sigma, MIN_SIGMA_XY)
     if name == "ls":
         return None, True
     if name in ("kf", "kf-comp"):
@@ -259,10 +260,11 @@ class FilteredPerception(_VisionPerception):
                  ball: BallSpec, n_robots: int) -> None:
         super().__init__(config, field, robot, ball, n_robots)
         spec = config.vision
-        self.robot_tracker = RobotTracker(n_robots, sigma_xy=max(spec.robot_sigma, 1e-3),
-                                          sigma_theta=max(spec.robot_sigma_theta, 1e-3))
+        # The filters weigh detections with the sensor's own measurement models.
+        self.robot_tracker = RobotTracker(n_robots, measurement=self.sensor.robot_model)
         cfg, self._capture_times = ball_filter_config(config.ball_filter, ball, spec)
-        self.ball_tracker = LeastSquaresBall() if cfg is None else BallTracker(cfg)
+        self.ball_tracker = (LeastSquaresBall() if cfg is None
+                             else BallTracker(cfg, self.sensor.ball_model))
         self.ahead = spec.actuation_latency
 
     def _clear(self) -> None:
@@ -294,12 +296,21 @@ class FilteredPerception(_VisionPerception):
 
 
 def make_perception(obs_mode: str, config: PerceptionConfig, field: FieldSpec,
-                    robot: SSLRobotSpec, ball: BallSpec, n_robots: int) -> Perception:
-    """The pipeline of ``obs_mode``; unknown modes raise ``ValueError``."""
+                    robot: SSLRobotSpec, ball: BallSpec, n_robots: int,
+                    actuation_delay: float | None = None) -> Perception:
+    """The pipeline of ``obs_mode``; unknown modes raise ``ValueError``.
+
+    ``actuation_delay`` [s] is how far ahead the perceived belief is predicted (default: the
+    vision preset's actuation latency; environments pass the latency as they apply it, in
+    whole control steps).
+    """
     if obs_mode == "truth":
         return TruthPerception(config)
     if obs_mode == "raw":
         return RawPerception(config, field, robot, ball, n_robots)
     if obs_mode == "perceived":
-        return FilteredPerception(config, field, robot, ball, n_robots)
+        p = FilteredPerception(config, field, robot, ball, n_robots)
+        if actuation_delay is not None:
+            p.ahead = float(actuation_delay)
+        return p
     raise ValueError(f"obs_mode must be one of {list(OBS_MODES)}, got {obs_mode!r}")

@@ -127,3 +127,11 @@ def test_every_ball_filter_runs_in_the_environment(ball_filter):
     # Without latency compensation the estimate trails a 4-6 m/s shot by some 45 ms.
     limit = 0.35 if ball_filter == "kf" else 0.1
     assert np.median(ball_errors(infos[10:])) < limit
+
+
+def test_sensor_and_filters_share_the_measurement_models():
+    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived", perception="ssl-2012")
+    p = env.unwrapped._perception
+    assert p.ball_tracker.measurement is p.sensor.ball_model
+    assert p.robot_tracker.r == tuple(np.diag(p.sensor.robot_model.R))
+    assert p.sensor.ball_model.sigma == 0.025

@@ -236,11 +236,13 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         self.builder = ObservationBuilder(self.field, [0], [0])
         self.observation_space = self.builder.space()
         self.perception = PerceptionConfig.create(perception, obs_mode)
-        self._perception = make_perception(obs_mode, self.perception, self.field,
-                                           self.robot_spec, self.ball_spec, 1)
         spec = self.perception.vision
-        self._channel = CommandChannel(1, round(spec.actuation_latency / self.world.control_dt),
-                                       spec.command_loss)
+        # The actuation latency applies in whole control steps.
+        delay = round(spec.actuation_latency / self.world.control_dt)
+        self._channel = CommandChannel(1, delay, spec.command_loss)
+        self._perception = make_perception(obs_mode, self.perception, self.field,
+                                           self.robot_spec, self.ball_spec, 1,
+                                           delay * self.world.control_dt)
         self._render_width = int(render_width)
         self._names = ("blue_0",)
         self._shot: dict[str, Any] | None = None

@@ -147,12 +147,13 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         # Both teams receive the same camera frames (SSL-Vision serves both) and run the same
         # estimation stack, so their beliefs coincide: one pipeline serves both.
         self.perception = PerceptionConfig.create(perception, obs_mode)
-        self._perception = make_perception(obs_mode, self.perception, self.field,
-                                           self.robot_spec, self.ball_spec, w.n_robots)
         spec = self.perception.vision
-        self._channel = CommandChannel(w.n_robots,
-                                       round(spec.actuation_latency / w.control_dt),
-                                       spec.command_loss)
+        # The actuation latency applies in whole control steps.
+        delay = round(spec.actuation_latency / w.control_dt)
+        self._channel = CommandChannel(w.n_robots, delay, spec.command_loss)
+        self._perception = make_perception(obs_mode, self.perception, self.field,
+                                           self.robot_spec, self.ball_spec, w.n_robots,
+                                           delay * w.control_dt)
         self.state_space = gymnasium.spaces.Box(-np.inf, np.inf, (6 + 6 * w.n_robots,),
                                                 np.float32)
         self.score = [0, 0]
