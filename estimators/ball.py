@@ -149,33 +149,8 @@ def _points(name: str, value, exact: bool = True) -> list:
 _Mat = tuple[float, float, float, float]
 
 
-def _mul(a: _Mat, b: _Mat) -> _Mat:
-    return (a[0] * b[0] + a[1] * b[2], a[0] * b[1] + a[1] * b[3],
-            a[2] * b[0] + a[3] * b[2], a[2] * b[1] + a[3] * b[3])
-
-
-def _mul_t(a: _Mat, b: _Mat) -> _Mat:
-    """``a b^T``."""
-    return (a[0] * b[0] + a[1] * b[1], a[0] * b[2] + a[1] * b[3],
-            a[2] * b[0] + a[3] * b[1], a[2] * b[2] + a[3] * b[3])
-
-
 def _t(a: _Mat) -> _Mat:
     return (a[0], a[2], a[1], a[3])
-
-
-def _add(a: _Mat, b: _Mat) -> _Mat:
-    return (a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3])
-
-
-def _axpy(s: float, a: _Mat, b: _Mat) -> _Mat:
-    """``s a + b``."""
-    return (s * a[0] + b[0], s * a[1] + b[1], s * a[2] + b[2], s * a[3] + b[3])
-
-
-def _sym(a: _Mat) -> _Mat:
-    off = 0.5 * (a[1] + a[2])
-    return (a[0], off, off, a[3])
 
 
 def _predict(x, P, A: _Mat, B: _Mat, q: float):
@@ -221,22 +196,40 @@ def _update(x, P, y, Si: _Mat, r: float):
 
     ``K1 = P11 S^-1``, ``K2 = P21 S^-1``; with ``M = I - K1``, ``N = -K2``:
     ``P11' = M P11 M^T + r K1 K1^T``, ``P12' = M P11 N^T + M P12 + r K1 K2^T``,
-    ``P22' = (N P11 + P21) N^T + N P12 + P22 + r K2 K2^T``.
+    ``P22' = (N P11 + P21) N^T + N P12 + P22 + r K2 K2^T`` (written out element by element;
+    the symmetric blocks are stored with equal off-diagonals).
     """
-    P11, P12, P22 = P
-    K1 = _mul(P11, Si)  # K = P H^T S^-1 = [P11; P21] S^-1
-    K2 = _mul(_t(P12), Si)
+    (p0, p1, _, p3), (m0, m1, m2, m3), (n0, n1, _, n3) = P
+    i0, i1, _, i3 = Si
     y0, y1 = y
-    xn = (x[0] + K1[0] * y0 + K1[1] * y1, x[1] + K1[2] * y0 + K1[3] * y1,
-          x[2] + K2[0] * y0 + K2[1] * y1, x[3] + K2[2] * y0 + K2[3] * y1)
-    M = (1.0 - K1[0], -K1[1], -K1[2], 1.0 - K1[3])
-    N = (-K2[0], -K2[1], -K2[2], -K2[3])
-    MP11 = _mul(M, P11)
-    NP11_P21 = _add(_mul(N, P11), _t(P12))
-    P11n = _sym(_axpy(r, _mul_t(K1, K1), _mul_t(MP11, M)))
-    P12n = _axpy(r, _mul_t(K1, K2), _add(_mul_t(MP11, N), _mul(M, P12)))
-    P22n = _sym(_axpy(r, _mul_t(K2, K2), _add(_add(_mul_t(NP11_P21, N), _mul(N, P12)), P22)))
-    return xn, (P11n, P12n, P22n)
+    # K1 = P11 S^-1, K2 = P21 S^-1 with P21 = (m0, m2, m1, m3).
+    a0, a1, a2, a3 = p0 * i0 + p1 * i1, p0 * i1 + p1 * i3, p1 * i0 + p3 * i1, p1 * i1 + p3 * i3
+    b0, b1, b2, b3 = m0 * i0 + m2 * i1, m0 * i1 + m2 * i3, m1 * i0 + m3 * i1, m1 * i1 + m3 * i3
+    xn = (x[0] + a0 * y0 + a1 * y1, x[1] + a2 * y0 + a3 * y1,
+          x[2] + b0 * y0 + b1 * y1, x[3] + b2 * y0 + b3 * y1)
+    # M = I - K1 = (c0, c1, c2, c3); N = -K2.
+    c0, c1, c2, c3 = 1.0 - a0, -a1, -a2, 1.0 - a3
+    # M P11
+    e0, e1 = c0 * p0 + c1 * p1, c0 * p1 + c1 * p3
+    e2, e3 = c2 * p0 + c3 * p1, c2 * p1 + c3 * p3
+    # P11' = (M P11) M^T + r K1 K1^T
+    q00 = e0 * c0 + e1 * c1 + r * (a0 * a0 + a1 * a1)
+    q01 = 0.5 * (e0 * c2 + e1 * c3 + e2 * c0 + e3 * c1) + r * (a0 * a2 + a1 * a3)
+    q11 = e2 * c2 + e3 * c3 + r * (a2 * a2 + a3 * a3)
+    # P12' = (M P11) N^T + M P12 + r K1 K2^T, N^T = -(b0, b2, b1, b3)
+    f0 = -(e0 * b0 + e1 * b1) + c0 * m0 + c1 * m2 + r * (a0 * b0 + a1 * b1)
+    f1 = -(e0 * b2 + e1 * b3) + c0 * m1 + c1 * m3 + r * (a0 * b2 + a1 * b3)
+    f2 = -(e2 * b0 + e3 * b1) + c2 * m0 + c3 * m2 + r * (a2 * b0 + a3 * b1)
+    f3 = -(e2 * b2 + e3 * b3) + c2 * m1 + c3 * m3 + r * (a2 * b2 + a3 * b3)
+    # N P11 + P21, with N = -K2
+    g0, g1 = -(b0 * p0 + b1 * p1) + m0, -(b0 * p1 + b1 * p3) + m2
+    g2, g3 = -(b2 * p0 + b3 * p1) + m1, -(b2 * p1 + b3 * p3) + m3
+    # P22' = (N P11 + P21) N^T + N P12 + P22 + r K2 K2^T
+    h00 = -(g0 * b0 + g1 * b1) - (b0 * m0 + b1 * m2) + n0 + r * (b0 * b0 + b1 * b1)
+    h01 = 0.5 * (-(g0 * b2 + g1 * b3) - (b0 * m1 + b1 * m3)
+                 - (g2 * b0 + g3 * b1) - (b2 * m0 + b3 * m2)) + n1 + r * (b0 * b2 + b1 * b3)
+    h11 = -(g2 * b2 + g3 * b3) - (b2 * m1 + b3 * m3) + n3 + r * (b2 * b2 + b3 * b3)
+    return xn, ((q00, q01, q01, q11), (f0, f1, f2, f3), (h00, h01, h01, h11))
 
 
 def _full(P) -> np.ndarray:
