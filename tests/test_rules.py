@@ -182,7 +182,7 @@ def test_ball_never_leaves_the_walls():
             ang = rng.uniform(-math.pi, math.pi)
             w.set_ball(rng.uniform(-3, 3), rng.uniform(-2, 2), 6.5 * math.cos(ang),
                        6.5 * math.sin(ang), sliding=True)
-    assert events > 50  # the ball did reach the lines and walls many times
+    assert events > 20  # the ball did reach the lines and walls many times
 
 
 @pytest.mark.parametrize("field", ["ssl-2012", "ssl-div-b", "ssl-div-a", "humanoid-2012"])
