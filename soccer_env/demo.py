@@ -22,6 +22,8 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
+from .plots import pyplot, save_figure
+
 __all__ = ["run_demo"]
 
 
@@ -97,10 +99,7 @@ def _write_video(frames: list[np.ndarray], out: Path, fps: int) -> Path:
 
 
 def _figures(records: list[dict[str, Any]], field, out: Path) -> dict[str, str]:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     hx, hy = field.half_length, field.half_width
     fig, ax = plt.subplots(figsize=(9, 6.5))
@@ -127,10 +126,7 @@ def _figures(records: list[dict[str, Any]], field, out: Path) -> dict[str, str]:
     ax.set_ylabel("y [m]")
     ax.set_title("Goalkeeper-v0: true ball (solid), believed ball (dashed), keeper (thick)")
     ax.legend(loc="upper right", fontsize=8)
-    fig.tight_layout()
-    traj = out / "trajectories.png"
-    fig.savefig(traj, dpi=110)
-    plt.close(fig)
+    traj = save_figure(fig, out / "trajectories.png")
 
     fig, ax = plt.subplots(figsize=(7, 4))
     for k, r in enumerate(records):
@@ -142,10 +138,7 @@ def _figures(records: list[dict[str, Any]], field, out: Path) -> dict[str, str]:
     ax.set_title("Ball speed: sliding, then rolling, until saved or scored")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
-    fig.tight_layout()
-    speed = out / "ball_speed.png"
-    fig.savefig(speed, dpi=110)
-    plt.close(fig)
+    speed = save_figure(fig, out / "ball_speed.png")
 
     fig, ax = plt.subplots(figsize=(7, 4))
     for k, r in enumerate(records):
@@ -158,8 +151,5 @@ def _figures(records: list[dict[str, Any]], field, out: Path) -> dict[str, str]:
     ax.set_title("Estimation error (large right after the kick: it is seen late)")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
-    fig.tight_layout()
-    error = out / "estimate_error.png"
-    fig.savefig(error, dpi=110)
-    plt.close(fig)
-    return {"trajectories": str(traj), "ball_speed": str(speed), "estimate_error": str(error)}
+    error = save_figure(fig, out / "estimate_error.png")
+    return {"trajectories": traj, "ball_speed": speed, "estimate_error": error}

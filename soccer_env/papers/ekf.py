@@ -36,6 +36,7 @@ from estimators import BallFilterConfig, BallTracker, LeastSquaresBall
 
 from .. import presets
 from ..physics import World, idle_commands
+from ..plots import pyplot, save_figure
 from ..vision import OverheadVision, vision
 
 __all__ = ["run", "open_loop", "closed_loop", "PAPER_CLAIMS", "ESTIMATORS"]
@@ -347,10 +348,7 @@ def _markdown_closed(res: dict[str, Any]) -> str:
 
 
 def _plots(open_res: dict | None, closed_res: dict | None, out: Path) -> list[str]:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     files = []
     if open_res:
@@ -366,11 +364,7 @@ def _plots(open_res: dict | None, closed_res: dict | None, out: Path) -> list[st
         ax.set_title("Paper 002 setting, one shot (dotted: collisions)")
         ax.legend(fontsize=8, ncol=2)
         ax.grid(alpha=0.3)
-        fig.tight_layout()
-        path = out / "paper_ekf_trace.png"
-        fig.savefig(path, dpi=110)
-        plt.close(fig)
-        files.append(str(path))
+        files.append(save_figure(fig, out / "paper_ekf_trace.png"))
     if closed_res:
         presets_ = list(closed_res["presets"])
         modes = list(CLOSED_LOOP_MODES)
@@ -388,11 +382,7 @@ def _plots(open_res: dict | None, closed_res: dict | None, out: Path) -> list[st
         ax.set_ylim(0, 105)
         ax.set_title(f"Scripted keeper, {closed_res['shots']} shots per bar (95 % CI)")
         ax.legend(fontsize=8)
-        fig.tight_layout()
-        path = out / "paper_ekf_save_rates.png"
-        fig.savefig(path, dpi=110)
-        plt.close(fig)
-        files.append(str(path))
+        files.append(save_figure(fig, out / "paper_ekf_save_rates.png"))
     return files
 
 
