@@ -434,9 +434,19 @@ class BallTracker:
             return _Track(tr.t, tr.x, tr.P, candidates, tr.v_switch)
         (t0, z0), (t1, z1) = candidates[0], candidates[-1]
         span = t1 - t0
-        vx, vy = ((z1[0] - z0[0]) / span, (z1[1] - z0[1]) / span) if span > 1e-9 else (0.0, 0.0)
-        # Finite-difference velocity variance: 2 sigma^2 / span^2 (no velocity known: tau^2).
-        var_v = (2.0 * c.sigma_xy**2 / span**2 if span > 1e-9 else c.tau**2) + c.sigma_r**2
+        # The finite-difference velocity (z1 - z0) / span has variance 2 sigma^2 / span^2 per
+        # axis, unbounded when two cameras see the ball a moment apart. Combine it with the
+        # prior that a ball moves at most MAX_SPEED_CHANGE (v ~ N(0, s0^2), s0 = a third of
+        # it): v = g v_fd and var = g var_fd with g = s0^2 / (s0^2 + var_fd).
+        s0_2 = (MAX_SPEED_CHANGE / 3.0) ** 2
+        if span > 1e-9:
+            var_fd = 2.0 * c.sigma_xy**2 / span**2
+            g = s0_2 / (s0_2 + var_fd)
+            vx, vy = g * (z1[0] - z0[0]) / span, g * (z1[1] - z0[1]) / span
+            var_v = g * var_fd + c.sigma_r**2
+        else:
+            vx = vy = 0.0
+            var_v = s0_2 + c.sigma_r**2
         var_p = c.sigma_xy**2
         speed = math.hypot(vx, vy)
         v_switch = (c.two_phase[1] * speed if c.two_phase is not None and speed > c.kick_speed

@@ -348,3 +348,25 @@ def test_no_maneuver_from_a_detection_too_far_for_the_time_elapsed():
     f.add(9 / 60 + 0.001, [(0.1, 0.0)])
     assert f.maneuvers == 0 and f.rejected == 1
     assert abs(f.estimate(0.2)[2]) < 0.1
+
+
+def test_reset_from_views_a_moment_apart_keeps_a_physical_speed():
+    """Two cameras seeing a ball that was knocked away, a fraction of a millisecond apart,
+    with centimetre noise: the finite-difference velocity of the reset would be hundreds of
+    m/s; the tracker must stay below the fastest ball (it takes the velocity from later
+    frames instead)."""
+    sigma = 0.025
+    f = BallTracker(BallFilterConfig(sigma_xy=sigma, maneuver_radius=None))
+    for k in range(10):
+        f.add(k * 0.04, [(0.0, 0.0)])
+    # Knocked 0.5 m away at 4 m/s along x; seen by two cameras 0.3 ms apart, noise 2 sigma
+    # in opposite directions along y.
+    t1 = 0.4
+    f.add(t1, [(0.5, 2 * sigma)])
+    f.add(t1 + 0.0003, [(0.5 + 4.0 * 0.0003, -2 * sigma)])
+    assert f.resets == 1
+    assert np.hypot(*f.estimate(t1 + 0.0003)[2:]) < 10.0
+    for k in range(1, 6):
+        t = t1 + k * 0.04
+        f.add(t, [(0.5 + 4.0 * (t - t1), 0.0)])
+    assert f.estimate(t1 + 0.2)[2] == pytest.approx(4.0, abs=0.5)
