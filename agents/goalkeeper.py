@@ -10,7 +10,37 @@ import numpy as np
 from estimators import FrictionBallModel
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
 
-__all__ = ["ScriptedGoalkeeper"]
+__all__ = ["ScriptedGoalkeeper", "drive_command", "turn_command"]
+
+
+def drive_command(px: float, py: float, c: float, s: float, tx: float, ty: float,
+                  max_speed: float, max_acceleration: float, speed_cap: float | None = None
+                  ) -> tuple[float, float]:
+    """Body-frame velocity [m/s] that drives a robot at ``(px, py)`` with heading
+    ``(cos, sin) = (c, s)`` to ``(tx, ty)`` (all in one frame, metres) and can still stop there.
+
+    The speed follows the braking profile ``v = min(v_cap, sqrt(2 a_max d))`` for distance ``d``
+    (``v_cap`` is ``speed_cap`` or ``max_speed``): the fastest approach that can still stop on
+    the spot.
+    """
+    ex, ey = tx - px, ty - py
+    dist = math.hypot(ex, ey)
+    if dist <= 1e-6:
+        return 0.0, 0.0
+    cap = max_speed if speed_cap is None else min(speed_cap, max_speed)
+    speed = min(cap, math.sqrt(2.0 * max_acceleration * dist))
+    wx, wy = ex / dist * speed, ey / dist * speed
+    # Frame -> body frame: rotate by -heading.
+    return c * wx + s * wy, -s * wx + c * wy
+
+
+def turn_command(c: float, s: float, target: float, max_angular_speed: float,
+                 gain: float = 8.0) -> float:
+    """Normalised turn rate in ``[-1, 1]`` that turns a robot with heading
+    ``(cos, sin) = (c, s)`` towards the heading ``target`` [rad]: proportional to the wrapped
+    error with ``gain`` [1/s]."""
+    err = math.remainder(target - math.atan2(s, c), 2.0 * math.pi)
+    return max(-1.0, min(1.0, gain * err / max_angular_speed))
 
 
 class ScriptedGoalkeeper:
@@ -71,19 +101,12 @@ class ScriptedGoalkeeper:
             ty = by * min(frac, 1.0)
         ty = max(-half_goal, min(half_goal, ty))
 
-        # Drive to (guard_x, ty) with a profile that can still stop there.
-        ex, ey = self.guard_x - px, ty - py
-        dist = math.hypot(ex, ey)
-        speed = min(r.max_speed, math.sqrt(2.0 * r.max_acceleration * dist))
-        wx, wy = (ex / dist * speed, ey / dist * speed) if dist > 1e-6 else (0.0, 0.0)
-        # Team frame -> body frame.
-        cmd_x, cmd_y = c * wx + s * wy, -s * wx + c * wy
-
-        heading = math.atan2(s, c)
+        # Drive to (guard_x, ty) with a profile that can still stop there, facing the ball.
+        cmd_x, cmd_y = drive_command(px, py, c, s, self.guard_x, ty, r.max_speed,
+                                     r.max_acceleration)
         face = math.atan2(by - py, bx - px)
         face = max(-0.5 * math.pi, min(0.5 * math.pi, face))
-        err = math.remainder(face - heading, 2.0 * math.pi)
-        omega = max(-1.0, min(1.0, 8.0 * err / r.max_angular_speed))
+        omega = turn_command(c, s, face, r.max_angular_speed)
 
         in_front = 0.0 < dx < r.front_distance + 0.1 and abs(dy) < 0.5 * r.kicker_width
         kick = 1.0 if in_front else 0.0

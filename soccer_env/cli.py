@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from collections.abc import Callable
 
 __all__ = ["main"]
 
@@ -95,10 +96,26 @@ def _cmd_bench(argv: list[str]) -> int:
     return bench_main(argv)
 
 
+def _agents_command(module: str) -> Callable[[list[str]], int]:
+    """A command implemented by ``agents.<module>.main`` (imported when run: training needs
+    the ``train`` extra)."""
+
+    def run(argv: list[str]) -> int:
+        import importlib
+
+        return importlib.import_module(f"agents.{module}").main(argv)
+
+    return run
+
+
 _COMMANDS = {
     "demo": (_cmd_demo, "run the goalkeeper demo and write its video and figures"),
     "bench": (_cmd_bench, "measure environment step rates against bare pymunk"),
     "paper": (_cmd_paper, "reproduce a source paper's claims (tables and plots)"),
+    "train": (_agents_command("training"), "train a policy with stable-baselines3"),
+    "eval": (_agents_command("evaluation"), "evaluate a keeper policy on the fixed shot suite"),
+    "ablation": (_agents_command("ablation"), "compare estimators in closed loop, per sensor "
+                                              "preset"),
     "list": (_cmd_list, "list environments and presets"),
 }
 

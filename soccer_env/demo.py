@@ -23,6 +23,7 @@ import gymnasium as gym
 import numpy as np
 
 from .plots import pyplot, save_figure
+from .render import write_video
 
 __all__ = ["run_demo"]
 
@@ -64,7 +65,8 @@ def run_demo(out: str | Path = "demo_output", episodes: int = 3, seed: int = 0,
 
     files = {}
     if video:
-        files["video"] = str(_write_video(frames, out, fps=env.unwrapped.metadata["render_fps"]))
+        files["video"] = str(write_video(frames, out / "goalkeeper.mp4",
+                                         env.unwrapped.metadata["render_fps"]))
     files.update(_figures(records, env.unwrapped.field, out))
     summary = {
         "obs_mode": obs_mode,
@@ -84,18 +86,6 @@ def _row(info: dict[str, Any]) -> list[float]:
     vx, vy = t["ball_velocity"]
     ex, ey = info["estimate"]["ball_position"]
     return [t["time"], bx, by, t["ball_height"], vx, vy, kx, ky, ex, ey]
-
-
-def _write_video(frames: list[np.ndarray], out: Path, fps: int) -> Path:
-    import imageio.v2 as imageio
-
-    path = out / "goalkeeper.mp4"
-    try:
-        imageio.mimsave(path, frames, fps=fps, macro_block_size=1)
-    except Exception:  # no ffmpeg backend: fall back to a GIF
-        path = out / "goalkeeper.gif"
-        imageio.mimsave(path, frames[::2], duration=2.0 / fps)
-    return path
 
 
 def _figures(records: list[dict[str, Any]], field, out: Path) -> dict[str, str]:

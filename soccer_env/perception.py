@@ -193,10 +193,14 @@ class RawPerception(_VisionPerception):
 
     The ball is its most recent detection (of several in a frame, the one nearest the previous
     raw ball); a robot is its most recent detection. Velocities are the differences of the last
-    two sightings of different capture times. Objects never seen read as zeros.
+    two sightings at least half a frame period apart (overlapping cameras see an object a
+    fraction of a millisecond apart; differencing those would turn centimetres of noise into
+    metres per second). Objects never seen read as zeros.
     """
 
     def _clear(self) -> None:
+        rate = self.vision_spec.frame_rate
+        self._min_gap = 0.0 if rate is None else 0.5 / rate
         n = self.n_robots
         self._ball = [None, None]  # last two (t, x, y)
         self._robots = [[None, None] for _ in range(n)]
@@ -211,9 +215,9 @@ class RawPerception(_VisionPerception):
                     bx, by = min(balls, key=lambda b: math.hypot(b[0] - last[1], b[1] - last[2]))
                 else:
                     bx, by = balls[0]
-                _push(self._ball, (t, bx, by))
+                _push(self._ball, (t, bx, by), self._min_gap)
             for i, pose in zip(f.robot_ids, f.robots):
-                _push(self._robots[i], (t, *pose))
+                _push(self._robots[i], (t, *pose), self._min_gap)
 
     def _beliefs(self, now: float):
         ball = np.zeros(6)
@@ -226,11 +230,12 @@ class RawPerception(_VisionPerception):
         return belief, belief
 
 
-def _push(hist: list, item: tuple) -> None:
-    """Keep the last two sightings with distinct capture times, newest last."""
-    if hist[1] is not None and item[0] <= hist[1][0]:
-        if item[0] == hist[1][0]:
-            hist[1] = item  # same capture time (camera overlap): keep the later report
+def _push(hist: list, item: tuple, min_gap: float) -> None:
+    """Keep the last two sightings, newest last, captured at least ``min_gap`` [s] apart."""
+    last = hist[1]
+    if last is not None and (item[0] <= last[0] or item[0] < last[0] + min_gap):
+        if item[0] >= last[0]:
+            hist[1] = item  # the same moment seen by another camera: keep the later report
         return
     hist[0], hist[1] = hist[1], item
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
+from pathlib import Path
 
 import numpy as np
 
@@ -18,7 +19,7 @@ from .physics import robot_outline
 from .presets import BallSpec, FieldSpec, SSLRobotSpec
 from .state import WorldState
 
-__all__ = ["Renderer", "RenderingMixin", "RENDER_MODES", "TEAM_COLOURS"]
+__all__ = ["Renderer", "RenderingMixin", "RENDER_MODES", "TEAM_COLOURS", "write_video"]
 
 RENDER_MODES = ("human", "rgb_array")
 TEAM_COLOURS = ((40, 100, 255), (245, 215, 0))
@@ -194,3 +195,19 @@ class RenderingMixin:
         if self._renderer is not None:
             self._renderer.close()
             self._renderer = None
+
+
+def write_video(frames: Sequence[np.ndarray], path: Path, fps: int) -> Path:
+    """Write rgb_array ``frames`` to ``path`` (an ``.mp4``); without an ffmpeg backend, to a
+    ``.gif`` of every second frame beside it. Returns the file written. Needs imageio (the
+    ``render`` extra)."""
+    import imageio.v2 as imageio
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    try:
+        imageio.mimsave(path, list(frames), fps=fps, macro_block_size=1)
+    except Exception:  # no ffmpeg backend: fall back to a GIF
+        path = path.with_suffix(".gif")
+        imageio.mimsave(path, list(frames)[::2], duration=2.0 / fps)
+    return path

@@ -1,0 +1,301 @@
+"""Evaluate a keeper policy on the fixed shot suite of Goalkeeper-v0.
+
+The suite is the episodes reset with seeds ``start_seed .. start_seed + episodes - 1``: the
+seed fixes the shot (start, target, speed, chip, delay), the keeper's start and the sensors'
+noise, so every policy and every observation configuration meets the same shots. A save is an
+episode that ends (terminates) without a goal; an episode cut by the time limit counts as not
+saved. Save rates come with Wilson's 95 % score interval.
+
+Besides the save rate, each evaluation measures the estimation error (root mean square distance
+between ``info["estimate"]`` and ``info["truth"]`` ball positions over all steps) and, when asked,
+the estimator's compute per step (time spent in the perception pipeline's filters, without the
+sensor simulation).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from collections import Counter
+from collections.abc import Callable, Mapping, Sequence
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+import gymnasium as gym
+
+import soccer_env  # noqa: F401  (registers the environments)
+
+from .policies import make_policy
+
+__all__ = ["wilson", "EvalResult", "evaluate", "record_video", "GOALKEEPER_ID"]
+
+GOALKEEPER_ID = "soccer_env/Goalkeeper-v0"
+
+
+def wilson(successes: int, n: int, z: float = 1.96) -> tuple[float, float]:
+    """Wilson score interval of a binomial proportion ``successes / n`` (95 % for
+    ``z = 1.96``)."""
+    if n <= 0 or not 0 <= successes <= n:
+        raise ValueError(f"need 0 <= successes <= n and n >= 1, got {successes} of {n}")
+    p = successes / n
+    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
+    return max(0.0, centre - half), min(1.0, centre + half)
+
+
+@dataclass
+class EvalResult:
+    """The outcome of :func:`evaluate`.
+
+    Attributes:
+        policy: the policy reference evaluated.
+        env_kwargs: the environment's keyword arguments.
+        episodes, saves: counts; ``save_rate`` their ratio with ``ci_low``, ``ci_high`` its
+            Wilson 95 % interval.
+        outcomes: episodes per outcome (``goal``, ``stopped``, ``cleared``, ``out``,
+            ``time limit``).
+        steps: environment steps in all; ``mean_steps`` per episode.
+        ball_rmse_m: RMS distance between the believed and the true ball position [m] over
+            all steps (0 for truth observations).
+        estimator_us_per_step: mean time of the perception's filters per step [us] (None if
+            not measured).
+        seconds: wall time of the evaluation [s] (summed over workers).
+        saved: per episode, in seed order, whether it was saved.
+    """
+
+    policy: str
+    env_kwargs: dict[str, Any]
+    episodes: int
+    saves: int
+    save_rate: float
+    ci_low: float
+    ci_high: float
+    outcomes: dict[str, int]
+    steps: int
+    mean_steps: float
+    ball_rmse_m: float
+    estimator_us_per_step: float | None
+    seconds: float
+    saved: list[bool] = field(repr=False)
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+    def summary(self) -> str:
+        """One line: save rate with its interval, outcomes and estimation error."""
+        text = (f"save rate {100 * self.save_rate:.1f} % (95 % CI {100 * self.ci_low:.1f}-"
+                f"{100 * self.ci_high:.1f}) over {self.episodes} shots; "
+                f"{dict(sorted(self.outcomes.items()))}; ball estimate RMSE "
+                f"{1000 * self.ball_rmse_m:.1f} mm")
+        if self.estimator_us_per_step is not None:
+            text += f"; estimator {self.estimator_us_per_step:.0f} us/step"
+        return text
+
+
+class _Timer:
+    """Accumulates the time spent in the wrapped perception methods."""
+
+    def __init__(self) -> None:
+        self.seconds = 0.0
+
+    def wrap(self, fn: Callable) -> Callable:
+        def timed(*args: Any) -> Any:
+            t0 = time.perf_counter()
+            try:
+                return fn(*args)
+            finally:
+                self.seconds += time.perf_counter() - t0
+
+        return timed
+
+
+def _time_estimator(env: gym.Env) -> _Timer:
+    """Time the estimation part of the env's perception (filters and belief prediction, not
+    the sensor simulation), by wrapping its methods on the instance."""
+    timer = _Timer()
+    perception = env.unwrapped._perception
+    for name in ("_consume", "_beliefs"):
+        if hasattr(perception, name):
+            setattr(perception, name, timer.wrap(getattr(perception, name)))
+    return timer
+
+
+def _run_episodes(args: tuple) -> dict[str, Any]:
+    """Episodes ``seeds`` of one configuration, in this process."""
+    policy_ref, env_id, env_kwargs, seeds, measure = args
+    env = gym.make(env_id, **env_kwargs)
+    policy = make_policy(policy_ref, env)
+    timer = _time_estimator(env) if measure else None
+    outcomes: Counter = Counter()
+    saved, steps, sq_err, t0 = [], 0, 0.0, time.perf_counter()
+    for seed in seeds:
+        obs, info = env.reset(seed=int(seed))
+        while True:
+            obs, _, term, trunc, info = env.step(policy(obs))
+            steps += 1
+            t, e = info["truth"]["ball_position"], info["estimate"]["ball_position"]
+            sq_err += (t[0] - e[0]) ** 2 + (t[1] - e[1]) ** 2
+            if term or trunc:
+                break
+        outcome = info["outcome"] if term else "time limit"
+        outcomes[outcome] += 1
+        saved.append(bool(term and outcome != "goal"))
+    env.close()
+    return {"saved": saved, "outcomes": outcomes, "steps": steps, "sq_err": sq_err,
+            "estimator_s": timer.seconds if timer else None,
+            "seconds": time.perf_counter() - t0}
+
+
+def evaluate(policy: str | os.PathLike | Callable = "scripted",
+             env_kwargs: Mapping[str, Any] | None = None, episodes: int = 1000,
+             start_seed: int = 0, workers: int = 1, measure_estimator: bool = False,
+             env_id: str = GOALKEEPER_ID) -> EvalResult:
+    """Run ``policy`` on ``episodes`` seeded episodes of ``env_id`` (Goalkeeper-v0 by default).
+
+    Args:
+        policy: a policy reference for :func:`~agents.policies.make_policy` (``"scripted"``,
+            ``"idle"``, ``"baseline:NAME"``, a ``.zip``/``.npz`` path) or a callable; a
+            callable runs in this process only (``workers`` must be 1 unless it pickles).
+        env_kwargs: keyword arguments of ``gymnasium.make`` (``obs_mode``, ``perception``,
+            ...).
+        episodes: number of shots; seeds ``start_seed`` onwards.
+        workers: processes to spread the episodes over (the result does not depend on it).
+        measure_estimator: time the perception's filters (adds a little overhead).
+    """
+    if int(episodes) < 1:
+        raise ValueError(f"episodes must be >= 1, got {episodes!r}")
+    if int(workers) < 1:
+        raise ValueError(f"workers must be >= 1, got {workers!r}")
+    env_kwargs = dict(env_kwargs or {})
+    seeds = list(range(int(start_seed), int(start_seed) + int(episodes)))
+    workers = min(int(workers), len(seeds))
+    name = _describe(policy)
+    if workers > 1 and isinstance(policy, (str, os.PathLike)) and (
+            os.fspath(policy).endswith(".zip") or Path(policy).is_dir()):
+        # Load a saved model once here (its numpy copy pickles cheaply) rather than import
+        # torch and load it again in every worker.
+        probe = gym.make(env_id, **env_kwargs)
+        policy = make_policy(policy, probe)
+        probe.close()
+    chunks = [seeds[i::workers] for i in range(workers)]
+    jobs = [(policy, env_id, env_kwargs, c, measure_estimator) for c in chunks]
+    if workers > 1:
+        # forkserver, not fork: a parent that has used torch deadlocks forked children.
+        with ProcessPoolExecutor(workers, mp_context=_mp_context()) as pool:
+            parts = list(pool.map(_run_episodes, jobs))
+    else:
+        parts = [_run_episodes(jobs[0])]
+    saved_by_seed: dict[int, bool] = {}
+    outcomes: Counter = Counter()
+    for chunk, part in zip(chunks, parts):
+        saved_by_seed.update(zip(chunk, part["saved"]))
+        outcomes.update(part["outcomes"])
+    saved = [saved_by_seed[s] for s in seeds]
+    steps = sum(p["steps"] for p in parts)
+    saves = sum(saved)
+    lo, hi = wilson(saves, len(seeds))
+    est = ([p["estimator_s"] for p in parts] if measure_estimator else None)
+    return EvalResult(
+        policy=name,
+        env_kwargs=env_kwargs, episodes=len(seeds), saves=saves,
+        save_rate=saves / len(seeds), ci_low=lo, ci_high=hi, outcomes=dict(outcomes),
+        steps=steps, mean_steps=steps / len(seeds),
+        ball_rmse_m=math.sqrt(sum(p["sq_err"] for p in parts) / max(steps, 1)),
+        estimator_us_per_step=None if est is None else 1e6 * sum(est) / max(steps, 1),
+        seconds=sum(p["seconds"] for p in parts), saved=saved)
+
+
+def _mp_context() -> Any:
+    import multiprocessing as mp
+
+    return mp.get_context("forkserver" if "forkserver" in mp.get_all_start_methods()
+                          else "spawn")
+
+
+def _describe(policy: Any) -> str:
+    if isinstance(policy, (str, os.PathLike)):
+        return os.fspath(policy)
+    return getattr(policy, "__name__", type(policy).__name__)
+
+
+def record_video(policy: str | os.PathLike | Callable, path: str | os.PathLike,
+                 env_kwargs: Mapping[str, Any] | None = None, seeds: Sequence[int] = (0, 1, 2),
+                 env_id: str = GOALKEEPER_ID, width: int = 640) -> Path:
+    """Render the episodes ``seeds`` (rgb_array, the belief drawn over the truth) to ``path``
+    (``.mp4``; a ``.gif`` beside it if no ffmpeg is available). Returns the file written."""
+    from soccer_env.render import write_video
+
+    kwargs = {**dict(env_kwargs or {}), "render_mode": "rgb_array", "render_width": width}
+    env = gym.make(env_id, **kwargs)
+    pol = make_policy(policy, env)
+    frames = []
+    for seed in seeds:
+        obs, _ = env.reset(seed=int(seed))
+        frames.append(env.render())
+        while True:
+            obs, _, term, trunc, _ = env.step(pol(obs))
+            frames.append(env.render())
+            if term or trunc:
+                break
+    fps = env.unwrapped.metadata["render_fps"]
+    env.close()
+    return write_video(frames, Path(path), fps)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``soccer-env eval``: a policy on the fixed shot suite, with video."""
+    import argparse
+    import json
+
+    from .cli_args import add_env_arguments, env_kwargs_from_args
+
+    p = argparse.ArgumentParser(
+        prog="soccer-env eval",
+        description="Evaluate a keeper policy on Goalkeeper-v0's fixed shot suite (seeds "
+                    "0..N-1): save rate with a Wilson 95 %% interval, outcomes, estimation "
+                    "error, and a video of the first episodes.",
+        epilog="example: soccer-env eval --policy baseline:keeper-ppo-ssl2012 --obs-mode "
+               "perceived --perception ssl-2012")
+    p.add_argument("--policy", default="scripted",
+                   help="scripted (default), idle, baseline:NAME, a .zip/.npz model or a run "
+                        "folder")
+    add_env_arguments(p)
+    p.add_argument("--episodes", type=int, default=1000, help="shots (default 1000)")
+    p.add_argument("--start-seed", type=int, default=0, help="first seed of the suite")
+    p.add_argument("--workers", type=int, default=os.cpu_count() or 1,
+                   help="processes (default: all cores)")
+    p.add_argument("--video", type=int, default=3, metavar="N",
+                   help="episodes to render into the video (default 3; 0 for none)")
+    p.add_argument("--out", default="eval_output", help="folder for eval.json and the video")
+    p.add_argument("--json", action="store_true", help="print the result as JSON")
+    args = p.parse_args(argv)
+    for name in ("episodes", "workers"):
+        if getattr(args, name) < 1:
+            p.error(f"--{name} must be >= 1")
+    if args.video < 0:
+        p.error("--video must be >= 0")
+    try:
+        env_kwargs = env_kwargs_from_args(args)
+        # Resolve the policy once here so that a bad reference fails with its own message.
+        probe = gym.make(GOALKEEPER_ID, **env_kwargs)
+        make_policy(args.policy, probe)
+        probe.close()
+    except (ValueError, TypeError, FileNotFoundError) as err:
+        p.error(str(err))
+    res = evaluate(args.policy, env_kwargs, args.episodes, args.start_seed, args.workers)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    record = res.to_dict()
+    if args.video:
+        seeds = range(args.start_seed, args.start_seed + min(args.video, args.episodes))
+        record["video"] = str(record_video(args.policy, out / "eval.mp4", env_kwargs, seeds))
+    (out / "eval.json").write_text(json.dumps(record, indent=1))
+    if args.json:
+        print(json.dumps({k: v for k, v in record.items() if k != "saved"}, indent=1))
+    else:
+        print(f"{res.policy} on {env_kwargs or 'truth'}: {res.summary()}")
+        print(f"wrote {out / 'eval.json'}" + (f" and {record['video']}" if args.video else ""))
+    return 0

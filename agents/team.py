@@ -1,0 +1,429 @@
+"""A scripted team for the match: a keeper, an attacker and defenders, from observations only.
+
+Every robot decides from its own observation vector (the layout of
+:mod:`soccer_env.observations`, found by entry name), so the team runs on whatever the
+observation mode provides (``"truth"``, ``"raw"`` or ``"perceived"``) and on either side
+(observations are in each team's own frame, which attacks ``+x``). No state is kept between
+steps: the same observations always give the same actions.
+
+Roles, decided by each robot from the team-mates' relative positions in its observation (all
+robots of a team read the same belief, so they agree):
+
+* **keeper**: robot 0 when the team has two or more robots. It plays
+  :class:`~agents.goalkeeper.ScriptedGoalkeeper` (guard line in front of the goal, moving to
+  where the ball's predicted path crosses it), except that it clears a slow ball lying in its
+  own defense area, which no other robot may enter.
+* **attacker**: the non-keeper robot with the lowest cost to reach the ball (distance, plus a
+  penalty when it stands between the ball and the opponent goal). It drives to a point behind
+  the ball on the line from an open point of the opponent goal mouth through the ball (the
+  one needing the least repositioning), turns to face it, drives through the ball and arms
+  its kicker while its heading points into the goal mouth past every opponent. When every
+  shooting line is blocked by a nearby opponent it dribbles diagonally past it instead. It
+  predicts a moving ball's position with :class:`~estimators.FrictionBallModel` and stays
+  out of the own defense area.
+* **defenders**: the others, in lines of up to three between the ball and the own goal,
+  spread across the goal-ball line and kept out of the own defense area. They face the ball
+  and clear it forward when it reaches their kicker.
+
+Restarts are played like open play (the referee moves robots at a restart but does not
+enforce the stop distance afterwards), and the opponent defense area is not avoided.
+
+All positions are in the team frame [m], headings in radians, speeds in m/s.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+from estimators import FrictionBallModel
+from soccer_env.physics import MAX_TEAM_SIZE
+from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
+
+from .goalkeeper import ScriptedGoalkeeper, drive_command, turn_command
+
+__all__ = ["ScriptedTeam", "TEAMS"]
+
+#: Team names accepted by :meth:`ScriptedTeam.for_env`, in team-index order.
+TEAMS = ("blue", "yellow")
+
+
+class ScriptedTeam:
+    """Scripted policy for one team of :class:`~soccer_env.envs.match.SoccerParallelEnv`.
+
+    Args:
+        field, ball, robot: the match's specs (geometry, rolling deceleration, robot limits).
+        names: the entry names of this team's observations
+            (``env.builder.names_for(team_index)``).
+        team_size: robots in the team (1 .. ``MAX_TEAM_SIZE``).
+        prefix: agent name prefix (``"blue_"`` or ``"yellow_"``), used by :meth:`__call__`.
+        guard_offset: keeper's guard line in front of the goal line, beyond its radius [m].
+        attack_speed: speed [m/s] at which the attacker drives through the ball.
+        defender_spacing: lateral distance between defenders of one line [m].
+
+    Use :meth:`for_env` to build it from a match. Calls:
+
+    * ``team(observations)``: a dict ``{agent: obs}`` (agents of other teams are ignored) to
+      ``{agent: action}`` for this team's agents in it;
+    * ``team.act(obs_batch)``: ``(n, obs_dim)`` observations of robots ``0..n-1`` of the team
+      (``n = team_size``) to ``(n, 6)`` float32 actions; what
+      :class:`~agents.multiagent.MatchVecEnv` uses for an opponent.
+    """
+
+    def __init__(self, field: FieldSpec, ball: BallSpec, robot: SSLRobotSpec,
+                 names: Sequence[str], team_size: int, prefix: str = "blue_",
+                 guard_offset: float = 0.05, attack_speed: float = 2.0,
+                 defender_spacing: float = 0.45) -> None:
+        if not 1 <= int(team_size) <= MAX_TEAM_SIZE:
+            raise ValueError(f"team_size must be 1..{MAX_TEAM_SIZE}, got {team_size}")
+        index = {n: i for i, n in enumerate(names)}
+        needed = ("self.x", "self.y", "self.ax", "self.ay", "ball.dx", "ball.dy", "ball.vx",
+                  "ball.vy")
+        missing = [n for n in needed if n not in index]
+        if missing:
+            raise ValueError(f"names lack the entries {missing}; pass the observation's entry "
+                             "names (env.builder.names_for(team))")
+        self.field, self.ball, self.robot = field, ball, robot
+        self.team_size = int(team_size)
+        self.prefix = prefix
+        self.attack_speed = float(attack_speed)
+        self.defender_spacing = float(defender_spacing)
+        self.model = FrictionBallModel(ball.rolling_deceleration)
+        self.has_keeper = self.team_size >= 2
+        self.keeper = ScriptedGoalkeeper(field, ball, robot, names, guard_offset=guard_offset)
+        self._idx = [index[n] for n in needed]
+        n_mates = sum(1 for n in names if n.startswith("mate") and n.endswith(".dx"))
+        if n_mates != self.team_size - 1:
+            raise ValueError(f"the observation names list {n_mates} team-mates, a team of "
+                             f"{self.team_size} needs {self.team_size - 1}")
+        self._mate_idx = [(index[f"mate{j}.dx"], index[f"mate{j}.dy"]) for j in range(n_mates)]
+        n_opps = sum(1 for n in names if n.startswith("opp") and n.endswith(".dx"))
+        self._opp_idx = [(index[f"opp{j}.dx"], index[f"opp{j}.dy"]) for j in range(n_opps)]
+        self.obs_size = len(names)
+        # Geometry (team frame).
+        hx, hy = field.half_length, field.half_width
+        r = robot.radius
+        self._goal_x = hx
+        self._half_goal = 0.5 * field.goal_width
+        # Aim points across the goal mouth, a ball radius and 5 cm inside the posts [m].
+        inner = self._half_goal - ball.radius - 0.05
+        self._aim_ys = [inner * f for f in (-1.0, -0.5, 0.0, 0.5, 1.0)]
+        # Sideways offset [m] over which the attacker's alignment with the ball fades out, and
+        # how far beyond the ball it drives when lined up [m].
+        self._lateral_scale = 0.06
+        self._through = 0.4
+        # Dribbling direction off the goal direction when every shot is blocked by a nearby
+        # opponent: 60 degrees to either side.
+        self._escape_cos, self._escape_sin = 0.5, math.sqrt(3.0) / 2.0
+        # Defenders per line.
+        self._per_line = 3
+        # Kicker-centre to ball-centre distance with the ball touching the front [m].
+        self._contact = robot.front_distance + ball.radius
+        # Keep-out rectangle of the own defense area for the robot centre [m].
+        self._def_front = -hx + field.defense_depth + r + 0.05
+        self._def_side = 0.5 * field.defense_width + r + 0.05
+        # Walls minus a robot radius: targets are clipped into this box [m].
+        self._lim_x = hx + field.boundary - r - 0.02
+        self._lim_y = hy + field.boundary - r - 0.02
+
+    @classmethod
+    def for_env(cls, env: Any, team: str = "blue", **kwargs: Any) -> ScriptedTeam:
+        """Build the team ``"blue"`` or ``"yellow"`` of a (possibly wrapped) match."""
+        if team not in TEAMS:
+            raise ValueError(f"team must be one of {list(TEAMS)}, got {team!r}")
+        u = getattr(env, "unwrapped", env)
+        t = TEAMS.index(team)
+        size = int(u.world.n_blue if t == 0 else u.world.n_yellow)
+        if size < 1:
+            raise ValueError(f"the {team} team of this match has no robots")
+        return cls(u.field, u.ball_spec, u.robot_spec, u.builder.names_for(t), size,
+                   prefix=f"{team}_", **kwargs)
+
+    # ------------------------------------------------------------------------------------
+
+    def __call__(self, observations: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+        """Actions ``{agent: (6,) float32}`` for this team's agents in ``observations``."""
+        out = {}
+        p = self.prefix
+        for agent, obs in observations.items():
+            if agent.startswith(p):
+                out[agent] = np.asarray(self.act_one(obs, int(agent[len(p):])),
+                                        dtype=np.float32)
+        return out
+
+    def act(self, obs_batch: np.ndarray) -> np.ndarray:
+        """Actions ``(team_size, 6)`` float32 for observations ``(team_size, obs_dim)`` of
+        robots ``0 .. team_size - 1`` in order."""
+        obs_batch = np.asarray(obs_batch)
+        if obs_batch.shape != (self.team_size, self.obs_size):
+            raise ValueError(f"obs_batch must have shape ({self.team_size}, {self.obs_size}) "
+                             f"(one row per robot of the team, in order), got "
+                             f"{obs_batch.shape}")
+        return np.array([self.act_one(o, i) for i, o in enumerate(obs_batch.tolist())],
+                        dtype=np.float32)
+
+    def act_one(self, obs: np.ndarray | Sequence[float], index: int) -> list[float]:
+        """Action ``[vx, vy, omega, kick, chip, dribble]`` of robot ``index`` of the team from
+        its own observation ``obs``."""
+        if not 0 <= index < self.team_size:
+            raise ValueError(f"index must be in 0..{self.team_size - 1}, got {index}")
+        o = obs.tolist() if isinstance(obs, np.ndarray) else list(obs)
+        px, py, c, neg_s, dx, dy, bvx_b, bvy_b = (o[i] for i in self._idx)
+        s = -neg_s  # self.ay is -sin(heading)
+        # Ball in the team frame.
+        bx, by = px + c * dx - s * dy, py + s * dx + c * dy
+        bvx, bvy = c * bvx_b - s * bvy_b, s * bvx_b + c * bvy_b
+        # Opponents in the team frame.
+        opps = [(px + c * mx - s * my, py + s * mx + c * my)
+                for mx, my in ((o[ix], o[iy]) for ix, iy in self._opp_idx)]
+        if self.has_keeper and index == 0:
+            if self._keeper_should_clear(bx, by, bvx, bvy):
+                return self._attack(px, py, c, s, bx, by, bvx, bvy, dx, dy, opps, keeper=True)
+            return self.keeper(o).tolist()  # it reads entries by index: a list will do
+        # Team-mates in the team frame, indexed by robot (self included).
+        xs, ys = [0.0] * self.team_size, [0.0] * self.team_size
+        xs[index], ys[index] = px, py
+        for j, (ix, iy) in enumerate(self._mate_idx):
+            k = j if j < index else j + 1
+            mx, my = o[ix], o[iy]
+            xs[k], ys[k] = px + c * mx - s * my, py + s * mx + c * my
+        role, rank, n_def = self._role(index, xs, ys, bx, by)
+        if role == "attacker":
+            return self._attack(px, py, c, s, bx, by, bvx, bvy, dx, dy, opps)
+        return self._defend(px, py, c, s, bx, by, dx, dy, rank, n_def)
+
+    # ------------------------------------------------------------------------------------
+
+    def _role(self, index: int, xs: list[float], ys: list[float], bx: float, by: float
+              ) -> tuple[str, int, int]:
+        """``(role, rank, defenders)``: this robot's role, its rank among the defenders and
+        their number."""
+        first = 1 if self.has_keeper else 0
+        field_players = range(first, self.team_size)
+        # Cost to take the ball [m]: distance to the point behind the ball on the line from
+        # the opponent goal centre, plus a penalty for standing goal-side of the ball (the
+        # robot would have to go round it). A robot passing the ball on its way elsewhere
+        # does not steal the role from one already lined up behind it.
+        ex, ey = self._goal_x - bx, -by
+        d = math.hypot(ex, ey) or 1.0
+        ex, ey = ex / d, ey / d
+        back = self._contact + 0.12
+        qx, qy = bx - back * ex, by - back * ey
+        best, attacker = math.inf, -1
+        for k in field_players:
+            ahead = (xs[k] - bx) * ex + (ys[k] - by) * ey > self._contact
+            cost = math.hypot(xs[k] - qx, ys[k] - qy) + (0.5 if ahead else 0.0)
+            if cost < best:
+                best, attacker = cost, k
+        if index == attacker:
+            return "attacker", 0, 0
+        defenders = [k for k in field_players if k != attacker]
+        # Lines of up to three by robot index (so that a robot keeps its line); within a
+        # line, slots by lateral position across the goal-ball line, so that defenders do not
+        # cross each other's paths to their slots.
+        per = self._per_line
+        start = defenders.index(index) // per * per
+        line = defenders[start:start + per]
+        ox = -self._goal_x
+        fx, fy = bx - ox, by
+        norm = math.hypot(fx, fy) or 1.0
+        nx, ny = -fy / norm, fx / norm
+        line.sort(key=lambda k: ((xs[k] - ox) * nx + ys[k] * ny, k))
+        return "defender", start + line.index(index), len(defenders)
+
+    def _keeper_should_clear(self, bx: float, by: float, bvx: float, bvy: float) -> bool:
+        """A slow ball inside the own defense area: only the keeper may fetch it."""
+        f = self.field
+        inside = bx < -self._goal_x + f.defense_depth and abs(by) < 0.5 * f.defense_width
+        return inside and bx > -self._goal_x and math.hypot(bvx, bvy) < 0.5
+
+    def _attack(self, px: float, py: float, c: float, s: float, bx: float, by: float,
+                bvx: float, bvy: float, dx: float, dy: float, opps: list[tuple[float, float]],
+                keeper: bool = False) -> list[float]:
+        """Go behind the ball on the line from the aim point through the ball, face the aim,
+        drive through the ball and shoot when the heading points into the open goal mouth.
+        Only the ``keeper`` may enter the own defense area."""
+        r = self.robot
+        # Where the ball will be when we get there (at most a second ahead).
+        reach = min(math.hypot(bx - px, by - py) / r.max_speed, 1.0)
+        if bvx * bvx + bvy * bvy > 1e-4:
+            bx, by = (float(v) for v in self.model.predict(np.array([bx, by, bvx, bvy]),
+                                                           reach)[0:2])
+        (ax, ay), shoot = self._aim(px, py, bx, by, opps)
+        ex, ey = ax - bx, ay - by
+        d_aim = math.hypot(ex, ey) or 1.0
+        ex, ey = ex / d_aim, ey / d_aim  # ball -> aim point
+        nx, ny = -ey, ex
+        along = (px - bx) * ex + (py - by) * ey  # < 0: behind the ball
+        lateral = (px - bx) * nx + (py - by) * ny
+        face = math.atan2(ey, ex)
+        heading_err = abs(math.remainder(face - math.atan2(s, c), 2.0 * math.pi))
+        contact = self._contact
+        cap = None
+        if along > -contact and abs(lateral) < contact + r.radius + 0.05:
+            # In front of or beside the ball: step round it on the near side first.
+            side = 1.0 if lateral >= 0.0 else -1.0
+            clear = r.radius + self.ball.radius + 0.12
+            tx, ty = bx + side * clear * nx - 0.1 * ex, by + side * clear * ny - 0.1 * ey
+        else:
+            # Behind the ball: the better lined up (sideways offset and heading), the further
+            # forward the target, from a waiting point behind the ball to a point beyond it.
+            align = (max(0.0, 1.0 - abs(lateral) / self._lateral_scale)
+                     * max(0.0, 1.0 - heading_err / 0.5)) ** 2
+            back = contact + 0.12 - (contact + 0.12 + self._through) * align
+            tx, ty = bx - back * ex, by - back * ey
+            if align > 0.25:
+                cap = self.attack_speed
+        if not keeper:
+            tx, ty = self._outside_defense_area(tx, ty)
+        tx = max(-self._lim_x, min(self._lim_x, tx))
+        ty = max(-self._lim_y, min(self._lim_y, ty))
+        vx, vy = drive_command(px, py, c, s, tx, ty, r.max_speed, r.max_acceleration, cap)
+        omega = turn_command(c, s, face, r.max_angular_speed)
+        kick = 1.0 if shoot and dx > 0.0 and self._on_target(px, py, c, s, opps) else 0.0
+        return [vx / r.max_speed, vy / r.max_speed, omega, kick, -1.0, -1.0]
+
+    def _aim(self, px: float, py: float, bx: float, by: float,
+             opps: list[tuple[float, float]]) -> tuple[tuple[float, float], bool]:
+        """Where to send the ball: ``((x, y), shoot)``.
+
+        Candidates are points spread across the opponent goal mouth; a candidate is open if
+        no opponent stands within a robot radius plus a ball radius (and a margin growing
+        with distance) of the line from the ball to it. Among the open ones the attacker
+        takes the one needing the least repositioning (its current bearing from the ball).
+        If none is open (``shoot`` False), it carries the ball towards the goal centre while
+        the blockers are more than a metre away, and otherwise dribbles it 60 degrees off the
+        goal direction, to the side with more room.
+        """
+        best, best_cost = None, math.inf
+        rbx, rby = bx - px, by - py  # robot -> ball, the current approach direction
+        norm = math.hypot(rbx, rby) or 1.0
+        rbx, rby = rbx / norm, rby / norm
+        for ty in self._aim_ys:
+            clearance = self._clearance(bx, by, self._goal_x, ty, opps)
+            if clearance <= 0.0:
+                continue
+            ex, ey = self._goal_x - bx, ty - by
+            d = math.hypot(ex, ey) or 1.0
+            # Turning cost (1 - cos of the angle between approach and shot), minus a bonus
+            # for clearance.
+            cost = 1.0 - (rbx * ex + rby * ey) / d - 0.5 * min(clearance, 0.5)
+            if cost < best_cost:
+                best, best_cost = (self._goal_x, ty), cost
+        if best is not None:
+            return best, True
+        # Blocked. With the blocker far away, carry the ball towards the goal centre (an
+        # opening may appear); with it close, dribble diagonally forward on the side with
+        # more room, preferring the side the robot already stands behind (so that it does
+        # not hesitate between two equal sides).
+        if self._nearest_ahead(bx, by, opps) > 1.0:
+            return (self._goal_x, 0.0), False
+        gx, gy = self._goal_x - bx, -by
+        d = math.hypot(gx, gy) or 1.0
+        gx, gy = gx / d, gy / d
+        options = []
+        for sign in (1.0, -1.0):
+            cos_a, sin_a = self._escape_cos, sign * self._escape_sin
+            ux, uy = gx * cos_a - gy * sin_a, gx * sin_a + gy * cos_a
+            tx, ty = bx + ux, by + uy
+            room = min(self._clearance(bx, by, tx, ty, opps), 0.3)
+            inside = abs(ty) < self.field.half_width - 0.3
+            behind = rbx * ux + rby * uy  # > 0: the robot is behind the ball for u
+            options.append((room + (0.0 if inside else -1.0) + 0.5 * behind, (tx, ty)))
+        return max(options)[1], False
+
+    def _nearest_ahead(self, bx: float, by: float, opps: list[tuple[float, float]]) -> float:
+        """Distance [m] from the ball to the nearest opponent nearer the opponent goal."""
+        return min((math.hypot(ox - bx, oy - by) for ox, oy in opps if ox > bx - 0.1),
+                   default=math.inf)
+
+    def _clearance(self, bx: float, by: float, tx: float, ty: float,
+                   opps: list[tuple[float, float]]) -> float:
+        """Smallest gap [m] between the segment from the ball ``(bx, by)`` to ``(tx, ty)`` and
+        an opponent, beyond a robot radius, a ball radius and a margin of 3 % of the
+        opponent's distance along the segment (it can move while the ball travels); positive
+        means open."""
+        ex, ey = tx - bx, ty - by
+        length = math.hypot(ex, ey) or 1e-9
+        ex, ey = ex / length, ey / length
+        reach = self.robot.radius + self.ball.radius
+        gap = math.inf
+        for ox, oy in opps:
+            t = (ox - bx) * ex + (oy - by) * ey
+            if t < -reach or t > length + reach:
+                continue
+            perp = abs((ox - bx) * ey - (oy - by) * ex)
+            gap = min(gap, perp - reach - 0.02 - 0.03 * max(t, 0.0))
+        return gap
+
+    def _on_target(self, px: float, py: float, c: float, s: float,
+                   opps: list[tuple[float, float]]) -> bool:
+        """Whether the robot's heading line crosses the opponent goal mouth (a ball radius
+        plus 3 cm inside each post) with no opponent on the way."""
+        if c < 0.2:
+            return False
+        y_goal = py + s / c * (self._goal_x - px)
+        if abs(y_goal) >= self._half_goal - self.ball.radius - 0.03:
+            return False
+        return self._clearance(px, py, self._goal_x, y_goal, opps) > 0.0
+
+    def _defend(self, px: float, py: float, c: float, s: float, bx: float, by: float,
+                dx: float, dy: float, rank: int, n_def: int) -> list[float]:
+        """Hold slot ``rank`` of ``n_def`` between the ball and the own goal."""
+        r = self.robot
+        ox = -self._goal_x
+        fx, fy = bx - ox, by
+        d_ball = math.hypot(fx, fy) or 1e-3
+        fx, fy = fx / d_ball, fy / d_ball  # own goal -> ball
+        nx, ny = -fy, fx
+        per_line = self._per_line
+        line, slot = divmod(rank, per_line)
+        in_line = min(per_line, n_def - line * per_line)
+        base = max(self.field.defense_depth + r.radius + 0.4, 0.45 * d_ball)
+        dist = min(base + 0.9 * line, max(d_ball - 0.6, self.field.defense_depth + 0.3))
+        offset = (slot - 0.5 * (in_line - 1)) * self.defender_spacing * (1 + line)
+        tx = ox + dist * fx + offset * nx
+        ty = dist * fy + offset * ny
+        tx, ty = self._around_ball(px, py, tx, ty, bx, by)
+        tx, ty = self._outside_defense_area(tx, ty)
+        tx = max(-self._lim_x, min(self._lim_x, tx))
+        ty = max(-self._lim_y, min(self._lim_y, ty))
+        vx, vy = drive_command(px, py, c, s, tx, ty, r.max_speed, r.max_acceleration)
+        omega = turn_command(c, s, math.atan2(by - py, bx - px), r.max_angular_speed)
+        # Clear the ball forward if it reaches the kicker while we face the opponent half.
+        in_front = 0.0 < dx < r.front_distance + 0.1 and abs(dy) < 0.5 * r.kicker_width
+        kick = 1.0 if in_front and c > 0.3 else 0.0
+        return [vx / r.max_speed, vy / r.max_speed, omega, kick, -1.0, -1.0]
+
+    def _around_ball(self, px: float, py: float, tx: float, ty: float, bx: float, by: float
+                     ) -> tuple[float, float]:
+        """A waypoint beside the ball if the straight path from ``(px, py)`` to ``(tx, ty)``
+        passes within a robot radius, a ball radius and 15 cm of the ball, else the target
+        (a defender on its way to its slot must not knock the ball about)."""
+        ux, uy = tx - px, ty - py
+        length = math.hypot(ux, uy)
+        if length < 1e-6:
+            return tx, ty
+        ux, uy = ux / length, uy / length
+        clear = self.robot.radius + self.ball.radius + 0.15
+        along = (bx - px) * ux + (by - py) * uy
+        side = (px - bx) * -uy + (py - by) * ux  # the robot's side of the ball, along n
+        if not 0.0 < along < length or abs(side) >= clear:
+            return tx, ty
+        sign = 1.0 if side >= 0.0 else -1.0
+        return bx - sign * clear * uy, by + sign * clear * ux
+
+    def _outside_defense_area(self, x: float, y: float) -> tuple[float, float]:
+        """Move a target inside the own defense area (widened by a robot radius and 5 cm) to
+        the nearest point on its edge."""
+        ox = -self._goal_x
+        if x >= self._def_front or abs(y) >= self._def_side:
+            return x, y
+        to_front = self._def_front - x
+        to_side = self._def_side - abs(y)
+        if to_front <= to_side or x < ox:
+            return self._def_front, y
+        return x, math.copysign(self._def_side, y if y != 0.0 else 1.0)

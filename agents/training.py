@@ -1,0 +1,471 @@
+"""Train policies with stable-baselines3 (``soccer-env train``).
+
+A run is described by a :class:`TrainConfig` and writes into its folder:
+
+* ``config.json``: the full configuration, the command line and library versions;
+* ``checkpoints/model_<steps>_steps.zip`` every ``checkpoint_every`` steps (resume from any);
+* ``tb/``: TensorBoard logs (SB3's training statistics, episode returns and success rate,
+  the periodic save-rate evaluation, and the rollout collection rate);
+* ``evaluations.json``: the periodic evaluations; ``best_model.zip`` / ``best_policy.npz``: the
+  best of them;
+* ``final_model.zip`` and ``final_policy.npz`` (the numpy copy of the actor, see
+  :class:`~agents.policies.NumpyPolicy`), and ``summary.json`` (steps, wall time, rollout
+  and overall steps per second, last and best evaluation).
+
+Goalkeeper-v0 runs in :class:`~agents.vec_env.WorkerVecEnv` (``n_envs`` environments over
+``n_workers`` processes) or, with ``n_workers=0``, in-process. The match
+(``soccer_env/Match-v0``) runs through :class:`~agents.multiagent.MatchVecEnv`: each learning
+robot is a batch entry of one shared policy, against the ``opponent`` team.
+
+The periodic evaluation runs the current actor deterministically on ``eval_episodes`` shots
+drawn from seeds ``EVAL_SEED_START`` onwards, apart from the fixed test suite (seeds 0 onwards)
+that ``soccer-env eval`` and the ablation use, so that picking the best model does not bias
+the reported save rate.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import inspect
+import json
+import math
+import os
+import platform
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .cli_args import add_env_arguments, env_kwargs_from_args, key_values
+from .evaluation import GOALKEEPER_ID, evaluate
+from .policies import SB3_ALGORITHMS, NumpyPolicy
+
+__all__ = ["TrainConfig", "train", "main", "EVAL_SEED_START", "MATCH_ID", "DEFAULT_HYPERPARAMS"]
+
+#: First seed of the shots used for model selection during training.
+EVAL_SEED_START = 1_000_000
+#: The match's registry id (PettingZoo registry), accepted as ``env_id``.
+MATCH_ID = "soccer_env/Match-v0"
+
+#: Per-algorithm defaults, tuned on Goalkeeper-v0 only as far as "learns in minutes".
+DEFAULT_HYPERPARAMS: dict[str, dict[str, Any]] = {
+    "PPO": {"n_steps": 256, "batch_size": 512, "n_epochs": 10, "gamma": 0.99,
+            "gae_lambda": 0.95, "learning_rate": 3e-4, "ent_coef": 0.0, "clip_range": 0.2},
+    "A2C": {},
+    "SAC": {"learning_starts": 5000, "batch_size": 256, "train_freq": 1, "gradient_steps": 1},
+    "TD3": {"learning_starts": 5000, "batch_size": 256, "train_freq": 1, "gradient_steps": 1},
+    "DDPG": {"learning_starts": 5000, "batch_size": 256},
+}
+
+
+@dataclass
+class TrainConfig:
+    """Everything a training run needs (saved as ``config.json``).
+
+    Attributes:
+        env_id: ``"soccer_env/Goalkeeper-v0"`` or ``"soccer_env/Match-v0"``.
+        env_kwargs: keyword arguments of the environment (``obs_mode``, ``perception``,
+            ``shaping``, ...).
+        algorithm: one of :data:`~agents.policies.SB3_ALGORITHMS`.
+        total_steps: environment steps to train for (agent steps for the match).
+        n_envs: environments (matches for the match) stepped in parallel.
+        n_workers: worker processes for them (0: in this process).
+        seed: seeds the environments, the algorithm and torch.
+        out: the run's folder.
+        hyperparams: keyword arguments of the algorithm (over :data:`DEFAULT_HYPERPARAMS`),
+            e.g. ``{"learning_rate": 1e-4, "policy_kwargs": {"net_arch": [64, 64]}}``.
+        checkpoint_every, eval_every: in environment steps (0 turns them off).
+        eval_episodes: shots per periodic evaluation.
+        eval_env_kwargs: the evaluation environment's keyword arguments (default:
+            ``env_kwargs``), e.g. to train on truth and select on perceived observations.
+        learner, opponent: the match's learning team (``"blue"``, ``"yellow"``, ``"both"``)
+            and the other team's policy (``"scripted"``, ``"idle"``, ``"self"`` for a frozen
+            copy of the learner refreshed every ``self_play_every`` steps, or a model path).
+        torch_threads: torch's intra-op threads in the learner process.
+        device: torch device.
+        progress_bar: show SB3's progress bar.
+    """
+
+    env_id: str = GOALKEEPER_ID
+    env_kwargs: dict[str, Any] = field(default_factory=dict)
+    algorithm: str = "PPO"
+    total_steps: int = 1_000_000
+    n_envs: int = 16
+    n_workers: int = 2
+    seed: int = 0
+    out: str = "runs/keeper"
+    hyperparams: dict[str, Any] = field(default_factory=dict)
+    checkpoint_every: int = 250_000
+    eval_every: int = 250_000
+    eval_episodes: int = 200
+    eval_env_kwargs: dict[str, Any] | None = None
+    learner: str = "blue"
+    opponent: str = "scripted"
+    self_play_every: int = 100_000
+    torch_threads: int = 1
+    device: str = "cpu"
+    progress_bar: bool = True
+
+    def __post_init__(self) -> None:
+        self.algorithm = str(self.algorithm).upper()
+        if self.algorithm not in SB3_ALGORITHMS:
+            raise ValueError(f"algorithm must be one of {list(SB3_ALGORITHMS)}, got "
+                             f"{self.algorithm!r}")
+        if self.env_id not in (GOALKEEPER_ID, MATCH_ID):
+            raise ValueError(f"env_id must be {GOALKEEPER_ID!r} or {MATCH_ID!r}, got "
+                             f"{self.env_id!r}")
+        for name, lo in (("total_steps", 1), ("n_envs", 1), ("n_workers", 0),
+                         ("checkpoint_every", 0), ("eval_every", 0), ("eval_episodes", 1),
+                         ("self_play_every", 1), ("torch_threads", 1)):
+            value = getattr(self, name)
+            if not isinstance(value, (int, np.integer)) or isinstance(value, bool) or value < lo:
+                raise ValueError(f"{name} must be an integer >= {lo}, got {value!r}")
+        known = _algorithm_parameters(self.algorithm)
+        unknown = sorted(set(self.hyperparams) - known)
+        if unknown:
+            raise ValueError(f"unknown {self.algorithm} hyperparameter(s) {unknown}; allowed: "
+                             f"{sorted(known)}")
+        if self.learner not in ("blue", "yellow", "both"):
+            raise ValueError(f"learner must be 'blue', 'yellow' or 'both', got "
+                             f"{self.learner!r}")
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> TrainConfig:
+        allowed = {f.name for f in dataclasses.fields(cls)}
+        unknown = sorted(set(data) - allowed)
+        if unknown:
+            raise ValueError(f"unknown training config key(s) {unknown}; allowed: "
+                             f"{sorted(allowed)}")
+        return cls(**data)
+
+    def to_dict(self) -> dict[str, Any]:
+        return dataclasses.asdict(self)
+
+
+def _algorithm_parameters(name: str) -> set[str]:
+    import stable_baselines3 as sb3
+
+    sig = inspect.signature(getattr(sb3, name).__init__)
+    return {p for p in sig.parameters if p not in ("self", "policy", "env", "_init_setup_model",
+                                                   "seed", "device", "tensorboard_log")}
+
+
+# ------------------------------------------------------------------------------------------
+# Environments
+# ------------------------------------------------------------------------------------------
+
+def _goalkeeper_fn(env_kwargs: dict[str, Any]):
+    def make():
+        import gymnasium as gym
+        from stable_baselines3.common.monitor import Monitor
+
+        import soccer_env  # noqa: F401
+
+        return Monitor(gym.make(GOALKEEPER_ID, **env_kwargs))
+
+    return make
+
+
+def make_vec_env(cfg: TrainConfig, model: Any = None):
+    """The training VecEnv of ``cfg`` (seeded with ``cfg.seed``)."""
+    if cfg.env_id == MATCH_ID:
+        from .multiagent import make_match_vec_env
+
+        opponent = cfg.opponent
+        return make_match_vec_env(cfg.env_kwargs, cfg.n_envs, cfg.learner,
+                                  "idle" if opponent == "self" else opponent, cfg.seed)
+    fns = [_goalkeeper_fn(cfg.env_kwargs) for _ in range(cfg.n_envs)]
+    if cfg.n_workers == 0:
+        from stable_baselines3.common.vec_env import DummyVecEnv
+
+        venv = DummyVecEnv(fns)
+    else:
+        from .vec_env import WorkerVecEnv
+
+        venv = WorkerVecEnv(fns, n_workers=cfg.n_workers)
+    venv.seed(cfg.seed)
+    return venv
+
+
+def _check_env_kwargs(cfg: TrainConfig) -> None:
+    """Build one environment here so that bad keyword arguments fail before any process
+    starts, with the environment's own message."""
+    if cfg.env_id == MATCH_ID:
+        import soccer_env
+
+        soccer_env.parallel_env(**cfg.env_kwargs).close()
+    else:
+        import gymnasium as gym
+
+        import soccer_env  # noqa: F401
+
+        gym.make(GOALKEEPER_ID, **cfg.env_kwargs).close()
+        if cfg.eval_env_kwargs is not None:
+            gym.make(GOALKEEPER_ID, **cfg.eval_env_kwargs).close()
+
+
+# ------------------------------------------------------------------------------------------
+# Callbacks
+# ------------------------------------------------------------------------------------------
+
+def _callbacks(cfg: TrainConfig, out: Path):
+    from stable_baselines3.common.callbacks import BaseCallback, CheckpointCallback
+
+    class RolloutTimer(BaseCallback):
+        """Environment steps per second while collecting rollouts (gradient updates
+        excluded), logged as ``time/rollout_fps``."""
+
+        def __init__(self) -> None:
+            super().__init__()
+            self.seconds, self.steps = 0.0, 0
+
+        def _on_rollout_start(self) -> None:
+            self._t0, self._n0 = time.perf_counter(), self.num_timesteps
+
+        def _on_rollout_end(self) -> None:
+            self.seconds += time.perf_counter() - self._t0
+            self.steps += self.num_timesteps - self._n0
+            if self.seconds > 0:
+                self.logger.record("time/rollout_fps", self.steps / self.seconds)
+
+        def _on_step(self) -> bool:
+            return True
+
+        @property
+        def rate(self) -> float:
+            return self.steps / self.seconds if self.seconds > 0 else float("nan")
+
+    class SaveRateEval(BaseCallback):
+        """Every ``eval_every`` steps: the actor's save rate on ``eval_episodes`` shots, logged
+        as ``eval/save_rate``; the best model is kept."""
+
+        def __init__(self) -> None:
+            super().__init__()
+            self.history: list[dict[str, Any]] = []
+            self.best = -1.0
+            self._next = cfg.eval_every
+
+        def _on_step(self) -> bool:
+            if self.num_timesteps >= self._next:
+                self._next += cfg.eval_every
+                self.run()
+            return True
+
+        def run(self) -> dict[str, Any]:
+            policy = NumpyPolicy.from_sb3(self.model)
+            kwargs = cfg.env_kwargs if cfg.eval_env_kwargs is None else cfg.eval_env_kwargs
+            res = evaluate(policy, kwargs, episodes=cfg.eval_episodes,
+                           start_seed=EVAL_SEED_START, workers=max(1, cfg.n_workers))
+            entry = {"steps": int(self.num_timesteps), "save_rate": res.save_rate,
+                     "ci_low": res.ci_low, "ci_high": res.ci_high,
+                     "outcomes": res.outcomes, "ball_rmse_m": res.ball_rmse_m}
+            self.history.append(entry)
+            self.logger.record("eval/save_rate", res.save_rate)
+            self.logger.record("eval/mean_steps", res.mean_steps)
+            (out / "evaluations.json").write_text(json.dumps(self.history, indent=1))
+            if res.save_rate > self.best:
+                self.best = res.save_rate
+                self.model.save(out / "best_model.zip")
+                policy.meta.update(_meta(cfg, entry))
+                policy.save(out / "best_policy.npz")
+            return entry
+
+    timer = RolloutTimer()
+    callbacks: list[Any] = [timer]
+    if cfg.checkpoint_every:
+        callbacks.append(CheckpointCallback(max(1, cfg.checkpoint_every // cfg.n_envs),
+                                            str(out / "checkpoints"), name_prefix="model"))
+    evaluator = None
+    if cfg.eval_every and cfg.env_id == GOALKEEPER_ID:
+        evaluator = SaveRateEval()
+        callbacks.append(evaluator)
+    if cfg.env_id == MATCH_ID and cfg.opponent == "self":
+        from .multiagent import SelfPlayCallback
+
+        callbacks.append(SelfPlayCallback(update_every=cfg.self_play_every))
+    return callbacks, timer, evaluator
+
+
+def _meta(cfg: TrainConfig, evaluation: dict[str, Any] | None = None) -> dict[str, Any]:
+    meta = {"env_id": cfg.env_id, "env_kwargs": cfg.env_kwargs, "algorithm": cfg.algorithm,
+            "total_steps": cfg.total_steps, "seed": cfg.seed}
+    if evaluation is not None:
+        meta["evaluation"] = evaluation
+    return meta
+
+
+# ------------------------------------------------------------------------------------------
+# Training
+# ------------------------------------------------------------------------------------------
+
+def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
+          command: list[str] | None = None) -> dict[str, Any]:
+    """Train as ``cfg`` says (continuing from the checkpoint ``resume`` if given) and write the
+    run folder. Returns the summary."""
+    import stable_baselines3 as sb3
+    import torch
+
+    _check_env_kwargs(cfg)
+    out = Path(cfg.out)
+    out.mkdir(parents=True, exist_ok=True)
+    torch.set_num_threads(cfg.torch_threads)
+    (out / "config.json").write_text(json.dumps({
+        **cfg.to_dict(), "command": command, "resumed_from": None if resume is None
+        else os.fspath(resume), "versions": _versions()}, indent=2))
+
+    venv = make_vec_env(cfg)
+    algo = getattr(sb3, cfg.algorithm)
+    params = {**DEFAULT_HYPERPARAMS.get(cfg.algorithm, {}), **cfg.hyperparams}
+    if cfg.algorithm == "PPO":
+        # Keep one rollout at about n_steps * n_envs and a whole number of minibatches.
+        params["batch_size"] = min(params["batch_size"], params["n_steps"] * venv.num_envs)
+    if resume is not None:
+        model = algo.load(resume, env=venv, device=cfg.device,
+                          tensorboard_log=str(out / "tb"))
+        done_steps = int(model.num_timesteps)
+    else:
+        model = algo("MlpPolicy", venv, seed=cfg.seed, device=cfg.device,
+                     tensorboard_log=str(out / "tb"), verbose=0, **params)
+        done_steps = 0
+    callbacks, timer, evaluator = _callbacks(cfg, out)
+    remaining = max(0, cfg.total_steps - done_steps)
+    t0 = time.perf_counter()
+    try:
+        model.learn(remaining, callback=callbacks, progress_bar=cfg.progress_bar,
+                    reset_num_timesteps=resume is None, tb_log_name=cfg.algorithm)
+    finally:
+        venv.close()
+    seconds = time.perf_counter() - t0
+    model.save(out / "final_model.zip")
+    final_eval = None
+    if evaluator is not None:
+        if not evaluator.history or evaluator.history[-1]["steps"] != model.num_timesteps:
+            evaluator.run()
+        final_eval = evaluator.history[-1]
+    policy = None
+    try:
+        policy = NumpyPolicy.from_sb3(model, _meta(cfg, final_eval))
+        policy.save(out / "final_policy.npz")
+    except ValueError:  # a network numpy cannot copy: the .zip is the model
+        pass
+    summary = {
+        "steps": int(model.num_timesteps), "trained_steps": remaining,
+        "seconds": seconds, "steps_per_s": remaining / seconds if seconds > 0 else None,
+        "rollout_steps_per_s": timer.rate,
+        "last_evaluation": final_eval,
+        "best_evaluation": max(evaluator.history, key=lambda e: e["save_rate"])
+        if evaluator and evaluator.history else None,
+        "files": sorted(p.name for p in out.iterdir()),
+    }
+    (out / "summary.json").write_text(json.dumps(summary, indent=2))
+    return summary
+
+
+def _versions() -> dict[str, str]:
+    import gymnasium
+    import stable_baselines3
+    import torch
+
+    return {"python": platform.python_version(), "stable_baselines3": stable_baselines3.__version__,
+            "torch": torch.__version__, "gymnasium": gymnasium.__version__,
+            "numpy": np.__version__}
+
+
+# ------------------------------------------------------------------------------------------
+# Command line
+# ------------------------------------------------------------------------------------------
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(
+        prog="soccer-env train", description="Train a policy with stable-baselines3.",
+        epilog="example: soccer-env train --obs-mode perceived --perception ssl-2012 "
+               "--steps 2000000 --out runs/keeper")
+    p.add_argument("--env", default=None, help=f"environment id: {GOALKEEPER_ID} "
+                   f"(default) or {MATCH_ID}")
+    add_env_arguments(p)
+    p.add_argument("--algo", default=None, type=str.upper, choices=SB3_ALGORITHMS,
+                   help="algorithm (default PPO)")
+    p.add_argument("--steps", type=int, default=None, help="total environment steps "
+                   "(default 1,000,000)")
+    p.add_argument("--n-envs", type=int, default=None, help="parallel environments (16)")
+    p.add_argument("--workers", type=int, default=None,
+                   help="subprocesses stepping them (2; 0 runs them in this process)")
+    p.add_argument("--seed", type=int, default=None)
+    p.add_argument("--out", default=None, help="run folder (default runs/keeper)")
+    p.add_argument("--hp", action="append", default=[], metavar="KEY=VALUE",
+                   help="algorithm hyperparameter (JSON value), repeatable, e.g. "
+                        "--hp learning_rate=1e-4 --hp policy_kwargs='{\"net_arch\": [64, 64]}'")
+    p.add_argument("--checkpoint-every", type=int, default=None)
+    p.add_argument("--eval-every", type=int, default=None)
+    p.add_argument("--eval-episodes", type=int, default=None)
+    p.add_argument("--eval-obs-mode", choices=("truth", "raw", "perceived"), default=None,
+                   help="select the best model under this observation mode instead")
+    p.add_argument("--eval-perception", default=None)
+    p.add_argument("--learner", choices=("blue", "yellow", "both"), default=None,
+                   help="match: learning team")
+    p.add_argument("--opponent", default=None,
+                   help="match: scripted (default), idle, self (frozen copy), or a model path")
+    p.add_argument("--resume", default=None, metavar="CHECKPOINT",
+                   help="continue from a checkpoint .zip; the rest of the configuration comes "
+                        "from its run's config.json unless given here")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    args = p.parse_args(argv)
+
+    base: dict[str, Any] = {}
+    if args.resume:
+        ckpt = Path(args.resume)
+        if not ckpt.is_file():
+            p.error(f"--resume: no checkpoint at {ckpt}")
+        run = ckpt.parent.parent if ckpt.parent.name == "checkpoints" else ckpt.parent
+        if not (run / "config.json").exists():
+            p.error(f"--resume: no config.json in {run}")
+        saved = json.loads((run / "config.json").read_text())
+        base = {k: v for k, v in saved.items()
+                if k not in ("command", "resumed_from", "versions")}
+        base.setdefault("out", str(run))
+    try:
+        env_kwargs = env_kwargs_from_args(args, base.get("env_kwargs"))
+        eval_kwargs = base.get("eval_env_kwargs")
+        if args.eval_obs_mode or args.eval_perception:
+            eval_kwargs = dict(env_kwargs)
+            if args.eval_obs_mode:
+                eval_kwargs["obs_mode"] = args.eval_obs_mode
+            if args.eval_perception:
+                eval_kwargs["perception"] = args.eval_perception
+        hyper = {**base.get("hyperparams", {}), **key_values(args.hp, "--hp")}
+        fields = {**base, "env_kwargs": env_kwargs, "hyperparams": hyper,
+                  "eval_env_kwargs": eval_kwargs, "progress_bar": not args.no_progress}
+        for name, value in (("env_id", args.env), ("algorithm", args.algo),
+                            ("total_steps", args.steps), ("n_envs", args.n_envs),
+                            ("n_workers", args.workers), ("seed", args.seed),
+                            ("out", args.out), ("checkpoint_every", args.checkpoint_every),
+                            ("eval_every", args.eval_every),
+                            ("eval_episodes", args.eval_episodes), ("learner", args.learner),
+                            ("opponent", args.opponent)):
+            if value is not None:
+                fields[name] = value
+        cfg = TrainConfig.from_dict(fields)
+        _check_env_kwargs(cfg)
+    except (ValueError, TypeError) as err:
+        p.error(str(err))
+    summary = train(cfg, resume=args.resume, command=["soccer-env", "train", *(argv or [])])
+    rate = summary["rollout_steps_per_s"]
+    print(f"trained {summary['trained_steps']:,} steps in {summary['seconds'] / 60:.1f} min "
+          f"({summary['steps_per_s']:,.0f} steps/s overall, "
+          f"{rate:,.0f} steps/s collecting rollouts)" if math.isfinite(rate) else "")
+    for key in ("last_evaluation", "best_evaluation"):
+        ev = summary.get(key)
+        if ev:
+            print(f"{key.replace('_', ' ')}: save rate {100 * ev['save_rate']:.1f} % "
+                  f"({100 * ev['ci_low']:.1f}-{100 * ev['ci_high']:.1f}) at {ev['steps']:,} "
+                  "steps")
+    print(f"run folder: {cfg.out}")
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

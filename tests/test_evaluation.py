@@ -1,0 +1,90 @@
+"""Evaluation on the fixed shot suite: determinism, the statistics, the command."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from agents.evaluation import evaluate, wilson
+from soccer_env.cli import main
+
+
+def test_wilson_interval():
+    lo, hi = wilson(50, 100)
+    assert lo == pytest.approx(0.4038, abs=1e-4) and hi == pytest.approx(0.5962, abs=1e-4)
+    assert wilson(0, 10)[0] == 0.0 and wilson(10, 10)[1] == 1.0
+    lo, hi = wilson(970, 1000)
+    assert lo < 0.97 < hi and hi - lo < 0.025
+    with pytest.raises(ValueError):
+        wilson(3, 0)
+    with pytest.raises(ValueError):
+        wilson(5, 4)
+
+
+def test_evaluation_is_deterministic_and_independent_of_workers():
+    kwargs = {"obs_mode": "perceived", "perception": "ssl-2012"}
+    a = evaluate("scripted", kwargs, episodes=12, workers=1)
+    b = evaluate("scripted", kwargs, episodes=12, workers=2)
+    assert a.saved == b.saved and a.outcomes == b.outcomes and a.steps == b.steps
+    assert a.ball_rmse_m == pytest.approx(b.ball_rmse_m, rel=1e-12)
+    assert a.episodes == 12 and a.saves == sum(a.saved)
+    assert a.ci_low <= a.save_rate <= a.ci_high
+    assert sum(a.outcomes.values()) == 12
+
+
+def test_scripted_keeper_beats_standing_still_on_the_same_shots():
+    scripted = evaluate("scripted", episodes=40)
+    idle = evaluate("idle", episodes=40)
+    assert scripted.save_rate >= 0.9
+    assert scripted.save_rate - idle.save_rate >= 0.25
+    assert scripted.ball_rmse_m == 0.0  # truth observations: no estimation error
+
+
+def test_estimator_time_and_error_are_measured():
+    res = evaluate("scripted", {"obs_mode": "perceived", "perception": "realistic"},
+                   episodes=5, measure_estimator=True)
+    assert res.estimator_us_per_step > 0
+    assert 0 < res.ball_rmse_m < 0.5
+    truth = evaluate("scripted", episodes=3, measure_estimator=True)
+    assert truth.estimator_us_per_step == 0.0
+
+
+def test_a_callable_policy_runs_in_process():
+    res = evaluate(lambda obs: np.zeros(6, np.float32), episodes=3)
+    assert res.episodes == 3 and res.policy == "<lambda>"
+
+
+def test_bad_arguments():
+    with pytest.raises(ValueError, match="episodes"):
+        evaluate("scripted", episodes=0)
+    with pytest.raises(ValueError, match="workers"):
+        evaluate("scripted", episodes=2, workers=0)
+    with pytest.raises(TypeError, match="unknown"):
+        evaluate("scripted", {"obs_mod": "raw"}, episodes=1)
+
+
+def test_eval_command_writes_result_and_video(tmp_path, capsys):
+    out = tmp_path / "ev"
+    assert main(["eval", "--policy", "scripted", "--obs-mode", "perceived", "--perception",
+                 "ssl-2012", "--episodes", "6", "--workers", "1", "--video", "1", "--out",
+                 str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "save rate" in text
+    record = json.loads((out / "eval.json").read_text())
+    assert record["episodes"] == 6 and len(record["saved"]) == 6
+    assert math.isfinite(record["ball_rmse_m"])
+    video = out / record["video"].split("/")[-1]
+    assert video.exists() and video.stat().st_size > 1000
+
+
+def test_eval_command_rejects_bad_input(tmp_path, capsys):
+    with pytest.raises(SystemExit):
+        main(["eval", "--episodes", "0"])
+    with pytest.raises(SystemExit):
+        main(["eval", "--policy", "nowhere.zip", "--out", str(tmp_path)])
+    assert "no model at" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main(["eval", "--perception", "foggy", "--out", str(tmp_path)])

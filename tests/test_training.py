@@ -1,0 +1,92 @@
+"""Training end to end: ``soccer-env train`` writes a usable run, resumes, refuses bad input."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+pytest.importorskip("stable_baselines3")
+
+from agents.policies import NumpyPolicy, make_policy  # noqa: E402
+from agents.training import TrainConfig  # noqa: E402
+from soccer_env.cli import main  # noqa: E402
+
+pytestmark = pytest.mark.slow
+
+
+def test_train_evaluate_checkpoint_and_resume(tmp_path, capsys):
+    run = tmp_path / "run"
+    args = ["train", "--obs-mode", "perceived", "--perception", "ssl-2012", "--steps", "2048",
+            "--n-envs", "4", "--workers", "2", "--hp", "n_steps=128", "--eval-every", "1024",
+            "--eval-episodes", "4", "--checkpoint-every", "1024", "--out", str(run),
+            "--no-progress", "--seed", "3"]
+    assert main(args) == 0
+    assert "steps/s collecting rollouts" in capsys.readouterr().out
+    config = json.loads((run / "config.json").read_text())
+    assert config["env_kwargs"] == {"obs_mode": "perceived", "perception": "ssl-2012"}
+    assert config["hyperparams"] == {"n_steps": 128} and config["seed"] == 3
+    assert "stable_baselines3" in config["versions"]
+    summary = json.loads((run / "summary.json").read_text())
+    assert summary["steps"] == 2048 and summary["rollout_steps_per_s"] > 0
+    evaluations = json.loads((run / "evaluations.json").read_text())
+    assert [e["steps"] for e in evaluations] == [1024, 2048]
+    assert all(0.0 <= e["save_rate"] <= 1.0 for e in evaluations)
+    for name in ("final_model.zip", "final_policy.npz", "best_model.zip", "best_policy.npz"):
+        assert (run / name).is_file(), name
+    assert any((run / "tb").rglob("events.out.tfevents.*"))
+    checkpoints = sorted((run / "checkpoints").glob("model_*_steps.zip"))
+    assert [c.name for c in checkpoints] == ["model_1024_steps.zip", "model_2048_steps.zip"]
+    policy = NumpyPolicy.load(run / "final_policy.npz")
+    assert policy.meta["env_kwargs"]["perception"] == "ssl-2012"
+    assert policy.meta["evaluation"]["steps"] == 2048
+
+    # Resume from the first checkpoint: the step count continues, the configuration is the
+    # run's own.
+    assert main(["train", "--resume", str(checkpoints[0]), "--steps", "3072",
+                 "--no-progress"]) == 0
+    summary = json.loads((run / "summary.json").read_text())
+    assert summary["steps"] == 3072 and summary["trained_steps"] == 2048
+    resumed = json.loads((run / "config.json").read_text())
+    assert resumed["resumed_from"] == str(checkpoints[0])
+    assert resumed["env_kwargs"] == config["env_kwargs"]
+
+    import gymnasium as gym
+
+    env = gym.make("soccer_env/Goalkeeper-v0")
+    act = make_policy(run, env)(np.zeros(19, np.float32))
+    assert act.shape == (6,) and np.all(np.abs(act) <= 1)
+
+
+def test_off_policy_algorithm_in_process(tmp_path):
+    assert main(["train", "--algo", "sac", "--steps", "300", "--n-envs", "1", "--workers",
+                 "0", "--hp", "learning_starts=100", "--hp", "buffer_size=1000",
+                 "--eval-every", "0", "--checkpoint-every", "0", "--out",
+                 str(tmp_path / "sac"), "--no-progress"]) == 0
+    assert NumpyPolicy.load(tmp_path / "sac" / "final_policy.npz").output == "tanh"
+
+
+@pytest.mark.parametrize("args,message", [
+    (["--hp", "learning_rat=0.1"], "unknown PPO hyperparameter"),
+    (["--env-kwarg", "obs_mod=raw"], "obs_mod"),
+    (["--perception", "foggy"], "foggy"),
+    (["--steps", "0"], "total_steps must be an integer >= 1"),
+    (["--env", "soccer_env/Tennis-v0"], "env_id must be"),
+    (["--hp", "n_steps"], "--hp must be key=value"),
+    (["--resume", "nowhere.zip"], "no checkpoint"),
+])
+def test_bad_input_is_refused_before_training(tmp_path, capsys, args, message):
+    with pytest.raises(SystemExit):
+        main(["train", "--out", str(tmp_path / "x"), *args])
+    assert message in capsys.readouterr().err
+    assert not (tmp_path / "x").exists()
+
+
+def test_config_round_trip():
+    cfg = TrainConfig(env_kwargs={"obs_mode": "raw"}, hyperparams={"gamma": 0.98})
+    assert TrainConfig.from_dict(cfg.to_dict()) == cfg
+    with pytest.raises(ValueError, match="unknown training config key"):
+        TrainConfig.from_dict({"steps": 5})
+    with pytest.raises(ValueError, match="algorithm must be one of"):
+        TrainConfig(algorithm="DQN")
