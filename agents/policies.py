@@ -8,8 +8,9 @@ evaluation workers can rebuild them in their own processes (see :func:`make_poli
 * ``"idle"``: a keeper that stands still (all-zero actions);
 * ``"baseline:NAME"``: a policy shipped in the package (:data:`agents.baselines.BASELINES`);
 * a path to a ``.npz`` written by :meth:`NumpyPolicy.save`;
-* a path to a stable-baselines3 ``.zip`` (PPO, A2C, SAC, TD3, DDPG), or a training run's
-  folder (its ``final_model.zip``).
+* a path to a stable-baselines3 ``.zip`` (PPO, A2C, SAC, TD3, DDPG; with the ``VecNormalize``
+  statistics saved beside it, see :func:`vecnormalize_path`), or a training run's folder
+  (its ``final_policy.npz``, else ``final_model.zip``).
 
 Trained networks are evaluated through :class:`NumpyPolicy`, a numpy copy of the actor's
 deterministic path: a stable-baselines3 ``predict`` costs about 0.3 ms per call on a 2-core
@@ -29,7 +30,7 @@ from typing import Any, Protocol
 import numpy as np
 
 __all__ = ["Policy", "NumpyPolicy", "SB3Policy", "IdlePolicy", "make_policy", "load_sb3",
-           "SB3_ALGORITHMS", "POLICY_NAMES"]
+           "vecnormalize_path", "SB3_ALGORITHMS", "POLICY_NAMES"]
 
 #: Algorithms whose saved models :func:`load_sb3` opens, in the order it tries them.
 SB3_ALGORITHMS = ("PPO", "SAC", "TD3", "A2C", "DDPG")
@@ -150,23 +151,22 @@ class NumpyPolicy:
         A2C, SAC, TD3, DDPG on a flat Box observation), with the observation statistics of
         ``vec_normalize`` (a ``VecNormalize`` it was trained behind) if given. Raises
         ``ValueError`` for anything else (image or dict observations, custom networks,
-        gSDE)."""
+        squashed actor-critic policies). gSDE exploration does not change the deterministic
+        action, so models trained with it copy too."""
         from torch import nn
 
         policy = model.policy
         low, high = model.action_space.low, model.action_space.high
         name = type(model).__name__
         if hasattr(policy, "mlp_extractor"):  # PPO, A2C
-            if getattr(policy, "squash_output", False) or getattr(policy, "use_sde", False):
-                raise ValueError("gSDE / squashed actor-critic policies are not supported")
+            if getattr(policy, "squash_output", False):
+                raise ValueError("squashed actor-critic policies are not supported")
             _check_flatten(policy.pi_features_extractor if hasattr(
                 policy, "pi_features_extractor") else policy.features_extractor)
             mods = [*policy.mlp_extractor.policy_net, policy.action_net]
             output = "clip"
         elif hasattr(policy, "actor") and hasattr(policy.actor, "latent_pi"):  # SAC
             actor = policy.actor
-            if actor.use_sde:
-                raise ValueError("gSDE actors are not supported")
             _check_flatten(actor.features_extractor)
             mu = actor.mu if isinstance(actor.mu, nn.Sequential) else [actor.mu]
             mods = [*actor.latent_pi, *mu]
@@ -284,6 +284,33 @@ def load_sb3(path: str | os.PathLike, algorithm: str | None = None, **kwargs: An
     raise ValueError(f"{path} is not a model of any of {list(SB3_ALGORITHMS)} ({errors})")
 
 
+def vecnormalize_path(model_path: str | os.PathLike) -> Path:
+    """Where a training run keeps the ``VecNormalize`` statistics of a saved model:
+    ``final_model.zip`` -> ``final_vecnormalize.pkl`` (also ``best_``), and
+    ``model_<N>_steps.zip`` -> ``model_vecnormalize_<N>_steps.pkl`` (checkpoints, as
+    stable-baselines3's ``CheckpointCallback`` names them)."""
+    path = Path(model_path)
+    stem = path.stem
+    if stem.endswith("_model"):
+        name = stem[: -len("model")] + "vecnormalize"
+    elif stem.startswith("model_") and stem.endswith("_steps"):
+        name = "model_vecnormalize_" + stem[len("model_"):]
+    else:
+        name = stem + "_vecnormalize"
+    return path.with_name(name + ".pkl")
+
+
+def _load_vecnormalize(model_path: Path) -> Any:
+    """The ``VecNormalize`` saved beside a model, if any (without its environments)."""
+    import pickle
+
+    stats = vecnormalize_path(model_path)
+    if not stats.exists():
+        return None
+    with open(stats, "rb") as fh:
+        return pickle.load(fh)
+
+
 def make_policy(ref: str | os.PathLike | Callable, env: Any) -> Policy:
     """Resolve a policy reference (see the module docstring) for the environment ``env``
     (a Goalkeeper-v0, possibly wrapped). A callable is returned as it is."""
@@ -301,15 +328,21 @@ def make_policy(ref: str | os.PathLike | Callable, env: Any) -> Policy:
 
         return load_baseline(ref.split(":", 1)[1])
     path = Path(ref)
-    if path.is_dir():
-        path = path / "final_model.zip"
+    if path.is_dir():  # a training run: its numpy policy, else its model
+        path = path / ("final_policy.npz" if (path / "final_policy.npz").exists()
+                       else "final_model.zip")
     if path.suffix == ".npz":
         policy: Any = NumpyPolicy.load(path)
     elif path.suffix == ".zip":
         model = load_sb3(path)
+        norm = _load_vecnormalize(path)
         try:
-            policy = NumpyPolicy.from_sb3(model)
+            policy = NumpyPolicy.from_sb3(model, vec_normalize=norm)
         except ValueError:
+            if norm is not None:
+                raise ValueError(f"{path} was trained behind VecNormalize and its network "
+                                 "cannot be copied into numpy; load it with "
+                                 "stable-baselines3 and VecNormalize.load") from None
             policy = SB3Policy(model)
     else:
         raise ValueError(f"policy must be one of {list(POLICY_NAMES)}, 'baseline:NAME', a "

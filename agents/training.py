@@ -85,6 +85,9 @@ class TrainConfig:
         learner, opponent: the match's learning team (``"blue"``, ``"yellow"``, ``"both"``)
             and the other team's policy (``"scripted"``, ``"idle"``, ``"self"`` for a frozen
             copy of the learner refreshed every ``self_play_every`` steps, or a model path).
+        normalize_obs, normalize_reward: train behind stable-baselines3's ``VecNormalize``
+            (running mean and variance of the observations, scaling of the rewards); the
+            statistics are saved beside every model and carried by the numpy policies.
         torch_threads: torch's intra-op threads in the learner process.
         device: torch device.
         progress_bar: show SB3's progress bar.
@@ -106,6 +109,8 @@ class TrainConfig:
     learner: str = "blue"
     opponent: str = "scripted"
     self_play_every: int = 100_000
+    normalize_obs: bool = True
+    normalize_reward: bool = False
     torch_threads: int = 1
     device: str = "cpu"
     progress_bar: bool = True
@@ -170,8 +175,8 @@ def _goalkeeper_fn(env_kwargs: dict[str, Any]):
     return make
 
 
-def make_vec_env(cfg: TrainConfig, model: Any = None):
-    """The training VecEnv of ``cfg`` (seeded with ``cfg.seed``)."""
+def make_vec_env(cfg: TrainConfig):
+    """The training VecEnv of ``cfg`` (seeded with ``cfg.seed``), without normalisation."""
     if cfg.env_id == MATCH_ID:
         from .multiagent import make_match_vec_env
 
@@ -256,7 +261,8 @@ def _callbacks(cfg: TrainConfig, out: Path):
             return True
 
         def run(self) -> dict[str, Any]:
-            policy = NumpyPolicy.from_sb3(self.model)
+            norm = self.model.get_vec_normalize_env()
+            policy = NumpyPolicy.from_sb3(self.model, vec_normalize=norm)
             kwargs = cfg.env_kwargs if cfg.eval_env_kwargs is None else cfg.eval_env_kwargs
             res = evaluate(policy, kwargs, episodes=cfg.eval_episodes,
                            start_seed=EVAL_SEED_START, workers=max(1, cfg.n_workers))
@@ -270,6 +276,8 @@ def _callbacks(cfg: TrainConfig, out: Path):
             if res.save_rate > self.best:
                 self.best = res.save_rate
                 self.model.save(out / "best_model.zip")
+                if norm is not None:
+                    norm.save(out / "best_vecnormalize.pkl")
                 policy.meta.update(_meta(cfg, entry))
                 policy.save(out / "best_policy.npz")
             return entry
@@ -278,7 +286,8 @@ def _callbacks(cfg: TrainConfig, out: Path):
     callbacks: list[Any] = [timer]
     if cfg.checkpoint_every:
         callbacks.append(CheckpointCallback(max(1, cfg.checkpoint_every // cfg.n_envs),
-                                            str(out / "checkpoints"), name_prefix="model"))
+                                            str(out / "checkpoints"), name_prefix="model",
+                                            save_vecnormalize=True))
     evaluator = None
     if cfg.eval_every and cfg.env_id == GOALKEEPER_ID:
         evaluator = SaveRateEval()
@@ -317,12 +326,24 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
         **cfg.to_dict(), "command": command, "resumed_from": None if resume is None
         else os.fspath(resume), "versions": _versions()}, indent=2))
 
+    from stable_baselines3.common.vec_env import VecNormalize
+
+    from .policies import vecnormalize_path
+
     venv = make_vec_env(cfg)
     algo = getattr(sb3, cfg.algorithm)
     params = {**DEFAULT_HYPERPARAMS.get(cfg.algorithm, {}), **cfg.hyperparams}
     if cfg.algorithm == "PPO":
         # Keep one rollout at about n_steps * n_envs and a whole number of minibatches.
         params["batch_size"] = min(params["batch_size"], params["n_steps"] * venv.num_envs)
+    if cfg.normalize_obs or cfg.normalize_reward:
+        stats = vecnormalize_path(resume) if resume is not None else None
+        if stats is not None and stats.exists():
+            venv = VecNormalize.load(str(stats), venv)
+        else:
+            venv = VecNormalize(venv, norm_obs=cfg.normalize_obs,
+                                norm_reward=cfg.normalize_reward,
+                                gamma=params.get("gamma", 0.99))
     if resume is not None:
         model = algo.load(resume, env=venv, device=cfg.device,
                           tensorboard_log=str(out / "tb"))
@@ -341,6 +362,9 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
         venv.close()
     seconds = time.perf_counter() - t0
     model.save(out / "final_model.zip")
+    norm = model.get_vec_normalize_env()
+    if norm is not None:
+        norm.save(out / "final_vecnormalize.pkl")
     final_eval = None
     if evaluator is not None:
         if not evaluator.history or evaluator.history[-1]["steps"] != model.num_timesteps:
@@ -348,7 +372,7 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
         final_eval = evaluator.history[-1]
     policy = None
     try:
-        policy = NumpyPolicy.from_sb3(model, _meta(cfg, final_eval))
+        policy = NumpyPolicy.from_sb3(model, _meta(cfg, final_eval), norm)
         policy.save(out / "final_policy.npz")
     except ValueError:  # a network numpy cannot copy: the .zip is the model
         pass

@@ -195,6 +195,28 @@ def test_info_truth_and_reward_terms():
     assert kx < 0
 
 
+def test_intercept_shaping_points_at_the_goal_mouth():
+    """The intercept term is the keeper's distance from where the ball's line meets the goal
+    line, limited to the mouth: a ball crawling sideways towards the goal does not put that
+    point kilometres away."""
+    env = gym.make("soccer_env/Goalkeeper-v0", shaping={"intercept": 1.0},
+                   shots={"delay": (5.0, 5.0)})
+    env.reset(seed=0)
+    u = env.unwrapped
+    f, dt = u.field, u.world.control_dt
+    ky = float(u.world.snapshot().robots[0, 1])
+    # Straight at the keeper: no penalty (to within the step's motion).
+    u.world.set_ball(-2.0, ky, -3.0, 0.0)
+    *_, info = env.step(np.zeros(6, np.float32))
+    assert info["reward_terms"]["intercept"] == pytest.approx(0.0, abs=1e-3)
+    # Barely towards the goal, fast sideways: the crossing point is held at the post.
+    u.world.set_ball(-2.0, 0.0, -0.06, 2.0)
+    *_, info = env.step(np.zeros(6, np.float32))
+    mouth = 0.5 * f.goal_width + u.ball_spec.radius
+    assert info["reward_terms"]["intercept"] == pytest.approx(
+        -abs(ky - mouth) / f.goal_width * dt, rel=0.05)
+
+
 def test_rgb_array_rendering():
     env = gym.make("soccer_env/Goalkeeper-v0", render_mode="rgb_array", render_width=480)
     env.reset(seed=0)

@@ -35,7 +35,9 @@ def _observations(env, n=64):
 @pytest.mark.parametrize("algo,kwargs", [
     ("PPO", {"n_steps": 64, "batch_size": 64}),
     ("A2C", {"n_steps": 8}),
+    ("PPO", {"n_steps": 64, "batch_size": 64, "use_sde": True}),
     ("SAC", {"learning_starts": 0, "buffer_size": 1000}),
+    ("SAC", {"learning_starts": 0, "buffer_size": 1000, "use_sde": True}),
     ("TD3", {"learning_starts": 0, "buffer_size": 1000}),
 ])
 def test_numpy_copy_acts_as_the_model(env, algo, kwargs):

@@ -33,14 +33,24 @@ def test_train_evaluate_checkpoint_and_resume(tmp_path, capsys):
     evaluations = json.loads((run / "evaluations.json").read_text())
     assert [e["steps"] for e in evaluations] == [1024, 2048]
     assert all(0.0 <= e["save_rate"] <= 1.0 for e in evaluations)
-    for name in ("final_model.zip", "final_policy.npz", "best_model.zip", "best_policy.npz"):
+    for name in ("final_model.zip", "final_policy.npz", "best_model.zip", "best_policy.npz",
+                 "final_vecnormalize.pkl", "best_vecnormalize.pkl"):
         assert (run / name).is_file(), name
     assert any((run / "tb").rglob("events.out.tfevents.*"))
     checkpoints = sorted((run / "checkpoints").glob("model_*_steps.zip"))
     assert [c.name for c in checkpoints] == ["model_1024_steps.zip", "model_2048_steps.zip"]
+    assert (run / "checkpoints" / "model_vecnormalize_1024_steps.pkl").is_file()
     policy = NumpyPolicy.load(run / "final_policy.npz")
     assert policy.meta["env_kwargs"]["perception"] == "ssl-2012"
     assert policy.meta["evaluation"]["steps"] == 2048
+    assert policy.normalize is not None  # observations normalised as in training
+    # The saved model with its statistics acts as the numpy policy.
+    import gymnasium as gym
+
+    env = gym.make("soccer_env/Goalkeeper-v0")
+    obs = np.stack([env.reset(seed=s)[0] for s in range(5)])
+    np.testing.assert_allclose(make_policy(run / "final_model.zip", env)(obs), policy(obs),
+                               atol=1e-5)
 
     # Resume from the first checkpoint: the step count continues, the configuration is the
     # run's own.
@@ -52,9 +62,6 @@ def test_train_evaluate_checkpoint_and_resume(tmp_path, capsys):
     assert resumed["resumed_from"] == str(checkpoints[0])
     assert resumed["env_kwargs"] == config["env_kwargs"]
 
-    import gymnasium as gym
-
-    env = gym.make("soccer_env/Goalkeeper-v0")
     act = make_policy(run, env)(np.zeros(19, np.float32))
     assert act.shape == (6,) and np.all(np.abs(act) <= 1)
 

@@ -29,13 +29,16 @@ __all__ = ["GoalkeeperEnv", "ShotDistribution", "GOALKEEPER_SHAPING", "STOP_SPEE
 STOP_SPEED = 0.05
 #: The ball counts as cleared once it moves away from the goal faster than this [m/s].
 CLEAR_SPEED = 0.1
+#: The intercept shaping term applies while the ball moves towards the goal faster than this
+#: [m/s].
+INTERCEPT_MIN_SPEED = 0.05
 
 #: Shaping terms of the goalkeeper task (all off unless given a scale). Rates are per second
 #: and multiplied by the control step, so their sum over an episode does not depend on it.
 GOALKEEPER_SHAPING = {
     "intercept": "-|y_keeper - y_cross| / goal_width per second, y_cross where the ball's "
-                 "present line of motion crosses the goal line (0 while the ball is not "
-                 "moving towards the goal)",
+                 "present line of motion crosses the goal line, limited to the goal mouth "
+                 "(0 while the ball is not moving towards the goal faster than 0.05 m/s)",
     "ball_distance": "-distance from keeper to ball [m] per second",
     "action_cost": "-(vx^2 + vy^2 + omega^2) / 3 of the normalised action per second",
     "outside_area": "-1 per second while the keeper's centre is outside its defense area",
@@ -341,8 +344,12 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         bx, by, _, vx, vy, _ = state.ball
         if sc["intercept"]:
             err = 0.0
-            if vx < -1e-6:
+            if vx < -INTERCEPT_MIN_SPEED:
+                # Where the ball's line crosses the goal line, limited to the mouth (a ball
+                # barely moving towards the goal would put it anywhere).
+                mouth = 0.5 * f.goal_width + self.ball_spec.radius
                 y_cross = by + vy * (-f.half_length - bx) / vx
+                y_cross = max(-mouth, min(mouth, y_cross))
                 err = abs(ky - y_cross) / f.goal_width
             terms["intercept"] = -sc["intercept"] * err * dt
         else:

@@ -15,7 +15,8 @@ how many cycles it needs to lock on (present-time position error below 3 sigma =
 **Closed loop.** The scripted goalkeeper (``agents.ScriptedGoalkeeper``) on Goalkeeper-v0
 (Division B, 60 Hz) against the same seeded shots under truth, raw detections, the
 constant-velocity KF without latency compensation and the EKF, for every sensor preset: save
-rate with a Wilson 95 % interval.
+rate with a Wilson 95 % interval. This is part of the estimator ablation
+(:mod:`agents.ablation`, ``soccer-env ablation``), which runs it.
 """
 
 from __future__ import annotations
@@ -23,9 +24,7 @@ from __future__ import annotations
 import csv
 import json
 import math
-import os
 import time
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -229,76 +228,31 @@ def open_loop(episodes: int = 200, seed: int = 0) -> dict[str, Any]:
 # Closed loop
 # ------------------------------------------------------------------------------------------
 
-#: Observation configurations of the closed-loop comparison.
-CLOSED_LOOP_MODES = {
-    "truth": ("truth", None),
-    "raw": ("raw", None),
-    "kf": ("perceived", "kf"),
-    "ekf": ("perceived", "ekf"),
-}
-
-
-def _keeper_batch(args: tuple[str, str, int, int]) -> tuple[int, int, float]:
-    """Saves, shots and seconds for one configuration over seeds ``[start, stop)``."""
-    import gymnasium as gym
-
-    from agents import ScriptedGoalkeeper
-
-    preset, mode, start, stop = args
-    obs_mode, ball_filter = CLOSED_LOOP_MODES[mode]
-    perception = {"vision": preset}
-    if ball_filter:
-        perception["ball_filter"] = ball_filter
-    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode, perception=perception)
-    policy = ScriptedGoalkeeper.for_env(env)
-    saves, steps, t0 = 0, 0, time.perf_counter()
-    for seed in range(start, stop):
-        obs, _ = env.reset(seed=seed)
-        while True:
-            obs, reward, term, trunc, info = env.step(policy(obs))
-            steps += 1
-            if term or trunc:
-                break
-        saves += bool(term and info["outcome"] != "goal")
-    return saves, stop - start, time.perf_counter() - t0
-
-
-def wilson(successes: int, n: int, z: float = 1.96) -> tuple[float, float]:
-    """Wilson score interval of a binomial proportion."""
-    p = successes / n
-    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
-    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
-    return centre - half, centre + half
+#: Estimator configurations of the closed-loop comparison: names in
+#: :data:`agents.ablation.ESTIMATOR_CONFIGS` (truth, raw detections, the constant-velocity KF
+#: without latency compensation, the EKF).
+CLOSED_LOOP_MODES = ("truth", "raw", "kf", "ekf")
 
 
 def closed_loop(shots: int = 1000, workers: int | None = None,
                 presets_: tuple[str, ...] = ("ideal", "ssl-2012", "realistic", "harsh")
                 ) -> dict[str, Any]:
-    """Save rates of the scripted keeper for every preset and observation configuration."""
-    workers = workers or os.cpu_count() or 1
-    chunk = max(1, math.ceil(shots / max(1, workers)))
-    jobs, keys = [], []
-    for preset in presets_:
-        for mode in CLOSED_LOOP_MODES:
-            for start in range(0, shots, chunk):
-                jobs.append((preset, mode, start, min(shots, start + chunk)))
-                keys.append((preset, mode))
-    if workers > 1:
-        with ProcessPoolExecutor(workers) as pool:
-            outs = list(pool.map(_keeper_batch, jobs))
-    else:
-        outs = [_keeper_batch(j) for j in jobs]
+    """Save rates of the scripted keeper for every preset and observation configuration.
+
+    A subset of the estimator ablation (:func:`agents.ablation.run_ablation`): seeds
+    ``0 .. shots - 1``, a save is an episode that ends without a goal, Wilson 95 % intervals.
+    """
+    from agents.ablation import run_ablation
+
+    res = run_ablation("scripted", shots, presets_, CLOSED_LOOP_MODES, start_seed=0,
+                       workers=workers)
     table: dict[str, dict[str, Any]] = {}
-    for (preset, mode), (saves, n, secs) in zip(keys, outs):
-        row = table.setdefault(preset, {}).setdefault(mode, {"saves": 0, "shots": 0,
-                                                             "seconds": 0.0})
-        row["saves"] += saves
-        row["shots"] += n
-        row["seconds"] += secs
-    for preset in table:
-        for row in table[preset].values():
-            lo, hi = wilson(row["saves"], row["shots"])
-            row.update(save_rate=row["saves"] / row["shots"], ci_low=lo, ci_high=hi)
+    for preset in res.presets:
+        for mode in res.configs:
+            r = res.cell(preset, mode)
+            table.setdefault(preset, {})[mode] = {
+                "saves": r.saves, "shots": r.episodes, "seconds": r.seconds,
+                "save_rate": r.save_rate, "ci_low": r.ci_low, "ci_high": r.ci_high}
     return {"shots": shots, "presets": table}
 
 
