@@ -44,6 +44,7 @@ from typing import Any
 from soccer_env.perception import BALL_FILTERS, OBS_MODES, PerceptionConfig
 from soccer_env.vision import VISION
 
+from .cli_args import key_values
 from .evaluation import GOALKEEPER_ID, EvalResult, _mp_context, evaluate, wilson
 
 __all__ = ["EstimatorConfig", "ESTIMATOR_CONFIGS", "register_config", "AblationResult",
@@ -227,9 +228,11 @@ class AblationResult:
                 str(self.workers)]
         if self.chunk_size != DEFAULT_CHUNK_SIZE:
             args += ["--chunk-size", str(self.chunk_size)]
+        for key, value in self.env_kwargs.items():
+            args += ["--env-kwarg", f"{key}={json.dumps(value)}"]
         text = shlex.join(args)
-        if self.env_id != GOALKEEPER_ID or self.env_kwargs:
-            text += f"  (API only: env_id={self.env_id!r}, env_kwargs={self.env_kwargs!r})"
+        if self.env_id != GOALKEEPER_ID:
+            text += f"  (API only: env_id={self.env_id!r})"
         return text
 
     def rows(self) -> list[dict[str, Any]]:
@@ -549,6 +552,10 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--start-seed", type=int, default=0, help="seed of the first shot")
     p.add_argument("--chunk-size", type=int, default=DEFAULT_CHUNK_SIZE,
                    help=f"consecutive seeds per job (default: {DEFAULT_CHUNK_SIZE})")
+    p.add_argument("--env-kwarg", action="append", default=[], metavar="KEY=VALUE",
+                   help="environment keyword argument shared by all cells (value parsed as "
+                        "JSON), repeatable, e.g. control_dt=0.04 or field=ssl-2012; obs_mode "
+                        "and perception belong to the cells")
     p.add_argument("--quiet", action="store_true", help="no progress on stderr")
     return p
 
@@ -565,8 +572,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         presets = parse_names(args.presets, VISION, "sensor preset(s)")
         configs = parse_names(args.configs, ESTIMATOR_CONFIGS, "estimator configuration(s)")
+        env_kwargs = key_values(args.env_kwarg, "--env-kwarg")
     except ValueError as exc:
         p.error(str(exc))
+    cell_keys = sorted({"obs_mode", "perception"} & set(env_kwargs))
+    if cell_keys:
+        p.error(f"--env-kwarg: {cell_keys} are set by each cell's configuration and preset")
     t0 = time.perf_counter()
 
     def progress(done: int, total: int) -> None:
@@ -576,8 +587,9 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     try:
         res = run_ablation(args.policy, args.episodes, presets, configs, args.start_seed,
-                           args.workers, args.chunk_size, progress=progress)
-    except (ValueError, FileNotFoundError) as exc:
+                           args.workers, args.chunk_size, env_kwargs=env_kwargs,
+                           progress=progress)
+    except (ValueError, TypeError, FileNotFoundError) as exc:
         p.error(str(exc))
     files = write_outputs(res, args.out)
     print(res.markdown())

@@ -255,7 +255,7 @@ def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(
         prog="soccer-env eval",
         description="Evaluate a keeper policy on Goalkeeper-v0's fixed shot suite (seeds "
-                    "0..N-1): save rate with a Wilson 95 %% interval, outcomes, estimation "
+                    "0..N-1): save rate with a Wilson 95 % interval, outcomes, estimation "
                     "error, and a video of the first episodes.",
         epilog="example: soccer-env eval --policy baseline:keeper-ppo-ssl2012 --obs-mode "
                "perceived --perception ssl-2012")

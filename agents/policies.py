@@ -9,8 +9,9 @@ evaluation workers can rebuild them in their own processes (see :func:`make_poli
 * ``"baseline:NAME"``: a policy shipped in the package (:data:`agents.baselines.BASELINES`);
 * a path to a ``.npz`` written by :meth:`NumpyPolicy.save`;
 * a path to a stable-baselines3 ``.zip`` (PPO, A2C, SAC, TD3, DDPG; with the ``VecNormalize``
-  statistics saved beside it, see :func:`vecnormalize_path`), or a training run's folder
-  (its ``final_policy.npz``, else ``final_model.zip``).
+  statistics saved beside it, see :func:`vecnormalize_path`, and the action map recorded in
+  its run's ``config.json``), or a training run's folder (its ``final_policy.npz``, else
+  ``final_model.zip``).
 
 Trained networks are evaluated through :class:`NumpyPolicy`, a numpy copy of the actor's
 deterministic path: a stable-baselines3 ``predict`` costs about 0.3 ms per call on a 2-core
@@ -81,15 +82,29 @@ class NumpyPolicy:
         normalize: ``(mean, var, clip, epsilon)`` of a policy trained behind
             stable-baselines3's ``VecNormalize``: observations become
             ``clip((obs - mean) / sqrt(var + epsilon), -clip, clip)`` first.
+        action_map: ``None`` (the network's output is the environment's action) or
+            ``{"kind": ..., "params": {...}}`` for a keeper trained through one of the
+            wrappers of :mod:`agents.wrappers`: its outputs become the native command with
+            :func:`~agents.wrappers.action_to_command`, from the pose in the observation.
 
     The policy owns copies of every array: it does not follow the model it was copied from.
     """
 
     def __init__(self, layers: list[tuple], output: str, low: np.ndarray, high: np.ndarray,
                  meta: dict[str, Any] | None = None,
-                 normalize: tuple[np.ndarray, np.ndarray, float, float] | None = None) -> None:
+                 normalize: tuple[np.ndarray, np.ndarray, float, float] | None = None,
+                 action_map: dict[str, Any] | None = None) -> None:
+        from .wrappers import ACTION_MAPS
+
         if output not in ("clip", "tanh", "scale"):
             raise ValueError(f"output must be 'clip', 'tanh' or 'scale', got {output!r}")
+        if action_map is not None and (action_map.get("kind") not in ACTION_MAPS):
+            raise ValueError(f"action_map kind must be one of {list(ACTION_MAPS)}, got "
+                             f"{action_map!r}")
+        if action_map is not None and action_map["kind"] == "native":
+            action_map = None
+        self.action_map = None if action_map is None else {
+            "kind": action_map["kind"], "params": dict(action_map.get("params") or {})}
         self.layers = [(k, *(np.array(a, dtype=np.float32) for a in rest))
                        for k, *rest in layers]
         self.output = output
@@ -99,7 +114,9 @@ class NumpyPolicy:
         self.normalize = None
         if normalize is not None:
             mean, var, clip, eps = normalize
-            self.normalize = (np.array(mean, dtype=np.float32), np.array(var, dtype=np.float32),
+            # Float64, as VecNormalize keeps them: an entry that hardly varies in training
+            # (variance near 0) would turn float32 rounding of its mean into large inputs.
+            self.normalize = (np.array(mean, dtype=np.float64), np.array(var, dtype=np.float64),
                               float(clip), float(eps))
         linear = [layer for layer in self.layers if layer[0] == "linear"]
         if not linear:
@@ -108,24 +125,38 @@ class NumpyPolicy:
         self.action_size = int(linear[-1][1].shape[0])
         if self.low.shape != (self.action_size,) or self.high.shape != (self.action_size,):
             raise ValueError(f"low and high must have shape ({self.action_size},)")
+        if self.action_map is not None and \
+                self.action_size != ACTION_MAPS[self.action_map["kind"]]:
+            raise ValueError(f"a {self.action_map['kind']!r} policy has "
+                             f"{ACTION_MAPS[self.action_map['kind']]} outputs, got "
+                             f"{self.action_size}")
         if self.normalize is not None:
             mean, var, clip, eps = self.normalize
             if mean.shape != (self.obs_size,) or var.shape != (self.obs_size,):
                 raise ValueError(f"normalize mean and var must have shape ({self.obs_size},)")
-            self._shift, self._scale = mean, (1.0 / np.sqrt(var.astype(np.float64) + eps)
-                                              ).astype(np.float32)
+            self._shift, self._scale = mean, 1.0 / np.sqrt(var + eps)
         # Transposed weights for row-vector products.
         self._ops = [(k, rest[0].T.copy(), rest[1]) if k == "linear" else (k, *rest)
                      for k, *rest in self.layers]
 
     def __call__(self, obs: np.ndarray) -> np.ndarray:
+        action = self._network(obs)
+        if self.action_map is not None:
+            from .wrappers import action_to_command
+
+            return action_to_command(self.action_map["kind"], obs, action,
+                                     self.action_map["params"] or None)
+        return action
+
+    def _network(self, obs: np.ndarray) -> np.ndarray:
+        """The network's action (before any change of frame)."""
         x = np.asarray(obs, dtype=np.float32)
         if x.shape[-1:] != (self.obs_size,) or x.ndim > 2:
             raise ValueError(f"obs must have shape ({self.obs_size},) or (n, {self.obs_size}), "
                              f"got {x.shape}")
         if self.normalize is not None:
             clip = self.normalize[2]
-            x = np.clip((x - self._shift) * self._scale, -clip, clip)
+            x = np.clip((x - self._shift) * self._scale, -clip, clip).astype(np.float32)
         for op in self._ops:
             kind = op[0]
             if kind == "linear":
@@ -146,10 +177,12 @@ class NumpyPolicy:
 
     @classmethod
     def from_sb3(cls, model: Any, meta: dict[str, Any] | None = None,
-                 vec_normalize: Any = None) -> NumpyPolicy:
+                 vec_normalize: Any = None, action_map: dict[str, Any] | None = None
+                 ) -> NumpyPolicy:
         """Copy the deterministic actor of a stable-baselines3 model (MLP policies of PPO,
         A2C, SAC, TD3, DDPG on a flat Box observation), with the observation statistics of
-        ``vec_normalize`` (a ``VecNormalize`` it was trained behind) if given. Raises
+        ``vec_normalize`` (a ``VecNormalize`` it was trained behind) if given, and the
+        ``action_map`` it was trained through (see :mod:`agents.wrappers`). Raises
         ``ValueError`` for anything else (image or dict observations, custom networks,
         squashed actor-critic policies). gSDE exploration does not change the deterministic
         action, so models trained with it copy too."""
@@ -199,7 +232,8 @@ class NumpyPolicy:
         if vec_normalize is not None and vec_normalize.norm_obs:
             rms = vec_normalize.obs_rms
             normalize = (rms.mean, rms.var, vec_normalize.clip_obs, vec_normalize.epsilon)
-        return cls(layers, output, low, high, {"algorithm": name, **(meta or {})}, normalize)
+        return cls(layers, output, low, high, {"algorithm": name, **(meta or {})}, normalize,
+                   action_map)
 
     def save(self, path: str | os.PathLike) -> Path:
         """Write the weights and description to ``path`` (``.npz``)."""
@@ -212,7 +246,8 @@ class NumpyPolicy:
                 spec.append(["linear"])
             else:
                 spec.append([kind, *(float(v) for v in rest)])
-        header: dict[str, Any] = {"layers": spec, "output": self.output, "meta": self.meta}
+        header: dict[str, Any] = {"layers": spec, "output": self.output, "meta": self.meta,
+                                  "action_map": self.action_map}
         if self.normalize is not None:
             mean, var, clip, eps = self.normalize
             arrays["obs_mean"], arrays["obs_var"] = mean, var
@@ -235,7 +270,7 @@ class NumpyPolicy:
                 norm = header["normalize"]
                 normalize = (data["obs_mean"], data["obs_var"], norm["clip"], norm["epsilon"])
             return cls(layers, header["output"], data["low"], data["high"], header["meta"],
-                       normalize)
+                       normalize, header.get("action_map"))
 
 
 def _check_flatten(extractor: Any) -> None:
@@ -311,6 +346,16 @@ def _load_vecnormalize(model_path: Path) -> Any:
         return pickle.load(fh)
 
 
+def _run_action_map(model_path: Path) -> dict[str, Any] | None:
+    """The learner's action map recorded in the ``config.json`` of the training run that
+    saved ``model_path`` (the model's folder or, for checkpoints, its parent)."""
+    for folder in (model_path.parent, model_path.parent.parent):
+        config = folder / "config.json"
+        if config.is_file():
+            return json.loads(config.read_text()).get("action_map")
+    return None
+
+
 def make_policy(ref: str | os.PathLike | Callable, env: Any) -> Policy:
     """Resolve a policy reference (see the module docstring) for the environment ``env``
     (a Goalkeeper-v0, possibly wrapped). A callable is returned as it is."""
@@ -336,13 +381,15 @@ def make_policy(ref: str | os.PathLike | Callable, env: Any) -> Policy:
     elif path.suffix == ".zip":
         model = load_sb3(path)
         norm = _load_vecnormalize(path)
+        action_map = _run_action_map(path)
         try:
-            policy = NumpyPolicy.from_sb3(model, vec_normalize=norm)
+            policy = NumpyPolicy.from_sb3(model, vec_normalize=norm, action_map=action_map)
         except ValueError:
-            if norm is not None:
-                raise ValueError(f"{path} was trained behind VecNormalize and its network "
-                                 "cannot be copied into numpy; load it with "
-                                 "stable-baselines3 and VecNormalize.load") from None
+            if norm is not None or action_map is not None:
+                raise ValueError(f"{path} was trained behind VecNormalize or an action map "
+                                 "and its network cannot be copied into numpy; load it with "
+                                 "stable-baselines3, VecNormalize.load and agents.wrappers"
+                                 ) from None
             policy = SB3Policy(model)
     else:
         raise ValueError(f"policy must be one of {list(POLICY_NAMES)}, 'baseline:NAME', a "

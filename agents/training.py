@@ -2,15 +2,21 @@
 
 A run is described by a :class:`TrainConfig` and writes into its folder:
 
-* ``config.json``: the full configuration, the command line and library versions;
+* ``config.json``: the full configuration, the learner's action map (see
+  :mod:`agents.wrappers`), the command line and library versions;
 * ``checkpoints/model_<steps>_steps.zip`` every ``checkpoint_every`` steps (resume from any);
 * ``tb/``: TensorBoard logs (SB3's training statistics, episode returns and success rate,
   the periodic save-rate evaluation, and the rollout collection rate);
 * ``evaluations.json``: the periodic evaluations; ``best_model.zip`` / ``best_policy.npz``: the
   best of them;
 * ``final_model.zip`` and ``final_policy.npz`` (the numpy copy of the actor, see
-  :class:`~agents.policies.NumpyPolicy`), and ``summary.json`` (steps, wall time, rollout
-  and overall steps per second, last and best evaluation).
+  :class:`~agents.policies.NumpyPolicy`), the ``VecNormalize`` statistics beside every model
+  (``*_vecnormalize.pkl``), and ``summary.json`` (steps, wall time, rollout and overall steps
+  per second, last and best evaluation).
+
+``resume`` continues from a checkpoint with this configuration's environment and
+hyperparameters (the network is the checkpoint's): the same run, or a fine-tuning, e.g. a
+keeper trained on true observations continued on perceived ones.
 
 Goalkeeper-v0 runs in :class:`~agents.vec_env.WorkerVecEnv` (``n_envs`` environments over
 ``n_workers`` processes) or, with ``n_workers=0``, in-process. The match
@@ -43,6 +49,7 @@ import numpy as np
 from .cli_args import add_env_arguments, env_kwargs_from_args, key_values
 from .evaluation import GOALKEEPER_ID, evaluate
 from .policies import SB3_ALGORITHMS, NumpyPolicy
+from .wrappers import ACTION_MAPS, wrap_actions
 
 __all__ = ["TrainConfig", "train", "main", "EVAL_SEED_START", "MATCH_ID", "DEFAULT_HYPERPARAMS"]
 
@@ -88,6 +95,11 @@ class TrainConfig:
         normalize_obs, normalize_reward: train behind stable-baselines3's ``VecNormalize``
             (running mean and variance of the observations, scaling of the rewards); the
             statistics are saved beside every model and carried by the numpy policies.
+        actions: the keeper learner's action space (:data:`~agents.wrappers.ACTION_MAPS`):
+            ``"native"`` (the robot's 6-number command), ``"velocity"`` (field-frame velocity
+            and turn rate), ``"target"`` (where to stand, reached by a motion controller) or
+            ``"guard"`` (where to stand on the guard line);
+            the saved numpy policy includes the map, so it acts on the plain environment.
         torch_threads: torch's intra-op threads in the learner process.
         device: torch device.
         progress_bar: show SB3's progress bar.
@@ -111,6 +123,7 @@ class TrainConfig:
     self_play_every: int = 100_000
     normalize_obs: bool = True
     normalize_reward: bool = False
+    actions: str = "native"
     torch_threads: int = 1
     device: str = "cpu"
     progress_bar: bool = True
@@ -134,6 +147,11 @@ class TrainConfig:
         if unknown:
             raise ValueError(f"unknown {self.algorithm} hyperparameter(s) {unknown}; allowed: "
                              f"{sorted(known)}")
+        if self.actions not in ACTION_MAPS:
+            raise ValueError(f"actions must be one of {list(ACTION_MAPS)}, got "
+                             f"{self.actions!r}")
+        if self.actions != "native" and self.env_id != GOALKEEPER_ID:
+            raise ValueError(f"actions {self.actions!r} is for {GOALKEEPER_ID} only")
         if self.learner not in ("blue", "yellow", "both"):
             raise ValueError(f"learner must be 'blue', 'yellow' or 'both', got "
                              f"{self.learner!r}")
@@ -163,14 +181,14 @@ def _algorithm_parameters(name: str) -> set[str]:
 # Environments
 # ------------------------------------------------------------------------------------------
 
-def _goalkeeper_fn(env_kwargs: dict[str, Any]):
+def _goalkeeper_fn(env_kwargs: dict[str, Any], actions: str = "native"):
     def make():
         import gymnasium as gym
         from stable_baselines3.common.monitor import Monitor
 
         import soccer_env  # noqa: F401
 
-        return Monitor(gym.make(GOALKEEPER_ID, **env_kwargs))
+        return Monitor(wrap_actions(gym.make(GOALKEEPER_ID, **env_kwargs), actions))
 
     return make
 
@@ -183,7 +201,7 @@ def make_vec_env(cfg: TrainConfig):
         opponent = cfg.opponent
         return make_match_vec_env(cfg.env_kwargs, cfg.n_envs, cfg.learner,
                                   "idle" if opponent == "self" else opponent, cfg.seed)
-    fns = [_goalkeeper_fn(cfg.env_kwargs) for _ in range(cfg.n_envs)]
+    fns = [_goalkeeper_fn(cfg.env_kwargs, cfg.actions) for _ in range(cfg.n_envs)]
     if cfg.n_workers == 0:
         from stable_baselines3.common.vec_env import DummyVecEnv
 
@@ -194,6 +212,18 @@ def make_vec_env(cfg: TrainConfig):
         venv = WorkerVecEnv(fns, n_workers=cfg.n_workers)
     venv.seed(cfg.seed)
     return venv
+
+
+def _action_map(cfg: TrainConfig) -> dict[str, Any] | None:
+    """The map from the learner's actions to the environment's (for numpy policies)."""
+    if cfg.actions == "native":
+        return None
+    import gymnasium as gym
+
+    env = wrap_actions(gym.make(GOALKEEPER_ID, **cfg.env_kwargs), cfg.actions)
+    params = getattr(env, "params", None)
+    env.close()
+    return {"kind": cfg.actions, "params": params or {}}
 
 
 def _check_env_kwargs(cfg: TrainConfig) -> None:
@@ -218,6 +248,7 @@ def _check_env_kwargs(cfg: TrainConfig) -> None:
 # ------------------------------------------------------------------------------------------
 
 def _callbacks(cfg: TrainConfig, out: Path):
+    action_map = _action_map(cfg)
     from stable_baselines3.common.callbacks import BaseCallback, CheckpointCallback
 
     class RolloutTimer(BaseCallback):
@@ -254,6 +285,11 @@ def _callbacks(cfg: TrainConfig, out: Path):
             self.best = -1.0
             self._next = cfg.eval_every
 
+        def _on_training_start(self) -> None:
+            # A resumed run starts at the checkpoint's step count: the next evaluation is the
+            # next multiple of eval_every after it.
+            self._next = (self.num_timesteps // cfg.eval_every + 1) * cfg.eval_every
+
         def _on_step(self) -> bool:
             if self.num_timesteps >= self._next:
                 self._next += cfg.eval_every
@@ -262,7 +298,8 @@ def _callbacks(cfg: TrainConfig, out: Path):
 
         def run(self) -> dict[str, Any]:
             norm = self.model.get_vec_normalize_env()
-            policy = NumpyPolicy.from_sb3(self.model, vec_normalize=norm)
+            policy = NumpyPolicy.from_sb3(self.model, vec_normalize=norm,
+                                          action_map=action_map)
             kwargs = cfg.env_kwargs if cfg.eval_env_kwargs is None else cfg.eval_env_kwargs
             res = evaluate(policy, kwargs, episodes=cfg.eval_episodes,
                            start_seed=EVAL_SEED_START, workers=max(1, cfg.n_workers))
@@ -301,6 +338,7 @@ def _callbacks(cfg: TrainConfig, out: Path):
 
 def _meta(cfg: TrainConfig, evaluation: dict[str, Any] | None = None) -> dict[str, Any]:
     meta = {"env_id": cfg.env_id, "env_kwargs": cfg.env_kwargs, "algorithm": cfg.algorithm,
+            "actions": cfg.actions, "hyperparams": cfg.hyperparams,
             "total_steps": cfg.total_steps, "seed": cfg.seed}
     if evaluation is not None:
         meta["evaluation"] = evaluation
@@ -323,8 +361,9 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
     out.mkdir(parents=True, exist_ok=True)
     torch.set_num_threads(cfg.torch_threads)
     (out / "config.json").write_text(json.dumps({
-        **cfg.to_dict(), "command": command, "resumed_from": None if resume is None
-        else os.fspath(resume), "versions": _versions()}, indent=2))
+        **cfg.to_dict(), "action_map": _action_map(cfg), "command": command,
+        "resumed_from": None if resume is None else os.fspath(resume),
+        "versions": _versions()}, indent=2))
 
     from stable_baselines3.common.vec_env import VecNormalize
 
@@ -345,8 +384,12 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
                                 norm_reward=cfg.normalize_reward,
                                 gamma=params.get("gamma", 0.99))
     if resume is not None:
+        # The hyperparameters of this configuration replace the saved ones (so that a run
+        # can be fine-tuned, e.g. with another entropy bonus or learning rate); the network
+        # (policy_kwargs) is the saved model's.
+        params.pop("policy_kwargs", None)
         model = algo.load(resume, env=venv, device=cfg.device,
-                          tensorboard_log=str(out / "tb"))
+                          tensorboard_log=str(out / "tb"), **params)
         done_steps = int(model.num_timesteps)
     else:
         model = algo("MlpPolicy", venv, seed=cfg.seed, device=cfg.device,
@@ -372,7 +415,7 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
         final_eval = evaluator.history[-1]
     policy = None
     try:
-        policy = NumpyPolicy.from_sb3(model, _meta(cfg, final_eval), norm)
+        policy = NumpyPolicy.from_sb3(model, _meta(cfg, final_eval), norm, _action_map(cfg))
         policy.save(out / "final_policy.npz")
     except ValueError:  # a network numpy cannot copy: the .zip is the model
         pass
@@ -429,6 +472,11 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--eval-obs-mode", choices=("truth", "raw", "perceived"), default=None,
                    help="select the best model under this observation mode instead")
     p.add_argument("--eval-perception", default=None)
+    p.add_argument("--actions", choices=tuple(ACTION_MAPS), default=None,
+                   help="keeper learner's actions: native (the robot's command, default), "
+                        "velocity (field-frame velocity and turn rate), target (where to "
+                        "stand, reached by a motion controller) or guard (where to stand on "
+                        "the guard line); see agents.wrappers")
     p.add_argument("--learner", choices=("blue", "yellow", "both"), default=None,
                    help="match: learning team")
     p.add_argument("--opponent", default=None,
@@ -449,7 +497,7 @@ def main(argv: list[str] | None = None) -> int:
             p.error(f"--resume: no config.json in {run}")
         saved = json.loads((run / "config.json").read_text())
         base = {k: v for k, v in saved.items()
-                if k not in ("command", "resumed_from", "versions")}
+                if k not in ("command", "resumed_from", "versions", "action_map")}
         base.setdefault("out", str(run))
     try:
         env_kwargs = env_kwargs_from_args(args, base.get("env_kwargs"))
@@ -469,6 +517,7 @@ def main(argv: list[str] | None = None) -> int:
                             ("out", args.out), ("checkpoint_every", args.checkpoint_every),
                             ("eval_every", args.eval_every),
                             ("eval_episodes", args.eval_episodes), ("learner", args.learner),
+                            ("actions", args.actions),
                             ("opponent", args.opponent)):
             if value is not None:
                 fields[name] = value

@@ -117,6 +117,18 @@ def test_command_line(tmp_path: Path, capsys):
     assert data["settings"]["presets"] == ["ssl-2012"]
 
 
+def test_command_line_env_kwargs_reach_every_cell(tmp_path: Path, capsys):
+    out = tmp_path / "dt"
+    assert cli_main(["ablation", "--episodes", "2", "--presets", "ssl-2012", "--configs",
+                     "truth,ekf", "--workers", "1", "--env-kwarg", "control_dt=0.04",
+                     "--out", str(out), "--quiet"]) == 0
+    data = json.loads((out / "ablation.json").read_text())
+    assert "--env-kwarg control_dt=0.04" in data["settings"]["command"]
+    cells = ablation.run_ablation("scripted", 2, "ssl-2012", "truth", workers=1,
+                                  env_kwargs={"control_dt": 0.04}).cells
+    assert cells[("ssl-2012", "truth")].env_kwargs["control_dt"] == 0.04
+
+
 def test_registry_holds_the_required_configurations():
     for name in ("truth", "raw", "kf", "ekf", "ekf-improved"):
         assert ESTIMATOR_CONFIGS[name].name == name
@@ -188,6 +200,8 @@ def test_bad_configurations_raise(kwargs, match):
     (["--episodes", "0"], "--episodes must be >= 1, got 0"),
     (["--workers", "0"], "--workers must be >= 1, got 0"),
     (["--chunk-size", "0"], "--chunk-size must be >= 1"),
+    (["--env-kwarg", "obs_mode=raw"], "set by each cell's configuration"),
+    (["--env-kwarg", "control_dt"], "--env-kwarg must be key=value"),
     (["--episodes", "ten"], "invalid int value"),
     (["--policy", "missing.zip", "--episodes", "1", "--presets", "ideal", "--configs",
       "truth"], "no model at missing.zip"),

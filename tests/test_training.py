@@ -9,7 +9,7 @@ import pytest
 
 pytest.importorskip("stable_baselines3")
 
-from agents.policies import NumpyPolicy, make_policy  # noqa: E402
+from agents.policies import NumpyPolicy, load_sb3, make_policy  # noqa: E402
 from agents.training import TrainConfig  # noqa: E402
 from soccer_env.cli import main  # noqa: E402
 
@@ -61,9 +61,44 @@ def test_train_evaluate_checkpoint_and_resume(tmp_path, capsys):
     resumed = json.loads((run / "config.json").read_text())
     assert resumed["resumed_from"] == str(checkpoints[0])
     assert resumed["env_kwargs"] == config["env_kwargs"]
+    # Evaluations continue at the next multiples of eval_every, once each.
+    steps = [e["steps"] for e in json.loads((run / "evaluations.json").read_text())]
+    assert steps == [2048, 3072], steps
+
+    # Fine-tuning: resume with another observation mode and hyperparameter.
+    tuned = tmp_path / "tuned"
+    assert main(["train", "--resume", str(run / "final_model.zip"), "--obs-mode", "truth",
+                 "--hp", "ent_coef=0.01", "--steps", "4096", "--out", str(tuned),
+                 "--no-progress"]) == 0
+    cfg = json.loads((tuned / "config.json").read_text())
+    assert cfg["env_kwargs"]["obs_mode"] == "truth" and cfg["hyperparams"]["ent_coef"] == 0.01
+    assert load_sb3(tuned / "final_model.zip").ent_coef == 0.01
 
     act = make_policy(run, env)(np.zeros(19, np.float32))
     assert act.shape == (6,) and np.all(np.abs(act) <= 1)
+
+
+def test_target_actions_run_acts_on_the_plain_env(tmp_path):
+    """A keeper trained through the target action map: its numpy policy and its model both
+    give native 6-number commands, the same ones."""
+    import gymnasium as gym
+
+    run = tmp_path / "target"
+    assert main(["train", "--actions", "target", "--env-kwarg", "control_dt=0.04",
+                 "--steps", "512", "--n-envs", "2", "--workers", "0", "--hp", "n_steps=256",
+                 "--eval-every", "0", "--checkpoint-every", "0", "--out", str(run),
+                 "--no-progress"]) == 0
+    config = json.loads((run / "config.json").read_text())
+    assert config["actions"] == "target" and config["action_map"]["kind"] == "target"
+    policy = NumpyPolicy.load(run / "final_policy.npz")
+    assert policy.action_size == 2 and policy.action_map["kind"] == "target"
+    env = gym.make("soccer_env/Goalkeeper-v0", control_dt=0.04)
+    obs = np.stack([env.reset(seed=s)[0] for s in range(5)])
+    act = policy(obs)
+    assert act.shape == (5, 6)
+    np.testing.assert_allclose(make_policy(run / "final_model.zip", env)(obs), act, atol=1e-5)
+    with pytest.raises(ValueError, match="actions must be one of"):
+        TrainConfig(actions="wheels")
 
 
 def test_off_policy_algorithm_in_process(tmp_path):

@@ -1,39 +1,77 @@
 """Trained policies shipped with the package.
 
-Each baseline is a :class:`~agents.policies.NumpyPolicy` (``NAME.npz``: the actor's weights,
-a few tens of kB, run with numpy alone) and the stable-baselines3 model it was copied from
-(``NAME.zip``, for fine-tuning with ``soccer-env train --resume``-style loading). The
-``.npz`` carries the training configuration and its evaluation in ``policy.meta``.
+Each baseline is a :class:`~agents.policies.NumpyPolicy` (``NAME.npz``: the actor's weights
+and observation statistics, a few tens of kB, run with numpy alone) and the stable-baselines3
+model it was copied from (``NAME.zip``, with ``NAME_vecnormalize.pkl``, to fine-tune). The
+``.npz`` carries the training configuration, the command that trained it and its evaluation in
+``policy.meta``; :func:`make_baseline_env` builds the environment it was trained for.
 
->>> from agents.baselines import load_baseline
->>> keeper = load_baseline("keeper-ppo-ssl2012")       # doctest: +SKIP
->>> action = keeper(obs)                               # doctest: +SKIP
+>>> from agents.baselines import load_baseline, make_baseline_env
+>>> keeper = load_baseline("keeper-ppo-ssl2012")
+>>> env = make_baseline_env("keeper-ppo-ssl2012")
+>>> obs, info = env.reset(seed=0)
+>>> keeper(obs).shape
+(6,)
 """
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 from ..policies import NumpyPolicy
 
-__all__ = ["BASELINES", "load_baseline", "baseline_path"]
+__all__ = ["BASELINES", "load_baseline", "baseline_path", "baseline_env_kwargs",
+           "make_baseline_env"]
 
 _HERE = Path(__file__).parent
 
 #: Shipped baselines: name -> (file stem, description).
-BASELINES: dict[str, tuple[str, str]] = {}
+BASELINES: dict[str, tuple[str, str]] = {
+    "keeper-ppo-ssl2012": (
+        "keeper_ppo_ssl2012",
+        "PPO keeper choosing where to stand on its guard line 25 times a second, trained on "
+        "true observations (1 M steps) and then on perceived ones (ssl-2012 vision, EKF; 5 M "
+        "steps)"),
+    "keeper-ppo-truth": (
+        "keeper_ppo_truth",
+        "the same PPO keeper trained on true observations only (1 M steps, ssl-2012 actuation "
+        "latency), to be evaluated on perceived ones"),
+}
 
 
 def baseline_path(name: str, kind: str = "npz") -> Path:
-    """The file of baseline ``name``: ``kind="npz"`` (numpy policy) or ``"zip"`` (the
-    stable-baselines3 model)."""
+    """The file of baseline ``name``: ``kind="npz"`` (numpy policy), ``"zip"`` (the
+    stable-baselines3 model) or ``"pkl"`` (its ``VecNormalize`` statistics)."""
     if name not in BASELINES:
         raise ValueError(f"unknown baseline {name!r}; shipped: {sorted(BASELINES)}")
-    if kind not in ("npz", "zip"):
-        raise ValueError(f"kind must be 'npz' or 'zip', got {kind!r}")
-    return _HERE / f"{BASELINES[name][0]}.{kind}"
+    if kind not in ("npz", "zip", "pkl"):
+        raise ValueError(f"kind must be 'npz', 'zip' or 'pkl', got {kind!r}")
+    stem = BASELINES[name][0]
+    return _HERE / (f"{stem}_vecnormalize.pkl" if kind == "pkl" else f"{stem}.{kind}")
 
 
 def load_baseline(name: str) -> NumpyPolicy:
-    """The shipped policy ``name`` (see :data:`BASELINES`), ready to call on observations."""
+    """The shipped policy ``name`` (see :data:`BASELINES`), ready to call on observations of
+    the plain Goalkeeper-v0 (it returns the native 6-number command)."""
     return NumpyPolicy.load(baseline_path(name))
+
+
+def baseline_env_kwargs(name: str, evaluation: bool = True) -> dict[str, Any]:
+    """The Goalkeeper-v0 keyword arguments baseline ``name`` was trained with; with
+    ``evaluation`` the reward shaping (a training aid) is left out."""
+    kwargs = dict(load_baseline(name).meta["env_kwargs"])
+    if evaluation:
+        kwargs.pop("shaping", None)
+    return kwargs
+
+
+def make_baseline_env(name: str, **overrides: Any):
+    """``gymnasium.make("soccer_env/Goalkeeper-v0", ...)`` with the arguments baseline
+    ``name`` was trained with (no shaping), updated by ``overrides`` (e.g.
+    ``obs_mode="perceived"`` for the truth-trained keeper)."""
+    import gymnasium as gym
+
+    import soccer_env  # noqa: F401
+
+    return gym.make("soccer_env/Goalkeeper-v0", **{**baseline_env_kwargs(name), **overrides})

@@ -1,0 +1,208 @@
+"""Action spaces for learning keepers.
+
+Goalkeeper-v0 takes the SSL robot's native command: a body-frame velocity, a turn rate and the
+kicker, chip and dribbler (6 numbers), sent 60 times a second. That is a hard space to learn a
+keeper in: one command changes the robot's velocity by at most ``a_max / 60`` (5 cm/s), so a
+single step's Gaussian exploration hardly moves the outcome, and a sideways wish has to be
+rotated through a heading the exploration keeps changing. PPO on the native command learned
+nothing in millions of steps here (its deterministic actions ended saturated at +-1 while the
+keeper spun). RoboCup teams' software does not command wheels either: the decision layer picks
+where a robot should be and a motion controller gets it there. The keeper's learner gets the
+same split:
+
+* ``"native"``: the environment's own 6-number command;
+* ``"velocity"``: :class:`FieldVelocityActions`, ``(vx, vy, omega)`` with the velocity in the
+  team frame, kicker off;
+* ``"target"``: :class:`TargetActions`, a point ``(x, y)`` in front of the goal that a
+  braking-profile controller (:func:`agents.goalkeeper.drive_command`) drives the keeper to,
+  facing the field, kicker off;
+* ``"guard"``: :class:`GuardActions`, the same with the point on the scripted keeper's guard
+  line (5 cm in front of the goal line, beyond the robot's radius): only ``y`` is chosen.
+
+Each map reads the keeper's pose **from the agent's own observation** (``self.x``, ``self.y``,
+``self.ax``, ``self.ay``), so under perceived observations it uses the estimated pose, as on a
+real robot, never the truth. :func:`action_to_command` is the same map as a function of
+``(obs, action)``; :class:`~agents.policies.NumpyPolicy` applies it, so a policy trained
+through a wrapper acts on the plain environment.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+__all__ = ["ACTION_MAPS", "FieldVelocityActions", "TargetActions", "GuardActions",
+           "action_to_command", "target_params", "wrap_actions"]
+
+#: Action spaces of a learning keeper (see the module docstring) and their sizes.
+ACTION_MAPS = {"native": 6, "velocity": 3, "target": 2, "guard": 1}
+
+#: Indices of ``self.x, self.y, self.ax, self.ay`` in every observation layout of
+#: :mod:`soccer_env.observations` (they open it).
+_POSE = (0, 1, 2, 3)
+
+
+def target_params(env: gym.Env, depth: float = 0.5) -> dict[str, float]:
+    """The constants of the ``"target"`` map for a Goalkeeper environment: the box of
+    targets (``x`` from the robot's radius + 5 cm in front of the goal line to ``depth``
+    beyond that, ``|y|`` up to half the goal width plus the robot's radius) and the robot's
+    limits [m, m/s, m/s^2, rad/s]."""
+    u = env.unwrapped
+    f, r = u.field, u.robot_spec
+    x0 = -f.half_length + r.radius + 0.05
+    return {"x_min": x0, "x_max": x0 + depth, "y_max": 0.5 * f.goal_width + r.radius,
+            "max_speed": r.max_speed, "max_acceleration": r.max_acceleration,
+            "max_angular_speed": r.max_angular_speed}
+
+
+def _heading(obs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Cosine and sine of the heading in the team frame (the observation stores
+    ``(cos, -sin)`` in ``self.ax, self.ay``), normalised."""
+    ax, ay = obs[..., _POSE[2]], obs[..., _POSE[3]]
+    norm = np.sqrt(ax * ax + ay * ay)
+    norm = np.where(norm > 1e-6, norm, 1.0)
+    return ax / norm, -ay / norm
+
+
+def action_to_command(kind: str, obs: np.ndarray, action: np.ndarray,
+                      params: Mapping[str, float] | None = None) -> np.ndarray:
+    """The native command ``(vx, vy, omega, kick, chip, dribble)`` of an action of map
+    ``kind`` (one ``(k,)`` action with its observation, or ``(n, k)`` and ``(n, n_obs)``
+    batches).
+
+    * ``"velocity"``: with ``(c, s)`` the heading's cosine and sine, the body-frame velocity is
+      the field-frame one rotated by ``-heading``, ``(c vx + s vy, -s vx + c vy)``; ``omega``
+      passes through.
+    * ``"target"``: the target ``x = x_min + (a_0 + 1) / 2 (x_max - x_min)``,
+      ``y = a_1 y_max`` (``"guard"``: ``x = x_min``, ``y = a_0 y_max``); the velocity points
+      at it with speed
+      ``min(v_max, sqrt(2 a_max d))`` at distance ``d`` (the fastest approach that still stops
+      there), rotated into the body frame and scaled by ``v_max``; the turn rate brings the
+      heading to 0 (facing the field) with gain 8 /s.
+
+    Kick 0, chip and dribbler off (-1).
+    """
+    if kind not in ACTION_MAPS or kind == "native":
+        raise ValueError(f"kind must be one of {[k for k in ACTION_MAPS if k != 'native']}, "
+                         f"got {kind!r}")
+    obs = np.asarray(obs, dtype=np.float64)
+    act = np.clip(np.asarray(action, dtype=np.float64), -1.0, 1.0)
+    size = ACTION_MAPS[kind]
+    if act.shape[-1] != size or act.shape[:-1] != obs.shape[:-1]:
+        raise ValueError(f"a {kind!r} action must have shape (..., {size}) matching obs "
+                         f"{obs.shape}, got {act.shape}")
+    c, s = _heading(obs)
+    out = np.empty(act.shape[:-1] + (6,), dtype=np.float32)
+    if kind == "velocity":
+        wx, wy, omega = act[..., 0], act[..., 1], act[..., 2]
+    else:
+        if params is None:
+            raise ValueError(f"the {kind!r} map needs its params (see target_params)")
+        p = params
+        if kind == "guard":
+            tx = np.full(act.shape[:-1], p["x_min"])
+            ty = act[..., 0] * p["y_max"]
+        else:
+            tx = p["x_min"] + 0.5 * (act[..., 0] + 1.0) * (p["x_max"] - p["x_min"])
+            ty = act[..., 1] * p["y_max"]
+        ex, ey = tx - obs[..., _POSE[0]], ty - obs[..., _POSE[1]]
+        dist = np.hypot(ex, ey)
+        speed = np.minimum(p["max_speed"], np.sqrt(2.0 * p["max_acceleration"] * dist))
+        scale = np.where(dist > 1e-6, speed / np.maximum(dist, 1e-6), 0.0) / p["max_speed"]
+        wx, wy = ex * scale, ey * scale
+        omega = np.clip(8.0 * -np.arctan2(s, c) / p["max_angular_speed"], -1.0, 1.0)
+    out[..., 0] = c * wx + s * wy
+    out[..., 1] = -s * wx + c * wy
+    out[..., 2] = omega
+    out[..., 3] = 0.0
+    out[..., 4] = -1.0
+    out[..., 5] = -1.0
+    return out
+
+
+class _MappedActions(gym.Wrapper):
+    """Goalkeeper-v0 with a learner's action space (see the module docstring); the
+    observation, rewards and episode are the wrapped environment's."""
+
+    kind = ""
+
+    def __init__(self, env: gym.Env, params: Mapping[str, float] | None = None) -> None:
+        super().__init__(env)
+        native = env.action_space
+        if not (isinstance(native, gym.spaces.Box) and native.shape == (6,)):
+            raise ValueError(f"{type(self).__name__} wraps an environment with the SSL "
+                             f"robot's (6,) action space, got {native}")
+        names = env.unwrapped.builder.names
+        if tuple(names[:4]) != ("self.x", "self.y", "self.ax", "self.ay"):
+            raise ValueError("the observation must open with self.x, self.y, self.ax, self.ay")
+        self.params = dict(params) if params is not None else None
+        self.action_space = gym.spaces.Box(-1.0, 1.0, (ACTION_MAPS[self.kind],), np.float32)
+        self._obs: np.ndarray | None = None
+
+    def reset(self, **kwargs: Any):
+        obs, info = self.env.reset(**kwargs)
+        self._obs = obs
+        return obs, info
+
+    def step(self, action: Any):
+        if self._obs is None:
+            raise RuntimeError("call reset() before step()")
+        act = np.asarray(action, dtype=np.float32)
+        size = ACTION_MAPS[self.kind]
+        if act.shape != (size,):
+            raise ValueError(f"action must have shape ({size},), got {act.shape}")
+        if not np.all(np.isfinite(act)):
+            raise ValueError(f"action must be finite, got {act}")
+        native = action_to_command(self.kind, self._obs, act, self.params)
+        obs, reward, terminated, truncated, info = self.env.step(native)
+        self._obs = obs
+        return obs, reward, terminated, truncated, info
+
+
+class FieldVelocityActions(_MappedActions):
+    """``Box(-1, 1, (3,))``: field-frame ``(vx, vy)`` scaled to the top speed, and the turn
+    rate; kicker off."""
+
+    kind = "velocity"
+
+    def __init__(self, env: gym.Env) -> None:
+        super().__init__(env)
+
+
+class TargetActions(_MappedActions):
+    """``Box(-1, 1, (2,))``: the point in front of the goal to drive to (see
+    :func:`action_to_command` and :func:`target_params`); facing the field, kicker off."""
+
+    kind = "target"
+
+    def __init__(self, env: gym.Env, depth: float = 0.5) -> None:
+        if not (math.isfinite(depth) and 0.0 <= depth <= 2.0):
+            raise ValueError(f"depth must be in [0, 2] m, got {depth!r}")
+        super().__init__(env, target_params(env, depth))
+
+
+class GuardActions(_MappedActions):
+    """``Box(-1, 1, (1,))``: where to stand on the guard line, ``y = a y_max`` (see
+    :func:`action_to_command` and :func:`target_params`); facing the field, kicker off."""
+
+    kind = "guard"
+
+    def __init__(self, env: gym.Env) -> None:
+        super().__init__(env, target_params(env))
+
+
+def wrap_actions(env: gym.Env, kind: str) -> gym.Env:
+    """``env`` with the learner's action space ``kind`` (``"native"`` returns it as is)."""
+    if kind == "native":
+        return env
+    if kind == "velocity":
+        return FieldVelocityActions(env)
+    if kind == "target":
+        return TargetActions(env)
+    if kind == "guard":
+        return GuardActions(env)
+    raise ValueError(f"actions must be one of {list(ACTION_MAPS)}, got {kind!r}")

@@ -1,0 +1,76 @@
+"""The shipped baselines: they load with one call, act on the plain environment, match the
+stable-baselines3 models they were copied from, and evaluate reproducibly."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from agents.baselines import (
+    BASELINES,
+    baseline_env_kwargs,
+    baseline_path,
+    load_baseline,
+    make_baseline_env,
+)
+from agents.evaluation import evaluate
+from agents.wrappers import ACTION_MAPS
+
+
+@pytest.mark.parametrize("name", sorted(BASELINES))
+def test_baseline_loads_with_one_call_and_acts_on_the_plain_env(name):
+    keeper = load_baseline(name)
+    assert baseline_path(name).stat().st_size < 100_000  # small enough to ship
+    assert keeper.meta["algorithm"] == "PPO"
+    assert keeper.meta["command"].startswith("soccer-env train")
+    assert keeper.action_map["kind"] in ACTION_MAPS
+    assert keeper.normalize is not None
+    kwargs = baseline_env_kwargs(name)
+    assert "shaping" not in kwargs and kwargs["perception"] == "ssl-2012"
+    env = make_baseline_env(name)
+    obs, _ = env.reset(seed=0)
+    action = keeper(obs)
+    assert action.shape == (6,) and action.dtype == np.float32
+    assert np.all(np.abs(action) <= np.sqrt(2) + 1e-6)
+    batch = np.stack([env.reset(seed=s)[0] for s in range(4)])
+    np.testing.assert_allclose(keeper(batch)[2], keeper(batch[2]), atol=1e-6)
+
+
+@pytest.mark.parametrize("name", sorted(BASELINES))
+def test_shipped_model_is_the_numpy_policy(name):
+    """The stable-baselines3 model behind the numpy copy, with its normalisation statistics
+    and the action map, gives the same commands."""
+    pytest.importorskip("stable_baselines3")
+    import pickle
+
+    from stable_baselines3 import PPO
+
+    from agents.wrappers import action_to_command
+
+    keeper = load_baseline(name)
+    model = PPO.load(baseline_path(name, "zip"), device="cpu")
+    with open(baseline_path(name, "pkl"), "rb") as fh:
+        norm = pickle.load(fh)
+    env = make_baseline_env(name)
+    obs = np.stack([env.reset(seed=s)[0] for s in range(8)])
+    act, _ = model.predict(norm.normalize_obs(obs), deterministic=True)
+    np.testing.assert_allclose(keeper._network(obs), act, atol=1e-5)
+    expected = action_to_command(keeper.action_map["kind"], obs, act,
+                                 keeper.action_map["params"])
+    # The braking profile's square root amplifies float32 rounding near the target.
+    np.testing.assert_allclose(keeper(obs), expected, atol=1e-3)
+
+
+def test_baseline_evaluation_is_deterministic():
+    name = "keeper-ppo-ssl2012"
+    kwargs = baseline_env_kwargs(name)
+    first = evaluate(f"baseline:{name}", kwargs, episodes=6, workers=1)
+    second = evaluate(f"baseline:{name}", kwargs, episodes=6, workers=1)
+    assert first.saved == second.saved and first.steps == second.steps
+
+
+def test_unknown_baseline_names_what_is_shipped():
+    with pytest.raises(ValueError, match="keeper-ppo-ssl2012"):
+        load_baseline("keeper-dqn")
+    with pytest.raises(ValueError, match="kind must be"):
+        baseline_path("keeper-ppo-ssl2012", "onnx")

@@ -1,0 +1,159 @@
+"""Learner action spaces: the field-frame velocity and target maps, as wrappers and as the
+function numpy policies apply."""
+
+from __future__ import annotations
+
+import math
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import soccer_env  # noqa: F401
+from agents.goalkeeper import drive_command
+from agents.policies import NumpyPolicy
+from agents.wrappers import (
+    ACTION_MAPS,
+    FieldVelocityActions,
+    TargetActions,
+    action_to_command,
+    target_params,
+    wrap_actions,
+)
+
+ID = "soccer_env/Goalkeeper-v0"
+
+
+def _obs_with_heading(theta: float, x: float = -4.0, y: float = 0.2) -> np.ndarray:
+    obs = np.zeros(19, np.float32)
+    obs[0], obs[1] = x, y
+    obs[2], obs[3] = math.cos(theta), -math.sin(theta)  # the observation's convention
+    return obs
+
+
+@pytest.mark.parametrize("theta", [0.0, 0.7, -2.0, math.pi])
+def test_velocity_map_rotates_the_field_frame_command_into_the_body(theta):
+    cmd = action_to_command("velocity", _obs_with_heading(theta), np.array([0.6, -0.3, 0.2]))
+    # Rotating the body-frame command back by the heading gives the field-frame one.
+    c, s = math.cos(theta), math.sin(theta)
+    assert c * cmd[0] - s * cmd[1] == pytest.approx(0.6, abs=1e-6)
+    assert s * cmd[0] + c * cmd[1] == pytest.approx(-0.3, abs=1e-6)
+    assert cmd[2] == pytest.approx(0.2)
+    assert list(cmd[3:]) == [0.0, -1.0, -1.0]  # kicker off
+
+
+def test_target_map_is_the_braking_profile_controller():
+    env = gym.make(ID)
+    params = target_params(env)
+    theta = 0.4
+    obs = _obs_with_heading(theta, x=-4.3, y=-0.1)
+    action = np.array([-0.5, 0.8])
+    cmd = action_to_command("target", obs, action, params)
+    tx = params["x_min"] + 0.25 * (params["x_max"] - params["x_min"])
+    ty = 0.8 * params["y_max"]
+    vx, vy = drive_command(-4.3, -0.1, math.cos(theta), math.sin(theta), tx, ty,
+                           params["max_speed"], params["max_acceleration"])
+    assert cmd[0] * params["max_speed"] == pytest.approx(vx, abs=1e-5)
+    assert cmd[1] * params["max_speed"] == pytest.approx(vy, abs=1e-5)
+    assert cmd[2] < 0  # turns back towards heading 0
+    # The target box: in front of the goal line, covering the goal mouth.
+    u = env.unwrapped
+    assert params["x_min"] > -u.field.half_length
+    assert params["y_max"] >= 0.5 * u.field.goal_width
+
+
+def test_guard_map_is_the_target_map_on_the_guard_line():
+    env = gym.make(ID)
+    params = target_params(env)
+    obs = _obs_with_heading(0.3, x=-4.2, y=0.1)
+    for y in (-1.0, -0.2, 0.7):
+        np.testing.assert_allclose(action_to_command("guard", obs, np.array([y]), params),
+                                   action_to_command("target", obs, np.array([-1.0, y]), params))
+    # The guard line is the scripted keeper's.
+    from agents import ScriptedGoalkeeper
+
+    assert params["x_min"] == pytest.approx(ScriptedGoalkeeper.for_env(env).guard_x)
+
+
+def test_target_keeper_reaches_its_target_and_stops():
+    env = TargetActions(gym.make(ID, shots={"delay": (10.0, 10.0)}))
+    obs, _ = env.reset(seed=3)
+    for _ in range(120):  # 2 s
+        obs, *_ = env.step(np.array([0.0, 1.0], np.float32))
+    p = env.params
+    assert obs[0] == pytest.approx(0.5 * (p["x_min"] + p["x_max"]), abs=0.02)
+    assert obs[1] == pytest.approx(p["y_max"], abs=0.02)
+    assert math.hypot(obs[4], obs[5]) < 0.05  # stopped there
+    assert abs(obs[6]) < 0.1  # not spinning
+
+
+def test_batches_match_single_calls():
+    rng = np.random.default_rng(0)
+    obs = rng.normal(0, 1, (8, 19)).astype(np.float32)
+    env = gym.make(ID)
+    params = target_params(env)
+    for kind in ("velocity", "target", "guard"):
+        act = rng.uniform(-1, 1, (8, ACTION_MAPS[kind]))
+        batch = action_to_command(kind, obs, act, params)
+        for i in range(8):
+            np.testing.assert_allclose(batch[i], action_to_command(kind, obs[i], act[i], params),
+                                       atol=1e-6)
+
+
+@pytest.mark.parametrize("kind", ["velocity", "target", "guard"])
+def test_wrapped_env_passes_check_env_and_is_deterministic(kind):
+    from gymnasium.utils.env_checker import check_env
+
+    env = wrap_actions(gym.make(ID), kind)
+    assert env.action_space.shape == (ACTION_MAPS[kind],)
+    check_env(env.unwrapped)  # the wrapper's own contract is checked below
+    runs = []
+    for _ in range(2):
+        obs, _ = env.reset(seed=11)
+        rng = np.random.default_rng(1)
+        trace = [obs]
+        for _ in range(40):
+            obs, *_ = env.step(rng.uniform(-1, 1, ACTION_MAPS[kind]).astype(np.float32))
+            trace.append(obs)
+        runs.append(np.array(trace))
+    np.testing.assert_array_equal(runs[0], runs[1])
+
+
+def test_numpy_policy_with_a_map_acts_on_the_plain_env(tmp_path):
+    """A policy trained through a wrapper, saved and loaded, gives the wrapper's commands."""
+    env = gym.make(ID)
+    params = target_params(env)
+    rng = np.random.default_rng(2)
+    layers = [("linear", rng.normal(0, 0.3, (2, 19)), rng.normal(0, 0.1, 2))]
+    policy = NumpyPolicy(layers, "clip", -np.ones(2), np.ones(2),
+                         action_map={"kind": "target", "params": params})
+    loaded = NumpyPolicy.load(policy.save(tmp_path / "t.npz"))
+    obs, _ = env.reset(seed=0)
+    expected = action_to_command("target", obs, np.clip(layers[0][1] @ obs + layers[0][2],
+                                                        -1, 1), params)
+    np.testing.assert_allclose(loaded(obs), expected, atol=1e-5)
+    assert loaded(obs).shape == (6,)
+    with pytest.raises(ValueError, match="outputs"):
+        NumpyPolicy(layers, "clip", -np.ones(2), np.ones(2), action_map={"kind": "velocity"})
+
+
+def test_bad_input():
+    env = gym.make(ID)
+    with pytest.raises(ValueError, match="kind"):
+        action_to_command("wheels", np.zeros(19), np.zeros(3))
+    with pytest.raises(ValueError, match="shape"):
+        action_to_command("velocity", np.zeros(19), np.zeros(2))
+    with pytest.raises(ValueError, match="params"):
+        action_to_command("target", np.zeros(19), np.zeros(2))
+    with pytest.raises(ValueError, match="actions must be one of"):
+        wrap_actions(env, "wheels")
+    with pytest.raises(ValueError, match="depth"):
+        TargetActions(env, depth=-1.0)
+    wrapped = FieldVelocityActions(env)
+    with pytest.raises(RuntimeError, match="reset"):
+        wrapped.step(np.zeros(3, np.float32))
+    wrapped.reset(seed=0)
+    with pytest.raises(ValueError, match="shape"):
+        wrapped.step(np.zeros(6, np.float32))
+    with pytest.raises(ValueError, match="finite"):
+        wrapped.step(np.array([np.nan, 0, 0], np.float32))
