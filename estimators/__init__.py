@@ -6,6 +6,7 @@ Everything here takes and returns numpy arrays, depends on numpy only, and never
 
 from .ball import CHI2_2DOF_999, BallFilterConfig, BallTracker, LeastSquaresBall
 from .ball_models import FrictionBallModel
+from .hough import fusion_weights, hough_fuse, hough_lines
 from .kalman import KalmanFilter
 from .models import (
     PAPER_CYCLE,
@@ -15,6 +16,7 @@ from .models import (
     PositionMeasurement,
     wrap_angle,
 )
+from .particle import FBPF, MFBPF, BootstrapPF, sfn, systematic_resample, ungm_model, ungm_simulate
 from .robots import RobotTracker
 
 __all__ = [
@@ -31,4 +33,14 @@ __all__ = [
     "LeastSquaresBall",
     "RobotTracker",
     "CHI2_2DOF_999",
+    "hough_fuse",
+    "hough_lines",
+    "fusion_weights",
+    "BootstrapPF",
+    "FBPF",
+    "MFBPF",
+    "sfn",
+    "systematic_resample",
+    "ungm_model",
+    "ungm_simulate",
 ]

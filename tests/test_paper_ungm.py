@@ -1,0 +1,34 @@
+"""``soccer-env paper ungm``: outputs, reproducibility, and the filters' shared bookkeeping."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from soccer_env.cli import main
+from soccer_env.papers import ungm
+
+
+def test_tables_plot_and_reproducibility(tmp_path):
+    a = ungm.run(tmp_path / "a", runs=12, seed=3)
+    b = ungm.run(tmp_path / "b", runs=12, seed=3)
+    assert a["rmse"] == b["rmse"]
+    data = json.loads((tmp_path / "a" / "paper_ungm.json").read_text())
+    per_run = {k: np.array(v) for k, v in data["rmse_per_run"].items()}
+    # MFBPF with FBPF's test runs FBPF's algorithm: the same numbers, run by run.
+    np.testing.assert_allclose(per_run["mfbpf-below"], per_run["fbpf"])
+    # Every filter tracks the state far better than its spread (UNGM's |x| reaches ~20).
+    assert all(2.0 < v < 8.0 for v in a["rmse"].values())
+    assert (tmp_path / "a" / "paper_ungm.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "Paper 000" in (tmp_path / "a" / "paper_ungm.md").read_text()
+
+
+def test_command_line_and_bad_arguments(tmp_path, capsys):
+    assert main(["paper", "ungm", "--runs", "3", "--out", str(tmp_path)]) == 0
+    assert "| mfbpf:" in capsys.readouterr().out
+    with pytest.raises(SystemExit):
+        main(["paper", "ungm", "--particles", "1", "--out", str(tmp_path)])
+    with pytest.raises(ValueError, match="runs"):
+        ungm.run(tmp_path, runs=0)
