@@ -18,6 +18,7 @@ from .models import (
 )
 from .particle import FBPF, MFBPF, BootstrapPF, sfn, systematic_resample, ungm_model, ungm_simulate
 from .robots import RobotTracker
+from .triangulation import Fix, triangulate
 
 __all__ = [
     "KalmanFilter",
@@ -43,4 +44,6 @@ __all__ = [
     "systematic_resample",
     "ungm_model",
     "ungm_simulate",
+    "Fix",
+    "triangulate",
 ]
