@@ -8,6 +8,7 @@ from .ball import CHI2_2DOF_999, BallFilterConfig, BallTracker, LeastSquaresBall
 from .ball_models import FrictionBallModel
 from .hough import fusion_weights, hough_fuse, hough_lines
 from .kalman import KalmanFilter
+from .localization import KLDConfig, KLDLocalizer, kld_sample_size
 from .models import (
     PAPER_CYCLE,
     ConstantVelocityMotion,
@@ -46,4 +47,7 @@ __all__ = [
     "ungm_simulate",
     "Fix",
     "triangulate",
+    "KLDConfig",
+    "KLDLocalizer",
+    "kld_sample_size",
 ]

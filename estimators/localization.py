@@ -1,0 +1,292 @@
+"""Adaptive particle-filter self-localization with KLD-sampling (paper 001, SPEC 1.2).
+
+State ``(x, y, theta)`` in the field frame [m, m, rad]; particles ``(N, 3)``.
+
+* **Motion** (:meth:`KLDLocalizer.predict`): the odometry's body-frame displacement
+  ``(dx, dy, dtheta)`` since the last call (from wheel encoders, as in paper 001, or a walk
+  engine), applied to every particle in its own frame with Gaussian noise whose standard
+  deviation grows with the motion: ``sigma_xy = a_trans * |d| + a_rot_xy * |dtheta|`` and
+  ``sigma_theta = a_rot * |dtheta| + a_trans_theta * |d|`` (turning slips most, as paper 001
+  observed).
+* **Observation** (:meth:`KLDLocalizer.update`): each sighted landmark of known position gives a
+  measured range and bearing; ``p(z | chi) = N(range; g(chi), sigma_r^2) N(bearing; b(chi),
+  sigma_b^2)`` multiplied over the landmarks (paper 001 uses the range term only; the bearing
+  term is optional, ``sigma_bearing=None`` turns it off), with ``sigma_r`` growing with the
+  range (``sigma_r = range_sigma + range_sigma_rel * range``, stereo depth error).
+* **Resampling by KLD-sampling** (Fox 2003): particles are drawn from the weighted set until
+  ``n >= (k - 1) / (2 eps) * (1 - 2 / (9 (k - 1)) + sqrt(2 / (9 (k - 1))) z_{1-delta})^3``,
+  ``k`` the number of histogram bins (``bin_size``) holding at least one drawn particle, between
+  ``min_particles`` and ``max_particles``: many particles while the belief is spread, few once it
+  has converged. Drawn in random order (multinomial), so every prefix is a fair sample.
+* **Recovery** (augmented MCL, Thrun et al. 2005, section 8.3.5): short- and long-term averages
+  ``w_fast``, ``w_slow`` of the observation likelihood per landmark (the geometric mean over
+  the landmarks seen, so that landmarks entering or leaving the view do not look like a
+  surprise); when the short-term one falls below ``recovery_ratio`` times the long-term one
+  (the robot was picked up and placed elsewhere, or the belief is wrong), a fraction
+  ``max(0, 1 - w_fast / (recovery_ratio w_slow))`` of the new particles is drawn uniformly
+  over the field (``recovery_ratio = 1`` is the textbook rule, which also fires on ordinary
+  fluctuations).
+
+Written here because KLD-sampling's variable sample size and the recovery bookkeeping are the
+paper's method, not a library's; vectorised numpy; every draw from the given generator.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["KLDConfig", "KLDLocalizer", "kld_sample_size"]
+
+
+def _normal_quantile(p: float) -> float:
+    """The standard normal quantile (Acklam's rational approximation, |error| < 1.2e-9),
+    to keep the module numpy-only."""
+    if not 0.0 < p < 1.0:
+        raise ValueError(f"p must be in (0, 1), got {p!r}")
+    a = (-3.969683028665376e01, 2.209460984245205e02, -2.759285104469687e02,
+         1.383577518672690e02, -3.066479806614716e01, 2.506628277459239e00)
+    b = (-5.447609879822406e01, 1.615858368580409e02, -1.556989798598866e02,
+         6.680131188771972e01, -1.328068155288572e01)
+    c = (-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e00,
+         -2.549732539343734e00, 4.374664141464968e00, 2.938163982698783e00)
+    d = (7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e00,
+         3.754408661907416e00)
+    if p < 0.02425:
+        q = math.sqrt(-2.0 * math.log(p))
+        return (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) / \
+            ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0)
+    if p > 1.0 - 0.02425:
+        return -_normal_quantile(1.0 - p)
+    q = p - 0.5
+    r = q * q
+    return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q / \
+        (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0)
+
+
+def kld_sample_size(k: int | np.ndarray, epsilon: float, delta: float) -> np.ndarray:
+    """Fox's KLD bound: the number of particles that keeps the Kullback-Leibler distance
+    between the sample-based and the true (binned) posterior below ``epsilon`` with
+    probability ``1 - delta``, for ``k`` occupied bins (1 for ``k <= 1``)."""
+    k = np.asarray(k, dtype=np.float64)
+    z = _normal_quantile(1.0 - delta)
+    km1 = np.maximum(k - 1.0, 1.0)
+    a = 2.0 / (9.0 * km1)
+    n = km1 / (2.0 * epsilon) * (1.0 - a + np.sqrt(a) * z) ** 3
+    return np.where(k <= 1.0, 1.0, np.ceil(n))
+
+
+@dataclass(frozen=True)
+class KLDConfig:
+    """Settings of :class:`KLDLocalizer` (SI units, radians).
+
+    Attributes:
+        min_particles, max_particles: bounds of the adaptive sample size.
+        epsilon, delta: KLD-sampling's error bound and confidence (Fox 2003: 0.05, 0.01).
+        bin_size: histogram bins ``(m, m, rad)``.
+        a_trans, a_rot_xy, a_rot, a_trans_theta: odometry noise (see the module docstring).
+        range_sigma, range_sigma_rel: range noise ``sigma_r = range_sigma + range_sigma_rel
+            * range`` [m, 1].
+        bearing_sigma: bearing noise [rad]; None leaves bearings out (paper 001: ranges only).
+        alpha_slow, alpha_fast: averaging rates of the recovery's likelihood averages
+            (``0 <= alpha_slow < alpha_fast <= 1``; ``alpha_fast = 0`` turns recovery off).
+        recovery_ratio: how far (``0 < ratio <= 1``) the short-term average must fall below
+            the long-term one before particles are injected.
+    """
+
+    min_particles: int = 50
+    max_particles: int = 5000
+    epsilon: float = 0.05
+    delta: float = 0.01
+    bin_size: tuple[float, float, float] = (0.2, 0.2, math.radians(15.0))
+    a_trans: float = 0.1
+    a_rot_xy: float = 0.02
+    a_rot: float = 0.2
+    a_trans_theta: float = 0.05
+    range_sigma: float = 0.05
+    range_sigma_rel: float = 0.05
+    bearing_sigma: float | None = math.radians(5.0)
+    alpha_slow: float = 0.01
+    alpha_fast: float = 0.2
+    recovery_ratio: float = 0.5
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.min_particles, int) and isinstance(self.max_particles, int)
+                and 1 <= self.min_particles <= self.max_particles):
+            raise ValueError("need integers 1 <= min_particles <= max_particles, got "
+                             f"{self.min_particles}, {self.max_particles}")
+        if not (0.0 < self.epsilon < 1.0 and 0.0 < self.delta < 1.0):
+            raise ValueError(f"epsilon and delta must be in (0, 1), got {self.epsilon}, "
+                             f"{self.delta}")
+        if len(self.bin_size) != 3 or min(self.bin_size) <= 0.0:
+            raise ValueError(f"bin_size must be three positive sizes, got {self.bin_size}")
+        for name in ("a_trans", "a_rot_xy", "a_rot", "a_trans_theta", "range_sigma_rel"):
+            if not getattr(self, name) >= 0.0:
+                raise ValueError(f"{name} must be >= 0, got {getattr(self, name)!r}")
+        if not self.range_sigma > 0.0:
+            raise ValueError(f"range_sigma must be > 0, got {self.range_sigma!r}")
+        if self.bearing_sigma is not None and not self.bearing_sigma > 0.0:
+            raise ValueError(f"bearing_sigma must be > 0 or None, got {self.bearing_sigma!r}")
+        if not 0.0 <= self.alpha_slow <= 1.0 or not 0.0 <= self.alpha_fast <= 1.0 or (
+                self.alpha_fast > 0.0 and self.alpha_slow >= self.alpha_fast):
+            raise ValueError("need 0 <= alpha_slow < alpha_fast <= 1 (or alpha_fast = 0), got "
+                             f"{self.alpha_slow}, {self.alpha_fast}")
+        if not 0.0 < self.recovery_ratio <= 1.0:
+            raise ValueError(f"recovery_ratio must be in (0, 1], got {self.recovery_ratio!r}")
+
+
+class KLDLocalizer:
+    """Self-localization of one robot on a field with known landmarks (see the module
+    docstring).
+
+    Args:
+        bounds: ``(x_min, x_max, y_min, y_max)`` of the region the robot can be in [m]
+            (global initialisation and recovery draw from it).
+        rng: the generator of every draw.
+        config: :class:`KLDConfig`.
+        pose: a known start ``(x, y, theta)`` (particles drawn around it with ``pose_sigma``),
+            or None for global localization (uniform over ``bounds``, ``max_particles``).
+    """
+
+    def __init__(self, bounds: tuple[float, float, float, float], rng: np.random.Generator,
+                 config: KLDConfig | None = None, pose: np.ndarray | None = None,
+                 pose_sigma: tuple[float, float, float] = (0.1, 0.1, 0.1)) -> None:
+        if not isinstance(rng, np.random.Generator):
+            raise TypeError("rng must be a numpy.random.Generator")
+        x0, x1, y0, y1 = (float(b) for b in bounds)
+        if not (x0 < x1 and y0 < y1) or not all(map(math.isfinite, (x0, x1, y0, y1))):
+            raise ValueError(f"bounds must be (x_min, x_max, y_min, y_max) with min < max, "
+                             f"got {bounds}")
+        self.bounds = (x0, x1, y0, y1)
+        self.rng = rng
+        self.cfg = config or KLDConfig()
+        self.w_slow = self.w_fast = 0.0
+        if pose is None:
+            self.particles = self._uniform(self.cfg.max_particles)
+        else:
+            p = np.asarray(pose, dtype=np.float64)
+            if p.shape != (3,) or not np.all(np.isfinite(p)):
+                raise ValueError(f"pose must be a finite (3,) array, got {pose!r}")
+            n = self.cfg.min_particles
+            self.particles = p + rng.normal(0.0, 1.0, (n, 3)) * np.asarray(pose_sigma)
+        self.weights = np.full(len(self.particles), 1.0 / len(self.particles))
+
+    @property
+    def n(self) -> int:
+        """The current number of particles."""
+        return len(self.particles)
+
+    def _uniform(self, n: int) -> np.ndarray:
+        x0, x1, y0, y1 = self.bounds
+        u = self.rng.random((n, 3))
+        return np.column_stack([x0 + u[:, 0] * (x1 - x0), y0 + u[:, 1] * (y1 - y0),
+                                (u[:, 2] * 2.0 - 1.0) * math.pi])
+
+    def predict(self, odometry: np.ndarray | tuple[float, float, float]) -> None:
+        """Move every particle by the body-frame displacement ``(dx, dy, dtheta)`` [m, m,
+        rad] with the odometry noise."""
+        d = np.asarray(odometry, dtype=np.float64)
+        if d.shape != (3,) or not np.all(np.isfinite(d)):
+            raise ValueError(f"odometry must be a finite (dx, dy, dtheta), got {odometry!r}")
+        c = self.cfg
+        dist, turn = math.hypot(d[0], d[1]), abs(d[2])
+        s_xy = c.a_trans * dist + c.a_rot_xy * turn
+        s_th = c.a_rot * turn + c.a_trans_theta * dist
+        n = self.n
+        noise = self.rng.normal(0.0, 1.0, (n, 3))
+        dx = d[0] + s_xy * noise[:, 0]
+        dy = d[1] + s_xy * noise[:, 1]
+        th = self.particles[:, 2] + 0.5 * d[2]  # the mid-step heading
+        cs, sn = np.cos(th), np.sin(th)
+        self.particles[:, 0] += cs * dx - sn * dy
+        self.particles[:, 1] += sn * dx + cs * dy
+        self.particles[:, 2] = np.remainder(self.particles[:, 2] + d[2] + s_th * noise[:, 2]
+                                            + math.pi, 2.0 * math.pi) - math.pi
+
+    def likelihood(self, landmarks: np.ndarray, ranges: np.ndarray,
+                   bearings: np.ndarray | None = None) -> np.ndarray:
+        """``p(z | chi)`` of every particle for landmarks at ``landmarks`` ((m, 2)) seen at
+        ``ranges`` ((m,)) [m] and ``bearings`` ((m,)) [rad, relative to the heading]."""
+        return np.exp(self._log_likelihood(landmarks, ranges, bearings))
+
+    def _log_likelihood(self, landmarks: np.ndarray, ranges: np.ndarray,
+                        bearings: np.ndarray | None = None) -> np.ndarray:
+        L = np.asarray(landmarks, dtype=np.float64).reshape(-1, 2)
+        r = np.asarray(ranges, dtype=np.float64).reshape(-1)
+        if len(r) != len(L) or not (np.all(np.isfinite(L)) and np.all(np.isfinite(r))):
+            raise ValueError(f"landmarks ((m, 2)) and ranges ((m,)) must match and be finite, "
+                             f"got {L.shape} and {r.shape}")
+        c = self.cfg
+        dx = L[None, :, 0] - self.particles[:, None, 0]
+        dy = L[None, :, 1] - self.particles[:, None, 1]
+        expected = np.hypot(dx, dy)
+        sigma = c.range_sigma + c.range_sigma_rel * r
+        log = -0.5 * np.sum(((expected - r) / sigma) ** 2, axis=1)
+        if bearings is not None and c.bearing_sigma is not None:
+            b = np.asarray(bearings, dtype=np.float64).reshape(-1)
+            if b.shape != r.shape or not np.all(np.isfinite(b)):
+                raise ValueError("bearings must be finite and match ranges")
+            err = np.arctan2(dy, dx) - self.particles[:, None, 2] - b
+            err = np.remainder(err + math.pi, 2.0 * math.pi) - math.pi
+            log += -0.5 * np.sum((err / c.bearing_sigma) ** 2, axis=1)
+        return log
+
+    def update(self, landmarks: np.ndarray, ranges: np.ndarray,
+               bearings: np.ndarray | None = None) -> None:
+        """Weight by the sightings (none: nothing to do), then KLD-resample."""
+        m = len(np.asarray(ranges).reshape(-1))
+        if m == 0:
+            return
+        log = self._log_likelihood(landmarks, ranges, bearings)
+        w = self.weights * np.exp(log - log.max())  # scaled against underflow
+        total = float(w.sum())
+        mean_lik = float(np.dot(self.weights, np.exp(log / m)))
+        c = self.cfg
+        if c.alpha_fast > 0.0:
+            if self.w_slow == 0.0:
+                self.w_slow = self.w_fast = mean_lik
+            self.w_slow += c.alpha_slow * (mean_lik - self.w_slow)
+            self.w_fast += c.alpha_fast * (mean_lik - self.w_fast)
+        if total <= 0.0 or not math.isfinite(total):
+            w = np.full(self.n, 1.0 / self.n)
+        else:
+            w = w / total
+        self.weights = w
+        self._resample()
+
+    def _resample(self) -> None:
+        c = self.cfg
+        inject = 0.0
+        if c.alpha_fast > 0.0 and self.w_slow > 0.0:
+            inject = max(0.0, 1.0 - self.w_fast / (c.recovery_ratio * self.w_slow))
+        cand = self.particles[self.rng.choice(self.n, size=c.max_particles, p=self.weights)]
+        if inject > 0.0:
+            fresh = self.rng.random(c.max_particles) < inject
+            cand[fresh] = self._uniform(int(fresh.sum()))
+        size = np.asarray(c.bin_size)
+        bins = np.floor(cand / size).astype(np.int64)
+        # k(n): distinct bins among the first n draws.
+        _, first = np.unique(bins, axis=0, return_index=True)
+        new_bin = np.zeros(c.max_particles, dtype=np.int64)
+        new_bin[first] = 1
+        k = np.cumsum(new_bin)
+        n_draw = np.arange(1, c.max_particles + 1)
+        enough = (n_draw >= kld_sample_size(k, c.epsilon, c.delta)) & \
+            (n_draw >= c.min_particles)
+        n = int(np.argmax(enough)) + 1 if enough.any() else c.max_particles
+        self.particles = cand[:n].copy()
+        self.weights = np.full(n, 1.0 / n)
+
+    def estimate(self) -> np.ndarray:
+        """The weighted mean pose ``(x, y, theta)`` (circular mean of the headings)."""
+        w, p = self.weights, self.particles
+        return np.array([w @ p[:, 0], w @ p[:, 1],
+                         math.atan2(float(w @ np.sin(p[:, 2])), float(w @ np.cos(p[:, 2])))])
+
+    def spread(self) -> float:
+        """Weighted RMS distance of the particles from the mean position [m]."""
+        m = self.estimate()
+        return math.sqrt(float(self.weights @ ((self.particles[:, 0] - m[0]) ** 2
+                                               + (self.particles[:, 1] - m[1]) ** 2)))
