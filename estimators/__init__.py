@@ -6,6 +6,7 @@ Everything here takes and returns numpy arrays, depends on numpy only, and never
 
 from .ball import CHI2_2DOF_999, BallFilterConfig, BallTracker, LeastSquaresBall
 from .ball_models import FrictionBallModel
+from .camera import HeadCamera
 from .hough import fusion_weights, hough_fuse, hough_lines
 from .kalman import KalmanFilter
 from .localization import KLDConfig, KLDLocalizer, kld_sample_size
@@ -50,4 +51,5 @@ __all__ = [
     "KLDConfig",
     "KLDLocalizer",
     "kld_sample_size",
+    "HeadCamera",
 ]

@@ -1,0 +1,114 @@
+"""Pinhole model of a humanoid's head camera, and the ground projection of a sighting
+(paper 000, SPEC 1.1).
+
+Frames: the robot frame has its origin on the ground under the camera, ``x`` forward, ``y``
+to the left, ``z`` up [m]. The paper's world frame at the robot is ``(x_w, y_w, z_w) =
+(-y, x, z)`` (``y_w`` forward, ``x_w`` to the right); the camera frame ``(x_c, y_c, z_c)`` has
+``y_c`` along the optical axis, ``x_c`` to the right and ``z_c`` up in the image. The head pans
+by ``alpha`` about ``z`` (positive to the left) and then tilts by ``beta`` about the panned
+``x`` axis (positive down), in that order:
+
+    [x_c, y_c, z_c]^T = Rx(beta) Rz(alpha) [x_w, y_w, z_w - h]^T,
+
+with ``Rz(a) = [[cos a, sin a, 0], [-sin a, cos a, 0], [0, 0, 1]]`` and
+``Rx(b) = [[1, 0, 0], [0, cos b, -sin b], [0, sin b, cos b]]`` (the matrices that express a
+world vector in the turned frames). Image: ``u - u0 = f_px x_c / y_c``, ``v - v0 = -f_px
+z_c / y_c`` (pixels, ``v`` growing downwards as in image arrays; the paper writes ``v`` up),
+``f_px = (width / 2) / tan(hfov / 2)``.
+
+The ground projection inverts this for ``z_w = 0``: the pixel's ray from the camera at height
+``h`` meets the ground at a unique point if it points below the horizon. A pixel error
+``du`` therefore becomes a ground error that grows with distance (about ``d^2 / (h f_px)``
+along the ray), which is why far sightings deserve less weight.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["HeadCamera"]
+
+
+@dataclass(frozen=True)
+class HeadCamera:
+    """A pinhole head camera (see the module docstring).
+
+    Attributes:
+        height: camera height above the ground [m] (paper 000: 0.56).
+        hfov: horizontal field of view [rad] (paper 000: 51 degrees).
+        width, height_px: image size [pixels] (paper 000: 720 x 625 at 25 frames/s).
+    """
+
+    height: float = 0.56
+    hfov: float = math.radians(51.0)
+    width: int = 720
+    height_px: int = 625
+
+    def __post_init__(self) -> None:
+        if not 0.0 < self.height < 10.0:
+            raise ValueError(f"height must be in (0, 10) m, got {self.height!r}")
+        if not 0.0 < self.hfov < math.pi:
+            raise ValueError(f"hfov must be in (0, pi) rad, got {self.hfov!r}")
+        if self.width < 2 or self.height_px < 2:
+            raise ValueError(f"the image must be at least 2 x 2 pixels, got {self.width} x "
+                             f"{self.height_px}")
+
+    @property
+    def focal_px(self) -> float:
+        """Focal length in pixels."""
+        return 0.5 * self.width / math.tan(0.5 * self.hfov)
+
+    @property
+    def centre(self) -> tuple[float, float]:
+        """Principal point ``(u0, v0)`` [pixels]."""
+        return 0.5 * self.width, 0.5 * self.height_px
+
+    @property
+    def vfov(self) -> float:
+        """Vertical field of view [rad]."""
+        return 2.0 * math.atan(0.5 * self.height_px / self.focal_px)
+
+    @staticmethod
+    def _rotation(pan: float, tilt: float) -> np.ndarray:
+        """``Rx(tilt) Rz(pan)``: paper world frame to camera frame."""
+        ca, sa, cb, sb = math.cos(pan), math.sin(pan), math.cos(tilt), math.sin(tilt)
+        rz = np.array([[ca, sa, 0.0], [-sa, ca, 0.0], [0.0, 0.0, 1.0]])
+        rx = np.array([[1.0, 0.0, 0.0], [0.0, cb, -sb], [0.0, sb, cb]])
+        return rx @ rz
+
+    def project(self, points: np.ndarray, pan: float, tilt: float
+                ) -> tuple[np.ndarray, np.ndarray]:
+        """Pixels ``(n, 2)`` of robot-frame points ``(n, 3)`` (or ``(n, 2)`` on the ground),
+        and a mask of those in front of the camera and inside the image."""
+        p = np.asarray(points, dtype=np.float64)
+        if p.ndim != 2 or p.shape[1] not in (2, 3):
+            raise ValueError(f"points must have shape (n, 2) or (n, 3), got {p.shape}")
+        z = p[:, 2] if p.shape[1] == 3 else np.zeros(len(p))
+        world = np.column_stack([-p[:, 1], p[:, 0], z - self.height])
+        cam = world @ self._rotation(pan, tilt).T
+        u0, v0 = self.centre
+        f = self.focal_px
+        ahead = cam[:, 1] > 1e-9
+        depth = np.where(ahead, cam[:, 1], np.nan)
+        uv = np.column_stack([u0 + f * cam[:, 0] / depth, v0 - f * cam[:, 2] / depth])
+        inside = ahead & (uv[:, 0] >= 0) & (uv[:, 0] <= self.width) & (uv[:, 1] >= 0) & \
+            (uv[:, 1] <= self.height_px)
+        return uv, inside
+
+    def ground_point(self, pixels: np.ndarray, pan: float, tilt: float) -> np.ndarray:
+        """Robot-frame ground points ``(n, 2)`` [m] seen at ``pixels`` ((n, 2)); NaN for pixels
+        at or above the horizon (their ray never meets the ground)."""
+        uv = np.asarray(pixels, dtype=np.float64)
+        if uv.ndim != 2 or uv.shape[1] != 2:
+            raise ValueError(f"pixels must have shape (n, 2), got {uv.shape}")
+        u0, v0 = self.centre
+        f = self.focal_px
+        ray_cam = np.column_stack([(uv[:, 0] - u0) / f, np.ones(len(uv)), -(uv[:, 1] - v0) / f])
+        ray = ray_cam @ self._rotation(pan, tilt)  # camera -> paper world (R^T applied)
+        down = ray[:, 2] < -1e-12
+        t = np.where(down, self.height / np.where(down, -ray[:, 2], 1.0), np.nan)
+        xw, yw = t * ray[:, 0], t * ray[:, 1]
+        return np.column_stack([yw, -xw])  # paper world -> robot frame
