@@ -72,17 +72,28 @@ def _cmd_paper(argv: list[str]) -> int:
     p.add_argument("--shots", type=int, default=1000, help="ekf: closed-loop shots per cell")
     p.add_argument("--runs", type=int, default=200, help="ungm: simulated runs")
     p.add_argument("--particles", type=int, default=100, help="ungm: particles")
+    p.add_argument("--trials", type=int, default=20,
+                   help="hough: noise draws per ball position")
     p.add_argument("--workers", type=int, default=None, help="processes (default: all cores)")
     p.add_argument("--no-closed-loop", action="store_true", help="skip the closed loop")
     p.add_argument("--seed", type=int, default=0)
     args = p.parse_args(argv)
-    for name in ("episodes", "shots", "runs"):
+    for name in ("episodes", "shots", "runs", "trials"):
         if getattr(args, name) < 1:
             p.error(f"--{name} must be >= 1")
     if args.particles < 2:
         p.error("--particles must be >= 2")
     if args.workers is not None and args.workers < 1:
         p.error("--workers must be >= 1")
+    if args.name == "hough":
+        from .papers import hough
+
+        res = hough.run(args.out, args.trials, seed=args.seed)
+        print(res["text"])
+        for path in res["files"]:
+            print(f"wrote {path}")
+        print(f"tables and plot in {args.out}/ ({res['seconds']:.0f} s)")
+        return 0
     if args.name == "ungm":
         from .papers import ungm
 

@@ -7,4 +7,5 @@ tables (Markdown and CSV) and PNG plots to an output folder.
 PAPERS = {
     "ekf": "paper 002: EKF ball prediction with latency compensation (open and closed loop)",
     "ungm": "paper 000: bootstrap PF, FBPF and MFBPF on the UNGM benchmark",
+    "hough": "paper 000: Hough-space fusion of several robots' sightings (Table 1 geometry)",
 }
