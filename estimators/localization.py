@@ -261,21 +261,34 @@ class KLDLocalizer:
         inject = 0.0
         if c.alpha_fast > 0.0 and self.w_slow > 0.0:
             inject = max(0.0, 1.0 - self.w_fast / (c.recovery_ratio * self.w_slow))
-        cand = self.particles[self.rng.choice(self.n, size=c.max_particles, p=self.weights)]
-        if inject > 0.0:
-            fresh = self.rng.random(c.max_particles) < inject
-            cand[fresh] = self._uniform(int(fresh.sum()))
         size = np.asarray(c.bin_size)
-        bins = np.floor(cand / size).astype(np.int64)
-        # k(n): distinct bins among the first n draws.
-        _, first = np.unique(bins, axis=0, return_index=True)
-        new_bin = np.zeros(c.max_particles, dtype=np.int64)
-        new_bin[first] = 1
-        k = np.cumsum(new_bin)
-        n_draw = np.arange(1, c.max_particles + 1)
-        enough = (n_draw >= kld_sample_size(k, c.epsilon, c.delta)) & \
-            (n_draw >= c.min_particles)
-        n = int(np.argmax(enough)) + 1 if enough.any() else c.max_particles
+        # Draw in batches (doubling from about the current size) until the KLD bound holds for
+        # the draws so far, rather than max_particles candidates every time.
+        batch = min(c.max_particles, max(c.min_particles, 2 * self.n))
+        cand = np.empty((0, 3))
+        while True:
+            take = min(batch, c.max_particles - len(cand))
+            new = self.particles[self.rng.choice(self.n, size=take, p=self.weights)]
+            if inject > 0.0:
+                fresh = self.rng.random(take) < inject
+                new[fresh] = self._uniform(int(fresh.sum()))
+            cand = np.concatenate([cand, new])
+            bins = np.floor(cand / size).astype(np.int64)
+            # k(n): distinct bins among the first n draws.
+            _, first = np.unique(bins, axis=0, return_index=True)
+            new_bin = np.zeros(len(cand), dtype=np.int64)
+            new_bin[first] = 1
+            k = np.cumsum(new_bin)
+            n_draw = np.arange(1, len(cand) + 1)
+            enough = (n_draw >= kld_sample_size(k, c.epsilon, c.delta)) & \
+                (n_draw >= c.min_particles)
+            if enough.any():
+                n = int(np.argmax(enough)) + 1
+                break
+            if len(cand) >= c.max_particles:
+                n = c.max_particles
+                break
+            batch *= 2
         self.particles = cand[:n].copy()
         self.weights = np.full(n, 1.0 / n)
 

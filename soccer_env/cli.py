@@ -85,6 +85,15 @@ def _cmd_paper(argv: list[str]) -> int:
         p.error("--particles must be >= 2")
     if args.workers is not None and args.workers < 1:
         p.error("--workers must be >= 1")
+    if args.name == "localization":
+        from .papers import localization
+
+        res = localization.run(args.out, seed=args.seed)
+        print(res["text"])
+        for path in res["files"]:
+            print(f"wrote {path}")
+        print(f"tables and plot in {args.out}/ ({res['seconds']:.0f} s)")
+        return 0
     if args.name == "hough":
         from .papers import hough
 
