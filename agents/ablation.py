@@ -398,7 +398,8 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
         start_seed: the first seed.
         workers: processes (default: all cores); the numbers do not depend on it.
         chunk_size: consecutive seeds per job.
-        env_kwargs: environment keyword arguments shared by all cells (e.g. ``field``).
+        env_kwargs: environment keyword arguments shared by all cells (e.g. ``field``);
+            ``obs_mode`` and ``perception`` belong to the cells and are refused.
         env_id: the environment (Goalkeeper-v0).
         progress: called as ``progress(jobs_done, jobs_total)`` after each job.
 
@@ -417,6 +418,10 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
     config_names = parse_names(configs, ESTIMATOR_CONFIGS, "estimator configuration(s)")
     specs = {n: ESTIMATOR_CONFIGS[n] for n in config_names}
     base = dict(env_kwargs or {})
+    cell_keys = sorted({"obs_mode", "perception"} & set(base))
+    if cell_keys:
+        raise ValueError(f"env_kwargs: {cell_keys} are set by each cell's configuration and "
+                         "preset")
     episodes, start_seed, chunk_size = int(episodes), int(start_seed), int(chunk_size)
     job_policy = _resolve_policy(policy, env_id,
                                  specs[config_names[0]].make_env_kwargs(preset_names[0], base))
@@ -575,9 +580,6 @@ def main(argv: Sequence[str] | None = None) -> int:
         env_kwargs = key_values(args.env_kwarg, "--env-kwarg")
     except ValueError as exc:
         p.error(str(exc))
-    cell_keys = sorted({"obs_mode", "perception"} & set(env_kwargs))
-    if cell_keys:
-        p.error(f"--env-kwarg: {cell_keys} are set by each cell's configuration and preset")
     t0 = time.perf_counter()
 
     def progress(done: int, total: int) -> None:

@@ -10,7 +10,10 @@ import numpy as np
 from estimators import FrictionBallModel
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
 
-__all__ = ["ScriptedGoalkeeper", "drive_command", "turn_command"]
+__all__ = ["ScriptedGoalkeeper", "drive_command", "turn_command", "TURN_GAIN"]
+
+#: Proportional gain of :func:`turn_command` [1/s].
+TURN_GAIN = 8.0
 
 
 def drive_command(px: float, py: float, c: float, s: float, tx: float, ty: float,
@@ -35,7 +38,7 @@ def drive_command(px: float, py: float, c: float, s: float, tx: float, ty: float
 
 
 def turn_command(c: float, s: float, target: float, max_angular_speed: float,
-                 gain: float = 8.0) -> float:
+                 gain: float = TURN_GAIN) -> float:
     """Normalised turn rate in ``[-1, 1]`` that turns a robot with heading
     ``(cos, sin) = (c, s)`` towards the heading ``target`` [rad]: proportional to the wrapped
     error with ``gain`` [1/s]."""

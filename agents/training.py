@@ -51,7 +51,8 @@ from .evaluation import GOALKEEPER_ID, evaluate
 from .policies import SB3_ALGORITHMS, NumpyPolicy
 from .wrappers import ACTION_MAPS, wrap_actions
 
-__all__ = ["TrainConfig", "train", "main", "EVAL_SEED_START", "MATCH_ID", "DEFAULT_HYPERPARAMS"]
+__all__ = ["TrainConfig", "train", "main", "EVAL_SEED_START", "MATCH_ID", "DEFAULT_HYPERPARAMS",
+           "rollout_timer", "goalkeeper_env_fn"]
 
 #: First seed of the shots used for model selection during training.
 EVAL_SEED_START = 1_000_000
@@ -181,7 +182,9 @@ def _algorithm_parameters(name: str) -> set[str]:
 # Environments
 # ------------------------------------------------------------------------------------------
 
-def _goalkeeper_fn(env_kwargs: dict[str, Any], actions: str = "native"):
+def goalkeeper_env_fn(env_kwargs: dict[str, Any], actions: str = "native"):
+    """A picklable constructor of one training environment: Goalkeeper-v0 with
+    ``env_kwargs``, the learner's action map ``actions``, behind SB3's ``Monitor``."""
     def make():
         import gymnasium as gym
         from stable_baselines3.common.monitor import Monitor
@@ -201,7 +204,7 @@ def make_vec_env(cfg: TrainConfig):
         opponent = cfg.opponent
         return make_match_vec_env(cfg.env_kwargs, cfg.n_envs, cfg.learner,
                                   "idle" if opponent == "self" else opponent, cfg.seed)
-    fns = [_goalkeeper_fn(cfg.env_kwargs, cfg.actions) for _ in range(cfg.n_envs)]
+    fns = [goalkeeper_env_fn(cfg.env_kwargs, cfg.actions) for _ in range(cfg.n_envs)]
     if cfg.n_workers == 0:
         from stable_baselines3.common.vec_env import DummyVecEnv
 
@@ -247,14 +250,13 @@ def _check_env_kwargs(cfg: TrainConfig) -> None:
 # Callbacks
 # ------------------------------------------------------------------------------------------
 
-def _callbacks(cfg: TrainConfig, out: Path):
-    action_map = _action_map(cfg)
-    from stable_baselines3.common.callbacks import BaseCallback, CheckpointCallback
+def rollout_timer() -> Any:
+    """A stable-baselines3 callback that measures environment steps per second while
+    collecting rollouts (policy forward passes included, gradient updates excluded), logged as
+    ``time/rollout_fps``; its ``rate`` is the mean over the run."""
+    from stable_baselines3.common.callbacks import BaseCallback
 
     class RolloutTimer(BaseCallback):
-        """Environment steps per second while collecting rollouts (gradient updates
-        excluded), logged as ``time/rollout_fps``."""
-
         def __init__(self) -> None:
             super().__init__()
             self.seconds, self.steps = 0.0, 0
@@ -274,6 +276,12 @@ def _callbacks(cfg: TrainConfig, out: Path):
         @property
         def rate(self) -> float:
             return self.steps / self.seconds if self.seconds > 0 else float("nan")
+
+    return RolloutTimer()
+
+
+def _callbacks(cfg: TrainConfig, out: Path, action_map: dict[str, Any] | None):
+    from stable_baselines3.common.callbacks import BaseCallback, CheckpointCallback
 
     class SaveRateEval(BaseCallback):
         """Every ``eval_every`` steps: the actor's save rate on ``eval_episodes`` shots, logged
@@ -319,7 +327,7 @@ def _callbacks(cfg: TrainConfig, out: Path):
                 policy.save(out / "best_policy.npz")
             return entry
 
-    timer = RolloutTimer()
+    timer = rollout_timer()
     callbacks: list[Any] = [timer]
     if cfg.checkpoint_every:
         callbacks.append(CheckpointCallback(max(1, cfg.checkpoint_every // cfg.n_envs),
@@ -360,8 +368,9 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
     out = Path(cfg.out)
     out.mkdir(parents=True, exist_ok=True)
     torch.set_num_threads(cfg.torch_threads)
+    action_map = _action_map(cfg)
     (out / "config.json").write_text(json.dumps({
-        **cfg.to_dict(), "action_map": _action_map(cfg), "command": command,
+        **cfg.to_dict(), "action_map": action_map, "command": command,
         "resumed_from": None if resume is None else os.fspath(resume),
         "versions": _versions()}, indent=2))
 
@@ -395,7 +404,7 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
         model = algo("MlpPolicy", venv, seed=cfg.seed, device=cfg.device,
                      tensorboard_log=str(out / "tb"), verbose=0, **params)
         done_steps = 0
-    callbacks, timer, evaluator = _callbacks(cfg, out)
+    callbacks, timer, evaluator = _callbacks(cfg, out, action_map)
     remaining = max(0, cfg.total_steps - done_steps)
     t0 = time.perf_counter()
     try:
@@ -415,7 +424,7 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
         final_eval = evaluator.history[-1]
     policy = None
     try:
-        policy = NumpyPolicy.from_sb3(model, _meta(cfg, final_eval), norm, _action_map(cfg))
+        policy = NumpyPolicy.from_sb3(model, _meta(cfg, final_eval), norm, action_map)
         policy.save(out / "final_policy.npz")
     except ValueError:  # a network numpy cannot copy: the .zip is the model
         pass

@@ -35,6 +35,8 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
+from .goalkeeper import TURN_GAIN
+
 __all__ = ["ACTION_MAPS", "FieldVelocityActions", "TargetActions", "GuardActions",
            "action_to_command", "target_params", "wrap_actions"]
 
@@ -82,7 +84,7 @@ def action_to_command(kind: str, obs: np.ndarray, action: np.ndarray,
       at it with speed
       ``min(v_max, sqrt(2 a_max d))`` at distance ``d`` (the fastest approach that still stops
       there), rotated into the body frame and scaled by ``v_max``; the turn rate brings the
-      heading to 0 (facing the field) with gain 8 /s.
+      heading to 0 (facing the field) with gain ``TURN_GAIN`` (8 /s).
 
     Kick 0, chip and dribbler off (-1).
     """
@@ -109,12 +111,14 @@ def action_to_command(kind: str, obs: np.ndarray, action: np.ndarray,
         else:
             tx = p["x_min"] + 0.5 * (act[..., 0] + 1.0) * (p["x_max"] - p["x_min"])
             ty = act[..., 1] * p["y_max"]
+        # drive_command and turn_command (agents.goalkeeper) on whole batches: they are scalar
+        # for the scripted keeper's speed; test_wrappers checks the velocity against the former.
         ex, ey = tx - obs[..., _POSE[0]], ty - obs[..., _POSE[1]]
         dist = np.hypot(ex, ey)
         speed = np.minimum(p["max_speed"], np.sqrt(2.0 * p["max_acceleration"] * dist))
         scale = np.where(dist > 1e-6, speed / np.maximum(dist, 1e-6), 0.0) / p["max_speed"]
         wx, wy = ex * scale, ey * scale
-        omega = np.clip(8.0 * -np.arctan2(s, c) / p["max_angular_speed"], -1.0, 1.0)
+        omega = np.clip(TURN_GAIN * -np.arctan2(s, c) / p["max_angular_speed"], -1.0, 1.0)
     out[..., 0] = c * wx + s * wy
     out[..., 1] = -s * wx + c * wy
     out[..., 2] = omega
@@ -168,9 +172,6 @@ class FieldVelocityActions(_MappedActions):
     rate; kicker off."""
 
     kind = "velocity"
-
-    def __init__(self, env: gym.Env) -> None:
-        super().__init__(env)
 
 
 class TargetActions(_MappedActions):

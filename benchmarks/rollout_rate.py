@@ -20,28 +20,16 @@ from __future__ import annotations
 
 import argparse
 import statistics
-import time
 
 import soccer_env  # noqa: F401
 
 CONFIGS = ("worker-16x2", "subproc-2", "dummy-2")
 
 
-def _make_fn(env_kwargs: dict):
-    def make():
-        import gymnasium as gym
-        from stable_baselines3.common.monitor import Monitor
-
-        import soccer_env  # noqa: F401, F811  (registers the env in worker processes)
-
-        return Monitor(gym.make("soccer_env/Goalkeeper-v0", **env_kwargs))
-
-    return make
-
-
 def _venv(name: str, env_kwargs: dict):
     from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
 
+    from agents.training import goalkeeper_env_fn as _make_fn
     from agents.vec_env import WorkerVecEnv
 
     if name == "worker-16x2":
@@ -55,22 +43,8 @@ def rollout_rate(name: str, env_kwargs: dict, steps: int, seed: int = 0) -> floa
     """Steps per second spent collecting rollouts while PPO trains ``steps`` steps."""
     import torch
     from stable_baselines3 import PPO
-    from stable_baselines3.common.callbacks import BaseCallback
 
-    class Timer(BaseCallback):
-        def __init__(self) -> None:
-            super().__init__()
-            self.seconds, self.steps, self._t0, self._n0 = 0.0, 0, 0.0, 0
-
-        def _on_rollout_start(self) -> None:
-            self._t0, self._n0 = time.perf_counter(), self.num_timesteps
-
-        def _on_rollout_end(self) -> None:
-            self.seconds += time.perf_counter() - self._t0
-            self.steps += self.num_timesteps - self._n0
-
-        def _on_step(self) -> bool:
-            return True
+    from agents.training import rollout_timer
 
     torch.set_num_threads(1)
     venv = _venv(name, env_kwargs)
@@ -79,11 +53,11 @@ def rollout_rate(name: str, env_kwargs: dict, steps: int, seed: int = 0) -> floa
         n_steps = max(64, 4096 // venv.num_envs)
         model = PPO("MlpPolicy", venv, n_steps=n_steps, batch_size=512, seed=seed,
                     device="cpu")
-        timer = Timer()
+        timer = rollout_timer()
         model.learn(steps, callback=timer)
     finally:
         venv.close()
-    return timer.steps / timer.seconds
+    return timer.rate
 
 
 def main() -> None:

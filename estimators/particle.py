@@ -172,7 +172,7 @@ class FBPF(BootstrapPF):
         super()._refresh()
 
 
-class MFBPF(BootstrapPF):
+class MFBPF(FBPF):
     """The paper's modified FBPF (see the module docstring).
 
     Args:
@@ -185,12 +185,9 @@ class MFBPF(BootstrapPF):
     def __init__(self, particles: np.ndarray, transition: Transition, likelihood: Likelihood,
                  rng: np.random.Generator, threshold: float = 0.5,
                  fission_variance: float = 1.0, sfn_when: str = "above") -> None:
-        super().__init__(particles, transition, likelihood, rng, threshold)
+        super().__init__(particles, transition, likelihood, rng, threshold, fission_variance)
         if sfn_when not in ("above", "below"):
             raise ValueError(f"sfn_when must be 'above' or 'below', got {sfn_when!r}")
-        if not (math.isfinite(fission_variance) and fission_variance >= 0.0):
-            raise ValueError(f"fission_variance must be >= 0, got {fission_variance!r}")
-        self.fission_variance = float(fission_variance)
         self.sfn_when = sfn_when
 
     def step(self, y: np.ndarray | float) -> np.ndarray:
@@ -202,29 +199,20 @@ class MFBPF(BootstrapPF):
         estimate = (w @ self.particles) / s
         self.n_eff = s * s / float(np.sum(w * w))
         above = self.n_eff >= self.threshold * self.n
-        if self.sfn_when == "above":
-            if above:
-                # Fission on the normalised weights; the offspring restart at 1/N, the others
-                # keep their (normalised) weight.
-                p, norm_w, born = sfn(self.particles, w / s, self.rng, self.fission_variance)
-                norm_w[born] = 1.0 / self.n
-                self.particles, self.weights = p, norm_w
-            else:
-                self._copy_over(w / s)
-        else:
+        # Rescaled so that the running product cannot underflow.
+        self.weights = w / s
+        if self.sfn_when == "below":
             if not above:
-                p, norm_w, _ = sfn(self.particles, w / s, self.rng, self.fission_variance)
-                self.particles = p
-                self._copy_over(norm_w)
-            else:
-                self.weights = w / s  # rescaled so that the product cannot underflow
+                FBPF._refresh(self)  # SFN, then resampling
+        elif above:
+            # Fission on the normalised weights; the offspring restart at 1/N, the others
+            # keep their (normalised) weight.
+            self.particles, self.weights, born = sfn(self.particles, self.weights, self.rng,
+                                                     self.fission_variance)
+            self.weights[born] = 1.0 / self.n
+        else:
+            BootstrapPF._refresh(self)  # copy high-weight particles over low-weight ones
         return estimate
-
-    def _copy_over(self, weights: np.ndarray) -> None:
-        """Copy high-weight particles over low-weight ones (systematic resampling)."""
-        idx = systematic_resample(weights, self.rng)
-        self.particles = self.particles[idx]
-        self.weights = np.full(self.n, 1.0 / self.n)
 
 
 # ------------------------------------------------------------------------------------------

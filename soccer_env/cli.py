@@ -85,41 +85,21 @@ def _cmd_paper(argv: list[str]) -> int:
         p.error("--particles must be >= 2")
     if args.workers is not None and args.workers < 1:
         p.error("--workers must be >= 1")
-    if args.name == "localization":
-        from .papers import localization
+    import importlib
 
-        res = localization.run(args.out, seed=args.seed)
-        print(res["text"])
-        for path in res["files"]:
-            print(f"wrote {path}")
-        print(f"tables and plot in {args.out}/ ({res['seconds']:.0f} s)")
-        return 0
-    if args.name == "hough":
-        from .papers import hough
-
-        res = hough.run(args.out, args.trials, seed=args.seed)
-        print(res["text"])
-        for path in res["files"]:
-            print(f"wrote {path}")
-        print(f"tables and plot in {args.out}/ ({res['seconds']:.0f} s)")
-        return 0
-    if args.name == "ungm":
-        from .papers import ungm
-
-        res = ungm.run(args.out, args.runs, args.particles, seed=args.seed)
-        print(res["text"])
-        for path in res["files"]:
-            print(f"wrote {path}")
-        print(f"tables and plot in {args.out}/ ({res['seconds']:.0f} s)")
-        return 0
-    from .papers import ekf
-
-    res = ekf.run(args.out, args.episodes, args.shots, args.workers,
-                  closed=not args.no_closed_loop, seed=args.seed)
+    module = importlib.import_module(f".papers.{args.name}", __package__)
+    runs = {
+        "ekf": lambda: module.run(args.out, args.episodes, args.shots, args.workers,
+                                  closed=not args.no_closed_loop, seed=args.seed),
+        "hough": lambda: module.run(args.out, args.trials, seed=args.seed),
+        "localization": lambda: module.run(args.out, seed=args.seed),
+        "ungm": lambda: module.run(args.out, args.runs, args.particles, seed=args.seed),
+    }
+    res = runs[args.name]()
     print(res["text"])
     for path in res["files"]:
         print(f"wrote {path}")
-    print(f"tables and summary in {args.out}/ ({res['seconds']:.0f} s)")
+    print(f"tables and plots in {args.out}/ ({res['seconds']:.0f} s)")
     return 0
 
 

@@ -248,6 +248,8 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
                                            delay * self.world.control_dt)
         self._render_width = int(render_width)
         self._names = ("blue_0",)
+        # Half-width of the goal mouth the intercept shaping limits its crossing point to [m].
+        self._mouth = 0.5 * self.field.goal_width + self.ball_spec.radius
         self._shot: dict[str, Any] | None = None
 
     # ------------------------------------------------------------------------------------
@@ -347,7 +349,7 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
             if vx < -INTERCEPT_MIN_SPEED:
                 # Where the ball's line crosses the goal line, limited to the mouth (a ball
                 # barely moving towards the goal would put it anywhere).
-                mouth = 0.5 * f.goal_width + self.ball_spec.radius
+                mouth = self._mouth
                 y_cross = by + vy * (-f.half_length - bx) / vx
                 y_cross = max(-mouth, min(mouth, y_cross))
                 err = abs(ky - y_cross) / f.goal_width

@@ -21,7 +21,6 @@ rate with a Wilson 95 % interval. This is part of the estimator ablation
 
 from __future__ import annotations
 
-import csv
 import json
 import math
 import time
@@ -37,6 +36,7 @@ from .. import presets
 from ..physics import World, idle_commands
 from ..plots import pyplot, save_figure
 from ..vision import OverheadVision, vision
+from ._io import write_csv
 
 __all__ = ["run", "open_loop", "closed_loop", "PAPER_CLAIMS", "ESTIMATORS"]
 
@@ -340,13 +340,6 @@ def _plots(open_res: dict | None, closed_res: dict | None, out: Path) -> list[st
     return files
 
 
-def _csv(path: Path, rows: list[dict[str, Any]]) -> None:
-    with path.open("w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-
-
 def run(out: str | Path = "paper_output", episodes: int = 200, shots: int = 1000,
         workers: int | None = None, closed: bool = True, seed: int = 0) -> dict[str, Any]:
     """Run both experiments, write the tables and plots to ``out`` and return the results."""
@@ -357,12 +350,12 @@ def run(out: str | Path = "paper_output", episodes: int = 200, shots: int = 1000
     closed_res = closed_loop(shots, workers) if closed else None
     text = _markdown_open(open_res)
     (out / "paper_ekf_open_loop.md").write_text(text + "\n")
-    _csv(out / "paper_ekf_open_loop.csv",
+    write_csv(out / "paper_ekf_open_loop.csv",
          [{"estimator": k, **v} for k, v in open_res["estimators"].items()])
     if closed_res:
         text += "\n\n" + _markdown_closed(closed_res)
         (out / "paper_ekf_closed_loop.md").write_text(_markdown_closed(closed_res) + "\n")
-        _csv(out / "paper_ekf_closed_loop.csv",
+        write_csv(out / "paper_ekf_closed_loop.csv",
              [{"preset": p, "mode": m, **r} for p, rows in closed_res["presets"].items()
               for m, r in rows.items()])
     files = _plots(open_res, closed_res, out)

@@ -27,8 +27,6 @@ position), the best single robot's own estimate, and the error against the numbe
 
 from __future__ import annotations
 
-import csv
-import json
 import math
 import time
 from itertools import combinations
@@ -41,6 +39,7 @@ from estimators.camera import HeadCamera
 from estimators.hough import fusion_weights, hough_fuse
 
 from ..plots import pyplot, save_figure
+from ._io import write_report
 
 __all__ = ["run", "ROBOTS_MM", "PATH_MM", "PAPER"]
 
@@ -134,6 +133,8 @@ def _evaluate(model: str, trials: int, rng: np.random.Generator, **kw: float
                     idx = list(sub)
                     if m == 1:
                         by_count[m].append(single[idx[0]][-1])
+                    elif m == n:  # all robots: fused above
+                        by_count[m].append(err["inverse"][-1])
                     else:
                         fused = _fuse(pos[idx], est[idx], "inverse", fallbacks)
                         by_count[m].append(float(np.hypot(*(fused - ball))))
@@ -198,16 +199,10 @@ def run(out: str | Path = "paper_output", trials: int = 20, seed: int = 0,
         lines.append(f"| {label} | " + " | ".join(
             f"{res['by_count_m'][k] * mm:.0f}" for k in range(1, 6)) + " |")
     text = "\n".join(lines)
-    (out / "paper_hough.md").write_text(text + "\n")
-    with open(out / "paper_hough.csv", "w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    (out / "paper_hough.json").write_text(json.dumps(
-        {"trials": trials, "seed": seed, "pixel_sigma": pixel_sigma, "pose_sigma": pose_sigma,
-         "heading_sigma": heading_sigma, "sway_sigma": sway_sigma, "camera": cam,
-         "paper_reading": paper,
-         "paper": PAPER}, indent=1, default=str))
+    files = write_report(out, "paper_hough", text, rows, {
+        "trials": trials, "seed": seed, "pixel_sigma": pixel_sigma, "pose_sigma": pose_sigma,
+        "heading_sigma": heading_sigma, "sway_sigma": sway_sigma, "camera": cam,
+        "paper_reading": paper, "paper": PAPER})
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6, 4))
     ks = list(range(1, 6))
@@ -215,7 +210,6 @@ def run(out: str | Path = "paper_output", trials: int = 20, seed: int = 0,
         ax.plot(ks, [res["by_count_m"][k] * mm for k in ks], "o-", label=label)
     ax.set(xlabel="robots", ylabel="mean error [mm]", title="Hough fusion, paper 000 Table 1")
     ax.legend()
-    files = [str(out / "paper_hough.md"), str(out / "paper_hough.csv"),
-             str(out / "paper_hough.json"), save_figure(fig, out / "paper_hough.png")]
+    files.append(save_figure(fig, out / "paper_hough.png"))
     return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
             "camera": cam, "paper_reading": paper}

@@ -16,8 +16,6 @@ globally localizing and while tracking, time per update; the paper's claims besi
 
 from __future__ import annotations
 
-import csv
-import json
 import math
 import time
 from pathlib import Path
@@ -28,6 +26,7 @@ import numpy as np
 from estimators.localization import KLDConfig, KLDLocalizer
 
 from ..plots import pyplot, save_figure
+from ._io import write_report
 
 __all__ = ["run", "LANDMARKS", "PAPER"]
 
@@ -112,25 +111,20 @@ def run(out: str | Path = "paper_output", duration: float = 60.0, seed: int = 0,
              "| filter | median position error [m] | median heading error [deg] | particles "
              "at the start | mean particles while tracking | ms per update |",
              "|---|---|---|---|---|---|"]
-    rows = []
+    summary = {name: {k: v for k, v in r.items() if not isinstance(v, list)}
+               for name, r in results.items()}
     for name, r in results.items():
         lines.append(f"| {name} | {r['median_pos_m']:.3f} | {r['median_head_deg']:.1f} | "
                      f"{r['global_particles']} | {r['tracking_particles']:.0f} | "
                      f"{r['ms_per_update']:.2f} |")
-        rows.append({"filter": name, **{k: v for k, v in r.items()
-                                        if not isinstance(v, list)}})
     ratio = kld["global_particles"] / max(kld["tracking_particles"], 1.0)
     lines += ["", f"KLD-sampling: {ratio:.0f} times fewer particles while tracking than while "
               f"globally localizing; median error {kld['median_pos_m']:.3f} m while walking.",
               "", PAPER]
     text = "\n".join(lines)
-    (out / "paper_localization.md").write_text(text + "\n")
-    with open(out / "paper_localization.csv", "w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    (out / "paper_localization.json").write_text(json.dumps(
-        {"duration": duration, "seed": seed, "results": results}, indent=1))
+    rows = [{"filter": name, **r} for name, r in summary.items()]
+    files = write_report(out, "paper_localization", text, rows,
+                         {"duration": duration, "seed": seed, "results": results})
     plt = pyplot()
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
     t = np.arange(len(steps)) * DT
@@ -140,9 +134,6 @@ def run(out: str | Path = "paper_output", duration: float = 60.0, seed: int = 0,
     ax1.legend(fontsize=7)
     ax2.plot(t, kld["counts"], "k-")
     ax2.set(xlabel="time [s]", ylabel="particles (KLD)", yscale="log")
-    files = [str(out / "paper_localization.md"), str(out / "paper_localization.csv"),
-             str(out / "paper_localization.json"),
-             save_figure(fig, out / "paper_localization.png")]
+    files.append(save_figure(fig, out / "paper_localization.png"))
     return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
-            "results": {k: {kk: vv for kk, vv in v.items() if not isinstance(vv, list)}
-                        for k, v in results.items()}}
+            "results": summary}

@@ -11,8 +11,6 @@ claim (MFBPF slightly better than FBPF; the paper gives a figure, not numbers).
 
 from __future__ import annotations
 
-import csv
-import json
 import math
 import time
 from pathlib import Path
@@ -23,6 +21,7 @@ import numpy as np
 from estimators.particle import FBPF, MFBPF, BootstrapPF, ungm_model, ungm_simulate
 
 from ..plots import pyplot, save_figure
+from ._io import write_report
 
 __all__ = ["run", "FILTERS", "PAPER_CLAIM"]
 
@@ -118,14 +117,9 @@ def run(out: str | Path = "paper_output", runs: int = 200, particles: int = 100,
               f"{np.mean(diff < 0):.0%} of runs, equal in {np.mean(diff == 0):.0%}.", "",
               PAPER_CLAIM]
     text = "\n".join(lines)
-    (out / "paper_ungm.md").write_text(text + "\n")
-    with open(out / "paper_ungm.csv", "w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    (out / "paper_ungm.json").write_text(json.dumps(
-        {"runs": runs, "particles": particles, "steps": steps, "seed": seed, "rows": rows,
-         "rmse_per_run": {k: v.tolist() for k, v in rmse.items()}}, indent=1))
+    files = write_report(out, "paper_ungm", text, rows, {
+        "runs": runs, "particles": particles, "steps": steps, "seed": seed, "rows": rows,
+        "rmse_per_run": {k: v.tolist() for k, v in rmse.items()}})
     plt = pyplot()
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4))
     ax1.plot(example["truth"], "k-", lw=2, label="true state")
@@ -136,7 +130,6 @@ def run(out: str | Path = "paper_output", runs: int = 200, particles: int = 100,
     ax2.boxplot([rmse[n] for n in FILTERS])
     ax2.set_xticks(range(1, len(FILTERS) + 1), list(FILTERS))
     ax2.set(ylabel="RMSE over 50 steps", title=f"{runs} runs, {particles} particles")
-    files = [str(out / "paper_ungm.md"), str(out / "paper_ungm.csv"),
-             str(out / "paper_ungm.json"), save_figure(fig, out / "paper_ungm.png")]
+    files.append(save_figure(fig, out / "paper_ungm.png"))
     return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
             "rmse": {k: float(v.mean()) for k, v in rmse.items()}, "us_per_step": timing}
