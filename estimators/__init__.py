@@ -6,8 +6,9 @@ Everything here takes and returns numpy arrays, depends on numpy only, and never
 
 from .ball import CHI2_2DOF_999, BallFilterConfig, BallTracker, LeastSquaresBall
 from .ball_models import FrictionBallModel
+from .ball_pf import ParticleBallTracker
 from .camera import HeadCamera
-from .hough import fusion_weights, hough_fuse, hough_lines
+from .hough import FusedSighting, fuse_sightings, fusion_weights, hough_fuse, hough_lines
 from .kalman import KalmanFilter
 from .localization import KLDConfig, KLDLocalizer, kld_sample_size
 from .models import (
@@ -34,9 +35,12 @@ __all__ = [
     "BallFilterConfig",
     "BallTracker",
     "LeastSquaresBall",
+    "ParticleBallTracker",
     "RobotTracker",
     "CHI2_2DOF_999",
     "hough_fuse",
+    "fuse_sightings",
+    "FusedSighting",
     "hough_lines",
     "fusion_weights",
     "BootstrapPF",

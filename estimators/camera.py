@@ -98,17 +98,25 @@ class HeadCamera:
             (uv[:, 1] <= self.height_px)
         return uv, inside
 
-    def ground_point(self, pixels: np.ndarray, pan: float, tilt: float) -> np.ndarray:
-        """Robot-frame ground points ``(n, 2)`` [m] seen at ``pixels`` ((n, 2)); NaN for pixels
-        at or above the horizon (their ray never meets the ground)."""
+    def ground_point(self, pixels: np.ndarray, pan: float, tilt: float,
+                     plane_height: float = 0.0) -> np.ndarray:
+        """Robot-frame points ``(n, 2)`` [m] seen at ``pixels`` ((n, 2)) on the horizontal plane
+        ``z = plane_height`` [m] (the ground by default; a resting ball's centre lies on
+        ``z = ball radius``): the ray ``c + t d`` from the camera ``c`` meets it at
+        ``t = (plane_height - height) / d_z``. NaN where the ray does not meet the plane ahead
+        of the camera (``t <= 0``): for planes below the camera, pixels at or above the
+        horizon."""
         uv = np.asarray(pixels, dtype=np.float64)
         if uv.ndim != 2 or uv.shape[1] != 2:
             raise ValueError(f"pixels must have shape (n, 2), got {uv.shape}")
+        if not math.isfinite(plane_height):
+            raise ValueError(f"plane_height must be finite, got {plane_height!r}")
         u0, v0 = self.centre
         f = self.focal_px
         ray_cam = np.column_stack([(uv[:, 0] - u0) / f, np.ones(len(uv)), -(uv[:, 1] - v0) / f])
         ray = ray_cam @ self._rotation(pan, tilt)  # camera -> paper world (R^T applied)
-        down = ray[:, 2] < -1e-12
-        t = np.where(down, self.height / np.where(down, -ray[:, 2], 1.0), np.nan)
+        drop = plane_height - self.height  # [m], negative for planes below the camera
+        meets = (ray[:, 2] * drop > 0.0) & (np.abs(ray[:, 2]) > 1e-12)
+        t = np.where(meets, drop / np.where(meets, ray[:, 2], 1.0), np.nan)
         xw, yw = t * ray[:, 0], t * ray[:, 1]
         return np.column_stack([yw, -xw])  # paper world -> robot frame

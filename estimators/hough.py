@@ -19,15 +19,23 @@ of the 2 x 2 normal equations
 
 ``c = cos(theta_i)``, ``s = sin(theta_i)``. Positions in metres (any unit works), angles in
 radians. Closed form, written out here because it is three sums and a 2 x 2 solve.
+
+:func:`fuse_sightings` wraps this for a team's timestamped sightings (some with an estimated
+range, some bearing-only), moves them to a common time with a velocity estimate, falls back
+to the ranged point estimates when the lines do not cross well, and estimates the fused
+point's error covariance for a tracker.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["hough_lines", "hough_fuse", "fusion_weights", "WEIGHTINGS"]
+__all__ = ["hough_lines", "hough_fuse", "fusion_weights", "fuse_sightings", "FusedSighting",
+           "WEIGHTINGS"]
 
 #: Weightings of :func:`fusion_weights`: name -> power of the distance in ``K_i = 1 / L_i^p``.
 WEIGHTINGS = {"equal": 0, "inverse": 1, "inverse_square": 2}
@@ -123,13 +131,186 @@ def hough_fuse(origins: np.ndarray | Sequence[Sequence[float]],
     if np.count_nonzero(k > 0.0) < 2:
         raise ValueError(f"need at least two lines with positive weight to fuse, got "
                          f"{np.count_nonzero(k > 0.0)}")
+    point, _ = _solve(theta, rho, k, _MIN_CONDITION)
+    if point is None:
+        raise ValueError("the lines are (nearly) parallel: no unique crossing point")
+    return point
+
+
+def _solve(theta: np.ndarray, rho: np.ndarray, k: np.ndarray, min_condition: float
+           ) -> tuple[np.ndarray | None, np.ndarray]:
+    """The weighted least-squares point of the lines and the normal matrix
+    ``M = sum K n n^T`` (``n = (cos theta, sin theta)``); the point is None when
+    ``det M / trace(M)^2 <= min_condition`` (the lines (nearly) parallel)."""
     c, s = np.cos(theta), np.sin(theta)
     a11, a12, a22 = np.sum(k * c * c), np.sum(k * c * s), np.sum(k * s * s)
     b1, b2 = np.sum(k * c * rho), np.sum(k * s * rho)
+    M = np.array([[a11, a12], [a12, a22]])
     det = a11 * a22 - a12 * a12
     trace = a11 + a22
     # det / trace^2 is the product over the square of the sum of the eigenvalues: near 0
     # when every line has (nearly) the same normal.
-    if trace <= 0.0 or det <= _MIN_CONDITION * trace * trace:
-        raise ValueError("the lines are (nearly) parallel: no unique crossing point")
-    return np.array([(a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det])
+    if trace <= 0.0 or det <= min_condition * trace * trace:
+        return None, M
+    return np.array([(a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det]), M
+
+
+# ------------------------------------------------------------------------------------------
+# A team's timestamped sightings
+# ------------------------------------------------------------------------------------------
+
+
+class FusedSighting(NamedTuple):
+    """The result of :func:`fuse_sightings`.
+
+    Attributes:
+        point: ``(2,)`` the fused target position (at time ``now``).
+        n_lines: number of sightings used (all lines when ``fused``, else those with a range).
+        fused: True for the Hough fusion of crossing lines, False for the weighted mean of
+            the ranged point estimates.
+        sigma: error scale, ``sqrt(trace(cov) / 2)`` (the RMS standard deviation per axis),
+            in the positions' unit: a measurement sigma for a tracker.
+        cov: ``(2, 2)`` error covariance of ``point`` (see :func:`fuse_sightings`).
+    """
+
+    point: np.ndarray
+    n_lines: int
+    fused: bool
+    sigma: float
+    cov: np.ndarray
+
+
+def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
+                   angles: np.ndarray | Sequence[float],
+                   ranges: np.ndarray | Sequence[float],
+                   stamps: np.ndarray | Sequence[float] | None = None,
+                   now: float | None = None,
+                   velocity: np.ndarray | Sequence[float] | None = None,
+                   weighting: str = "inverse", *,
+                   bearing_sigma: float = math.radians(3.0),
+                   range_sigma_rel: float = 0.1,
+                   min_angle: float = math.radians(5.0)) -> FusedSighting:
+    """Fuse a team's sightings of one target (the ball).
+
+    Robot ``i`` at ``origins[i]`` saw the target along the field-frame direction ``angles[i]``
+    [rad] at the estimated range ``ranges[i]`` (NaN, or any non-finite value: bearing only) at
+    time ``stamps[i]`` [s].
+
+    1. *Common time*: with ``velocity`` ``v`` (``(2,)``, the target's, e.g. a tracker's
+       estimate) and ``stamps``, every sighting is moved by ``v (now - stamps[i])`` (the
+       target moved since; ``now`` defaults to the latest stamp). Without either, no shift.
+    2. *Weights* ``K_i = 1 / L_i^p`` (:func:`fusion_weights` with ``weighting``), ``L_i`` the
+       range; a bearing-only sighting counts as twice the largest known range (all equal when
+       none is known).
+    3. *Hough fusion* (:func:`hough_fuse`) of all the lines when there are two or more that
+       cross at ``min_angle`` [rad] or more (``det M0 / trace(M0)^2 > sin(min_angle)^2 / 4``
+       with ``M0 = sum n n^T`` the unweighted normal matrix; for two lines this is their
+       crossing angle). Error model: line ``i`` lies ``bearing_sigma * D_i`` off the target
+       (standard deviation, ``D_i`` its origin's distance to the fused point), so with
+       ``M = sum K n n^T`` the weighted least-squares point has covariance
+       ``M^-1 (sum K^2 (bearing_sigma D)^2 n n^T) M^-1``, multiplied by
+       ``max(1, chi^2 / (n - 2))`` when ``n >= 3`` lines disagree more than that
+       (``chi^2 = sum e_i^2 / (bearing_sigma D_i)^2``, ``e_i`` the perpendicular residuals:
+       poses worse than the model says).
+    4. *Otherwise* (one line, or lines crossing at a shallower angle) the weighted mean
+       ``sum K q / sum K`` of the point estimates ``q_i = origin_i + range_i (cos, sin)`` of
+       the sightings that have a range, each with covariance
+       ``range_i^2 (range_sigma_rel^2 u u^T + bearing_sigma^2 u_perp u_perp^T)`` (``u`` the
+       line's direction), so ``cov = sum (K / sum K)^2 cov_i``, multiplied by
+       ``max(1, chi^2 / (2 (m - 1)))`` when ``m >= 2`` points disagree more than that.
+    5. With no range either, lines that cross at a shallow angle but do cross are still
+       fused (their covariance is then long along the lines).
+
+    Returns:
+        :class:`FusedSighting` ``(point, n_lines, fused, sigma, cov)``.
+
+    Raises:
+        ValueError: bad shapes or values, or no position (a single bearing-only sighting,
+            or bearing-only lines that are parallel).
+    """
+    p = np.asarray(origins, dtype=np.float64)
+    if p.ndim != 2 or p.shape[1] != 2 or len(p) == 0:
+        raise ValueError(f"origins must have shape (n, 2) with n >= 1, got {p.shape}")
+    if not np.all(np.isfinite(p)):
+        raise ValueError("origins must be finite")
+    n = len(p)
+    psi = np.asarray(angles, dtype=np.float64)
+    if psi.shape != (n,) or not np.all(np.isfinite(psi)):
+        raise ValueError(f"angles must be a finite ({n},) array, got {angles!r}")
+    r = np.asarray(ranges, dtype=np.float64)
+    if r.shape != (n,):
+        raise ValueError(f"ranges must have shape ({n},), got {r.shape}")
+    known = np.isfinite(r)
+    if np.any(r[known] <= 0.0):
+        raise ValueError(f"ranges must be > 0 (or NaN for bearing only), got {ranges!r}")
+    if weighting not in WEIGHTINGS:
+        raise ValueError(f"weighting must be one of {list(WEIGHTINGS)}, got {weighting!r}")
+    for name, value in (("bearing_sigma", bearing_sigma), ("range_sigma_rel", range_sigma_rel)):
+        if not (math.isfinite(value) and value > 0.0):
+            raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+    if not 0.0 < min_angle <= 0.5 * math.pi:
+        raise ValueError(f"min_angle must be in (0, pi/2], got {min_angle!r}")
+    if velocity is not None and stamps is not None:
+        v = np.asarray(velocity, dtype=np.float64)
+        if v.shape != (2,) or not np.all(np.isfinite(v)):
+            raise ValueError(f"velocity must be a finite (2,) vector, got {velocity!r}")
+        st = np.asarray(stamps, dtype=np.float64)
+        if st.shape != (n,) or not np.all(np.isfinite(st)):
+            raise ValueError(f"stamps must be a finite ({n},) array, got {stamps!r}")
+        t_now = float(st.max()) if now is None else float(now)
+        if not math.isfinite(t_now):
+            raise ValueError(f"now must be finite, got {now!r}")
+        p = p + np.outer(t_now - st, v)  # each line moved with the target since its stamp
+    u = np.column_stack([np.cos(psi), np.sin(psi)])
+
+    crossing = None  # (point, weighted normal matrix M, weights K)
+    if n >= 2:
+        L = np.where(known, r, 2.0 * float(r[known].max()) if known.any() else 1.0)
+        k = fusion_weights(L, weighting)
+        theta, rho = hough_lines(p, angles=psi)
+        point, M = _solve(theta, rho, k, _MIN_CONDITION)
+        if point is not None:
+            crossing = (point, M, k, theta, rho)
+            _, M0 = _solve(theta, rho, np.ones(n), _MIN_CONDITION)
+            ratio = (M0[0, 0] * M0[1, 1] - M0[0, 1] ** 2) / np.trace(M0) ** 2
+            if ratio > 0.25 * math.sin(min_angle) ** 2:
+                return _crossing_result(crossing, p, bearing_sigma)
+    if known.any():
+        q = p[known] + r[known, None] * u[known]
+        kq = fusion_weights(r[known], weighting)
+        wq = kq / kq.sum()
+        point = wq @ q
+        # cov_i = r^2 (rel^2 u u^T + b^2 u_perp u_perp^T) = r^2 (b^2 I + (rel^2 - b^2) u u^T)
+        uk, rk = u[known], r[known]
+        covs = (rk**2)[:, None, None] * (bearing_sigma**2 * np.eye(2)[None]
+                                         + (range_sigma_rel**2 - bearing_sigma**2)
+                                         * uk[:, :, None] * uk[:, None, :])
+        cov = np.einsum("i,ijk->jk", wq**2, covs)
+        m = len(q)
+        if m >= 2:
+            e = q - point
+            chi2 = float(np.einsum("ij,ij->", e, np.linalg.solve(covs, e[:, :, None])[:, :, 0]))
+            cov = cov * max(1.0, chi2 / (2.0 * (m - 1)))
+        return FusedSighting(point, m, False, math.sqrt(0.5 * float(np.trace(cov))), cov)
+    if crossing is not None:
+        return _crossing_result(crossing, p, bearing_sigma)
+    raise ValueError("no position: need two crossing lines or a sighting with a range, got "
+                     f"{n} bearing-only sighting(s)" + (" (parallel)" if n > 1 else ""))
+
+
+def _crossing_result(crossing: tuple, origins: np.ndarray, bearing_sigma: float
+                     ) -> FusedSighting:
+    """Step 3 of :func:`fuse_sightings`: the fused point with its covariance."""
+    point, M, k, theta, rho = crossing
+    normals = np.column_stack([np.cos(theta), np.sin(theta)])
+    s = bearing_sigma * np.hypot(*(point - origins).T)  # lateral std of each line
+    Minv = np.linalg.inv(M)
+    inner = (normals.T * (k * s) ** 2) @ normals  # sum K^2 s^2 n n^T
+    cov = Minv @ inner @ Minv
+    n = len(theta)
+    if n >= 3:
+        e = rho - normals @ point  # signed perpendicular residuals
+        chi2 = float(np.sum((e / np.maximum(s, 1e-12)) ** 2))
+        cov = cov * max(1.0, chi2 / (n - 2))
+    cov = 0.5 * (cov + cov.T)
+    return FusedSighting(point, n, True, math.sqrt(0.5 * float(np.trace(cov))), cov)

@@ -13,6 +13,16 @@ State ``(x, y, theta)`` in the field frame [m, m, rad]; particles ``(N, 3)``.
   sigma_b^2)`` multiplied over the landmarks (paper 001 uses the range term only; the bearing
   term is optional, ``sigma_bearing=None`` turns it off), with ``sigma_r`` growing with the
   range (``sigma_r = range_sigma + range_sigma_rel * range``, stereo depth error).
+* **Ambiguous landmarks** (:meth:`KLDLocalizer.update_kinds`): a robot often sees *a* line
+  corner or *a* goal post without knowing which. Each observation then names a kind, the field
+  a table of the candidate positions of every kind, and each particle associates every
+  observation with the candidate of its kind that explains it best (the largest likelihood:
+  nearest-neighbour data association per particle, the usual RoboCup approach),
+  ``log p(z_j | chi) = max_c log N(z_j; g_c(chi), Sigma)``. Particles in a symmetric
+  position (the field turned by 180 degrees) explain the same observations equally well, so
+  with symmetric landmarks alone the belief can settle on the mirror pose; a known start or
+  a landmark of known identity must break the tie (the motion cannot: it looks the same from
+  both).
 * **Resampling by KLD-sampling** (Fox 2003): particles are drawn from the weighted set until
   ``n >= (k - 1) / (2 eps) * (1 - 2 / (9 (k - 1)) + sqrt(2 / (9 (k - 1))) z_{1-delta})^3``,
   ``k`` the number of histogram bins (``bin_size``) holding at least one drawn particle, between
@@ -34,6 +44,7 @@ paper's method, not a library's; vectorised numpy; every draw from the given gen
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -218,19 +229,33 @@ class KLDLocalizer:
         if len(r) != len(L) or not (np.all(np.isfinite(L)) and np.all(np.isfinite(r))):
             raise ValueError(f"landmarks ((m, 2)) and ranges ((m,)) must match and be finite, "
                              f"got {L.shape} and {r.shape}")
+        return np.sum(self._pair_log_likelihood(L, r, self._check_bearings(bearings, r)),
+                      axis=1)
+
+    def _check_bearings(self, bearings: np.ndarray | None, r: np.ndarray) -> np.ndarray | None:
+        """The bearings as a checked array, or None when they are not used."""
+        if bearings is None or self.cfg.bearing_sigma is None:
+            return None
+        b = np.asarray(bearings, dtype=np.float64).reshape(-1)
+        if b.shape != r.shape or not np.all(np.isfinite(b)):
+            raise ValueError("bearings must be finite and match ranges")
+        return b
+
+    def _pair_log_likelihood(self, L: np.ndarray, r: np.ndarray, b: np.ndarray | None
+                             ) -> np.ndarray:
+        """``(N, m)`` log-likelihood terms (up to a constant) of every particle for landmark
+        positions ``L`` ((m, 2)) seen at ranges ``r`` ((m,)) and bearings ``b`` ((m,) or
+        None), one pair per column."""
         c = self.cfg
         dx = L[None, :, 0] - self.particles[:, None, 0]
         dy = L[None, :, 1] - self.particles[:, None, 1]
         expected = np.hypot(dx, dy)
         sigma = c.range_sigma + c.range_sigma_rel * r
-        log = -0.5 * np.sum(((expected - r) / sigma) ** 2, axis=1)
-        if bearings is not None and c.bearing_sigma is not None:
-            b = np.asarray(bearings, dtype=np.float64).reshape(-1)
-            if b.shape != r.shape or not np.all(np.isfinite(b)):
-                raise ValueError("bearings must be finite and match ranges")
+        log = -0.5 * ((expected - r) / sigma) ** 2
+        if b is not None:
             err = np.arctan2(dy, dx) - self.particles[:, None, 2] - b
             err = np.remainder(err + math.pi, 2.0 * math.pi) - math.pi
-            log += -0.5 * np.sum((err / c.bearing_sigma) ** 2, axis=1)
+            log += -0.5 * (err / c.bearing_sigma) ** 2
         return log
 
     def update(self, landmarks: np.ndarray, ranges: np.ndarray,
@@ -239,7 +264,55 @@ class KLDLocalizer:
         m = len(np.asarray(ranges).reshape(-1))
         if m == 0:
             return
-        log = self._log_likelihood(landmarks, ranges, bearings)
+        self._weigh(self._log_likelihood(landmarks, ranges, bearings), m)
+
+    def update_kinds(self, kinds: Sequence[str], ranges: np.ndarray,
+                     bearings: np.ndarray | None, table: Mapping[str, np.ndarray]) -> None:
+        """Weight by sightings of landmarks known by kind only, then KLD-resample.
+
+        Args:
+            kinds: ``m`` kinds (keys of ``table``), one per observation.
+            ranges: ``(m,)`` measured ranges [m].
+            bearings: ``(m,)`` bearings [rad, relative to the heading], or None.
+            table: kind -> ``(M_k, 2)`` positions of the landmarks of that kind [m].
+
+        Per observation ``j`` and particle, the log-likelihood is the largest over the
+        candidates of its kind (nearest-neighbour association, see the module docstring);
+        the weighting, recovery bookkeeping and resampling are :meth:`update`'s. Vectorised
+        over particles x candidates.
+        """
+        kinds = [kinds] if isinstance(kinds, str) else list(kinds)
+        r = np.asarray(ranges, dtype=np.float64).reshape(-1)
+        m = len(kinds)
+        if len(r) != m or not np.all(np.isfinite(r)):
+            raise ValueError(f"kinds ({m}) and ranges ({r.shape}) must match and ranges be "
+                             f"finite")
+        if m == 0:
+            return
+        b = self._check_bearings(bearings, r)
+        cands, starts = [], []
+        for kind in kinds:
+            if kind not in table:
+                raise ValueError(f"unknown landmark kind {kind!r}; the table has "
+                                 f"{sorted(table)}")
+            pos = np.asarray(table[kind], dtype=np.float64).reshape(-1, 2)
+            if len(pos) == 0 or not np.all(np.isfinite(pos)):
+                raise ValueError(f"table[{kind!r}] must hold one or more finite (x, y) "
+                                 f"positions")
+            starts.append(sum(len(c) for c in cands))
+            cands.append(pos)
+        L = np.concatenate(cands)
+        counts = np.array([len(c) for c in cands])
+        # Every (observation, candidate) pair as one column, then the best candidate of each
+        # observation (contiguous column blocks) and the sum over the observations.
+        log = self._pair_log_likelihood(L, np.repeat(r, counts),
+                                        None if b is None else np.repeat(b, counts))
+        best = np.maximum.reduceat(log, np.asarray(starts), axis=1)
+        self._weigh(np.sum(best, axis=1), m)
+
+    def _weigh(self, log: np.ndarray, m: int) -> None:
+        """Weights times ``exp(log)`` for ``m`` observations, the recovery averages, then
+        KLD resampling."""
         w = self.weights * np.exp(log - log.max())  # scaled against underflow
         total = float(w.sum())
         mean_lik = float(np.dot(self.weights, np.exp(log / m)))

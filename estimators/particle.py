@@ -11,11 +11,12 @@ the UNGM benchmark (:func:`ungm_model`) and the ball tracker (2-D constant veloc
 impoverishment; the seed paper names its three steps without the details, so this is our
 reading): *Sorting* the particles by weight; *Fission*: a particle of normalised weight ``w``
 spawns ``floor(N w) - 1`` offspring (the copies resampling would make of it, beyond itself),
-each its parent plus Gaussian noise of variance ``fission_variance`` in every dimension, and the
-offspring replace the lightest particles (all of weight below ``1/N``); parent and offspring
-share the parent's weight equally, the replaced particles' weight is dropped; *Normalizing*
-the weights. Replacing every particle below ``1/N`` instead would cut the posterior's tails at
-every step and make the filter overconfident.
+each its parent plus Gaussian noise of variance ``fission_variance`` in every dimension (a
+scalar, or one variance per dimension for states of mixed units such as a ball's position and
+velocity), and the offspring replace the lightest particles (all of weight below ``1/N``);
+parent and offspring share the parent's weight equally, the replaced particles' weight is
+dropped; *Normalizing* the weights. Replacing every particle below ``1/N`` instead would cut
+the posterior's tails at every step and make the filter overconfident.
 
 * :class:`BootstrapPF`: sample, weight ``w_k = w_{k-1} p(y | x)`` (``w_{k-1} = 1/N`` after a
   resampling), normalise, estimate, resample (systematic) when ``N_eff = 1 / sum w^2`` falls
@@ -28,6 +29,11 @@ every step and make the filter overconfident.
   ``1/N``; otherwise high-weight particles are copied over low-weight ones (systematic
   resampling). The comparison is ``sfn_when="above"`` by default and configurable
   (``"below"`` gives FBPF's test).
+
+Every filter's ``step(y)`` is ``predict()`` (the time update: particles drawn from the
+transition, weights unchanged, no resampling) followed by ``correct(y)`` (weighting, estimate,
+SFN and/or resampling); a tracker calls ``predict()`` alone for a cycle without a measurement,
+or the two halves separately to look at the predicted particles before weighting them.
 
 Vectorised numpy throughout: written here rather than taken from a library because the
 fission step and MFBPF's weight bookkeeping are the papers' own.
@@ -58,10 +64,11 @@ def systematic_resample(weights: np.ndarray, rng: np.random.Generator) -> np.nda
 
 
 def sfn(particles: np.ndarray, weights: np.ndarray, rng: np.random.Generator,
-        fission_variance: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        fission_variance: float | np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Sorting, fission and normalising (see the module docstring) of ``particles`` ((N, d))
-    with normalised ``weights`` ((N,)). Returns the new particles, their normalised weights and
-    a boolean mask of the offspring."""
+    with normalised ``weights`` ((N,)); ``fission_variance`` is the offspring's perturbation
+    variance, a scalar (every dimension) or a ``(d,)`` array (one per dimension). Returns the
+    new particles, their normalised weights and a boolean mask of the offspring."""
     n = len(weights)
     order = np.argsort(-weights, kind="stable")  # sorting
     p, w = particles[order], weights[order]
@@ -72,7 +79,11 @@ def sfn(particles: np.ndarray, weights: np.ndarray, rng: np.random.Generator,
     if n_children > 0:
         # sum floor(N w) <= N, so the n_children lightest particles all have N w < 1.
         parents = np.repeat(np.arange(n), children)
-        noise = rng.normal(0.0, math.sqrt(fission_variance), (n_children, p.shape[1]))
+        if np.ndim(fission_variance) == 0:
+            scale = math.sqrt(fission_variance)
+        else:  # one standard deviation per column, broadcast over the offspring
+            scale = np.sqrt(np.asarray(fission_variance, dtype=np.float64))
+        noise = rng.normal(0.0, scale, (n_children, p.shape[1]))
         new_p[n - n_children:] = p[parents] + noise  # fission
         split = w / (children + 1)
         new_w[:n - n_children] = split[:n - n_children]
@@ -128,9 +139,24 @@ class BootstrapPF:
             raise ValueError(f"likelihood must return ({self.n},) finite non-negative values")
         return lik
 
-    def step(self, y: np.ndarray | float) -> np.ndarray:
-        """Advance one step with measurement ``y``; returns the state estimate ((d,))."""
+    def predict(self) -> np.ndarray:
+        """Time update only: every particle drawn from the transition,
+        ``x_k^i ~ p(x_k | x_{k-1}^i)`` (``k`` advances by one), weights unchanged, no
+        resampling or SFN (a cycle without a measurement). Returns the predicted estimate
+        ``sum_i w^i x_k^i / sum_i w^i`` ((d,))."""
         self._propagate()
+        return (self.weights @ self.particles) / float(self.weights.sum())
+
+    def step(self, y: np.ndarray | float) -> np.ndarray:
+        """Advance one step with measurement ``y`` (:meth:`predict` then :meth:`correct`);
+        returns the state estimate ((d,))."""
+        self._propagate()
+        return self.correct(y)
+
+    def correct(self, y: np.ndarray | float) -> np.ndarray:
+        """Measurement update of the current (predicted) particles with ``y``: weighting,
+        estimate, then the filter's resampling and/or SFN (here: resampling when
+        ``N_eff < N_th``). Returns the estimate ((d,))."""
         # Weights carry over between resamplings (uniform right after one).
         w = self.weights * self._likelihood(np.asarray(y, dtype=np.float64))
         total = w.sum()
@@ -154,17 +180,24 @@ class FBPF(BootstrapPF):
     resampling whenever ``N_eff < N_th``.
 
     Args:
-        fission_variance: variance of the offspring's perturbation (per dimension).
+        fission_variance: variance of the offspring's perturbation, a scalar (the same in
+            every dimension) or a ``(d,)`` array (one per dimension, in the state's units
+            squared).
         threshold: ``N_th / N`` (the paper: 0.3 to 0.8; its benchmark 0.5).
     """
 
     def __init__(self, particles: np.ndarray, transition: Transition, likelihood: Likelihood,
                  rng: np.random.Generator, threshold: float = 0.5,
-                 fission_variance: float = 1.0) -> None:
+                 fission_variance: float | np.ndarray = 1.0) -> None:
         super().__init__(particles, transition, likelihood, rng, threshold)
-        if not (math.isfinite(fission_variance) and fission_variance >= 0.0):
+        v = np.asarray(fission_variance, dtype=np.float64)
+        d = self.particles.shape[1]
+        if v.ndim > 1 or (v.ndim == 1 and v.shape != (d,)):
+            raise ValueError(f"fission_variance must be a scalar or have shape ({d},), got "
+                             f"shape {v.shape}")
+        if not (np.all(np.isfinite(v)) and np.all(v >= 0.0)):
             raise ValueError(f"fission_variance must be >= 0, got {fission_variance!r}")
-        self.fission_variance = float(fission_variance)
+        self.fission_variance: float | np.ndarray = float(v) if v.ndim == 0 else v.copy()
 
     def _refresh(self) -> None:
         self.particles, self.weights, _ = sfn(self.particles, self.weights, self.rng,
@@ -176,7 +209,8 @@ class MFBPF(FBPF):
     """The paper's modified FBPF (see the module docstring).
 
     Args:
-        fission_variance: variance of the offspring's perturbation (per dimension).
+        fission_variance: variance of the offspring's perturbation (scalar or ``(d,)``, see
+            :class:`FBPF`).
         threshold: ``N_th / N`` (the paper: 0.5).
         sfn_when: ``"above"`` (as printed: SFN when ``N_eff >= N_th``, else resample) or
             ``"below"`` (FBPF's test: SFN and resampling when ``N_eff < N_th``).
@@ -190,8 +224,8 @@ class MFBPF(FBPF):
             raise ValueError(f"sfn_when must be 'above' or 'below', got {sfn_when!r}")
         self.sfn_when = sfn_when
 
-    def step(self, y: np.ndarray | float) -> np.ndarray:
-        self._propagate()
+    def correct(self, y: np.ndarray | float) -> np.ndarray:
+        """Measurement update with MFBPF's bookkeeping (see the module docstring)."""
         w = self.weights * self._likelihood(np.asarray(y, dtype=np.float64))
         s = float(w.sum())
         if s <= 0.0 or not math.isfinite(s):

@@ -84,3 +84,24 @@ def test_horizon_and_bad_input():
         HeadCamera(hfov=4.0)
     with pytest.raises(ValueError, match="height"):
         HeadCamera(height=0.0)
+
+
+def test_ground_point_on_a_raised_plane():
+    # A ball's centre at z = r: projecting it and intersecting the plane z = r gives it back;
+    # the ground (z = 0) puts it farther along the same ray, by h / (h - r).
+    r = 0.033
+    rng = np.random.default_rng(1)
+    pts = np.column_stack([rng.uniform(0.5, 4.0, 20), rng.uniform(-1.0, 1.0, 20),
+                           np.full(20, r)])
+    uv, inside = CAM.project(pts, 0.2, 0.4)
+    assert inside.sum() > 5
+    back = CAM.ground_point(uv[inside], 0.2, 0.4, plane_height=r)
+    np.testing.assert_allclose(back, pts[inside, 0:2], atol=1e-9)
+    ground = CAM.ground_point(uv[inside], 0.2, 0.4)
+    np.testing.assert_allclose(ground, pts[inside, 0:2] * CAM.height / (CAM.height - r),
+                               atol=1e-9)
+    # A plane above the camera is met by rays pointing up, never by rays pointing down.
+    up = CAM.ground_point(np.array([[360.0, 0.0], [360.0, 600.0]]), 0.0, 0.0, plane_height=1.0)
+    assert np.all(np.isfinite(up[0])) and up[0, 0] > 0 and np.all(np.isnan(up[1]))
+    with pytest.raises(ValueError, match="plane_height"):
+        CAM.ground_point(uv, 0.0, 0.0, plane_height=math.nan)

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from estimators.hough import fusion_weights, hough_fuse, hough_lines
+from estimators.hough import FusedSighting, fuse_sightings, fusion_weights, hough_fuse, hough_lines
 
 # Paper 000, Table 1 (millimetres): the five robots and the ball's start.
 ROBOTS = np.array([[1000, 3500], [250, 2000], [1750, 350], [4250, 2400], [5600, 3900]],
@@ -113,3 +113,128 @@ def test_degenerate_and_bad_input_is_reported():
         fusion_weights([1.0, 2.0], "cubic")
     with pytest.raises(ValueError, match="positive"):
         fusion_weights([1.0, 0.0])
+
+
+# --------------------------------------------------------------------------------------------
+# fuse_sightings: a team's timestamped sightings
+# --------------------------------------------------------------------------------------------
+
+ROBOTS_M = ROBOTS / 1000.0
+BALL_M = BALL / 1000.0
+
+
+def _sightings(ball, robots=ROBOTS_M):
+    d = ball - robots
+    return np.arctan2(d[:, 1], d[:, 0]), np.hypot(d[:, 0], d[:, 1])
+
+
+def test_fuse_sightings_exact_on_consistent_sightings():
+    angles, ranges = _sightings(BALL_M)
+    res = fuse_sightings(ROBOTS_M, angles, ranges)
+    assert isinstance(res, FusedSighting) and res.fused and res.n_lines == 5
+    np.testing.assert_allclose(res.point, BALL_M, atol=1e-9)
+    assert res.sigma > 0.0 and res.cov.shape == (2, 2)
+    # Bearing-only sightings (NaN ranges) still cross at the target.
+    ranges[[1, 3]] = np.nan
+    res = fuse_sightings(ROBOTS_M, angles, ranges)
+    assert res.fused and res.n_lines == 5
+    np.testing.assert_allclose(res.point, BALL_M, atol=1e-9)
+
+
+def test_fuse_sightings_weights_bearing_only_lines_as_far_ones():
+    """A NaN range weighs like twice the largest known range (the paper's 1/L weights)."""
+    rng = np.random.default_rng(4)
+    angles, ranges = _sightings(BALL_M)
+    angles = angles + rng.normal(0, 0.05, 5)
+    ranges[[0, 2]] = np.nan
+    L = np.where(np.isfinite(ranges), ranges, 2.0 * np.nanmax(ranges))
+    for weighting in ("equal", "inverse", "inverse_square"):
+        expected = hough_fuse(ROBOTS_M, angles=angles, weights=fusion_weights(L, weighting))
+        res = fuse_sightings(ROBOTS_M, angles, ranges, weighting=weighting)
+        np.testing.assert_allclose(res.point, expected, atol=1e-12)
+
+
+def test_fuse_sightings_moves_old_sightings_with_the_velocity():
+    """The ball rolls at v; each robot saw it at its own stamp. Shifting every line by
+    v (now - stamp) gives the ball's position now exactly; without the velocity the old
+    sightings pull the point back."""
+    v = np.array([1.5, -0.8])
+    now = 10.0
+    stamps = np.array([9.70, 9.84, 9.92, 9.96, 10.0])
+    angles, ranges = np.empty(5), np.empty(5)
+    for i, s in enumerate(stamps):
+        a, r = _sightings(BALL_M + v * (s - now), ROBOTS_M[i:i + 1])
+        angles[i], ranges[i] = a[0], r[0]
+    res = fuse_sightings(ROBOTS_M, angles, ranges, stamps, now=now, velocity=v)
+    np.testing.assert_allclose(res.point, BALL_M, atol=1e-9)
+    # now defaults to the latest stamp.
+    np.testing.assert_allclose(fuse_sightings(ROBOTS_M, angles, ranges, stamps, velocity=v).point,
+                               BALL_M, atol=1e-9)
+    stale = fuse_sightings(ROBOTS_M, angles, ranges, stamps, now=now)
+    assert np.hypot(*(stale.point - BALL_M)) > 0.05
+
+
+def test_fuse_sightings_falls_back_to_ranged_points():
+    # One sighting with a range: its point estimate, with a range-based error scale.
+    res = fuse_sightings([[0.0, 0.0]], [0.5], [2.0], bearing_sigma=0.05, range_sigma_rel=0.1)
+    assert not res.fused and res.n_lines == 1
+    np.testing.assert_allclose(res.point, [2 * math.cos(0.5), 2 * math.sin(0.5)], atol=1e-12)
+    assert res.sigma == pytest.approx(2.0 * math.sqrt((0.1**2 + 0.05**2) / 2))
+    u = np.array([math.cos(0.5), math.sin(0.5)])
+    assert u @ res.cov @ u == pytest.approx((0.2) ** 2)  # along the line: the range error
+    # Two robots in line with the ball: the lines (nearly) coincide, the ranged points fuse
+    # as their 1/L-weighted mean; the bearing-only one is dropped.
+    origins = np.array([[0.0, 0.0], [1.0, 0.001], [-1.0, 0.0]])
+    res = fuse_sightings(origins, [0.0, 0.0, 0.0], [2.1, 0.9, np.nan])
+    assert not res.fused and res.n_lines == 2
+    k = np.array([1 / 2.1, 1 / 0.9])
+    np.testing.assert_allclose(res.point, (k @ np.array([[2.1, 0.0], [1.9, 0.001]])) / k.sum(),
+                               atol=1e-12)
+    # Shallow crossing, nothing ranged: still fused, with a long error ellipse.
+    res = fuse_sightings([[0.0, 0.0], [0.0, 0.1]], [0.0, -0.05], [np.nan, np.nan])
+    assert res.fused
+    np.testing.assert_allclose(res.point, [0.1 / math.tan(0.05), 0.0], atol=1e-9)
+    assert np.sqrt(res.cov[0, 0]) > 10 * np.sqrt(res.cov[1, 1])
+
+
+def test_fuse_sightings_error_scale_matches_the_scatter():
+    """With bearing noise of bearing_sigma, two lines' covariance is the fused point's
+    (within sampling error); with five it errs on the large side (the residual inflation)
+    but not by much."""
+    rng = np.random.default_rng(7)
+    for idx, low, high in (([0, 3], 0.85, 1.15), ([0, 1, 2, 3, 4], 1.0, 2.0)):
+        angles, ranges = _sightings(BALL_M, ROBOTS_M[idx])
+        points, traces = [], []
+        for _ in range(3000):
+            a = angles + rng.normal(0, 0.05, len(idx))
+            res = fuse_sightings(ROBOTS_M[idx], a, ranges, bearing_sigma=0.05)
+            points.append(res.point)
+            traces.append(np.trace(res.cov))
+        scatter = np.mean(np.sum((np.array(points) - BALL_M) ** 2, axis=1))
+        assert low < np.mean(traces) / scatter < high
+
+
+def test_fuse_sightings_no_position_and_bad_input():
+    with pytest.raises(ValueError, match="no position"):
+        fuse_sightings([[0.0, 0.0]], [0.3], [np.nan])
+    with pytest.raises(ValueError, match="no position"):
+        fuse_sightings([[0.0, 0.0], [0.0, 1.0]], [0.0, 0.0], [np.nan, np.nan])
+    with pytest.raises(ValueError, match="origins"):
+        fuse_sightings(np.zeros((0, 2)), [], [])
+    with pytest.raises(ValueError, match="angles"):
+        fuse_sightings([[0.0, 0.0], [1.0, 0.0]], [0.3], [1.0, 1.0])
+    with pytest.raises(ValueError, match="ranges must have shape"):
+        fuse_sightings([[0.0, 0.0], [1.0, 0.0]], [0.3, 1.0], [1.0])
+    with pytest.raises(ValueError, match="ranges must be > 0"):
+        fuse_sightings([[0.0, 0.0], [1.0, 0.0]], [0.3, 1.0], [1.0, -1.0])
+    with pytest.raises(ValueError, match="weighting"):
+        fuse_sightings([[0.0, 0.0], [1.0, 0.0]], [0.3, 1.0], [1.0, 1.0], weighting="cubic")
+    with pytest.raises(ValueError, match="stamps"):
+        fuse_sightings([[0.0, 0.0], [1.0, 0.0]], [0.3, 1.0], [1.0, 1.0], [0.0], velocity=[1, 0])
+    with pytest.raises(ValueError, match="velocity"):
+        fuse_sightings([[0.0, 0.0], [1.0, 0.0]], [0.3, 1.0], [1.0, 1.0], [0.0, 0.1],
+                       velocity=[1.0, np.nan])
+    with pytest.raises(ValueError, match="bearing_sigma"):
+        fuse_sightings([[0.0, 0.0]], [0.3], [1.0], bearing_sigma=0.0)
+    with pytest.raises(ValueError, match="min_angle"):
+        fuse_sightings([[0.0, 0.0]], [0.3], [1.0], min_angle=2.0)

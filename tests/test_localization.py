@@ -102,3 +102,97 @@ def test_bad_input():
         loc.update(LANDMARKS[:2], [1.0])
     loc.update(np.zeros((0, 2)), [])  # nothing seen: nothing changes
     assert loc.n == KLDConfig().max_particles
+
+
+# --------------------------------------------------------------------------------------------
+# Ambiguous landmarks: a corner or a post, not which one
+# --------------------------------------------------------------------------------------------
+
+TABLE = {
+    "corner": np.array([[3, 2], [3, -2], [-3, 2], [-3, -2]], dtype=float),
+    "post": np.array([[3, 0.7], [3, -0.7], [-3, 0.7], [-3, -0.7]], dtype=float),
+    "T": np.array([[0, 2], [0, -2]], dtype=float),
+}
+
+
+def _sight_kinds(pose, rng, max_range=4.0, noise=0.03):
+    kinds, ranges, bearings = [], [], []
+    for kind, pos in TABLE.items():
+        rel = pos - pose[:2]
+        dist = np.hypot(*rel.T)
+        for j in np.flatnonzero(dist < max_range):
+            kinds.append(kind)
+            ranges.append(dist[j] * (1.0 + rng.normal(0, noise)))
+            bearings.append(math.atan2(rel[j, 1], rel[j, 0]) - pose[2] + rng.normal(0, noise))
+    return kinds, np.array(ranges), np.array(bearings)
+
+
+def _walk_kinds(loc, pose, steps, rng):
+    errors = []
+    for k in range(steps):
+        v, w = 0.02, (0.03 if (k // 50) % 2 else 0.0)
+        if abs(pose[0]) > 2.0 or abs(pose[1]) > 1.2:
+            w = 0.05
+        c, s = math.cos(pose[2] + w / 2), math.sin(pose[2] + w / 2)
+        pose = pose + np.array([c * v, s * v, w])
+        loc.predict(np.array([v, 0.0, w]) + rng.normal(0, 1, 3) * [0.005, 0.005, 0.01])
+        loc.update_kinds(*_sight_kinds(pose, rng), TABLE)
+        errors.append(np.hypot(*(loc.estimate()[:2] - pose[:2])))
+    return pose, np.array(errors)
+
+
+def test_update_kinds_with_one_candidate_per_kind_is_update():
+    """Unambiguous kinds (one landmark each) give exactly update()'s filter."""
+    table = {f"L{i}": LANDMARKS[i:i + 1] for i in range(len(LANDMARKS))}
+    runs = []
+    for by_kind in (False, True):
+        loc = KLDLocalizer(BOUNDS, np.random.default_rng(5), pose=np.array([-1.0, 0.5, 0.3]))
+        rng = np.random.default_rng(6)
+        for _ in range(10):
+            loc.predict([0.02, 0.0, 0.01])
+            L, r, b = _sight(np.array([-1.0, 0.5, 0.3]), rng)
+            if by_kind:
+                idx = [int(np.flatnonzero((LANDMARKS == p).all(axis=1))[0]) for p in L]
+                loc.update_kinds([f"L{i}" for i in idx], r, b, table)
+            else:
+                loc.update(L, r, b)
+        runs.append((loc.particles.copy(), loc.estimate()))
+    np.testing.assert_allclose(runs[0][0], runs[1][0], atol=1e-12)
+
+
+def test_tracks_from_a_known_start_with_ambiguous_landmarks():
+    rng = np.random.default_rng(10)
+    start = np.array([-1.0, 0.5, 0.3])
+    loc = KLDLocalizer(BOUNDS, np.random.default_rng(11), pose=start)
+    _, errors = _walk_kinds(loc, start, 200, rng)
+    assert np.median(errors) < 0.15 and np.max(errors) < 0.5
+
+
+@pytest.mark.parametrize("seed", [0, 7, 12])  # 7 and 12 settle on the mirror
+def test_global_localization_with_symmetric_landmarks_finds_the_pose_or_its_mirror(seed):
+    """The landmark table is symmetric under a half turn of the field, so (x, y, theta) and
+    (-x, -y, theta + pi) explain every observation alike: the filter must settle on one of
+    the two."""
+    rng = np.random.default_rng(20 + seed)
+    loc = KLDLocalizer(BOUNDS, np.random.default_rng(30 + seed))
+    pose, _ = _walk_kinds(loc, np.array([-1.2, 0.6, 0.4]), 250, rng)
+    est = loc.estimate()
+    mirror = np.array([-pose[0], -pose[1], pose[2] + math.pi])
+    errors = [np.hypot(*(est[:2] - p[:2])) for p in (pose, mirror)]
+    heading = [abs(math.remainder(est[2] - p[2], 2 * math.pi)) for p in (pose, mirror)]
+    best = int(np.argmin(errors))
+    assert errors[best] < 0.2 and heading[best] < 0.2
+
+
+def test_update_kinds_bad_input():
+    loc = KLDLocalizer(BOUNDS, np.random.default_rng(0))
+    with pytest.raises(ValueError, match="'flag'"):
+        loc.update_kinds(["corner", "flag"], [1.0, 2.0], [0.0, 0.1], TABLE)
+    with pytest.raises(ValueError, match="match"):
+        loc.update_kinds(["corner"], [1.0, 2.0], None, TABLE)
+    with pytest.raises(ValueError, match="bearings"):
+        loc.update_kinds(["corner", "post"], [1.0, 2.0], [0.0], TABLE)
+    with pytest.raises(ValueError, match="table\\['empty'\\]"):
+        loc.update_kinds(["empty"], [1.0], None, {"empty": np.zeros((0, 2))})
+    loc.update_kinds([], [], [], TABLE)  # nothing seen: nothing changes
+    assert loc.n == KLDConfig().max_particles

@@ -166,3 +166,58 @@ def test_bad_input():
     # Every particle impossible: the filter keeps going on its prior weights.
     f = MFBPF(np.zeros((5, 1)), tr, lambda x, y: np.zeros(len(x)), rng)
     assert np.all(np.isfinite(f.step(0.0)))
+
+
+@pytest.mark.parametrize("make", FILTERS, ids=IDS)
+def test_predict_is_the_time_update_alone(make):
+    """predict() draws from the transition and leaves the weights alone (no resampling, no
+    SFN); predict() then correct(y) is step(y), draw for draw."""
+    tr, lik = ungm_model()
+    rng = np.random.default_rng(3)
+    f = make(rng.normal(0, 3, (50, 1)), tr, lik, rng)
+    f.step(4.0)  # non-uniform weights for MFBPF (kept between steps)
+    before_p, before_w, k = f.particles.copy(), f.weights.copy(), f.k
+    expected = tr(before_p, k + 1, np.random.default_rng(11))
+    f.rng = np.random.default_rng(11)
+    est = f.predict()
+    np.testing.assert_array_equal(f.particles, expected)
+    np.testing.assert_array_equal(f.weights, before_w)
+    assert f.k == k + 1
+    assert est == pytest.approx((before_w @ expected) / before_w.sum())
+    # The two halves reproduce step().
+    _, _, ys = ungm_simulate(20, np.random.default_rng(5))
+    runs = []
+    for split in (False, True):
+        rng = np.random.default_rng(9)
+        f = make(rng.normal(0, 3, (100, 1)), tr, lik, rng)
+        out = []
+        for y in ys:
+            if split:
+                f.predict()
+                out.append(f.correct(y)[0])
+            else:
+                out.append(f.step(y)[0])
+        runs.append(out)
+    assert runs[0] == runs[1]
+
+
+def test_fission_variance_per_dimension():
+    """A (d,) fission variance perturbs each dimension by its own standard deviation; the
+    scalar form is unchanged."""
+    x = np.zeros((400, 2))
+    w = np.zeros(400)
+    w[0] = 1.0  # one particle carries everything: 399 offspring
+    p, _, born = sfn(x, w, np.random.default_rng(0), np.array([1e-4, 1.0]))
+    std = p[born].std(axis=0)
+    assert std[0] == pytest.approx(0.01, rel=0.15) and std[1] == pytest.approx(1.0, rel=0.15)
+    p1, _, _ = sfn(x, w, np.random.default_rng(0), 0.25)
+    p2, _, _ = sfn(x, w, np.random.default_rng(0), np.array([0.25, 0.25]))
+    np.testing.assert_array_equal(p1, p2)
+    tr, lik = ungm_model()
+    rng = np.random.default_rng(0)
+    f = FBPF(np.zeros((5, 2)), tr, lik, rng, fission_variance=[0.1, 0.2])
+    np.testing.assert_array_equal(f.fission_variance, [0.1, 0.2])
+    with pytest.raises(ValueError, match="fission_variance must be a scalar or have shape"):
+        FBPF(np.zeros((5, 2)), tr, lik, rng, fission_variance=[0.1, 0.2, 0.3])
+    with pytest.raises(ValueError, match="fission_variance must be >= 0"):
+        MFBPF(np.zeros((5, 2)), tr, lik, rng, fission_variance=[0.1, -0.2])

@@ -1,0 +1,434 @@
+"""Particle-filter ball tracking with paper 000's filters (SPEC 1.1).
+
+The fused ball positions of a team (Hough fusion, :func:`~estimators.hough.fuse_sightings`)
+jitter around the truth; paper 000 smooths and predicts them with a particle filter on the
+ball's state ``X = (px, py, vx, vy)`` [m, m, m/s, m/s] in the field frame.
+
+**Motion** (constant velocity, SPEC 1.1, with the corrected ``B`` for this state order), over a
+step of ``dT`` seconds taken from the time stamps:
+
+    X_t = A X_{t-1} + B W_t,
+    A = [[1, 0, dT, 0], [0, 1, 0, dT], [0, 0, 1, 0], [0, 0, 0, 1]],
+    B = [[dT^2/2, 0], [0, dT^2/2], [dT, 0], [0, dT]],
+    W_t ~ N(0, accel_sigma^2 I_2)   (white acceleration noise [m/s^2]).
+
+With ``deceleration = a > 0`` (rolling friction, as in paper 002) the deterministic part
+``A X`` is replaced by uniform deceleration along the motion that stops the ball instead of
+reversing it: with speed ``s = |v|``, unit direction ``u`` and ``tau = min(dT, s / a)``,
+``p' = p + u (s tau - a tau^2 / 2)``, ``v' = u (s - a tau)``; the noise ``B W`` is added as
+before. ``deceleration = 0`` is the paper's plain constant-velocity model.
+
+**Measurement**: a position ``z`` [m] with covariance ``R`` (``sigma^2 I`` for a scalar
+``sigma``, or a full 2 x 2 matrix, per measurement), ``p(z | X) = N(z; (px, py), R)``,
+evaluated as ``exp(-d^2 / 2)`` with ``d^2 = (z - p)^T R^-1 (z - p)`` shifted by its minimum
+over the particles (a constant factor, which no filter's weights depend on, against
+underflow).
+
+**Filters**: :class:`~estimators.particle.BootstrapPF`, :class:`~estimators.particle.FBPF` or
+:class:`~estimators.particle.MFBPF` (the default, paper 000's), with their own resampling and
+SFN; the fission perturbation has one standard deviation per state component
+(``fission_sigma`` [m, m, m/s, m/s]), because a single variance cannot suit metres and metres
+per second alike.
+
+**Track management**:
+
+* The filter starts at the first measurement from ``N(x0, P0)``, ``x0 = (z, 0, 0)``,
+  ``P0 = diag(R, init_speed_sigma^2 I)``. The velocity is unobservable from one position and
+  weakly observable from a few close in time, and a hundred particles drawn from a broad
+  velocity prior leave few near a fast ball's velocity, which resampling then loses (without
+  a gate, the bootstrap filter and MFBPF ended far from the ball in about a quarter and a
+  twentieth of our runs started that way: 0.1 m noise at 25 Hz, speeds up to 2.5 m/s). So
+  the first ``kalman_start`` measurements go through the exact Kalman filter of the same
+  (linear Gaussian) model, the particles redrawn from its ``N(x, P)`` after each; then the
+  particle filter takes over. ``kalman_start=1``: the particles alone from the first
+  measurement (the paper's start).
+* A measurement is *implausible* when its squared Mahalanobis distance from the particles'
+  weighted mean position, with the particles' weighted position covariance ``C`` plus ``R``,
+  ``(z - m)^T (C + R)^-1 (z - m)``, exceeds ``gate``; ``reinit_after`` implausible
+  measurements in a row (the ball was kicked or placed elsewhere) restart the filter at the
+  last one; fewer are not fused (outliers). ``gate=None`` never restarts. During the Kalman
+  start the same test uses the Kalman filter's innovation covariance ``H P H^T + R``.
+* ``lost_after`` seconds without a fused measurement also restart the filter at the next one.
+* A measurement *older* than the filter's time (stamps slightly out of order) is fused without
+  predicting backwards: each particle is compared with its own position extrapolated back by
+  the lag, ``p - lag v`` (the noise-free constant-velocity model; the deceleration is
+  neglected over such a lag), and the filter's time stays where it is. Measurements older than
+  ``max_lag`` are ignored (counted in ``late``).
+
+Vectorised numpy; every random draw from the given generator.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from .kalman import KalmanFilter
+from .particle import FBPF, MFBPF, BootstrapPF
+
+__all__ = ["ParticleBallTracker", "FILTERS", "CHI2_2DOF_9999"]
+
+#: 99.99 % quantile of the chi-square distribution with 2 degrees of freedom, ``-2 ln 1e-4``.
+CHI2_2DOF_9999 = 18.420680743952367
+
+#: Names of the filters :class:`ParticleBallTracker` can run.
+FILTERS = ("bootstrap", "fbpf", "mfbpf")
+
+
+def _positive(name: str, value: float, allow_zero: bool = False) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(v) or v < 0.0 or (v == 0.0 and not allow_zero):
+        raise ValueError(f"{name} must be finite and {'>=' if allow_zero else '>'} 0, "
+                         f"got {value!r}")
+    return v
+
+
+def _drift(x: np.ndarray, dt: float, deceleration: float) -> np.ndarray:
+    """The deterministic motion of states ``x`` ((N, 4)) over ``dt`` [s] (see the module
+    docstring); a new array."""
+    out = x.copy()
+    v = x[:, 2:]
+    if deceleration == 0.0:
+        out[:, :2] += dt * v  # p' = p + dT v
+        return out
+    speed = np.hypot(v[:, 0], v[:, 1])
+    safe = np.where(speed > 0.0, speed, 1.0)
+    tau = np.minimum(dt, speed / deceleration)  # time until the ball stops, at most dT
+    # p' = p + u (s tau - a tau^2 / 2) = p + v (tau - a tau^2 / (2 s)); v' = v (1 - a tau / s)
+    out[:, :2] += v * (tau - 0.5 * deceleration * tau * tau / safe)[:, None]
+    out[:, 2:] *= np.maximum(1.0 - deceleration * tau / safe, 0.0)[:, None]
+    return out
+
+
+class ParticleBallTracker:
+    """Ball tracker on paper 000's particle filters (see the module docstring).
+
+    Args:
+        rng: the generator of every random draw.
+        filter: ``"bootstrap"``, ``"fbpf"`` or ``"mfbpf"`` (paper 000's, the default).
+        n_particles: number of particles (paper 000: 100).
+        accel_sigma: standard deviation of the white acceleration noise ``W`` [m/s^2].
+        deceleration: rolling deceleration ``a`` [m/s^2]; 0 is the plain constant-velocity
+            model.
+        threshold: ``N_th / N`` of the filter; None takes the filter's default (1.0 for the
+            bootstrap filter, which then resamples every step; 0.5 for FBPF and MFBPF).
+        fission_sigma: standard deviations of the fission offspring's perturbation,
+            ``(px, py, vx, vy)`` [m, m, m/s, m/s] (FBPF and MFBPF; the filter gets their
+            squares as its per-dimension ``fission_variance``).
+        sfn_when: MFBPF's test, ``"above"`` (as printed in paper 000) or ``"below"``.
+        init_speed_sigma: standard deviation of the velocity at (re-)initialisation [m/s].
+        gate: squared Mahalanobis distance beyond which a measurement is implausible; None
+            never re-initialises on a measurement.
+        reinit_after: implausible measurements in a row that restart the filter (1: the first
+            one; more: the earlier ones are dropped as outliers).
+        lost_after: seconds without a fused measurement after which the next one restarts the
+            filter; None: never.
+        max_lag: measurements older than the filter's time by more than this [s] are ignored.
+        kalman_start: measurements fused by the Kalman start after each (re-)initialisation,
+            the first included (1: none, the particles start from the first measurement).
+
+    Attributes:
+        fused, rejected, resets, late: counters of measurements fused (those that started
+            the filter included), found implausible, re-initialisations (the first start not
+            counted) and measurements ignored as too old.
+    """
+
+    def __init__(self, rng: np.random.Generator, *, filter: str = "mfbpf",
+                 n_particles: int = 100, accel_sigma: float = 1.0, deceleration: float = 0.0,
+                 threshold: float | None = None,
+                 fission_sigma: Sequence[float] = (0.02, 0.02, 0.1, 0.1),
+                 sfn_when: str = "above", init_speed_sigma: float = 2.0,
+                 gate: float | None = CHI2_2DOF_9999, reinit_after: int = 1,
+                 lost_after: float | None = 1.0, max_lag: float = 0.1,
+                 kalman_start: int = 10) -> None:
+        if not isinstance(rng, np.random.Generator):
+            raise TypeError("rng must be a numpy.random.Generator")
+        if filter not in FILTERS:
+            raise ValueError(f"filter must be one of {list(FILTERS)}, got {filter!r}")
+        if isinstance(n_particles, bool) or not isinstance(n_particles, (int, np.integer)) \
+                or n_particles < 2:
+            raise ValueError(f"n_particles must be an integer >= 2, got {n_particles!r}")
+        if threshold is not None and not 0.0 < threshold <= 1.0:
+            raise ValueError(f"threshold must be in (0, 1] or None, got {threshold!r}")
+        fs = np.asarray(fission_sigma, dtype=np.float64)
+        if fs.shape != (4,) or not np.all(np.isfinite(fs)) or np.any(fs < 0.0):
+            raise ValueError(f"fission_sigma must be four finite values >= 0 (px, py, vx, vy), "
+                             f"got {fission_sigma!r}")
+        if sfn_when not in ("above", "below"):
+            raise ValueError(f"sfn_when must be 'above' or 'below', got {sfn_when!r}")
+        if gate is not None:
+            gate = _positive("gate", gate)
+        if isinstance(reinit_after, bool) or not isinstance(reinit_after, (int, np.integer)) \
+                or reinit_after < 1:
+            raise ValueError(f"reinit_after must be an integer >= 1, got {reinit_after!r}")
+        if lost_after is not None:
+            lost_after = _positive("lost_after", lost_after)
+        if isinstance(kalman_start, bool) or not isinstance(kalman_start, (int, np.integer)) \
+                or kalman_start < 1:
+            raise ValueError(f"kalman_start must be an integer >= 1, got {kalman_start!r}")
+        self.rng = rng
+        self.filter = filter
+        self.n_particles = int(n_particles)
+        self.accel_sigma = _positive("accel_sigma", accel_sigma)
+        self.deceleration = _positive("deceleration", deceleration, allow_zero=True)
+        self.init_speed_sigma = _positive("init_speed_sigma", init_speed_sigma)
+        self.max_lag = _positive("max_lag", max_lag, allow_zero=True)
+        self.gate, self.reinit_after, self.lost_after = gate, int(reinit_after), lost_after
+        self.kalman_start = int(kalman_start)
+        kwargs: dict = {}
+        if threshold is not None:
+            kwargs["threshold"] = float(threshold)
+        if filter != "bootstrap":
+            kwargs["fission_variance"] = fs * fs
+        if filter == "mfbpf":
+            kwargs["sfn_when"] = sfn_when
+        self._cls = {"bootstrap": BootstrapPF, "fbpf": FBPF, "mfbpf": MFBPF}[filter]
+        self._kwargs = kwargs
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget everything (a new episode)."""
+        self._pf: BootstrapPF | None = None
+        self._kf: KalmanFilter | None = None  # the Kalman start, while it runs
+        self._t = -math.inf  # the filter's time [s]
+        self._t_fused = -math.inf  # time of the latest fused measurement [s]
+        self._x = np.zeros(4)  # the filter's estimate at its time
+        self._misses = 0
+        self._since_start = 0  # measurements fused since the last (re)start
+        # Set before each call into the filter: step length, lag and R^-1 entries.
+        self._dt = 0.0
+        self._lag = 0.0
+        self._rinv = (1.0, 0.0, 1.0)
+        self.fused = self.rejected = self.resets = self.late = 0
+
+    # ------------------------------------------------------------------------------------
+    # The model, called by the filter
+
+    def _transition(self, x: np.ndarray, k: int, rng: np.random.Generator) -> np.ndarray:
+        """``X_t = A X_{t-1} + B W_t`` (or its decelerating variant) over ``self._dt``."""
+        dt = self._dt
+        out = _drift(x, dt, self.deceleration)
+        w = rng.normal(0.0, self.accel_sigma, (len(x), 2))  # W_t [m/s^2]
+        out[:, :2] += (0.5 * dt * dt) * w  # B rows 1-2: dT^2 / 2
+        out[:, 2:] += dt * w  # B rows 3-4: dT
+        return out
+
+    def _positions(self, x: np.ndarray) -> np.ndarray:
+        """Particle positions at the measurement's time (``lag`` seconds before the filter's)."""
+        if self._lag > 0.0:
+            return x[:, :2] - self._lag * x[:, 2:]
+        return x[:, :2]
+
+    def _likelihood(self, x: np.ndarray, z: np.ndarray) -> np.ndarray:
+        """``N(z; p, R)`` up to a constant factor."""
+        d = self._positions(x) - z
+        a, b, c = self._rinv
+        m = a * d[:, 0] ** 2 + 2.0 * b * d[:, 0] * d[:, 1] + c * d[:, 1] ** 2
+        return np.exp(-0.5 * (m - m.min()))
+
+    # ------------------------------------------------------------------------------------
+
+    @property
+    def initialized(self) -> bool:
+        return self._pf is not None
+
+    @property
+    def time(self) -> float:
+        """The filter's time [s] (``-inf`` before the first measurement)."""
+        return self._t
+
+    @property
+    def particles(self) -> np.ndarray:
+        """A copy of the ``(N, 4)`` particles at the filter's time (``(0, 4)`` before the
+        first measurement)."""
+        return np.zeros((0, 4)) if self._pf is None else self._pf.particles.copy()
+
+    @property
+    def weights(self) -> np.ndarray:
+        """A copy of the particles' normalised weights ((N,))."""
+        return np.zeros(0) if self._pf is None else self._pf.weights / self._pf.weights.sum()
+
+    @property
+    def spread(self) -> float | None:
+        """Weighted RMS distance [m] of the particles' positions from their weighted mean
+        (``sqrt(trace C)``, ``C`` the position covariance); None before the first
+        measurement."""
+        if self._pf is None:
+            return None
+        w = self.weights
+        p = self._pf.particles[:, :2]
+        d = p - w @ p
+        return math.sqrt(float(w @ np.sum(d * d, axis=1)))
+
+    def _check(self, t: float, z, sigma) -> tuple[float, np.ndarray, np.ndarray]:
+        try:
+            t = float(t)
+        except (TypeError, ValueError):
+            raise ValueError(f"t must be a number, got {t!r}") from None
+        if not math.isfinite(t):
+            raise ValueError(f"t must be finite, got {t!r}")
+        zz = np.asarray(z, dtype=np.float64)
+        if zz.shape != (2,) or not np.all(np.isfinite(zz)):
+            raise ValueError(f"z must be a finite (2,) position, got {z!r}")
+        s = np.asarray(sigma, dtype=np.float64)
+        if s.ndim == 0:
+            sv = float(s)
+            if not (math.isfinite(sv) and sv > 0.0):
+                raise ValueError(f"sigma must be finite and > 0 or a 2 x 2 covariance, got "
+                                 f"{sigma!r}")
+            R = np.diag([sv * sv, sv * sv])
+        else:
+            R = s
+            ok = (R.shape == (2, 2) and np.all(np.isfinite(R))
+                  and abs(R[0, 1] - R[1, 0]) <= 1e-12 * max(1.0, abs(R[0, 1]))
+                  and R[0, 0] > 0.0 and R[0, 0] * R[1, 1] - R[0, 1] * R[1, 0] > 0.0)
+            if not ok:
+                raise ValueError(f"sigma must be > 0 or a symmetric positive definite 2 x 2 "
+                                 f"covariance, got {sigma!r}")
+            R = 0.5 * (R + R.T)
+        return t, zz, R
+
+    def update(self, t: float, z: np.ndarray | Sequence[float],
+               sigma: float | np.ndarray) -> None:
+        """Fuse the position ``z`` [m] measured at time ``t`` [s] with standard deviation
+        ``sigma`` [m] (or 2 x 2 covariance [m^2]): predict to ``t``, gate, weight, then the
+        filter's own SFN and/or resampling (see the module docstring for the start,
+        re-initialisation and late measurements)."""
+        t, z, R = self._check(t, z, sigma)
+        if self._pf is None or (self.lost_after is not None
+                                and t - self._t_fused > self.lost_after):
+            self._start(t, z, R)
+            return
+        lag = 0.0
+        if t < self._t:
+            lag = self._t - t
+            if lag > self.max_lag:
+                self.late += 1
+                return
+        else:
+            self._advance(t)
+        self._lag = lag
+        kf = self._kf
+        if kf is not None:
+            # The Kalman start measures z with H = [I, -lag I] (the back-extrapolated position).
+            H = np.zeros((2, 4))
+            H[0, 0] = H[1, 1] = 1.0
+            H[0, 2] = H[1, 3] = -lag
+        if self.gate is not None:
+            d2 = kf.innovation(z, H, R)[2] if kf is not None else self._mahalanobis2(z, R)
+            if d2 > self.gate:
+                self.rejected += 1
+                self._misses += 1
+                if self._misses >= self.reinit_after:
+                    self._start(t, z, R)
+                elif kf is not None:
+                    self._redraw()
+                return
+        self._misses = 0
+        if kf is not None:
+            kf.update(z, H, R)
+            self._x = kf.x.copy()
+        else:
+            det = R[0, 0] * R[1, 1] - R[0, 1] * R[1, 0]
+            self._rinv = (R[1, 1] / det, -R[0, 1] / det, R[0, 0] / det)
+            self._x = self._pf.correct(z)
+        self._lag = 0.0
+        self._t_fused = max(self._t_fused, t)
+        self._since_start += 1
+        self.fused += 1
+        if kf is not None:
+            self._redraw()
+            if self._since_start >= self.kalman_start:
+                self._kf = None  # the particles take over
+
+    def predict_to(self, t: float) -> None:
+        """Time update only, to ``t`` [s] (a cycle without a measurement); nothing happens
+        before the first measurement or for ``t`` at or before the filter's time."""
+        if self._pf is not None and t > self._t:
+            self._advance(float(t))
+            if self._kf is not None:
+                self._redraw()
+
+    def estimate(self, t: float) -> np.ndarray | None:
+        """The state ``(px, py, vx, vy)`` [m, m/s] at time ``t`` [s]: the filter's estimate
+        moved by the deterministic motion (constant velocity, or the deceleration) when ``t``
+        is later than the filter's time, unchanged otherwise; the filter is not changed.
+        None before the first measurement."""
+        if self._pf is None:
+            return None
+        dt = float(t) - self._t
+        if not dt > 0.0:
+            return self._x.copy()
+        return _drift(self._x[None, :], dt, self.deceleration)[0]
+
+    # ------------------------------------------------------------------------------------
+
+    def _advance(self, t: float) -> None:
+        """Time update to ``t`` (later than the filter's time)."""
+        dt = t - self._t
+        if dt > 0.0:
+            self._dt = dt
+            kf = self._kf
+            if kf is None:
+                self._x = self._pf.predict()
+            else:
+                F = np.eye(4)
+                F[0, 2] = F[1, 3] = dt  # A
+                B = np.zeros((4, 2))
+                B[0, 0] = B[1, 1] = 0.5 * dt * dt
+                B[2, 0] = B[3, 1] = dt
+                # x' = drift(x) (exactly A x without deceleration), P' = A P A^T + s^2 B B^T
+                kf.predict(F, self.accel_sigma**2 * (B @ B.T),
+                           _drift(kf.x[None, :], dt, self.deceleration)[0])
+                self._x = kf.x.copy()
+            self._t = t
+
+    def _redraw(self) -> None:
+        """Kalman start: the particles drawn afresh from the filter's ``N(x, P)``, uniform
+        weights."""
+        kf, pf = self._kf, self._pf
+        L = np.linalg.cholesky(kf.P)
+        pf.particles = kf.x + self.rng.normal(0.0, 1.0, (pf.n, 4)) @ L.T
+        pf.weights = np.full(pf.n, 1.0 / pf.n)
+
+    def _mahalanobis2(self, z: np.ndarray, R: np.ndarray) -> float:
+        """``(z - m)^T (C + R)^-1 (z - m)`` with the particles' weighted mean position ``m``
+        and covariance ``C`` (at the measurement's time)."""
+        pf = self._pf
+        w = pf.weights / pf.weights.sum()
+        p = self._positions(pf.particles)
+        m = w @ p
+        d = p - m
+        S = (d.T * w) @ d + R  # C + R
+        y0, y1 = z[0] - m[0], z[1] - m[1]
+        s00, s01, s11 = S[0, 0], S[0, 1], S[1, 1]
+        return float((s11 * y0 * y0 - 2.0 * s01 * y0 * y1 + s00 * y1 * y1)
+                     / (s00 * s11 - s01 * s01))
+
+    def _start(self, t: float, z: np.ndarray, R: np.ndarray) -> None:
+        """(Re-)initialise at the measurement ``z`` taken at ``t``: ``N(x0, P0)`` with
+        ``x0 = (z, 0, 0)``, ``P0 = diag(R, init_speed_sigma^2 I)``."""
+        P0 = np.zeros((4, 4))
+        P0[:2, :2] = R
+        P0[2, 2] = P0[3, 3] = self.init_speed_sigma**2
+        x0 = np.array([z[0], z[1], 0.0, 0.0])
+        self._kf = KalmanFilter(x0, P0)
+        n = self.n_particles
+        if self._pf is not None:
+            self.resets += 1
+        self.fused += 1
+        self._pf = self._cls(np.zeros((n, 4)), self._transition, self._likelihood, self.rng,
+                             **self._kwargs)
+        self._redraw()
+        if self.kalman_start <= 1:
+            self._kf = None
+        self._t = self._t_fused = t
+        self._x = x0
+        self._misses = 0
+        self._since_start = 1
+        self._lag = 0.0
