@@ -1,4 +1,4 @@
-"""The physical world: a pymunk space with walls, goals, the ball and SSL robots.
+"""The physical world: a pymunk space with walls, goals, the ball, SSL and humanoid robots.
 
 pymunk simulates the horizontal plane; this module adds what a top-down rigid-body engine
 lacks:
@@ -15,7 +15,13 @@ lacks:
 * **Height of the ball.** A chipped ball flies ballistically (``z`` is the height of its lowest
   point); it passes over robots while higher than their height and bounces with the fixed-loss
   model. Walls stop it at any height, so it can never leave the walled area.
-* **Kicker and dribbler** on the flat front of each robot (see :class:`SSLRobotSpec`).
+* **Kicker and dribbler** on the flat front of each SSL robot (see :class:`SSLRobotSpec`).
+* **Humanoids** (:class:`HumanoidRobotSpec`) are discs moved by the walk engine of
+  :mod:`soccer_env.humanoid` through the same kind of drive (their pushing force is
+  ``m a_max``); their kick is a timed motion that launches the ball only if it lies at a foot
+  when the foot strikes, and contacts with robots or walls can fell them (the approach speed
+  along the contact normal sets the probability), drawn from the generator given to
+  :meth:`World.reset`.
 
 The control step (``control_dt``) is split into equal physics substeps no longer than
 ``physics_dt``. Positions and velocities are read back in one batch per control step
@@ -38,12 +44,13 @@ import pymunk.batch as pbatch
 from pymunk._chipmunk import lib as _cp
 
 from .config import check_int, check_range
-from .presets import GRAVITY, BallSpec, FieldSpec, SSLRobotSpec
+from .humanoid import WalkEngine
+from .presets import GRAVITY, BallSpec, FieldSpec, HumanoidRobotSpec, RobotSpec, SSLRobotSpec
 from .state import WorldState
 
 __all__ = ["World", "COMMAND_FIELDS", "idle_commands", "BallExit", "robot_outline"]
 
-_BALL, _ROBOT, _WALL, _OUT = 1, 2, 3, 4
+_BALL, _ROBOT, _WALL, _OUT, _HUMANOID = 1, 2, 3, 4, 5
 _BODY_FIELDS = (
     pbatch.BodyFields.POSITION
     | pbatch.BodyFields.ANGLE
@@ -109,14 +116,16 @@ class BallExit:
 
 
 class World:
-    """Physics of one field with a ball and ``n_blue + n_yellow`` SSL robots.
+    """Physics of one field with a ball and ``n_blue + n_yellow`` robots (SSL, humanoid or
+    both).
 
     Robots are indexed ``0 .. N-1``, blue first; names are ``blue_i`` and ``yellow_i``.
 
     Args:
         field: field geometry.
         ball: ball model.
-        robot: robot model (all robots share it).
+        robot: robot model shared by all robots, or a sequence of ``N`` models (blue first),
+            SSL and humanoid mixed as needed.
         n_blue: number of blue robots (0..11).
         n_yellow: number of yellow robots (0..11).
         control_dt: duration of one :meth:`step` [s].
@@ -127,7 +136,7 @@ class World:
         self,
         field: FieldSpec,
         ball: BallSpec,
-        robot: SSLRobotSpec,
+        robot: RobotSpec | list[RobotSpec] | tuple[RobotSpec, ...],
         n_blue: int,
         n_yellow: int,
         control_dt: float = 1.0 / 60.0,
@@ -141,10 +150,24 @@ class World:
         physics_dt = check_range("physics_dt", physics_dt, 1e-4, control_dt)
         self.field = field
         self.ball_spec = ball
-        self.robot_spec = robot
         self.n_blue = n_blue
         self.n_yellow = n_yellow
         self.n_robots = self.n_blue + self.n_yellow
+        specs = (list(robot) if isinstance(robot, (list, tuple))
+                 else [robot] * self.n_robots)
+        if len(specs) != self.n_robots or not all(
+                isinstance(s, (SSLRobotSpec, HumanoidRobotSpec)) for s in specs):
+            raise ValueError(f"robot must be one robot spec or {self.n_robots} of them (blue "
+                             f"first), got {robot!r}")
+        #: Every robot's model, in robot order.
+        self.robot_specs: tuple[RobotSpec, ...] = tuple(specs)
+        #: The first robot's model (the model of every robot when they share one).
+        self.robot_spec = specs[0]
+        #: Indices of the SSL robots and of the humanoids.
+        self.ssl_indices = [i for i, s in enumerate(specs) if s.kind == "ssl"]
+        self.humanoid_indices = [i for i, s in enumerate(specs) if s.kind == "humanoid"]
+        self.radii = np.array([s.radius for s in specs])
+        self.radii.flags.writeable = False
         self.names: tuple[str, ...] = (tuple(f"blue_{i}" for i in range(self.n_blue))
                                        + tuple(f"yellow_{i}" for i in range(self.n_yellow)))
         self.teams = np.array([0] * self.n_blue + [1] * self.n_yellow, dtype=np.int64)
@@ -158,12 +181,17 @@ class World:
         self._walls_y = field.half_width + field.boundary
         self._roll_force = ball.mass * ball.rolling_deceleration
         self._slide_force = ball.mass * ball.sliding_deceleration
-        self._mouth_lo = robot.front_distance + ball.radius - 0.01
-        self._mouth_hi = robot.front_distance + ball.radius + MOUTH_TOLERANCE
-        self._mouth_half = 0.5 * robot.kicker_width
-        self._chip_cos = math.cos(robot.chip_angle)
-        self._chip_sin = math.sin(robot.chip_angle)
-        self._outline = robot_outline(robot)
+        # Per-robot constants of the SSL kicker and dribbler (unused for humanoids).
+        front = [getattr(s, "front_distance", s.radius) for s in specs]
+        self._mouth_lo = [d + ball.radius - 0.01 for d in front]
+        self._mouth_hi = [d + ball.radius + MOUTH_TOLERANCE for d in front]
+        self._mouth_half = [0.5 * getattr(s, "kicker_width", 0.0) for s in specs]
+        self._heights = [s.height for s in specs]
+        self._limits = [(s.max_speed, s.max_angular_speed, getattr(s, "kick_speed_cap", 0.0))
+                        for s in specs]
+        self.walk = (WalkEngine([specs[i] for i in self.humanoid_indices],
+                                self.humanoid_indices, self.control_dt)
+                     if self.humanoid_indices else None)
 
         self._buffer = pbatch.Buffer()
         self._state = np.zeros((1 + self.n_robots, 6))
@@ -174,13 +202,16 @@ class World:
     # Construction
     # ------------------------------------------------------------------------------------
 
-    def reset(self, robot_poses: np.ndarray, ball_position: tuple[float, float] = (0.0, 0.0)
-              ) -> None:
+    def reset(self, robot_poses: np.ndarray, ball_position: tuple[float, float] = (0.0, 0.0),
+              rng: np.random.Generator | None = None) -> None:
         """Build a fresh space (no cached contacts, so the same inputs give the same episode).
 
         Args:
             robot_poses: ``(N, 3)`` initial ``x, y, theta`` of every robot, field frame.
             ball_position: initial ball ``x, y`` [m], at rest on the carpet.
+            rng: the generator of the humanoids' random events (falls, kick direction,
+                odometry errors); None uses ``numpy.random.default_rng(0)``. SSL robots draw
+                nothing.
         """
         poses = self._validated_poses(robot_poses)
         self._check_inside("ball", *ball_position, self.ball_spec.radius)
@@ -203,20 +234,26 @@ class World:
         space.add(friction)
         self._ball, self._friction = ball, friction
 
-        rs = self.robot_spec
         self._bodies: list[pymunk.Body] = []
         self._controls: list[pymunk.Body] = []
+        self._drives: list[tuple[pymunk.PivotJoint, pymunk.GearJoint]] = []
         self._shape_index: dict[pymunk.Shape, int] = {}
-        for i in range(self.n_robots):
+        outlines: dict[int, list[tuple[float, float]]] = {}
+        for i, rs in enumerate(self.robot_specs):
             body = pymunk.Body(rs.mass, rs.moment_of_inertia)
-            shape = pymunk.Poly(body, self._outline)
+            if rs.kind == "ssl":
+                outline = outlines.setdefault(id(rs), robot_outline(rs))
+                shape = pymunk.Poly(body, outline)
+                shape.collision_type = _ROBOT
+            else:
+                shape = pymunk.Circle(body, rs.radius)
+                shape.collision_type = _HUMANOID
             shape.elasticity = rs.restitution
             shape.friction = rs.surface_friction
-            shape.collision_type = _ROBOT
             space.add(body, shape)
             self._bodies.append(body)
             self._shape_index[shape] = i
-        for body in self._bodies:
+        for rs, body in zip(self.robot_specs, self._bodies):
             control = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
             drive = pymunk.PivotJoint(control, body, (0.0, 0.0), (0.0, 0.0))
             drive.max_bias = 0.0
@@ -226,8 +263,17 @@ class World:
             turn.max_force = rs.moment_of_inertia * rs.max_angular_acceleration
             space.add(control, drive, turn)
             self._controls.append(control)
+            self._drives.append((drive, turn))
         space.on_collision(_BALL, _ROBOT, pre_solve=self._ball_robot_contact)
         space.on_collision(_BALL, _OUT, begin=self._ball_out)
+        if self.walk is not None:
+            space.on_collision(_BALL, _HUMANOID, pre_solve=self._ball_humanoid_contact)
+            for other in (_ROBOT, _HUMANOID, _WALL):
+                space.on_collision(_HUMANOID, other, begin=self._humanoid_impact)
+            self.walk.reset(rng if rng is not None else np.random.default_rng(0))
+        self._impacts: dict[int, float] = {}
+        self._lying: dict[int, pymunk.Shape] = {}
+        self._grounded: set[int] = set()
         # ``Space.step`` spends about 3 microseconds per call on Python housekeeping (deferred
         # adds and removals, post-step callbacks) that this world never needs, because it
         # never adds or removes objects while stepping; Chipmunk's own step is equivalent
@@ -263,7 +309,7 @@ class World:
         if poses.shape != (self.n_robots, 3):
             raise ValueError(f"robot_poses must have shape ({self.n_robots}, 3), got {poses.shape}")
         for i, (x, y, th) in enumerate(poses):
-            self._check_inside(f"robot {self.names[i]}", x, y, self.robot_spec.radius)
+            self._check_inside(f"robot {self.names[i]}", x, y, self.robot_specs[i].radius)
             if not math.isfinite(th):
                 raise ValueError(f"robot {self.names[i]} heading must be finite, got {th!r}")
         return poses
@@ -324,7 +370,7 @@ class World:
                   vx: float = 0.0, vy: float = 0.0, omega: float = 0.0) -> None:
         """Teleport robot ``i`` to pose ``(x, y, theta)`` with velocity ``(vx, vy, omega)``."""
         self._require_space()
-        self._check_inside(f"robot {self.names[i]}", x, y, self.robot_spec.radius)
+        self._check_inside(f"robot {self.names[i]}", x, y, self.robot_specs[i].radius)
         vals = (theta, vx, vy, omega)
         if not all(math.isfinite(v) for v in vals):
             raise ValueError(f"robot {self.names[i]} state must be finite, got {vals}")
@@ -398,12 +444,13 @@ class World:
         """Advance the world by one control step of :attr:`control_dt` seconds.
 
         Args:
-            commands: ``(N, 6)`` array with columns :data:`COMMAND_FIELDS`. The translational
-                velocity's norm is clipped to ``max_speed``, ``omega`` to
-                ``max_angular_speed`` and the kick speed to ``kick_speed_cap``.
+            commands: ``(N, 6)`` array. SSL robots' rows have the columns
+                :data:`COMMAND_FIELDS`: the translational velocity's norm is clipped to
+                ``max_speed``, ``omega`` to ``max_angular_speed`` and the kick speed to
+                ``kick_speed_cap``. Humanoids' rows have the columns
+                :data:`~soccer_env.humanoid.HUMANOID_COMMAND_FIELDS`, which their walk
+                engine limits (see :mod:`soccer_env.humanoid`).
         """
-        rs = self.robot_spec
-        vmax, wmax, cap = rs.max_speed, rs.max_angular_speed, rs.kick_speed_cap
         half = 0.5 * self.control_dt
         self._require_space()
         commands = np.asarray(commands, dtype=np.float64)
@@ -413,9 +460,13 @@ class World:
         rows = commands.tolist()
         armed, chip, dribble = self._armed, self._chip, self._dribble
         set_velocity, set_omega = _cp.cpBodySetVelocity, _cp.cpBodySetAngularVelocity
+        headings = self._state[1:, 2].tolist()
+        controls, limits = self._control_handles, self._limits
         # Plain-Python loop: at these sizes it is several times cheaper than numpy calls.
-        for i, (control, (vx, vy, w, kick, ch, dr), th) in enumerate(
-                zip(self._control_handles, rows, self._state[1:, 2].tolist())):
+        for i in self.ssl_indices:
+            vx, vy, w, kick, ch, dr = rows[i]
+            vmax, wmax, cap = limits[i]
+            control, th = controls[i], headings[i]
             speed = math.hypot(vx, vy)
             if speed > vmax:
                 vx, vy = vx * vmax / speed, vy * vmax / speed
@@ -428,6 +479,14 @@ class World:
             armed[i] = (kick if kick < cap else cap) if kick > 0.0 else 0.0
             chip[i] = ch > 0.0
             dribble[i] = dr > 0.0
+        walk = self.walk
+        if walk is not None:
+            hum = self.humanoid_indices
+            t0 = self.time
+            for i, (vx, vy, w) in zip(hum, walk.command([rows[i] for i in hum],
+                                                        [headings[i] for i in hum], t0)):
+                set_velocity(controls[i], (vx, vy))
+                set_omega(controls[i], w)
         self.touched = [False] * self.n_robots
         self.kicked = [False] * self.n_robots
         if any(armed):
@@ -453,7 +512,119 @@ class World:
                 if v.x * v.x + v.y * v.y <= self._v_switch * self._v_switch:
                     self._set_sliding(False, 0.0)
 
+        if walk is not None:
+            self._humanoid_events(t0)
         self._read_state()
+
+    # ------------------------------------------------------------------------------------
+    # Humanoids
+    # ------------------------------------------------------------------------------------
+
+    def _humanoid_impact(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
+        """``begin`` of a humanoid's contact with a robot or a wall: record the approach
+        speed along the contact normal (the largest of the step per humanoid)."""
+        a, b = arbiter.shapes
+        n = arbiter.normal
+        va, vb = a.body.velocity, b.body.velocity
+        speed = abs((va.x - vb.x) * n.x + (va.y - vb.y) * n.y)
+        for shape in (a, b):
+            i = self._shape_index.get(shape)
+            if i is not None and self.robot_specs[i].kind == "humanoid":
+                self._impacts[i] = max(self._impacts.get(i, 0.0), speed)
+
+    def _ball_humanoid_contact(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data
+                               ) -> None:
+        """pre_solve for ball-humanoid contacts: fly-over and touches."""
+        i = self._shape_index[arbiter.shapes[1]]
+        if self._z > self._heights[i]:
+            arbiter.process_collision = False
+            return
+        self.touched[i] = True
+        self.last_touch = i
+
+    def _humanoid_events(self, t0: float) -> None:
+        """After the substeps of a step that started at ``t0``: falls from this step's
+        impacts, robots standing up (turned), and foot strikes of kicks."""
+        walk = self.walk
+        now = self.time
+        if self._impacts:
+            for i, speed in self._impacts.items():
+                walk.maybe_fall(walk.indices.index(i), speed, now)
+            self._impacts = {}
+        # A fallen robot is held by its friction on the ground (force mu m g, torque about
+        # the lying body's middle), not by its walk; standing, by the walk's limits again.
+        for j, i in enumerate(walk.indices):
+            if walk.fallen[j] == (i in self._grounded):
+                continue
+            spec = self.robot_specs[i]
+            drive, turn = self._drives[i]
+            if walk.fallen[j]:
+                force = spec.surface_friction * spec.mass * GRAVITY
+                drive.max_force = force
+                turn.max_force = force * max(0.5 * spec.lying_length, spec.radius)
+                self._grounded.add(i)
+            else:
+                drive.max_force = spec.mass * spec.max_acceleration
+                turn.max_force = spec.moment_of_inertia * spec.max_angular_acceleration
+                self._grounded.discard(i)
+        for j, angle in walk.lying_due(now):
+            i = walk.indices[j]
+            spec = self.robot_specs[i]
+            if spec.lying_length > 0.0:
+                body = self._bodies[i]
+                end = (spec.lying_length * math.cos(angle), spec.lying_length * math.sin(angle))
+                shape = pymunk.Segment(body, (0.0, 0.0), end, 0.5 * spec.lying_width)
+                shape.elasticity = spec.restitution
+                shape.friction = spec.surface_friction
+                shape.collision_type = _HUMANOID
+                self.space.add(shape)
+                self._shape_index[shape] = i
+                self._lying[i] = shape
+        for j, turn in walk.stand_up_due(now):
+            i = walk.indices[j]
+            body = self._bodies[i]
+            shape = self._lying.pop(i, None)
+            if shape is not None:
+                self.space.remove(shape)
+                del self._shape_index[shape]
+            body.angle = body.angle + turn
+            body.angular_velocity = 0.0
+        for j, speed in walk.kick_due(t0, now):
+            i = walk.indices[j]
+            spec = self.robot_specs[i]
+            body = self._bodies[i]
+            rx, ry = body.position
+            bx, by = self._ball.position
+            a = body.angle
+            c, s = math.cos(a), math.sin(a)
+            u = c * (bx - rx) + s * (by - ry)  # ahead of the robot's centre
+            v = c * (by - ry) - s * (bx - rx)  # to its left
+            r0 = spec.radius + self.ball_spec.radius
+            if (self._z <= spec.height and r0 - 0.02 <= u <= r0 + spec.kick_reach
+                    and abs(v) <= 0.5 * spec.kick_width):
+                d = a + walk.kick_direction_noise(j)
+                self._ball.velocity = (speed * math.cos(d), speed * math.sin(d))
+                self._z = self._vz = 0.0
+                self._airborne = False
+                self._set_sliding(True, speed)
+                walk.kicks[j] += 1
+                self.kicked[i] = True
+                self.touched[i] = True
+                self.last_touch = i
+
+    def humanoid_state(self) -> dict[str, dict[str, object]]:
+        """Per humanoid (by name): ``fallen``, ``kicking``, head ``pan`` and ``tilt`` [rad],
+        ``sway`` ``(pan, tilt)`` [rad], ``odometry`` (the last step's ``dx, dy, dtheta`` in
+        the body frame), ``falls`` and ``kicks`` since reset. Empty without humanoids."""
+        walk = self.walk
+        if walk is None:
+            return {}
+        return {self.names[i]: {
+            "fallen": walk.fallen[j], "kicking": walk.kick_start[j] is not None,
+            "pan": walk.pan[j], "tilt": walk.tilt[j],
+            "sway": (walk.sway_pan[j], walk.sway_tilt[j]),
+            "odometry": walk.odometry[j], "falls": walk.falls[j], "kicks": walk.kicks[j],
+        } for j, i in enumerate(walk.indices)}
 
     def _read_state(self) -> None:
         """Copy the ball's and robots' positions and velocities into ``self._state``.
@@ -493,10 +664,10 @@ class World:
 
     def _ball_robot_contact(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
         """pre_solve for ball-robot contacts: fly-over, touches, kicker and dribbler."""
-        if self._z > self.robot_spec.height:
+        i = self._shape_index[arbiter.shapes[1]]
+        if self._z > self._heights[i]:
             arbiter.process_collision = False
             return
-        i = self._shape_index[arbiter.shapes[1]]
         self.touched[i] = True
         self.last_touch = i
         armed = self._armed[i] > 0.0 and self.time >= self._ready_at[i]
@@ -505,52 +676,55 @@ class World:
                 self._pending_kick = i
             else:
                 # A spinning dribbler bar damps the ball's bounce off the front.
-                arbiter.restitution = self.robot_spec.dribbler_restitution
+                arbiter.restitution = self.robot_specs[i].dribbler_restitution
 
-    def _mouth_holds(self, rx: float, ry: float, a: float, bx: float, by: float) -> bool:
-        """Whether a ball at ``(bx, by)`` is in the mouth of a robot at pose ``(rx, ry, a)``:
-        its surface within :data:`MOUTH_TOLERANCE` of the flat front (or pressed into it)
-        and its centre within half the kicker width of the front's middle."""
+    def _mouth_holds(self, i: int, rx: float, ry: float, a: float, bx: float, by: float
+                     ) -> bool:
+        """Whether a ball at ``(bx, by)`` is in the mouth of SSL robot ``i`` at pose
+        ``(rx, ry, a)``: its surface within :data:`MOUTH_TOLERANCE` of the flat front (or
+        pressed into it) and its centre within half the kicker width of the front's
+        middle."""
         c, s = math.cos(a), math.sin(a)
         dx, dy = bx - rx, by - ry
         u = c * dx + s * dy  # along the heading
         v = c * dy - s * dx  # sideways
-        return self._mouth_lo <= u <= self._mouth_hi and abs(v) <= self._mouth_half
+        return self._mouth_lo[i] <= u <= self._mouth_hi[i] and abs(v) <= self._mouth_half[i]
 
     def _in_mouth(self, i: int) -> bool:
         """:meth:`_mouth_holds` for robot ``i`` and the ball, from the live bodies."""
         body = self._bodies[i]
         rx, ry = body.position
         bx, by = self._ball.position
-        return self._mouth_holds(rx, ry, body.angle, bx, by)
+        return self._mouth_holds(i, rx, ry, body.angle, bx, by)
 
     def _kick_resting_ball(self) -> None:
         """Fire an armed kicker whose mouth already holds the ball (no new contact needed).
 
         Uses the state read at the end of the previous step.
         """
-        if self._z > self.robot_spec.height:
-            return
         rows = self._state.tolist()
         bx, by = rows[0][0:2]
-        reach2 = (self.robot_spec.radius + self.ball_spec.radius + MOUTH_TOLERANCE) ** 2
         for i, ((rx, ry, a, *_), speed) in enumerate(zip(rows[1:], self._armed)):
-            if (speed > 0.0 and (bx - rx) ** 2 + (by - ry) ** 2 < reach2
-                    and self.time >= self._ready_at[i] and self._mouth_holds(rx, ry, a, bx, by)):
+            if speed <= 0.0 or self._z > self._heights[i]:
+                continue
+            reach2 = (self.robot_specs[i].radius + self.ball_spec.radius + MOUTH_TOLERANCE) ** 2
+            if ((bx - rx) ** 2 + (by - ry) ** 2 < reach2
+                    and self.time >= self._ready_at[i]
+                    and self._mouth_holds(i, rx, ry, a, bx, by)):
                 self._fire(i)
                 return
 
     def _fire(self, i: int) -> None:
-        rs = self.robot_spec
+        rs = self.robot_specs[i]
         speed = self._armed[i]
         a = self._bodies[i].angle
         c, s = math.cos(a), math.sin(a)
         ball = self._ball
         if self._chip[i]:
-            horizontal = speed * self._chip_cos
+            horizontal = speed * math.cos(rs.chip_angle)
             ball.velocity = (horizontal * c, horizontal * s)
             self._z = 0.0
-            self._vz = speed * self._chip_sin
+            self._vz = speed * math.sin(rs.chip_angle)
             self._airborne = True
             self._hops = 0
             self._sliding = False
@@ -594,13 +768,15 @@ class World:
         within this step (checked from the last state, so only these are checked per
         substep)."""
         bx, by, _, bvx, bvy, _ = self._state[0].tolist()
-        reach = self.robot_spec.front_distance + self.ball_spec.radius
-        near = 0.05 + (math.hypot(bvx, bvy) + 2.0 * self.robot_spec.max_speed) * self.control_dt
         out = []
-        near2 = (near + reach) ** 2
         robots = self._state[1:, 0:3].tolist()
         for i, ((rx, ry, a), on) in enumerate(zip(robots, self._dribble)):
-            if not on or (bx - rx) ** 2 + (by - ry) ** 2 > near2:
+            if not on:
+                continue
+            rs = self.robot_specs[i]
+            reach = rs.front_distance + self.ball_spec.radius
+            near = 0.05 + (math.hypot(bvx, bvy) + 2.0 * rs.max_speed) * self.control_dt
+            if (bx - rx) ** 2 + (by - ry) ** 2 > (near + reach) ** 2:
                 continue
             mouth_x, mouth_y = rx + reach * math.cos(a), ry + reach * math.sin(a)
             if math.hypot(bx - mouth_x, by - mouth_y) < near:
@@ -614,7 +790,7 @@ class World:
         or within the light barrier's tolerance of it) and on the carpet below the robot's
         height.
         """
-        if self._z > self.robot_spec.height or not self._in_mouth(i):
+        if self._z > self._heights[i] or not self._in_mouth(i):
             return
         body, ball = self._bodies[i], self._ball
         rx, ry = body.position
@@ -627,7 +803,7 @@ class World:
         bvx, bvy = ball.velocity
         # Sideways slip of the ball relative to the robot's surface point under it.
         slip = -s * (bvx - (rvx - w * dy)) + c * (bvy - (rvy + w * dx))
-        force = self.robot_spec.dribbler_force
+        force = self.robot_specs[i].dribbler_force
         lateral = max(-force, min(force, -self.ball_spec.mass * slip / self.substep_dt))
         fx = -force * c - lateral * s
         fy = -force * s + lateral * c

@@ -25,12 +25,15 @@ __all__ = [
     "FieldSpec",
     "BallSpec",
     "SSLRobotSpec",
+    "HumanoidRobotSpec",
+    "RobotSpec",
     "FIELDS",
     "BALLS",
     "ROBOTS",
     "field",
     "ball",
     "robot",
+    "default_field",
     "GRAVITY",
 ]
 
@@ -224,6 +227,148 @@ class SSLRobotSpec:
         return 2.0 * math.sqrt(self.radius**2 - self.front_distance**2)
 
 
+@dataclass(frozen=True)
+class HumanoidRobotSpec:
+    """A biped (RoboCup Humanoid KidSize) robot driven by a walk engine.
+
+    Body: a disc of ``radius`` (the feet and legs, what collides), ``height`` tall (a ball in
+    flight above it passes over), ``mass`` and ``moment_of_inertia``.
+
+    Walk engine (:mod:`soccer_env.humanoid`): the commanded body-frame velocity
+    ``(vx, vy, omega)`` is limited to the ellipsoid ``(vx / v_x)^2 + (vy / v_y)^2 +
+    (omega / omega_max)^2 <= 1`` with ``v_x`` = ``max_forward_speed`` or
+    ``max_backward_speed`` by the sign of ``vx``, ``v_y`` = ``max_sideways_speed`` and
+    ``omega_max`` = ``max_turn_speed``; the gait's velocity ramps towards it with at most
+    ``max_acceleration`` [m/s^2] and ``max_angular_acceleration`` [rad/s^2]. The gait steps at
+    ``step_frequency`` steps per second while walking, swaying the torso and so the camera by
+    ``sway_pan`` (yaw, once per stride of two steps) and ``sway_tilt`` (pitch, once per step)
+    [rad amplitude].
+
+    Head: pan within ``+-head_pan_limit``, tilt (positive looking down) within
+    ``[head_tilt_min, head_tilt_max]``, both servos turning at up to ``head_speed`` [rad/s];
+    the camera is the :data:`soccer_env.headcam.HEAD_CAMERAS` preset ``camera``.
+
+    Kick: a timed motion of ``kick_duration`` seconds during which the robot stands; its foot
+    strikes ``kick_fire_time`` seconds after the start, and sends the ball along the heading
+    (plus Gaussian ``kick_direction_sigma`` [rad]) at ``power * kick_max_speed`` only if the
+    ball is then at a foot: its centre between ``radius`` and ``radius + kick_reach`` in front
+    of the robot's centre (plus the ball radius) and within ``kick_width / 2`` sideways.
+
+    Dive: a keeper's deliberate fall to one side; the body hits the ground ``fall_time``
+    seconds after the command.
+
+    Falls: a contact with another robot or a wall whose approach speed (along the contact
+    normal) is ``v`` fells the robot with probability ``(v - fall_speed_min) /
+    (fall_speed_certain - fall_speed_min)`` clipped to [0, 1], in a random direction. A fallen
+    (or diving) robot neither acts, sees, nor sends for ``get_up_time`` seconds; from
+    ``fall_time`` after the fall its body lies on the ground, a capsule ``lying_width`` thick
+    reaching ``lying_length`` from its centre, an obstacle for the ball and other robots; it
+    stands up turned by a Gaussian ``fall_heading_sigma`` [rad] that its odometry does not
+    report.
+
+    Odometry (what the walk engine believes it walked): the gait's displacement with, per gait
+    step, Gaussian relative errors ``odometry_trans_sigma`` on the translation and
+    ``odometry_rot_sigma`` on the rotation, plus ``odometry_turn_slip`` metres of sideways
+    slip per radian turned (turns slip most, as paper 001 observed).
+    """
+
+    name: str
+    radius: float
+    height: float
+    mass: float
+    moment_of_inertia: float
+    max_forward_speed: float
+    max_backward_speed: float
+    max_sideways_speed: float
+    max_turn_speed: float
+    max_acceleration: float
+    max_angular_acceleration: float
+    step_frequency: float
+    sway_pan: float
+    sway_tilt: float
+    head_pan_limit: float
+    head_tilt_min: float
+    head_tilt_max: float
+    head_speed: float
+    camera: str
+    kick_duration: float
+    kick_fire_time: float
+    kick_max_speed: float
+    kick_reach: float
+    kick_width: float
+    kick_direction_sigma: float
+    fall_speed_min: float
+    fall_speed_certain: float
+    fall_time: float
+    lying_length: float
+    lying_width: float
+    get_up_time: float
+    fall_heading_sigma: float
+    odometry_trans_sigma: float
+    odometry_rot_sigma: float
+    odometry_turn_slip: float
+    restitution: float
+    surface_friction: float
+    source: str
+
+    kind = "humanoid"
+
+    def __post_init__(self) -> None:
+        _check("radius", self.radius, 0.02, 1.0)
+        _check("height", self.height, 0.1, 3.0)
+        _check("mass", self.mass, 0.1, 200.0)
+        _check("moment_of_inertia", self.moment_of_inertia, 0.0, 100.0, low_open=True)
+        for name in ("max_forward_speed", "max_backward_speed", "max_sideways_speed"):
+            _check(name, getattr(self, name), 0.0, 5.0, low_open=True)
+        _check("max_turn_speed", self.max_turn_speed, 0.0, 20.0, low_open=True)
+        _check("max_acceleration", self.max_acceleration, 0.0, 50.0, low_open=True)
+        _check("max_angular_acceleration", self.max_angular_acceleration, 0.0, 500.0,
+               low_open=True)
+        _check("step_frequency", self.step_frequency, 0.0, 10.0, low_open=True)
+        _check("sway_pan", self.sway_pan, 0.0, 0.5)
+        _check("sway_tilt", self.sway_tilt, 0.0, 0.5)
+        _check("head_pan_limit", self.head_pan_limit, 0.0, math.pi)
+        _check("head_tilt_min", self.head_tilt_min, -0.5 * math.pi, 0.5 * math.pi)
+        _check("head_tilt_max", self.head_tilt_max, self.head_tilt_min, 0.5 * math.pi)
+        _check("head_speed", self.head_speed, 0.0, 50.0, low_open=True)
+        _check("kick_duration", self.kick_duration, 0.0, 10.0, low_open=True)
+        _check("kick_fire_time", self.kick_fire_time, 0.0, self.kick_duration)
+        _check("kick_max_speed", self.kick_max_speed, 0.0, 20.0)
+        _check("kick_reach", self.kick_reach, 0.0, 1.0, low_open=True)
+        _check("kick_width", self.kick_width, 0.0, 2.0 * self.radius + 0.5, low_open=True)
+        _check("kick_direction_sigma", self.kick_direction_sigma, 0.0, math.pi)
+        _check("fall_speed_min", self.fall_speed_min, 0.0, 10.0)
+        _check("fall_speed_certain", self.fall_speed_certain, self.fall_speed_min, 10.0,
+               low_open=True)
+        if not self.fall_speed_certain > self.fall_speed_min:
+            raise ValueError(f"fall_speed_certain must be greater than fall_speed_min "
+                             f"({self.fall_speed_min}), got {self.fall_speed_certain!r}")
+        _check("fall_time", self.fall_time, 0.0, 5.0)
+        _check("lying_length", self.lying_length, 0.0, 3.0)
+        _check("lying_width", self.lying_width, 0.0, 1.0)
+        _check("get_up_time", self.get_up_time, self.fall_time, 120.0)
+        _check("fall_heading_sigma", self.fall_heading_sigma, 0.0, math.pi)
+        _check("odometry_trans_sigma", self.odometry_trans_sigma, 0.0, 2.0)
+        _check("odometry_rot_sigma", self.odometry_rot_sigma, 0.0, 2.0)
+        _check("odometry_turn_slip", self.odometry_turn_slip, 0.0, 1.0)
+        _check("restitution", self.restitution, 0.0, 1.0)
+        _check("surface_friction", self.surface_friction, 0.0, 2.0)
+
+    @property
+    def max_speed(self) -> float:
+        """The fastest translation [m/s] (forward)."""
+        return max(self.max_forward_speed, self.max_backward_speed, self.max_sideways_speed)
+
+    @property
+    def max_angular_speed(self) -> float:
+        """The fastest turn [rad/s]."""
+        return self.max_turn_speed
+
+
+#: Any robot preset.
+RobotSpec = SSLRobotSpec | HumanoidRobotSpec
+
+
 # --------------------------------------------------------------------------------------------
 # Fields
 # --------------------------------------------------------------------------------------------
@@ -266,7 +411,7 @@ FIELDS: dict[str, FieldSpec] = {
         name="humanoid-2012", length=6.0, width=4.0, boundary=0.7,
         goal_width=1.5, goal_depth=0.5, goal_height=0.8, goal_wall_thickness=0.05,
         defense_width=2.2, defense_depth=0.6, center_circle_radius=0.6, line_width=0.05,
-        wall_restitution=0.3, ball="ssl",
+        wall_restitution=0.3, ball="kidsize-2012",
         source="paper 000 (6 x 4 m); RoboCup Humanoid KidSize rules 2012",
     ),
     # RoboCup Humanoid League KidSize rules (2020 onwards): 9 x 6 m, goal 2.6 m wide, 0.6 m
@@ -275,7 +420,7 @@ FIELDS: dict[str, FieldSpec] = {
         name="humanoid-kid", length=9.0, width=6.0, boundary=1.0,
         goal_width=2.6, goal_depth=0.6, goal_height=1.2, goal_wall_thickness=0.1,
         defense_width=3.0, defense_depth=1.0, center_circle_radius=0.75, line_width=0.05,
-        wall_restitution=0.3, ball="ssl",
+        wall_restitution=0.3, ball="kidsize",
         source="RoboCup Humanoid KidSize rules 2020+",
     ),
 }
@@ -298,6 +443,27 @@ _SSL_BALL = BallSpec(
 
 BALLS: dict[str, BallSpec] = {
     "ssl": _SSL_BALL,
+    # Humanoid KidSize of 2012 (paper 000's era): an orange ball of tennis-ball size on green
+    # carpet. Our reading of the rules of that era and assumptions where we found no figure:
+    # radius 33 mm, 57 g; a felt ball on carpet slides briefly and rolls with about
+    # 0.5 m/s^2 (assumed); no chip kicks, so the chip parameters keep the golf ball's.
+    "kidsize-2012": dataclasses.replace(
+        _SSL_BALL, name="kidsize-2012", radius=0.033, mass=0.057,
+        sliding_deceleration=2.0, rolling_deceleration=0.5, k_switch=0.7,
+        surface_friction=0.5,
+        source="Humanoid KidSize of 2012 (orange tennis-size ball, our reading); "
+               "decelerations assumed",
+    ),
+    # Humanoid KidSize (2020 onwards): a FIFA size 1 ball (circumference about 0.48 m) on
+    # 30 mm artificial grass, which brakes it hard; decelerations are assumptions of the
+    # order reported by teams (about 1 m/s^2 rolling).
+    "kidsize": dataclasses.replace(
+        _SSL_BALL, name="kidsize", radius=0.076, mass=0.2,
+        sliding_deceleration=2.5, rolling_deceleration=1.0, k_switch=0.7,
+        surface_friction=0.6,
+        source="Humanoid KidSize rules 2020+ (size 1 ball); decelerations on artificial grass "
+               "assumed",
+    ),
     # Paper 002: the ball of 2012 on that carpet rolls with a_f = 0.23 m/s^2 (measured); the
     # paper does not model a sliding phase, so that keeps the current SSL values.
     "ssl-2012": dataclasses.replace(
@@ -327,7 +493,7 @@ _SSL_ROBOT = SSLRobotSpec(
     source="SSL rules (size, 6.5 m/s); grSim default robot (front, kicker)",
 )
 
-ROBOTS: dict[str, SSLRobotSpec] = {
+ROBOTS: dict[str, RobotSpec] = {
     "ssl": _SSL_ROBOT,
     # Paper 002: SSL robots of 2012 reach more than 2.5 m/s with more than 2.5 m/s^2 and kick
     # at 5.0 m/s or more; the paper's decision cycle is 40 ms. Body as 'ssl'.
@@ -338,6 +504,57 @@ ROBOTS: dict[str, SSLRobotSpec] = {
         source="paper 002 (2.5 m/s, 2.5 m/s^2, 5 m/s kicks); body as 'ssl'",
     ),
 }
+
+# A KidSize humanoid (RoboCup Humanoid League, 2020 onwards; the figures are of the order of
+# published KidSize platforms such as Darwin-OP, NimbRo-OP and Wolfgang-OP, rounded, and
+# assumptions where marked). 0.6 m tall with the camera at 0.56 m (paper 000), 3.5 kg; the
+# feet and legs collide as a disc of 0.1 m radius. Walk: 0.3 m/s forward, half that backward
+# and sideways, 1 rad/s turning (paper 001 keeps its robot at 0.5 m/s or less; SPEC: "a few
+# tenths of m/s"), reaching full speed in under a second (0.4 m/s^2, 3 rad/s^2), stepping at
+# 2.5 steps per second with 2 degrees of yaw and pitch sway (assumed). Head: pan +-120
+# degrees, tilt from 10 degrees up to 70 degrees down, servos at 5 rad/s. Kick: a 1 s motion
+# striking after 0.5 s, up to 3 m/s. Falls: contacts approaching at 0.15 m/s can fell it,
+# at 0.5 m/s always (assumed); the body is down 0.4 s after a fall or dive and lies as a
+# 0.15 m thick capsule reaching 0.5 m from its feet (most of its height); 5 s to fall and get
+# up (KidSize get-up motions take a few seconds). Odometry: 10 % translation and 15 %
+# rotation error per step, 3 cm of slip per radian turned (assumed).
+_KIDSIZE = HumanoidRobotSpec(
+    name="humanoid", radius=0.1, height=0.6, mass=3.5, moment_of_inertia=0.5 * 3.5 * 0.1**2,
+    max_forward_speed=0.3, max_backward_speed=0.15, max_sideways_speed=0.15,
+    max_turn_speed=1.0, max_acceleration=0.4, max_angular_acceleration=3.0,
+    step_frequency=2.5, sway_pan=math.radians(2.0), sway_tilt=math.radians(2.0),
+    head_pan_limit=math.radians(120.0), head_tilt_min=math.radians(-10.0),
+    head_tilt_max=math.radians(70.0), head_speed=5.0, camera="kidsize",
+    kick_duration=1.0, kick_fire_time=0.5, kick_max_speed=3.0, kick_reach=0.08,
+    kick_width=0.2, kick_direction_sigma=math.radians(5.0),
+    fall_speed_min=0.15, fall_speed_certain=0.5, fall_time=0.4, lying_length=0.5,
+    lying_width=0.15, get_up_time=5.0,
+    fall_heading_sigma=0.3, odometry_trans_sigma=0.1, odometry_rot_sigma=0.15,
+    odometry_turn_slip=0.03, restitution=0.2, surface_friction=0.8,
+    source="KidSize platforms (Darwin-OP, NimbRo-OP, Wolfgang-OP), rounded; paper 000 "
+           "(camera 0.56 m); gait sway, falls and odometry noise assumed",
+)
+
+ROBOTS["humanoid"] = _KIDSIZE
+# Paper 000's 21-servo robot of 2012: the same body with the slower walk of that era's
+# KidSize robots (0.2 m/s forward, assumed) and paper 000's camera (25 Hz, 720 x 625, 51
+# degrees at 0.56 m).
+ROBOTS["humanoid-2012"] = dataclasses.replace(
+    _KIDSIZE, name="humanoid-2012", max_forward_speed=0.2, max_backward_speed=0.1,
+    max_sideways_speed=0.1, max_turn_speed=0.6, max_acceleration=0.3, kick_max_speed=2.5,
+    camera="kidsize-2012",
+    source="paper 000 (21 servos, head camera 0.56 m, 51 degrees, 25 Hz); walk of 2012 "
+           "KidSize robots assumed; otherwise as 'humanoid'",
+)
+
+#: The field a robot preset plays on by default (by preset name, then by kind).
+DEFAULT_FIELDS = {"humanoid-2012": "humanoid-2012", "humanoid": "humanoid-kid", "ssl": "ssl-div-b"}
+
+
+def default_field(spec: RobotSpec) -> str:
+    """The name of the field preset that ``spec`` plays on unless told otherwise."""
+    return DEFAULT_FIELDS.get(spec.name, DEFAULT_FIELDS[spec.kind])
+
 
 _S = TypeVar("_S")
 
@@ -373,6 +590,7 @@ def ball(spec: str | BallSpec = "ssl", **overrides: Any) -> BallSpec:
     return _resolve("ball", BALLS, spec, overrides)
 
 
-def robot(spec: str | SSLRobotSpec = "ssl", **overrides: Any) -> SSLRobotSpec:
-    """Return a robot preset (by name or spec) with optional validated overrides."""
+def robot(spec: str | RobotSpec = "ssl", **overrides: Any) -> RobotSpec:
+    """Return a robot preset (by name or spec, SSL or humanoid) with optional validated
+    overrides."""
     return _resolve("robot", ROBOTS, spec, overrides)

@@ -114,7 +114,7 @@ def place_kickoff(world: World, kickoff_team: int, rng: np.random.Generator, jit
                   ) -> np.ndarray:
     """Kick-off poses ``(N, 3)`` of all robots of ``world`` (blue first), no two closer than
     ``2 r + 0.05`` m (jittered slots can come close on small fields; they are pushed apart)."""
-    r = world.robot_spec.radius
+    r = float(world.radii.max())
     blue = formation(world.field, 0, world.n_blue, kickoff_team == 0, r, rng, jitter)
     yellow = formation(world.field, 1, world.n_yellow, kickoff_team == 1, r, rng, jitter)
     poses = np.concatenate([blue, yellow])
@@ -165,11 +165,11 @@ def place_free_kick(world: World, exit: BallExit, kind: ExitKind) -> int:
         team = 1 if end > 0 else 0
     bx, by = free_kick_spot(exit, kind, world.field)
     world.set_ball(bx, by)
-    r = world.robot_spec.radius
-    lim_x = world.field.half_length + world.field.boundary - r
-    lim_y = world.field.half_width + world.field.boundary - r
     robots = world.robot_array().copy()
     for i, (x, y, th) in enumerate(robots[:, 0:3]):
+        r = float(world.radii[i])
+        lim_x = world.field.half_length + world.field.boundary - r
+        lim_y = world.field.half_width + world.field.boundary - r
         keep = STOP_DISTANCE + r if world.teams[i] != team else r + world.ball_spec.radius + 0.02
         dx, dy = x - bx, y - by
         d = math.hypot(dx, dy)

@@ -1,9 +1,10 @@
 """Top-down rendering with pygame: an RGB array or a live window.
 
 The field is drawn to scale with its lines, defense areas and goals; robots in team colours
-with their flat front, a heading mark and their number; the ball in orange (with a shadow and
-a larger disc while it flies). ``rgb_array`` needs no display. pygame is an optional
-dependency (``pip install soccer-env[render]``).
+with their flat front (SSL) or as discs with their head camera's field of view (humanoids;
+a fallen humanoid's body lies beside it), a heading mark and their number; the ball in orange
+(with a shadow and a larger disc while it flies). ``rgb_array`` needs no display. pygame is
+an optional dependency (``pip install soccer-env[render]``).
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from .physics import robot_outline
-from .presets import BallSpec, FieldSpec, SSLRobotSpec
+from .presets import BallSpec, FieldSpec, RobotSpec
 from .state import WorldState
 
 __all__ = ["Renderer", "RenderingMixin", "RENDER_MODES", "TEAM_COLOURS", "write_video"]
@@ -46,14 +47,15 @@ class Renderer:
     """Draws :class:`~soccer_env.state.WorldState` snapshots.
 
     Args:
-        field, robot, ball: the specs of the world to draw.
+        field, robot, ball: the specs of the world to draw (``robot``: one spec for all robots
+            or one per robot).
         mode: ``"rgb_array"`` or ``"human"``.
         width_px: width of the image in pixels (the height follows the field's aspect).
         fps: frame rate of the ``"human"`` window.
     """
 
-    def __init__(self, field: FieldSpec, robot: SSLRobotSpec, ball: BallSpec, mode: str,
-                 width_px: int = 960, fps: float = 60.0) -> None:
+    def __init__(self, field: FieldSpec, robot: RobotSpec | Sequence[RobotSpec],
+                 ball: BallSpec, mode: str, width_px: int = 960, fps: float = 60.0) -> None:
         if mode not in RENDER_MODES:
             raise ValueError(f"render_mode must be one of {list(RENDER_MODES)} or None, "
                              f"got {mode!r}")
@@ -65,7 +67,8 @@ class Renderer:
         self.oy = field.half_width + field.boundary
         self.scale = width_px / (2.0 * self.ox)
         self.size = (int(round(2 * self.ox * self.scale)), int(round(2 * self.oy * self.scale)))
-        self._outline = np.asarray(robot_outline(robot, n_arc=12))
+        self._specs = list(robot) if isinstance(robot, (list, tuple)) else None
+        self._outlines: dict[int, np.ndarray] = {}
         self._window = None
         self._clock = None
         self.pg.font.init()
@@ -100,19 +103,53 @@ class Renderer:
         pg.draw.rect(surf, (90, 60, 30), (0, 0, *self.size), 3)
         return surf
 
-    def draw(self, state: WorldState, hud: Sequence[str] = (), belief=None
-             ) -> np.ndarray | None:
+    def _spec(self, i: int) -> RobotSpec:
+        return self.robot if self._specs is None else self._specs[i]
+
+    def _outline(self, spec: RobotSpec) -> np.ndarray:
+        """The footprint polygon of ``spec`` in its body frame."""
+        key = id(spec)
+        if key not in self._outlines:
+            if spec.kind == "ssl":
+                pts = robot_outline(spec, n_arc=12)
+            else:
+                a = np.linspace(0.0, 2.0 * math.pi, 16, endpoint=False)
+                pts = np.column_stack([spec.radius * np.cos(a), spec.radius * np.sin(a)])
+            self._outlines[key] = np.asarray(pts)
+        return self._outlines[key]
+
+    def draw(self, state: WorldState, hud: Sequence[str] = (), belief=None,
+             heads: dict | None = None) -> np.ndarray | None:
         """Draw ``state`` (and, if given, what the team believes: ``belief.ball`` and
-        ``belief.robots`` in the layout of the state, drawn as outlines in cyan); return an
-        ``(H, W, 3)`` uint8 frame (``rgb_array``) or None."""
+        ``belief.robots`` in the layout of the state, drawn as outlines in cyan); ``heads``
+        maps humanoid robot indices to ``(pan, hfov, range, lying)``: the camera's view is
+        drawn as a cone, and a fallen robot's body (``lying``: its direction in the body
+        frame and length, or None) beside it. Returns an ``(H, W, 3)`` uint8 frame
+        (``rgb_array``) or None."""
         pg, s = self.pg, self.scale
         surf = self._background.copy()
-        for (x, y, th, *_), team, name in zip(state.robots, state.teams, state.names):
+        heads = heads or {}
+        for i, ((x, y, th, *_), team, name) in enumerate(zip(state.robots, state.teams,
+                                                             state.names)):
+            spec = self._spec(i)
             c, sn = math.cos(th), math.sin(th)
-            pts = [self._px(x + c * u - sn * v, y + sn * u + c * v) for u, v in self._outline]
+            if i in heads:
+                pan, hfov, reach, lying = heads[i]
+                a0 = th + pan
+                cone = [self._px(x, y)] + [
+                    self._px(x + reach * math.cos(a0 + k * 0.5 * hfov),
+                             y + reach * math.sin(a0 + k * 0.5 * hfov)) for k in (-1, 0, 1)]
+                pg.draw.lines(surf, (200, 200, 200), True, cone, 1)
+                if lying is not None:
+                    la, length = lying
+                    end = self._px(x + length * math.cos(th + la), y + length * math.sin(th + la))
+                    pg.draw.line(surf, TEAM_COLOURS[team], self._px(x, y), end,
+                                 max(2, int(0.12 * s)))
+            pts = [self._px(x + c * u - sn * v, y + sn * u + c * v)
+                   for u, v in self._outline(spec)]
             pg.draw.polygon(surf, TEAM_COLOURS[team], pts)
             pg.draw.polygon(surf, (0, 0, 0), pts, 1)
-            d = self.robot.front_distance
+            d = getattr(spec, "front_distance", spec.radius)
             pg.draw.line(surf, (0, 0, 0), self._px(x, y), self._px(x + c * d, y + sn * d), 2)
             label = self._font.render(name.rsplit("_", 1)[1], True, (0, 0, 0))
             cx, cy = self._px(x - 0.35 * c * d, y - 0.35 * sn * d)
@@ -128,9 +165,10 @@ class Renderer:
         pg.draw.circle(surf, _BALL, centre, r)
         pg.draw.circle(surf, (60, 30, 0), centre, r, 1)
         if belief is not None:
-            for x, y, th, *_ in belief.robots.tolist():
+            for i, (x, y, th, *_) in enumerate(belief.robots.tolist()):
                 c, sn = math.cos(th), math.sin(th)
-                pts = [self._px(x + c * u - sn * v, y + sn * u + c * v) for u, v in self._outline]
+                pts = [self._px(x + c * u - sn * v, y + sn * u + c * v)
+                       for u, v in self._outline(self._spec(i))]
                 pg.draw.polygon(surf, _BELIEF, pts, 1)
             bx, by = belief.ball[0:2]
             pg.draw.circle(surf, _BELIEF, self._px(bx, by), max(4, int(round(
@@ -181,14 +219,29 @@ class RenderingMixin:
             gymnasium.logger.warn("render() called without a render_mode; pass render_mode= "
                                   "when creating the environment")
             return None
+        world = self.world
         if self._renderer is None:
-            self._renderer = Renderer(self.field, self.robot_spec, self.ball_spec,
+            self._renderer = Renderer(self.field, list(world.robot_specs), self.ball_spec,
                                       self.render_mode, self._render_width,
                                       self.metadata["render_fps"])
-        state = self.world.snapshot()
+        state = world.snapshot()
         belief = getattr(self, "_shown_belief", None)
+        heads = None
+        walk = world.walk
+        if walk is not None:
+            from .headcam import head_camera
+
+            heads = {}
+            config = getattr(self, "perception", None)
+            for j, i in enumerate(walk.indices):
+                spec = world.robot_specs[i]
+                cam = (config.camera if config is not None and config.camera is not None
+                       else head_camera(spec.camera))
+                lying = ((walk.lie_angle[j], spec.lying_length)
+                         if walk.fallen[j] and walk.lie_at[j] is None else None)
+                heads[i] = (walk.pan[j] + walk.sway_pan[j], cam.hfov, 1.0, lying)
         return self._renderer.draw(state, self._hud(), None if belief is None
-                                   or belief is state else belief)
+                                   or belief is state else belief, heads)
 
     def close(self) -> None:
         """Close the window, if any."""

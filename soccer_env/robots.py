@@ -1,8 +1,9 @@
 """Robot models: from a policy's normalised action to physical commands.
 
 A robot model owns its action space and maps a batch of actions ``(N, action_size)`` in
-``[-1, 1]`` to :class:`~soccer_env.physics.RobotCommands`. Only the SSL model exists now; the
-humanoid walk engine will implement the same interface.
+``[-1, 1]`` to the physical commands of :meth:`World.step <soccer_env.physics.World.step>`:
+:class:`SSLRobot` for SSL robots, :class:`HumanoidRobot` for the walk engine of humanoids.
+Both have six action entries, so SSL and humanoid robots share one action space shape.
 """
 
 from __future__ import annotations
@@ -13,9 +14,11 @@ from collections import deque
 import numpy as np
 from gymnasium import spaces
 
-from .presets import SSLRobotSpec
+from .humanoid import DIVE
+from .presets import HumanoidRobotSpec, RobotSpec, SSLRobotSpec
 
-__all__ = ["SSLRobot", "CommandChannel", "validate_actions", "OUT_OF_RANGE_MODES"]
+__all__ = ["SSLRobot", "HumanoidRobot", "robot_model", "CommandChannel", "validate_actions",
+           "OUT_OF_RANGE_MODES"]
 
 #: Allowed values of the ``out_of_range_actions`` argument of the environments.
 OUT_OF_RANGE_MODES = ("clip", "raise")
@@ -59,6 +62,71 @@ class SSLRobot:
         :meth:`World.step <soccer_env.physics.World.step>` (columns
         :data:`~soccer_env.physics.COMMAND_FIELDS`)."""
         return actions * self._scale
+
+
+class HumanoidRobot:
+    """Action mapping of a humanoid's walk engine (:mod:`soccer_env.humanoid`).
+
+    Action (``Box(-1, 1, (6,), float32)``):
+
+    ====  ========  ====================================================================
+    idx   name      meaning
+    ====  ========  ====================================================================
+    0     vx        forward walking speed: positive values times ``max_forward_speed``,
+                    negative times ``max_backward_speed`` [m/s]
+    1     vy        leftward walking speed, times ``max_sideways_speed`` [m/s]
+    2     omega     turn rate, times ``max_turn_speed`` [rad/s]; the walk engine scales
+                    ``(vx, vy, omega)`` into its speed ellipsoid
+    3     motion    > 0 starts a kick motion at ``motion * kick_max_speed`` (ignored while
+                    one runs); the ball flies only if it is at a foot when the foot strikes;
+                    < -0.5 dives (falls on purpose) to the left if ``vy >= 0``, else to the
+                    right
+    4     pan       head pan target, times ``head_pan_limit`` [rad], positive to the left
+    5     tilt      head tilt target from ``head_tilt_min`` (-1) to ``head_tilt_max`` (+1)
+                    [rad], positive looking down
+    ====  ========  ====================================================================
+    """
+
+    action_names = ("vx", "vy", "omega", "motion", "pan", "tilt")
+    action_size = 6
+
+    def __init__(self, spec: HumanoidRobotSpec) -> None:
+        self.spec = spec
+        mid = 0.5 * (spec.head_tilt_max + spec.head_tilt_min)
+        half = 0.5 * (spec.head_tilt_max - spec.head_tilt_min)
+        self._fwd = np.array([spec.max_forward_speed, spec.max_sideways_speed,
+                              spec.max_turn_speed, spec.kick_max_speed, spec.head_pan_limit,
+                              half])
+        self._back = self._fwd.copy()
+        self._back[0] = spec.max_backward_speed
+        self._offset = np.array([0.0, 0.0, 0.0, 0.0, 0.0, mid])
+
+    def action_space(self) -> spaces.Box:
+        """A fresh ``Box(-1, 1, (6,), float32)``."""
+        return spaces.Box(-1.0, 1.0, (self.action_size,), np.float32)
+
+    def commands(self, actions: np.ndarray) -> np.ndarray:
+        """Map validated actions ``(N, 6)`` in [-1, 1] to the walk engine's commands
+        (:data:`~soccer_env.humanoid.HUMANOID_COMMAND_FIELDS`)."""
+        scale = np.where(actions[:, 0:1] >= 0.0, self._fwd, self._back)
+        out = actions * scale + self._offset
+        motion = actions[:, 3]
+        out[:, 3] = np.where(motion > 0.0, out[:, 3], np.where(motion < -0.5, DIVE, 0.0))
+        return out
+
+    def action_for_head(self, pan: float, tilt: float) -> tuple[float, float]:
+        """The action entries 4 and 5 that aim the head at ``pan``, ``tilt`` [rad] (clipped
+        into the head's range)."""
+        s = self.spec
+        a4 = pan / s.head_pan_limit if s.head_pan_limit > 0.0 else 0.0
+        half = 0.5 * (s.head_tilt_max - s.head_tilt_min)
+        a5 = (tilt - 0.5 * (s.head_tilt_max + s.head_tilt_min)) / half if half > 0.0 else 0.0
+        return max(-1.0, min(1.0, a4)), max(-1.0, min(1.0, a5))
+
+
+def robot_model(spec: RobotSpec) -> SSLRobot | HumanoidRobot:
+    """The action mapping of a robot preset."""
+    return HumanoidRobot(spec) if spec.kind == "humanoid" else SSLRobot(spec)
 
 
 def validate_actions(actions: np.ndarray, names: list[str] | tuple[str, ...], mode: str
