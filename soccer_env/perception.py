@@ -14,6 +14,11 @@ Three observation modes share one observation layout:
 the actuation latency and command loss that apply in every mode, and the ball filter. Its
 default is ``"ideal"`` for ``obs_mode="truth"`` and ``"realistic"`` otherwise.
 
+Humanoid robots see through their head cameras instead (:mod:`soccer_env.humanoid_perception`):
+``perception=`` then names a head-camera preset (:data:`soccer_env.headcam.HEAD_CAMERAS`,
+default the robot preset's camera) or gives ``camera``, ``radio``, ``localization``, ``fusion``
+and ``ball_tracker``; their commands reach the walk engine on board, without latency or loss.
+
 Every pipeline returns two beliefs per step: the one the observation is built from (predicted
 ahead by the actuation latency) and the one at the present time, reported in
 ``info["estimate"]`` with the keys of ``info["truth"]`` so that errors can be measured.
@@ -32,13 +37,16 @@ import numpy as np
 from estimators import BallFilterConfig, BallTracker, LeastSquaresBall, RobotTracker
 from estimators.models import MIN_SIGMA_XY
 
+from .headcam import HEAD_CAMERAS, HeadCameraSpec, head_camera
+from .humanoid_perception import BALL_TRACKERS, FUSIONS, LOCALIZATIONS, HumanoidPerception
 from .presets import BallSpec, FieldSpec, SSLRobotSpec
+from .radio import RADIO_PRESETS, RadioSpec
 from .state import WorldState
-from .vision import DetectionFrame, OverheadVision, VisionSpec, vision
+from .vision import VISION, DetectionFrame, OverheadVision, VisionSpec, vision
 
 __all__ = ["Belief", "Perception", "PerceptionConfig", "TruthPerception", "RawPerception",
-           "FilteredPerception", "OBS_MODES", "BALL_FILTERS", "make_perception",
-           "ball_filter_config"]
+           "FilteredPerception", "MatchPerception", "OBS_MODES", "BALL_FILTERS",
+           "make_perception", "ball_filter_config"]
 
 #: Observation modes.
 OBS_MODES = ("truth", "raw", "perceived")
@@ -83,15 +91,32 @@ class Perception(Protocol):
 
 @dataclass(frozen=True)
 class PerceptionConfig:
-    """What a team perceives with: a vision preset and a ball filter.
+    """What a team perceives with.
+
+    SSL robots (overhead vision):
 
     Attributes:
         vision: a :class:`~soccer_env.vision.VisionSpec` (or preset name).
         ball_filter: one of :data:`BALL_FILTERS` (used by ``obs_mode="perceived"``).
+
+    Humanoids (head cameras, :mod:`soccer_env.humanoid_perception`):
+
+    Attributes:
+        camera: a :class:`~soccer_env.headcam.HeadCameraSpec`, a preset name, or None for the
+            robot preset's camera.
+        radio: the team radio, a :class:`~soccer_env.radio.RadioSpec` or preset name.
+        localization: one of :data:`~soccer_env.humanoid_perception.LOCALIZATIONS`.
+        fusion: one of :data:`~soccer_env.humanoid_perception.FUSIONS`.
+        ball_tracker: one of :data:`~soccer_env.humanoid_perception.BALL_TRACKERS`.
     """
 
     vision: VisionSpec
     ball_filter: str = "ekf"
+    camera: HeadCameraSpec | str | None = None
+    radio: RadioSpec | str = "zigbee"
+    localization: str = "kld"
+    fusion: str = "inverse"
+    ball_tracker: str = "mfbpf"
 
     def __post_init__(self) -> None:
         if isinstance(self.vision, str):
@@ -102,17 +127,44 @@ class PerceptionConfig:
         if self.ball_filter not in BALL_FILTERS:
             raise ValueError(f"ball_filter must be one of {list(BALL_FILTERS)}, got "
                              f"{self.ball_filter!r}")
+        if isinstance(self.camera, str):
+            object.__setattr__(self, "camera", head_camera(self.camera))
+        elif self.camera is not None and not isinstance(self.camera, HeadCameraSpec):
+            raise TypeError(f"perception camera must be a head-camera preset name, a "
+                            f"HeadCameraSpec or None, got {type(self.camera).__name__}")
+        if isinstance(self.radio, str):
+            if self.radio not in RADIO_PRESETS:
+                raise ValueError(f"radio must be one of {sorted(RADIO_PRESETS)} or a "
+                                 f"RadioSpec, got {self.radio!r}")
+            object.__setattr__(self, "radio", RADIO_PRESETS[self.radio])
+        elif not isinstance(self.radio, RadioSpec):
+            raise TypeError(f"perception radio must be a preset name or a RadioSpec, got "
+                            f"{type(self.radio).__name__}")
+        for name, allowed in (("localization", LOCALIZATIONS), ("fusion", FUSIONS),
+                              ("ball_tracker", BALL_TRACKERS)):
+            if getattr(self, name) not in allowed:
+                raise ValueError(f"{name} must be one of {list(allowed)}, got "
+                                 f"{getattr(self, name)!r}")
 
     @classmethod
-    def create(cls, value: Any, obs_mode: str) -> PerceptionConfig:
-        """From ``perception=``: None (``"ideal"`` for truth, else ``"realistic"``), a vision
-        preset name, a :class:`VisionSpec`, a mapping of this class's fields, or an
-        instance."""
+    def create(cls, value: Any, obs_mode: str, kind: str = "ssl") -> PerceptionConfig:
+        """From ``perception=``: None (``"ideal"`` vision for truth, else ``"realistic"``),
+        a vision preset name or :class:`VisionSpec` (for humanoids, ``kind="humanoid"``: a
+        head-camera preset name or :class:`~soccer_env.headcam.HeadCameraSpec`), a mapping of
+        this class's fields, or an instance."""
+        default_vision = "ideal" if obs_mode == "truth" else "realistic"
         if value is None:
-            return cls(vision("ideal" if obs_mode == "truth" else "realistic"))
+            return cls(vision(default_vision))
         if isinstance(value, cls):
             return value
+        if kind == "humanoid" and isinstance(value, (str, HeadCameraSpec)):
+            if isinstance(value, str) and value not in HEAD_CAMERAS:
+                raise ValueError(f"unknown head-camera preset {value!r} for humanoid "
+                                 f"perception; known: {sorted(HEAD_CAMERAS)}")
+            return cls(vision(default_vision), camera=value)
         if isinstance(value, (str, VisionSpec)):
+            if isinstance(value, str) and value not in VISION:
+                raise ValueError(f"unknown vision preset {value!r}; known: {sorted(VISION)}")
             return cls(vision(value))
         if isinstance(value, Mapping):
             allowed = {f.name for f in dataclasses.fields(cls)}
@@ -120,9 +172,10 @@ class PerceptionConfig:
             if unknown:
                 raise ValueError(f"unknown perception key(s) {unknown}; allowed: "
                                  f"{sorted(allowed)}")
-            return cls(**{"vision": "realistic", **value})
-        raise TypeError(f"perception must be a vision preset name, a VisionSpec, a mapping or a "
-                        f"PerceptionConfig, got {type(value).__name__}")
+            return cls(**{"vision": default_vision if kind == "humanoid" else "realistic",
+                          **value})
+        raise TypeError(f"perception must be a preset name, a VisionSpec or HeadCameraSpec, a "
+                        f"mapping or a PerceptionConfig, got {type(value).__name__}")
 
 
 def ball_filter_config(name: str, ball: BallSpec, spec: VisionSpec
@@ -302,13 +355,20 @@ class FilteredPerception(_VisionPerception):
 
 def make_perception(obs_mode: str, config: PerceptionConfig, field: FieldSpec,
                     robot: SSLRobotSpec, ball: BallSpec, n_robots: int,
-                    actuation_delay: float | None = None) -> Perception:
+                    actuation_delay: float | None = None, world: Any = None,
+                    head: str = "auto") -> Perception:
     """The pipeline of ``obs_mode``; unknown modes raise ``ValueError``.
 
     ``actuation_delay`` [s] is how far ahead the perceived belief is predicted (default: the
     vision preset's actuation latency; environments pass the latency as they apply it, in
-    whole control steps).
+    whole control steps). For a humanoid ``robot`` the pipeline is a
+    :class:`~soccer_env.humanoid_perception.HumanoidPerception` of robot 0 of ``world``, its
+    head aimed as ``head`` says.
     """
+    if obs_mode not in OBS_MODES:
+        raise ValueError(f"obs_mode must be one of {list(OBS_MODES)}, got {obs_mode!r}")
+    if robot.kind == "humanoid":
+        return HumanoidPerception(obs_mode, config, field, ball, world, head)
     if obs_mode == "truth":
         return TruthPerception(config)
     if obs_mode == "raw":
@@ -319,3 +379,133 @@ def make_perception(obs_mode: str, config: PerceptionConfig, field: FieldSpec,
             p.ahead = float(actuation_delay)
         return p
     raise ValueError(f"obs_mode must be one of {list(OBS_MODES)}, got {obs_mode!r}")
+
+
+class MatchPerception:
+    """The perception of both teams of a match: each team's own pipeline, and a belief per
+    agent.
+
+    SSL teams share the overhead vision: two SSL teams with the same configuration share one
+    pipeline (SSL-Vision serves both; their beliefs coincide). A humanoid team runs a
+    :class:`~soccer_env.humanoid_perception.HumanoidTeamPerception` over its humanoids, each
+    with its own belief. In truth mode every agent believes the truth.
+
+    Args:
+        obs_mode: the observation mode.
+        configs: the two teams' :class:`PerceptionConfig` (blue, yellow).
+        field, ball: the world's field and ball.
+        world: the :class:`~soccer_env.physics.World`.
+        head: who aims humanoid agents' heads (see
+            :data:`~soccer_env.humanoid_perception.HEAD_MODES`).
+    """
+
+    def __init__(self, obs_mode: str, configs: tuple[PerceptionConfig, PerceptionConfig],
+                 field: FieldSpec, ball: BallSpec, world: Any, head: str = "auto") -> None:
+        from .humanoid_perception import HeadController, HumanoidTeamPerception
+
+        self.obs_mode, self.world = obs_mode, world
+        n = world.n_robots
+        teams = world.teams.tolist()
+        members = [[i for i in range(n) if teams[i] == t] for t in (0, 1)]
+        kinds = [world.robot_specs[m[0]].kind if m else None for m in members]
+        self.delays = [0, 0]
+        self._groups: list[tuple[list[int], Any]] = []  # (robots, pipeline)
+        self._humanoid: dict[int, Any] = {}  # robot -> its team's HumanoidTeamPerception
+        self._heads: dict[int, Any] = {}
+        ssl_teams = [t for t in (0, 1) if kinds[t] == "ssl"]
+        if ssl_teams:
+            shared = len(ssl_teams) == 2 and configs[0] == configs[1]
+            for t in ([ssl_teams[0]] if shared else ssl_teams):
+                spec = configs[t].vision
+                delay = round(spec.actuation_latency / world.control_dt)
+                robots = members[0] + members[1] if shared else members[t]
+                pipe = make_perception(obs_mode, configs[t], field,
+                                       world.robot_specs[members[t][0]], ball, n,
+                                       delay * world.control_dt)
+                for tt in (ssl_teams if shared else [t]):
+                    self.delays[tt] = delay
+                self._groups.append((robots, pipe))
+        for t in (0, 1):
+            if kinds[t] != "humanoid":
+                continue
+            cfg = configs[t]
+            spec = world.robot_specs[members[t][0]]
+            camera = cfg.camera if cfg.camera is not None else head_camera(spec.camera)
+            if obs_mode == "truth":
+                self._groups.append((members[t], TruthPerception(cfg)))
+                for i in members[t]:
+                    self._heads[i] = HeadController(world.robot_specs[i], camera.height,
+                                                    "scan" if head == "scan" else "auto")
+                continue
+            if obs_mode == "raw":
+                cfg = dataclasses.replace(cfg, localization="odometry", fusion="own",
+                                          ball_tracker="none")
+            team = HumanoidTeamPerception(cfg, field, ball, world.robot_specs, teams,
+                                          world.names, members[t], camera, cfg.radio, head)
+            for i in members[t]:
+                self._humanoid[i] = team
+            self._groups.append((members[t], team))
+        self._beliefs: dict[int, Any] = {}
+        self._current: dict[int, Any] = {}
+
+    @property
+    def groups(self) -> list[list[int]]:
+        """Robots that share one belief (a list per belief source; a humanoid team's robots
+        each have their own)."""
+        out = []
+        for robots, pipe in self._groups:
+            if isinstance(pipe, (TruthPerception, FilteredPerception, RawPerception)):
+                out.append(list(robots))
+            else:
+                out += [[i] for i in robots]
+        return out
+
+    def reset(self, state: WorldState, rng: np.random.Generator) -> None:
+        from .humanoid_perception import head_state
+
+        rngs = rng.spawn(len(self._groups))
+        for (robots, pipe), r in zip(self._groups, rngs):
+            if hasattr(pipe, "head_targets"):
+                pipe.reset(state, head_state(self.world), r)
+            else:
+                seen, now = pipe.reset(state, r)
+                for i in robots:
+                    self._beliefs[i], self._current[i] = seen, now
+        self._collect(state.time)
+
+    def update(self, state: WorldState) -> None:
+        from .humanoid_perception import head_state
+
+        heads = None
+        for robots, pipe in self._groups:
+            if hasattr(pipe, "head_targets"):
+                heads = heads if heads is not None else head_state(self.world)
+                pipe.update(state, heads, self.world.walk)
+            else:
+                seen, now = pipe.update(state)
+                for i in robots:
+                    self._beliefs[i], self._current[i] = seen, now
+        self._collect(state.time)
+
+    def _collect(self, t: float) -> None:
+        for i, team in self._humanoid.items():
+            ball, robots = team.belief(i, t)
+            b = Belief(t, ball, robots)
+            self._beliefs[i] = self._current[i] = b
+
+    def belief(self, i: int) -> Any:
+        """Robot ``i``'s belief for its observation (a WorldState in truth mode)."""
+        return self._beliefs[i]
+
+    def current(self, i: int) -> Any:
+        """Robot ``i``'s belief at the present time."""
+        return self._current[i]
+
+    def head_targets(self, i: int, now: float) -> tuple[float, float]:
+        """Pan and tilt targets [rad] of humanoid ``i``'s head controller."""
+        if i in self._humanoid:
+            return self._humanoid[i].head_targets(i, now)
+        s = self._beliefs[i]
+        b = s.ball
+        return self._heads[i].targets(now, s.robots[i, 0:3],
+                                      np.array([b[0], b[1], b[3], b[4]]), 0.0, 0.0)

@@ -76,13 +76,22 @@ def test_unknown_keyword_lists_allowed():
 
 @pytest.mark.parametrize("kwargs,match", [
     ({"field": "ssl-div-c"}, r"unknown field preset 'ssl-div-c'; known: \['humanoid-2012'"),
-    ({"robot": "humanoid"}, r"unknown robot preset 'humanoid'; known: \['ssl', 'ssl-2012'\]"),
+    ({"robot": "nao"}, r"unknown robot preset 'nao'; known: \['humanoid', 'humanoid-2012', "
+                       r"'ssl', 'ssl-2012'\]"),
     ({"ball": "tennis"}, r"unknown ball preset 'tennis'; known"),
     ({"obs_mode": "filtered"}, r"obs_mode must be one of \['truth', 'raw', 'perceived'\]"),
     ({"perception": "foggy"}, r"unknown vision preset 'foggy'; known: \['harsh', 'ideal'"),
     ({"perception": {"ball_filter": "ukf"}}, r"ball_filter must be one of \['kf', 'kf-comp'"),
-    ({"perception": {"camera": 2}}, r"unknown perception key\(s\) \['camera'\]"),
-    ({"perception": 3}, r"perception must be a vision preset name"),
+    ({"perception": {"colour": 2}}, r"unknown perception key\(s\) \['colour'\]"),
+    ({"perception": {"camera": 2}}, r"perception camera must be a head-camera preset name"),
+    ({"robot": "humanoid", "perception": "realistic"}, r"unknown head-camera preset "
+                                                       r"'realistic' for humanoid perception"),
+    ({"robot": "humanoid", "perception": {"fusion": "median"}}, r"fusion must be one of"),
+    ({"robot": "humanoid", "mates": 4}, r"mates must be an integer in 0..3, got 4"),
+    ({"mates": 1}, r"mates \(team-mates watch only for humanoid keepers"),
+    ({"robot": "humanoid", "head": "wobble"}, r"head must be one of \['auto', 'scan', "
+                                               r"'action'\]"),
+    ({"perception": 3}, r"perception must be a preset name"),
     ({"render_mode": "ansi"}, r"render_mode must be one of \[None, 'human', 'rgb_array'\]"),
     ({"out_of_range_actions": "ignore"}, r"out_of_range_actions must be one of"),
     ({"shaping": {"speed": 1.0}}, r"unknown shaping term\(s\) \['speed'\]; known"),

@@ -12,18 +12,19 @@ import gymnasium as gym
 import numpy as np
 
 from .. import presets
-from ..config import check_choice, keyword_names, parse_scales, reject_unknown
+from ..config import check_choice, check_int, keyword_names, parse_scales, reject_unknown
+from ..humanoid_perception import HEAD_MODES
 from ..observations import ObservationBuilder
 from ..perception import OBS_MODES, PerceptionConfig, make_perception
 from ..physics import World
-from ..presets import BallSpec, FieldSpec, SSLRobotSpec
+from ..presets import BallSpec, FieldSpec, RobotSpec
 from ..referee import classify_exit
 from ..render import RENDER_MODES, RenderingMixin
-from ..robots import OUT_OF_RANGE_MODES, CommandChannel, SSLRobot, validate_actions
+from ..robots import OUT_OF_RANGE_MODES, CommandChannel, robot_model, validate_actions
 from ..state import state_dict
 
 __all__ = ["GoalkeeperEnv", "ShotDistribution", "GOALKEEPER_SHAPING", "STOP_SPEED",
-           "CLEAR_SPEED"]
+           "CLEAR_SPEED", "HUMANOID_SHOTS", "MAX_MATES", "mate_poses"]
 
 #: The ball counts as stopped below this speed [m/s].
 STOP_SPEED = 0.05
@@ -139,19 +140,50 @@ class ShotDistribution:
                 "speed": float(speed), "chip": chip, "wide": wide, "delay": float(delay)}
 
 
+#: Shots at a humanoid keeper: humanoid kicks (2.5-4.5 m/s, no chips), kicked after 0.5-1.5 s
+#: (the keeper's team has looked at the ball by then), from at least 0.5 m inside the touch
+#: lines (clear of the team-mates standing near them).
+HUMANOID_SHOTS = ShotDistribution(speed=(2.5, 4.5), chip_probability=0.0, delay=(0.5, 1.5),
+                                  edge_margin=0.5)
+#: Most team-mates a humanoid keeper can have (see :func:`mate_poses`).
+MAX_MATES = 3
+
+
+def mate_poses(field: FieldSpec, n: int, radius: float) -> np.ndarray:
+    """Poses ``(n, 3)`` of a humanoid keeper's team-mates, who stand and watch: one on each
+    touch line level with the middle of the keeper's half (``0.15 m`` inside the lines,
+    facing the field), then one just past the centre line facing the keeper's goal. They see
+    the shots from the side and from behind, and stand clear of the shooting region."""
+    hx, hy = field.half_length, field.half_width
+    slots = [(-0.5 * hx, hy - 0.15 - radius, -0.5 * math.pi),
+             (-0.5 * hx, -(hy - 0.15 - radius), 0.5 * math.pi),
+             (0.5 + radius, 0.0, math.pi)]
+    return np.array(slots[:n], dtype=np.float64).reshape(n, 3)
+
+
 class GoalkeeperEnv(RenderingMixin, gym.Env):
     """A keeper robot defends its goal against one shot per episode.
 
     ## Description
-    The blue keeper (an SSL robot) starts on its goal line, at ``x = -L/2 + r + 0.05`` and
-    ``y`` uniform in ``+-goal_width/4``, facing the field. An invisible attacker shoots once
-    per episode, drawn from :class:`ShotDistribution` with the environment's seeded generator.
-    Physics, kicks and the chip flight are those of :class:`~soccer_env.physics.World`.
+    The blue keeper (an SSL robot or a humanoid) starts on its goal line, at
+    ``x = -L/2 + r + 0.05`` and ``y`` uniform in ``+-goal_width/4``, facing the field. An
+    invisible attacker shoots once per episode, drawn from :class:`ShotDistribution` with the
+    environment's seeded generator. Physics, kicks and the chip flight are those of
+    :class:`~soccer_env.physics.World`.
+
+    A humanoid keeper (``robot="humanoid"`` or ``"humanoid-2012"``, on the matching humanoid
+    field by default) walks with its walk engine, can dive, and sees through its head camera
+    (:mod:`soccer_env.humanoid_perception`); ``mates`` humanoid team-mates (default 3, see
+    :func:`mate_poses`) stand, watch the ball and share their sightings over the team radio,
+    so that the team's fused estimate reaches the keeper. Shots default to
+    :data:`HUMANOID_SHOTS`.
 
     ## Action space
-    ``Box(-1, 1, (6,), float32)``: ``vx, vy, omega, kick, chip, dribble`` as in
-    :class:`~soccer_env.robots.SSLRobot` (body-frame velocity command scaled to the robot
-    preset's limits; kick power; chip flag; dribbler).
+    ``Box(-1, 1, (6,), float32)``: for an SSL robot ``vx, vy, omega, kick, chip, dribble`` as
+    in :class:`~soccer_env.robots.SSLRobot` (body-frame velocity command scaled to the robot
+    preset's limits; kick power; chip flag; dribbler); for a humanoid ``vx, vy, omega,
+    motion, pan, tilt`` as in :class:`~soccer_env.robots.HumanoidRobot` (walking velocity;
+    kick or dive; head targets, used only with ``head="action"``).
 
     ## Observation space
     ``Box((19,), float32)``, the egocentric layout of
@@ -183,8 +215,9 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
     ``shot_fired``, ``keeper_touched`` (the keeper has touched the ball this episode).
 
     ## Arguments
-    ``robot`` ("ssl", "ssl-2012" or an :class:`SSLRobotSpec`), ``field`` (preset name or
-    :class:`FieldSpec`, default "ssl-div-b"), ``ball`` (preset or spec; default the field's),
+    ``robot`` ("ssl", "ssl-2012", "humanoid", "humanoid-2012" or a robot spec), ``field``
+    (preset name or :class:`FieldSpec`, default "ssl-div-b" for SSL robots and the humanoid
+    field of the preset for humanoids), ``ball`` (preset or spec; default the field's),
     ``obs_mode`` ("truth", "raw", "perceived"), ``perception`` (a vision preset name,
     a :class:`~soccer_env.perception.PerceptionConfig` or a mapping of its fields; it also sets
     the actuation latency and command loss, in every mode), ``render_mode`` (None,
@@ -192,7 +225,9 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
     :class:`ShotDistribution` or a mapping of its fields), ``shaping`` ({term: scale}),
     ``control_dt`` (s, default 1/60), ``physics_dt`` (longest substep, s, default 1/240),
     ``out_of_range_actions`` ("clip", the default, clips actions into [-1, 1]; "raise" rejects
-    them), ``render_width`` (pixels). Unknown arguments raise ``TypeError``.
+    them), ``render_width`` (pixels); humanoids only: ``mates`` (0..3), ``head`` ("auto":
+    the head follows the believed ball and scans when needed; "scan"; "action": the policy's
+    entries 4 and 5). Unknown arguments raise ``TypeError``.
 
     ## Version history
     * v0: first release.
@@ -202,8 +237,8 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
 
     def __init__(
         self,
-        robot: str | SSLRobotSpec = "ssl",
-        field: str | FieldSpec = "ssl-div-b",
+        robot: str | RobotSpec = "ssl",
+        field: str | FieldSpec | None = None,
         ball: str | BallSpec | None = None,
         obs_mode: str = "truth",
         perception: Any = None,
@@ -214,16 +249,28 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         physics_dt: float = 1.0 / 240.0,
         out_of_range_actions: str = "clip",
         render_width: int = 960,
+        mates: int | None = None,
+        head: str = "auto",
         **unknown: Any,
     ) -> None:
         reject_unknown("GoalkeeperEnv", unknown, keyword_names(GoalkeeperEnv.__init__))
         check_choice("obs_mode", obs_mode, OBS_MODES)
         check_choice("render_mode", render_mode, [None, *RENDER_MODES])
         check_choice("out_of_range_actions", out_of_range_actions, OUT_OF_RANGE_MODES)
-        self.field = presets.field(field)
-        self.ball_spec = presets.ball(ball if ball is not None else self.field.ball)
+        check_choice("head", head, HEAD_MODES)
         self.robot_spec = presets.robot(robot)
-        self.shots = ShotDistribution.create(shots)
+        humanoid = self.robot_spec.kind == "humanoid"
+        self.field = presets.field(field if field is not None
+                                   else presets.default_field(self.robot_spec))
+        self.ball_spec = presets.ball(ball if ball is not None else self.field.ball)
+        if mates is None:
+            mates = MAX_MATES if humanoid else 0
+        self.n_mates = check_int("mates" + ("" if humanoid else " (team-mates watch only for "
+                                            "humanoid keepers; SSL vision sees everything)"),
+                                 mates, 0, MAX_MATES if humanoid else 0)
+        self.head = head
+        self.shots = ShotDistribution.create(HUMANOID_SHOTS if humanoid and shots is None
+                                             else shots)
         self.shots.check_field(self.field)
         self.shaping = parse_scales("shaping", shaping, GOALKEEPER_SHAPING)
         self._shaping_on = any(self.shaping.values())
@@ -231,23 +278,25 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         self.obs_mode = obs_mode
         self.render_mode = render_mode
         self.out_of_range_actions = out_of_range_actions
-        self.world = World(self.field, self.ball_spec, self.robot_spec, 1, 0, control_dt,
+        n = 1 + self.n_mates
+        self.world = World(self.field, self.ball_spec, self.robot_spec, n, 0, control_dt,
                            physics_dt)
         self.metadata = {**self.metadata, "render_fps": round(1.0 / self.world.control_dt)}
-        self.robot_model = SSLRobot(self.robot_spec)
+        self.robot_model = robot_model(self.robot_spec)
         self.action_space = self.robot_model.action_space()
         self.builder = ObservationBuilder(self.field, [0], [0])
         self.observation_space = self.builder.space()
-        self.perception = PerceptionConfig.create(perception, obs_mode)
+        self.perception = PerceptionConfig.create(perception, obs_mode, self.robot_spec.kind)
         spec = self.perception.vision
-        # The actuation latency applies in whole control steps.
-        delay = round(spec.actuation_latency / self.world.control_dt)
-        self._channel = CommandChannel(1, delay, spec.command_loss)
+        # The actuation latency applies in whole control steps (humanoids walk on board).
+        delay = 0 if humanoid else round(spec.actuation_latency / self.world.control_dt)
+        self._channel = CommandChannel(n, delay, 0.0 if humanoid else spec.command_loss)
         self._perception = make_perception(obs_mode, self.perception, self.field,
-                                           self.robot_spec, self.ball_spec, 1,
-                                           delay * self.world.control_dt)
+                                           self.robot_spec, self.ball_spec, n,
+                                           delay * self.world.control_dt, world=self.world,
+                                           head=head)
         self._render_width = int(render_width)
-        self._names = ("blue_0",)
+        self._names = self.world.names
         # Half-width of the goal mouth the intercept shaping limits its crossing point to [m].
         self._mouth = 0.5 * self.field.goal_width + self.ball_spec.radius
         self._shot: dict[str, Any] | None = None
@@ -264,7 +313,10 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         # Sensors and radio draw from their own stream, seeded from the episode's: the shots
         # and the keeper's start are then the same whatever the perception configuration.
         sensor_rng = np.random.default_rng(rng.integers(2**63))
-        self.world.reset(np.array([keeper]), self._shot["position"])
+        poses = np.concatenate([[keeper], mate_poses(f, self.n_mates, r.radius)])
+        # The humanoids' falls and odometry draw from a stream of their own, too.
+        self.world.reset(poses, self._shot["position"],
+                         np.random.default_rng(rng.integers(2**63)))
         self._fired = False
         self._touched = False
         if self._shot["delay"] <= 0.0:
@@ -284,9 +336,19 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         if act.shape != (6,):
             raise ValueError(f"action must have shape (6,) (vx, vy, omega, kick, chip, "
                              f"dribble), got {act.shape}")
-        act = validate_actions(act[None], self._names, self.out_of_range_actions)
+        act = validate_actions(act[None], self._names[:1], self.out_of_range_actions)
         world = self.world
-        world.step(self._channel.send(self.robot_model.commands(act)))
+        if world.walk is not None:  # the mates stand; heads aimed as configured
+            full = np.zeros((world.n_robots, 6))
+            full[0] = act[0]
+            for i in range(world.n_robots):
+                if i > 0 or self.head != "action":
+                    full[i, 4:6] = self.robot_model.action_for_head(
+                        *self._perception.head_targets(i, world.time))
+            commands = self.robot_model.commands(full)
+        else:
+            commands = self.robot_model.commands(act)
+        world.step(self._channel.send(commands))
         if not self._fired and world.time >= self._shot["delay"] - 1e-9:
             self._fire()
         self._touched = self._touched or world.touched[0]
@@ -313,7 +375,8 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         ux, uy = (tx - bx) / d, (ty - by) / d
         v = shot["speed"]
         if shot["chip"]:
-            a = self.robot_spec.chip_angle
+            # The attacker chips like an SSL robot (humanoids do not chip).
+            a = getattr(self.robot_spec, "chip_angle", presets.ROBOTS["ssl"].chip_angle)
             world.set_ball(bx, by, v * math.cos(a) * ux, v * math.cos(a) * uy, 0.0,
                            v * math.sin(a))
         else:
@@ -381,6 +444,8 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
             "shot_fired": self._fired,
             "keeper_touched": self._touched,
         }
+        if self.world.walk is not None:
+            info["robot_state"] = self.world.humanoid_state()
         if outcome is not None:
             info["is_success"] = outcome != "goal"
         return info

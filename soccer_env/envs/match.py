@@ -1,4 +1,4 @@
-"""The PettingZoo match: two teams of SSL robots on one field."""
+"""The PettingZoo match: two teams of SSL or humanoid robots (or one of each) on one field."""
 
 from __future__ import annotations
 
@@ -19,13 +19,14 @@ from ..config import (
     parse_scales,
     reject_unknown,
 )
+from ..humanoid_perception import HEAD_MODES
 from ..observations import ObservationBuilder
-from ..perception import OBS_MODES, PerceptionConfig, make_perception
+from ..perception import OBS_MODES, MatchPerception, PerceptionConfig
 from ..physics import MAX_TEAM_SIZE, World
-from ..presets import BallSpec, FieldSpec, SSLRobotSpec
+from ..presets import BallSpec, FieldSpec, RobotSpec
 from ..referee import classify_exit, place_free_kick, place_kickoff
 from ..render import RENDER_MODES, RenderingMixin
-from ..robots import OUT_OF_RANGE_MODES, CommandChannel, SSLRobot, validate_actions
+from ..robots import OUT_OF_RANGE_MODES, CommandChannel, robot_model, validate_actions
 from ..state import state_dict
 
 __all__ = ["SoccerParallelEnv", "parallel_env", "env", "MATCH_SHAPING", "GAME_NAMES"]
@@ -42,8 +43,19 @@ MATCH_SHAPING = {
 GAME_NAMES = ("game.time_left", "game.goals_for", "game.goals_against", "game.restart")
 
 
+def _per_team(name: str, value: Any) -> tuple[Any, Any]:
+    """``value`` for both teams, or ``{"blue": ..., "yellow": ...}`` (both keys needed)."""
+    if isinstance(value, Mapping) and set(value) & {"blue", "yellow"}:
+        if set(value) != {"blue", "yellow"}:
+            raise ValueError(f"{name} per team must have exactly the keys 'blue' and "
+                             f"'yellow', got {sorted(value)}")
+        return value["blue"], value["yellow"]
+    return value, value
+
+
 class SoccerParallelEnv(RenderingMixin, ParallelEnv):
-    """A match between a blue and a yellow team of SSL robots (PettingZoo ``ParallelEnv``).
+    """A match between a blue and a yellow team (PettingZoo ``ParallelEnv``) of SSL robots,
+    humanoids, or one team of each.
 
     ## Agents
     ``blue_0 .. blue_{n-1}`` and ``yellow_0 .. yellow_{m-1}``; blue attacks ``+x``. With two
@@ -51,7 +63,9 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
     the physics steps once per parallel step.
 
     ## Actions
-    ``Box(-1, 1, (6,), float32)`` per agent, as in :class:`~soccer_env.robots.SSLRobot`.
+    ``Box(-1, 1, (6,), float32)`` per agent, as in :class:`~soccer_env.robots.SSLRobot` or,
+    for humanoids, :class:`~soccer_env.robots.HumanoidRobot` (whose head entries 4 and 5 are
+    used only with ``head="action"``).
 
     ## Observations
     ``Box(float32)`` per agent, laid out as in :mod:`soccer_env.observations` (own pose and
@@ -78,12 +92,22 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
     ``reward_terms``, ``score`` ``{"blue": int, "yellow": int}`` and ``event`` (None,
     ``"goal"``, ``"touch"``, ``"goal_line"`` or ``"over_bar"``).
 
+    ## Perception
+    Each team perceives with its own pipeline (``perception`` for both, or
+    ``{"blue": ..., "yellow": ...}``): SSL teams through the overhead vision, humanoid teams
+    each robot through its head camera, its localization and the team radio
+    (:mod:`soccer_env.humanoid_perception`), so a humanoid agent's observation and
+    ``info["estimate"]`` are its own belief.
+
     ## Arguments
-    ``blue``, ``yellow`` (team sizes, 0..11, at least one robot in all); ``robot``, ``field``,
-    ``ball``, ``obs_mode``, ``perception``, ``render_mode``, ``control_dt``, ``physics_dt``,
+    ``blue``, ``yellow`` (team sizes, 0..11, at least one robot in all); ``robot`` (a preset
+    name or spec for both teams, or ``{"blue": ..., "yellow": ...}``), ``field`` (default:
+    Division B for SSL, the humanoid preset's field otherwise), ``ball``, ``obs_mode``,
+    ``perception``, ``render_mode``, ``control_dt``, ``physics_dt``,
     ``out_of_range_actions`` as in :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`;
     ``match_duration`` [s]; ``max_cycles``; ``shaping``; ``formation_jitter`` (metres of
-    uniform jitter of the kick-off formation); ``render_width``.
+    uniform jitter of the kick-off formation); ``render_width``; ``head`` (humanoid agents:
+    "auto", "scan" or "action").
     """
 
     metadata = {"name": "soccer_v0", "render_modes": list(RENDER_MODES), "render_fps": 60,
@@ -93,8 +117,8 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         self,
         blue: int = 6,
         yellow: int = 6,
-        robot: str | SSLRobotSpec = "ssl",
-        field: str | FieldSpec = "ssl-div-b",
+        robot: str | RobotSpec | Mapping[str, str | RobotSpec] = "ssl",
+        field: str | FieldSpec | None = None,
         ball: str | BallSpec | None = None,
         obs_mode: str = "truth",
         perception: Any = None,
@@ -107,9 +131,11 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         out_of_range_actions: str = "clip",
         formation_jitter: float = 0.1,
         render_width: int = 960,
+        head: str = "auto",
         **unknown: Any,
     ) -> None:
         reject_unknown("parallel_env", unknown, keyword_names(SoccerParallelEnv.__init__))
+        check_choice("head", head, HEAD_MODES)
         blue = check_int("blue", blue, 0, MAX_TEAM_SIZE)
         yellow = check_int("yellow", yellow, 0, MAX_TEAM_SIZE)
         if blue + yellow < 1:
@@ -124,17 +150,25 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
                                    10**12)
         self.max_cycles = max_cycles
         self.formation_jitter = check_range("formation_jitter", formation_jitter, 0.0, 1.0)
-        self.field = presets.field(field)
+        team_specs = tuple(presets.robot(r) for r in _per_team("robot", robot))
+        self.team_specs = team_specs
+        first = team_specs[0] if blue else team_specs[1]
+        self.field = presets.field(field if field is not None else presets.default_field(first))
         self.ball_spec = presets.ball(ball if ball is not None else self.field.ball)
-        self.robot_spec = presets.robot(robot)
+        #: The first robot's model (every robot's when the teams play the same robot).
+        self.robot_spec = first
         self.shaping = parse_scales("shaping", shaping, MATCH_SHAPING)
         self.obs_mode = obs_mode
         self.render_mode = render_mode
         self.out_of_range_actions = out_of_range_actions
-        self.world = World(self.field, self.ball_spec, self.robot_spec, blue, yellow,
+        self.head = head
+        self.world = World(self.field, self.ball_spec,
+                           [team_specs[0]] * blue + [team_specs[1]] * yellow, blue, yellow,
                            control_dt, physics_dt)
         self.metadata = {**self.metadata, "render_fps": round(1.0 / self.world.control_dt)}
-        self.robot_model = SSLRobot(self.robot_spec)
+        self._models = [robot_model(s) for s in team_specs]
+        #: The first robot's action mapping.
+        self.robot_model = self._models[0] if blue else self._models[1]
         w = self.world
         self.possible_agents = list(w.names)
         self.agents: list[str] = []
@@ -143,17 +177,25 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
                                           game_high, GAME_NAMES)
         self._teams = w.teams.tolist()
         self._observation_spaces = {a: self.builder.space() for a in self.possible_agents}
-        self._action_spaces = {a: self.robot_model.action_space() for a in self.possible_agents}
-        # Both teams receive the same camera frames (SSL-Vision serves both) and run the same
-        # estimation stack, so their beliefs coincide: one pipeline serves both.
-        self.perception = PerceptionConfig.create(perception, obs_mode)
-        spec = self.perception.vision
-        # The actuation latency applies in whole control steps.
-        delay = round(spec.actuation_latency / w.control_dt)
-        self._channel = CommandChannel(w.n_robots, delay, spec.command_loss)
-        self._perception = make_perception(obs_mode, self.perception, self.field,
-                                           self.robot_spec, self.ball_spec, w.n_robots,
-                                           delay * w.control_dt)
+        self._action_spaces = {a: self._models[t].action_space()
+                               for a, t in zip(self.possible_agents, self._teams)}
+        self.perceptions = tuple(PerceptionConfig.create(p, obs_mode, s.kind) for p, s in
+                                 zip(_per_team("perception", perception), team_specs))
+        #: Blue's perception configuration (the match's, when both teams share one).
+        self.perception = self.perceptions[0]
+        self._perception = MatchPerception(obs_mode, self.perceptions, self.field,
+                                           self.ball_spec, w, head)
+        # Commands reach each team's robots with its actuation latency, in whole control steps
+        # (none for humanoids, whose walk engine is on board).
+        self._slices = [slice(0, blue), slice(blue, blue + yellow)]
+        self._channels = [CommandChannel(n, d, 0.0 if s.kind == "humanoid" else
+                                         cfg.vision.command_loss)
+                          for n, d, s, cfg in zip((blue, yellow), self._perception.delays,
+                                                  team_specs, self.perceptions)]
+        # One observation builder per group of robots that share a belief.
+        self._builders = [(g, ObservationBuilder(self.field, w.teams, g, game_low, game_high,
+                                                 GAME_NAMES))
+                          for g in self._perception.groups]
         self.state_space = gymnasium.spaces.Box(-np.inf, np.inf, (6 + 6 * w.n_robots,),
                                                 np.float32)
         self.score = [0, 0]
@@ -178,7 +220,8 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         rng = self._rng
         w = self.world
         kickoff = int(rng.integers(2))
-        w.reset(place_kickoff(w, kickoff, rng, self.formation_jitter), (0.0, 0.0))
+        w.reset(place_kickoff(w, kickoff, rng, self.formation_jitter), (0.0, 0.0),
+                np.random.default_rng(rng.integers(2**63)))
         self.agents = list(self.possible_agents)
         self.score = [0, 0]
         self.restart_team = kickoff
@@ -186,14 +229,13 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         state = w.snapshot()
         # Sensors and radio draw from their own stream (see GoalkeeperEnv.reset).
         sensor_rng = np.random.default_rng(rng.integers(2**63))
-        self._channel.reset(sensor_rng)
-        self._belief, current = self._perception.reset(state, sensor_rng)
-        self._shown_belief = current
+        for channel in self._channels:
+            channel.reset(sensor_rng)
+        self._perception.reset(state, sensor_rng)
+        self._shown_belief = self._perception.current(0)
         obs = self._observe()
-        truth, estimate = self._truth_and_estimate(state, current)
-        infos = {a: self._agent_info(truth, estimate,
-                                     dict.fromkeys(("goal", *MATCH_SHAPING), 0.0), None)
-                 for a in self.agents}
+        zero = dict.fromkeys(("goal", *MATCH_SHAPING), 0.0)
+        infos = self._infos(state, {a: zero for a in self.agents}, None)
         return obs, infos
 
     def step(self, actions: Mapping[str, Any]):
@@ -202,7 +244,14 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         act = self._gather(actions)
         w = self.world
         ball_x_before = float(w.ball_array()[0]) if self.shaping["ball_progress"] else 0.0
-        w.step(self._channel.send(self.robot_model.commands(act)))
+        if w.walk is not None:  # humanoids' heads
+            now = w.time
+            for i in w.humanoid_indices:
+                if self.head != "action":
+                    model = self._models[self._teams[i]]
+                    act[i, 4:6] = model.action_for_head(*self._perception.head_targets(i, now))
+        w.step(np.concatenate([ch.send(m.commands(act[sl])) for ch, m, sl in
+                               zip(self._channels, self._models, self._slices)]))
         self.cycles += 1
         if any(w.touched):
             self.restart_team = -1
@@ -223,13 +272,12 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
 
         state = w.snapshot()
         rewards, terms = self._rewards(state, event, scorer, ball_x_before)
-        self._belief, current = self._perception.update(state)
-        self._shown_belief = current
+        self._perception.update(state)
+        self._shown_belief = self._perception.current(0)
         obs = self._observe()
         done = w.time >= self.match_duration - 1e-9
         trunc = self.max_cycles is not None and self.cycles >= self.max_cycles
-        truth, estimate = self._truth_and_estimate(state, current)
-        infos = {a: self._agent_info(truth, estimate, terms[a], event) for a in self.agents}
+        infos = self._infos(state, terms, event)
         terminations = dict.fromkeys(self.agents, bool(done))
         truncations = dict.fromkeys(self.agents, bool(trunc and not done))
         if done or trunc:
@@ -267,12 +315,13 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
             act = np.array([actions[a] for a in agents], dtype=np.float64)
         except (TypeError, ValueError):  # ragged or non-numeric: find the culprit below
             act = None
-        if act is None or act.shape != (len(agents), SSLRobot.action_size):
+        if act is None or act.shape != (len(agents), 6):
             for a in agents:
                 shape = np.shape(actions[a])
-                if shape != (SSLRobot.action_size,):
-                    raise ValueError(f"action for agent {a!r} must have shape (6,) (vx, vy, "
-                                     f"omega, kick, chip, dribble), got {shape}")
+                if shape != (6,):
+                    names = self._models[self._teams[self.possible_agents.index(a)]]
+                    raise ValueError(f"action for agent {a!r} must have shape (6,) "
+                                     f"({', '.join(names.action_names)}), got {shape}")
             raise ValueError("actions must be numeric arrays of shape (6,)")
         return validate_actions(act, agents, self.out_of_range_actions)
 
@@ -282,8 +331,16 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         restart = self.restart_team
         flag = 0.0 if restart < 0 else (1.0 if restart == 0 else -1.0)
         per_team = np.array([(time_left, blue, yellow, flag), (time_left, yellow, blue, -flag)])
-        rows = self.builder.build(self._belief, per_team[self._teams])
-        return dict(zip(self.possible_agents, rows))
+        game = per_team[self._teams]
+        if len(self._builders) == 1:
+            rows = self.builder.build(self._perception.belief(0), game)
+            return dict(zip(self.possible_agents, rows))
+        out = {}
+        for group, builder in self._builders:
+            rows = builder.build(self._perception.belief(group[0]), game[group])
+            for i, row in zip(group, rows):
+                out[self.possible_agents[i]] = row
+        return {a: out[a] for a in self.possible_agents}
 
     def _rewards(self, state, event: str | None, scorer: int, ball_x_before: float):
         """Per-agent rewards and their named terms (see :data:`MATCH_SHAPING`)."""
@@ -306,11 +363,23 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
             terms[a] = {"goal": g, "ball_progress": p, "ball_distance": d}
         return rewards, terms
 
-    def _truth_and_estimate(self, state, belief) -> tuple[dict, dict]:
+    def _infos(self, state, terms: dict, event: str | None) -> dict[str, dict]:
+        """Every live agent's info: the truth, its team's or its own present belief."""
         truth = state.truth_dict()
-        if belief is state:
-            return truth, truth
-        return truth, state_dict(belief.time, belief.ball, belief.robots, state.names)
+        robot_state = self.world.humanoid_state() if self.world.walk is not None else None
+        estimates: dict[int, dict] = {}
+        infos = {}
+        for a in self.agents:
+            i = self.world.names.index(a)
+            belief = self._perception.current(i)
+            key = id(belief)
+            if key not in estimates:
+                estimates[key] = truth if belief is state else state_dict(
+                    belief.time, belief.ball, belief.robots, state.names)
+            infos[a] = self._agent_info(truth, estimates[key], terms[a], event)
+            if robot_state is not None:
+                infos[a]["robot_state"] = robot_state
+        return infos
 
     def _agent_info(self, truth: dict, estimate: dict, terms: dict, event: str | None
                     ) -> dict[str, Any]:
