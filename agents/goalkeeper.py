@@ -8,7 +8,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from estimators import FrictionBallModel
-from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
+from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 
 __all__ = ["ScriptedGoalkeeper", "drive_command", "turn_command", "TURN_GAIN"]
 
@@ -63,6 +63,12 @@ class ScriptedGoalkeeper:
        (``v = min(v_max, sqrt(2 a_max d))``), turning to face the ball;
     4. kicks the ball away when it sits in front of its kicker.
 
+    A humanoid keeper walks instead (sideways at most, facing the field, each axis scaled by
+    its own speed limit) and, since walking is too slow for most shots, dives: when the ball
+    will cross its line within ``dive_lead`` seconds plus the time its body takes to hit the
+    ground, out of reach of its standing body but within its lying length, it throws itself
+    to that side. It kicks a ball resting at its feet away.
+
     Args:
         field, ball, robot: the specs of the environment (goal geometry, the ball's rolling
             deceleration, speed limits).
@@ -71,9 +77,12 @@ class ScriptedGoalkeeper:
             radius [m].
     """
 
-    def __init__(self, field: FieldSpec, ball: BallSpec, robot: SSLRobotSpec,
-                 names: Sequence[str], guard_offset: float = 0.05) -> None:
+    def __init__(self, field: FieldSpec, ball: BallSpec, robot: RobotSpec,
+                 names: Sequence[str], guard_offset: float = 0.05,
+                 dive_lead: float = 0.15) -> None:
         self.field, self.ball, self.robot = field, ball, robot
+        self.humanoid = robot.kind == "humanoid"
+        self.dive_lead = dive_lead
         self.model = FrictionBallModel(ball.rolling_deceleration)
         index = {n: i for i, n in enumerate(names)}
         self._idx = [index[n] for n in ("self.x", "self.y", "self.ax", "self.ay", "ball.dx",
@@ -104,6 +113,8 @@ class ScriptedGoalkeeper:
             ty = by * min(frac, 1.0)
         ty = max(-half_goal, min(half_goal, ty))
 
+        if self.humanoid:
+            return self._humanoid(px, py, c, s, bx, by, vx, vy, dx, dy, ty)
         # Drive to (guard_x, ty) with a profile that can still stop there, facing the ball.
         cmd_x, cmd_y = drive_command(px, py, c, s, self.guard_x, ty, r.max_speed,
                                      r.max_acceleration)
@@ -115,3 +126,33 @@ class ScriptedGoalkeeper:
         kick = 1.0 if in_front else 0.0
         return np.array([cmd_x / r.max_speed, cmd_y / r.max_speed, omega, kick, -1.0, -1.0],
                         dtype=np.float32)
+
+    def _humanoid(self, px: float, py: float, c: float, s: float, bx: float, by: float,
+                  vx: float, vy: float, dx: float, dy: float, ty: float) -> np.ndarray:
+        """The humanoid keeper's action (see the class docstring), team frame."""
+        r, f = self.robot, self.field
+        # Dive if the ball will pass out of reach of the standing body but within the lying
+        # body's, soon enough that waiting longer would be too late.
+        if vx < -0.05 and bx > px:
+            state = np.array([bx, by, vx, vy])
+            t = float(self.model.time_to_line(state, px))
+            if math.isfinite(t):
+                y_cross = float(self.model.predict(state, t)[1])
+                off = y_cross - py
+                reach = r.radius + self.ball.radius
+                mouth = 0.5 * f.goal_width + self.ball.radius
+                if (abs(y_cross) <= mouth + reach and reach < abs(off)
+                        <= r.lying_length + self.ball.radius
+                        and t <= r.fall_time + self.dive_lead):
+                    # Side in the body frame: left when the crossing is to the robot's left.
+                    left = c * off >= 0.0
+                    return np.array([0.0, 1.0 if left else -1.0, 0.0, -1.0, 0.0, 0.0],
+                                    dtype=np.float32)
+        cmd_x, cmd_y = drive_command(px, py, c, s, self.guard_x, ty, r.max_sideways_speed,
+                                     r.max_acceleration)
+        ax = cmd_x / (r.max_forward_speed if cmd_x >= 0.0 else r.max_backward_speed)
+        ay = cmd_y / r.max_sideways_speed
+        omega = turn_command(c, s, 0.0, r.max_turn_speed, gain=2.0)
+        at_foot = (0.0 < dx < r.radius + self.ball.radius + r.kick_reach
+                   and abs(dy) < 0.5 * r.kick_width and vx > -0.1)
+        return np.array([ax, ay, omega, 1.0 if at_foot else 0.0, 0.0, 0.0], dtype=np.float32)

@@ -364,7 +364,16 @@ class ParticleBallTracker:
         dt = float(t) - self._t
         if not dt > 0.0:
             return self._x.copy()
-        return _drift(self._x[None, :], dt, self.deceleration)[0]
+        # _drift for one state, in plain floats (called every control step by a pipeline).
+        px, py, vx, vy = self._x.tolist()
+        a = self.deceleration
+        speed = math.hypot(vx, vy)
+        if a == 0.0 or speed == 0.0:
+            return np.array([px + dt * vx, py + dt * vy, vx, vy])
+        tau = min(dt, speed / a)
+        k = tau - 0.5 * a * tau * tau / speed
+        f = max(1.0 - a * tau / speed, 0.0)
+        return np.array([px + k * vx, py + k * vy, f * vx, f * vy])
 
     # ------------------------------------------------------------------------------------
 

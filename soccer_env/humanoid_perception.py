@@ -17,7 +17,8 @@ Per humanoid ("brain"), per step:
    are broadcast; a fallen robot is silent; received messages update the team-mates' poses
    and their latest sighting lines.
 4. **Fusion** at each own frame: the robot's own line and the team-mates' lines captured
-   within 1.5 frame periods of it, each moved by the tracked ball velocity times its age,
+   within 1.5 frame periods plus the radio's latency and jitter of it (the latest per
+   team-mate), each moved by the tracked ball velocity times its age,
    are fused by :func:`~estimators.fuse_sightings` (``fusion="equal" | "inverse" |
    "inverse_square"``: paper 000's Hough-space least squares with the weighting named; with
    ``"own"`` only the robot's own sighting is used).
@@ -215,6 +216,7 @@ class _Brain:
         self.loc = (KLDLocalizer(p.bounds, self.rng, p.kld_config, pose=start,
                                  pose_sigma=(0.05, 0.05, 0.05))
                     if self.kind == "kld" else None)
+        self._loc_estimate = start
         self.odo: deque[tuple[float, tuple[float, float, float]]] = deque()
         self.gait_velocity = (0.0, 0.0, 0.0)
         self.own_line: _Line | None = None
@@ -231,6 +233,7 @@ class _Brain:
         self.ball_seen = -math.inf  # capture time of the last own sighting
         self.ball_heard = -math.inf  # capture time of the last team sighting
         self.landmark_seen = state.time
+        self.last_frame = state.time
 
     # ------------------------------------------------------------------------------------
 
@@ -267,12 +270,13 @@ class _Brain:
         # start frame, so express it in the frame turned by half its rotation.
         c, s = math.cos(0.5 * d[2]), math.sin(0.5 * d[2])
         self.loc.predict((c * d[0] + s * d[1], -s * d[0] + c * d[1], d[2]))
+        self._loc_estimate = self.loc.estimate()
 
     def estimate_pose(self) -> np.ndarray:
         """The present pose estimate (localization plus the odometry not yet applied)."""
         if self.loc is None:
             return self.pose
-        pose = self.loc.estimate()
+        pose = self._loc_estimate
         for _, d in self.odo:
             pose = self._moved(pose, d)
         return pose
@@ -282,6 +286,7 @@ class _Brain:
     def frame(self, f: HeadFrame) -> Message:
         """Process one of the robot's frames; return its broadcast."""
         p = self.p
+        self.last_frame = f.t_delivered
         if self.loc is not None:
             self._predict(self._odometry_until(f.t_capture))
             kinds, ranges, bearings = [], [], []
@@ -295,7 +300,7 @@ class _Brain:
                 self.loc.update_kinds(kinds, np.array(ranges), np.array(bearings),
                                       p.landmark_table)
                 self.landmark_seen = f.t_capture
-            pose = self.loc.estimate()
+            pose = self._loc_estimate = self.loc.estimate()
         else:
             pose = self.pose
             if any(math.isfinite(d[3]) for d in f.landmarks):
@@ -341,6 +346,10 @@ class _Brain:
             x0, y0, angle, rng_ = m.sighting
             self.mate_lines[m.sender] = _Line(m.stamp, (x0, y0), angle, rng_)
             self.ball_heard = max(self.ball_heard, m.stamp)
+            if now - self.last_frame > self.p.frame_gap:
+                # No frames of its own (fallen, or its camera is late): the team's sightings
+                # alone keep the belief going.
+                self._fuse(m.stamp)
 
     def _opponent(self, t: float, x: float, y: float) -> None:
         best, dist = None, _TRACK_GATE
@@ -376,18 +385,22 @@ class _Brain:
             if est is not None:
                 velocity = est[2:4]
         weighting = "inverse" if self.fusion == "own" else self.fusion
+        ranges = np.array([ln.range for ln in lines])
+        known = ranges[np.isfinite(ranges)]
+        p = self.p
+        rel = max(0.05, p.range_per_metre * (float(known.max()) if len(known) else 1.0))
         try:
             fused = fuse_sightings(
                 np.array([ln.origin for ln in lines]), np.array([ln.angle for ln in lines]),
-                np.array([ln.range for ln in lines]), np.array([ln.stamp for ln in lines]),
-                now=t, velocity=velocity, weighting=weighting)
+                ranges, np.array([ln.stamp for ln in lines]), now=t, velocity=velocity,
+                weighting=weighting, bearing_sigma=p.bearing_sigma, range_sigma_rel=rel)
         except ValueError:  # bearings only, no crossing: no position
             return
         point = fused.point
         if not np.all(np.isfinite(point)):
             return
         if self.tracker is not None:
-            self.tracker.update(t, point, max(float(fused.sigma), _MIN_SIGMA))
+            self.tracker.update(t, point, fused.cov + _MIN_SIGMA**2 * np.eye(2))
         self.points.append((t, float(point[0]), float(point[1])))
 
     def ball_point(self, t: float) -> np.ndarray | None:
@@ -476,8 +489,18 @@ class HumanoidTeamPerception:
             range_sigma=0.05, range_sigma_rel=max(0.05, 2.0 * ang / camera.height),
             bearing_sigma=max(math.radians(1.0), math.hypot(sway_p, camera.pixel_sigma / f_px)),
             recovery_ratio=0.5)
-        self.fusion_window = (_FUSION_WINDOW_FRAMES / camera.frame_rate
-                              if camera.frame_rate else 0.05)
+        self.fusion_window = ((_FUSION_WINDOW_FRAMES / camera.frame_rate
+                               if camera.frame_rate else 0.05)
+                              + radio.latency + radio.jitter)
+        # The sightings' error model for the fusion: bearings off by the pixel noise and the
+        # yaw sway; ranges (ground projections) off by about d^2 e / h for an angular error
+        # e of the tilt (pixel noise and pitch sway), i.e. relatively by d e / h.
+        self.bearing_sigma = max(math.radians(0.5), math.hypot(sway_p,
+                                                               camera.pixel_sigma / f_px))
+        self.range_per_metre = max(1e-3, ang / camera.height)
+        #: Without an own frame for this long [s], team-mates' sightings are fused as they
+        #: arrive.
+        self.frame_gap = 1.5 / camera.frame_rate if camera.frame_rate else 0.05
         if head_mode not in HEAD_MODES:
             raise ValueError(f"head must be one of {list(HEAD_MODES)}, got {head_mode!r}")
         self.head_mode = head_mode

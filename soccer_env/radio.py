@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import heapq
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -66,14 +66,6 @@ class Message:
     sighting: tuple[float, float, float, float] | None = None
 
 
-@dataclass(order=True)
-class _InFlight:
-    arrival: float
-    seq: int
-    receiver: str = field(compare=False)
-    message: Message = field(compare=False)
-
-
 class TeamRadio:
     """The link between one team's robots (see the module docstring).
 
@@ -93,7 +85,8 @@ class TeamRadio:
         self.spec, self.rng = spec, rng
         self.members: set[str] = set()
         self.silent: set[str] = set()
-        self._queue: list[_InFlight] = []
+        # Messages in flight per receiver: heaps of (arrival, sequence number, message).
+        self._queues: dict[str, list[tuple[float, int, Message]]] = {}
         self._seq = 0
         self.sent = self.delivered = self.lost = 0
 
@@ -106,8 +99,7 @@ class TeamRadio:
         dropped."""
         self.members.discard(name)
         self.silent.discard(name)
-        self._queue = [m for m in self._queue if m.receiver != name]
-        heapq.heapify(self._queue)
+        self._queues.pop(name, None)
 
     def set_silent(self, name: str, silent: bool = True) -> None:
         """A fallen robot (or one getting up) sends nothing while silent."""
@@ -135,19 +127,18 @@ class TeamRadio:
                 self.lost += 1
                 continue
             self._seq += 1
-            heapq.heappush(self._queue, _InFlight(now + float(d), self._seq, name, message))
+            heapq.heappush(self._queues.setdefault(name, []),
+                           (now + float(d), self._seq, message))
             reached += 1
         return reached
 
     def receive(self, name: str, now: float) -> list[Message]:
         """The messages that reached ``name`` by time ``now``, in order of arrival."""
-        if name not in self.members:
+        queue = self._queues.get(name) if name in self.members else None
+        if not queue:
             return []
-        out, keep = [], []
-        while self._queue and self._queue[0].arrival <= now:
-            item = heapq.heappop(self._queue)
-            (out if item.receiver == name else keep).append(item)
-        for item in keep:
-            heapq.heappush(self._queue, item)
+        out = []
+        while queue and queue[0][0] <= now:
+            out.append(heapq.heappop(queue)[2])
         self.delivered += len(out)
-        return [item.message for item in out]
+        return out

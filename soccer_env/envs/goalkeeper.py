@@ -140,10 +140,10 @@ class ShotDistribution:
                 "speed": float(speed), "chip": chip, "wide": wide, "delay": float(delay)}
 
 
-#: Shots at a humanoid keeper: humanoid kicks (2.5-4.5 m/s, no chips), kicked after 0.5-1.5 s
+#: Shots at a humanoid keeper: humanoid kicks (3-5 m/s, no chips), kicked after 0.5-1.5 s
 #: (the keeper's team has looked at the ball by then), from at least 0.5 m inside the touch
 #: lines (clear of the team-mates standing near them).
-HUMANOID_SHOTS = ShotDistribution(speed=(2.5, 4.5), chip_probability=0.0, delay=(0.5, 1.5),
+HUMANOID_SHOTS = ShotDistribution(speed=(3.0, 5.0), chip_probability=0.0, delay=(0.5, 1.5),
                                   edge_margin=0.5)
 #: Most team-mates a humanoid keeper can have (see :func:`mate_poses`).
 MAX_MATES = 3
