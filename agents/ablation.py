@@ -8,9 +8,12 @@ interval, ball estimation RMSE (believed against true ball position over all ste
 estimator's compute per step. The same seed gives the same shot in every cell, so the cells
 differ only in what the policy perceives.
 
-Estimator configurations live in one registry, :data:`ESTIMATOR_CONFIGS`; a new estimator
-(with its own perception options) is one more :class:`EstimatorConfig` given to
-:func:`register_config`. Sensor presets are the names of :data:`soccer_env.vision.VISION`.
+Estimator configurations live in registries, :data:`ESTIMATOR_CONFIGS` for SSL robots and
+:data:`HUMANOID_CONFIGS` for humanoids (``robot="humanoid"``: the keeper and its team-mates
+with head cameras, localization, team fusion and ball tracking); a new estimator (with its own
+perception options) is one more :class:`EstimatorConfig` given to :func:`register_config`.
+Sensor presets are the names of :data:`soccer_env.vision.VISION` (SSL) or
+:data:`soccer_env.headcam.HEAD_CAMERAS` (humanoids).
 
 The work is split into jobs of (configuration, preset, chunk of ``chunk_size`` consecutive
 seeds) spread over processes. Chunks do not depend on the number of workers and are merged in
@@ -41,15 +44,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from soccer_env.headcam import HEAD_CAMERAS
 from soccer_env.perception import BALL_FILTERS, OBS_MODES, PerceptionConfig
 from soccer_env.vision import VISION
 
 from .cli_args import key_values
 from .evaluation import GOALKEEPER_ID, EvalResult, _mp_context, evaluate, wilson
 
-__all__ = ["EstimatorConfig", "ESTIMATOR_CONFIGS", "register_config", "AblationResult",
-           "run_ablation", "write_outputs", "parse_names", "default_presets", "main",
-           "DEFAULT_CHUNK_SIZE"]
+__all__ = ["EstimatorConfig", "ESTIMATOR_CONFIGS", "HUMANOID_CONFIGS", "ROBOT_KINDS",
+           "register_config", "AblationResult", "run_ablation", "write_outputs", "parse_names",
+           "default_presets", "main", "DEFAULT_CHUNK_SIZE"]
 
 #: Consecutive seeds per job: small enough to keep every core busy to the end, large enough
 #: that building the environment and the policy per job costs little.
@@ -61,7 +65,9 @@ class EstimatorConfig:
     """One estimator configuration of the ablation.
 
     The environment of a cell is ``gymnasium.make(env_id, **base_env_kwargs, **env_kwargs,
-    obs_mode=obs_mode, perception={"vision": preset, **perception})``.
+    obs_mode=obs_mode, perception={"vision": preset, **perception})`` (for a humanoid
+    configuration ``{"camera": preset, ...}``, and ``robot="humanoid-2012"`` unless the base
+    or the configuration names another humanoid).
 
     Attributes:
         name: the registry key (what ``--configs`` takes).
@@ -72,6 +78,7 @@ class EstimatorConfig:
             vision preset, e.g. ``{"ball_filter": "kf"}``.
         env_kwargs: further environment keyword arguments of this configuration (not
             ``obs_mode`` or ``perception``).
+        robot: ``"ssl"`` or ``"humanoid"``: which robots (and sensor presets) it is for.
     """
 
     name: str
@@ -80,6 +87,7 @@ class EstimatorConfig:
     source: str = ""
     perception: Mapping[str, Any] = field(default_factory=dict)
     env_kwargs: Mapping[str, Any] = field(default_factory=dict)
+    robot: str = "ssl"
 
     def __post_init__(self) -> None:
         if not self.name or "," in self.name or self.name.strip() != self.name:
@@ -96,6 +104,9 @@ class EstimatorConfig:
                              f"preset)")
         # Validates the values too (e.g. the ball filter's name).
         PerceptionConfig(vision="ideal", **self.perception)
+        if self.robot not in ("ssl", "humanoid"):
+            raise ValueError(f"robot of configuration {self.name!r} must be 'ssl' or "
+                             f"'humanoid', got {self.robot!r}")
         clash = sorted({"obs_mode", "perception"} & set(self.env_kwargs))
         if clash:
             raise ValueError(f"env_kwargs of configuration {self.name!r} must not set {clash}")
@@ -104,17 +115,26 @@ class EstimatorConfig:
 
     @property
     def ball_filter(self) -> str | None:
-        """The ball filter of a ``"perceived"`` configuration (None otherwise)."""
+        """The ball filter of a ``"perceived"`` configuration (for a humanoid one, its fusion
+        and tracker; None otherwise)."""
         if self.obs_mode != "perceived":
             return None
+        if self.robot == "humanoid":
+            return (f"{self.perception.get('fusion', PerceptionConfig.fusion)}+"
+                    f"{self.perception.get('ball_tracker', PerceptionConfig.ball_tracker)}")
         return self.perception.get("ball_filter", PerceptionConfig.ball_filter)
 
     def make_env_kwargs(self, preset: str,
                         base: Mapping[str, Any] | None = None) -> dict[str, Any]:
-        """The environment keyword arguments of this configuration under vision ``preset``,
+        """The environment keyword arguments of this configuration under sensor ``preset``,
         over ``base`` (keyword arguments shared by all cells)."""
-        return {**dict(base or {}), **self.env_kwargs, "obs_mode": self.obs_mode,
-                "perception": {"vision": preset, **self.perception}}
+        kwargs = {**dict(base or {}), **self.env_kwargs, "obs_mode": self.obs_mode}
+        if self.robot == "humanoid":
+            kwargs.setdefault("robot", DEFAULT_HUMANOID)
+            kwargs["perception"] = {"camera": preset, **self.perception}
+        else:
+            kwargs["perception"] = {"vision": preset, **self.perception}
+        return kwargs
 
     def to_dict(self) -> dict[str, Any]:
         return {**dataclasses.asdict(self), "ball_filter": self.ball_filter}
@@ -144,21 +164,72 @@ ESTIMATOR_CONFIGS: dict[str, EstimatorConfig] = {
 }
 
 
+def _humanoid_config(name: str, description: str, obs_mode: str = "perceived",
+                     source: str = "paper 000", **perception: str) -> EstimatorConfig:
+    return EstimatorConfig(name, obs_mode, description, source, perception=perception,
+                           robot="humanoid")
+
+
+#: The humanoid robot of the humanoid ablation unless ``robot`` is given: paper 000's.
+DEFAULT_HUMANOID = "humanoid-2012"
+
+#: The humanoid estimator configurations, by name, in table order: what the keeper believes
+#: about the ball (its own pose from KLD-sampling localization in all perceived ones).
+HUMANOID_CONFIGS: dict[str, EstimatorConfig] = {
+    c.name: c for c in (
+        _humanoid_config("truth", "oracle: the true state", "truth", "upper bound"),
+        _humanoid_config("raw", "dead reckoning and the keeper's own latest sighting, "
+                         "unfiltered", "raw", "lower bound"),
+        _humanoid_config("own", "the keeper's own sightings, no tracking (one robot alone)",
+                         fusion="own", ball_tracker="none"),
+        _humanoid_config("own-mfbpf", "the keeper's own sightings tracked by MFBPF",
+                         fusion="own", ball_tracker="mfbpf"),
+        _humanoid_config("fusion", "Hough fusion of the team's sightings (1/L weights), no "
+                         "tracking", fusion="inverse", ball_tracker="none"),
+        _humanoid_config("fusion-equal-mfbpf", "Hough fusion with equal weights, MFBPF "
+                         "tracking", fusion="equal", ball_tracker="mfbpf"),
+        _humanoid_config("fusion-bootstrap", "Hough fusion (1/L), bootstrap PF tracking",
+                         fusion="inverse", ball_tracker="bootstrap"),
+        _humanoid_config("fusion-fbpf", "Hough fusion (1/L), FBPF tracking",
+                         fusion="inverse", ball_tracker="fbpf"),
+        _humanoid_config("fusion-mfbpf", "Hough fusion (1/L), MFBPF tracking (default)",
+                         fusion="inverse", ball_tracker="mfbpf"),
+    )
+}
+
+#: Robot kinds of the ablation: the names of their configuration registries in this module,
+#: and their sensor presets.
+ROBOT_KINDS = {"ssl": ("ESTIMATOR_CONFIGS", VISION),
+               "humanoid": ("HUMANOID_CONFIGS", HEAD_CAMERAS)}
+
+
+def _kind(robot: str) -> tuple[dict[str, EstimatorConfig], Mapping[str, Any]]:
+    """The configuration registry and the sensor presets of a robot kind (the registry
+    looked up when called, so that a replaced module attribute is the one used)."""
+    if robot not in ROBOT_KINDS:
+        raise ValueError(f"robot must be one of {list(ROBOT_KINDS)}, got {robot!r}")
+    name, presets = ROBOT_KINDS[robot]
+    return globals()[name], presets
+
+
 def register_config(config: EstimatorConfig, replace: bool = False) -> EstimatorConfig:
-    """Add ``config`` to :data:`ESTIMATOR_CONFIGS` (after the existing ones). A name already
-    registered raises ``ValueError`` unless ``replace``."""
+    """Add ``config`` to the registry of its robot kind (:data:`ESTIMATOR_CONFIGS` or
+    :data:`HUMANOID_CONFIGS`, after the existing ones). A name already registered raises
+    ``ValueError`` unless ``replace``."""
     if not isinstance(config, EstimatorConfig):
         raise TypeError(f"config must be an EstimatorConfig, got {type(config).__name__}")
-    if config.name in ESTIMATOR_CONFIGS and not replace:
+    registry = _kind(config.robot)[0]
+    if config.name in registry and not replace:
         raise ValueError(f"estimator configuration {config.name!r} is already registered "
                          f"(pass replace=True to replace it)")
-    ESTIMATOR_CONFIGS[config.name] = config
+    registry[config.name] = config
     return config
 
 
-def default_presets() -> list[str]:
-    """All sensor presets of :data:`soccer_env.vision.VISION`."""
-    return list(VISION)
+def default_presets(robot: str = "ssl") -> list[str]:
+    """All sensor presets of the robot kind: :data:`soccer_env.vision.VISION` for SSL
+    robots, :data:`soccer_env.headcam.HEAD_CAMERAS` for humanoids."""
+    return list(_kind(robot)[1])
 
 
 def parse_names(value: str | Iterable[str] | None, allowed: Iterable[str], what: str
@@ -201,6 +272,7 @@ class AblationResult:
         env_id, env_kwargs: the environment and the keyword arguments shared by all cells.
         workers, chunk_size: how the work was split (the numbers do not depend on them).
         seconds: wall time [s].
+        robot: the robot kind (``"ssl"`` or ``"humanoid"``).
     """
 
     policy: str
@@ -215,6 +287,12 @@ class AblationResult:
     workers: int
     chunk_size: int
     seconds: float
+    robot: str = "ssl"
+
+    @property
+    def preset_table(self) -> Mapping[str, Any]:
+        """The sensor presets of the robot kind (their specs have a ``source``)."""
+        return _kind(self.robot)[1]
 
     def cell(self, preset: str, config: str) -> EvalResult:
         """The evaluation of ``config`` under ``preset``."""
@@ -222,7 +300,8 @@ class AblationResult:
 
     def command(self) -> str:
         """A ``soccer-env ablation`` command line that reruns this ablation."""
-        args = ["soccer-env", "ablation", "--policy", self.policy, "--episodes",
+        args = ["soccer-env", "ablation"] + (["--robot", self.robot] if self.robot != "ssl"
+                                             else []) + ["--policy", self.policy, "--episodes",
                 str(self.episodes), "--start-seed", str(self.start_seed), "--presets",
                 ",".join(self.presets), "--configs", ",".join(self.configs), "--workers",
                 str(self.workers)]
@@ -274,8 +353,8 @@ class AblationResult:
                 "interval": "Wilson score interval, 95 %",
             },
             "configs": {n: self.config_specs[n].to_dict() for n in self.configs},
-            "presets": {p: {"source": VISION[p].source} if p in VISION else {}
-                        for p in self.presets},
+            "presets": {p: {"source": self.preset_table[p].source}
+                        if p in self.preset_table else {} for p in self.presets},
             "cells": cells,
             "seconds": self.seconds,
         }
@@ -315,9 +394,11 @@ class AblationResult:
             spec = self.config_specs[c]
             src = f" Source: {spec.source}." if spec.source else ""
             lines.append(f"- `{c}` ({spec.obs_mode}): {spec.description}.{src}")
-        lines += ["", "Sensor presets (`soccer_env.vision.VISION`):", ""]
+        table = ("soccer_env.headcam.HEAD_CAMERAS" if self.robot == "humanoid"
+                 else "soccer_env.vision.VISION")
+        lines += ["", f"Sensor presets (`{table}`):", ""]
         for p in self.presets:
-            src = f": {VISION[p].source}" if p in VISION else ""
+            src = f": {self.preset_table[p].source}" if p in self.preset_table else ""
             lines.append(f"- `{p}`{src}.")
         return "\n".join(lines)
 
@@ -384,7 +465,8 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
                  configs: str | Sequence[str] | None = None, start_seed: int = 0,
                  workers: int | None = None, chunk_size: int = DEFAULT_CHUNK_SIZE,
                  env_kwargs: Mapping[str, Any] | None = None, env_id: str = GOALKEEPER_ID,
-                 progress: Callable[[int, int], None] | None = None) -> AblationResult:
+                 progress: Callable[[int, int], None] | None = None,
+                 robot: str = "ssl") -> AblationResult:
     """Evaluate ``policy`` on the same seeded shots for every configuration and preset.
 
     Args:
@@ -392,9 +474,11 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
             ``"idle"``, ``"baseline:NAME"``, a ``.zip``/``.npz`` path or a run folder); a
             callable must pickle when ``workers > 1``.
         episodes: shots per cell, seeds ``start_seed`` onwards (>= 1).
-        presets: vision preset names (list or comma-separated; default: all of
-            :data:`soccer_env.vision.VISION`).
-        configs: names in :data:`ESTIMATOR_CONFIGS` (default: all, in registry order).
+        presets: sensor preset names (list or comma-separated; default: all of
+            :data:`soccer_env.vision.VISION`, or for humanoids of
+            :data:`soccer_env.headcam.HEAD_CAMERAS`).
+        configs: names in :data:`ESTIMATOR_CONFIGS` (for humanoids
+            :data:`HUMANOID_CONFIGS`; default: all, in registry order).
         start_seed: the first seed.
         workers: processes (default: all cores); the numbers do not depend on it.
         chunk_size: consecutive seeds per job.
@@ -402,6 +486,7 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
             ``obs_mode`` and ``perception`` belong to the cells and are refused.
         env_id: the environment (Goalkeeper-v0).
         progress: called as ``progress(jobs_done, jobs_total)`` after each job.
+        robot: ``"ssl"`` or ``"humanoid"`` (the keeper, its configurations and presets).
 
     Raises:
         ValueError: unknown preset or configuration names, ``episodes``, ``workers`` or
@@ -414,9 +499,10 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
     workers = (os.cpu_count() or 1) if workers is None else int(workers)
     if workers < 1:
         raise ValueError(f"workers must be >= 1, got {workers!r}")
-    preset_names = parse_names(presets, VISION, "sensor preset(s)")
-    config_names = parse_names(configs, ESTIMATOR_CONFIGS, "estimator configuration(s)")
-    specs = {n: ESTIMATOR_CONFIGS[n] for n in config_names}
+    registry, preset_table = _kind(robot)
+    preset_names = parse_names(presets, preset_table, "sensor preset(s)")
+    config_names = parse_names(configs, registry, "estimator configuration(s)")
+    specs = {n: registry[n] for n in config_names}
     base = dict(env_kwargs or {})
     cell_keys = sorted({"obs_mode", "perception"} & set(base))
     if cell_keys:
@@ -462,7 +548,7 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
     return AblationResult(policy=label, episodes=episodes, start_seed=start_seed,
                           presets=preset_names, configs=config_names, cells=cells,
                           config_specs=specs, env_id=env_id, env_kwargs=base, workers=workers,
-                          chunk_size=chunk_size, seconds=time.perf_counter() - t0)
+                          chunk_size=chunk_size, seconds=time.perf_counter() - t0, robot=robot)
 
 
 # ------------------------------------------------------------------------------------------
@@ -545,11 +631,17 @@ def _parser() -> argparse.ArgumentParser:
                         "a training run folder (default: scripted)")
     p.add_argument("--episodes", type=int, default=1000,
                    help="shots per cell, seeds start-seed onwards (default: 1000)")
-    p.add_argument("--presets", default=",".join(VISION),
-                   help=f"comma-separated sensor presets (default: {','.join(VISION)})")
+    p.add_argument("--robot", default="ssl", choices=list(ROBOT_KINDS),
+                   help="the keeper's robot kind: ssl (overhead vision) or humanoid (head "
+                        "cameras, localization, team fusion; robot humanoid-2012 unless "
+                        "--env-kwarg robot=... names another) (default: ssl)")
+    p.add_argument("--presets", default=None,
+                   help=f"comma-separated sensor presets (default: all; ssl: "
+                        f"{','.join(VISION)}; humanoid: {','.join(HEAD_CAMERAS)})")
     p.add_argument("--configs", default="all",
-                   help="comma-separated estimator configurations (default: all of "
-                        f"{','.join(ESTIMATOR_CONFIGS)})")
+                   help="comma-separated estimator configurations (default: all; ssl: "
+                        f"{','.join(ESTIMATOR_CONFIGS)}; humanoid: "
+                        f"{','.join(HUMANOID_CONFIGS)})")
     p.add_argument("--workers", type=int, default=None,
                    help="processes (default: all cores); the results do not depend on it")
     p.add_argument("--out", default="ablation_output",
@@ -575,8 +667,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     if args.workers is not None and args.workers < 1:
         p.error(f"--workers must be >= 1, got {args.workers}")
     try:
-        presets = parse_names(args.presets, VISION, "sensor preset(s)")
-        configs = parse_names(args.configs, ESTIMATOR_CONFIGS, "estimator configuration(s)")
+        registry, preset_table = _kind(args.robot)
+        presets = parse_names(args.presets, preset_table, "sensor preset(s)")
+        configs = parse_names(args.configs, registry, "estimator configuration(s)")
         env_kwargs = key_values(args.env_kwarg, "--env-kwarg")
     except ValueError as exc:
         p.error(str(exc))
@@ -590,7 +683,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         res = run_ablation(args.policy, args.episodes, presets, configs, args.start_seed,
                            args.workers, args.chunk_size, env_kwargs=env_kwargs,
-                           progress=progress)
+                           progress=progress, robot=args.robot)
     except (ValueError, TypeError, FileNotFoundError) as exc:
         p.error(str(exc))
     files = write_outputs(res, args.out)

@@ -117,9 +117,11 @@ def _time_estimator(env: gym.Env) -> _Timer:
     the sensor simulation), by wrapping its methods on the instance."""
     timer = _Timer()
     perception = env.unwrapped._perception
-    for name in ("_consume", "_beliefs"):
-        if hasattr(perception, name):
-            setattr(perception, name, timer.wrap(getattr(perception, name)))
+    # A humanoid pipeline's estimation is its team perception's (HumanoidPerception.team).
+    for target in (perception, getattr(perception, "team", None)):
+        for name in ("_consume", "_beliefs", "belief"):
+            if target is not None and hasattr(target, name):
+                setattr(target, name, timer.wrap(getattr(target, name)))
     return timer
 
 

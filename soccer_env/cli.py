@@ -74,11 +74,17 @@ def _cmd_paper(argv: list[str]) -> int:
     p.add_argument("--particles", type=int, default=100, help="ungm: particles")
     p.add_argument("--trials", type=int, default=20,
                    help="hough: noise draws per ball position")
+    p.add_argument("--matches", type=int, default=4, help="team: seeded matches per "
+                   "configuration")
+    p.add_argument("--duration", type=float, default=60.0, help="team: match length [s]")
+    p.add_argument("--keeper-shots", type=int, default=500,
+                   help="team: humanoid keeper shots per configuration")
     p.add_argument("--workers", type=int, default=None, help="processes (default: all cores)")
-    p.add_argument("--no-closed-loop", action="store_true", help="skip the closed loop")
+    p.add_argument("--no-closed-loop", action="store_true",
+                   help="ekf: skip the closed loop; team: skip the keeper")
     p.add_argument("--seed", type=int, default=0)
     args = p.parse_args(argv)
-    for name in ("episodes", "shots", "runs", "trials"):
+    for name in ("episodes", "shots", "runs", "trials", "matches", "keeper_shots"):
         if getattr(args, name) < 1:
             p.error(f"--{name} must be >= 1")
     if args.particles < 2:
@@ -94,6 +100,9 @@ def _cmd_paper(argv: list[str]) -> int:
         "hough": lambda: module.run(args.out, args.trials, seed=args.seed),
         "localization": lambda: module.run(args.out, seed=args.seed),
         "ungm": lambda: module.run(args.out, args.runs, args.particles, seed=args.seed),
+        "team": lambda: module.run(args.out, args.matches, args.duration, args.keeper_shots,
+                                   args.workers, seed=args.seed,
+                                   keeper=not args.no_closed_loop),
     }
     res = runs[args.name]()
     print(res["text"])

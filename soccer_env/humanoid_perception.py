@@ -63,7 +63,7 @@ from .radio import Message, RadioSpec, TeamRadio
 from .state import WorldState
 
 __all__ = ["HumanoidTeamPerception", "HumanoidPerception", "HeadController", "LOCALIZATIONS",
-           "FUSIONS", "BALL_TRACKERS", "HEAD_MODES", "head_state"]
+           "FUSIONS", "BALL_TRACKERS", "HEAD_MODES", "head_state", "aim_heads"]
 
 #: Self-localization choices.
 LOCALIZATIONS = {
@@ -114,6 +114,26 @@ def head_state(world: Any) -> HeadState:
         sp[idx], st[idx] = walk.sway_pan, walk.sway_tilt
         blind[idx] = walk.fallen
     return HeadState(pan, tilt, sp, st, blind)
+
+
+def aim_heads(world: Any) -> None:
+    """Turn every humanoid's head to the ball at the start of an episode (set-up, like placing
+    the robots: play was going on before the episode and the robots were watching the ball;
+    whether they see it is still up to their cameras)."""
+    walk = world.walk
+    if walk is None:
+        return
+    bx, by = world.ball_array()[0:2].tolist()
+    robots = world.robot_array()
+    for j, i in enumerate(walk.indices):
+        spec = walk.specs[j]
+        x, y, th = robots[i, 0:3].tolist()
+        dx, dy = bx - x, by - y
+        c, s = math.cos(th), math.sin(th)
+        pan = math.atan2(c * dy - s * dx, c * dx + s * dy)
+        tilt = math.atan2(head_camera(spec.camera).height, max(math.hypot(dx, dy), 0.05))
+        walk.pan[j] = max(-spec.head_pan_limit, min(spec.head_pan_limit, pan))
+        walk.tilt[j] = max(spec.head_tilt_min, min(spec.head_tilt_max, tilt))
 
 
 def _compose(a: tuple[float, float, float], b: tuple[float, float, float]
@@ -529,12 +549,17 @@ class HumanoidTeamPerception:
         for h in self.heads.values():
             h.reset()
         self.time = state.time
-        self._process(self.sensor.reset(state, heads, self._rngs[-1]), state.time)
+        self._consume(self.sensor.reset(state, heads, self._rngs[-1]), state, None)
 
     def update(self, state: WorldState, heads: HeadState, walk: Any) -> None:
         """Advance to ``state``: odometry, frames, radio, fusion and tracking."""
+        self.time = state.time
+        self._consume(self.sensor.step(state, heads), state, walk)
+
+    def _consume(self, frames: list[HeadFrame], state: WorldState, walk: Any) -> None:
+        """The estimation of one step (the sensor simulation done): odometry, the frames,
+        the radio."""
         now = state.time
-        self.time = now
         if walk is not None:
             pos = {i: j for j, i in enumerate(walk.indices)}
             for i, b in self._brains.items():
@@ -543,9 +568,6 @@ class HumanoidTeamPerception:
                 b.gait_velocity = tuple(walk.gait[j])
                 radio = self._radios[b.team]
                 radio.set_silent(b.name, walk.fallen[j])
-        self._process(self.sensor.step(state, heads), now)
-
-    def _process(self, frames: list[HeadFrame], now: float) -> None:
         for f in frames:
             b = self._brains[f.robot]
             msg = b.frame(f)

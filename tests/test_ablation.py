@@ -232,3 +232,22 @@ def test_a_saved_policy_runs_like_the_reference(tmp_path: Path):
     idle = run_ablation("idle", 4, "realistic", "truth,raw", workers=1)
     assert saved.policy == str(path) and idle.policy == "idle"
     assert _numbers(saved) == _numbers(idle)
+
+
+def test_humanoid_ablation_runs_the_team_estimators_on_head_camera_presets(tmp_path: Path):
+    res = run_ablation("scripted", 2, "kidsize-2012", "truth,own,fusion-mfbpf", workers=1,
+                       robot="humanoid")
+    cell = res.cell("kidsize-2012", "fusion-mfbpf")
+    assert cell.env_kwargs["robot"] == "humanoid-2012"
+    assert cell.env_kwargs["perception"] == {"camera": "kidsize-2012", "fusion": "inverse",
+                                             "ball_tracker": "mfbpf"}
+    assert res.cell("kidsize-2012", "truth").ball_rmse_m == 0.0
+    assert cell.ball_rmse_m > 0.0 and cell.estimator_us_per_step > 0.0
+    assert res.command().startswith("soccer-env ablation --robot humanoid")
+    files = write_outputs(res, tmp_path)
+    assert "soccer_env.headcam.HEAD_CAMERAS" in files["md"].read_text()
+    assert ablation.default_presets("humanoid") == ["ideal", "kidsize-2012", "kidsize"]
+    with pytest.raises(ValueError, match="unknown sensor preset"):
+        run_ablation("scripted", 1, "realistic", "own", robot="humanoid")
+    with pytest.raises(ValueError, match="robot must be one of"):
+        run_ablation("scripted", 1, robot="nao")

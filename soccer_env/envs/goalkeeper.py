@@ -13,7 +13,7 @@ import numpy as np
 
 from .. import presets
 from ..config import check_choice, check_int, keyword_names, parse_scales, reject_unknown
-from ..humanoid_perception import HEAD_MODES
+from ..humanoid_perception import HEAD_MODES, aim_heads
 from ..observations import ObservationBuilder
 from ..perception import OBS_MODES, PerceptionConfig, make_perception
 from ..physics import World
@@ -317,6 +317,7 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         # The humanoids' falls and odometry draw from a stream of their own, too.
         self.world.reset(poses, self._shot["position"],
                          np.random.default_rng(rng.integers(2**63)))
+        aim_heads(self.world)
         self._fired = False
         self._touched = False
         if self._shot["delay"] <= 0.0:

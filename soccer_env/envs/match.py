@@ -19,7 +19,7 @@ from ..config import (
     parse_scales,
     reject_unknown,
 )
-from ..humanoid_perception import HEAD_MODES
+from ..humanoid_perception import HEAD_MODES, aim_heads
 from ..observations import ObservationBuilder
 from ..perception import OBS_MODES, MatchPerception, PerceptionConfig
 from ..physics import MAX_TEAM_SIZE, World
@@ -222,6 +222,7 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         kickoff = int(rng.integers(2))
         w.reset(place_kickoff(w, kickoff, rng, self.formation_jitter), (0.0, 0.0),
                 np.random.default_rng(rng.integers(2**63)))
+        aim_heads(w)
         self.agents = list(self.possible_agents)
         self.score = [0, 0]
         self.restart_team = kickoff

@@ -9,4 +9,6 @@ PAPERS = {
     "ungm": "paper 000: bootstrap PF, FBPF and MFBPF on the UNGM benchmark",
     "localization": "paper 001: KLD-sampling localization against fixed-size filters, walking",
     "hough": "paper 000: Hough-space fusion of several robots' sightings (Table 1 geometry)",
+    "team": "paper 000 in the closed loop: humanoid matches and keeper, one robot alone "
+            "against team fusion and particle tracking",
 }

@@ -11,9 +11,11 @@ __all__ = ["write_csv", "write_report"]
 
 
 def write_csv(path: Path, rows: list[dict[str, Any]]) -> None:
-    """``rows`` (dicts with the same keys) as a CSV file with a header."""
+    """``rows`` (dicts) as a CSV file with a header: every key of any row, in order of first
+    appearance (a row without a key leaves its cell empty)."""
+    fields = list(dict.fromkeys(k for row in rows for k in row))
     with path.open("w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        writer = csv.DictWriter(fh, fieldnames=fields)
         writer.writeheader()
         writer.writerows(rows)
 

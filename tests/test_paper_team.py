@@ -1,0 +1,34 @@
+"""``soccer-env paper team``: humanoid matches and keeper under each ball estimation."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from soccer_env.papers import team
+
+
+def test_team_benchmark_measures_every_configuration_and_writes_its_outputs(tmp_path: Path):
+    res = team.run(tmp_path, matches=1, duration=3.0, shots=2, workers=1)
+    table = res["matches"]["configs"]
+    assert list(table) == list(team.MATCH_CONFIGS)
+    for r in table.values():
+        assert r["mean_m"] > 0.0 and r["median_m"] > 0.0  # perceived, never exact
+        assert 0.0 <= r["good_share"] <= 1.0
+        assert r["localization_median_m"] < 0.5  # the robots know where they are
+    assert list(res["keeper"]["configs"]) == list(team.KEEPER_CONFIGS)
+    assert res["keeper"]["configs"]["truth"]["ball_rmse_m"] == 0.0
+    for suffix in ("md", "csv", "json", "png"):
+        assert (tmp_path / f"paper_team.{suffix}").stat().st_size > 0
+    data = json.loads((tmp_path / "paper_team.json").read_text())
+    assert data["paper"]["gain"] == 0.48
+    assert "paper 000, hardware: 48%" in res["text"]
+
+
+def test_team_benchmark_rejects_bad_arguments(tmp_path: Path):
+    with pytest.raises(ValueError, match="matches must be an integer >= 1"):
+        team.run(tmp_path, matches=0)
+    with pytest.raises(ValueError, match=r"duration must be in \[1, 3600\]"):
+        team.run(tmp_path, duration=0.1)
