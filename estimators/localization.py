@@ -12,7 +12,9 @@ State ``(x, y, theta)`` in the field frame [m, m, rad]; particles ``(N, 3)``.
   measured range and bearing; ``p(z | chi) = N(range; g(chi), sigma_r^2) N(bearing; b(chi),
   sigma_b^2)`` multiplied over the landmarks (paper 001 uses the range term only; the bearing
   term is optional, ``sigma_bearing=None`` turns it off), with ``sigma_r`` growing with the
-  range (``sigma_r = range_sigma + range_sigma_rel * range``, stereo depth error).
+  range (``sigma_r = range_sigma + range_sigma_rel * range + range_sigma_quad * range^2``:
+  stereo depth error grows linearly, a monocular ground projection's with the square of the
+  distance).
 * **Ambiguous landmarks** (:meth:`KLDLocalizer.update_kinds`): a robot often sees *a* line
   corner or *a* goal post without knowing which. Each observation then names a kind, the field
   a table of the candidate positions of every kind, and each particle associates every
@@ -98,8 +100,8 @@ class KLDConfig:
         epsilon, delta: KLD-sampling's error bound and confidence (Fox 2003: 0.05, 0.01).
         bin_size: histogram bins ``(m, m, rad)``.
         a_trans, a_rot_xy, a_rot, a_trans_theta: odometry noise (see the module docstring).
-        range_sigma, range_sigma_rel: range noise ``sigma_r = range_sigma + range_sigma_rel
-            * range`` [m, 1].
+        range_sigma, range_sigma_rel, range_sigma_quad: range noise ``sigma_r = range_sigma
+            + range_sigma_rel * range + range_sigma_quad * range^2`` [m, 1, 1/m].
         bearing_sigma: bearing noise [rad]; None leaves bearings out (paper 001: ranges only).
         alpha_slow, alpha_fast: averaging rates of the recovery's likelihood averages
             (``0 <= alpha_slow < alpha_fast <= 1``; ``alpha_fast = 0`` turns recovery off).
@@ -118,6 +120,7 @@ class KLDConfig:
     a_trans_theta: float = 0.05
     range_sigma: float = 0.05
     range_sigma_rel: float = 0.05
+    range_sigma_quad: float = 0.0
     bearing_sigma: float | None = math.radians(5.0)
     alpha_slow: float = 0.01
     alpha_fast: float = 0.2
@@ -133,7 +136,8 @@ class KLDConfig:
                              f"{self.delta}")
         if len(self.bin_size) != 3 or min(self.bin_size) <= 0.0:
             raise ValueError(f"bin_size must be three positive sizes, got {self.bin_size}")
-        for name in ("a_trans", "a_rot_xy", "a_rot", "a_trans_theta", "range_sigma_rel"):
+        for name in ("a_trans", "a_rot_xy", "a_rot", "a_trans_theta", "range_sigma_rel",
+                     "range_sigma_quad"):
             if not getattr(self, name) >= 0.0:
                 raise ValueError(f"{name} must be >= 0, got {getattr(self, name)!r}")
         if not self.range_sigma > 0.0:
@@ -250,7 +254,7 @@ class KLDLocalizer:
         dx = L[None, :, 0] - self.particles[:, None, 0]
         dy = L[None, :, 1] - self.particles[:, None, 1]
         expected = np.hypot(dx, dy)
-        sigma = c.range_sigma + c.range_sigma_rel * r
+        sigma = c.range_sigma + (c.range_sigma_rel + c.range_sigma_quad * r) * r
         log = -0.5 * ((expected - r) / sigma) ** 2
         if b is not None:
             err = np.arctan2(dy, dx) - self.particles[:, None, 2] - b

@@ -5,6 +5,12 @@ Run ``soccer-env bench`` (or ``python benchmarks/bench_step.py``). Each figure i
 generator (sampling is not timed); Goalkeeper-v0 runs through ``gymnasium.make`` with its
 default wrappers and includes its resets, as a training loop would. The cost of perceived
 observations is the median ratio of truth and perceived runs timed in alternation.
+
+Humanoids (paper 000's ``humanoid-2012`` with its ``kidsize-2012`` head camera): the keeper
+with its three watching team-mates (four robots, each with its camera, localization, radio,
+fusion and tracker when perceived) and a 3 vs 3 match; their random actions neither kick nor
+dive (a robot that dives at random lies blind most of the time, which would understate the
+perception's cost).
 """
 
 from __future__ import annotations
@@ -24,6 +30,8 @@ __all__ = ["run_benchmarks", "format_table", "REFERENCE", "PERCEIVED_PRESETS"]
 
 #: Sensor presets timed with ``obs_mode="perceived"`` (default EKF), against truth.
 PERCEIVED_PRESETS = ("realistic", "ssl-2012")
+#: The humanoid robot and head camera timed by ``soccer-env bench``.
+HUMANOID, HUMANOID_CAMERA = "humanoid-2012", "kidsize-2012"
 
 #: rSoccer (ODE, Gymnasium, ground truth only) on this kind of machine, for reference, and the
 #: aims of the foundation issue (ten times rSoccer).
@@ -45,12 +53,21 @@ def _median_rate(run: Callable[[], None], steps: int, repeats: int) -> float:
     return statistics.median(_rate(run, steps) for _ in range(repeats))
 
 
+def _actions(rng: np.random.Generator, shape: tuple[int, ...], robot: str) -> np.ndarray:
+    """Uniform random actions; a humanoid's motion entry (kick, dive) zeroed."""
+    a = rng.uniform(-1, 1, (*shape, 6))
+    if robot.startswith("humanoid"):
+        a[..., 3] = 0.0
+    return a
+
+
 def _goalkeeper_runner(steps: int, seed: int = 0, obs_mode: str = "truth",
-                       perception: str | None = None):
+                       perception: str | None = None, robot: str = "ssl"):
     """A closure stepping ``gymnasium.make("soccer_env/Goalkeeper-v0")`` ``steps`` times with
     pre-drawn random actions (resetting when episodes end), and its environment."""
-    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode, perception=perception)
-    actions = np.random.default_rng(seed).uniform(-1, 1, (steps, 6)).astype(np.float32)
+    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode, perception=perception,
+                   robot=robot)
+    actions = _actions(np.random.default_rng(seed), (steps,), robot).astype(np.float32)
     env.reset(seed=seed)
 
     def run() -> None:
@@ -62,16 +79,17 @@ def _goalkeeper_runner(steps: int, seed: int = 0, obs_mode: str = "truth",
     return run, env
 
 
-def _match_runner(steps: int, blue: int = 6, yellow: int = 6, field: str = "ssl-div-b",
-                  seed: int = 0, obs_mode: str = "truth", perception: str | None = None):
+def _match_runner(steps: int, blue: int = 6, yellow: int = 6, field: str | None = None,
+                  seed: int = 0, obs_mode: str = "truth", perception: str | None = None,
+                  robot: str = "ssl"):
     """A closure stepping a match ``steps`` times with pre-drawn random actions."""
     from . import parallel_env
 
     env = parallel_env(blue=blue, yellow=yellow, field=field, match_duration=1e6,
-                       obs_mode=obs_mode, perception=perception)
+                       obs_mode=obs_mode, perception=perception, robot=robot)
     env.reset(seed=seed)
     agents = list(env.agents)
-    actions = np.random.default_rng(seed).uniform(-1, 1, (steps, len(agents), 6))
+    actions = _actions(np.random.default_rng(seed), (steps, len(agents)), robot)
     dicts = [dict(zip(agents, a)) for a in actions]
 
     def run() -> None:
@@ -152,10 +170,21 @@ def run_benchmarks(steps: int = 20000, match_steps: int = 5000, repeats: int = 3
             "match_steps_per_s": m["steps_per_s"],
             "match_cost_vs_truth": m["cost_vs_truth"],
         }
+    humanoid = {}
+    for name, make in (("goalkeeper", _goalkeeper_runner),
+                       ("match", lambda n, **kw: _match_runner(n, blue=3, yellow=3, **kw))):
+        n = (steps if name == "goalkeeper" else match_steps) // 10
+        truth, _ = make(n, robot=HUMANOID)
+        r = bench_perceived_cost(lambda k, make=make, **kw: make(k, robot=HUMANOID, **kw), n,
+                                 repeats, HUMANOID_CAMERA)
+        humanoid[name] = {"truth_steps_per_s": _median_rate(truth, n, repeats),
+                          "perceived_steps_per_s": r["steps_per_s"],
+                          "cost_vs_truth": r["cost_vs_truth"]}
     return {
         "goalkeeper": gk,
         "match_6v6_div_b": match,
         "perceived": perceived,
+        "humanoid": {"robot": HUMANOID, "camera": HUMANOID_CAMERA, **humanoid},
         "settings": {"steps": steps, "match_steps": match_steps, "repeats": repeats,
                      "statistic": "median of repeats; perceived cost: median ratio of "
                                   "alternating truth/perceived runs"},
@@ -181,6 +210,16 @@ def format_table(res: dict[str, Any]) -> str:
             rows.append((f"perception={preset!r}", f"{r['goalkeeper_steps_per_s']:,.0f}",
                          f"{r['goalkeeper_cost_vs_truth']:.2f}", f"{r['match_steps_per_s']:,.0f}",
                          f"{r['match_cost_vs_truth']:.2f}"))
+        text += "\n\n" + _table(rows)
+    if res.get("humanoid"):
+        h = res["humanoid"]
+        rows = [(f"humanoids ({h['robot']}, camera {h['camera']})", "truth steps/s",
+                 "perceived steps/s", "cost vs truth")]
+        for key, label in (("goalkeeper", "Goalkeeper-v0 + 3 team-mates (4 robots)"),
+                           ("match", "match 3 vs 3")):
+            r = h[key]
+            rows.append((label, f"{r['truth_steps_per_s']:,.0f}",
+                         f"{r['perceived_steps_per_s']:,.0f}", f"{r['cost_vs_truth']:.2f}"))
         text += "\n\n" + _table(rows)
     return text
 

@@ -254,6 +254,7 @@ class _Brain:
         self.ball_heard = -math.inf  # capture time of the last team sighting
         self.landmark_seen = state.time
         self.last_frame = state.time
+        self.down = False  # fallen at the last update
 
     # ------------------------------------------------------------------------------------
 
@@ -290,6 +291,16 @@ class _Brain:
         # start frame, so express it in the frame turned by half its rotation.
         c, s = math.cos(0.5 * d[2]), math.sin(0.5 * d[2])
         self.loc.predict((c * d[0] + s * d[1], -s * d[0] + c * d[1], d[2]))
+        self._loc_estimate = self.loc.estimate()
+
+    def stood_up(self, heading_sigma: float) -> None:
+        """The robot got up, turned by an angle its odometry does not report (Gaussian,
+        ``heading_sigma`` [rad]): spread the localization's headings by as much."""
+        if self.loc is None or heading_sigma <= 0.0:
+            return
+        p = self.loc.particles
+        turn = self.rng.normal(0.0, heading_sigma, len(p))
+        p[:, 2] = np.remainder(p[:, 2] + turn + math.pi, 2.0 * math.pi) - math.pi
         self._loc_estimate = self.loc.estimate()
 
     def estimate_pose(self) -> np.ndarray:
@@ -497,8 +508,10 @@ class HumanoidTeamPerception:
         wx, wy = field.half_length + field.boundary, field.half_width + field.boundary
         self.bounds = (-wx, wx, -wy, wy)
         # Landmark noise as the camera makes it: a pixel or a tilt error e moves a ground
-        # point at distance d by about d^2 e / h along the line of sight, linearised here at
-        # 2 m; bearings by the pixel noise and the yaw sway.
+        # point at distance d by about d^2 e / h along the line of sight; bearings by the
+        # pixel noise and the yaw sway. The sway's errors repeat from frame to frame (the
+        # gait is periodic), so recovery waits for a deeper and longer drop of the likelihood
+        # than the textbook rule.
         f_px = camera.camera.focal_px
         hum = [s for s in self.specs if s.kind == "humanoid"]
         sway_t = max((s.sway_tilt for s in hum), default=0.0)
@@ -506,9 +519,10 @@ class HumanoidTeamPerception:
         ang = math.hypot(sway_t, camera.pixel_sigma / f_px)
         self.kld_config = KLDConfig(
             min_particles=50, max_particles=2000,
-            range_sigma=0.05, range_sigma_rel=max(0.05, 2.0 * ang / camera.height),
+            range_sigma=0.05, range_sigma_rel=0.05,
+            range_sigma_quad=max(0.01, ang / camera.height),
             bearing_sigma=max(math.radians(1.0), math.hypot(sway_p, camera.pixel_sigma / f_px)),
-            recovery_ratio=0.5)
+            alpha_fast=0.1, recovery_ratio=0.2)
         self.fusion_window = ((_FUSION_WINDOW_FRAMES / camera.frame_rate
                                if camera.frame_rate else 0.05)
                               + radio.latency + radio.jitter)
@@ -568,6 +582,9 @@ class HumanoidTeamPerception:
                 b.gait_velocity = tuple(walk.gait[j])
                 radio = self._radios[b.team]
                 radio.set_silent(b.name, walk.fallen[j])
+                if b.down and not walk.fallen[j]:
+                    b.stood_up(walk.specs[j].fall_heading_sigma)
+                b.down = walk.fallen[j]
         for f in frames:
             b = self._brains[f.robot]
             msg = b.frame(f)
