@@ -12,8 +12,9 @@ __all__ = ["main"]
 
 def _cmd_demo(argv: list[str]) -> int:
     p = argparse.ArgumentParser(prog="soccer-env demo",
-                                description="Run scripted-keeper episodes of Goalkeeper-v0 and "
-                                            "write their video and figures.")
+                                description="Run scripted-keeper episodes of Goalkeeper-v0 "
+                                            "(an SSL keeper, then a humanoid one) and write "
+                                            "their video and figures.")
     p.add_argument("--out", default="demo_output", help="output folder (default: demo_output)")
     p.add_argument("--episodes", type=int, default=3, help="number of episodes (default: 3)")
     p.add_argument("--seed", type=int, default=0, help="seed of the first episode")
@@ -21,17 +22,23 @@ def _cmd_demo(argv: list[str]) -> int:
     args = p.parse_args(argv)
     if args.episodes < 1:
         p.error("--episodes must be >= 1")
+    from pathlib import Path
+
     from .demo import run_demo
 
-    summary = run_demo(args.out, args.episodes, args.seed, video=not args.no_video)
-    for ep in summary["episodes"]:
-        shot = ep["shot"]
-        kind = "chip" if shot["chip"] else "flat"
-        print(f"seed {ep['seed']}: {kind} shot at {shot['speed']:.1f} m/s -> {ep['outcome']} "
-              f"after {ep['steps']} steps (median ball estimate error "
-              f"{1000 * ep['ball_error_median_m']:.1f} mm)")
-    for name, path in summary["files"].items():
-        print(f"wrote {name}: {path}")
+    for robot, out, perception in (("ssl", Path(args.out), "realistic"),
+                                   ("humanoid-2012", Path(args.out) / "humanoid", None)):
+        summary = run_demo(out, args.episodes, args.seed, video=not args.no_video,
+                           robot=robot, perception=perception)
+        print(f"{robot} keeper:")
+        for ep in summary["episodes"]:
+            shot = ep["shot"]
+            kind = "chip" if shot["chip"] else "flat"
+            print(f"seed {ep['seed']}: {kind} shot at {shot['speed']:.1f} m/s -> "
+                  f"{ep['outcome']} after {ep['steps']} steps (median ball estimate error "
+                  f"{1000 * ep['ball_error_median_m']:.1f} mm)")
+        for name, path in summary["files"].items():
+            print(f"wrote {name}: {path}")
     return 0
 
 
@@ -77,6 +84,7 @@ def _cmd_paper(argv: list[str]) -> int:
     p.add_argument("--matches", type=int, default=4, help="team: seeded matches per "
                    "configuration")
     p.add_argument("--duration", type=float, default=60.0, help="team: match length [s]")
+    p.add_argument("--walks", type=int, default=5, help="localization: walking episodes")
     p.add_argument("--keeper-shots", type=int, default=500,
                    help="team: humanoid keeper shots per configuration")
     p.add_argument("--workers", type=int, default=None, help="processes (default: all cores)")
@@ -84,7 +92,7 @@ def _cmd_paper(argv: list[str]) -> int:
                    help="ekf: skip the closed loop; team: skip the keeper")
     p.add_argument("--seed", type=int, default=0)
     args = p.parse_args(argv)
-    for name in ("episodes", "shots", "runs", "trials", "matches", "keeper_shots"):
+    for name in ("episodes", "shots", "runs", "trials", "matches", "keeper_shots", "walks"):
         if getattr(args, name) < 1:
             p.error(f"--{name} must be >= 1")
     if args.particles < 2:
@@ -98,7 +106,8 @@ def _cmd_paper(argv: list[str]) -> int:
         "ekf": lambda: module.run(args.out, args.episodes, args.shots, args.workers,
                                   closed=not args.no_closed_loop, seed=args.seed),
         "hough": lambda: module.run(args.out, args.trials, seed=args.seed),
-        "localization": lambda: module.run(args.out, seed=args.seed),
+        "localization": lambda: module.run(args.out, seed=args.seed, episodes=args.walks,
+                                           workers=args.workers),
         "ungm": lambda: module.run(args.out, args.runs, args.particles, seed=args.seed),
         "team": lambda: module.run(args.out, args.matches, args.duration, args.keeper_shots,
                                    args.workers, seed=args.seed,

@@ -10,7 +10,11 @@ Writes to the output folder:
 * ``summary.json``: each episode's shot, outcome, length and estimation error.
 
 The keeper plays from perceived observations: the overhead vision's late, noisy frames
-filtered by the ball EKF (``obs_mode="perceived"``, ``perception="realistic"``).
+filtered by the ball EKF (``obs_mode="perceived"``, ``perception="realistic"``). With
+``robot="humanoid-2012"`` (what ``soccer-env demo`` runs second, into ``humanoid/``) it is paper
+000's humanoid keeper with three watching team-mates, localizing from its head camera and
+diving on the team's fused and tracked estimate of the ball (files ``humanoid_goalkeeper.mp4``
+and the same figures).
 """
 
 from __future__ import annotations
@@ -29,14 +33,16 @@ __all__ = ["run_demo"]
 
 
 def run_demo(out: str | Path = "demo_output", episodes: int = 3, seed: int = 0,
-             obs_mode: str = "perceived", perception: str = "realistic", video: bool = True
-             ) -> dict[str, Any]:
-    """Run ``episodes`` Goalkeeper-v0 episodes with the scripted keeper; write the files."""
+             obs_mode: str = "perceived", perception: str | None = "realistic",
+             video: bool = True, robot: str = "ssl") -> dict[str, Any]:
+    """Run ``episodes`` Goalkeeper-v0 episodes with the scripted keeper; write the files
+    (``perception=None``: the robot's default; a humanoid's files are prefixed
+    ``humanoid_``)."""
     from agents import ScriptedGoalkeeper
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode,
+    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode, robot=robot,
                    perception=None if obs_mode == "truth" else perception,
                    render_mode="rgb_array" if video else None, render_width=640)
     policy = ScriptedGoalkeeper.for_env(env)
@@ -65,10 +71,12 @@ def run_demo(out: str | Path = "demo_output", episodes: int = 3, seed: int = 0,
 
     files = {}
     if video:
-        files["video"] = str(write_video(frames, out / "goalkeeper.mp4",
+        stem = "humanoid_goalkeeper" if robot.startswith("humanoid") else "goalkeeper"
+        files["video"] = str(write_video(frames, out / f"{stem}.mp4",
                                          env.unwrapped.metadata["render_fps"]))
     files.update(_figures(records, env.unwrapped.field, out))
     summary = {
+        "robot": robot,
         "obs_mode": obs_mode,
         "perception": None if obs_mode == "truth" else perception,
         "episodes": [{k: v for k, v in r.items() if k != "track"} for r in records],

@@ -151,7 +151,8 @@ class HeadController:
     (centred in the image: pan its bearing, tilt ``atan(h / d)``) while the robot's own
     sighting of it is under ``ball_lost_after`` seconds old, or a team-mate's is; otherwise
     scans; and, when no landmark has been seen for ``landmark_period`` seconds and the ball
-    is not coming at the robot, scans for ``glance`` seconds to find some.
+    is not coming at the robot, scans for ``glance`` seconds to find some (a ball starting to
+    come at it ends the glance).
     """
 
     def __init__(self, spec: HumanoidRobotSpec, camera_height: float, mode: str = "auto",
@@ -187,9 +188,11 @@ class HeadController:
         dx, dy = ball[0] - pose[0], ball[1] - pose[1]
         dist = math.hypot(dx, dy)
         coming = dist > 1e-6 and -(dx * ball[2] + dy * ball[3]) / dist > 0.3
-        if now < self._glance_until:
+        if coming:
+            self._glance_until = -math.inf  # a ball coming at the robot ends a glance
+        elif now < self._glance_until:
             return self.scan(now)
-        if landmark_age > self.landmark_period and not coming:
+        elif landmark_age > self.landmark_period:
             self._glance_until = now + self.glance
             return self.scan(now)
         if ball_age > self.ball_lost_after:

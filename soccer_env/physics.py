@@ -267,7 +267,7 @@ class World:
         space.on_collision(_BALL, _ROBOT, pre_solve=self._ball_robot_contact)
         space.on_collision(_BALL, _OUT, begin=self._ball_out)
         if self.walk is not None:
-            space.on_collision(_BALL, _HUMANOID, pre_solve=self._ball_humanoid_contact)
+            space.on_collision(_BALL, _HUMANOID, pre_solve=self._ball_touch)
             for other in (_ROBOT, _HUMANOID, _WALL):
                 space.on_collision(_HUMANOID, other, begin=self._humanoid_impact)
             self.walk.reset(rng if rng is not None else np.random.default_rng(0))
@@ -532,15 +532,18 @@ class World:
             if i is not None and self.robot_specs[i].kind == "humanoid":
                 self._impacts[i] = max(self._impacts.get(i, 0.0), speed)
 
-    def _ball_humanoid_contact(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data
-                               ) -> None:
-        """pre_solve for ball-humanoid contacts: fly-over and touches."""
+    def _ball_touch(self, arbiter: pymunk.Arbiter, space: pymunk.Space = None, data=None
+                    ) -> int:
+        """pre_solve for ball-humanoid contacts (and the first part of the SSL robots'): a
+        ball in flight above the robot passes over it; otherwise record the touch. Returns
+        the robot's index, or -1 when the ball passes over."""
         i = self._shape_index[arbiter.shapes[1]]
         if self._z > self._heights[i]:
             arbiter.process_collision = False
-            return
+            return -1
         self.touched[i] = True
         self.last_touch = i
+        return i
 
     def _humanoid_events(self, t0: float) -> None:
         """After the substeps of a step that started at ``t0``: falls from this step's
@@ -664,12 +667,9 @@ class World:
 
     def _ball_robot_contact(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
         """pre_solve for ball-robot contacts: fly-over, touches, kicker and dribbler."""
-        i = self._shape_index[arbiter.shapes[1]]
-        if self._z > self._heights[i]:
-            arbiter.process_collision = False
+        i = self._ball_touch(arbiter)
+        if i < 0:
             return
-        self.touched[i] = True
-        self.last_touch = i
         armed = self._armed[i] > 0.0 and self.time >= self._ready_at[i]
         if (armed or self._dribble[i]) and self._in_mouth(i):
             if armed:

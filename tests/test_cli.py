@@ -46,6 +46,11 @@ def test_demo_writes_video_and_figures(tmp_path: Path, capsys):
     for path in summary["files"].values():
         assert Path(path).stat().st_size > 1000
     assert (tmp_path / "trajectories.png").exists() and (tmp_path / "ball_speed.png").exists()
+    humanoid = json.loads((tmp_path / "humanoid" / "summary.json").read_text())
+    assert humanoid["robot"] == "humanoid-2012"
+    for path in humanoid["files"].values():
+        assert Path(path).stat().st_size > 1000
+    assert Path(humanoid["files"]["video"]).stem == "humanoid_goalkeeper"
 
 
 def test_console_script_installed():

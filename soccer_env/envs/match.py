@@ -88,9 +88,11 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
 
     ## Info
     Every agent's info holds ``truth`` (the same dict for all agents: ball and every robot in
-    field coordinates), ``estimate`` (the perception's present-time belief, same keys),
-    ``reward_terms``, ``score`` ``{"blue": int, "yellow": int}`` and ``event`` (None,
-    ``"goal"``, ``"touch"``, ``"goal_line"`` or ``"over_bar"``).
+    field coordinates), ``estimate`` (the present-time belief of the agent's team, or for a
+    humanoid its own, same keys), ``reward_terms``, ``score`` ``{"blue": int, "yellow":
+    int}`` and ``event`` (None, ``"goal"``, ``"touch"``, ``"goal_line"`` or ``"over_bar"``);
+    with humanoids in the match, ``robot_state`` (every humanoid's walk engine state, see
+    :meth:`~soccer_env.physics.World.humanoid_state`).
 
     ## Perception
     Each team perceives with its own pipeline (``perception`` for both, or
