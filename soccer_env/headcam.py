@@ -231,12 +231,13 @@ HEAD_CAMERAS: dict[str, HeadCameraSpec] = {
     # processing only (real robots now often use wider lenses: override hfov); 30 frames/s;
     # 0.05 s from capture to delivery with up to 0.01 s of jitter (a neural detector on a
     # shared CPU/GPU); 1.5 px noise (a detector's box centre); a size-1 ball found up to 6 m;
-    # landmarks and robots up to 5 m; detection 0.95 / 0.9 / 0.9; 0.1 spurious balls per
-    # second. Both goals are white under the current rules: posts cannot be told apart.
+    # landmarks and robots ignored beyond 4 m, as paper 001 does (their ground projections
+    # are poor farther away); detection 0.95 / 0.9 / 0.9; 0.1 spurious balls per second.
+    # Both goals are white under the current rules: posts cannot be told apart.
     "kidsize": HeadCameraSpec(
         name="kidsize", height=0.56, hfov=math.radians(51.0), width=720, height_px=625,
         frame_rate=30.0, latency=0.05, latency_jitter=0.01, pixel_sigma=1.5,
-        ball_range=6.0, landmark_range=5.0, robot_range=5.0,
+        ball_range=6.0, landmark_range=4.0, robot_range=4.0,
         ball_detection=0.95, landmark_detection=0.9, robot_detection=0.9,
         false_ball_rate=0.1, occlusion=True, distinct_goals=False,
         source="current Humanoid KidSize rules (white goals); camera as paper 000; timing, "

@@ -63,7 +63,8 @@ from .radio import Message, RadioSpec, TeamRadio
 from .state import WorldState
 
 __all__ = ["HumanoidTeamPerception", "HumanoidPerception", "HeadController", "LOCALIZATIONS",
-           "FUSIONS", "BALL_TRACKERS", "HEAD_MODES", "head_state", "aim_heads"]
+           "FUSIONS", "BALL_TRACKERS", "HEAD_MODES", "head_state", "aim_heads",
+           "landmark_sightings"]
 
 #: Self-localization choices.
 LOCALIZATIONS = {
@@ -114,6 +115,19 @@ def head_state(world: Any) -> HeadState:
         sp[idx], st[idx] = walk.sway_pan, walk.sway_tilt
         blind[idx] = walk.fallen
     return HeadState(pan, tilt, sp, st, blind)
+
+
+def landmark_sightings(frame: HeadFrame) -> tuple[list[str], np.ndarray, np.ndarray]:
+    """The landmarks of ``frame`` that have a ground point: their kinds, ranges [m] and
+    bearings [rad] in the robot frame (what the localization weighs)."""
+    kinds, ranges, bearings = [], [], []
+    for kind, _u, _v, x, y, bearing in frame.landmarks:
+        r = math.hypot(x, y)
+        if math.isfinite(r):
+            kinds.append(kind)
+            ranges.append(r)
+            bearings.append(bearing)
+    return kinds, np.array(ranges), np.array(bearings)
 
 
 def aim_heads(world: Any) -> None:
@@ -323,16 +337,9 @@ class _Brain:
         self.last_frame = f.t_delivered
         if self.loc is not None:
             self._predict(self._odometry_until(f.t_capture))
-            kinds, ranges, bearings = [], [], []
-            for kind, _u, _v, x, y, bearing in f.landmarks:
-                r = math.hypot(x, y)
-                if math.isfinite(r):
-                    kinds.append(kind)
-                    ranges.append(r)
-                    bearings.append(bearing)
+            kinds, ranges, bearings = landmark_sightings(f)
             if kinds:
-                self.loc.update_kinds(kinds, np.array(ranges), np.array(bearings),
-                                      p.landmark_table)
+                self.loc.update_kinds(kinds, ranges, bearings, p.landmark_table)
                 self.landmark_seen = f.t_capture
             pose = self._loc_estimate = self.loc.estimate()
         else:

@@ -130,30 +130,32 @@ def test_team_fusion_locates_a_static_ball_better_than_own_sightings():
 
 def test_a_fallen_robot_sends_nothing_until_it_has_got_up():
     """The keeper knows its team-mates' poses only from their broadcasts: while blue_1 lies
-    on the ground, what the keeper believes about it stops changing."""
+    on the ground, the keeper hears nothing new from it (the capture time of the latest
+    message it has from blue_1 stops advancing)."""
     env = keeper(mates=3)
     env.reset(seed=0)
     world = env.world
+    brain = env._perception.team._brains[0]
 
-    def mate_pose():
+    def heard_from_mate():
         _, _, _, _, info = env.step(STAND)
-        return info, tuple(info["estimate"]["robot_pose"]["blue_1"])
+        return info, brain.mate_poses[1][0]  # stamp of the latest message from blue_1
 
-    before = [mate_pose()[1] for _ in range(30)]
-    assert len(set(before)) > 5  # broadcasts arrive and move the belief
+    before = [heard_from_mate()[1] for _ in range(30)]
+    assert len(set(before)) > 5  # its broadcasts arrive, frame after frame
     world.walk.fall(world.walk.indices.index(1), world.time)
     down = []
     while True:
-        info, pose = mate_pose()
+        info, stamp = heard_from_mate()
         if not info["robot_state"]["blue_1"]["fallen"]:
             break
-        down.append(pose)
+        down.append(stamp)
     spec = world.walk.specs[1]
     assert len(down) * world.control_dt == pytest.approx(spec.get_up_time, abs=0.05)
     # Messages already on the air arrive within the radio's latency and jitter.
     late = math.ceil(0.1 / world.control_dt)
     assert len(set(down[late:])) == 1
-    after = [mate_pose()[1] for _ in range(30)]
+    after = [heard_from_mate()[1] for _ in range(30)]
     assert len(set(after)) > 5
     assert info["robot_state"]["blue_1"]["falls"] == 1
 

@@ -57,7 +57,7 @@ from estimators.localization import KLDConfig, KLDLocalizer
 
 from .. import presets
 from ..headcam import head_camera
-from ..humanoid_perception import HumanoidTeamPerception, _Brain, head_state
+from ..humanoid_perception import HumanoidTeamPerception, _Brain, head_state, landmark_sightings
 from ..physics import World
 from ..plots import pyplot, save_figure
 from ..radio import RADIO_PRESETS
@@ -167,14 +167,7 @@ def _episode(duration: float, seed: int, kidnap: bool) -> dict[str, Any]:
 
     def frames_to_events(frames: list[Any]) -> None:
         for f in frames:  # the landmarks with a ground point, as the brain takes them
-            kinds, ranges, bearings = [], [], []
-            for kind, _u, _v, x, y, bearing in f.landmarks:
-                r = math.hypot(x, y)
-                if math.isfinite(r):
-                    kinds.append(kind)
-                    ranges.append(r)
-                    bearings.append(bearing)
-            events.append(("frame", f.t_capture, kinds, np.array(ranges), np.array(bearings)))
+            events.append(("frame", f.t_capture, *landmark_sightings(f)))
 
     events: list[tuple] = []
     times, poses, omegas = [world.time], [world.robot_array()[0, 0:3].copy()], [0.0]
