@@ -73,6 +73,10 @@ __all__ = ["ParticleBallTracker", "FILTERS", "CHI2_2DOF_9999"]
 #: 99.99 % quantile of the chi-square distribution with 2 degrees of freedom, ``-2 ln 1e-4``.
 CHI2_2DOF_9999 = 18.420680743952367
 
+#: A re-initialisation takes its velocity from the measurement before it if that is at most
+#: this old [s].
+_MAX_DIFFERENCE_SPAN = 0.3
+
 #: Names of the filters :class:`ParticleBallTracker` can run.
 FILTERS = ("bootstrap", "fbpf", "mfbpf")
 
@@ -200,6 +204,7 @@ class ParticleBallTracker:
         self._x = np.zeros(4)  # the filter's estimate at its time
         self._misses = 0
         self._since_start = 0  # measurements fused since the last (re)start
+        self._prev: tuple[float, np.ndarray, np.ndarray] | None = None  # last measurement
         # Set before each call into the filter: step length, lag and R^-1 entries.
         self._dt = 0.0
         self._lag = 0.0
@@ -300,6 +305,7 @@ class ParticleBallTracker:
         filter's own SFN and/or resampling (see the module docstring for the start,
         re-initialisation and late measurements)."""
         t, z, R = self._check(t, z, sigma)
+        prev, self._prev = self._prev, (t, z, R)
         if self._pf is None or (self.lost_after is not None
                                 and t - self._t_fused > self.lost_after):
             self._start(t, z, R)
@@ -325,7 +331,7 @@ class ParticleBallTracker:
                 self.rejected += 1
                 self._misses += 1
                 if self._misses >= self.reinit_after:
-                    self._start(t, z, R)
+                    self._start(t, z, R, prev)
                 elif kf is not None:
                     self._redraw()
                 return
@@ -419,13 +425,30 @@ class ParticleBallTracker:
         return float((s11 * y0 * y0 - 2.0 * s01 * y0 * y1 + s00 * y1 * y1)
                      / (s00 * s11 - s01 * s01))
 
-    def _start(self, t: float, z: np.ndarray, R: np.ndarray) -> None:
+    def _start(self, t: float, z: np.ndarray, R: np.ndarray,
+               prev: tuple[float, np.ndarray, np.ndarray] | None = None) -> None:
         """(Re-)initialise at the measurement ``z`` taken at ``t``: ``N(x0, P0)`` with
-        ``x0 = (z, 0, 0)``, ``P0 = diag(R, init_speed_sigma^2 I)``."""
+        ``x0 = (z, v0)``, ``P0 = diag(R, s_v^2 I)``.
+
+        The velocity's prior is ``N(0, init_speed_sigma^2)``. A re-initialisation on an
+        implausible measurement (the ball was kicked or bounced) also knows the measurement
+        ``prev = (t0, z0, R0)`` before it: the finite difference ``(z - z0) / (t - t0)`` has
+        variance ``(tr R + tr R0) / 2 / (t - t0)^2`` per axis, and the two combine into
+        ``v0 = g v_fd``, ``s_v^2 = g var_fd`` with ``g = s0^2 / (s0^2 + var_fd)``: the new
+        motion is known at once rather than learnt over several measurements."""
+        s0_2 = self.init_speed_sigma**2
+        v0, var_v = (0.0, 0.0), s0_2
+        if prev is not None and 0.0 < t - prev[0] <= _MAX_DIFFERENCE_SPAN:
+            t0, z0, R0 = prev
+            span = t - t0
+            var_fd = 0.5 * float(np.trace(R) + np.trace(R0)) / span**2
+            g = s0_2 / (s0_2 + var_fd)
+            v0 = (g * (z[0] - z0[0]) / span, g * (z[1] - z0[1]) / span)
+            var_v = g * var_fd
         P0 = np.zeros((4, 4))
         P0[:2, :2] = R
-        P0[2, 2] = P0[3, 3] = self.init_speed_sigma**2
-        x0 = np.array([z[0], z[1], 0.0, 0.0])
+        P0[2, 2] = P0[3, 3] = var_v
+        x0 = np.array([z[0], z[1], v0[0], v0[1]])
         self._kf = KalmanFilter(x0, P0)
         n = self.n_particles
         if self._pf is not None:

@@ -229,3 +229,18 @@ def test_bad_measurements_name_the_argument():
     with pytest.raises(ValueError, match="^sigma "):
         tr.update(0.0, [0.0, 0.0], [0.1, 0.1])
     assert not tr.initialized
+
+
+def test_a_restart_on_a_kick_takes_the_new_motion_from_the_measurement_before_it():
+    # A ball at rest, then kicked at 3 m/s along x: the measurement that fails the gate
+    # restarts the filter with the finite-difference velocity (shrunk by the speed prior),
+    # not with a ball at rest.
+    rng = np.random.default_rng(0)
+    tr = ParticleBallTracker(np.random.default_rng(1), filter="mfbpf")
+    for k in range(20):
+        tr.update(0.04 * k, rng.normal(0.0, 0.01, 2), 0.01)
+    t = 0.04 * 20
+    tr.update(t, np.array([0.12, 0.0]) + rng.normal(0.0, 0.01, 2), 0.01)  # kicked 40 ms ago
+    assert tr.resets == 1
+    vx, vy = tr.estimate(t)[2:4]
+    assert vx == pytest.approx(3.0, abs=0.6) and abs(vy) < 0.5
