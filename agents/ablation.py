@@ -584,9 +584,11 @@ def _plot(res: AblationResult, path: Path) -> str:
     axes[0].legend(fontsize=8, ncol=min(n_c, 4), loc="lower left")
     axes[1].set_ylabel("ball RMSE [mm]")
     if any(res.cell(p, c).ball_rmse_m > 0 for p in res.presets for c in res.configs):
-        from matplotlib.ticker import FuncFormatter, NullFormatter
+        from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
         axes[1].set_yscale("log")
+        # Ticks at 1, 2 and 5 per decade: a range within one decade still gets labels.
+        axes[1].yaxis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
         axes[1].yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
         axes[1].yaxis.set_minor_formatter(NullFormatter())
     axes[1].set_title("Ball estimation error (truth: 0, not drawn)", fontsize=10)

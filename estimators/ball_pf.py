@@ -133,6 +133,8 @@ class ParticleBallTracker:
         lost_after: seconds without a fused measurement after which the next one restarts the
             filter; None: never.
         max_lag: measurements older than the filter's time by more than this [s] are ignored.
+        max_speed: the fastest a ball moves [m/s]: a restart's finite-difference velocity
+            above it is not believed.
         kalman_start: measurements fused by the Kalman start after each (re-)initialisation,
             the first included (1: none, the particles start from the first measurement).
 
@@ -149,6 +151,7 @@ class ParticleBallTracker:
                  sfn_when: str = "above", init_speed_sigma: float = 2.0,
                  gate: float | None = CHI2_2DOF_9999, reinit_after: int = 1,
                  lost_after: float | None = 1.0, max_lag: float = 0.1,
+                 max_speed: float = 10.0,
                  kalman_start: int = 10) -> None:
         if not isinstance(rng, np.random.Generator):
             raise TypeError("rng must be a numpy.random.Generator")
@@ -182,6 +185,7 @@ class ParticleBallTracker:
         self.deceleration = _positive("deceleration", deceleration, allow_zero=True)
         self.init_speed_sigma = _positive("init_speed_sigma", init_speed_sigma)
         self.max_lag = _positive("max_lag", max_lag, allow_zero=True)
+        self.max_speed = _positive("max_speed", max_speed)
         self.gate, self.reinit_after, self.lost_after = gate, int(reinit_after), lost_after
         self.kalman_start = int(kalman_start)
         kwargs: dict = {}
@@ -435,16 +439,19 @@ class ParticleBallTracker:
         ``prev = (t0, z0, R0)`` before it: the finite difference ``(z - z0) / (t - t0)`` has
         variance ``(tr R + tr R0) / 2 / (t - t0)^2`` per axis, and the two combine into
         ``v0 = g v_fd``, ``s_v^2 = g var_fd`` with ``g = s0^2 / (s0^2 + var_fd)``: the new
-        motion is known at once rather than learnt over several measurements."""
+        motion is known at once rather than learnt over several measurements. A difference
+        faster than ``max_speed`` joins no ball's two positions (one of them is an outlier):
+        then the prior alone."""
         s0_2 = self.init_speed_sigma**2
         v0, var_v = (0.0, 0.0), s0_2
         if prev is not None and 0.0 < t - prev[0] <= _MAX_DIFFERENCE_SPAN:
             t0, z0, R0 = prev
             span = t - t0
-            var_fd = 0.5 * float(np.trace(R) + np.trace(R0)) / span**2
-            g = s0_2 / (s0_2 + var_fd)
-            v0 = (g * (z[0] - z0[0]) / span, g * (z[1] - z0[1]) / span)
-            var_v = g * var_fd
+            dx, dy = (z[0] - z0[0]) / span, (z[1] - z0[1]) / span
+            if dx * dx + dy * dy <= self.max_speed**2:
+                var_fd = 0.5 * float(np.trace(R) + np.trace(R0)) / span**2
+                g = s0_2 / (s0_2 + var_fd)
+                v0, var_v = (g * dx, g * dy), g * var_fd
         P0 = np.zeros((4, 4))
         P0[:2, :2] = R
         P0[2, 2] = P0[3, 3] = var_v

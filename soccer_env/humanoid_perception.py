@@ -98,6 +98,8 @@ _FUSION_WINDOW_FRAMES = 1.5
 _MIN_SIGMA = 0.02
 #: A robot detection is associated with an opponent track within this distance [m].
 _TRACK_GATE = 1.0
+#: The fastest ball [m/s]: the tracked velocity that moves old sighting lines is capped at it.
+_MAX_BALL_SPEED = 10.0
 #: Raw and untracked velocities are differences of points at least this far apart [s].
 _MIN_DIFF_GAP = 0.1
 
@@ -244,7 +246,7 @@ class _Brain:
         self.tracker = (None if cfg.ball_tracker == "none" else ParticleBallTracker(
             rng, filter=cfg.ball_tracker, n_particles=100, accel_sigma=1.0,
             deceleration=perception.ball_spec.rolling_deceleration,
-            lost_after=2.0))
+            lost_after=2.0, max_speed=_MAX_BALL_SPEED, reinit_after=2))
 
     def reset(self, state: WorldState) -> None:
         p = self.p
@@ -425,6 +427,9 @@ class _Brain:
             est = self.tracker.estimate(t)
             if est is not None:
                 velocity = est[2:4]
+                speed = math.hypot(*velocity)
+                if speed > _MAX_BALL_SPEED:  # never move lines by an impossible motion
+                    velocity = velocity * (_MAX_BALL_SPEED / speed)
         weighting = "inverse" if self.fusion == "own" else self.fusion
         ranges = np.array([ln.range for ln in lines])
         known = ranges[np.isfinite(ranges)]
@@ -438,17 +443,24 @@ class _Brain:
         except ValueError:  # bearings only, no crossing: no position
             return
         point = fused.point
-        if not np.all(np.isfinite(point)):
-            return
+        x0, x1, y0, y1 = p.bounds
+        if not (np.all(np.isfinite(point)) and x0 <= point[0] <= x1 and y0 <= point[1] <= y1):
+            return  # no ball can be there (outside the walls)
         if self.tracker is not None:
             self.tracker.update(t, point, fused.cov + _MIN_SIGMA**2 * np.eye(2))
         self.points.append((t, float(point[0]), float(point[1])))
 
     def ball_point(self, t: float) -> np.ndarray | None:
-        """The believed ball ``(x, y, vx, vy)`` at ``t`` (None if never seen)."""
+        """The believed ball ``(x, y, vx, vy)`` at ``t`` (None if never seen); a prediction
+        that would leave the walled area stops at the wall."""
         if self.tracker is not None:
             est = self.tracker.estimate(t)
-            return None if est is None else est
+            if est is None:
+                return None
+            x0, x1, y0, y1 = self.p.bounds
+            if not (x0 <= est[0] <= x1 and y0 <= est[1] <= y1):
+                est = np.array([min(x1, max(x0, est[0])), min(y1, max(y0, est[1])), 0.0, 0.0])
+            return est
         if not self.points:
             return None
         t1, x1, y1 = self.points[-1]

@@ -244,3 +244,16 @@ def test_a_restart_on_a_kick_takes_the_new_motion_from_the_measurement_before_it
     assert tr.resets == 1
     vx, vy = tr.estimate(t)[2:4]
     assert vx == pytest.approx(3.0, abs=0.6) and abs(vy) < 0.5
+
+
+def test_a_restart_does_not_believe_an_impossible_speed():
+    # Two measurements 5 m apart in 40 ms (an outlier next to the ball): no ball moves at
+    # 125 m/s, so the restart keeps the velocity prior (at rest).
+    tr = ParticleBallTracker(np.random.default_rng(1), filter="mfbpf", max_speed=10.0)
+    for k in range(20):
+        tr.update(0.04 * k, np.zeros(2), 0.01)
+    tr.update(0.8, np.array([5.0, 0.0]), 0.01)
+    assert tr.resets == 1
+    assert np.allclose(tr.estimate(0.8)[2:4], 0.0)
+    with pytest.raises(ValueError, match="max_speed"):
+        ParticleBallTracker(np.random.default_rng(1), max_speed=0.0)

@@ -306,3 +306,25 @@ def test_bad_head_camera_preset_and_head_mode():
                                                  head="wobble")):
         with pytest.raises(ValueError, match=rf"head must be one of {_allowed(HEAD_MODES)}"):
             make()
+
+
+def test_match_beliefs_of_the_ball_stay_inside_the_walls():
+    """However wrong a robot's ball belief gets (lost balls, outliers, a tracker restarted on
+    a kick), it never leaves the walled area, where no ball can be."""
+    import soccer_env
+    from agents.humanoid_team import HumanoidTeam
+
+    env = soccer_env.parallel_env(blue=3, yellow=2, robot="humanoid-2012", obs_mode="perceived",
+                                  max_cycles=900)
+    obs, infos = env.reset(seed=2)
+    teams = [HumanoidTeam.for_env(env, "blue"), HumanoidTeam.for_env(env, "yellow")]
+    f = env.field
+    wx, wy = f.half_length + f.boundary, f.half_width + f.boundary
+    while env.agents:
+        actions = {}
+        for team in teams:
+            actions.update(team(obs))
+        obs, _, _, _, infos = env.step(actions)
+        for info in infos.values():
+            bx, by = info["estimate"]["ball_position"]
+            assert abs(bx) <= wx + 1e-9 and abs(by) <= wy + 1e-9
