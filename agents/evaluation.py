@@ -117,10 +117,11 @@ def _time_estimator(env: gym.Env) -> _Timer:
     the sensor simulation), by wrapping its methods on the instance."""
     timer = _Timer()
     perception = env.unwrapped._perception
-    # A humanoid pipeline's estimation is its team perception's (HumanoidPerception.team).
-    for target in (perception, getattr(perception, "team", None)):
+    # A MatchPerception (humanoids) holds the teams' pipelines; a humanoid team's estimation
+    # is its ``_consume`` and ``belief``.
+    for target in getattr(perception, "pipelines", [perception]):
         for name in ("_consume", "_beliefs", "belief"):
-            if target is not None and hasattr(target, name):
+            if hasattr(target, name):
                 setattr(target, name, timer.wrap(getattr(target, name)))
     return timer
 

@@ -39,7 +39,6 @@ The head is aimed by :class:`HeadController` unless the policy controls it.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections import deque
 from collections.abc import Sequence
@@ -62,7 +61,7 @@ from .presets import BallSpec, FieldSpec, HumanoidRobotSpec, RobotSpec
 from .radio import Message, RadioSpec, TeamRadio
 from .state import WorldState
 
-__all__ = ["HumanoidTeamPerception", "HumanoidPerception", "HeadController", "LOCALIZATIONS",
+__all__ = ["HumanoidTeamPerception", "HeadController", "LOCALIZATIONS",
            "FUSIONS", "BALL_TRACKERS", "HEAD_MODES", "head_state", "aim_heads",
            "landmark_sightings"]
 
@@ -638,70 +637,3 @@ class HumanoidTeamPerception:
     def tracker(self, i: int) -> ParticleBallTracker | None:
         """Robot ``i``'s ball tracker (None with ``ball_tracker="none"``)."""
         return self._brains[i].tracker
-
-
-class HumanoidPerception:
-    """The perception pipeline of an environment whose agent ``agent`` is a humanoid (the
-    :class:`~soccer_env.perception.Perception` protocol: ``reset`` and ``update`` return the
-    belief for the observation and the belief now, here the same: commands reach the walk
-    engine without latency).
-
-    ``obs_mode="truth"`` believes the truth (the heads still follow the ball, from the
-    truth); ``"perceived"`` runs :class:`HumanoidTeamPerception` for every humanoid of the
-    world with ``config``; ``"raw"`` the same with dead reckoning, the robots' own sightings
-    and no tracker.
-    """
-
-    def __init__(self, obs_mode: str, config: Any, field: FieldSpec, ball: BallSpec,
-                 world: Any, head: str = "auto", agent: int = 0) -> None:
-        self.world, self.agent = world, agent
-        self.vision_spec = config.vision
-        self.obs_mode = obs_mode
-        spec = world.robot_specs[agent]
-        camera = config.camera if config.camera is not None else head_camera(spec.camera)
-        if head not in HEAD_MODES:
-            raise ValueError(f"head must be one of {list(HEAD_MODES)}, got {head!r}")
-        self.team: HumanoidTeamPerception | None = None
-        if obs_mode == "truth":
-            self._heads = {i: HeadController(world.robot_specs[i], camera.height,
-                                              "scan" if head == "scan" else "auto")
-                           for i in world.humanoid_indices}
-        else:
-            if obs_mode == "raw":
-                config = dataclasses.replace(config, localization="odometry", fusion="own",
-                                             ball_tracker="none")
-            self.team = HumanoidTeamPerception(config, field, ball, world.robot_specs,
-                                               world.teams, world.names,
-                                               world.humanoid_indices, camera, config.radio,
-                                               head)
-        self._state: WorldState | None = None
-
-    def reset(self, state: WorldState, rng: np.random.Generator):
-        self._state = state
-        if self.team is None:
-            return state, state
-        self.team.reset(state, head_state(self.world), rng)
-        return self._belief(state.time)
-
-    def update(self, state: WorldState):
-        self._state = state
-        if self.team is None:
-            return state, state
-        self.team.update(state, head_state(self.world), self.world.walk)
-        return self._belief(state.time)
-
-    def _belief(self, t: float):
-        from .perception import Belief
-
-        ball, robots = self.team.belief(self.agent, t)
-        b = Belief(t, ball, robots)
-        return b, b
-
-    def head_targets(self, i: int, now: float) -> tuple[float, float]:
-        """Pan and tilt targets [rad] of humanoid ``i``'s head controller."""
-        if self.team is not None:
-            return self.team.head_targets(i, now)
-        s = self._state
-        b = s.ball
-        return self._heads[i].targets(now, s.robots[i, 0:3], np.array([b[0], b[1], b[3], b[4]]),
-                                      0.0, 0.0)

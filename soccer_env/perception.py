@@ -38,7 +38,7 @@ from estimators import BallFilterConfig, BallTracker, LeastSquaresBall, RobotTra
 from estimators.models import MIN_SIGMA_XY
 
 from .headcam import HEAD_CAMERAS, HeadCameraSpec, head_camera
-from .humanoid_perception import BALL_TRACKERS, FUSIONS, LOCALIZATIONS, HumanoidPerception
+from .humanoid_perception import BALL_TRACKERS, FUSIONS, LOCALIZATIONS
 from .presets import BallSpec, FieldSpec, SSLRobotSpec
 from .radio import RADIO_PRESETS, RadioSpec
 from .state import WorldState
@@ -355,20 +355,14 @@ class FilteredPerception(_VisionPerception):
 
 def make_perception(obs_mode: str, config: PerceptionConfig, field: FieldSpec,
                     robot: SSLRobotSpec, ball: BallSpec, n_robots: int,
-                    actuation_delay: float | None = None, world: Any = None,
-                    head: str = "auto") -> Perception:
-    """The pipeline of ``obs_mode``; unknown modes raise ``ValueError``.
+                    actuation_delay: float | None = None) -> Perception:
+    """The overhead-vision pipeline of ``obs_mode`` for SSL robots (humanoids:
+    :class:`MatchPerception`); unknown modes raise ``ValueError``.
 
     ``actuation_delay`` [s] is how far ahead the perceived belief is predicted (default: the
     vision preset's actuation latency; environments pass the latency as they apply it, in
-    whole control steps). For a humanoid ``robot`` the pipeline is a
-    :class:`~soccer_env.humanoid_perception.HumanoidPerception` of robot 0 of ``world``, its
-    head aimed as ``head`` says.
+    whole control steps).
     """
-    if obs_mode not in OBS_MODES:
-        raise ValueError(f"obs_mode must be one of {list(OBS_MODES)}, got {obs_mode!r}")
-    if robot.kind == "humanoid":
-        return HumanoidPerception(obs_mode, config, field, ball, world, head)
     if obs_mode == "truth":
         return TruthPerception(config)
     if obs_mode == "raw":
@@ -382,8 +376,8 @@ def make_perception(obs_mode: str, config: PerceptionConfig, field: FieldSpec,
 
 
 class MatchPerception:
-    """The perception of both teams of a match: each team's own pipeline, and a belief per
-    agent.
+    """The perception of both teams of a world: each team's own pipeline, and a belief per
+    robot (the match's, and the humanoid keeper's with its team-mates).
 
     SSL teams share the overhead vision: two SSL teams with the same configuration share one
     pipeline (SSL-Vision serves both; their beliefs coincide). A humanoid team runs a
@@ -460,10 +454,24 @@ class MatchPerception:
                 out += [[i] for i in robots]
         return out
 
-    def reset(self, state: WorldState, rng: np.random.Generator) -> None:
+    @property
+    def pipelines(self) -> list[Any]:
+        """The teams' pipelines (overhead vision, truth, or a humanoid team's)."""
+        return [pipe for _, pipe in self._groups]
+
+    def humanoid_team(self, i: int) -> Any:
+        """The :class:`~soccer_env.humanoid_perception.HumanoidTeamPerception` of humanoid
+        ``i`` (perceived and raw modes)."""
+        return self._humanoid[i]
+
+    def reset(self, state: WorldState, rng: np.random.Generator) -> tuple[Any, Any]:
+        """Start an episode at ``state``; returns robot 0's beliefs (for its observation,
+        now)."""
         from .humanoid_perception import head_state
 
-        rngs = rng.spawn(len(self._groups))
+        # One pipeline draws from the episode's sensor stream itself, several from streams
+        # spawned from it.
+        rngs = [rng] if len(self._groups) == 1 else rng.spawn(len(self._groups))
         for (robots, pipe), r in zip(self._groups, rngs):
             if hasattr(pipe, "head_targets"):
                 pipe.reset(state, head_state(self.world), r)
@@ -472,8 +480,10 @@ class MatchPerception:
                 for i in robots:
                     self._beliefs[i], self._current[i] = seen, now
         self._collect(state.time)
+        return self._beliefs[0], self._current[0]
 
-    def update(self, state: WorldState) -> None:
+    def update(self, state: WorldState) -> tuple[Any, Any]:
+        """Advance to ``state``; returns robot 0's beliefs (for its observation, now)."""
         from .humanoid_perception import head_state
 
         heads = None
@@ -486,6 +496,7 @@ class MatchPerception:
                 for i in robots:
                     self._beliefs[i], self._current[i] = seen, now
         self._collect(state.time)
+        return self._beliefs[0], self._current[0]
 
     def _collect(self, t: float) -> None:
         for i, team in self._humanoid.items():

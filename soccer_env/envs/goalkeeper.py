@@ -15,7 +15,7 @@ from .. import presets
 from ..config import check_choice, check_int, keyword_names, parse_scales, reject_unknown
 from ..humanoid_perception import HEAD_MODES, aim_heads
 from ..observations import ObservationBuilder
-from ..perception import OBS_MODES, PerceptionConfig, make_perception
+from ..perception import OBS_MODES, MatchPerception, PerceptionConfig, make_perception
 from ..physics import World
 from ..presets import BallSpec, FieldSpec, RobotSpec
 from ..referee import classify_exit
@@ -291,10 +291,13 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         # The actuation latency applies in whole control steps (humanoids walk on board).
         delay = 0 if humanoid else round(spec.actuation_latency / self.world.control_dt)
         self._channel = CommandChannel(n, delay, 0.0 if humanoid else spec.command_loss)
-        self._perception = make_perception(obs_mode, self.perception, self.field,
-                                           self.robot_spec, self.ball_spec, n,
-                                           delay * self.world.control_dt, world=self.world,
-                                           head=head)
+        if humanoid:  # the keeper's belief, its team-mates' heads and broadcasts
+            self._perception = MatchPerception(obs_mode, (self.perception, self.perception),
+                                               self.field, self.ball_spec, self.world, head)
+        else:
+            self._perception = make_perception(obs_mode, self.perception, self.field,
+                                               self.robot_spec, self.ball_spec, n,
+                                               delay * self.world.control_dt)
         self._render_width = int(render_width)
         self._names = self.world.names
         # Half-width of the goal mouth the intercept shaping limits its crossing point to [m].
