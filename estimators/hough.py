@@ -261,56 +261,114 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
         if not math.isfinite(t_now):
             raise ValueError(f"now must be finite, got {now!r}")
         p = p + np.outer(t_now - st, v)  # each line moved with the target since its stamp
-    u = np.column_stack([np.cos(psi), np.sin(psi)])
-
-    crossing = None  # (point, weighted normal matrix M, weights K)
+    # The rest in plain floats: a handful of lines, where numpy's per-call overhead would cost
+    # several times the arithmetic (this runs at every camera frame of every robot).
+    P = p.tolist()
+    ux = [math.cos(a) for a in psi.tolist()]
+    uy = [math.sin(a) for a in psi.tolist()]
+    R = r.tolist()
+    has = known.tolist()
+    power = WEIGHTINGS[weighting]
     if n >= 2:
-        L = np.where(known, r, 2.0 * float(r[known].max()) if known.any() else 1.0)
-        k = fusion_weights(L, weighting)
-        theta, rho = hough_lines(p, angles=psi)
-        point, M = _solve(theta, rho, k, _MIN_CONDITION)
-        if point is not None:
-            crossing = (point, M, k, theta, rho)
-            _, M0 = _solve(theta, rho, np.ones(n), _MIN_CONDITION)
-            ratio = (M0[0, 0] * M0[1, 1] - M0[0, 1] ** 2) / np.trace(M0) ** 2
-            if ratio > 0.25 * math.sin(min_angle) ** 2:
-                return _crossing_result(crossing, p, bearing_sigma)
-    if known.any():
-        q = p[known] + r[known, None] * u[known]
-        kq = fusion_weights(r[known], weighting)
-        wq = kq / kq.sum()
-        point = wq @ q
-        # cov_i = r^2 (rel^2 u u^T + b^2 u_perp u_perp^T) = r^2 (b^2 I + (rel^2 - b^2) u u^T)
-        uk, rk = u[known], r[known]
-        covs = (rk**2)[:, None, None] * (bearing_sigma**2 * np.eye(2)[None]
-                                         + (range_sigma_rel**2 - bearing_sigma**2)
-                                         * uk[:, :, None] * uk[:, None, :])
-        cov = np.einsum("i,ijk->jk", wq**2, covs)
-        m = len(q)
+        far = 2.0 * max((v for v, h in zip(R, has) if h), default=0.5)
+        k = [(v if h else far) ** -power for v, h in zip(R, has)]
+        # Line normals n = (cos theta, sin theta) = (-sin psi, cos psi), rho = p . n.
+        nx, ny = [-v for v in uy], ux
+        rho = [x * a + y * b for (x, y), a, b in zip(P, nx, ny)]
+        crossing = _solve_lines(nx, ny, rho, k)
+        if crossing is not None:
+            _, M0 = _solve_lines(nx, ny, rho, [1.0] * n, normal_only=True)
+            a11, a12, a22 = M0
+            if (a11 * a22 - a12 * a12) / (a11 + a22) ** 2 > 0.25 * math.sin(min_angle) ** 2:
+                return _crossing(crossing, P, nx, ny, rho, k, bearing_sigma)
+    if any(has):
+        idx = [i for i in range(n) if has[i]]
+        kq = [R[i] ** -power for i in idx]
+        total = sum(kq)
+        wq = [v / total for v in kq]
+        qx = [P[i][0] + R[i] * ux[i] for i in idx]
+        qy = [P[i][1] + R[i] * uy[i] for i in idx]
+        px_ = sum(w * x for w, x in zip(wq, qx))
+        py_ = sum(w * y for w, y in zip(wq, qy))
+        b2, rel2 = bearing_sigma**2, range_sigma_rel**2
+        # cov_i = r^2 (b^2 I + (rel^2 - b^2) u u^T); cov = sum w^2 cov_i.
+        c00 = c01 = c11 = 0.0
+        covs = []
+        for w, i in zip(wq, idx):
+            r2, a, b = R[i] ** 2, ux[i], uy[i]
+            d = rel2 - b2
+            ci = (r2 * (b2 + d * a * a), r2 * d * a * b, r2 * (b2 + d * b * b))
+            covs.append(ci)
+            c00 += w * w * ci[0]
+            c01 += w * w * ci[1]
+            c11 += w * w * ci[2]
+        m = len(idx)
         if m >= 2:
-            e = q - point
-            chi2 = float(np.einsum("ij,ij->", e, np.linalg.solve(covs, e[:, :, None])[:, :, 0]))
-            cov = cov * max(1.0, chi2 / (2.0 * (m - 1)))
-        return FusedSighting(point, m, False, math.sqrt(0.5 * float(np.trace(cov))), cov)
-    if crossing is not None:
-        return _crossing_result(crossing, p, bearing_sigma)
+            chi2 = 0.0
+            for (s00, s01, s11), x, y in zip(covs, qx, qy):
+                ex, ey = x - px_, y - py_
+                chi2 += (s11 * ex * ex - 2.0 * s01 * ex * ey + s00 * ey * ey) / (
+                    s00 * s11 - s01 * s01)
+            f = max(1.0, chi2 / (2.0 * (m - 1)))
+            c00, c01, c11 = c00 * f, c01 * f, c11 * f
+        cov = np.array([[c00, c01], [c01, c11]])
+        return FusedSighting(np.array([px_, py_]), m, False, math.sqrt(0.5 * (c00 + c11)), cov)
+    if n >= 2 and crossing is not None:
+        return _crossing(crossing, P, nx, ny, rho, k, bearing_sigma)
     raise ValueError("no position: need two crossing lines or a sighting with a range, got "
                      f"{n} bearing-only sighting(s)" + (" (parallel)" if n > 1 else ""))
 
 
-def _crossing_result(crossing: tuple, origins: np.ndarray, bearing_sigma: float
-                     ) -> FusedSighting:
-    """Step 3 of :func:`fuse_sightings`: the fused point with its covariance."""
-    point, M, k, theta, rho = crossing
-    normals = np.column_stack([np.cos(theta), np.sin(theta)])
-    s = bearing_sigma * np.hypot(*(point - origins).T)  # lateral std of each line
-    Minv = np.linalg.inv(M)
-    inner = (normals.T * (k * s) ** 2) @ normals  # sum K^2 s^2 n n^T
-    cov = Minv @ inner @ Minv
-    n = len(theta)
+def _solve_lines(nx: list[float], ny: list[float], rho: list[float], k: list[float],
+                 normal_only: bool = False):
+    """:func:`_solve` in plain floats: the weighted least-squares point ``(X, Y)`` and the
+    normal matrix entries ``(a11, a12, a22)``; None when the lines are (nearly) parallel
+    (with ``normal_only``, ``(None, (a11, a12, a22))``)."""
+    a11 = a12 = a22 = b1 = b2 = 0.0
+    for a, b, q, w in zip(nx, ny, rho, k):
+        wa, wb = w * a, w * b
+        a11 += wa * a
+        a12 += wa * b
+        a22 += wb * b
+        b1 += wa * q
+        b2 += wb * q
+    if normal_only:
+        return None, (a11, a12, a22)
+    det = a11 * a22 - a12 * a12
+    trace = a11 + a22
+    if trace <= 0.0 or det <= _MIN_CONDITION * trace * trace:
+        return None
+    return ((a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det), (a11, a12, a22)
+
+
+def _crossing(crossing: tuple, P: list, nx: list[float], ny: list[float], rho: list[float],
+              k: list[float], bearing_sigma: float) -> FusedSighting:
+    """Step 3 of :func:`fuse_sightings`: the fused point with its covariance
+    ``M^-1 (sum K^2 s^2 n n^T) M^-1``, inflated by ``chi^2 / (n - 2)`` for three or more
+    lines that disagree more than the model says."""
+    (X, Y), (a11, a12, a22) = crossing
+    det = a11 * a22 - a12 * a12
+    i00, i01, i11 = a22 / det, -a12 / det, a11 / det  # M^-1
+    s00 = s01 = s11 = 0.0
+    sig = []
+    for (x, y), a, b, w in zip(P, nx, ny, k):
+        sd = bearing_sigma * math.hypot(X - x, Y - y)  # lateral std of the line
+        sig.append(sd)
+        g = (w * sd) ** 2
+        s00 += g * a * a
+        s01 += g * a * b
+        s11 += g * b * b
+    # cov = Minv S Minv (all symmetric 2 x 2).
+    t00, t01 = i00 * s00 + i01 * s01, i00 * s01 + i01 * s11
+    t10, t11 = i01 * s00 + i11 * s01, i01 * s01 + i11 * s11
+    c00 = t00 * i00 + t01 * i01
+    c01 = 0.5 * ((t00 * i01 + t01 * i11) + (t10 * i00 + t11 * i01))
+    c11 = t10 * i01 + t11 * i11
+    n = len(rho)
     if n >= 3:
-        e = rho - normals @ point  # signed perpendicular residuals
-        chi2 = float(np.sum((e / np.maximum(s, 1e-12)) ** 2))
-        cov = cov * max(1.0, chi2 / (n - 2))
-    cov = 0.5 * (cov + cov.T)
-    return FusedSighting(point, n, True, math.sqrt(0.5 * float(np.trace(cov))), cov)
+        chi2 = sum(((q - a * X - b * Y) / max(sd, 1e-12)) ** 2
+                   for q, a, b, sd in zip(rho, nx, ny, sig))
+        f = max(1.0, chi2 / (n - 2))
+        c00, c01, c11 = c00 * f, c01 * f, c11 * f
+    cov = np.array([[c00, c01], [c01, c11]])
+    return FusedSighting(np.array([X, Y]), n, True, math.sqrt(0.5 * (c00 + c11)), cov)
