@@ -19,7 +19,7 @@ $(VENV)/.demo-installed: pyproject.toml | $(BIN)/python
 # build that is on disk instead of downloading a CUDA build of several GB.
 $(VENV)/.dev-installed: pyproject.toml | $(BIN)/python
 	$(PIP) install --quiet torch==2.13.0
-	$(PIP) install --quiet -e ".[dev,render,train]"
+	$(PIP) install --quiet -e ".[dev,render,train,pixels]"
 	touch $@ $(VENV)/.demo-installed
 
 demo: $(VENV)/.demo-installed

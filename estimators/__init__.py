@@ -11,6 +11,17 @@ from .camera import HeadCamera
 from .hough import FusedSighting, fuse_sightings, fusion_weights, hough_fuse, hough_lines
 from .kalman import KalmanFilter
 from .localization import KLDConfig, KLDLocalizer, kld_sample_size
+from .meanshift import (
+    KalmanMeanShift,
+    MeanShiftParticleFilter,
+    ParticleFilterTracker,
+    PlainMeanShift,
+    apparent_height,
+    depth_from_size,
+    ego_motion_shift,
+    focal_length_px,
+    mean_shift,
+)
 from .models import (
     PAPER_CYCLE,
     ConstantVelocityMotion,
@@ -56,4 +67,13 @@ __all__ = [
     "KLDLocalizer",
     "kld_sample_size",
     "HeadCamera",
+    "mean_shift",
+    "MeanShiftParticleFilter",
+    "ParticleFilterTracker",
+    "KalmanMeanShift",
+    "PlainMeanShift",
+    "depth_from_size",
+    "focal_length_px",
+    "apparent_height",
+    "ego_motion_shift",
 ]
