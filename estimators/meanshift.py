@@ -915,6 +915,13 @@ class KalmanMeanShift(_MeanShiftTrack):
         self.prediction = self.kf.x[:2].copy()
         return self.prediction.copy()
 
+    def shift(self, du: float, dv: float) -> None:
+        """Move the state by an image shift known from elsewhere [px], e.g. the head's servos:
+        a pan by ``a`` [rad] (left positive) moves the scene by ``a x_B / gamma_x`` to the
+        right, a tilt by ``b`` (down positive) by ``b y_B / gamma_y`` upwards (``dv < 0``)."""
+        self.kf.x[0] += float(du)
+        self.kf.x[1] += float(dv)
+
     def update(self, weight_image: np.ndarray, rotation: float = 0.0, advance: float = 0.0,
                distance: float | None = None) -> np.ndarray:
         """One frame: :meth:`predict` with the robot's motion, mean shift on ``weight_image``

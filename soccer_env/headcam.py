@@ -74,7 +74,7 @@ import heapq
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -359,6 +359,9 @@ class HeadFrame(NamedTuple):
         landmarks: ``(kind, u, v, x, y, bearing)``, in :func:`field_landmarks` order.
         robots: ``(team, u, v, x, y, bearing)``: other robots' foot points nearest the observer,
             team 0 blue / 1 yellow (no identity), in world order.
+        image: the rendered image, ``(H, W, 3)`` uint8 RGB, from
+            :class:`~soccer_env.pixel_vision.PixelHeadCamera` (its ``balls`` are then empty:
+            the robot finds the ball in the image); None otherwise.
     """
 
     robot: int
@@ -369,6 +372,7 @@ class HeadFrame(NamedTuple):
     balls: tuple
     landmarks: tuple
     robots: tuple
+    image: Any = None
 
 
 # --------------------------------------------------------------------------------------------

@@ -242,6 +242,12 @@ class _Brain:
         cfg = perception.config
         self.kind = cfg.localization
         self.fusion = cfg.fusion
+        if perception.pixels:
+            from .pixel_vision import BallImageTracker
+
+            self.finder: Any = BallImageTracker(perception.camera, perception.ball_spec)
+        else:
+            self.finder = None
         self.tracker = (None if cfg.ball_tracker == "none" else ParticleBallTracker(
             rng, filter=cfg.ball_tracker, n_particles=100, accel_sigma=1.0,
             deceleration=perception.ball_spec.rolling_deceleration,
@@ -267,6 +273,8 @@ class _Brain:
                           for j in range(p.n_robots) if p.teams[j] != self.team}
         if self.tracker is not None:
             self.tracker.reset()
+        if self.finder is not None:
+            self.finder.reset()
         self.points: deque[tuple[float, float, float]] = deque(maxlen=8)
         self.ball_seen = -math.inf  # capture time of the last own sighting
         self.ball_heard = -math.inf  # capture time of the last team sighting
@@ -350,8 +358,10 @@ class _Brain:
         c, s = math.cos(pose[2]), math.sin(pose[2])
         # The ball: of several detections, the one nearest the present belief.
         line = None
-        if f.balls:
-            balls = f.balls
+        balls = f.balls
+        if self.finder is not None and f.image is not None:  # find it in the image
+            balls = self.finder.detect(f.image, float(pose[2]) + f.pan, f.tilt, f.pan)
+        if balls:
             if len(balls) > 1:
                 guess = self.ball_point(f.t_capture)
                 if guess is not None:
@@ -519,8 +529,15 @@ class HumanoidTeamPerception:
         self.team_members = {t: [i for i in self.observers if self.teams[i] == t]
                              for t in (0, 1)}
         self.camera, self.radio_spec = camera, radio
-        self.sensor = HeadCameraSensor(camera, field, ball, [s.radius for s in self.specs],
-                                       self.teams, self.observers)
+        self.pixels = getattr(config, "detector", "geometric") == "pixels"
+        if self.pixels:  # rendered images; the robots find the ball in them
+            from .pixel_vision import PixelHeadCamera
+
+            self.sensor = PixelHeadCamera(camera, field, ball, self.specs, self.teams,
+                                          self.observers)
+        else:
+            self.sensor = HeadCameraSensor(camera, field, ball, [s.radius for s in self.specs],
+                                           self.teams, self.observers)
         positions, kinds = field_landmarks(field, camera.distinct_goals)
         table: dict[str, list] = {}
         for pos, kind in zip(positions, kinds):

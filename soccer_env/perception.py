@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, NamedTuple, Protocol
 
@@ -50,6 +50,12 @@ __all__ = ["Belief", "Perception", "PerceptionConfig", "TruthPerception", "RawPe
 
 #: Observation modes.
 OBS_MODES = ("truth", "raw", "perceived")
+#: Where detections come from: the sensor models, or image trackers on rendered frames.
+DETECTORS = {
+    "geometric": "the sensor model's noisy detections",
+    "pixels": "rendered camera images tracked by paper 003's mean-shift particle filters "
+              "(overhead) and paper 004's Kalman-started mean shift (head cameras)",
+}
 
 #: Ball filter configurations of ``obs_mode="perceived"``.
 BALL_FILTERS = {
@@ -98,6 +104,9 @@ class PerceptionConfig:
     Attributes:
         vision: a :class:`~soccer_env.vision.VisionSpec` (or preset name).
         ball_filter: one of :data:`BALL_FILTERS` (used by ``obs_mode="perceived"``).
+        detector: ``"geometric"`` (the sensor model's detections) or ``"pixels"`` (rendered
+            images tracked by paper 003's mean-shift particle filters,
+            :mod:`soccer_env.pixel_vision`; needs the ``pixels`` extra).
 
     Humanoids (head cameras, :mod:`soccer_env.humanoid_perception`):
 
@@ -112,6 +121,7 @@ class PerceptionConfig:
 
     vision: VisionSpec
     ball_filter: str = "ekf"
+    detector: str = "geometric"
     camera: HeadCameraSpec | str | None = None
     radio: RadioSpec | str = "zigbee"
     localization: str = "kld"
@@ -127,6 +137,9 @@ class PerceptionConfig:
         if self.ball_filter not in BALL_FILTERS:
             raise ValueError(f"ball_filter must be one of {list(BALL_FILTERS)}, got "
                              f"{self.ball_filter!r}")
+        if self.detector not in DETECTORS:
+            raise ValueError(f"detector must be one of {list(DETECTORS)}, got "
+                             f"{self.detector!r}")
         if isinstance(self.camera, str):
             object.__setattr__(self, "camera", head_camera(self.camera))
         elif self.camera is not None and not isinstance(self.camera, HeadCameraSpec):
@@ -216,10 +229,17 @@ class _VisionPerception:
     """Shared part of the pipelines fed by the overhead vision."""
 
     def __init__(self, config: PerceptionConfig, field: FieldSpec, robot: SSLRobotSpec,
-                 ball: BallSpec, n_robots: int) -> None:
+                 ball: BallSpec, n_robots: int, teams: Sequence[int] | None = None,
+                 robots: Sequence[Any] | None = None) -> None:
         self.config = config
         self.vision_spec = config.vision
-        self.sensor = OverheadVision(config.vision, field, robot, ball, n_robots)
+        if config.detector == "pixels":
+            from .pixel_vision import PixelVision
+
+            self.sensor = PixelVision(config.vision, field, robots or [robot] * n_robots, ball,
+                                      teams if teams is not None else [0] * n_robots)
+        else:
+            self.sensor = OverheadVision(config.vision, field, robot, ball, n_robots)
         self.n_robots = n_robots
 
     def reset(self, state: WorldState, rng: np.random.Generator):
@@ -315,8 +335,9 @@ class FilteredPerception(_VisionPerception):
     """
 
     def __init__(self, config: PerceptionConfig, field: FieldSpec, robot: SSLRobotSpec,
-                 ball: BallSpec, n_robots: int) -> None:
-        super().__init__(config, field, robot, ball, n_robots)
+                 ball: BallSpec, n_robots: int, teams: Sequence[int] | None = None,
+                 robots: Sequence[Any] | None = None) -> None:
+        super().__init__(config, field, robot, ball, n_robots, teams, robots)
         spec = config.vision
         # The filters weigh detections with the sensor's own measurement models.
         self.robot_tracker = RobotTracker(n_robots, measurement=self.sensor.robot_model)
@@ -355,20 +376,22 @@ class FilteredPerception(_VisionPerception):
 
 def make_perception(obs_mode: str, config: PerceptionConfig, field: FieldSpec,
                     robot: SSLRobotSpec, ball: BallSpec, n_robots: int,
-                    actuation_delay: float | None = None) -> Perception:
+                    actuation_delay: float | None = None, teams: Sequence[int] | None = None,
+                    robots: Sequence[Any] | None = None) -> Perception:
     """The overhead-vision pipeline of ``obs_mode`` for SSL robots (humanoids:
     :class:`MatchPerception`); unknown modes raise ``ValueError``.
 
     ``actuation_delay`` [s] is how far ahead the perceived belief is predicted (default: the
     vision preset's actuation latency; environments pass the latency as they apply it, in
-    whole control steps).
+    whole control steps). ``teams`` and ``robots`` (every robot's team and spec) are what the
+    ``pixels`` detector draws.
     """
     if obs_mode == "truth":
         return TruthPerception(config)
     if obs_mode == "raw":
-        return RawPerception(config, field, robot, ball, n_robots)
+        return RawPerception(config, field, robot, ball, n_robots, teams, robots)
     if obs_mode == "perceived":
-        p = FilteredPerception(config, field, robot, ball, n_robots)
+        p = FilteredPerception(config, field, robot, ball, n_robots, teams, robots)
         if actuation_delay is not None:
             p.ahead = float(actuation_delay)
         return p
@@ -415,7 +438,7 @@ class MatchPerception:
                 robots = members[0] + members[1] if shared else members[t]
                 pipe = make_perception(obs_mode, configs[t], field,
                                        world.robot_specs[members[t][0]], ball, n,
-                                       delay * world.control_dt)
+                                       delay * world.control_dt, teams, world.robot_specs)
                 for tt in (ssl_teams if shared else [t]):
                     self.delays[tt] = delay
                 self._groups.append((robots, pipe))

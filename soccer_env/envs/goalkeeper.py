@@ -297,7 +297,9 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         else:
             self._perception = make_perception(obs_mode, self.perception, self.field,
                                                self.robot_spec, self.ball_spec, n,
-                                               delay * self.world.control_dt)
+                                               delay * self.world.control_dt,
+                                               self.world.teams.tolist(),
+                                               self.world.robot_specs)
         self._render_width = int(render_width)
         self._names = self.world.names
         # Half-width of the goal mouth the intercept shaping limits its crossing point to [m].

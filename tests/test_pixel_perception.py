@@ -1,0 +1,86 @@
+"""The ``pixels`` detector: rendered images tracked by paper 003's and paper 004's trackers
+instead of geometric detections, the rest of the stack unchanged."""
+
+from __future__ import annotations
+
+import math
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import soccer_env
+from soccer_env.envs.goalkeeper import GoalkeeperEnv
+
+pytest.importorskip("cv2", reason="the pixels detector needs the 'pixels' extra (OpenCV)")
+
+SSL = dict(field="ssl-2012", robot="ssl-2012", obs_mode="perceived")
+
+
+def ssl_keeper(detector="pixels", **kw):
+    return GoalkeeperEnv(**SSL, perception={"vision": "ssl-2012", "detector": detector}, **kw)
+
+
+def test_overhead_images_track_the_keeper_and_the_ball():
+    env = ssl_keeper(shots={"delay": (1.0, 1.0)})
+    env.reset(seed=3)
+    pose_err, ball_err = [], []
+    for _ in range(50):  # the ball lies still until the shot
+        _, _, _, _, info = env.step(np.zeros(6, np.float32))
+        est, tru = info["estimate"], info["truth"]
+        pose_err.append(np.hypot(*(est["robot_pose"]["blue_0"][:2]
+                                   - tru["robot_pose"]["blue_0"][:2])))
+        ball_err.append(np.hypot(*(est["ball_position"] - tru["ball_position"])))
+    assert np.median(pose_err[10:]) < 0.03  # a 640 px image of a 6.6 m field: 1 cm pixels
+    assert np.median(ball_err[10:]) < 0.03
+    # The sensor is the pixel one, and its detections are weighed by the pixel size.
+    sensor = env._perception.sensor
+    assert type(sensor).__name__ == "PixelVision"
+    assert sensor.ball_model.sigma >= sensor.renderer.metres_per_pixel - 1e-12
+
+
+def test_headings_come_from_the_dot_layout():
+    env = soccer_env.parallel_env(blue=2, yellow=2, max_cycles=60,
+                                  perception={"vision": "ssl-2012", "detector": "pixels"}, **SSL)
+    obs, infos = env.reset(seed=1)
+    errors = []
+    while env.agents:
+        obs, _, _, _, infos = env.step({a: np.array([0.3, 0, 0.4, 0, 0, 0], np.float32)
+                                        for a in env.agents})
+        info = infos["blue_0"]
+        for a in env.possible_agents:
+            e, t = info["estimate"]["robot_pose"][a], info["truth"]["robot_pose"][a]
+            errors.append(abs(math.remainder(float(e[2] - t[2]), 2 * math.pi)))
+    assert np.median(errors) < math.radians(15)
+
+
+def test_the_same_seed_gives_the_same_images_and_estimates():
+    def run():
+        env = ssl_keeper()
+        env.reset(seed=5)
+        return [env.step(np.zeros(6, np.float32))[0] for _ in range(30)]
+    np.testing.assert_array_equal(run(), run())
+
+
+def test_humanoids_find_the_ball_in_their_head_camera_images():
+    env = GoalkeeperEnv(robot="humanoid-2012", obs_mode="perceived", mates=3,
+                        shots={"delay": (2.0, 2.0)},
+                        perception={"camera": "kidsize-2012", "detector": "pixels"})
+    env.reset(seed=0)
+    errors = []
+    for _ in range(110):  # before the shot
+        _, _, _, _, info = env.step(np.zeros(6, np.float32))
+        errors.append(np.hypot(*(info["estimate"]["ball_position"]
+                                 - info["truth"]["ball_position"])))
+    assert np.median(errors[30:]) < 0.3
+    sensor = env._perception.humanoid_team(0).sensor
+    assert type(sensor).__name__ == "PixelHeadCamera"
+
+
+def test_pixels_need_one_overhead_camera_and_a_known_detector():
+    with pytest.raises(ValueError, match="detector='pixels' renders one overhead camera"):
+        gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived",
+                 perception={"vision": "ssl-2012", "detector": "pixels"})  # Division B
+    with pytest.raises(ValueError, match=r"detector must be one of \['geometric', 'pixels'\]"):
+        gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived",
+                 perception={"detector": "camera"})
