@@ -194,6 +194,10 @@ HUMANOID_CONFIGS: dict[str, EstimatorConfig] = {
                          fusion="inverse", ball_tracker="fbpf"),
         _humanoid_config("fusion-mfbpf", "Hough fusion (1/L), MFBPF tracking (default)",
                          fusion="inverse", ball_tracker="mfbpf"),
+        _humanoid_config("pixels", "fusion-mfbpf with every robot finding the ball in its "
+                         "rendered head-camera images (Kalman-started mean shift)",
+                         source="papers 000 and 004", fusion="inverse", ball_tracker="mfbpf",
+                         detector="pixels"),
     )
 }
 

@@ -569,10 +569,13 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         dist = np.where(inside, np.hypot(d[:, 0], d[:, 1]), np.inf)
         return int(np.argmin(dist))
 
-    def global_search(self, colour_image: np.ndarray) -> np.ndarray | None:
-        """The allowed window with the largest colour mass over the whole image (box sums
-        from one integral image), refined by mean shift; returns its centroid ``(x, y)``
-        [px], or None if no window is allowed."""
+    def global_search(self, colour_image: np.ndarray, candidates: int = 8
+                      ) -> np.ndarray | None:
+        """The target over the whole image: the ``candidates`` windows of largest colour mass
+        (box sums from one integral image), each at least a window apart, refined by mean
+        shift; the first that passes the feature restriction (colour mass and
+        ``feature_check``: a look-alike, such as a team-mate, is passed over) gives the
+        centroid ``(x, y)`` [px]; None if none does."""
         colour, _ = self._images(colour_image, None)
         win = self._win
         w, h = win.w, win.h
@@ -584,13 +587,23 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         ok = np.abs(box - area) <= self.area_tolerance * area
         if not ok.any():
             return None
-        y, x = np.unravel_index(np.argmax(np.where(ok, box, -np.inf)), box.shape)
-        x0, y0 = np.array([x], dtype=np.intp), np.array([y], dtype=np.intp)
+        score = np.where(ok, box, -np.inf).ravel()
+        top = np.argsort(-score)[: 50 * candidates]
+        picks: list[tuple[int, int]] = []
+        for flat in top.tolist():  # greedy: the largest masses, a window apart
+            if not math.isfinite(score[flat]) or len(picks) == candidates:
+                break
+            y, x = divmod(flat, box.shape[1])
+            if all(abs(x - px) >= w or abs(y - py) >= h for px, py in picks):
+                picks.append((x, y))
+        x0 = np.array([p[0] for p in picks], dtype=np.intp)
+        y0 = np.array([p[1] for p in picks], dtype=np.intp)
         flats = [(colour.ravel(), 1.0)]
         x0, y0, _, mom = win.shift(flats, x0, y0, max(self.mean_shift_iter, 1), self.eps)
-        if not self._allowed(mom[:, 3], x0, y0, colour)[0]:
+        allowed = self._allowed(mom[:, 3], x0, y0, colour)
+        if not allowed.any():
             return None
-        return win.centroids(mom, x0, y0)[0]
+        return win.centroids(mom, x0, y0)[int(np.argmax(allowed))]
 
     def _area_in_use(self, colour: np.ndarray) -> float:
         if self.area is None:  # calibrate on the first image, mean shift from the start
@@ -931,8 +944,12 @@ class KalmanMeanShift(_MeanShiftTrack):
         z, img = self._shift_from(weight_image, start)
         self.lost = z is None
         if self.lost:
+            # A lost target is taken to stand where it was last predicted: its own velocity
+            # is forgotten (extrapolating it would carry the window away for good), while
+            # the robot's own motion still moves it in the image.
             self.lost_frames += 1
             self.kf.update(None, self.H, self.R)
+            self.kf.x[2:] = 0.0
             return self.state
         self.kf.update(z, self.H, self.R)
         if self.posterior == "replace":

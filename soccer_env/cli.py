@@ -112,6 +112,8 @@ def _cmd_paper(argv: list[str]) -> int:
         "team": lambda: module.run(args.out, args.matches, args.duration, args.keeper_shots,
                                    args.workers, seed=args.seed,
                                    keeper=not args.no_closed_loop),
+        "meanshift": lambda: module.run(args.out, seed=args.seed, workers=args.workers),
+        "following": lambda: module.run(args.out, seed=args.seed, workers=args.workers),
     }
     res = runs[args.name]()
     print(res["text"])

@@ -11,4 +11,8 @@ PAPERS = {
     "hough": "paper 000: Hough-space fusion of several robots' sightings (Table 1 geometry)",
     "team": "paper 000 in the closed loop: humanoid matches and keeper, one robot alone "
             "against team fusion and particle tracking",
+    "meanshift": "paper 003: the feature-restricted mean-shift PF against plain PFs on robots "
+                 "manoeuvring in rendered overhead images",
+    "following": "paper 004: the Kalman-started mean shift against plain mean shift on a "
+                 "turning humanoid's head-camera images",
 }
