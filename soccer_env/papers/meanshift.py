@@ -528,8 +528,8 @@ def run(out: str | Path = "paper_output", seed: int = 0, workers: int | None = N
               f"events, median {diag['lost_run_median_frames']:.0f} frames, longest "
               f"{diag['lost_run_max_frames']}; in {100 * diag['lost_while_passable_share']:.0f} "
               "% of the lost frames the true robot's window would have passed both tests (the "
-              "global search, which tries only the window of largest colour mass, found a "
-              "team-mate there and the identity check rejected it, or found nothing)."]
+              "global search, which tries the 8 windows of largest colour mass a window "
+              "apart, did not reach it)."]
     lines += ["", f"Shared images per frame (4 colour look-ups, 2 box filters, frame "
               f"difference): {prep:.2f} ms; tracking all {n_rob} robots with the mean-shift PF "
               f"then costs {cycle:.2f} ms per frame ({n_rob} x {ms['ms_per_update']:.3f} ms "
