@@ -1,13 +1,29 @@
-"""Writing a paper benchmark's tables: one place for the Markdown, CSV and JSON files."""
+"""What the paper benchmarks share: running their episodes over processes, and writing their
+tables (Markdown, CSV and JSON files)."""
 
 from __future__ import annotations
 
 import csv
 import json
+import os
+from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
-__all__ = ["write_csv", "write_report"]
+__all__ = ["write_csv", "write_report", "map_jobs"]
+
+
+def map_jobs(fn: Callable[[Any], Any], jobs: Sequence[Any], workers: int | None) -> list[Any]:
+    """``[fn(job) for job in jobs]``, in order, over ``workers`` processes (None: every core;
+    one, or a single job: in this process). ``fn`` must be a module-level function."""
+    n = min(workers or os.cpu_count() or 1, len(jobs))
+    if n <= 1:
+        return [fn(j) for j in jobs]
+    from agents.evaluation import _mp_context
+
+    with ProcessPoolExecutor(n, mp_context=_mp_context()) as pool:
+        return list(pool.map(fn, jobs))
 
 
 def write_csv(path: Path, rows: list[dict[str, Any]]) -> None:

@@ -89,7 +89,6 @@ from __future__ import annotations
 import math
 import os
 import time
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
@@ -103,7 +102,7 @@ from estimators.meanshift import (
 )
 
 from ..plots import pyplot, save_figure
-from ._io import write_report
+from ._io import map_jobs, write_report
 
 __all__ = ["run", "PAPER", "AIM", "ROBOTS", "VARIANTS", "TRACKERS", "TURN_BINS",
            "JUMP_BINS"]
@@ -593,13 +592,7 @@ def run(out: str | Path = "paper_output", episodes: int = 10, duration: float = 
     jobs = [(robot, variant, k, seed, float(duration), (w, h), appearance, scales)
             for variant in VARIANTS for k in range(episodes)]
     n_workers = min(workers or os.cpu_count() or 1, len(jobs))
-    if n_workers == 1:
-        eps = [_episode(j) for j in jobs]
-    else:
-        from agents.evaluation import _mp_context
-
-        with ProcessPoolExecutor(n_workers, mp_context=_mp_context()) as pool:
-            eps = list(pool.map(_episode, jobs))
+    eps = map_jobs(_episode, jobs, n_workers)
     labels = eps[0]["labels"]
     by_variant = {v: [e for e in eps if e["variant"] == v] for v in VARIANTS}
     summary = {v: _summarise(by_variant[v]) for v in VARIANTS}

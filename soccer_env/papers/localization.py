@@ -47,7 +47,6 @@ import math
 import os
 import time
 from collections import deque
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
@@ -61,7 +60,7 @@ from ..humanoid_perception import HumanoidTeamPerception, _Brain, head_state, la
 from ..physics import World
 from ..plots import pyplot, save_figure
 from ..radio import RADIO_PRESETS
-from ._io import write_report
+from ._io import map_jobs, write_report
 
 __all__ = ["run", "PAPER", "AIMS"]
 
@@ -388,13 +387,7 @@ def run(out: str | Path = "paper_output", duration: float = 60.0, seed: int = 0,
     seeds = list(range(int(seed), int(seed) + episodes))
     jobs = [(s, float(duration), bool(kidnap), sizes) for s in seeds]
     n_workers = min(workers or os.cpu_count() or 1, len(jobs))
-    if n_workers == 1:
-        eps = [_episode_results(j) for j in jobs]
-    else:
-        from agents.evaluation import _mp_context
-
-        with ProcessPoolExecutor(n_workers, mp_context=_mp_context()) as pool:
-            eps = list(pool.map(_episode_results, jobs))
+    eps = map_jobs(_episode_results, jobs, n_workers)
     first = eps[0]
     kld_name = first["kld_name"]
     names = list(first["results"])

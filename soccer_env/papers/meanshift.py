@@ -79,7 +79,6 @@ import dataclasses
 import math
 import os
 import time
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
@@ -89,7 +88,7 @@ from estimators.meanshift import MeanShiftParticleFilter, ParticleFilterTracker,
 
 from .. import presets
 from ..plots import pyplot, save_figure
-from ._io import write_report
+from ._io import map_jobs, write_report
 
 __all__ = ["run", "PAPER", "AIMS", "KINDS", "FIELD", "FRAME"]
 
@@ -432,13 +431,7 @@ def run(out: str | Path = "paper_output", seed: int = 0, workers: int | None = N
     out.mkdir(parents=True, exist_ok=True)
     jobs = [(s, float(duration), per_team) for s in range(seed, seed + episodes)]
     n_workers = min(workers or os.cpu_count() or 1, len(jobs))
-    if n_workers == 1:
-        eps = [_episode(j) for j in jobs]
-    else:
-        from agents.evaluation import _mp_context
-
-        with ProcessPoolExecutor(n_workers, mp_context=_mp_context()) as pool:
-            eps = list(pool.map(_episode, jobs))
+    eps = map_jobs(_episode, jobs, n_workers)
     mpp, radius_px = eps[0]["mpp"], eps[0]["radius_px"]
     speed = np.concatenate([np.asarray(e["speed"]) for e in eps])
     fast = speed > 2.0

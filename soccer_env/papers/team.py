@@ -25,14 +25,13 @@ from __future__ import annotations
 
 import math
 import time
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from ..plots import pyplot, save_figure
-from ._io import write_report
+from ._io import map_jobs, write_report
 
 __all__ = ["run", "MATCH_CONFIGS", "KEEPER_CONFIGS", "PAPER"]
 
@@ -94,14 +93,8 @@ def match_errors(matches: int = 4, duration: float = 60.0, workers: int | None =
                  seed: int = 0, configs: tuple[str, ...] = MATCH_CONFIGS) -> dict[str, Any]:
     """Blue's ball errors over ``matches`` seeded matches of ``duration`` seconds per
     configuration (see the module docstring)."""
-    from agents.evaluation import _mp_context
-
     jobs = [(name, seed + k, duration) for name in configs for k in range(matches)]
-    if workers == 1:
-        outs = [_match(j) for j in jobs]
-    else:
-        with ProcessPoolExecutor(workers, mp_context=_mp_context()) as pool:
-            outs = list(pool.map(_match, jobs))
+    outs = map_jobs(_match, jobs, workers)
     table: dict[str, dict[str, Any]] = {}
     for name in configs:
         parts = [o for j, o in zip(jobs, outs) if j[0] == name]
