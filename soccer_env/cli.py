@@ -48,6 +48,10 @@ def _cmd_list(argv: list[str]) -> int:
     p.add_argument("--json", action="store_true")
     p.parse_args(argv)
     from . import ENV_IDS, PETTINGZOO_IDS, presets
+    from .headcam import HEAD_CAMERAS
+    from .humanoid_perception import BALL_TRACKERS, FUSIONS, LOCALIZATIONS
+    from .perception import BALL_FILTERS, DETECTORS
+    from .vision import VISION
 
     info = {
         "gymnasium": sorted(ENV_IDS),
@@ -55,6 +59,13 @@ def _cmd_list(argv: list[str]) -> int:
         "fields": {k: v.source for k, v in presets.FIELDS.items()},
         "balls": {k: v.source for k, v in presets.BALLS.items()},
         "robots": {k: v.source for k, v in presets.ROBOTS.items()},
+        "vision (SSL)": {k: v.source for k, v in VISION.items()},
+        "head cameras (humanoids)": {k: v.source for k, v in HEAD_CAMERAS.items()},
+        "ball filters (SSL)": dict(BALL_FILTERS),
+        "localization (humanoids)": dict(LOCALIZATIONS),
+        "fusion (humanoids)": dict(FUSIONS),
+        "ball trackers (humanoids)": dict(BALL_TRACKERS),
+        "detectors": dict(DETECTORS),
     }
     if "--json" in argv:
         print(json.dumps(info, indent=2))
