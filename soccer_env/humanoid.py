@@ -45,7 +45,7 @@ import numpy as np
 
 from .presets import HumanoidRobotSpec
 
-__all__ = ["WalkEngine", "HUMANOID_COMMAND_FIELDS", "WALK_THRESHOLD", "DIVE"]
+__all__ = ["WalkEngine", "HUMANOID_COMMAND_FIELDS", "WALK_THRESHOLD", "DIVE", "speed_norm"]
 
 #: Columns of a humanoid's row of the ``(N, 6)`` command array of
 #: :meth:`World.step <soccer_env.physics.World.step>`: body-frame ``vx, vy`` [m/s] and
@@ -57,6 +57,15 @@ HUMANOID_COMMAND_FIELDS = ("vx", "vy", "omega", "motion", "head_pan", "head_tilt
 DIVE = -1.0
 #: Ellipsoid norm of the gait velocity above which the gait steps (and sways).
 WALK_THRESHOLD = 0.01
+
+
+def speed_norm(spec: HumanoidRobotSpec, vx: float, vy: float, w: float) -> float:
+    """The body-frame velocity's norm in the robot's speed ellipsoid:
+    ``sqrt((vx / v_x)^2 + (vy / v_y)^2 + (w / omega_max)^2)``, ``v_x`` the forward or backward
+    limit by the sign of ``vx`` (1: at the limit)."""
+    vx_lim = spec.max_forward_speed if vx >= 0.0 else spec.max_backward_speed
+    return math.sqrt((vx / vx_lim) ** 2 + (vy / spec.max_sideways_speed) ** 2
+                     + (w / spec.max_turn_speed) ** 2)
 
 
 class WalkEngine:
@@ -140,9 +149,7 @@ class WalkEngine:
             if self.kick_start[j] is not None:
                 vx = vy = w = 0.0  # the robot stands while it kicks
             else:
-                vx_lim = spec.max_forward_speed if vx >= 0.0 else spec.max_backward_speed
-                norm = math.sqrt((vx / vx_lim) ** 2 + (vy / spec.max_sideways_speed) ** 2
-                                 + (w / spec.max_turn_speed) ** 2)
+                norm = speed_norm(spec, vx, vy, w)
                 if norm > 1.0:
                     vx, vy, w = vx / norm, vy / norm, w / norm
             # Ramp the gait velocity towards the command within the acceleration limits.
@@ -165,9 +172,7 @@ class WalkEngine:
             d = tilt_t - self.tilt[j]
             self.tilt[j] += hs if d > hs else (-hs if d < -hs else d)
             # Gait phase, sway and odometry.
-            vx_lim = spec.max_forward_speed if gx >= 0.0 else spec.max_backward_speed
-            s = math.sqrt((gx / vx_lim) ** 2 + (gy / spec.max_sideways_speed) ** 2
-                          + (gw / spec.max_turn_speed) ** 2)
+            s = speed_norm(spec, gx, gy, gw)
             if s > WALK_THRESHOLD:
                 before = self.phase[j]
                 self.phase[j] = before + spec.step_frequency * dt

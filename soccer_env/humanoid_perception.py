@@ -131,6 +131,19 @@ def landmark_sightings(frame: HeadFrame) -> tuple[list[str], np.ndarray, np.ndar
     return kinds, np.array(ranges), np.array(bearings)
 
 
+def look_at(spec: HumanoidRobotSpec, camera_height: float, pose: Sequence[float],
+            x: float, y: float) -> tuple[float, float]:
+    """Pan and tilt [rad] that centre the ground point ``(x, y)`` in the image of a robot at
+    ``pose`` ``(x, y, theta)``: pan its bearing, tilt ``atan(h / d)``, both within the head's
+    limits."""
+    dx, dy = x - pose[0], y - pose[1]
+    c, s = math.cos(pose[2]), math.sin(pose[2])
+    pan = math.atan2(c * dy - s * dx, c * dx + s * dy)
+    tilt = math.atan2(camera_height, max(math.hypot(dx, dy), 0.05))
+    return (max(-spec.head_pan_limit, min(spec.head_pan_limit, pan)),
+            max(spec.head_tilt_min, min(spec.head_tilt_max, tilt)))
+
+
 def aim_heads(world: Any) -> None:
     """Turn every humanoid's head to the ball at the start of an episode (set-up, like placing
     the robots: play was going on before the episode and the robots were watching the ball;
@@ -142,13 +155,8 @@ def aim_heads(world: Any) -> None:
     robots = world.robot_array()
     for j, i in enumerate(walk.indices):
         spec = walk.specs[j]
-        x, y, th = robots[i, 0:3].tolist()
-        dx, dy = bx - x, by - y
-        c, s = math.cos(th), math.sin(th)
-        pan = math.atan2(c * dy - s * dx, c * dx + s * dy)
-        tilt = math.atan2(head_camera(spec.camera).height, max(math.hypot(dx, dy), 0.05))
-        walk.pan[j] = max(-spec.head_pan_limit, min(spec.head_pan_limit, pan))
-        walk.tilt[j] = max(spec.head_tilt_min, min(spec.head_tilt_max, tilt))
+        walk.pan[j], walk.tilt[j] = look_at(spec, head_camera(spec.camera).height,
+                                            robots[i, 0:3].tolist(), bx, by)
 
 
 def _compose(a: tuple[float, float, float], b: tuple[float, float, float]
@@ -212,12 +220,7 @@ class HeadController:
             return self.scan(now)
         if ball_age > self.ball_lost_after:
             return self.scan(now)
-        c, s = math.cos(pose[2]), math.sin(pose[2])
-        bearing = math.atan2(c * dy - s * dx, c * dx + s * dy)
-        s_ = self.spec
-        pan = max(-s_.head_pan_limit, min(s_.head_pan_limit, bearing))
-        tilt = math.atan2(self.h, max(dist, 0.05))
-        return pan, max(s_.head_tilt_min, min(s_.head_tilt_max, tilt))
+        return look_at(self.spec, self.h, pose, ball[0], ball[1])
 
 
 @dataclass
@@ -581,6 +584,7 @@ class HumanoidTeamPerception:
                       for i in self.observers}
         self._brains: dict[int, _Brain] = {}
         self._radios: dict[int, TeamRadio] = {}
+        self._walk_index: dict[int, dict[int, int]] = {}
 
     # ------------------------------------------------------------------------------------
 
@@ -613,7 +617,9 @@ class HumanoidTeamPerception:
         the radio."""
         now = state.time
         if walk is not None:
-            pos = {i: j for j, i in enumerate(walk.indices)}
+            pos = self._walk_index.get(id(walk))
+            if pos is None:  # robot index -> position in the walk engine, once per world
+                pos = self._walk_index[id(walk)] = {i: j for j, i in enumerate(walk.indices)}
             for i, b in self._brains.items():
                 j = pos[i]
                 b.odometry(now, walk.odometry[j], state.robots[i, 0:3])

@@ -74,7 +74,13 @@ class PixelVision(OverheadVision):
                  ball: BallSpec, teams: Sequence[int], frames: str = PIXEL_FRAME_PRESET
                  ) -> None:
         try:
-            from .frames import PATTERN, ColourTable, OverheadRenderer, frame_difference
+            from .frames import (
+                PATTERN,
+                PATTERN_IDS,
+                ColourTable,
+                OverheadRenderer,
+                frame_difference,
+            )
         except ImportError as err:  # pragma: no cover - depends on the installation
             raise ImportError("detector='pixels' needs OpenCV; install it with: "
                               "pip install 'soccer-env[pixels]'") from err
@@ -103,17 +109,9 @@ class PixelVision(OverheadVision):
         index = {0: 0, 1: 0}
         for t, s in zip(self.teams, self.robot_specs):
             patches = PATTERN.patches(t, index[t], s.radius)
+            names = list(PATTERN_IDS[index[t]])  # the dots' colours, in patch order
             index[t] += 1
-            names = [self._class_of(p.rgb) for p in patches[1:]]
             self._dots.append((np.array([(p.x, p.y) for p in patches[1:]]), names))
-
-    def _class_of(self, rgb) -> str:
-        from .frames import COLOURS
-
-        for name in ("pink", "green"):
-            if tuple(COLOURS[name]) == tuple(rgb):
-                return name
-        raise ValueError(f"unknown dot colour {rgb}")
 
     # ------------------------------------------------------------------------------------
 
