@@ -1,10 +1,22 @@
 import os
 
-import numpy as np
-import pytest
-
+# One thread per test process: pytest-xdist already runs a process per core, and torch's
+# (and the BLAS libraries') own thread pools on top of that oversubscribe the cores many
+# times over. Set before anything imports torch or numpy; worker processes inherit it.
+for _var in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
 os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
 os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+from hypothesis import settings  # noqa: E402
+
+# Property tests draw the same examples on every run (reproducible CI); set
+# HYPOTHESIS_PROFILE=explore to search with fresh random examples.
+settings.register_profile("ci", derandomize=True, database=None, print_blob=True)
+settings.register_profile("explore", max_examples=500)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 from soccer_env import presets  # noqa: E402
 from soccer_env.physics import World, idle_commands  # noqa: E402

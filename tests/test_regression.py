@@ -1,0 +1,233 @@
+"""Behaviour regression: seeded episodes in every observation mode give exactly the recorded
+observations, rewards and infos.
+
+Each case runs a few seeded episodes with seeded random actions and digests (SHA-256) every
+observation, reward, termination flag and info dict. The digests in
+``tests/data/episode_digests.json`` were recorded on one machine; floating-point results can
+differ in the last bit with another numpy, pymunk or OpenCV release or another CPU's SIMD
+paths, so the comparison runs only where that fingerprint matches the recording (and is
+skipped, saying why, elsewhere). A change that is meant to alter behaviour re-records the
+digests with::
+
+    python tests/test_regression.py --update
+
+and says so in its commit message.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import platform
+import struct
+import sys
+from collections.abc import Callable
+from importlib import metadata
+from pathlib import Path
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import soccer_env
+
+DIGESTS = Path(__file__).resolve().parent / "data" / "episode_digests.json"
+SEEDS = (0, 1)
+GOALKEEPER_STEPS = 150
+MATCH_STEPS = 120
+VISION_PRESETS = ("ideal", "realistic", "ssl-2012", "harsh")
+BALL_FILTERS = ("kf", "kf-comp", "ekf", "ekf-improved", "ekf-2phase", "ls")
+
+
+def _feed(h: Any, obj: Any) -> None:
+    """Feed a canonical byte form of ``obj`` (nested dicts, sequences, arrays, scalars) to
+    the hash ``h``."""
+    if isinstance(obj, dict):
+        h.update(b"{")
+        for key in sorted(obj, key=str):
+            _feed(h, str(key))
+            _feed(h, obj[key])
+        h.update(b"}")
+    elif isinstance(obj, (list, tuple)):
+        h.update(b"[")
+        for item in obj:
+            _feed(h, item)
+        h.update(b"]")
+    elif isinstance(obj, np.ndarray):
+        h.update(f"a{obj.dtype.str}{obj.shape}".encode())
+        h.update(np.ascontiguousarray(obj).tobytes())
+    elif isinstance(obj, (bool, np.bool_)):
+        h.update(b"T" if obj else b"F")
+    elif isinstance(obj, (int, np.integer)):
+        h.update(b"i%d;" % int(obj))
+    elif isinstance(obj, (float, np.floating)):
+        h.update(b"f" + struct.pack("<d", float(obj)))
+    elif obj is None:
+        h.update(b"N")
+    elif isinstance(obj, str):
+        h.update(b"s" + obj.encode() + b"\0")
+    else:
+        raise TypeError(f"cannot digest {type(obj).__name__}")
+
+
+def _goalkeeper(**kwargs: Any) -> Callable[[int], str]:
+    def run(seed: int) -> str:
+        env = gym.make("soccer_env/Goalkeeper-v0", **kwargs)
+        actions = np.random.default_rng(1000 + seed).uniform(-1.0, 1.0, (GOALKEEPER_STEPS, 6))
+        h = hashlib.sha256()
+        obs, info = env.reset(seed=seed)
+        _feed(h, (obs, info))
+        for a in actions:
+            obs, reward, term, trunc, info = env.step(a.astype(np.float32))
+            _feed(h, (obs, reward, term, trunc, info))
+            if term or trunc:
+                break
+        env.close()
+        return h.hexdigest()
+
+    return run
+
+
+def _match(**kwargs: Any) -> Callable[[int], str]:
+    def run(seed: int) -> str:
+        env = soccer_env.parallel_env(**kwargs)
+        rng = np.random.default_rng(2000 + seed)
+        h = hashlib.sha256()
+        obs, infos = env.reset(seed=seed)
+        _feed(h, (obs, infos))
+        for _ in range(MATCH_STEPS):
+            if not env.agents:
+                break
+            actions = {a: rng.uniform(-1.0, 1.0, 6).astype(np.float32) for a in env.agents}
+            _feed(h, env.step(actions))
+        env.close()
+        return h.hexdigest()
+
+    return run
+
+
+CASES: dict[str, Callable[[int], str]] = {}
+for _mode in ("truth", "raw", "perceived"):
+    for _preset in VISION_PRESETS:
+        CASES[f"goalkeeper-ssl-{_mode}-{_preset}"] = _goalkeeper(obs_mode=_mode,
+                                                                 perception=_preset)
+for _filter in BALL_FILTERS:
+    CASES[f"goalkeeper-ssl-perceived-ssl-2012-{_filter}"] = _goalkeeper(
+        obs_mode="perceived", perception={"vision": "ssl-2012", "ball_filter": _filter})
+CASES.update({
+    "goalkeeper-ssl2012-paper-setting": _goalkeeper(
+        field="ssl-2012", robot="ssl-2012", control_dt=0.04, obs_mode="perceived",
+        perception="ssl-2012"),
+    "goalkeeper-ssl-shaping": _goalkeeper(
+        obs_mode="perceived", shaping={"intercept": 2.0, "ball_distance": 0.5,
+                                       "action_cost": 0.1, "outside_area": 1.0}),
+    "goalkeeper-humanoid2012-truth": _goalkeeper(robot="humanoid-2012"),
+    "goalkeeper-humanoid2012-raw": _goalkeeper(robot="humanoid-2012", obs_mode="raw"),
+    "goalkeeper-humanoid2012-perceived": _goalkeeper(robot="humanoid-2012",
+                                                     obs_mode="perceived"),
+    "goalkeeper-humanoid-perceived-kidsize": _goalkeeper(robot="humanoid",
+                                                         obs_mode="perceived"),
+    "goalkeeper-humanoid-perceived-own-none-odometry": _goalkeeper(
+        robot="humanoid", obs_mode="perceived",
+        perception={"camera": "kidsize", "fusion": "own", "ball_tracker": "none",
+                    "localization": "odometry"}),
+    "goalkeeper-humanoid-perceived-equal-fbpf-scan": _goalkeeper(
+        robot="humanoid-2012", obs_mode="perceived", head="scan",
+        perception={"fusion": "equal", "ball_tracker": "fbpf", "radio": "ideal"}),
+    "goalkeeper-humanoid-perceived-head-action-one-mate": _goalkeeper(
+        robot="humanoid-2012", obs_mode="perceived", head="action", mates=1),
+    "goalkeeper-humanoid-truth-localization-bootstrap": _goalkeeper(
+        robot="humanoid-2012", obs_mode="perceived",
+        perception={"localization": "truth", "ball_tracker": "bootstrap",
+                    "fusion": "inverse_square"}),
+    "match-ssl-3v3-truth": _match(blue=3, yellow=3),
+    "match-ssl-3v3-raw": _match(blue=3, yellow=3, obs_mode="raw", perception="harsh"),
+    "match-ssl-3v3-perceived": _match(blue=3, yellow=3, obs_mode="perceived"),
+    "match-ssl-3v3-perceived-per-team": _match(
+        blue=3, yellow=3, obs_mode="perceived",
+        perception={"blue": "ssl-2012", "yellow": "realistic"},
+        shaping={"ball_progress": 1.0, "ball_distance": 0.1}),
+    "match-ssl-6v6-perceived-div-a": _match(blue=6, yellow=6, field="ssl-div-a",
+                                            obs_mode="perceived", max_cycles=100),
+    "match-humanoid-3v3-perceived": _match(blue=3, yellow=3, robot="humanoid",
+                                           obs_mode="perceived"),
+    "match-humanoid-2v2-raw": _match(blue=2, yellow=2, robot="humanoid-2012", obs_mode="raw"),
+    "match-mixed-2v2-perceived": _match(blue=2, yellow=2,
+                                        robot={"blue": "ssl", "yellow": "humanoid"},
+                                        field="humanoid-kid", obs_mode="perceived"),
+})
+PIXEL_CASES: dict[str, Callable[[int], str]] = {
+    "goalkeeper-ssl-pixels": _goalkeeper(
+        field="ssl-2012", obs_mode="perceived",
+        perception={"vision": "ssl-2012", "detector": "pixels"}),
+    "goalkeeper-humanoid-pixels": _goalkeeper(
+        robot="humanoid-2012", obs_mode="perceived", perception={"detector": "pixels"}),
+    "match-ssl-2v2-pixels": _match(blue=2, yellow=2, field="ssl-2012", obs_mode="perceived",
+                                   perception={"vision": "ssl-2012", "detector": "pixels"}),
+}
+
+
+def fingerprint() -> dict[str, Any]:
+    """What the digests depend on besides the code: library versions and the CPU features
+    numpy dispatches its SIMD loops on."""
+    def version(dist: str) -> str | None:
+        try:
+            return metadata.version(dist)
+        except metadata.PackageNotFoundError:
+            return None
+
+    try:
+        from numpy._core._multiarray_umath import __cpu_features__ as features
+    except ImportError:  # pragma: no cover - other numpy layouts
+        features = {}
+    return {
+        "python": ".".join(map(str, sys.version_info[:2])),
+        "machine": platform.machine(),
+        "numpy": np.__version__,
+        "pymunk": version("pymunk"),
+        "opencv": version("opencv-python-headless"),
+        "cpu_features": sorted(k for k, v in features.items() if v),
+    }
+
+
+def _recorded() -> dict[str, Any]:
+    return json.loads(DIGESTS.read_text())
+
+
+@pytest.fixture(scope="module")
+def recorded() -> dict[str, Any]:
+    data = _recorded()
+    here = fingerprint()
+    if data["fingerprint"] != here:
+        diff = {k: (data["fingerprint"].get(k), v) for k, v in here.items()
+                if data["fingerprint"].get(k) != v}
+        pytest.skip(f"digests recorded under another environment {diff}; re-record with "
+                    "python tests/test_regression.py --update to compare here")
+    return data["cases"]
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_episode_digests_unchanged(case, recorded):
+    assert [CASES[case](s) for s in SEEDS] == recorded[case]
+
+
+@pytest.mark.parametrize("case", sorted(PIXEL_CASES))
+def test_pixel_episode_digests_unchanged(case, recorded):
+    pytest.importorskip("cv2", reason="the pixels detector needs the 'pixels' extra (OpenCV)")
+    assert [PIXEL_CASES[case](s) for s in SEEDS] == recorded[case]
+
+
+def test_every_case_is_recorded():
+    assert sorted(_recorded()["cases"]) == sorted({**CASES, **PIXEL_CASES})
+
+
+if __name__ == "__main__":
+    if sys.argv[1:] != ["--update"]:
+        sys.exit("usage: python tests/test_regression.py --update")
+    cases = {name: [run(s) for s in SEEDS]
+             for name, run in sorted({**CASES, **PIXEL_CASES}.items())}
+    DIGESTS.parent.mkdir(exist_ok=True)
+    DIGESTS.write_text(json.dumps({"fingerprint": fingerprint(), "cases": cases}, indent=1)
+                       + "\n")
+    print(f"recorded {len(cases)} cases in {DIGESTS}")
