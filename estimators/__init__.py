@@ -23,6 +23,7 @@ from .meanshift import (
     mean_shift,
 )
 from .models import (
+    MIN_SIGMA_XY,
     PAPER_CYCLE,
     ConstantVelocityMotion,
     FrictionBallMotion,
@@ -30,7 +31,15 @@ from .models import (
     PositionMeasurement,
     wrap_angle,
 )
-from .particle import FBPF, MFBPF, BootstrapPF, sfn, systematic_resample, ungm_model, ungm_simulate
+from .particle import (
+    FBPF,
+    MFBPF,
+    BootstrapPF,
+    sfn,
+    systematic_resample,
+    ungm_model,
+    ungm_simulate,
+)
 from .robots import RobotTracker
 from .triangulation import Fix, triangulate
 
@@ -43,6 +52,7 @@ __all__ = [
     "PoseMeasurement",
     "wrap_angle",
     "PAPER_CYCLE",
+    "MIN_SIGMA_XY",
     "BallFilterConfig",
     "BallTracker",
     "LeastSquaresBall",

@@ -93,7 +93,7 @@ except ImportError as err:  # pragma: no cover - depends on the installation
     raise ImportError("soccer_env.frames needs OpenCV; install it with: "
                       "pip install 'soccer-env[pixels]'") from err
 
-from estimators.camera import HeadCamera
+from estimators import HeadCamera
 
 from .headcam import HeadCameraSpec, HeadState
 from .physics import robot_outline

@@ -78,7 +78,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from estimators.camera import HeadCamera
+from estimators import HeadCamera
 
 from .presets import BallSpec, FieldSpec
 from .state import WorldState

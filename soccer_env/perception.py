@@ -34,8 +34,7 @@ from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 
-from estimators import BallFilterConfig, BallTracker, LeastSquaresBall, RobotTracker
-from estimators.models import MIN_SIGMA_XY
+from estimators import MIN_SIGMA_XY, BallFilterConfig, BallTracker, LeastSquaresBall, RobotTracker
 
 from .headcam import HEAD_CAMERAS, HeadCameraSpec, head_camera
 from .humanoid_perception import BALL_TRACKERS, FUSIONS, LOCALIZATIONS

@@ -36,8 +36,13 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from estimators import HeadCamera, KalmanMeanShift, MeanShiftParticleFilter
-from estimators.models import PoseMeasurement, PositionMeasurement
+from estimators import (
+    HeadCamera,
+    KalmanMeanShift,
+    MeanShiftParticleFilter,
+    PoseMeasurement,
+    PositionMeasurement,
+)
 
 from .headcam import HeadCameraSensor, HeadCameraSpec, HeadFrame, HeadState
 from .presets import BallSpec, FieldSpec, RobotSpec

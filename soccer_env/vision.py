@@ -29,7 +29,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from estimators.models import PoseMeasurement, PositionMeasurement
+from estimators import PoseMeasurement, PositionMeasurement
 
 from .presets import BallSpec, FieldSpec, SSLRobotSpec
 from .state import WorldState

@@ -10,7 +10,7 @@ from collections import Counter
 import numpy as np
 import pytest
 
-from estimators.camera import HeadCamera
+from estimators import HeadCamera
 from soccer_env import presets
 from soccer_env.headcam import (
     HEAD_CAMERAS,

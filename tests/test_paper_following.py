@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from estimators.camera import HeadCamera
+from estimators import HeadCamera
 from soccer_env.papers import following
 
 

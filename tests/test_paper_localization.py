@@ -15,7 +15,7 @@ import math
 import numpy as np
 import pytest
 
-from estimators.localization import KLDConfig
+from estimators import KLDConfig
 from soccer_env.cli import main
 from soccer_env.humanoid_perception import _Brain
 from soccer_env.papers import localization

@@ -94,7 +94,7 @@ from typing import Any
 
 import numpy as np
 
-from estimators.meanshift import (
+from estimators import (
     KalmanMeanShift,
     PlainMeanShift,
     apparent_height,

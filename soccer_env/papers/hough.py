@@ -35,8 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from estimators.camera import HeadCamera
-from estimators.hough import fusion_weights, hough_fuse
+from estimators import HeadCamera, fusion_weights, hough_fuse
 
 from ..plots import pyplot, save_figure
 from ._io import write_report

@@ -52,7 +52,7 @@ from typing import Any
 
 import numpy as np
 
-from estimators.localization import KLDConfig, KLDLocalizer
+from estimators import KLDConfig, KLDLocalizer
 
 from .. import presets
 from ..headcam import head_camera

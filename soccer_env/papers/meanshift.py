@@ -84,7 +84,7 @@ from typing import Any
 
 import numpy as np
 
-from estimators.meanshift import MeanShiftParticleFilter, ParticleFilterTracker, mean_shift
+from estimators import MeanShiftParticleFilter, ParticleFilterTracker, mean_shift
 
 from .. import presets
 from ..plots import pyplot, save_figure

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from estimators.particle import FBPF, MFBPF, BootstrapPF, ungm_model, ungm_simulate
+from estimators import FBPF, MFBPF, BootstrapPF, ungm_model, ungm_simulate
 
 from ..plots import pyplot, save_figure
 from ._io import write_report
