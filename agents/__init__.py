@@ -1,5 +1,5 @@
 """Agents: scripted baselines (and, with the training extra, learning utilities)."""
 
-from .goalkeeper import ScriptedGoalkeeper
+from agents.goalkeeper import ScriptedGoalkeeper
 
 __all__ = ["ScriptedGoalkeeper"]

@@ -44,12 +44,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from agents.cli_args import key_values
+from agents.evaluation import GOALKEEPER_ID, EvalResult, _mp_context, evaluate, wilson
 from soccer_env.headcam import HEAD_CAMERAS
 from soccer_env.perception import BALL_FILTERS, OBS_MODES, PerceptionConfig
 from soccer_env.vision import VISION
-
-from .cli_args import key_values
-from .evaluation import GOALKEEPER_ID, EvalResult, _mp_context, evaluate, wilson
 
 __all__ = ["EstimatorConfig", "ESTIMATOR_CONFIGS", "HUMANOID_CONFIGS", "ROBOT_KINDS",
            "register_config", "AblationResult", "run_ablation", "write_outputs", "parse_names",
@@ -451,7 +450,7 @@ def _resolve_policy(policy: Any, env_id: str, env_kwargs: Mapping[str, Any]) -> 
     the model in every job would import torch in every worker)."""
     import gymnasium as gym
 
-    from .policies import make_policy
+    from agents.policies import make_policy
 
     env = gym.make(env_id, **env_kwargs)
     try:

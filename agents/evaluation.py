@@ -27,8 +27,7 @@ from typing import Any
 import gymnasium as gym
 
 import soccer_env  # noqa: F401  (registers the environments)
-
-from .policies import make_policy
+from agents.policies import make_policy
 
 __all__ = ["wilson", "EvalResult", "evaluate", "record_video", "GOALKEEPER_ID"]
 
@@ -253,7 +252,7 @@ def main(argv: list[str] | None = None) -> int:
     import argparse
     import json
 
-    from .cli_args import add_env_arguments, env_kwargs_from_args
+    from agents.cli_args import add_env_arguments, env_kwargs_from_args
 
     p = argparse.ArgumentParser(
         prog="soccer-env eval",

@@ -23,9 +23,8 @@ from typing import Any
 
 import numpy as np
 
+from agents.goalkeeper import ScriptedGoalkeeper, drive_command, turn_command
 from soccer_env.presets import BallSpec, FieldSpec, HumanoidRobotSpec
-
-from .goalkeeper import ScriptedGoalkeeper, drive_command, turn_command
 
 __all__ = ["HumanoidTeam"]
 

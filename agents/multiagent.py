@@ -50,10 +50,9 @@ from stable_baselines3.common.vec_env import VecEnv, VecEnvWrapper, VecNormalize
 from stable_baselines3.common.vec_env.base_vec_env import VecEnvIndices, VecEnvStepReturn
 
 import soccer_env
+from agents.policies import IdlePolicy, NumpyPolicy, SB3Policy
+from agents.team import TEAMS, ScriptedTeam
 from soccer_env.robots import validate_actions
-
-from .policies import IdlePolicy, NumpyPolicy, SB3Policy
-from .team import TEAMS, ScriptedTeam
 
 __all__ = ["MatchVecEnv", "SelfPlayCallback", "make_match_vec_env", "LEARNERS",
            "OPPONENT_NAMES"]

@@ -94,7 +94,7 @@ class NumpyPolicy:
                  meta: dict[str, Any] | None = None,
                  normalize: tuple[np.ndarray, np.ndarray, float, float] | None = None,
                  action_map: dict[str, Any] | None = None) -> None:
-        from .wrappers import ACTION_MAPS
+        from agents.wrappers import ACTION_MAPS
 
         if output not in ("clip", "tanh", "scale"):
             raise ValueError(f"output must be 'clip', 'tanh' or 'scale', got {output!r}")
@@ -142,7 +142,7 @@ class NumpyPolicy:
     def __call__(self, obs: np.ndarray) -> np.ndarray:
         action = self._network(obs)
         if self.action_map is not None:
-            from .wrappers import action_to_command
+            from agents.wrappers import action_to_command
 
             return action_to_command(self.action_map["kind"], obs, action,
                                      self.action_map["params"] or None)
@@ -363,13 +363,13 @@ def make_policy(ref: str | os.PathLike | Callable, env: Any) -> Policy:
         return ref
     ref = os.fspath(ref)
     if ref == "scripted":
-        from .goalkeeper import ScriptedGoalkeeper
+        from agents.goalkeeper import ScriptedGoalkeeper
 
         return ScriptedGoalkeeper.for_env(env)
     if ref == "idle":
         return IdlePolicy(int(np.prod(env.action_space.shape)))
     if ref.startswith("baseline:"):
-        from .baselines import load_baseline
+        from agents.baselines import load_baseline
 
         return load_baseline(ref.split(":", 1)[1])
     path = Path(ref)

@@ -39,11 +39,10 @@ from typing import Any
 
 import numpy as np
 
+from agents.goalkeeper import ScriptedGoalkeeper, drive_command, turn_command
 from estimators import FrictionBallModel
 from soccer_env.physics import MAX_TEAM_SIZE
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
-
-from .goalkeeper import ScriptedGoalkeeper, drive_command, turn_command
 
 __all__ = ["ScriptedTeam", "TEAMS"]
 

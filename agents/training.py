@@ -46,10 +46,10 @@ from typing import Any
 
 import numpy as np
 
-from .cli_args import add_env_arguments, env_kwargs_from_args, key_values
-from .evaluation import GOALKEEPER_ID, evaluate
-from .policies import SB3_ALGORITHMS, NumpyPolicy
-from .wrappers import ACTION_MAPS, wrap_actions
+from agents.cli_args import add_env_arguments, env_kwargs_from_args, key_values
+from agents.evaluation import GOALKEEPER_ID, evaluate
+from agents.policies import SB3_ALGORITHMS, NumpyPolicy
+from agents.wrappers import ACTION_MAPS, wrap_actions
 
 __all__ = ["TrainConfig", "train", "main", "EVAL_SEED_START", "MATCH_ID", "DEFAULT_HYPERPARAMS",
            "rollout_timer", "goalkeeper_env_fn"]
@@ -199,7 +199,7 @@ def goalkeeper_env_fn(env_kwargs: dict[str, Any], actions: str = "native"):
 def make_vec_env(cfg: TrainConfig):
     """The training VecEnv of ``cfg`` (seeded with ``cfg.seed``), without normalisation."""
     if cfg.env_id == MATCH_ID:
-        from .multiagent import make_match_vec_env
+        from agents.multiagent import make_match_vec_env
 
         opponent = cfg.opponent
         return make_match_vec_env(cfg.env_kwargs, cfg.n_envs, cfg.learner,
@@ -210,7 +210,7 @@ def make_vec_env(cfg: TrainConfig):
 
         venv = DummyVecEnv(fns)
     else:
-        from .vec_env import WorkerVecEnv
+        from agents.vec_env import WorkerVecEnv
 
         venv = WorkerVecEnv(fns, n_workers=cfg.n_workers)
     venv.seed(cfg.seed)
@@ -338,7 +338,7 @@ def _callbacks(cfg: TrainConfig, out: Path, action_map: dict[str, Any] | None):
         evaluator = SaveRateEval()
         callbacks.append(evaluator)
     if cfg.env_id == MATCH_ID and cfg.opponent == "self":
-        from .multiagent import SelfPlayCallback
+        from agents.multiagent import SelfPlayCallback
 
         callbacks.append(SelfPlayCallback(update_every=cfg.self_play_every))
     return callbacks, timer, evaluator
@@ -376,7 +376,7 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
 
     from stable_baselines3.common.vec_env import VecNormalize
 
-    from .policies import vecnormalize_path
+    from agents.policies import vecnormalize_path
 
     venv = make_vec_env(cfg)
     algo = getattr(sb3, cfg.algorithm)

@@ -35,7 +35,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from .goalkeeper import TURN_GAIN
+from agents.goalkeeper import TURN_GAIN
 
 __all__ = ["ACTION_MAPS", "FieldVelocityActions", "TargetActions", "GuardActions",
            "action_to_command", "target_params", "wrap_actions"]

@@ -11,10 +11,10 @@ Quick start::
 
 from gymnasium.envs.registration import register, registry
 
-from . import presets
-from .envs import GoalkeeperEnv, ShotDistribution, SoccerParallelEnv, env, parallel_env
-from .physics import COMMAND_FIELDS, World
-from .state import WorldState
+from soccer_env import presets
+from soccer_env.envs import GoalkeeperEnv, ShotDistribution, SoccerParallelEnv, env, parallel_env
+from soccer_env.physics import COMMAND_FIELDS, World
+from soccer_env.state import WorldState
 
 __version__ = "0.1.0"
 

@@ -83,7 +83,7 @@ def _match_runner(steps: int, blue: int = 6, yellow: int = 6, field: str | None 
                   seed: int = 0, obs_mode: str = "truth", perception: str | None = None,
                   robot: str = "ssl"):
     """A closure stepping a match ``steps`` times with pre-drawn random actions."""
-    from . import parallel_env
+    from soccer_env import parallel_env
 
     env = parallel_env(blue=blue, yellow=yellow, field=field, match_duration=1e6,
                        obs_mode=obs_mode, perception=perception, robot=robot)

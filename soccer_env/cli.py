@@ -24,7 +24,7 @@ def _cmd_demo(argv: list[str]) -> int:
         p.error("--episodes must be >= 1")
     from pathlib import Path
 
-    from .demo import run_demo
+    from soccer_env.demo import run_demo
 
     for robot, out, perception in (("ssl", Path(args.out), "realistic"),
                                    ("humanoid-2012", Path(args.out) / "humanoid", None)):
@@ -47,11 +47,11 @@ def _cmd_list(argv: list[str]) -> int:
                                 description="List environments and presets.")
     p.add_argument("--json", action="store_true")
     p.parse_args(argv)
-    from . import ENV_IDS, PETTINGZOO_IDS, presets
-    from .headcam import HEAD_CAMERAS
-    from .humanoid_perception import BALL_TRACKERS, FUSIONS, LOCALIZATIONS
-    from .perception import BALL_FILTERS, DETECTORS
-    from .vision import VISION
+    from soccer_env import ENV_IDS, PETTINGZOO_IDS, presets
+    from soccer_env.headcam import HEAD_CAMERAS
+    from soccer_env.humanoid_perception import BALL_TRACKERS, FUSIONS, LOCALIZATIONS
+    from soccer_env.perception import BALL_FILTERS, DETECTORS
+    from soccer_env.vision import VISION
 
     info = {
         "gymnasium": sorted(ENV_IDS),
@@ -79,7 +79,7 @@ def _cmd_list(argv: list[str]) -> int:
 
 
 def _cmd_paper(argv: list[str]) -> int:
-    from .papers import PAPERS
+    from soccer_env.papers import PAPERS
 
     p = argparse.ArgumentParser(prog="soccer-env paper",
                                 description="Reproduce a source paper's claims.")
@@ -135,7 +135,7 @@ def _cmd_paper(argv: list[str]) -> int:
 
 
 def _cmd_bench(argv: list[str]) -> int:
-    from .bench import main as bench_main
+    from soccer_env.bench import main as bench_main
 
     return bench_main(argv)
 

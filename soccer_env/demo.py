@@ -26,8 +26,8 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from .plots import pyplot, save_figure
-from .render import write_video
+from soccer_env.plots import pyplot, save_figure
+from soccer_env.render import write_video
 
 __all__ = ["run_demo"]
 

@@ -94,12 +94,11 @@ except ImportError as err:  # pragma: no cover - depends on the installation
                       "pip install 'soccer-env[pixels]'") from err
 
 from estimators import HeadCamera
-
-from .headcam import HeadCameraSpec, HeadState
-from .physics import robot_outline
-from .presets import BallSpec, FieldSpec, RobotSpec
-from .state import WorldState
-from .vision import Camera
+from soccer_env.headcam import HeadCameraSpec, HeadState
+from soccer_env.physics import robot_outline
+from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
+from soccer_env.state import WorldState
+from soccer_env.vision import Camera
 
 __all__ = [
     "RGB",
@@ -356,7 +355,7 @@ OVERHEAD_FRAMES: dict[str, OverheadFrameSpec] = {
 def overhead_frame(spec: str | OverheadFrameSpec = "realistic", **overrides: object
                    ) -> OverheadFrameSpec:
     """Return an overhead-frame preset (by name or spec) with optional validated overrides."""
-    from .presets import _resolve
+    from soccer_env.presets import _resolve
 
     return _resolve("overhead_frame", OVERHEAD_FRAMES, spec, overrides)
 
@@ -411,7 +410,7 @@ HEAD_FRAMES: dict[str, HeadFrameSpec] = {
 
 def head_frame(spec: str | HeadFrameSpec = "realistic", **overrides: object) -> HeadFrameSpec:
     """Return a head-frame preset (by name or spec) with optional validated overrides."""
-    from .presets import _resolve
+    from soccer_env.presets import _resolve
 
     return _resolve("head_frame", HEAD_FRAMES, spec, overrides)
 
@@ -1161,8 +1160,8 @@ def _benchmark(repeats: int = 200) -> dict[str, float]:  # pragma: no cover - ma
     soccer_env.frames``)."""
     import time
 
-    from . import presets
-    from .headcam import head_camera
+    from soccer_env import presets
+    from soccer_env.headcam import head_camera
 
     rng = np.random.default_rng(0)
     out = {}

@@ -79,9 +79,8 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from estimators import HeadCamera
-
-from .presets import BallSpec, FieldSpec
-from .state import WorldState
+from soccer_env.presets import BallSpec, FieldSpec
+from soccer_env.state import WorldState
 
 __all__ = [
     "HeadCameraSpec",
@@ -248,7 +247,7 @@ HEAD_CAMERAS: dict[str, HeadCameraSpec] = {
 
 def head_camera(spec: str | HeadCameraSpec = "kidsize", **overrides: object) -> HeadCameraSpec:
     """Return a head-camera preset (by name or spec) with optional validated overrides."""
-    from .presets import _resolve
+    from soccer_env.presets import _resolve
 
     return _resolve("head_camera", HEAD_CAMERAS, spec, overrides)
 

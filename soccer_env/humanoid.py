@@ -43,7 +43,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .presets import HumanoidRobotSpec
+from soccer_env.presets import HumanoidRobotSpec
 
 __all__ = ["WalkEngine", "HUMANOID_COMMAND_FIELDS", "WALK_THRESHOLD", "DIVE", "speed_norm"]
 

@@ -48,8 +48,7 @@ from typing import Any
 import numpy as np
 
 from estimators import KLDConfig, KLDLocalizer, ParticleBallTracker, fuse_sightings
-
-from .headcam import (
+from soccer_env.headcam import (
     HeadCameraSensor,
     HeadCameraSpec,
     HeadFrame,
@@ -57,9 +56,9 @@ from .headcam import (
     field_landmarks,
     head_camera,
 )
-from .presets import BallSpec, FieldSpec, HumanoidRobotSpec, RobotSpec
-from .radio import Message, RadioSpec, TeamRadio
-from .state import WorldState
+from soccer_env.presets import BallSpec, FieldSpec, HumanoidRobotSpec, RobotSpec
+from soccer_env.radio import Message, RadioSpec, TeamRadio
+from soccer_env.state import WorldState
 
 __all__ = ["HumanoidTeamPerception", "HeadController", "LOCALIZATIONS",
            "FUSIONS", "BALL_TRACKERS", "HEAD_MODES", "head_state", "aim_heads",
@@ -246,7 +245,7 @@ class _Brain:
         self.kind = cfg.localization
         self.fusion = cfg.fusion
         if perception.pixels:
-            from .pixel_vision import BallImageTracker
+            from soccer_env.pixel_vision import BallImageTracker
 
             self.finder: Any = BallImageTracker(perception.camera, perception.ball_spec)
         else:
@@ -534,7 +533,7 @@ class HumanoidTeamPerception:
         self.camera, self.radio_spec = camera, radio
         self.pixels = getattr(config, "detector", "geometric") == "pixels"
         if self.pixels:  # rendered images; the robots find the ball in them
-            from .pixel_vision import PixelHeadCamera
+            from soccer_env.pixel_vision import PixelHeadCamera
 
             self.sensor = PixelHeadCamera(camera, field, ball, self.specs, self.teams,
                                           self.observers)

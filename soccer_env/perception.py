@@ -35,13 +35,12 @@ from typing import Any, NamedTuple, Protocol
 import numpy as np
 
 from estimators import MIN_SIGMA_XY, BallFilterConfig, BallTracker, LeastSquaresBall, RobotTracker
-
-from .headcam import HEAD_CAMERAS, HeadCameraSpec, head_camera
-from .humanoid_perception import BALL_TRACKERS, FUSIONS, LOCALIZATIONS
-from .presets import BallSpec, FieldSpec, SSLRobotSpec
-from .radio import RADIO_PRESETS, RadioSpec
-from .state import WorldState
-from .vision import VISION, DetectionFrame, OverheadVision, VisionSpec, vision
+from soccer_env.headcam import HEAD_CAMERAS, HeadCameraSpec, head_camera
+from soccer_env.humanoid_perception import BALL_TRACKERS, FUSIONS, LOCALIZATIONS
+from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
+from soccer_env.radio import RADIO_PRESETS, RadioSpec
+from soccer_env.state import WorldState
+from soccer_env.vision import VISION, DetectionFrame, OverheadVision, VisionSpec, vision
 
 __all__ = ["Belief", "Perception", "PerceptionConfig", "TruthPerception", "RawPerception",
            "FilteredPerception", "MatchPerception", "OBS_MODES", "BALL_FILTERS",
@@ -233,7 +232,7 @@ class _VisionPerception:
         self.config = config
         self.vision_spec = config.vision
         if config.detector == "pixels":
-            from .pixel_vision import PixelVision
+            from soccer_env.pixel_vision import PixelVision
 
             self.sensor = PixelVision(config.vision, field, robots or [robot] * n_robots, ball,
                                       teams if teams is not None else [0] * n_robots)
@@ -417,7 +416,7 @@ class MatchPerception:
 
     def __init__(self, obs_mode: str, configs: tuple[PerceptionConfig, PerceptionConfig],
                  field: FieldSpec, ball: BallSpec, world: Any, head: str = "auto") -> None:
-        from .humanoid_perception import HeadController, HumanoidTeamPerception
+        from soccer_env.humanoid_perception import HeadController, HumanoidTeamPerception
 
         self.obs_mode, self.world = obs_mode, world
         n = world.n_robots
@@ -489,7 +488,7 @@ class MatchPerception:
     def reset(self, state: WorldState, rng: np.random.Generator) -> tuple[Any, Any]:
         """Start an episode at ``state``; returns robot 0's beliefs (for its observation,
         now)."""
-        from .humanoid_perception import head_state
+        from soccer_env.humanoid_perception import head_state
 
         # One pipeline draws from the episode's sensor stream itself, several from streams
         # spawned from it.
@@ -506,7 +505,7 @@ class MatchPerception:
 
     def update(self, state: WorldState) -> tuple[Any, Any]:
         """Advance to ``state``; returns robot 0's beliefs (for its observation, now)."""
-        from .humanoid_perception import head_state
+        from soccer_env.humanoid_perception import head_state
 
         heads = None
         for robots, pipe in self._groups:

@@ -43,10 +43,17 @@ import pymunk.batch as pbatch
 # a dozen such accesses. The package pins pymunk 7, whose internals these are.
 from pymunk._chipmunk import lib as _cp
 
-from .config import check_int, check_range
-from .humanoid import WalkEngine
-from .presets import GRAVITY, BallSpec, FieldSpec, HumanoidRobotSpec, RobotSpec, SSLRobotSpec
-from .state import WorldState
+from soccer_env.config import check_int, check_range
+from soccer_env.humanoid import WalkEngine
+from soccer_env.presets import (
+    GRAVITY,
+    BallSpec,
+    FieldSpec,
+    HumanoidRobotSpec,
+    RobotSpec,
+    SSLRobotSpec,
+)
+from soccer_env.state import WorldState
 
 __all__ = ["World", "COMMAND_FIELDS", "idle_commands", "BallExit", "robot_outline"]
 

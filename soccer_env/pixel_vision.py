@@ -43,11 +43,10 @@ from estimators import (
     PoseMeasurement,
     PositionMeasurement,
 )
-
-from .headcam import HeadCameraSensor, HeadCameraSpec, HeadFrame, HeadState
-from .presets import BallSpec, FieldSpec, RobotSpec
-from .state import WorldState
-from .vision import DetectionFrame, OverheadVision, VisionSpec
+from soccer_env.headcam import HeadCameraSensor, HeadCameraSpec, HeadFrame, HeadState
+from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
+from soccer_env.state import WorldState
+from soccer_env.vision import DetectionFrame, OverheadVision, VisionSpec
 
 __all__ = ["PixelVision", "PixelHeadCamera", "BallImageTracker", "PIXEL_FRAME_PRESET",
            "HEAD_IMAGE_SIZE"]
@@ -79,7 +78,7 @@ class PixelVision(OverheadVision):
                  ball: BallSpec, teams: Sequence[int], frames: str = PIXEL_FRAME_PRESET
                  ) -> None:
         try:
-            from .frames import (
+            from soccer_env.frames import (
                 PATTERN,
                 PATTERN_IDS,
                 ColourTable,
@@ -233,7 +232,7 @@ class PixelHeadCamera(HeadCameraSensor):
     def __init__(self, spec: HeadCameraSpec, field: FieldSpec, ball: BallSpec,
                  robots: Sequence[RobotSpec], teams: Sequence[int], observers: Sequence[int],
                  size: tuple[int, int] = HEAD_IMAGE_SIZE) -> None:
-        from .frames import HeadFrameRenderer
+        from soccer_env.frames import HeadFrameRenderer
 
         super().__init__(spec, field, ball, [s.radius for s in robots], teams, observers)
         self.renderer = HeadFrameRenderer(spec, field, list(robots), ball, list(teams),
@@ -270,7 +269,7 @@ class BallImageTracker:
 
     def __init__(self, spec: HeadCameraSpec, ball: BallSpec,
                  size: tuple[int, int] = HEAD_IMAGE_SIZE) -> None:
-        from .frames import COLOURS, back_project, hue_histogram
+        from soccer_env.frames import COLOURS, back_project, hue_histogram
 
         self.spec, self.ball = spec, ball
         self.size = (int(size[0]), int(size[1]))

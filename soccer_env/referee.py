@@ -27,8 +27,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .physics import BallExit, World
-from .presets import BallSpec, FieldSpec
+from soccer_env.physics import BallExit, World
+from soccer_env.presets import BallSpec, FieldSpec
 
 __all__ = ["ExitKind", "classify_exit", "formation", "place_free_kick", "place_kickoff",
            "FREE_KICK_INSET", "STOP_DISTANCE"]

@@ -16,9 +16,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .physics import robot_outline
-from .presets import BallSpec, FieldSpec, RobotSpec
-from .state import WorldState
+from soccer_env.physics import robot_outline
+from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
+from soccer_env.state import WorldState
 
 __all__ = ["Renderer", "RenderingMixin", "RENDER_MODES", "TEAM_COLOURS", "write_video"]
 
@@ -229,7 +229,7 @@ class RenderingMixin:
         heads = None
         walk = world.walk
         if walk is not None:
-            from .headcam import head_camera
+            from soccer_env.headcam import head_camera
 
             heads = {}
             config = getattr(self, "perception", None)

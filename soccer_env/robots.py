@@ -14,8 +14,8 @@ from collections import deque
 import numpy as np
 from gymnasium import spaces
 
-from .humanoid import DIVE
-from .presets import HumanoidRobotSpec, RobotSpec, SSLRobotSpec
+from soccer_env.humanoid import DIVE
+from soccer_env.presets import HumanoidRobotSpec, RobotSpec, SSLRobotSpec
 
 __all__ = ["SSLRobot", "HumanoidRobot", "robot_model", "CommandChannel", "validate_actions",
            "OUT_OF_RANGE_MODES"]

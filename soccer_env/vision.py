@@ -30,9 +30,8 @@ from typing import NamedTuple
 import numpy as np
 
 from estimators import PoseMeasurement, PositionMeasurement
-
-from .presets import BallSpec, FieldSpec, SSLRobotSpec
-from .state import WorldState
+from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
+from soccer_env.state import WorldState
 
 __all__ = ["VisionSpec", "VISION", "vision", "Camera", "DetectionFrame", "OverheadVision",
            "default_cameras"]
@@ -151,7 +150,7 @@ VISION: dict[str, VisionSpec] = {
 
 def vision(spec: str | VisionSpec = "realistic", **overrides) -> VisionSpec:
     """Return a vision preset (by name or spec) with optional validated overrides."""
-    from .presets import _resolve
+    from soccer_env.presets import _resolve
 
     return _resolve("vision", VISION, spec, overrides)
 

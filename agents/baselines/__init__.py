@@ -19,7 +19,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from ..policies import NumpyPolicy
+from agents.policies import NumpyPolicy
 
 __all__ = ["BASELINES", "load_baseline", "baseline_path", "baseline_env_kwargs",
            "make_baseline_env"]

@@ -11,17 +11,17 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from .. import presets
-from ..config import check_choice, check_int, keyword_names, parse_scales, reject_unknown
-from ..humanoid_perception import HEAD_MODES, aim_heads
-from ..observations import ObservationBuilder
-from ..perception import OBS_MODES, MatchPerception, PerceptionConfig, make_perception
-from ..physics import World
-from ..presets import BallSpec, FieldSpec, RobotSpec
-from ..referee import classify_exit
-from ..render import RENDER_MODES, RenderingMixin
-from ..robots import OUT_OF_RANGE_MODES, CommandChannel, robot_model, validate_actions
-from ..state import state_dict
+from soccer_env import presets
+from soccer_env.config import check_choice, check_int, keyword_names, parse_scales, reject_unknown
+from soccer_env.humanoid_perception import HEAD_MODES, aim_heads
+from soccer_env.observations import ObservationBuilder
+from soccer_env.perception import OBS_MODES, MatchPerception, PerceptionConfig, make_perception
+from soccer_env.physics import World
+from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
+from soccer_env.referee import classify_exit
+from soccer_env.render import RENDER_MODES, RenderingMixin
+from soccer_env.robots import OUT_OF_RANGE_MODES, CommandChannel, robot_model, validate_actions
+from soccer_env.state import state_dict
 
 __all__ = ["GoalkeeperEnv", "ShotDistribution", "GOALKEEPER_SHAPING", "STOP_SPEED",
            "CLEAR_SPEED", "HUMANOID_SHOTS", "MAX_MATES", "mate_poses"]

@@ -10,8 +10,8 @@ import numpy as np
 from pettingzoo import ParallelEnv
 from pettingzoo.utils import parallel_to_aec
 
-from .. import presets
-from ..config import (
+from soccer_env import presets
+from soccer_env.config import (
     check_choice,
     check_int,
     check_range,
@@ -19,15 +19,15 @@ from ..config import (
     parse_scales,
     reject_unknown,
 )
-from ..humanoid_perception import HEAD_MODES, aim_heads
-from ..observations import ObservationBuilder
-from ..perception import OBS_MODES, MatchPerception, PerceptionConfig
-from ..physics import MAX_TEAM_SIZE, World
-from ..presets import BallSpec, FieldSpec, RobotSpec
-from ..referee import classify_exit, place_free_kick, place_kickoff
-from ..render import RENDER_MODES, RenderingMixin
-from ..robots import OUT_OF_RANGE_MODES, CommandChannel, robot_model, validate_actions
-from ..state import state_dict
+from soccer_env.humanoid_perception import HEAD_MODES, aim_heads
+from soccer_env.observations import ObservationBuilder
+from soccer_env.perception import OBS_MODES, MatchPerception, PerceptionConfig
+from soccer_env.physics import MAX_TEAM_SIZE, World
+from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
+from soccer_env.referee import classify_exit, place_free_kick, place_kickoff
+from soccer_env.render import RENDER_MODES, RenderingMixin
+from soccer_env.robots import OUT_OF_RANGE_MODES, CommandChannel, robot_model, validate_actions
+from soccer_env.state import state_dict
 
 __all__ = ["SoccerParallelEnv", "parallel_env", "env", "MATCH_SHAPING", "GAME_NAMES"]
 

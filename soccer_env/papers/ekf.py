@@ -31,12 +31,11 @@ from typing import Any
 import numpy as np
 
 from estimators import BallFilterConfig, BallTracker, LeastSquaresBall
-
-from .. import presets
-from ..physics import World, idle_commands
-from ..plots import pyplot, save_figure
-from ..vision import OverheadVision, vision
-from ._io import write_csv
+from soccer_env import presets
+from soccer_env.papers._io import write_csv
+from soccer_env.physics import World, idle_commands
+from soccer_env.plots import pyplot, save_figure
+from soccer_env.vision import OverheadVision, vision
 
 __all__ = ["run", "open_loop", "closed_loop", "PAPER_CLAIMS", "ESTIMATORS"]
 

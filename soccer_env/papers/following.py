@@ -100,9 +100,8 @@ from estimators import (
     apparent_height,
     depth_from_size,
 )
-
-from ..plots import pyplot, save_figure
-from ._io import map_jobs, write_report
+from soccer_env.papers._io import map_jobs, write_report
+from soccer_env.plots import pyplot, save_figure
 
 __all__ = ["run", "PAPER", "AIM", "ROBOTS", "VARIANTS", "TRACKERS", "TURN_BINS",
            "JUMP_BINS"]
@@ -188,11 +187,11 @@ def _labels(scales: tuple[float, ...]) -> list[str]:
 
 def _episode(args: tuple) -> dict[str, Any]:
     """One seeded episode of ``variant``; per-frame truth and every tracker's output."""
-    from .. import presets
-    from ..frames import HeadFrameRenderer, back_project, hue_histogram
-    from ..headcam import head_camera
-    from ..humanoid_perception import head_state
-    from ..physics import World
+    from soccer_env import presets
+    from soccer_env.frames import HeadFrameRenderer, back_project, hue_histogram
+    from soccer_env.headcam import head_camera
+    from soccer_env.humanoid_perception import head_state
+    from soccer_env.physics import World
 
     robot_name, variant, index, seed, duration, size, appearance, scales = args
     field_name, camera_name = ROBOTS[robot_name]
@@ -559,7 +558,7 @@ def run(out: str | Path = "paper_output", episodes: int = 10, duration: float = 
     ``paper_following.md``, ``.csv``, ``.json`` and ``.png`` into ``out``. ``workers``
     processes share the episodes (default: all cores; 1 runs them here; the figures other
     than the timings do not depend on it)."""
-    from ..frames import HEAD_FRAMES
+    from soccer_env.frames import HEAD_FRAMES
 
     episodes = _check_count("episodes", episodes, 1, 1000)
     if not (isinstance(duration, (int, float)) and not isinstance(duration, bool)
@@ -616,8 +615,8 @@ def run(out: str | Path = "paper_output", episodes: int = 10, duration: float = 
             "lost": _verdict(fast[f"{k_lab} lost_rate"], fast[f"{p_lab} lost_rate"]),
             "hazard": _verdict(fast[f"{k_lab} loss_hazard"], fast[f"{p_lab} loss_hazard"])}
 
-    from .. import presets
-    from ..headcam import head_camera
+    from soccer_env import presets
+    from soccer_env.headcam import head_camera
 
     field_name, camera_name = ROBOTS[robot]
     spec = presets.robot(robot)

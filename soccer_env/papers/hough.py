@@ -36,9 +36,8 @@ from typing import Any
 import numpy as np
 
 from estimators import HeadCamera, fusion_weights, hough_fuse
-
-from ..plots import pyplot, save_figure
-from ._io import write_report
+from soccer_env.papers._io import write_report
+from soccer_env.plots import pyplot, save_figure
 
 __all__ = ["run", "ROBOTS_MM", "PATH_MM", "PAPER"]
 

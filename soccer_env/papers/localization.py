@@ -53,14 +53,18 @@ from typing import Any
 import numpy as np
 
 from estimators import KLDConfig, KLDLocalizer
-
-from .. import presets
-from ..headcam import head_camera
-from ..humanoid_perception import HumanoidTeamPerception, _Brain, head_state, landmark_sightings
-from ..physics import World
-from ..plots import pyplot, save_figure
-from ..radio import RADIO_PRESETS
-from ._io import map_jobs, write_report
+from soccer_env import presets
+from soccer_env.headcam import head_camera
+from soccer_env.humanoid_perception import (
+    HumanoidTeamPerception,
+    _Brain,
+    head_state,
+    landmark_sightings,
+)
+from soccer_env.papers._io import map_jobs, write_report
+from soccer_env.physics import World
+from soccer_env.plots import pyplot, save_figure
+from soccer_env.radio import RADIO_PRESETS
 
 __all__ = ["run", "PAPER", "AIMS"]
 

@@ -85,10 +85,9 @@ from typing import Any
 import numpy as np
 
 from estimators import MeanShiftParticleFilter, ParticleFilterTracker, mean_shift
-
-from .. import presets
-from ..plots import pyplot, save_figure
-from ._io import map_jobs, write_report
+from soccer_env import presets
+from soccer_env.papers._io import map_jobs, write_report
+from soccer_env.plots import pyplot, save_figure
 
 __all__ = ["run", "PAPER", "AIMS", "KINDS", "FIELD", "FRAME"]
 
@@ -239,8 +238,8 @@ def _episode(args: tuple[int, float, int]) -> dict[str, Any]:
     """One seeded episode: simulate, render, track; per-kind errors and timings."""
     import cv2
 
-    from ..frames import PATTERN, PATTERN_IDS, OverheadRenderer, frame_difference
-    from ..physics import World
+    from soccer_env.frames import PATTERN, PATTERN_IDS, OverheadRenderer, frame_difference
+    from soccer_env.physics import World
 
     seed, duration, per_team = args
     rng = np.random.default_rng([seed, 3])

@@ -30,8 +30,8 @@ from typing import Any
 
 import numpy as np
 
-from ..plots import pyplot, save_figure
-from ._io import map_jobs, write_report
+from soccer_env.papers._io import map_jobs, write_report
+from soccer_env.plots import pyplot, save_figure
 
 __all__ = ["run", "MATCH_CONFIGS", "KEEPER_CONFIGS", "PAPER"]
 
@@ -52,8 +52,7 @@ def _match(args: tuple[str, int, float]) -> dict[str, Any]:
     """One seeded match with blue's configuration ``name``; blue's errors."""
     from agents.ablation import HUMANOID_CONFIGS
     from agents.humanoid_team import HumanoidTeam
-
-    from ..envs.match import SoccerParallelEnv
+    from soccer_env.envs.match import SoccerParallelEnv
 
     name, seed, duration = args
     cfg = HUMANOID_CONFIGS[name]

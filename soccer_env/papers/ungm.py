@@ -19,9 +19,8 @@ from typing import Any
 import numpy as np
 
 from estimators import FBPF, MFBPF, BootstrapPF, ungm_model, ungm_simulate
-
-from ..plots import pyplot, save_figure
-from ._io import write_report
+from soccer_env.papers._io import write_report
+from soccer_env.plots import pyplot, save_figure
 
 __all__ = ["run", "FILTERS", "PAPER_CLAIM"]
 
