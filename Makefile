@@ -32,7 +32,7 @@ bench: $(VENV)/.demo-installed
 	$(BIN)/soccer-env bench
 
 lint: $(VENV)/.dev-installed
-	$(BIN)/ruff check soccer_env estimators agents tests benchmarks
+	$(BIN)/ruff check soccer_env estimators agents soccer_lab tests benchmarks
 
 clean:
 	rm -rf $(VENV) demo_output bench_output .pytest_cache

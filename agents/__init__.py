@@ -1,5 +1,5 @@
 """Agents: scripted baselines (and, with the training extra, learning utilities)."""
 
-from agents.goalkeeper import ScriptedGoalkeeper
+from soccer_env.envs.keeper import ScriptedGoalkeeper
 
 __all__ = ["ScriptedGoalkeeper"]

@@ -12,8 +12,8 @@ Estimator configurations live in registries, :data:`ESTIMATOR_CONFIGS` for SSL r
 :data:`HUMANOID_CONFIGS` for humanoids (``robot="humanoid"``: the keeper and its team-mates
 with head cameras, localization, team fusion and ball tracking); a new estimator (with its own
 perception options) is one more :class:`EstimatorConfig` given to :func:`register_config`.
-Sensor presets are the names of :data:`soccer_env.vision.VISION` (SSL) or
-:data:`soccer_env.headcam.HEAD_CAMERAS` (humanoids).
+Sensor presets are the names of :data:`soccer_env.presets.VISION` (SSL) or
+:data:`soccer_env.presets.HEAD_CAMERAS` (humanoids).
 
 The work is split into jobs of (configuration, preset, chunk of ``chunk_size`` consecutive
 seeds) spread over processes. Chunks do not depend on the number of workers and are merged in
@@ -46,9 +46,8 @@ from typing import Any
 
 from agents.cli_args import key_values
 from agents.evaluation import GOALKEEPER_ID, EvalResult, _mp_context, evaluate, wilson
-from soccer_env.headcam import HEAD_CAMERAS
-from soccer_env.perception import BALL_FILTERS, OBS_MODES, PerceptionConfig
-from soccer_env.vision import VISION
+from soccer_env.perception.base import BALL_FILTERS, OBS_MODES, PerceptionConfig
+from soccer_env.presets.sensors import HEAD_CAMERAS, VISION
 
 __all__ = ["EstimatorConfig", "ESTIMATOR_CONFIGS", "HUMANOID_CONFIGS", "ROBOT_KINDS",
            "register_config", "AblationResult", "run_ablation", "write_outputs", "parse_names",
@@ -70,10 +69,10 @@ class EstimatorConfig:
 
     Attributes:
         name: the registry key (what ``--configs`` takes).
-        obs_mode: one of :data:`soccer_env.perception.OBS_MODES`.
+        obs_mode: one of :data:`soccer_env.perception.base.OBS_MODES`.
         description: one line for the tables.
         source: where the estimator comes from (paper, team).
-        perception: options of :class:`~soccer_env.perception.PerceptionConfig` other than the
+        perception: options of :class:`~soccer_env.perception.base.PerceptionConfig` other than the
             vision preset, e.g. ``{"ball_filter": "kf"}``.
         env_kwargs: further environment keyword arguments of this configuration (not
             ``obs_mode`` or ``perception``).
@@ -141,7 +140,7 @@ class EstimatorConfig:
 
 def _filter_config(name: str, source: str) -> EstimatorConfig:
     """The ``"perceived"`` configuration with ball filter ``name`` (described as in
-    :data:`~soccer_env.perception.BALL_FILTERS`)."""
+    :data:`~soccer_env.perception.base.BALL_FILTERS`)."""
     return EstimatorConfig(name, "perceived", BALL_FILTERS[name], source,
                            perception={"ball_filter": name})
 
@@ -230,8 +229,8 @@ def register_config(config: EstimatorConfig, replace: bool = False) -> Estimator
 
 
 def default_presets(robot: str = "ssl") -> list[str]:
-    """All sensor presets of the robot kind: :data:`soccer_env.vision.VISION` for SSL
-    robots, :data:`soccer_env.headcam.HEAD_CAMERAS` for humanoids."""
+    """All sensor presets of the robot kind: :data:`soccer_env.presets.VISION` for SSL
+    robots, :data:`soccer_env.presets.HEAD_CAMERAS` for humanoids."""
     return list(_kind(robot)[1])
 
 
@@ -397,8 +396,8 @@ class AblationResult:
             spec = self.config_specs[c]
             src = f" Source: {spec.source}." if spec.source else ""
             lines.append(f"- `{c}` ({spec.obs_mode}): {spec.description}.{src}")
-        table = ("soccer_env.headcam.HEAD_CAMERAS" if self.robot == "humanoid"
-                 else "soccer_env.vision.VISION")
+        table = ("soccer_env.presets.HEAD_CAMERAS" if self.robot == "humanoid"
+                 else "soccer_env.presets.VISION")
         lines += ["", f"Sensor presets (`{table}`):", ""]
         for p in self.presets:
             src = f": {self.preset_table[p].source}" if p in self.preset_table else ""
@@ -478,8 +477,8 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
             callable must pickle when ``workers > 1``.
         episodes: shots per cell, seeds ``start_seed`` onwards (>= 1).
         presets: sensor preset names (list or comma-separated; default: all of
-            :data:`soccer_env.vision.VISION`, or for humanoids of
-            :data:`soccer_env.headcam.HEAD_CAMERAS`).
+            :data:`soccer_env.presets.VISION`, or for humanoids of
+            :data:`soccer_env.presets.HEAD_CAMERAS`).
         configs: names in :data:`ESTIMATOR_CONFIGS` (for humanoids
             :data:`HUMANOID_CONFIGS`; default: all, in registry order).
         start_seed: the first seed.
@@ -562,7 +561,7 @@ def _plot(res: AblationResult, path: Path) -> str:
     """Grouped bars per preset: save rate with its interval, ball RMSE, compute per step."""
     import numpy as np
 
-    from soccer_env.plots import pyplot, save_figure
+    from soccer_env.render.plots import pyplot, save_figure
 
     plt = pyplot()
     n_p, n_c = len(res.presets), len(res.configs)

@@ -228,7 +228,7 @@ def record_video(policy: str | os.PathLike | Callable, path: str | os.PathLike,
                  env_id: str = GOALKEEPER_ID, width: int = 640) -> Path:
     """Render the episodes ``seeds`` (rgb_array, the belief drawn over the truth) to ``path``
     (``.mp4``; a ``.gif`` beside it if no ffmpeg is available). Returns the file written."""
-    from soccer_env.render import write_video
+    from soccer_env.render.video import write_video
 
     kwargs = {**dict(env_kwargs or {}), "render_mode": "rgb_array", "render_width": width}
     env = gym.make(env_id, **kwargs)

@@ -3,7 +3,7 @@
 Each robot decides from its own observation vector (entries found by name, in its team
 frame), so the team plays on whatever its perception provides:
 
-* **keeper** (robot 0 of a team of two or more): :class:`~agents.goalkeeper.ScriptedGoalkeeper`
+* **keeper** (robot 0 of a team of two or more): :class:`~soccer_env.envs.keeper.ScriptedGoalkeeper`
   for humanoids (guards its goal line, walks to the predicted crossing point, dives).
 * **chasers** (the others): the one nearest the ball walks to a point ``behind`` metres behind
   the ball on the line from the opponent goal's centre through the ball, turning to face the
@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from agents.goalkeeper import ScriptedGoalkeeper, drive_command, turn_command
+from soccer_env.envs.keeper import ScriptedGoalkeeper, drive_command, turn_command
 from soccer_env.presets import BallSpec, FieldSpec, HumanoidRobotSpec
 
 __all__ = ["HumanoidTeam"]

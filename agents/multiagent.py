@@ -52,7 +52,7 @@ from stable_baselines3.common.vec_env.base_vec_env import VecEnvIndices, VecEnvS
 import soccer_env
 from agents.policies import IdlePolicy, NumpyPolicy, SB3Policy
 from agents.team import TEAMS, ScriptedTeam
-from soccer_env.robots import validate_actions
+from soccer_env.sim.commands import validate_actions
 
 __all__ = ["MatchVecEnv", "SelfPlayCallback", "make_match_vec_env", "LEARNERS",
            "OPPONENT_NAMES"]

@@ -363,7 +363,7 @@ def make_policy(ref: str | os.PathLike | Callable, env: Any) -> Policy:
         return ref
     ref = os.fspath(ref)
     if ref == "scripted":
-        from agents.goalkeeper import ScriptedGoalkeeper
+        from soccer_env.envs.keeper import ScriptedGoalkeeper
 
         return ScriptedGoalkeeper.for_env(env)
     if ref == "idle":

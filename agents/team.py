@@ -10,7 +10,7 @@ Roles, decided by each robot from the team-mates' relative positions in its obse
 robots of a team read the same belief, so they agree):
 
 * **keeper**: robot 0 when the team has two or more robots. It plays
-  :class:`~agents.goalkeeper.ScriptedGoalkeeper` (guard line in front of the goal, moving to
+  :class:`~soccer_env.envs.keeper.ScriptedGoalkeeper` (guard line in front of the goal, moving to
   where the ball's predicted path crosses it), except that it clears a slow ball lying in its
   own defense area, which no other robot may enter.
 * **attacker**: the non-keeper robot with the lowest cost to reach the ball (distance, plus a
@@ -39,10 +39,10 @@ from typing import Any
 
 import numpy as np
 
-from agents.goalkeeper import ScriptedGoalkeeper, drive_command, turn_command
 from estimators import FrictionBallModel
-from soccer_env.physics import MAX_TEAM_SIZE
+from soccer_env.envs.keeper import ScriptedGoalkeeper, drive_command, turn_command
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
+from soccer_env.sim.world import MAX_TEAM_SIZE
 
 __all__ = ["ScriptedTeam", "TEAMS"]
 

@@ -14,7 +14,7 @@ same split:
 * ``"velocity"``: :class:`FieldVelocityActions`, ``(vx, vy, omega)`` with the velocity in the
   team frame, kicker off;
 * ``"target"``: :class:`TargetActions`, a point ``(x, y)`` in front of the goal that a
-  braking-profile controller (:func:`agents.goalkeeper.drive_command`) drives the keeper to,
+  braking-profile controller (:func:`soccer_env.envs.keeper.drive_command`) drives the keeper to,
   facing the field, kicker off;
 * ``"guard"``: :class:`GuardActions`, the same with the point on the scripted keeper's guard
   line (5 cm in front of the goal line, beyond the robot's radius): only ``y`` is chosen.
@@ -35,7 +35,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from agents.goalkeeper import TURN_GAIN
+from soccer_env.envs.keeper import TURN_GAIN
 
 __all__ = ["ACTION_MAPS", "FieldVelocityActions", "TargetActions", "GuardActions",
            "action_to_command", "target_params", "wrap_actions"]
@@ -111,7 +111,7 @@ def action_to_command(kind: str, obs: np.ndarray, action: np.ndarray,
         else:
             tx = p["x_min"] + 0.5 * (act[..., 0] + 1.0) * (p["x_max"] - p["x_min"])
             ty = act[..., 1] * p["y_max"]
-        # drive_command and turn_command (agents.goalkeeper) on whole batches: they are scalar
+        # drive_command and turn_command (soccer_env.envs.keeper) on whole batches: they are scalar
         # for the scripted keeper's speed; test_wrappers checks the velocity against the former.
         ex, ey = tx - obs[..., _POSE[0]], ty - obs[..., _POSE[1]]
         dist = np.hypot(ex, ey)

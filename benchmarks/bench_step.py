@@ -3,7 +3,7 @@
 
 import sys
 
-from soccer_env.bench import main
+from soccer_lab.bench import main
 
 if __name__ == "__main__":
     sys.exit(main())

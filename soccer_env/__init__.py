@@ -13,7 +13,7 @@ from gymnasium.envs.registration import register, registry
 
 from soccer_env import presets
 from soccer_env.envs import GoalkeeperEnv, ShotDistribution, SoccerParallelEnv, env, parallel_env
-from soccer_env.physics import COMMAND_FIELDS, World
+from soccer_env.sim.world import COMMAND_FIELDS, World
 from soccer_env.state import WorldState
 
 __version__ = "0.1.0"

@@ -34,8 +34,8 @@ from collections.abc import Sequence
 import numpy as np
 from gymnasium import spaces
 
-from soccer_env.perception import Belief
 from soccer_env.presets import FieldSpec
+from soccer_env.state import Belief
 
 __all__ = ["ObservationBuilder", "ROBOT_SPEED_BOUND", "ROBOT_TURN_BOUND", "BALL_SPEED_BOUND"]
 

@@ -1,4 +1,11 @@
-"""Immutable snapshots of the true world state."""
+"""Snapshots that flow between the layers, each immutable or a read-only copy:
+
+* :class:`WorldState`: the truth at one instant (from the simulation);
+* :class:`HeadState`: every robot's head servos, gait sway and blindness (from the walk
+  engine; what the head cameras read);
+* :class:`Belief`: what a team or a robot believes, laid out like the truth (from perception;
+  what the observation builder reads).
+"""
 
 from __future__ import annotations
 
@@ -6,7 +13,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["WorldState", "state_dict", "BALL_FIELDS", "ROBOT_FIELDS"]
+__all__ = ["WorldState", "HeadState", "Belief", "state_dict", "BALL_FIELDS", "ROBOT_FIELDS"]
 
 #: Columns of :attr:`WorldState.ball`.
 BALL_FIELDS = ("x", "y", "z", "vx", "vy", "vz")
@@ -59,3 +66,37 @@ def state_dict(time: float, ball: np.ndarray, robots: np.ndarray, names: tuple[s
         "robot_pose": {n: robots[i, 0:3] for i, n in enumerate(names)},
         "robot_velocity": {n: robots[i, 3:6] for i, n in enumerate(names)},
     }
+
+
+class HeadState(NamedTuple):
+    """The heads of ALL robots of the world at one step (from the walk engine), arrays ``(N,)``.
+
+    Attributes:
+        pan, tilt: head servo angles as the robot knows them [rad]; pan positive to the left,
+            tilt positive looking down (as :class:`estimators.camera.HeadCamera`).
+        sway_pan, sway_tilt: the gait's sway of the camera's true orientation [rad], unknown
+            to the robot (the true angles are ``pan + sway_pan``, ``tilt + sway_tilt``).
+        blind: the robot sees nothing (fallen or getting up).
+    """
+
+    pan: np.ndarray
+    tilt: np.ndarray
+    sway_pan: np.ndarray
+    sway_tilt: np.ndarray
+    blind: np.ndarray
+
+    @classmethod
+    def steady(cls, n: int, pan: float = 0.0, tilt: float = 0.0) -> HeadState:
+        """``n`` heads at ``pan``, ``tilt`` [rad], without sway, none blind."""
+        return cls(np.full(n, float(pan)), np.full(n, float(tilt)), np.zeros(n), np.zeros(n),
+                   np.zeros(n, dtype=bool))
+
+
+class Belief(NamedTuple):
+    """A belief laid out like :class:`~soccer_env.state.WorldState`'s arrays: ``ball`` (6,)
+    ``x, y, z, vx, vy, vz`` and ``robots`` (N, 6) ``x, y, theta, vx, vy, omega``, at
+    ``time``."""
+
+    time: float
+    ball: np.ndarray
+    robots: np.ndarray

@@ -19,7 +19,7 @@ settings.register_profile("explore", max_examples=500)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 from soccer_env import presets  # noqa: E402
-from soccer_env.physics import World, idle_commands  # noqa: E402
+from soccer_env.sim.world import World, idle_commands  # noqa: E402
 
 
 def make_world(n_blue=1, n_yellow=0, field="ssl-div-b", control_dt=1 / 60, physics_dt=1 / 240,

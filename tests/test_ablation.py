@@ -17,8 +17,8 @@ from agents.ablation import (
     run_ablation,
     write_outputs,
 )
-from soccer_env.cli import main as cli_main
-from soccer_env.vision import VISION
+from soccer_env.presets.sensors import VISION
+from soccer_lab.cli import main as cli_main
 
 PRESETS = ["ideal", "realistic"]
 CONFIGS = ["truth", "ekf"]
@@ -245,7 +245,7 @@ def test_humanoid_ablation_runs_the_team_estimators_on_head_camera_presets(tmp_p
     assert cell.ball_rmse_m > 0.0 and cell.estimator_us_per_step > 0.0
     assert res.command().startswith("soccer-env ablation --robot humanoid")
     files = write_outputs(res, tmp_path)
-    assert "soccer_env.headcam.HEAD_CAMERAS" in files["md"].read_text()
+    assert "soccer_env.presets.HEAD_CAMERAS" in files["md"].read_text()
     assert ablation.default_presets("humanoid") == ["ideal", "kidsize-2012", "kidsize"]
     with pytest.raises(ValueError, match="unknown sensor preset"):
         run_ablation("scripted", 1, "realistic", "own", robot="humanoid")

@@ -5,7 +5,7 @@ import pytest
 from conftest import make_world, park
 
 from estimators import FrictionBallModel
-from soccer_env.physics import idle_commands
+from soccer_env.sim.world import idle_commands
 
 
 def test_predict_decelerates_and_stops():

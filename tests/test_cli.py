@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from soccer_env.cli import main
+from soccer_lab.cli import main
 
 
 def test_list(capsys):
@@ -66,6 +66,6 @@ def test_ruff_clean():
     if not Path(ruff).exists():
         pytest.skip("ruff not installed")
     root = Path(__file__).resolve().parents[1]
-    res = subprocess.run([ruff, "check", "soccer_env", "estimators", "agents", "tests",
-                          "benchmarks"], cwd=root, capture_output=True, text=True)
+    res = subprocess.run([ruff, "check", "soccer_env", "estimators", "agents", "soccer_lab",
+                          "tests", "benchmarks"], cwd=root, capture_output=True, text=True)
     assert res.returncode == 0, res.stdout + res.stderr

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from agents.evaluation import evaluate, wilson
-from soccer_env.cli import main
+from soccer_lab.cli import main
 
 
 def test_wilson_interval():

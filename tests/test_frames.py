@@ -1,4 +1,4 @@
-"""Camera images drawn with OpenCV (soccer_env.frames)."""
+"""Camera images drawn with OpenCV (soccer_env.sensors.images.overhead)."""
 
 import math
 
@@ -7,24 +7,24 @@ import pytest
 
 pytest.importorskip("cv2", reason="rendered frames need the 'pixels' extra (OpenCV)")
 
-from soccer_env import frames, presets  # noqa: E402
-from soccer_env.frames import (  # noqa: E402
+from estimators.colour import ColourTable, back_project, frame_difference, hue_histogram
+from soccer_env import presets
+from soccer_env.presets.images import (
+    CLASS_ALIASES,
     COLOURS,
-    PATTERN_IDS,
-    ColourTable,
-    HeadFrameRenderer,
-    OverheadRenderer,
-    PatchPattern,
-    back_project,
-    frame_difference,
+    OVERHEAD_CLASSES,
     head_frame,
-    hue_histogram,
     overhead_frame,
-    patch_pattern,
 )
-from soccer_env.headcam import HeadState, head_camera  # noqa: E402
-from soccer_env.state import WorldState  # noqa: E402
-from soccer_env.vision import default_cameras  # noqa: E402
+from soccer_env.presets.sensors import head_camera
+from soccer_env.sensors.images.head import HeadFrameRenderer
+from soccer_env.sensors.images.overhead import OverheadRenderer
+from soccer_env.sensors.images.patterns import PATTERN_IDS, PatchPattern, patch_pattern
+from soccer_env.sensors.overhead import default_cameras
+from soccer_env.state import (
+    HeadState,
+    WorldState,  # noqa: E402
+)
 
 FIELD = presets.field("ssl-div-b")
 SSL = presets.robot("ssl")
@@ -369,9 +369,9 @@ def test_back_project_of_the_ball_hue():
 
 
 def test_colour_table_classifies_the_nominal_colours():
-    table = ColourTable()
+    table = ColourTable(OVERHEAD_CLASSES, aliases=CLASS_ALIASES)
     assert table.table.shape == (6, 32, 32, 32)
-    for name in ColourTable.CLASSES:
+    for name in list(OVERHEAD_CLASSES):
         for gain in (0.8, 1.0, 1.2):
             rgb = [min(255, round(gain * c)) for c in COLOURS[name]]
             p = table.lookup(rgb)
@@ -387,9 +387,9 @@ def test_colour_table_classifies_the_nominal_colours():
     assert prob[v, u] > 0.8 and prob[50:100, 500:600].max() < 0.05
     assert table.probability(img, "carpet")[50:100, 500:600].min() > 0.8
     labels = table.classify(img)
-    assert labels[v, u] == ColourTable.CLASSES.index("orange")
+    assert labels[v, u] == list(OVERHEAD_CLASSES).index("orange")
     bu, bv = (int(c) for c in r.to_pixel(CX - 0.15, 0.1))
-    assert labels[bv, bu] == ColourTable.CLASSES.index("blue")
+    assert labels[bv, bu] == list(OVERHEAD_CLASSES).index("blue")
     assert isinstance(r.colour_table(), ColourTable)
     with pytest.raises(ValueError, match="unknown colour class"):
         table.probability(img, "purple")
@@ -444,5 +444,5 @@ def test_bad_renderer_arguments():
     r = OverheadRenderer("clean", FIELD, SSL, BALL, [0, 1])
     with pytest.raises(ValueError, match="robots"):
         r.render(world([FAR]))
-    assert set(frames.OVERHEAD_FRAMES) >= {"clean", "realistic"}
-    assert frames.OVERHEAD_FRAMES["mirosot"].frame_rate == 30.0
+    assert set(presets.OVERHEAD_FRAMES) >= {"clean", "realistic"}
+    assert presets.OVERHEAD_FRAMES["mirosot"].frame_rate == 30.0

@@ -12,15 +12,9 @@ import pytest
 
 from estimators import HeadCamera
 from soccer_env import presets
-from soccer_env.headcam import (
-    HEAD_CAMERAS,
-    LANDMARK_KINDS,
-    HeadCameraSensor,
-    HeadState,
-    field_landmarks,
-    head_camera,
-)
-from soccer_env.state import WorldState
+from soccer_env.presets.sensors import HEAD_CAMERAS, head_camera
+from soccer_env.sensors.headcam import LANDMARK_KINDS, HeadCameraSensor, field_landmarks
+from soccer_env.state import HeadState, WorldState
 
 FIELD = presets.field("humanoid-2012")
 BALL = presets.ball("ssl")

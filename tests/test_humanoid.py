@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 from soccer_env import presets
-from soccer_env.humanoid import DIVE
-from soccer_env.physics import World
-from soccer_env.robots import HumanoidRobot
+from soccer_env.sim.commands import HumanoidRobot
+from soccer_env.sim.walk import DIVE
+from soccer_env.sim.world import World
 
 H = presets.robot("humanoid")
 FIELD = presets.field("humanoid-kid")

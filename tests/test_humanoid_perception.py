@@ -1,6 +1,6 @@
 """What a humanoid team believes, as a user of the environments relies on it: localization,
 team fusion of ball sightings, the radio, the raw and truth modes, every estimator option, and
-clear errors for bad settings (:mod:`soccer_env.humanoid_perception`)."""
+clear errors for bad settings (:mod:`soccer_env.perception.humanoid`)."""
 
 from __future__ import annotations
 
@@ -13,10 +13,9 @@ import pytest
 
 import soccer_env
 from soccer_env.envs.goalkeeper import GoalkeeperEnv
-from soccer_env.headcam import HEAD_CAMERAS
-from soccer_env.humanoid_perception import BALL_TRACKERS, FUSIONS, HEAD_MODES, LOCALIZATIONS
-from soccer_env.perception import PerceptionConfig
-from soccer_env.radio import RADIO_PRESETS
+from soccer_env.perception.base import BALL_TRACKERS, FUSIONS, LOCALIZATIONS, PerceptionConfig
+from soccer_env.presets.sensors import HEAD_CAMERAS, RADIO_PRESETS
+from soccer_env.sim.heads import HEAD_MODES
 
 #: Shots late enough that nothing but the perception happens first.
 LATE = {"delay": (10.0, 10.0)}

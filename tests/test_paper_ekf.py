@@ -5,8 +5,8 @@ from pathlib import Path
 
 import pytest
 
-from soccer_env.cli import main
-from soccer_env.papers import ekf
+from soccer_lab.cli import main
+from soccer_lab.papers import ekf
 
 
 def test_open_loop_orderings():

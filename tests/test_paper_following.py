@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from estimators import HeadCamera
-from soccer_env.papers import following
+from soccer_lab.papers import following
 
 
 @pytest.fixture(scope="module")

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from soccer_env.cli import main
-from soccer_env.papers import hough
+from soccer_lab.cli import main
+from soccer_lab.papers import hough
 
 
 def test_without_camera_noise_every_estimate_is_exact(tmp_path):

@@ -16,9 +16,9 @@ import numpy as np
 import pytest
 
 from estimators import KLDConfig
-from soccer_env.cli import main
-from soccer_env.humanoid_perception import _Brain
-from soccer_env.papers import localization
+from soccer_env.perception.brain import _Brain
+from soccer_lab.cli import main
+from soccer_lab.papers import localization
 
 KLD = "KLD-sampling (50-5000)"
 SEEDS = [4, 5]

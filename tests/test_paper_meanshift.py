@@ -15,9 +15,10 @@ import numpy as np
 import pytest
 
 from soccer_env import presets
-from soccer_env.frames import PATTERN, PATTERN_IDS, OverheadRenderer
-from soccer_env.papers import meanshift
-from soccer_env.physics import World
+from soccer_env.sensors.images.overhead import OverheadRenderer
+from soccer_env.sensors.images.patterns import PATTERN, PATTERN_IDS
+from soccer_env.sim.world import World
+from soccer_lab.papers import meanshift
 
 #: Figures that do not depend on timing.
 FIGURES = ("median_px", "p90_px", "rmse_px", "median_mm", "rmse_mm", "lost_share",

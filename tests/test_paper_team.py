@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from soccer_env.papers import team
+from soccer_lab.papers import team
 
 
 def test_team_benchmark_measures_every_configuration_and_writes_its_outputs(tmp_path: Path):

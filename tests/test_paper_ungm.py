@@ -7,8 +7,8 @@ import json
 import numpy as np
 import pytest
 
-from soccer_env.cli import main
-from soccer_env.papers import ungm
+from soccer_lab.cli import main
+from soccer_lab.papers import ungm
 
 
 def test_tables_plot_and_reproducibility(tmp_path):

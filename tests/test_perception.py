@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 
 import soccer_env
-from soccer_env.perception import PerceptionConfig
-from soccer_env.robots import CommandChannel
-from soccer_env.vision import vision
+from soccer_env.perception.base import PerceptionConfig
+from soccer_env.presets.sensors import vision
+from soccer_env.sim.commands import CommandChannel
 
 
 def rollout(env, steps, action=None, seed=0):

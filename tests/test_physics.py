@@ -7,8 +7,8 @@ import pymunk
 import pytest
 from conftest import make_world, park, run
 
-from soccer_env.physics import idle_commands
 from soccer_env.presets import GRAVITY
+from soccer_env.sim.world import idle_commands
 
 
 def ball_track(world, steps, commands=None):
@@ -331,7 +331,7 @@ def test_pymunk_version_pinned():
 
 @pytest.mark.parametrize("n_blue,n_yellow", [(1, 0), (2, 1), (3, 3)])
 def test_direct_and_batch_state_reads_agree(n_blue, n_yellow):
-    import soccer_env.physics as physics
+    import soccer_env.sim.world as physics
 
     w = park(make_world(n_blue, n_yellow))
     w.set_ball(0.0, 0.0, 2.0, 1.0, sliding=True)

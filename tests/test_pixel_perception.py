@@ -33,10 +33,12 @@ def test_overhead_images_track_the_keeper_and_the_ball():
         ball_err.append(np.hypot(*(est["ball_position"] - tru["ball_position"])))
     assert np.median(pose_err[10:]) < 0.03  # a 640 px image of a 6.6 m field: 1 cm pixels
     assert np.median(ball_err[10:]) < 0.03
-    # The sensor is the pixel one, and its detections are weighed by the pixel size.
-    sensor = env._perception.sensor
-    assert type(sensor).__name__ == "PixelVision"
-    assert sensor.ball_model.sigma >= sensor.renderer.metres_per_pixel - 1e-12
+    # The camera delivers images, and their detections are weighed by the pixel size.
+    pipeline = env._perception
+    assert type(pipeline.sensor).__name__ == "OverheadImageCamera"
+    assert type(pipeline.detector).__name__ == "OverheadPixelDetector"
+    assert (pipeline.measurements.ball_model.sigma
+            >= pipeline.sensor.renderer.metres_per_pixel - 1e-12)
 
 
 def test_headings_come_from_the_dot_layout():

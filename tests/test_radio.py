@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from soccer_env.radio import Message, RadioSpec, TeamRadio
+from soccer_env.presets.sensors import RadioSpec
+from soccer_env.sensors.radio import Message, TeamRadio
 
 
 def _msg(sender, stamp=0.0):

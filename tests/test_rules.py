@@ -8,8 +8,8 @@ import pytest
 from conftest import make_world, park
 
 import soccer_env
-from soccer_env.physics import idle_commands
-from soccer_env.referee import STOP_DISTANCE, classify_exit, place_kickoff
+from soccer_env.sim.referee import STOP_DISTANCE, classify_exit, place_kickoff
+from soccer_env.sim.world import idle_commands
 
 
 def straight_shot(speed=4.0, y=0.0, chip=False, x=-2.0, delay=0.0):

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 import soccer_env
-from agents.goalkeeper import ScriptedGoalkeeper
 from agents.team import ScriptedTeam
+from soccer_env.envs.keeper import ScriptedGoalkeeper
 
 FIELD = soccer_env.presets.field("ssl-div-b")
 HX = FIELD.half_length

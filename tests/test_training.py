@@ -11,7 +11,7 @@ pytest.importorskip("stable_baselines3")
 
 from agents.policies import NumpyPolicy, load_sb3, make_policy  # noqa: E402
 from agents.training import TrainConfig  # noqa: E402
-from soccer_env.cli import main  # noqa: E402
+from soccer_lab.cli import main
 
 pytestmark = pytest.mark.slow
 

@@ -6,9 +6,10 @@ import numpy as np
 import pytest
 from conftest import make_world, park
 
-from soccer_env.physics import idle_commands
+from soccer_env.presets.sensors import vision
+from soccer_env.sensors.overhead import Camera, OverheadVision, default_cameras
+from soccer_env.sim.world import idle_commands
 from soccer_env.state import WorldState
-from soccer_env.vision import Camera, OverheadVision, default_cameras, vision
 
 
 def static_states(world, steps):

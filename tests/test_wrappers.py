@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 
 import soccer_env  # noqa: F401
-from agents.goalkeeper import drive_command
 from agents.policies import NumpyPolicy
 from agents.wrappers import (
     ACTION_MAPS,
@@ -20,6 +19,7 @@ from agents.wrappers import (
     target_params,
     wrap_actions,
 )
+from soccer_env.envs.keeper import drive_command
 
 ID = "soccer_env/Goalkeeper-v0"
 

@@ -12,16 +12,29 @@ import gymnasium as gym
 import numpy as np
 
 from soccer_env import presets
-from soccer_env.config import check_choice, check_int, keyword_names, parse_scales, reject_unknown
-from soccer_env.humanoid_perception import HEAD_MODES, aim_heads
 from soccer_env.observations import ObservationBuilder
-from soccer_env.perception import OBS_MODES, MatchPerception, PerceptionConfig, make_perception
-from soccer_env.physics import World
+from soccer_env.perception.base import OBS_MODES, PerceptionConfig
+from soccer_env.perception.match import MatchPerception
+from soccer_env.perception.overhead import make_perception
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
-from soccer_env.referee import classify_exit
-from soccer_env.render import RENDER_MODES, RenderingMixin
-from soccer_env.robots import OUT_OF_RANGE_MODES, CommandChannel, robot_model, validate_actions
+from soccer_env.render.renderer import RENDER_MODES, RenderingMixin
+from soccer_env.sim.commands import (
+    OUT_OF_RANGE_MODES,
+    CommandChannel,
+    robot_model,
+    validate_actions,
+)
+from soccer_env.sim.heads import HEAD_MODES, aim_heads
+from soccer_env.sim.referee import classify_exit
+from soccer_env.sim.world import World
 from soccer_env.state import state_dict
+from soccer_env.validation import (
+    check_choice,
+    check_int,
+    keyword_names,
+    parse_scales,
+    reject_unknown,
+)
 
 __all__ = ["GoalkeeperEnv", "ShotDistribution", "GOALKEEPER_SHAPING", "STOP_SPEED",
            "CLEAR_SPEED", "HUMANOID_SHOTS", "MAX_MATES", "mate_poses"]
@@ -169,20 +182,20 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
     ``x = -L/2 + r + 0.05`` and ``y`` uniform in ``+-goal_width/4``, facing the field. An
     invisible attacker shoots once per episode, drawn from :class:`ShotDistribution` with the
     environment's seeded generator. Physics, kicks and the chip flight are those of
-    :class:`~soccer_env.physics.World`.
+    :class:`~soccer_env.sim.world.World`.
 
     A humanoid keeper (``robot="humanoid"`` or ``"humanoid-2012"``, on the matching humanoid
     field by default) walks with its walk engine, can dive, and sees through its head camera
-    (:mod:`soccer_env.humanoid_perception`); ``mates`` humanoid team-mates (default 3, see
+    (:mod:`soccer_env.perception.humanoid`); ``mates`` humanoid team-mates (default 3, see
     :func:`mate_poses`) stand, watch the ball and share their sightings over the team radio,
     so that the team's fused estimate reaches the keeper. Shots default to
     :data:`HUMANOID_SHOTS`.
 
     ## Action space
     ``Box(-1, 1, (6,), float32)``: for an SSL robot ``vx, vy, omega, kick, chip, dribble`` as
-    in :class:`~soccer_env.robots.SSLRobot` (body-frame velocity command scaled to the robot
+    in :class:`~soccer_env.sim.commands.SSLRobot` (body-frame velocity command scaled to the robot
     preset's limits; kick power; chip flag; dribbler); for a humanoid ``vx, vy, omega,
-    motion, pan, tilt`` as in :class:`~soccer_env.robots.HumanoidRobot` (walking velocity;
+    motion, pan, tilt`` as in :class:`~soccer_env.sim.commands.HumanoidRobot` (walking velocity;
     kick or dive; head targets, used only with ``head="action"``).
 
     ## Observation space
@@ -192,7 +205,7 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
     goal posts relative to it (8). ``obs_mode`` chooses where the values come from:
     ``"truth"``, ``"raw"`` (latest delayed camera detections) or ``"perceived"`` (the
     estimation stack, predicted ahead by the actuation latency); see
-    :mod:`soccer_env.perception`.
+    :mod:`soccer_env.perception.overhead`.
 
     ## Rewards
     +1 for a save, -1 for a goal, 0 otherwise, plus the shaping terms of
@@ -219,7 +232,7 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
     (preset name or :class:`FieldSpec`, default "ssl-div-b" for SSL robots and the humanoid
     field of the preset for humanoids), ``ball`` (preset or spec; default the field's),
     ``obs_mode`` ("truth", "raw", "perceived"), ``perception`` (a vision preset name,
-    a :class:`~soccer_env.perception.PerceptionConfig` or a mapping of its fields; it also sets
+    a :class:`~soccer_env.perception.base.PerceptionConfig` or a mapping of its fields; it also sets
     the actuation latency and command loss, in every mode), ``render_mode`` (None,
     "rgb_array", "human"), ``shots`` (a
     :class:`ShotDistribution` or a mapping of its fields), ``shaping`` ({term: scale}),

@@ -11,7 +11,22 @@ from pettingzoo import ParallelEnv
 from pettingzoo.utils import parallel_to_aec
 
 from soccer_env import presets
-from soccer_env.config import (
+from soccer_env.observations import ObservationBuilder
+from soccer_env.perception.base import OBS_MODES, PerceptionConfig
+from soccer_env.perception.match import MatchPerception
+from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
+from soccer_env.render.renderer import RENDER_MODES, RenderingMixin
+from soccer_env.sim.commands import (
+    OUT_OF_RANGE_MODES,
+    CommandChannel,
+    robot_model,
+    validate_actions,
+)
+from soccer_env.sim.heads import HEAD_MODES, aim_heads
+from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff
+from soccer_env.sim.world import MAX_TEAM_SIZE, World
+from soccer_env.state import state_dict
+from soccer_env.validation import (
     check_choice,
     check_int,
     check_range,
@@ -19,15 +34,6 @@ from soccer_env.config import (
     parse_scales,
     reject_unknown,
 )
-from soccer_env.humanoid_perception import HEAD_MODES, aim_heads
-from soccer_env.observations import ObservationBuilder
-from soccer_env.perception import OBS_MODES, MatchPerception, PerceptionConfig
-from soccer_env.physics import MAX_TEAM_SIZE, World
-from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
-from soccer_env.referee import classify_exit, place_free_kick, place_kickoff
-from soccer_env.render import RENDER_MODES, RenderingMixin
-from soccer_env.robots import OUT_OF_RANGE_MODES, CommandChannel, robot_model, validate_actions
-from soccer_env.state import state_dict
 
 __all__ = ["SoccerParallelEnv", "parallel_env", "env", "MATCH_SHAPING", "GAME_NAMES"]
 
@@ -63,8 +69,8 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
     the physics steps once per parallel step.
 
     ## Actions
-    ``Box(-1, 1, (6,), float32)`` per agent, as in :class:`~soccer_env.robots.SSLRobot` or,
-    for humanoids, :class:`~soccer_env.robots.HumanoidRobot` (whose head entries 4 and 5 are
+    ``Box(-1, 1, (6,), float32)`` per agent, as in :class:`~soccer_env.sim.commands.SSLRobot` or,
+    for humanoids, :class:`~soccer_env.sim.commands.HumanoidRobot` (whose head entries 4 and 5 are
     used only with ``head="action"``).
 
     ## Observations
@@ -81,7 +87,7 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
     ``info[agent]["reward_terms"]`` logs each.
 
     ## Rules and episode end
-    Goals, outs, free kicks and kick-offs as in :mod:`soccer_env.referee`. All agents are
+    Goals, outs, free kicks and kick-offs as in :mod:`soccer_env.sim.referee`. All agents are
     terminated when the match clock reaches ``match_duration`` (the clock is part of the
     observation, so its end is a terminal state of the game); all are truncated after
     ``max_cycles`` parallel steps if that is set.
@@ -92,13 +98,13 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
     humanoid its own, same keys), ``reward_terms``, ``score`` ``{"blue": int, "yellow":
     int}`` and ``event`` (None, ``"goal"``, ``"touch"``, ``"goal_line"`` or ``"over_bar"``);
     with humanoids in the match, ``robot_state`` (every humanoid's walk engine state, see
-    :meth:`~soccer_env.physics.World.humanoid_state`).
+    :meth:`~soccer_env.sim.world.World.humanoid_state`).
 
     ## Perception
     Each team perceives with its own pipeline (``perception`` for both, or
     ``{"blue": ..., "yellow": ...}``): SSL teams through the overhead vision, humanoid teams
     each robot through its head camera, its localization and the team radio
-    (:mod:`soccer_env.humanoid_perception`), so a humanoid agent's observation and
+    (:mod:`soccer_env.perception.humanoid`), so a humanoid agent's observation and
     ``info["estimate"]`` are its own belief.
 
     ## Arguments

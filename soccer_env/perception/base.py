@@ -1,0 +1,235 @@
+"""What a team perceives with: the configuration of its perception and the option families.
+
+Three observation modes share one observation layout:
+
+* ``"truth"``: the oracle, the true state itself;
+* ``"raw"``: the latest delayed detections of the overhead vision, unfiltered (positions as
+  last seen; velocities as the difference of the last two sightings);
+* ``"perceived"``: the estimation stack's belief: the ball tracker chosen by
+  ``ball_filter`` (paper 002's EKF by default) and batched robot pose filters, fed with the
+  vision's frames by capture time and predicted to the present plus the actuation latency,
+  so that the policy acts on where things will be when its command takes effect.
+
+``perception=`` chooses the vision preset (:data:`soccer_env.presets.VISION`), which
+also sets the actuation latency and command loss that apply in every mode, and the ball filter.
+Its default is ``"ideal"`` for ``obs_mode="truth"`` and ``"realistic"`` otherwise.
+
+Humanoid robots see through their head cameras instead (:mod:`soccer_env.perception.humanoid`):
+``perception=`` then names a head-camera preset
+(:data:`soccer_env.presets.HEAD_CAMERAS`, default the robot preset's camera) or gives
+``camera``, ``radio``, ``localization``, ``fusion`` and ``ball_tracker``; their commands reach
+the walk engine on board, without latency or loss.
+
+Every pipeline returns two beliefs per step: the one the observation is built from (predicted
+ahead by the actuation latency) and the one at the present time, reported in
+``info["estimate"]`` with the keys of ``info["truth"]`` so that errors can be measured.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any, Protocol
+
+import numpy as np
+
+from estimators import MIN_SIGMA_XY, BallFilterConfig
+from soccer_env.presets import BallSpec
+from soccer_env.presets.sensors import (
+    HEAD_CAMERAS,
+    RADIO_PRESETS,
+    VISION,
+    HeadCameraSpec,
+    RadioSpec,
+    VisionSpec,
+    head_camera,
+    vision,
+)
+from soccer_env.state import WorldState
+
+__all__ = ["LOCALIZATIONS", "FUSIONS", "BALL_TRACKERS", "Perception", "PerceptionConfig",
+           "OBS_MODES", "BALL_FILTERS", "ball_filter_config"]
+
+#: Observation modes.
+OBS_MODES = ("truth", "raw", "perceived")
+
+
+#: Where detections come from: the sensor models, or image trackers on rendered frames.
+DETECTORS = {
+    "geometric": "the sensor model's noisy detections",
+    "pixels": "rendered camera images tracked by paper 003's mean-shift particle filters "
+              "(overhead) and paper 004's Kalman-started mean shift (head cameras)",
+}
+
+
+#: Ball filter configurations of ``obs_mode="perceived"``.
+BALL_FILTERS = {
+    "kf": "constant-velocity Kalman filter fed arrival times (no latency compensation), "
+          "no gating",
+    "kf-comp": "the same with latency compensation",
+    "ekf": "paper 002's friction EKF (analytic Jacobian), latency compensation, eq. 19 "
+           "collision-aware noise, gating and reset on kicks (default)",
+    "ekf-improved": "paper 002's improved EKF (Runge-Kutta propagation, F = M), otherwise "
+                    "as 'ekf'",
+    "ekf-2phase": "'ekf' with the two-phase sliding/rolling model after detected kicks",
+    "ls": "paper 002's least-squares predictor (line fit to the last 6 detections)",
+}
+
+
+class Perception(Protocol):
+    """One perception pipeline (shared by both teams of a match)."""
+
+    vision_spec: VisionSpec
+
+    def reset(self, state: WorldState, rng: np.random.Generator) -> tuple[Any, Any]:
+        """Start an episode at ``state``; return ``(belief for the observation, belief now)``."""
+        ...
+
+    def update(self, state: WorldState) -> tuple[Any, Any]:
+        """Advance to ``state``; return ``(belief for the observation, belief now)``."""
+        ...
+
+
+@dataclass(frozen=True)
+class PerceptionConfig:
+    """What a team perceives with.
+
+    SSL robots (overhead vision):
+
+    Attributes:
+        vision: a :class:`~soccer_env.presets.VisionSpec` (or preset name).
+        ball_filter: one of :data:`BALL_FILTERS` (used by ``obs_mode="perceived"``).
+        detector: ``"geometric"`` (the sensor model's detections) or ``"pixels"`` (rendered
+            images tracked by paper 003's mean-shift particle filters,
+            :mod:`soccer_env.perception.pixels`; needs the ``pixels`` extra).
+
+    Humanoids (head cameras, :mod:`soccer_env.perception.humanoid`):
+
+    Attributes:
+        camera: a :class:`~soccer_env.presets.HeadCameraSpec`, a preset name, or None for the
+            robot preset's camera.
+        radio: the team radio, a :class:`~soccer_env.presets.RadioSpec` or preset name.
+        localization: one of :data:`~soccer_env.perception.base.LOCALIZATIONS`.
+        fusion: one of :data:`~soccer_env.perception.base.FUSIONS`.
+        ball_tracker: one of :data:`~soccer_env.perception.base.BALL_TRACKERS`.
+    """
+
+    vision: VisionSpec
+    ball_filter: str = "ekf"
+    detector: str = "geometric"
+    camera: HeadCameraSpec | str | None = None
+    radio: RadioSpec | str = "zigbee"
+    localization: str = "kld"
+    fusion: str = "inverse"
+    ball_tracker: str = "mfbpf"
+
+    def __post_init__(self) -> None:
+        if isinstance(self.vision, str):
+            object.__setattr__(self, "vision", vision(self.vision))
+        elif not isinstance(self.vision, VisionSpec):
+            raise TypeError(f"perception vision must be a preset name or a VisionSpec, got "
+                            f"{type(self.vision).__name__}")
+        if self.ball_filter not in BALL_FILTERS:
+            raise ValueError(f"ball_filter must be one of {list(BALL_FILTERS)}, got "
+                             f"{self.ball_filter!r}")
+        if self.detector not in DETECTORS:
+            raise ValueError(f"detector must be one of {list(DETECTORS)}, got "
+                             f"{self.detector!r}")
+        if isinstance(self.camera, str):
+            object.__setattr__(self, "camera", head_camera(self.camera))
+        elif self.camera is not None and not isinstance(self.camera, HeadCameraSpec):
+            raise TypeError(f"perception camera must be a head-camera preset name, a "
+                            f"HeadCameraSpec or None, got {type(self.camera).__name__}")
+        if isinstance(self.radio, str):
+            if self.radio not in RADIO_PRESETS:
+                raise ValueError(f"radio must be one of {sorted(RADIO_PRESETS)} or a "
+                                 f"RadioSpec, got {self.radio!r}")
+            object.__setattr__(self, "radio", RADIO_PRESETS[self.radio])
+        elif not isinstance(self.radio, RadioSpec):
+            raise TypeError(f"perception radio must be a preset name or a RadioSpec, got "
+                            f"{type(self.radio).__name__}")
+        for name, allowed in (("localization", LOCALIZATIONS), ("fusion", FUSIONS),
+                              ("ball_tracker", BALL_TRACKERS)):
+            if getattr(self, name) not in allowed:
+                raise ValueError(f"{name} must be one of {list(allowed)}, got "
+                                 f"{getattr(self, name)!r}")
+
+    @classmethod
+    def create(cls, value: Any, obs_mode: str, kind: str = "ssl") -> PerceptionConfig:
+        """From ``perception=``: None (``"ideal"`` vision for truth, else ``"realistic"``),
+        a vision preset name or :class:`VisionSpec` (for humanoids, ``kind="humanoid"``: a
+        head-camera preset name or :class:`~soccer_env.presets.HeadCameraSpec`), a mapping of
+        this class's fields, or an instance."""
+        default_vision = "ideal" if obs_mode == "truth" else "realistic"
+        if value is None:
+            return cls(vision(default_vision))
+        if isinstance(value, cls):
+            return value
+        if kind == "humanoid" and isinstance(value, (str, HeadCameraSpec)):
+            if isinstance(value, str) and value not in HEAD_CAMERAS:
+                raise ValueError(f"unknown head-camera preset {value!r} for humanoid "
+                                 f"perception; known: {sorted(HEAD_CAMERAS)}")
+            return cls(vision(default_vision), camera=value)
+        if isinstance(value, (str, VisionSpec)):
+            if isinstance(value, str) and value not in VISION:
+                raise ValueError(f"unknown vision preset {value!r}; known: {sorted(VISION)}")
+            return cls(vision(value))
+        if isinstance(value, Mapping):
+            allowed = {f.name for f in dataclasses.fields(cls)}
+            unknown = sorted(set(value) - allowed)
+            if unknown:
+                raise ValueError(f"unknown perception key(s) {unknown}; allowed: "
+                                 f"{sorted(allowed)}")
+            return cls(**{"vision": default_vision if kind == "humanoid" else "realistic",
+                          **value})
+        raise TypeError(f"perception must be a preset name, a VisionSpec or HeadCameraSpec, a "
+                        f"mapping or a PerceptionConfig, got {type(value).__name__}")
+
+
+def ball_filter_config(name: str, ball: BallSpec, spec: VisionSpec
+                       ) -> tuple[BallFilterConfig | None, bool]:
+    """The :class:`~estimators.BallFilterConfig` of ball filter ``name`` for this ball and
+    sensor (None for ``"ls"``), and whether it is fed capture times (latency compensation).
+
+    The filters assume the sensor's noise (at least 1 mm) and the ball's rolling
+    deceleration; the other parameters are paper 002's.
+    """
+    sigma = max(spec.ball_sigma, MIN_SIGMA_XY)
+    if name == "ls":
+        return None, True
+    if name in ("kf", "kf-comp"):
+        cfg = BallFilterConfig(deceleration=0.0, sigma_xy=sigma, collision_noise=False,
+                               gate=None, reset_after=None)
+        return cfg, name == "kf-comp"
+    two_phase = (ball.sliding_deceleration, ball.k_switch) if name == "ekf-2phase" else None
+    propagation = "rk" if name == "ekf-improved" else "jacobian"
+    return BallFilterConfig(deceleration=ball.rolling_deceleration, propagation=propagation,
+                            sigma_xy=sigma, two_phase=two_phase), True
+
+
+#: Self-localization choices.
+LOCALIZATIONS = {
+    "kld": "paper 001's KLD-sampling particle filter on odometry and landmark sightings",
+    "odometry": "dead reckoning from the known start pose (no landmarks)",
+    "truth": "the true pose (oracle, for ablations)",
+}
+
+
+#: Ball fusion choices: the robot's own sighting only, or paper 000's Hough-space fusion of
+#: the team's sightings with the weighting named.
+FUSIONS = {
+    "own": "the robot's own sighting only",
+    "equal": "Hough-space fusion of the team's sightings, equal weights",
+    "inverse": "Hough-space fusion, weights 1/L (paper 000's weighted fusion)",
+    "inverse_square": "Hough-space fusion, weights 1/L^2",
+}
+
+
+#: Ball trackers fed by the fused sightings.
+BALL_TRACKERS = {
+    "none": "no tracking: the latest fused point, velocity from the last two",
+    "bootstrap": "bootstrap particle filter, 100 particles",
+    "fbpf": "fission bootstrap particle filter (FBPF), 100 particles",
+    "mfbpf": "paper 000's modified FBPF, 100 particles",
+}

@@ -1,0 +1,339 @@
+"""One humanoid's estimation stack (:class:`_Brain`): odometry, its head-camera frames, the
+team-mates' radio messages, Hough fusion and ball tracking, as described in
+:mod:`soccer_env.perception.humanoid`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import deque
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from estimators import KLDLocalizer, ParticleBallTracker, fuse_sightings
+from soccer_env.sensors.headcam import HeadFrame
+from soccer_env.sensors.radio import Message
+from soccer_env.state import WorldState
+
+if TYPE_CHECKING:  # the team's pipeline, which owns its robots' brains
+    from soccer_env.perception.humanoid import HumanoidTeamPerception
+
+__all__ = ["landmark_sightings"]
+
+#: Fused sightings older than this many frame periods are not fused with a new one.
+_FUSION_WINDOW_FRAMES = 1.5
+
+
+#: Measurement standard deviation floor of the ball tracker [m].
+_MIN_SIGMA = 0.02
+
+
+#: A robot detection is associated with an opponent track within this distance [m].
+_TRACK_GATE = 1.0
+
+
+#: The fastest ball [m/s]: the tracked velocity that moves old sighting lines is capped at it.
+_MAX_BALL_SPEED = 10.0
+
+
+#: Raw and untracked velocities are differences of points at least this far apart [s].
+_MIN_DIFF_GAP = 0.1
+
+
+def landmark_sightings(frame: HeadFrame) -> tuple[list[str], np.ndarray, np.ndarray]:
+    """The landmarks of ``frame`` that have a ground point: their kinds, ranges [m] and
+    bearings [rad] in the robot frame (what the localization weighs)."""
+    kinds, ranges, bearings = [], [], []
+    for kind, _u, _v, x, y, bearing in frame.landmarks:
+        r = math.hypot(x, y)
+        if math.isfinite(r):
+            kinds.append(kind)
+            ranges.append(r)
+            bearings.append(bearing)
+    return kinds, np.array(ranges), np.array(bearings)
+
+
+def _compose(a: tuple[float, float, float], b: tuple[float, float, float]
+             ) -> tuple[float, float, float]:
+    """Body-frame displacement ``a`` followed by ``b`` (``b`` in the frame ``a`` ends in)."""
+    c, s = math.cos(a[2]), math.sin(a[2])
+    return (a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], a[2] + b[2])
+
+
+@dataclass
+class _Line:
+    """A sighting line: from ``origin`` at ``angle`` [rad], range [m] (NaN: bearing only),
+    captured at ``stamp`` [s]."""
+
+    stamp: float
+    origin: tuple[float, float]
+    angle: float
+    range: float
+
+
+class _Brain:
+    """One humanoid's estimation stack (see the module docstring)."""
+
+    def __init__(self, index: int, name: str, team: int, perception: HumanoidTeamPerception,
+                 rng: np.random.Generator) -> None:
+        self.i, self.name, self.team = index, name, team
+        self.p = perception
+        self.rng = rng
+        cfg = perception.config
+        self.kind = cfg.localization
+        self.fusion = cfg.fusion
+        if perception.pixels:
+            from soccer_env.perception.pixels import BallImageTracker
+
+            self.finder: Any = BallImageTracker(perception.camera, perception.ball_spec)
+        else:
+            self.finder = None
+        self.tracker = (None if cfg.ball_tracker == "none" else ParticleBallTracker(
+            rng, filter=cfg.ball_tracker, n_particles=100, accel_sigma=1.0,
+            deceleration=perception.ball_spec.rolling_deceleration,
+            lost_after=2.0, max_speed=_MAX_BALL_SPEED, reinit_after=2))
+
+    def reset(self, state: WorldState) -> None:
+        p = self.p
+        start = state.robots[self.i, 0:3].copy()  # placed at a known pose
+        self.pose = start.copy()
+        self.loc = (KLDLocalizer(p.bounds, self.rng, p.kld_config, pose=start,
+                                 pose_sigma=(0.05, 0.05, 0.05))
+                    if self.kind == "kld" else None)
+        self._loc_estimate = start
+        self.odo: deque[tuple[float, tuple[float, float, float]]] = deque()
+        self.gait_velocity = (0.0, 0.0, 0.0)
+        self.own_line: _Line | None = None
+        self.mate_lines: dict[str, _Line] = {}
+        self.mate_poses: dict[int, tuple[float, np.ndarray, np.ndarray]] = {}
+        for j in p.team_members[self.team]:
+            if j != self.i:
+                self.mate_poses[j] = (state.time, state.robots[j, 0:3].copy(), np.zeros(3))
+        self.opponents = {j: [state.time, state.robots[j, 0:2].copy(), np.zeros(2)]
+                          for j in range(p.n_robots) if p.teams[j] != self.team}
+        if self.tracker is not None:
+            self.tracker.reset()
+        if self.finder is not None:
+            self.finder.reset()
+        self.points: deque[tuple[float, float, float]] = deque(maxlen=8)
+        self.ball_seen = -math.inf  # capture time of the last own sighting
+        self.ball_heard = -math.inf  # capture time of the last team sighting
+        self.landmark_seen = state.time
+        self.last_frame = state.time
+        self.down = False  # fallen at the last update
+
+    # ------------------------------------------------------------------------------------
+
+    def odometry(self, t: float, d: tuple[float, float, float], truth: np.ndarray) -> None:
+        """The walk engine's displacement over the step ending at ``t``."""
+        if self.kind == "truth":
+            self.pose = truth.copy()
+            return
+        if d == (0.0, 0.0, 0.0):
+            return
+        self.odo.append((t, d))
+        if self.kind == "odometry":
+            self.pose = self._moved(self.pose, d)
+            self.odo.clear()
+
+    @staticmethod
+    def _moved(pose: np.ndarray, d: tuple[float, float, float]) -> np.ndarray:
+        th = pose[2] + 0.5 * d[2]
+        c, s = math.cos(th), math.sin(th)
+        return np.array([pose[0] + c * d[0] - s * d[1], pose[1] + s * d[0] + c * d[1],
+                         math.remainder(pose[2] + d[2], 2.0 * math.pi)])
+
+    def _odometry_until(self, t: float) -> tuple[float, float, float]:
+        """Compose and drop the odometry of the steps that ended by ``t``."""
+        total = (0.0, 0.0, 0.0)
+        while self.odo and self.odo[0][0] <= t + 1e-9:
+            total = _compose(total, self.odo.popleft()[1])
+        return total
+
+    def _predict(self, d: tuple[float, float, float]) -> None:
+        if d == (0.0, 0.0, 0.0) or self.loc is None:
+            return
+        # KLDLocalizer rotates the displacement by the mid-step heading; ``d`` is in the
+        # start frame, so express it in the frame turned by half its rotation.
+        c, s = math.cos(0.5 * d[2]), math.sin(0.5 * d[2])
+        self.loc.predict((c * d[0] + s * d[1], -s * d[0] + c * d[1], d[2]))
+        self._loc_estimate = self.loc.estimate()
+
+    def stood_up(self, heading_sigma: float) -> None:
+        """The robot got up, turned by an angle its odometry does not report (Gaussian,
+        ``heading_sigma`` [rad]): spread the localization's headings by as much."""
+        if self.loc is None or heading_sigma <= 0.0:
+            return
+        p = self.loc.particles
+        turn = self.rng.normal(0.0, heading_sigma, len(p))
+        p[:, 2] = np.remainder(p[:, 2] + turn + math.pi, 2.0 * math.pi) - math.pi
+        self._loc_estimate = self.loc.estimate()
+
+    def estimate_pose(self) -> np.ndarray:
+        """The present pose estimate (localization plus the odometry not yet applied)."""
+        if self.loc is None:
+            return self.pose
+        pose = self._loc_estimate
+        for _, d in self.odo:
+            pose = self._moved(pose, d)
+        return pose
+
+    # ------------------------------------------------------------------------------------
+
+    def frame(self, f: HeadFrame) -> Message:
+        """Process one of the robot's frames; return its broadcast."""
+        p = self.p
+        self.last_frame = f.t_delivered
+        if self.loc is not None:
+            self._predict(self._odometry_until(f.t_capture))
+            kinds, ranges, bearings = landmark_sightings(f)
+            if kinds:
+                self.loc.update_kinds(kinds, ranges, bearings, p.landmark_table)
+                self.landmark_seen = f.t_capture
+            pose = self._loc_estimate = self.loc.estimate()
+        else:
+            pose = self.pose
+            if any(math.isfinite(d[3]) for d in f.landmarks):
+                self.landmark_seen = f.t_capture
+        c, s = math.cos(pose[2]), math.sin(pose[2])
+        # The ball: of several detections, the one nearest the present belief.
+        line = None
+        balls = f.balls
+        if self.finder is not None and f.image is not None:  # find it in the image
+            balls = self.finder.detect(f.image, float(pose[2]) + f.pan, f.tilt, f.pan)
+        if balls:
+            if len(balls) > 1:
+                guess = self.ball_point(f.t_capture)
+                if guess is not None:
+                    gx, gy = guess[0] - pose[0], guess[1] - pose[1]
+                    gb = math.atan2(-s * gx + c * gy, c * gx + s * gy)
+                    balls = sorted(balls, key=lambda b: abs(math.remainder(b[4] - gb,
+                                                                           2 * math.pi)))
+            _u, _v, x, y, bearing = balls[0]
+            line = _Line(f.t_capture, (float(pose[0]), float(pose[1])),
+                         float(pose[2] + bearing), math.hypot(x, y))
+            self.own_line = line
+            self.ball_seen = f.t_capture
+        for team, _u, _v, x, y, _b in f.robots:
+            if team != self.team and math.isfinite(x):
+                self._opponent(f.t_capture, pose[0] + c * x - s * y, pose[1] + s * x + c * y)
+        self._fuse(f.t_capture)
+        sighting = None if line is None else (*line.origin, line.angle, line.range)
+        return Message(self.name, f.t_capture, (float(pose[0]), float(pose[1]),
+                                                float(pose[2])), sighting)
+
+    def message(self, m: Message, now: float) -> None:
+        """A team-mate's broadcast arrived."""
+        j = self.p.index_of[m.sender]
+        prev = self.mate_poses.get(j)
+        pose = np.array(m.pose)
+        vel = np.zeros(3)
+        if prev is not None and m.stamp - prev[0] >= _MIN_DIFF_GAP:
+            vel = (pose - prev[1]) / (m.stamp - prev[0])
+            vel[2] = math.remainder(pose[2] - prev[1][2], 2 * math.pi) / (m.stamp - prev[0])
+        if prev is None or m.stamp >= prev[0]:
+            self.mate_poses[j] = (m.stamp, pose, vel if prev is None or
+                                  m.stamp - prev[0] >= _MIN_DIFF_GAP else prev[2])
+        if m.sighting is not None and self.fusion != "own":
+            x0, y0, angle, rng_ = m.sighting
+            self.mate_lines[m.sender] = _Line(m.stamp, (x0, y0), angle, rng_)
+            self.ball_heard = max(self.ball_heard, m.stamp)
+            if now - self.last_frame > self.p.frame_gap:
+                # No frames of its own (fallen, or its camera is late): the team's sightings
+                # alone keep the belief going.
+                self._fuse(m.stamp)
+
+    def _opponent(self, t: float, x: float, y: float) -> None:
+        best, dist = None, _TRACK_GATE
+        for j, (_t, pos, _v) in self.opponents.items():
+            d = math.hypot(pos[0] - x, pos[1] - y)
+            if d < dist:
+                best, dist = j, d
+        if best is None:  # the stalest track takes it
+            if not self.opponents:
+                return
+            best = min(self.opponents, key=lambda j: self.opponents[j][0])
+        t0, pos, vel = self.opponents[best]
+        new = np.array([x, y])
+        if t - t0 >= _MIN_DIFF_GAP and dist < _TRACK_GATE:
+            vel = (new - pos) / (t - t0)
+        self.opponents[best] = [t, new, vel]
+
+    # ------------------------------------------------------------------------------------
+
+    def _fuse(self, t: float) -> None:
+        """Fuse the lines available at the frame captured at ``t`` and feed the tracker."""
+        window = self.p.fusion_window
+        lines = []
+        if self.own_line is not None and self.own_line.stamp == t:
+            lines.append(self.own_line)
+        if self.fusion != "own":
+            lines += [ln for ln in self.mate_lines.values() if abs(ln.stamp - t) <= window]
+        if not lines:
+            return
+        velocity = None
+        if self.tracker is not None:
+            est = self.tracker.estimate(t)
+            if est is not None:
+                velocity = est[2:4]
+                speed = math.hypot(*velocity)
+                if speed > _MAX_BALL_SPEED:  # never move lines by an impossible motion
+                    velocity = velocity * (_MAX_BALL_SPEED / speed)
+        weighting = "inverse" if self.fusion == "own" else self.fusion
+        ranges = np.array([ln.range for ln in lines])
+        known = ranges[np.isfinite(ranges)]
+        p = self.p
+        rel = max(0.05, p.range_per_metre * (float(known.max()) if len(known) else 1.0))
+        try:
+            fused = fuse_sightings(
+                np.array([ln.origin for ln in lines]), np.array([ln.angle for ln in lines]),
+                ranges, np.array([ln.stamp for ln in lines]), now=t, velocity=velocity,
+                weighting=weighting, bearing_sigma=p.bearing_sigma, range_sigma_rel=rel)
+        except ValueError:  # bearings only, no crossing: no position
+            return
+        point = fused.point
+        x0, x1, y0, y1 = p.bounds
+        if not (np.all(np.isfinite(point)) and x0 <= point[0] <= x1 and y0 <= point[1] <= y1):
+            return  # no ball can be there (outside the walls)
+        if self.tracker is not None:
+            self.tracker.update(t, point, fused.cov + _MIN_SIGMA**2 * np.eye(2))
+        self.points.append((t, float(point[0]), float(point[1])))
+
+    def ball_point(self, t: float) -> np.ndarray | None:
+        """The believed ball ``(x, y, vx, vy)`` at ``t`` (None if never seen); a prediction
+        that would leave the walled area stops at the wall."""
+        if self.tracker is not None:
+            est = self.tracker.estimate(t)
+            if est is None:
+                return None
+            x0, x1, y0, y1 = self.p.bounds
+            if not (x0 <= est[0] <= x1 and y0 <= est[1] <= y1):
+                est = np.array([min(x1, max(x0, est[0])), min(y1, max(y0, est[1])), 0.0, 0.0])
+            return est
+        if not self.points:
+            return None
+        t1, x1, y1 = self.points[-1]
+        for t0, x0, y0 in reversed(self.points):
+            if t1 - t0 >= _MIN_DIFF_GAP:
+                return np.array([x1, y1, (x1 - x0) / (t1 - t0), (y1 - y0) / (t1 - t0)])
+        return np.array([x1, y1, 0.0, 0.0])
+
+    def belief(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        """``ball`` (6,) and ``robots`` (N, 6) as this robot believes them at ``t``."""
+        p = self.p
+        ball = np.zeros(6)
+        b = self.ball_point(t)
+        if b is not None:
+            ball[0:2], ball[3:5] = b[0:2], b[2:4]
+        robots = np.zeros((p.n_robots, 6))
+        pose = self.estimate_pose()
+        gx, gy, gw = self.gait_velocity
+        c, s = math.cos(pose[2]), math.sin(pose[2])
+        robots[self.i] = (*pose, c * gx - s * gy, s * gx + c * gy, gw)
+        for j, (_t, mpose, mvel) in self.mate_poses.items():
+            robots[j, 0:3], robots[j, 3:6] = mpose, mvel
+        for j, (_t, pos, vel) in self.opponents.items():
+            robots[j, 0:2], robots[j, 3:5] = pos, vel
+        return ball, robots

@@ -1,0 +1,219 @@
+"""What a humanoid team believes: every robot localizes itself, sees through its head camera,
+shares its sightings over the team radio, fuses them in Hough space and tracks the ball with a
+particle filter (papers 000 and 001).
+
+Per humanoid ("brain"), per step:
+
+1. **Odometry** from its walk engine is kept with its time stamps.
+2. **Head-camera frames** (:class:`~soccer_env.sensors.headcam.HeadCameraSensor`) arrive late. For a
+   frame captured at ``t_c`` the localization is moved by the odometry up to ``t_c`` and
+   weighted by the frame's landmarks (``localization="kld"``: paper 001's KLD-sampling
+   particle filter, :class:`~estimators.KLDLocalizer`, with ambiguous landmark kinds: a robot
+   sees an "L" corner, not which one; ``"odometry"``: dead reckoning from the known start;
+   ``"truth"``: the true pose, an oracle for ablations). The ball detection nearest the
+   present belief becomes a sighting line: from the estimated position at ``t_c`` along the
+   estimated heading plus the detection's bearing, with the ground projection's range.
+3. **Radio** (:class:`~soccer_env.sensors.radio.TeamRadio`): each frame's pose estimate and sighting
+   are broadcast; a fallen robot is silent; received messages update the team-mates' poses
+   and their latest sighting lines.
+4. **Fusion** at each own frame: the robot's own line and the team-mates' lines captured
+   within 1.5 frame periods plus the radio's latency and jitter of it (the latest per
+   team-mate), each moved by the tracked ball velocity times its age,
+   are fused by :func:`~estimators.fuse_sightings` (``fusion="equal" | "inverse" |
+   "inverse_square"``: paper 000's Hough-space least squares with the weighting named; with
+   ``"own"`` only the robot's own sighting is used).
+5. **Tracking**: the fused point feeds paper 000's particle filter
+   (:class:`~estimators.ParticleBallTracker`, ``ball_tracker="mfbpf" | "fbpf" |
+   "bootstrap"``, 100 particles) stamped with the capture time, so its prediction to the
+   present compensates the camera latency; with ``"none"`` the belief is the latest fused
+   point with the velocity of the last two (at least 0.1 s apart).
+6. **Opponents** are the robot's own sightings of robots of the other team's colour, each
+   associated with the nearest opponent track within 1 m (no identity is seen); tracks start
+   at the kick-off positions, which the rules fix.
+
+Raw observations (``obs_mode="raw"``) run the same pipeline with the filters off: odometry
+dead reckoning, the robot's own sightings only, no tracker.
+
+The head is aimed by :class:`HeadController` unless the policy controls it.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from estimators import KLDConfig, KLDLocalizer, ParticleBallTracker
+from soccer_env.perception.brain import _FUSION_WINDOW_FRAMES, _Brain
+from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
+from soccer_env.presets.sensors import HeadCameraSpec, RadioSpec
+from soccer_env.sensors.headcam import HeadCameraSensor, HeadFrame, field_landmarks
+from soccer_env.sensors.radio import TeamRadio
+from soccer_env.sim.heads import HEAD_MODES, HeadController
+from soccer_env.state import HeadState, WorldState
+
+__all__ = ["HumanoidTeamPerception"]
+
+
+class HumanoidTeamPerception:
+    """The estimation stacks of the humanoids ``observers`` of a world (of one or both
+    teams; each team has its own radio).
+
+    Args:
+        config: the :class:`~soccer_env.perception.base.PerceptionConfig` (its ``camera``,
+            ``radio``, ``localization``, ``fusion`` and ``ball_tracker``).
+        field, ball: the world's field and ball.
+        specs: every robot's model (radii; the observers' camera height and head limits).
+        teams: every robot's team.
+        names: every robot's name.
+        observers: indices of the humanoids whose beliefs are modelled.
+        camera: the head camera of the observers.
+        radio: the team radio's link.
+        head_mode: ``"auto"``, ``"scan"`` or ``"action"`` (see :data:`HEAD_MODES`).
+    """
+
+    def __init__(self, config: Any, field: FieldSpec, ball: BallSpec,
+                 specs: Sequence[RobotSpec], teams: Sequence[int], names: Sequence[str],
+                 observers: Sequence[int], camera: HeadCameraSpec, radio: RadioSpec,
+                 head_mode: str = "auto") -> None:
+        self.config = config
+        self.field, self.ball_spec = field, ball
+        self.specs = list(specs)
+        self.teams = [int(t) for t in teams]
+        self.names = list(names)
+        self.index_of = {n: i for i, n in enumerate(self.names)}
+        self.n_robots = len(self.teams)
+        self.observers = list(observers)
+        self.team_members = {t: [i for i in self.observers if self.teams[i] == t]
+                             for t in (0, 1)}
+        self.camera, self.radio_spec = camera, radio
+        self.pixels = getattr(config, "detector", "geometric") == "pixels"
+        if self.pixels:  # rendered images; the robots find the ball in them
+            from soccer_env.sensors.images.cameras import PixelHeadCamera
+
+            self.sensor = PixelHeadCamera(camera, field, ball, self.specs, self.teams,
+                                          self.observers)
+        else:
+            self.sensor = HeadCameraSensor(camera, field, ball, [s.radius for s in self.specs],
+                                           self.teams, self.observers)
+        positions, kinds = field_landmarks(field, camera.distinct_goals)
+        table: dict[str, list] = {}
+        for pos, kind in zip(positions, kinds):
+            table.setdefault(kind, []).append(pos)
+        self.landmark_table = {k: np.array(v) for k, v in table.items()}
+        wx, wy = field.half_length + field.boundary, field.half_width + field.boundary
+        self.bounds = (-wx, wx, -wy, wy)
+        # Landmark noise as the camera makes it: a pixel or a tilt error e moves a ground
+        # point at distance d by about d^2 e / h along the line of sight; bearings by the
+        # pixel noise and the yaw sway. The sway's errors repeat from frame to frame (the
+        # gait is periodic), so recovery waits for a deeper and longer drop of the likelihood
+        # than the textbook rule.
+        f_px = camera.camera.focal_px
+        hum = [s for s in self.specs if s.kind == "humanoid"]
+        sway_t = max((s.sway_tilt for s in hum), default=0.0)
+        sway_p = max((s.sway_pan for s in hum), default=0.0)
+        ang = math.hypot(sway_t, camera.pixel_sigma / f_px)
+        self.kld_config = KLDConfig(
+            min_particles=50, max_particles=2000,
+            range_sigma=0.05, range_sigma_rel=0.05,
+            range_sigma_quad=max(0.01, ang / camera.height),
+            bearing_sigma=max(math.radians(1.0), math.hypot(sway_p, camera.pixel_sigma / f_px)),
+            alpha_fast=0.1, recovery_ratio=0.2)
+        self.fusion_window = ((_FUSION_WINDOW_FRAMES / camera.frame_rate
+                               if camera.frame_rate else 0.05)
+                              + radio.latency + radio.jitter)
+        # The sightings' error model for the fusion: bearings off by the pixel noise and the
+        # yaw sway; ranges (ground projections) off by about d^2 e / h for an angular error
+        # e of the tilt (pixel noise and pitch sway), i.e. relatively by d e / h.
+        self.bearing_sigma = max(math.radians(0.5), math.hypot(sway_p,
+                                                               camera.pixel_sigma / f_px))
+        self.range_per_metre = max(1e-3, ang / camera.height)
+        #: Without an own frame for this long [s], team-mates' sightings are fused as they
+        #: arrive.
+        self.frame_gap = 1.5 / camera.frame_rate if camera.frame_rate else 0.05
+        if head_mode not in HEAD_MODES:
+            raise ValueError(f"head must be one of {list(HEAD_MODES)}, got {head_mode!r}")
+        self.head_mode = head_mode
+        self.heads = {i: HeadController(self.specs[i], camera.height,
+                                        "scan" if head_mode == "scan" else "auto")
+                      for i in self.observers}
+        self._brains: dict[int, _Brain] = {}
+        self._radios: dict[int, TeamRadio] = {}
+        self._walk_index: dict[int, dict[int, int]] = {}
+
+    # ------------------------------------------------------------------------------------
+
+    def reset(self, state: WorldState, heads: HeadState, rng: np.random.Generator) -> None:
+        """Start an episode at ``state`` (the robots' poses at the start are known)."""
+        self._rngs = rng.spawn(len(self.observers) + 2)
+        self._brains = {i: _Brain(i, self.names[i], self.teams[i], self, r)
+                        for i, r in zip(self.observers, self._rngs)}
+        self._radios = {}
+        for t, members in self.team_members.items():
+            if members:
+                radio = TeamRadio(self.radio_spec, self._rngs[-1 - t])
+                for i in members:
+                    radio.join(self.names[i])
+                self._radios[t] = radio
+        for b in self._brains.values():
+            b.reset(state)
+        for h in self.heads.values():
+            h.reset()
+        self.time = state.time
+        self._consume(self.sensor.reset(state, heads, self._rngs[-1]), state, None)
+
+    def update(self, state: WorldState, heads: HeadState, walk: Any) -> None:
+        """Advance to ``state``: odometry, frames, radio, fusion and tracking."""
+        self.time = state.time
+        self._consume(self.sensor.step(state, heads), state, walk)
+
+    def _consume(self, frames: list[HeadFrame], state: WorldState, walk: Any) -> None:
+        """The estimation of one step (the sensor simulation done): odometry, the frames,
+        the radio."""
+        now = state.time
+        if walk is not None:
+            pos = self._walk_index.get(id(walk))
+            if pos is None:  # robot index -> position in the walk engine, once per world
+                pos = self._walk_index[id(walk)] = {i: j for j, i in enumerate(walk.indices)}
+            for i, b in self._brains.items():
+                j = pos[i]
+                b.odometry(now, walk.odometry[j], state.robots[i, 0:3])
+                b.gait_velocity = tuple(walk.gait[j])
+                radio = self._radios[b.team]
+                radio.set_silent(b.name, walk.fallen[j])
+                if b.down and not walk.fallen[j]:
+                    b.stood_up(walk.specs[j].fall_heading_sigma)
+                b.down = walk.fallen[j]
+        for f in frames:
+            b = self._brains[f.robot]
+            msg = b.frame(f)
+            self._radios[b.team].broadcast(msg, f.t_delivered)
+        for t, radio in self._radios.items():
+            for i in self.team_members[t]:
+                b = self._brains[i]
+                for m in radio.receive(b.name, now):
+                    b.message(m, now)
+
+    # ------------------------------------------------------------------------------------
+
+    def belief(self, i: int, t: float) -> tuple[np.ndarray, np.ndarray]:
+        """Robot ``i``'s belief at ``t``: ``ball`` (6,) and ``robots`` (N, 6)."""
+        return self._brains[i].belief(t)
+
+    def head_targets(self, i: int, now: float) -> tuple[float, float]:
+        """Where robot ``i``'s head controller aims now (pan, tilt) [rad]."""
+        b = self._brains[i]
+        ball = b.ball_point(now)
+        age = now - max(b.ball_seen, b.ball_heard)
+        return self.heads[i].targets(now, b.estimate_pose(), ball, age,
+                                     now - b.landmark_seen)
+
+    def localization(self, i: int) -> KLDLocalizer | None:
+        """Robot ``i``'s localization filter (None unless ``localization="kld"``)."""
+        return self._brains[i].loc
+
+    def tracker(self, i: int) -> ParticleBallTracker | None:
+        """Robot ``i``'s ball tracker (None with ``ball_tracker="none"``)."""
+        return self._brains[i].tracker

@@ -1,0 +1,173 @@
+"""The perception of both teams of a world (:class:`MatchPerception`): each team its own
+pipeline, and a belief per robot.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+import numpy as np
+
+from soccer_env.perception.base import PerceptionConfig
+from soccer_env.perception.overhead import (
+    FilteredPerception,
+    RawPerception,
+    TruthPerception,
+    make_perception,
+)
+from soccer_env.presets import BallSpec, FieldSpec
+from soccer_env.presets.sensors import (
+    head_camera,
+)
+from soccer_env.state import Belief, WorldState
+
+__all__ = ["MatchPerception"]
+
+
+class MatchPerception:
+    """The perception of both teams of a world: each team's own pipeline, and a belief per
+    robot (the match's, and the humanoid keeper's with its team-mates).
+
+    SSL teams share the overhead vision: two SSL teams with the same configuration share one
+    pipeline (SSL-Vision serves both; their beliefs coincide). A humanoid team runs a
+    :class:`~soccer_env.perception.humanoid.HumanoidTeamPerception` over its humanoids, each
+    with its own belief. In truth mode every agent believes the truth.
+
+    Args:
+        obs_mode: the observation mode.
+        configs: the two teams' :class:`PerceptionConfig` (blue, yellow).
+        field, ball: the world's field and ball.
+        world: the :class:`~soccer_env.sim.world.World`.
+        head: who aims humanoid agents' heads (see
+            :data:`~soccer_env.sim.heads.HEAD_MODES`).
+    """
+
+    def __init__(self, obs_mode: str, configs: tuple[PerceptionConfig, PerceptionConfig],
+                 field: FieldSpec, ball: BallSpec, world: Any, head: str = "auto") -> None:
+        from soccer_env.perception.humanoid import HumanoidTeamPerception
+        from soccer_env.sim.heads import HeadController
+
+        self.obs_mode, self.world = obs_mode, world
+        n = world.n_robots
+        teams = world.teams.tolist()
+        members = [[i for i in range(n) if teams[i] == t] for t in (0, 1)]
+        kinds = [world.robot_specs[m[0]].kind if m else None for m in members]
+        self.delays = [0, 0]
+        self._groups: list[tuple[list[int], Any]] = []  # (robots, pipeline)
+        self._humanoid: dict[int, Any] = {}  # robot -> its team's HumanoidTeamPerception
+        self._heads: dict[int, Any] = {}
+        ssl_teams = [t for t in (0, 1) if kinds[t] == "ssl"]
+        if ssl_teams:
+            shared = len(ssl_teams) == 2 and configs[0] == configs[1]
+            for t in ([ssl_teams[0]] if shared else ssl_teams):
+                spec = configs[t].vision
+                delay = round(spec.actuation_latency / world.control_dt)
+                robots = members[0] + members[1] if shared else members[t]
+                pipe = make_perception(obs_mode, configs[t], field,
+                                       world.robot_specs[members[t][0]], ball, n,
+                                       delay * world.control_dt, teams, world.robot_specs)
+                for tt in (ssl_teams if shared else [t]):
+                    self.delays[tt] = delay
+                self._groups.append((robots, pipe))
+        for t in (0, 1):
+            if kinds[t] != "humanoid":
+                continue
+            cfg = configs[t]
+            spec = world.robot_specs[members[t][0]]
+            camera = cfg.camera if cfg.camera is not None else head_camera(spec.camera)
+            if obs_mode == "truth":
+                self._groups.append((members[t], TruthPerception(cfg)))
+                for i in members[t]:
+                    self._heads[i] = HeadController(world.robot_specs[i], camera.height,
+                                                    "scan" if head == "scan" else "auto")
+                continue
+            if obs_mode == "raw":
+                cfg = dataclasses.replace(cfg, localization="odometry", fusion="own",
+                                          ball_tracker="none")
+            team = HumanoidTeamPerception(cfg, field, ball, world.robot_specs, teams,
+                                          world.names, members[t], camera, cfg.radio, head)
+            for i in members[t]:
+                self._humanoid[i] = team
+            self._groups.append((members[t], team))
+        self._beliefs: dict[int, Any] = {}
+        self._current: dict[int, Any] = {}
+
+    @property
+    def groups(self) -> list[list[int]]:
+        """Robots that share one belief (a list per belief source; a humanoid team's robots
+        each have their own)."""
+        out = []
+        for robots, pipe in self._groups:
+            if isinstance(pipe, (TruthPerception, FilteredPerception, RawPerception)):
+                out.append(list(robots))
+            else:
+                out += [[i] for i in robots]
+        return out
+
+    @property
+    def pipelines(self) -> list[Any]:
+        """The teams' pipelines (overhead vision, truth, or a humanoid team's)."""
+        return [pipe for _, pipe in self._groups]
+
+    def humanoid_team(self, i: int) -> Any:
+        """The :class:`~soccer_env.perception.humanoid.HumanoidTeamPerception` of humanoid
+        ``i`` (perceived and raw modes)."""
+        return self._humanoid[i]
+
+    def reset(self, state: WorldState, rng: np.random.Generator) -> tuple[Any, Any]:
+        """Start an episode at ``state``; returns robot 0's beliefs (for its observation,
+        now)."""
+        from soccer_env.sim.heads import head_state
+
+        # One pipeline draws from the episode's sensor stream itself, several from streams
+        # spawned from it.
+        rngs = [rng] if len(self._groups) == 1 else rng.spawn(len(self._groups))
+        for (robots, pipe), r in zip(self._groups, rngs):
+            if hasattr(pipe, "head_targets"):
+                pipe.reset(state, head_state(self.world), r)
+            else:
+                seen, now = pipe.reset(state, r)
+                for i in robots:
+                    self._beliefs[i], self._current[i] = seen, now
+        self._collect(state.time)
+        return self._beliefs[0], self._current[0]
+
+    def update(self, state: WorldState) -> tuple[Any, Any]:
+        """Advance to ``state``; returns robot 0's beliefs (for its observation, now)."""
+        from soccer_env.sim.heads import head_state
+
+        heads = None
+        for robots, pipe in self._groups:
+            if hasattr(pipe, "head_targets"):
+                heads = heads if heads is not None else head_state(self.world)
+                pipe.update(state, heads, self.world.walk)
+            else:
+                seen, now = pipe.update(state)
+                for i in robots:
+                    self._beliefs[i], self._current[i] = seen, now
+        self._collect(state.time)
+        return self._beliefs[0], self._current[0]
+
+    def _collect(self, t: float) -> None:
+        for i, team in self._humanoid.items():
+            ball, robots = team.belief(i, t)
+            b = Belief(t, ball, robots)
+            self._beliefs[i] = self._current[i] = b
+
+    def belief(self, i: int) -> Any:
+        """Robot ``i``'s belief for its observation (a WorldState in truth mode)."""
+        return self._beliefs[i]
+
+    def current(self, i: int) -> Any:
+        """Robot ``i``'s belief at the present time."""
+        return self._current[i]
+
+    def head_targets(self, i: int, now: float) -> tuple[float, float]:
+        """Pan and tilt targets [rad] of humanoid ``i``'s head controller."""
+        if i in self._humanoid:
+            return self._humanoid[i].head_targets(i, now)
+        s = self._beliefs[i]
+        b = s.ball
+        return self._heads[i].targets(now, s.robots[i, 0:3],
+                                      np.array([b[0], b[1], b[3], b[4]]), 0.0, 0.0)

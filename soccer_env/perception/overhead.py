@@ -1,0 +1,241 @@
+"""The perception of SSL teams, fed by the overhead vision (or, with ``detector="pixels"``, by
+the trackers on its rendered images):
+
+* :class:`TruthPerception` (``obs_mode="truth"``): the oracle, the true state itself;
+* :class:`RawPerception` (``"raw"``): the latest delayed detections, unfiltered;
+* :class:`FilteredPerception` (``"perceived"``): the ball filter chosen by ``ball_filter``
+  (paper 002's EKF by default) and batched robot pose filters, fed with the frames by capture
+  time and predicted to the present plus the actuation latency.
+
+:func:`make_perception` builds the pipeline of an observation mode.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from estimators import BallTracker, LeastSquaresBall, RobotTracker
+from soccer_env.perception.base import (
+    OBS_MODES,
+    Perception,
+    PerceptionConfig,
+    ball_filter_config,
+)
+from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
+from soccer_env.sensors.overhead import DetectionFrame, OverheadVision
+from soccer_env.state import Belief, WorldState
+
+__all__ = ["TruthPerception", "RawPerception", "FilteredPerception", "make_perception"]
+
+
+class TruthPerception:
+    """The oracle of ``obs_mode="truth"``: the belief is the true state itself."""
+
+    def __init__(self, config: PerceptionConfig) -> None:
+        self.vision_spec = config.vision
+
+    def reset(self, state: WorldState, rng: np.random.Generator):
+        return state, state
+
+    def update(self, state: WorldState):
+        return state, state
+
+
+class _VisionPerception:
+    """Shared part of the pipelines fed by the overhead vision."""
+
+    def __init__(self, config: PerceptionConfig, field: FieldSpec, robot: SSLRobotSpec,
+                 ball: BallSpec, n_robots: int, teams: Sequence[int] | None = None,
+                 robots: Sequence[Any] | None = None) -> None:
+        self.config = config
+        self.vision_spec = config.vision
+        #: Turns the sensor's frames into detection frames (None: they are detections).
+        self.detector: Any = None
+        if config.detector == "pixels":
+            try:
+                from soccer_env.perception.pixels import OverheadPixelDetector
+                from soccer_env.sensors.images.cameras import OverheadImageCamera
+            except ImportError as err:  # pragma: no cover - depends on the installation
+                raise ImportError("detector='pixels' needs OpenCV; install it with: "
+                                  "pip install 'soccer-env[pixels]'") from err
+            self.sensor = OverheadImageCamera(config.vision, field,
+                                              robots or [robot] * n_robots, ball,
+                                              teams if teams is not None else [0] * n_robots)
+            self.detector = OverheadPixelDetector(self.sensor, config.vision)
+        else:
+            self.sensor = OverheadVision(config.vision, field, robot, ball, n_robots)
+        #: The detections' measurement models (the filters weigh them with these).
+        self.measurements = self.detector if self.detector is not None else self.sensor
+        self.n_robots = n_robots
+
+    def reset(self, state: WorldState, rng: np.random.Generator):
+        self._clear()
+        if self.detector is None:
+            frames = self.sensor.reset(state, rng)
+        else:
+            # The images' lighting and noise, then the trackers, draw from streams seeded in
+            # this order from the episode's sensor stream.
+            image_rng = np.random.default_rng(rng.integers(2**63))
+            self.detector.reset(state, np.random.default_rng(rng.integers(2**63)))
+            frames = self.detector.detections(self.sensor.reset(state, rng, image_rng))
+        self._consume(frames, state.time)
+        return self._beliefs(state.time)
+
+    def update(self, state: WorldState):
+        frames = self.sensor.step(state)
+        if self.detector is not None:
+            frames = self.detector.detections(frames)
+        self._consume(frames, state.time)
+        return self._beliefs(state.time)
+
+    def _clear(self) -> None:
+        raise NotImplementedError
+
+    def _consume(self, frames: list[DetectionFrame], now: float) -> None:
+        raise NotImplementedError
+
+    def _beliefs(self, now: float):
+        raise NotImplementedError
+
+
+class RawPerception(_VisionPerception):
+    """``obs_mode="raw"``: the latest delayed detections, no filtering.
+
+    The ball is its most recent detection (of several in a frame, the one nearest the previous
+    raw ball); a robot is its most recent detection. Velocities are the differences of the last
+    two sightings at least half a frame period apart (overlapping cameras see an object a
+    fraction of a millisecond apart; differencing those would turn centimetres of noise into
+    metres per second). Objects never seen read as zeros.
+    """
+
+    def _clear(self) -> None:
+        rate = self.vision_spec.frame_rate
+        self._min_gap = 0.0 if rate is None else 0.5 / rate
+        n = self.n_robots
+        self._ball = [None, None]  # last two (t, x, y)
+        self._robots = [[None, None] for _ in range(n)]
+
+    def _consume(self, frames: list[DetectionFrame], now: float) -> None:
+        for f in sorted(frames, key=lambda f: f.t_capture):
+            t = f.t_capture
+            if f.balls:
+                last = self._ball[1]
+                balls = f.balls
+                if last is not None and len(balls) > 1:
+                    bx, by = min(balls, key=lambda b: math.hypot(b[0] - last[1], b[1] - last[2]))
+                else:
+                    bx, by = balls[0]
+                _push(self._ball, (t, bx, by), self._min_gap)
+            for i, pose in zip(f.robot_ids, f.robots):
+                _push(self._robots[i], (t, *pose), self._min_gap)
+
+    def _beliefs(self, now: float):
+        ball = np.zeros(6)
+        ball[0:2], ball[3:5] = _last_and_rate(self._ball, 2)
+        robots = np.zeros((self.n_robots, 6))
+        for i, hist in enumerate(self._robots):
+            pose, rate = _last_and_rate(hist, 3)
+            robots[i, 0:3], robots[i, 3:6] = pose, rate
+        belief = Belief(now, ball, robots)
+        return belief, belief
+
+
+def _push(hist: list, item: tuple, min_gap: float) -> None:
+    """Keep the last two sightings, newest last, captured at least ``min_gap`` [s] apart."""
+    last = hist[1]
+    if last is not None and (item[0] <= last[0] or item[0] < last[0] + min_gap):
+        if item[0] >= last[0]:
+            hist[1] = item  # the same moment seen by another camera: keep the later report
+        return
+    hist[0], hist[1] = hist[1], item
+
+
+def _last_and_rate(hist: list, dims: int) -> tuple[list, list]:
+    prev, last = hist
+    if last is None:
+        return [0.0] * dims, [0.0] * dims
+    if prev is None:
+        return list(last[1:]), [0.0] * dims
+    dt = last[0] - prev[0]
+    rate = [(a - b) / dt for a, b in zip(last[1:], prev[1:])]
+    if dims == 3:
+        rate[2] = math.remainder(last[3] - prev[3], 2.0 * math.pi) / dt
+    return list(last[1:]), rate
+
+
+class FilteredPerception(_VisionPerception):
+    """``obs_mode="perceived"``: batched robot pose filters and a ball tracker.
+
+    Frames are processed in capture-time order: the robots first (their detections in the same
+    frame give the ball filter's eq. 19 its nearest-robot distance), then the ball. The belief
+    for the observation is predicted to ``now + actuation_latency``.
+    """
+
+    def __init__(self, config: PerceptionConfig, field: FieldSpec, robot: SSLRobotSpec,
+                 ball: BallSpec, n_robots: int, teams: Sequence[int] | None = None,
+                 robots: Sequence[Any] | None = None) -> None:
+        super().__init__(config, field, robot, ball, n_robots, teams, robots)
+        spec = config.vision
+        # The filters weigh detections with the sensor's own measurement models.
+        self.robot_tracker = RobotTracker(n_robots, measurement=self.measurements.robot_model)
+        cfg, self._capture_times = ball_filter_config(config.ball_filter, ball, spec)
+        self.ball_tracker = (LeastSquaresBall() if cfg is None
+                             else BallTracker(cfg, self.measurements.ball_model))
+        self.ahead = spec.actuation_latency
+
+    def _clear(self) -> None:
+        self.robot_tracker.reset()
+        self.ball_tracker.reset()
+
+    def _consume(self, frames: list[DetectionFrame], now: float) -> None:
+        if not frames:
+            return
+        robots, ball = self.robot_tracker, self.ball_tracker
+        for f in sorted(frames, key=lambda f: f.t_capture):
+            t = f.t_capture
+            for i, pose in zip(f.robot_ids, f.robots):
+                robots.update_one(i, t, pose)
+            if f.balls:
+                # Without latency compensation a pipeline stamps frames when they arrive.
+                stamp = t if self._capture_times else f.t_delivered
+                ball.add(stamp, f.balls, f.robots)
+
+    def _beliefs(self, now: float):
+        current = self._belief(now)
+        return (self._belief(now + self.ahead) if self.ahead else current), current
+
+    def _belief(self, t: float) -> Belief:
+        est = self.ball_tracker.estimate(t)
+        ball = np.zeros(6) if est is None else np.array((est[0], est[1], 0.0, est[2], est[3],
+                                                         0.0))
+        return Belief(t, ball, self.robot_tracker.estimate_array(t))
+
+
+def make_perception(obs_mode: str, config: PerceptionConfig, field: FieldSpec,
+                    robot: SSLRobotSpec, ball: BallSpec, n_robots: int,
+                    actuation_delay: float | None = None, teams: Sequence[int] | None = None,
+                    robots: Sequence[Any] | None = None) -> Perception:
+    """The overhead-vision pipeline of ``obs_mode`` for SSL robots (humanoids:
+    :class:`MatchPerception`); unknown modes raise ``ValueError``.
+
+    ``actuation_delay`` [s] is how far ahead the perceived belief is predicted (default: the
+    vision preset's actuation latency; environments pass the latency as they apply it, in
+    whole control steps). ``teams`` and ``robots`` (every robot's team and spec) are what the
+    ``pixels`` detector draws.
+    """
+    if obs_mode == "truth":
+        return TruthPerception(config)
+    if obs_mode == "raw":
+        return RawPerception(config, field, robot, ball, n_robots, teams, robots)
+    if obs_mode == "perceived":
+        p = FilteredPerception(config, field, robot, ball, n_robots, teams, robots)
+        if actuation_delay is not None:
+            p.ahead = float(actuation_delay)
+        return p
+    raise ValueError(f"obs_mode must be one of {list(OBS_MODES)}, got {obs_mode!r}")
+
+

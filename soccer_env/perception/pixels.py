@@ -1,0 +1,263 @@
+"""Perception from rendered images: the image trackers of papers 003 and 004 instead of
+geometric detections (``perception={"detector": "pixels", ...}``).
+
+Overhead (:class:`OverheadPixelDetector`, SSL teams): the overhead camera
+(:class:`~soccer_env.sensors.images.cameras.OverheadImageCamera`) delivers images with the
+vision preset's timing; the detector finds the robots and the ball in each:
+
+* the colour look-up table (:class:`~estimators.colour.ColourTable`, built offline from the
+  nominal colours as MiroSot teams do) turns the image into class probabilities; the frame
+  difference gives the motion image;
+* every robot is tracked by paper 003's mean-shift particle filter
+  (:class:`estimators.MeanShiftParticleFilter`, 20 particles) on its team colour, started at
+  its kick-off pose (robots are placed by the referee); its heading is read from its player
+  dots by matching the known dot layout of its number, rotated in 5-degree steps, against the
+  dots' colour probabilities (the best sum wins);
+* the ball is tracked the same way on orange; when its tracker loses it next to a robot it is
+  taken as occluded by that robot (paper 003's rule) and not reported, so that the filters
+  downstream predict it;
+* a lost robot or ball tracker reports nothing and is searched for over the whole image on the
+  next frame (paper 003's global search).
+
+The detections then go through the same pipeline as the geometric ones (the EKF, the robot
+filters). Robots of one team look alike except for their dots, so a tracker can swap to a
+team-mate that passes close by: nothing in paper 003's method prevents it beyond the feature
+restriction, and the pipeline sees the swap as the robot's own motion.
+
+Head cameras (:class:`BallImageTracker`, humanoids): each robot finds the ball in its
+rendered head-camera images with paper 004's Kalman-started mean shift.
+
+Limitations: one overhead camera per field (fields up to 7 m long, as ``ssl-2012`` and the
+humanoid fields); the rendered resolution, not the vision preset's noise figures, sets the
+detection noise (the preset's detection probabilities, spurious balls and noise are not
+applied).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from estimators import (
+    HeadCamera,
+    KalmanMeanShift,
+    MeanShiftParticleFilter,
+    PoseMeasurement,
+    PositionMeasurement,
+)
+from soccer_env.presets import BallSpec
+from soccer_env.presets.images import CLASS_ALIASES, OVERHEAD_CLASSES
+from soccer_env.presets.sensors import HeadCameraSpec, VisionSpec
+from soccer_env.sensors.images.cameras import HEAD_IMAGE_SIZE, ImageFrame, OverheadImageCamera
+from soccer_env.sensors.overhead import DetectionFrame
+from soccer_env.state import WorldState
+
+__all__ = ["OverheadPixelDetector", "BallImageTracker"]
+
+#: Heading candidates of the dot-layout match [rad].
+_HEADINGS = np.radians(np.arange(0.0, 360.0, 5.0))
+#: Particles of the mean-shift particle filters (paper 003: about 20 suffice).
+_PARTICLES = 20
+
+
+class OverheadPixelDetector:
+    """Finds the robots and the ball in the overhead camera's images (see the module
+    docstring): the processing that turns an
+    :class:`~soccer_env.sensors.images.cameras.ImageFrame` into a
+    :class:`~soccer_env.sensors.overhead.DetectionFrame`.
+
+    Args:
+        camera: the image camera (its renderer is the camera's calibration: pixels to field
+            coordinates and back, metres per pixel).
+        spec: the vision preset (its noise figures floor the measurement models).
+
+    Attributes:
+        ball_model, robot_model: the detections' measurement models for the filters
+            downstream: the image's resolution (a pixel) and the 5-degree heading steps, not
+            the geometric preset's noise figures.
+    """
+
+    def __init__(self, camera: OverheadImageCamera, spec: VisionSpec) -> None:
+        from estimators.colour import ColourTable, frame_difference
+        from soccer_env.sensors.images.patterns import PATTERN, PATTERN_IDS
+
+        self.renderer = camera.renderer
+        self.teams = list(camera.teams)
+        self.robot_specs = list(camera.robot_specs)
+        self.n_robots = len(self.robot_specs)
+        self.table = ColourTable(OVERHEAD_CLASSES, aliases=CLASS_ALIASES)
+        self._difference = frame_difference
+        m = self.renderer.metres_per_pixel
+        self._mpp = m
+        self._robot_window = [max(5, int(round(2.2 * s.radius / m))) for s in self.robot_specs]
+        self._ball_window = max(5, int(round(4.0 * camera.ball_spec.radius / m)))
+        self._robot_radius_px = [s.radius / m for s in self.robot_specs]
+        self.ball_model = PositionMeasurement(max(spec.ball_sigma, m))
+        self.robot_model = PoseMeasurement(max(spec.robot_sigma, m),
+                                           max(spec.robot_sigma_theta, math.radians(5.0)))
+        # The dots of every robot: positions in the body frame [m] and colour classes.
+        self._dots = []
+        index = {0: 0, 1: 0}
+        for t, s in zip(self.teams, self.robot_specs):
+            patches = PATTERN.patches(t, index[t], s.radius)
+            names = list(PATTERN_IDS[index[t]])  # the dots' colours, in patch order
+            index[t] += 1
+            self._dots.append((np.array([(p.x, p.y) for p in patches[1:]]), names))
+
+    def reset(self, state: WorldState, rng: np.random.Generator) -> None:
+        """Start an episode whose robots and ball start as in ``state`` (placed by the
+        referee: their poses are known); ``rng`` draws the trackers' particles."""
+        self._track_rng = rng
+        self._prev_image = None
+        self._trackers: list[MeanShiftParticleFilter | None] = [None] * self.n_robots
+        self._ball_tracker: MeanShiftParticleFilter | None = None
+        self._start = state
+
+    def detections(self, frames: Sequence[ImageFrame]) -> list[DetectionFrame]:
+        """The detection frames of the image ``frames`` (in capture order); frames in which
+        nothing was found carry no information for a tracker and are dropped."""
+        out = []
+        for f in sorted(frames, key=lambda f: f.t_capture):
+            balls, ids, poses = self._detect(f.image)
+            if balls or ids:
+                out.append(DetectionFrame(f.camera, f.t_capture, f.t_delivered, tuple(balls),
+                                          tuple(ids), tuple(poses)))
+        return out
+
+    def _detect(self, image: np.ndarray) -> tuple[list, list, list]:
+        """Track every robot and the ball in ``image``; their field positions."""
+        r = self.renderer
+        table = self.table
+        motion = None if self._prev_image is None else self._difference(self._prev_image, image)
+        self._prev_image = image
+        colours = {c: table.probability(image, c) for c in ("blue", "yellow", "orange")}
+        dots = {c: table.probability(image, c) for c in ("pink", "green")}
+        ids, poses, pixels = [], [], []
+        for i in range(self.n_robots):
+            tracker = self._trackers[i]
+            if tracker is None:  # placed by the referee at kick-off: its pose is known
+                x, y = self._start.robots[i, 0:2]
+                u, v = r.to_pixel(x, y)
+                size = self._robot_window[i]
+                tracker = MeanShiftParticleFilter((u, v), (size, size), self._track_rng,
+                                                  n_particles=_PARTICLES)
+                self._trackers[i] = tracker
+            colour = colours["blue" if self.teams[i] == 0 else "yellow"]
+            u, v, _, _ = tracker.update(colour, motion)
+            if tracker.lost:
+                continue
+            pixels.append((u, v))
+            x, y = r.to_field(u, v)
+            ids.append(i)
+            poses.append((float(x), float(y), self._heading(i, u, v, dots)))
+        balls = []
+        if self._ball_tracker is None:
+            bx, by = self._start.ball[0:2]
+            size = self._ball_window
+            self._ball_tracker = MeanShiftParticleFilter(r.to_pixel(bx, by), (size, size),
+                                                         self._track_rng,
+                                                         n_particles=_PARTICLES)
+        bt = self._ball_tracker
+        robots_px = np.array(pixels) if pixels else None
+        radius_px = float(np.mean(self._robot_radius_px))
+        u, v, _, _ = bt.update(colours["orange"], motion, robots=robots_px,
+                               robot_radius_px=radius_px if pixels else None)
+        if not (bt.lost or bt.occluded):
+            x, y = r.to_field(u, v)
+            balls.append((float(x), float(y)))
+        return balls, ids, poses
+
+    def _heading(self, i: int, u: float, v: float, dots: dict[str, np.ndarray]) -> float:
+        """Robot ``i``'s heading [rad]: the rotation of its dot layout (5-degree steps) whose
+        dots fall on the most probability of their colours."""
+        layout, names = self._dots[i]
+        r = self.renderer
+        c, s = np.cos(_HEADINGS), np.sin(_HEADINGS)
+        m = self._mpp
+        # Dot centres in pixels for every candidate heading: field +y is image -v.
+        du = (c[:, None] * layout[None, :, 0] - s[:, None] * layout[None, :, 1]) / m
+        dv = -(s[:, None] * layout[None, :, 0] + c[:, None] * layout[None, :, 1]) / m
+        cols = np.clip(np.rint(u + du).astype(int), 0, r.spec.width - 1)
+        rows = np.clip(np.rint(v + dv).astype(int), 0, r.spec.height - 1)
+        score = np.zeros(len(_HEADINGS))
+        for k, name in enumerate(names):
+            score += dots[name][rows[:, k], cols[:, k]]
+        return float(math.remainder(_HEADINGS[int(np.argmax(score))], 2.0 * math.pi))
+
+
+class BallImageTracker:
+    """One robot's ball finder in its head-camera images: paper 004's Kalman-started mean
+    shift (:class:`estimators.KalmanMeanShift`) on the back-projection of the ball's hue
+    histogram, its prediction moved by the robot's own turning (odometry and the pan servo)
+    and the tilt servo; when it has no track, a search of the whole image (the largest blob of
+    ball colour) starts one. Returns ball detections with their ground projection through the
+    rendered image's pinhole camera and the angles the robot believes (the layout of
+    :data:`~soccer_env.sensors.headcam.BALL_DETECTION_FIELDS`; pixels scaled to the camera spec's
+    width).
+
+    Args:
+        spec: the head camera (its pixels and believed-angle ground projection).
+        ball: the ball (its radius: the plane of its centre, its apparent size).
+        size: the rendered images' size ``(width, height)`` [px].
+    """
+
+    def __init__(self, spec: HeadCameraSpec, ball: BallSpec,
+                 size: tuple[int, int] = HEAD_IMAGE_SIZE) -> None:
+        from estimators.colour import back_project, hue_histogram
+        from soccer_env.presets.images import COLOURS
+
+        self.spec, self.ball = spec, ball
+        self.size = (int(size[0]), int(size[1]))
+        # The rendered image's camera: the spec's field of view at the rendered size.
+        self.camera = HeadCamera(spec.height, spec.hfov, self.size[0], self.size[1])
+        self.scale = spec.width / self.size[0]
+        self.fov = (self.camera.hfov, self.camera.vfov)
+        patch = np.zeros((8, 8, 3), dtype=np.uint8)
+        patch[:] = COLOURS["orange"]
+        self._hist = hue_histogram(patch)  # the ball's colour, known offline
+        self._back_project = back_project
+        self.tracker: KalmanMeanShift | None = None
+        self._last: tuple[float, float] | None = None  # camera yaw and tilt at the last frame
+
+    def reset(self) -> None:
+        self.tracker = None
+        self._last = None
+
+    def detect(self, image: np.ndarray, yaw: float, tilt: float, pan: float) -> tuple:
+        """Ball detections in ``image`` taken with the camera at ``yaw`` (robot heading plus
+        pan, as the robot believes it) and ``tilt``, the head's ``pan``: ``()`` or one
+        ``(u, v, x, y, bearing)``."""
+        import cv2
+
+        weight = self._back_project(image, self._hist)
+        tr = self.tracker
+        if tr is not None and self._last is not None:
+            d_yaw = math.remainder(yaw - self._last[0], 2.0 * math.pi)
+            tr.shift(0.0, -(tilt - self._last[1]) * self.size[1] / self.fov[1])
+            x, y, _, _ = tr.update(weight, rotation=d_yaw)
+            if tr.lost and tr.lost_frames > 2:
+                self.tracker = tr = None
+        self._last = (yaw, tilt)
+        if tr is None:  # search the whole image: the largest blob of ball colour
+            n, _, stats, centroids = cv2.connectedComponentsWithStats(
+                (weight > 0.5).astype(np.uint8), connectivity=8)
+            if n <= 1:
+                return ()
+            k = 1 + int(np.argmax(stats[1:, cv2.CC_STAT_AREA]))
+            if stats[k, cv2.CC_STAT_AREA] < 3:
+                return ()
+            w = max(5, int(stats[k, cv2.CC_STAT_WIDTH]))
+            h = max(5, int(stats[k, cv2.CC_STAT_HEIGHT]))
+            self.tracker = tr = KalmanMeanShift(tuple(centroids[k]), (w, h),
+                                                image_size=self.size, fov=self.fov)
+            x, y = centroids[k]
+        elif tr.lost:
+            return ()
+        g = self.camera.ground_point(np.array([[x + 0.5, y + 0.5]]), pan, tilt,
+                                     plane_height=self.ball.radius)[0]
+        if not np.all(np.isfinite(g)):
+            return ()
+        return ((float((x + 0.5) * self.scale), float((y + 0.5) * self.scale), float(g[0]),
+                 float(g[1]), float(math.atan2(g[1], g[0]))),)

@@ -1,0 +1,102 @@
+"""What both renderers share: lighting and noise, and the per-robot lists.
+
+Lighting and noise: per frame a global gain ``g = 1 + gain_sigma * N(0, 1)`` (clipped to [0.3,
+2]) and a linear brightness ramp of amplitude ``a ~ U(0, gradient)`` in a random direction ``phi
+~ U(0, 2 pi)``: pixel values are multiplied by ``g (1 + a (cos(phi) x_n + sin(phi) y_n))``,
+``x_n, y_n`` in [-1, 1] across the image; then Gaussian noise of ``noise_sigma`` grey levels is
+added to each channel and the result saturated to [0, 255]. The noise (rounded to grey levels)
+is read at a random offset from a bank of Gaussian samples twice the image's size, drawn once
+per renderer from a fixed seed (drawing 900 k normals per frame would cost more than the rest of
+the frame): within a frame the samples are independent; consecutive frames read different,
+shifted windows. All per-frame draws come from the ``rng`` given to ``render``, so the same
+generator state gives the same image.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import cv2
+import numpy as np
+
+from soccer_env.presets import RobotSpec
+from soccer_env.sensors.images.patterns import PATTERN_IDS
+from soccer_env.state import WorldState
+
+__all__ = []
+
+_SHIFT = 4  # cv2 drawing with 4 fractional bits
+
+
+_ONE = 1 << _SHIFT
+
+
+class _Photometry:
+    """Per-frame lighting and noise of an image of ``(height, width)`` (module docstring)."""
+
+    def __init__(self, width: int, height: int, gain_sigma: float, gradient: float,
+                 noise_sigma: float) -> None:
+        self.width, self.height = width, height
+        self.gain_sigma, self.gradient, self.noise_sigma = gain_sigma, gradient, noise_sigma
+        self.active = gain_sigma > 0.0 or gradient > 0.0 or noise_sigma > 0.0
+        self._xn = np.linspace(-1.0, 1.0, width, dtype=np.float32)
+        self._yn = np.linspace(-1.0, 1.0, height, dtype=np.float32)
+        self._bank: np.ndarray | None = None
+        if noise_sigma > 0.0:
+            # A fixed table of noise samples (the same for every renderer of this size and
+            # sigma), rounded to grey levels; frames read random windows of it.
+            bank_rng = np.random.default_rng(0x5EED)
+            self._bank = np.rint(noise_sigma * bank_rng.standard_normal(
+                (2 * height, 2 * width, 3), dtype=np.float32)).astype(np.int16)
+
+    def apply(self, img: np.ndarray, rng: np.random.Generator | None) -> np.ndarray:
+        if not self.active:
+            return img
+        if rng is None:
+            raise ValueError("this spec has lighting or noise: render() needs an rng")
+        z = float(rng.standard_normal())
+        a_u, phi_u = rng.random(2).tolist()
+        oy, ox = rng.integers(0, (self.height + 1, self.width + 1)).tolist()
+        out = img
+        if self.gain_sigma > 0.0 or self.gradient > 0.0:
+            gain = min(2.0, max(0.3, 1.0 + self.gain_sigma * z))
+            a = self.gradient * a_u
+            phi = 2.0 * math.pi * phi_u
+            gx, gy = gain * a * math.cos(phi), gain * a * math.sin(phi)
+            ramp = (gain + gx * self._xn)[None, :] + (gy * self._yn)[:, None]
+            # 16-bit intermediate: values above 255 saturate only after the noise.
+            dtype = cv2.CV_16S if self._bank is not None else cv2.CV_8U
+            out = cv2.multiply(img, cv2.merge([ramp, ramp, ramp]), dtype=dtype)
+        if self._bank is not None:
+            window = self._bank[oy:oy + self.height, ox:ox + self.width]
+            out = cv2.add(out, window, dtype=cv2.CV_8U)
+        return out
+
+
+def _per_robot(robot_specs: RobotSpec | Sequence[RobotSpec], teams: Sequence[int]
+               ) -> tuple[list[RobotSpec], list[int], list[int]]:
+    team_list = [int(t) for t in teams]
+    if any(t not in (0, 1) for t in team_list):
+        raise ValueError(f"teams must hold 0 (blue) or 1 (yellow) per robot, got {list(teams)}")
+    n = len(team_list)
+    if isinstance(robot_specs, (list, tuple)):
+        specs = list(robot_specs)
+        if len(specs) != n:
+            raise ValueError(f"robot_specs must have one spec per robot ({n}), got {len(specs)}")
+    else:
+        specs = [robot_specs] * n
+    counts = [0, 0]
+    index = []
+    for t in team_list:
+        index.append(counts[t])
+        counts[t] += 1
+    if max(counts) > len(PATTERN_IDS):
+        raise ValueError(f"at most {len(PATTERN_IDS)} robots per team can be told apart, "
+                         f"got {max(counts)}")
+    return specs, team_list, index
+
+
+def _check_state(state: WorldState, n: int) -> None:
+    if state.robots.shape[0] != n:
+        raise ValueError(f"state has {state.robots.shape[0]} robots, the renderer {n}")

@@ -1,0 +1,123 @@
+"""A team's radio: robots broadcast what they believe over a lossy link with latency.
+
+Paper 000's humanoids share their pose estimates and ball sightings over a self-organising
+ZigBee network that robots join and leave. :class:`TeamRadio` models that link:
+
+* a robot that has joined broadcasts a :class:`Message` (its pose estimate and, if it sees the
+  ball, its sighting as a line from itself towards the ball, with the capture time stamp);
+* every other member receives it ``latency + U(0, jitter)`` seconds later, or not at all with
+  probability ``loss`` (independently per receiver, as broadcast packets are lost);
+* a silent robot (fallen, getting up) sends nothing; a robot that leaves neither sends nor
+  receives, and messages in flight to it are dropped;
+* every draw comes from the generator the radio is given.
+
+Times in seconds, positions in metres, angles in radians (field frame).
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from soccer_env.presets.sensors import RADIO_PRESETS, RadioSpec
+
+__all__ = ["Message", "TeamRadio"]
+
+
+@dataclass(frozen=True)
+class Message:
+    """What a robot broadcasts.
+
+    Attributes:
+        sender: the robot's name.
+        stamp: when its content was true (the camera frame's capture time) [s].
+        pose: its pose estimate ``(x, y, theta)``.
+        sighting: None, or ``(x0, y0, angle, range)``: the line from ``(x0, y0)`` (its
+            estimated position) at ``angle`` towards the ball, and the estimated range.
+    """
+
+    sender: str
+    stamp: float
+    pose: tuple[float, float, float]
+    sighting: tuple[float, float, float, float] | None = None
+
+
+class TeamRadio:
+    """The link between one team's robots (see the module docstring).
+
+    Args:
+        spec: a :class:`RadioSpec` or a name of :data:`RADIO_PRESETS`.
+        rng: the generator of the link's draws.
+    """
+
+    def __init__(self, spec: RadioSpec | str, rng: np.random.Generator) -> None:
+        if isinstance(spec, str):
+            if spec not in RADIO_PRESETS:
+                raise ValueError(f"unknown radio preset {spec!r}; allowed: "
+                                 f"{sorted(RADIO_PRESETS)}")
+            spec = RADIO_PRESETS[spec]
+        if not isinstance(rng, np.random.Generator):
+            raise TypeError("rng must be a numpy.random.Generator")
+        self.spec, self.rng = spec, rng
+        self.members: set[str] = set()
+        self.silent: set[str] = set()
+        # Messages in flight per receiver: heaps of (arrival, sequence number, message).
+        self._queues: dict[str, list[tuple[float, int, Message]]] = {}
+        self._seq = 0
+        self.sent = self.delivered = self.lost = 0
+
+    def join(self, name: str) -> None:
+        """``name`` joins the network (it receives what is sent from now on)."""
+        self.members.add(name)
+
+    def leave(self, name: str) -> None:
+        """``name`` leaves: it no longer sends or receives; its undelivered messages are
+        dropped."""
+        self.members.discard(name)
+        self.silent.discard(name)
+        self._queues.pop(name, None)
+
+    def set_silent(self, name: str, silent: bool = True) -> None:
+        """A fallen robot (or one getting up) sends nothing while silent."""
+        if name not in self.members:
+            raise ValueError(f"{name!r} has not joined the radio; members: "
+                             f"{sorted(self.members)}")
+        (self.silent.add if silent else self.silent.discard)(name)
+
+    def broadcast(self, message: Message, now: float) -> int:
+        """Send ``message`` at time ``now``; returns the number of receivers it will reach
+        (0 from a silent robot or a non-member)."""
+        if message.sender not in self.members or message.sender in self.silent:
+            return 0
+        if not math.isfinite(now):
+            raise ValueError(f"now must be finite, got {now!r}")
+        receivers = sorted(self.members - {message.sender})
+        if not receivers:
+            return 0
+        self.sent += 1
+        lost = self.rng.random(len(receivers)) < self.spec.loss
+        delay = self.spec.latency + self.spec.jitter * self.rng.random(len(receivers))
+        reached = 0
+        for name, gone, d in zip(receivers, lost, delay):
+            if gone:
+                self.lost += 1
+                continue
+            self._seq += 1
+            heapq.heappush(self._queues.setdefault(name, []),
+                           (now + float(d), self._seq, message))
+            reached += 1
+        return reached
+
+    def receive(self, name: str, now: float) -> list[Message]:
+        """The messages that reached ``name`` by time ``now``, in order of arrival."""
+        queue = self._queues.get(name) if name in self.members else None
+        if not queue:
+            return []
+        out = []
+        while queue and queue[0][0] <= now:
+            out.append(heapq.heappop(queue)[2])
+        self.delivered += len(out)
+        return out

@@ -1,0 +1,107 @@
+"""Validation helpers shared by the environments: clear errors that list what is allowed."""
+
+from __future__ import annotations
+
+import dataclasses
+import inspect
+import math
+from collections.abc import Callable, Iterable, Mapping
+from typing import Any, TypeVar
+
+import numpy as np
+
+__all__ = ["reject_unknown", "keyword_names", "check_choice", "check_range", "check_int",
+           "parse_scales", "resolve_preset"]
+
+
+def keyword_names(func: Callable[..., Any]) -> list[str]:
+    """Names of the keyword arguments that ``func`` accepts explicitly (not ``**kwargs``)."""
+    kinds = (inspect.Parameter.POSITIONAL_OR_KEYWORD, inspect.Parameter.KEYWORD_ONLY)
+    return [p.name for p in inspect.signature(func).parameters.values()
+            if p.kind in kinds and p.name != "self"]
+
+
+def reject_unknown(where: str, unknown: Mapping[str, Any], allowed: Iterable[str]) -> None:
+    """Raise ``TypeError`` if ``unknown`` holds any keyword, listing the allowed ones."""
+    if unknown:
+        raise TypeError(
+            f"{where} got unknown keyword argument(s) {sorted(unknown)}; "
+            f"allowed: {sorted(allowed)}"
+        )
+
+
+def check_choice(name: str, value: Any, allowed: Iterable[Any]) -> None:
+    """Raise ``ValueError`` unless ``value`` is one of ``allowed``."""
+    allowed = list(allowed)
+    if value not in allowed:
+        raise ValueError(f"{name} must be one of {allowed}, got {value!r}")
+
+
+def check_range(name: str, value: float, low: float, high: float) -> float:
+    """Return ``float(value)``; raise ``ValueError`` unless finite and in ``[low, high]``."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number in [{low}, {high}], got {value!r}") from None
+    if not (math.isfinite(v) and low <= v <= high):
+        raise ValueError(f"{name} must be in [{low}, {high}], got {value!r}")
+    return v
+
+
+def check_int(name: str, value: Any, low: int, high: int) -> int:
+    """Return ``int(value)``; raise ``ValueError`` unless an integer (not a bool) in
+    ``[low, high]``."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not (
+            low <= value <= high):
+        raise ValueError(f"{name} must be an integer in {low}..{high}, got {value!r}")
+    return int(value)
+
+
+def parse_scales(name: str, given: Mapping[str, float] | None, known: Mapping[str, str]
+                 ) -> dict[str, float]:
+    """Validate a ``{term: scale}`` mapping against the ``known`` terms (name -> description).
+
+    Missing terms get scale 0 (off). Unknown names raise ``ValueError`` listing the known
+    ones; scales must be finite numbers.
+    """
+    scales = dict.fromkeys(known, 0.0)
+    if given is None:
+        return scales
+    if not isinstance(given, Mapping):
+        raise TypeError(f"{name} must be a mapping of term name to scale, got "
+                        f"{type(given).__name__}")
+    unknown = sorted(set(given) - set(known))
+    if unknown:
+        raise ValueError(f"unknown {name} term(s) {unknown}; known: {sorted(known)}")
+    for key, value in given.items():
+        scales[key] = check_range(f"{name}[{key!r}]", value, -1e6, 1e6)
+    return scales
+
+
+_S = TypeVar("_S")
+
+
+def resolve_preset(kind: str, table: Mapping[str, _S], value: str | _S,
+                   overrides: dict[str, Any]) -> _S:
+    """The preset ``value`` of ``table`` (a name, or a spec of the table's type) with the
+    ``overrides`` of its fields applied (``dataclasses.replace``; the spec validates the new
+    values). Unknown names raise ``ValueError``, unknown fields and other types ``TypeError``,
+    each listing what is allowed."""
+    if isinstance(value, str):
+        if value not in table:
+            raise ValueError(f"unknown {kind} preset {value!r}; known: {sorted(table)}")
+        spec = table[value]
+    elif any(isinstance(value, type(s)) for s in table.values()):
+        spec = value
+    else:
+        raise TypeError(
+            f"{kind} must be a preset name ({sorted(table)}) or a "
+            f"{type(next(iter(table.values()))).__name__}, got {type(value).__name__}"
+        )
+    if overrides:
+        allowed = {f.name for f in dataclasses.fields(spec)} - {"name", "source"}
+        unknown = sorted(set(overrides) - allowed)
+        if unknown:
+            raise TypeError(f"unknown {kind} parameter(s) {unknown}; allowed: {sorted(allowed)}")
+        spec = dataclasses.replace(spec, **overrides)
+    return spec

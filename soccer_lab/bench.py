@@ -1,0 +1,301 @@
+"""Step-rate benchmarks: the environments against bare pymunk stepping the same bodies.
+
+Run ``soccer-env bench`` (or ``python benchmarks/bench_step.py``). Each figure is the median of
+``repeats`` timed runs, each of ``steps`` steps with actions drawn beforehand from a seeded
+generator (sampling is not timed); Goalkeeper-v0 runs through ``gymnasium.make`` with its
+default wrappers and includes its resets, as a training loop would. The cost of perceived
+observations is the median ratio of truth and perceived runs timed in alternation.
+
+Humanoids (paper 000's ``humanoid-2012`` with its ``kidsize-2012`` head camera): the keeper
+with its three watching team-mates (four robots, each with its camera, localization, radio,
+fusion and tracker when perceived) and a 3 vs 3 match; their random actions neither kick nor
+dive (a robot that dives at random lies blind most of the time, which would understate the
+perception's cost).
+"""
+
+from __future__ import annotations
+
+import json
+import platform
+import statistics
+import time
+from collections.abc import Callable
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+import pymunk
+
+__all__ = ["run_benchmarks", "bench_frames", "format_table", "REFERENCE", "PERCEIVED_PRESETS"]
+
+#: Sensor presets timed with ``obs_mode="perceived"`` (default EKF), against truth.
+PERCEIVED_PRESETS = ("realistic", "ssl-2012")
+#: The humanoid robot and head camera timed by ``soccer-env bench``.
+HUMANOID, HUMANOID_CAMERA = "humanoid-2012", "kidsize-2012"
+
+#: rSoccer (ODE, Gymnasium, ground truth only) on this kind of machine, for reference, and the
+#: aims of the foundation issue (ten times rSoccer).
+REFERENCE = {
+    "goalkeeper": {"rsoccer_task": "1-robot shooting task", "rsoccer_steps_per_s": 1700,
+                   "aim_steps_per_s": 15000},
+    "match": {"rsoccer_task": "1 vs 6 task", "rsoccer_steps_per_s": 470,
+              "aim_steps_per_s": 3000},
+}
+
+
+def _rate(run: Callable[[], None], steps: int) -> float:
+    t0 = time.perf_counter()
+    run()
+    return steps / (time.perf_counter() - t0)
+
+
+def _median_rate(run: Callable[[], None], steps: int, repeats: int) -> float:
+    return statistics.median(_rate(run, steps) for _ in range(repeats))
+
+
+def _actions(rng: np.random.Generator, shape: tuple[int, ...], robot: str) -> np.ndarray:
+    """Uniform random actions; a humanoid's motion entry (kick, dive) zeroed."""
+    a = rng.uniform(-1, 1, (*shape, 6))
+    if robot.startswith("humanoid"):
+        a[..., 3] = 0.0
+    return a
+
+
+def _goalkeeper_runner(steps: int, seed: int = 0, obs_mode: str = "truth",
+                       perception: str | None = None, robot: str = "ssl"):
+    """A closure stepping ``gymnasium.make("soccer_env/Goalkeeper-v0")`` ``steps`` times with
+    pre-drawn random actions (resetting when episodes end), and its environment."""
+    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode, perception=perception,
+                   robot=robot)
+    actions = _actions(np.random.default_rng(seed), (steps,), robot).astype(np.float32)
+    env.reset(seed=seed)
+
+    def run() -> None:
+        for a in actions:
+            _, _, term, trunc, _ = env.step(a)
+            if term or trunc:
+                env.reset()
+
+    return run, env
+
+
+def _match_runner(steps: int, blue: int = 6, yellow: int = 6, field: str | None = None,
+                  seed: int = 0, obs_mode: str = "truth", perception: str | None = None,
+                  robot: str = "ssl"):
+    """A closure stepping a match ``steps`` times with pre-drawn random actions."""
+    from soccer_env import parallel_env
+
+    env = parallel_env(blue=blue, yellow=yellow, field=field, match_duration=1e6,
+                       obs_mode=obs_mode, perception=perception, robot=robot)
+    env.reset(seed=seed)
+    agents = list(env.agents)
+    actions = _actions(np.random.default_rng(seed), (steps, len(agents)), robot)
+    dicts = [dict(zip(agents, a)) for a in actions]
+
+    def run() -> None:
+        for d in dicts:
+            env.step(d)
+
+    return run, env
+
+
+def bench_goalkeeper(steps: int, repeats: int, seed: int = 0) -> dict[str, Any]:
+    """Steps per second of Goalkeeper-v0 (truth) and of bare pymunk on the same bodies."""
+    run, env = _goalkeeper_runner(steps, seed)
+    rate = _median_rate(run, steps, repeats)
+    return {"steps_per_s": rate, "robots": 1,
+            "bare_pymunk_steps_per_s": _bare_rate(env.unwrapped.world, steps, repeats)}
+
+
+def bench_match(steps: int, repeats: int, seed: int = 0) -> dict[str, Any]:
+    """Parallel steps per second of a 6 vs 6 Division B match (truth) and of bare pymunk."""
+    run, env = _match_runner(steps, seed=seed)
+    rate = _median_rate(run, steps, repeats)
+    return {"steps_per_s": rate, "robots": 12, "field": "ssl-div-b",
+            "bare_pymunk_steps_per_s": _bare_rate(env.world, steps, repeats)}
+
+
+def bench_perceived_cost(make_runner: Callable, steps: int, repeats: int, preset: str
+                         ) -> dict[str, float]:
+    """Cost of a perceived step relative to a truth step, timed in alternation (truth,
+    perceived, truth, ...) so that the machine's drift cancels; the median of the pairs'
+    ratios."""
+    truth, _ = make_runner(steps)
+    perceived, _ = make_runner(steps, obs_mode="perceived", perception=preset)
+    ratios, rates = [], []
+    for _ in range(repeats):
+        t = _rate(truth, steps)
+        p = _rate(perceived, steps)
+        ratios.append(t / p)
+        rates.append(p)
+    return {"steps_per_s": statistics.median(rates), "cost_vs_truth": statistics.median(ratios)}
+
+
+def _bare_rate(world, steps: int, repeats: int) -> float:
+    """Control steps per second of ``pymunk.Space.step`` alone on the world's own space (same
+    bodies, joints and substeps), robots driving at constant commands, no Python logic."""
+    rng = np.random.default_rng(1)
+    n = world.n_robots
+    poses = np.column_stack([rng.uniform(-3, 3, n), rng.uniform(-2, 2, n), np.zeros(n)])
+    world.reset(poses, (0.0, 0.0))
+    for control in world._controls:
+        control.velocity = tuple(rng.uniform(-2, 2, 2))
+    world.set_ball(0.0, 0.0, 3.0, 1.0)
+    space, h, k = world.space, world.substep_dt, world.n_substeps
+
+    def run() -> None:
+        for _ in range(steps):
+            for _ in range(k):
+                space.step(h)
+
+    return _median_rate(run, steps, repeats)
+
+
+def bench_frames(repeats: int = 200) -> dict[str, float]:
+    """Milliseconds per frame of the camera-image renderers on a 6 vs 6 scene
+    (``soccer-env bench --frames``; needs the ``pixels`` extra)."""
+    from soccer_env import presets
+    from soccer_env.presets.sensors import head_camera
+    from soccer_env.sensors.images.head import HeadFrameRenderer
+    from soccer_env.sensors.images.overhead import OverheadRenderer
+    from soccer_env.state import HeadState, WorldState
+
+    rng = np.random.default_rng(0)
+    out = {}
+    field = presets.field("ssl-div-b")
+    n = 12
+    teams = [0] * 6 + [1] * 6
+    robots = np.column_stack([rng.uniform(-4, 4, n), rng.uniform(-2.8, 2.8, n),
+                              rng.uniform(-3, 3, n), rng.uniform(-2, 2, (n, 2)),
+                              rng.uniform(-3, 3, n)])
+    state = WorldState(0.0, np.array([0.3, 0.2, 0.0, 4.0, 1.0, 0.0]), robots,
+                       tuple(f"r{i}" for i in range(n)), np.array(teams))
+    for name in ("clean", "realistic", "mirosot"):
+        r = OverheadRenderer(name, field, presets.robot("ssl"), presets.ball("ssl"), teams)
+        r.render(state, rng)
+        t0 = time.perf_counter()
+        for _ in range(repeats):
+            r.render(state, rng)
+        out[f"overhead {name} 640x480, 12 robots"] = (time.perf_counter() - t0) / repeats * 1e3
+    hfield = presets.field("humanoid-kid")
+    hrob = np.column_stack([rng.uniform(-4, 4, n), rng.uniform(-2.8, 2.8, n),
+                            rng.uniform(-3, 3, n), np.zeros((n, 3))])
+    hstate = WorldState(0.0, np.array([1.0, 0.2, 0.0, 0.0, 0.0, 0.0]), hrob, state.names,
+                        np.array(teams))
+    heads = HeadState.steady(n, 0.0, 0.3)
+    for size in ((320, 240), (720, 625)):
+        for name in ("clean", "realistic"):
+            r = HeadFrameRenderer(head_camera("kidsize"), hfield, presets.robot("humanoid"),
+                                  presets.ball("kidsize"), teams, name, size)
+            r.render(hstate, heads, 0, rng)
+            t0 = time.perf_counter()
+            for _ in range(repeats):
+                r.render(hstate, heads, 0, rng)
+            out[f"head {name} {size[0]}x{size[1]}"] = (time.perf_counter() - t0) / repeats * 1e3
+    return out
+
+
+def run_benchmarks(steps: int = 20000, match_steps: int = 5000, repeats: int = 3
+                   ) -> dict[str, Any]:
+    """All figures of ``soccer-env bench`` as a dict."""
+    gk = bench_goalkeeper(steps, repeats)
+    match = bench_match(match_steps, repeats)
+    for name, res in (("goalkeeper", gk), ("match", match)):
+        res.update(REFERENCE[name])
+        res["ratio_to_rsoccer"] = res["steps_per_s"] / res["rsoccer_steps_per_s"]
+        res["ratio_to_bare_pymunk"] = res["steps_per_s"] / res["bare_pymunk_steps_per_s"]
+    perceived = {}
+    for preset in PERCEIVED_PRESETS:
+        g = bench_perceived_cost(_goalkeeper_runner, steps // 2, repeats, preset)
+        m = bench_perceived_cost(_match_runner, match_steps // 2, repeats, preset)
+        perceived[preset] = {
+            "goalkeeper_steps_per_s": g["steps_per_s"],
+            "goalkeeper_cost_vs_truth": g["cost_vs_truth"],
+            "match_steps_per_s": m["steps_per_s"],
+            "match_cost_vs_truth": m["cost_vs_truth"],
+        }
+    humanoid = {}
+    for name, make in (("goalkeeper", _goalkeeper_runner),
+                       ("match", lambda n, **kw: _match_runner(n, blue=3, yellow=3, **kw))):
+        n = (steps if name == "goalkeeper" else match_steps) // 10
+        truth, _ = make(n, robot=HUMANOID)
+        r = bench_perceived_cost(lambda k, make=make, **kw: make(k, robot=HUMANOID, **kw), n,
+                                 repeats, HUMANOID_CAMERA)
+        humanoid[name] = {"truth_steps_per_s": _median_rate(truth, n, repeats),
+                          "perceived_steps_per_s": r["steps_per_s"],
+                          "cost_vs_truth": r["cost_vs_truth"]}
+    return {
+        "goalkeeper": gk,
+        "match_6v6_div_b": match,
+        "perceived": perceived,
+        "humanoid": {"robot": HUMANOID, "camera": HUMANOID_CAMERA, **humanoid},
+        "settings": {"steps": steps, "match_steps": match_steps, "repeats": repeats,
+                     "statistic": "median of repeats; perceived cost: median ratio of "
+                                  "alternating truth/perceived runs"},
+        "machine": {"python": platform.python_version(), "pymunk": pymunk.version,
+                    "numpy": np.__version__, "processor": platform.machine()},
+    }
+
+
+def format_table(res: dict[str, Any]) -> str:
+    """A plain-text table of :func:`run_benchmarks` results."""
+    rows = [("task", "steps/s", "bare pymunk", "env/bare", "rSoccer ref", "x rSoccer", "aim")]
+    for key, label in (("goalkeeper", "Goalkeeper-v0 (1 robot)"),
+                       ("match_6v6_div_b", "match 6 vs 6, Div B")):
+        r = res[key]
+        rows.append((label, f"{r['steps_per_s']:,.0f}", f"{r['bare_pymunk_steps_per_s']:,.0f}",
+                     f"{r['ratio_to_bare_pymunk']:.2f}", f"{r['rsoccer_steps_per_s']:,}",
+                     f"{r['ratio_to_rsoccer']:.1f}", f"{r['aim_steps_per_s']:,}"))
+    text = _table(rows)
+    if res.get("perceived"):
+        rows = [("obs_mode='perceived'", "Goalkeeper steps/s", "cost vs truth",
+                 "6v6 steps/s", "cost vs truth")]
+        for preset, r in res["perceived"].items():
+            rows.append((f"perception={preset!r}", f"{r['goalkeeper_steps_per_s']:,.0f}",
+                         f"{r['goalkeeper_cost_vs_truth']:.2f}", f"{r['match_steps_per_s']:,.0f}",
+                         f"{r['match_cost_vs_truth']:.2f}"))
+        text += "\n\n" + _table(rows)
+    if res.get("humanoid"):
+        h = res["humanoid"]
+        rows = [(f"humanoids ({h['robot']}, camera {h['camera']})", "truth steps/s",
+                 "perceived steps/s", "cost vs truth")]
+        for key, label in (("goalkeeper", "Goalkeeper-v0 + 3 team-mates (4 robots)"),
+                           ("match", "match 3 vs 3")):
+            r = h[key]
+            rows.append((label, f"{r['truth_steps_per_s']:,.0f}",
+                         f"{r['perceived_steps_per_s']:,.0f}", f"{r['cost_vs_truth']:.2f}"))
+        text += "\n\n" + _table(rows)
+    return text
+
+
+def _table(rows: list[tuple[str, ...]]) -> str:
+    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
+    lines = ["  ".join(c.ljust(w) if i == 0 else c.rjust(w) for i, (c, w) in
+                       enumerate(zip(row, widths))) for row in rows]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``soccer-env bench``."""
+    import argparse
+
+    p = argparse.ArgumentParser(prog="soccer-env bench", description=__doc__.split("\n\n")[0])
+    p.add_argument("--json", action="store_true", help="print the results as JSON")
+    p.add_argument("--steps", type=int, default=20000, help="Goalkeeper steps per run")
+    p.add_argument("--match-steps", type=int, default=5000, help="match steps per run")
+    p.add_argument("--repeats", type=int, default=3, help="timed runs per figure (median)")
+    p.add_argument("--frames", action="store_true",
+                   help="time the camera-image renderers instead (needs the pixels extra)")
+    args = p.parse_args(argv)
+    for name in ("steps", "match_steps", "repeats"):
+        if getattr(args, name) < 1:
+            p.error(f"--{name.replace('_', '-')} must be >= 1")
+    if args.frames:
+        ms = bench_frames()
+        print(json.dumps(ms, indent=2) if args.json else
+              "\n".join(f"{key}: {v:.2f} ms" for key, v in ms.items()))
+        return 0
+    res = run_benchmarks(args.steps, args.match_steps, args.repeats)
+    print(json.dumps(res, indent=2) if args.json else format_table(res))
+    return 0

@@ -1,0 +1,134 @@
+"""Paper 000's particle-filter benchmark: the univariate nonstationary growth model (UNGM).
+
+``soccer-env paper ungm``: bootstrap PF, FBPF and MFBPF (:mod:`estimators.particle`) with 100
+particles on ``runs`` simulated 50-step UNGM trajectories (``x_0 ~ N(0, 10)``, process noise
+variance 10, measurement noise variance 1, ``N_th = 50``, fission variance 1, as in the
+paper). Every filter sees the same trajectories and starts from the same initial particles
+(one generator per run, seeded from ``seed``). Reports the RMSE over each run's 50 steps (mean,
+standard deviation and median over runs) and the time per filter step, beside the paper's
+claim (MFBPF slightly better than FBPF; the paper gives a figure, not numbers).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from estimators import FBPF, MFBPF, BootstrapPF, ungm_model, ungm_simulate
+from soccer_env.render.plots import pyplot, save_figure
+from soccer_lab.papers._io import write_report
+
+__all__ = ["run", "FILTERS", "PAPER_CLAIM"]
+
+PAPER_CLAIM = ("Paper 000 (Fig. 12): with 100 particles, N_th = 50 and fission variance 1 on "
+               "50 UNGM steps, MFBPF's RMSE is slightly lower than FBPF's (no numbers given).")
+
+#: Filters compared: name -> (description, constructor(particles, transition, likelihood, rng)).
+FILTERS = {
+    "bootstrap": ("bootstrap PF, resampling every step",
+                  lambda p, t, lk, g: BootstrapPF(p, t, lk, g)),
+    "fbpf": ("FBPF: SFN then resampling when N_eff < N_th",
+             lambda p, t, lk, g: FBPF(p, t, lk, g, threshold=0.5, fission_variance=1.0)),
+    "mfbpf": ("MFBPF as printed: SFN when N_eff >= N_th, else copy-over resampling",
+              lambda p, t, lk, g: MFBPF(p, t, lk, g, threshold=0.5, fission_variance=1.0)),
+    "mfbpf-below": ("MFBPF with FBPF's test (N_eff < N_th)",
+                    lambda p, t, lk, g: MFBPF(p, t, lk, g, threshold=0.5, fission_variance=1.0,
+                                              sfn_when="below")),
+}
+
+
+def _rmse_runs(runs: int, particles: int, steps: int, seed: int
+               ) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
+    transition, likelihood = ungm_model()
+    rmse = {name: np.empty(runs) for name in FILTERS}
+    example: dict[str, Any] = {}
+    seeds = np.random.SeedSequence(seed).spawn(runs)
+    for r in range(runs):
+        sim_seed, filter_seed = seeds[r].spawn(2)
+        _, xs, ys = ungm_simulate(steps, np.random.default_rng(sim_seed))
+        init = np.random.default_rng(filter_seed)
+        p0 = init.normal(0.0, math.sqrt(10.0), (particles, 1))
+        state = init.bit_generator.state
+        for name, (_, make) in FILTERS.items():
+            rng = np.random.default_rng()
+            rng.bit_generator.state = state  # the same draws for every filter
+            f = make(p0, transition, likelihood, rng)
+            est = np.array([f.step(y)[0] for y in ys])
+            rmse[name][r] = math.sqrt(float(np.mean((est - xs) ** 2)))
+            if r == 0:
+                example[name] = est
+        if r == 0:
+            example["truth"] = xs
+    return rmse, example
+
+
+def _time_per_step(particles: int, repeats: int = 5, steps: int = 400) -> dict[str, float]:
+    """Median over ``repeats`` of the mean time of one filter step [us] on UNGM."""
+    transition, likelihood = ungm_model()
+    out = {}
+    for name, (_, make) in FILTERS.items():
+        times = []
+        for r in range(repeats):
+            rng = np.random.default_rng(r)
+            _, _, ys = ungm_simulate(steps, np.random.default_rng(100 + r))
+            f = make(rng.normal(0.0, math.sqrt(10.0), (particles, 1)), transition, likelihood,
+                     rng)
+            t0 = time.perf_counter()
+            for y in ys:
+                f.step(y)
+            times.append((time.perf_counter() - t0) / steps * 1e6)
+        out[name] = float(np.median(times))
+    return out
+
+
+def run(out: str | Path = "paper_output", runs: int = 200, particles: int = 100,
+        steps: int = 50, seed: int = 0) -> dict[str, Any]:
+    """Run the benchmark, write ``paper_ungm.md``, ``.csv``, ``.json`` and ``.png`` into
+    ``out`` and return ``{"text", "files", "seconds", "rmse", "us_per_step"}``."""
+    for name, value, lo in (("runs", runs, 1), ("particles", particles, 2), ("steps", steps, 1)):
+        if isinstance(value, bool) or int(value) != value or value < lo:
+            raise ValueError(f"{name} must be an integer >= {lo}, got {value!r}")
+    t0 = time.perf_counter()
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    rmse, example = _rmse_runs(int(runs), int(particles), int(steps), seed)
+    timing = _time_per_step(int(particles))
+    lines = [f"UNGM, paper 000's benchmark: {runs} runs of {steps} steps, {particles} particles, "
+             "N_th = N/2, fission variance 1; RMSE over each run (mean, standard deviation, "
+             "median over runs) and time per filter step (median of 5 timings of 400 steps).",
+             "",
+             "| filter | RMSE mean | RMSE std | RMSE median | us per step |",
+             "|---|---|---|---|---|"]
+    rows = []
+    for name, (desc, _) in FILTERS.items():
+        v = rmse[name]
+        lines.append(f"| {name}: {desc} | {v.mean():.3f} | {v.std():.3f} | "
+                     f"{np.median(v):.3f} | {timing[name]:.1f} |")
+        rows.append({"filter": name, "description": desc, "rmse_mean": float(v.mean()),
+                     "rmse_std": float(v.std()), "rmse_median": float(np.median(v)),
+                     "us_per_step": timing[name]})
+    diff = rmse["mfbpf"] - rmse["fbpf"]
+    lines += ["", f"MFBPF minus FBPF RMSE per run: mean {diff.mean():+.3f}, MFBPF lower in "
+              f"{np.mean(diff < 0):.0%} of runs, equal in {np.mean(diff == 0):.0%}.", "",
+              PAPER_CLAIM]
+    text = "\n".join(lines)
+    files = write_report(out, "paper_ungm", text, rows, {
+        "runs": runs, "particles": particles, "steps": steps, "seed": seed, "rows": rows,
+        "rmse_per_run": {k: v.tolist() for k, v in rmse.items()}})
+    plt = pyplot()
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4))
+    ax1.plot(example["truth"], "k-", lw=2, label="true state")
+    for name in ("bootstrap", "fbpf", "mfbpf"):
+        ax1.plot(example[name], lw=1, label=name)
+    ax1.set(xlabel="step k", ylabel="x_k", title="UNGM, run 0")
+    ax1.legend(fontsize=8)
+    ax2.boxplot([rmse[n] for n in FILTERS])
+    ax2.set_xticks(range(1, len(FILTERS) + 1), list(FILTERS))
+    ax2.set(ylabel="RMSE over 50 steps", title=f"{runs} runs, {particles} particles")
+    files.append(save_figure(fig, out / "paper_ungm.png"))
+    return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
+            "rmse": {k: float(v.mean()) for k, v in rmse.items()}, "us_per_step": timing}
