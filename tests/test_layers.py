@@ -1,0 +1,137 @@
+"""The architecture: layers that data flows down, checked over every import of every module.
+
+A module may import modules of its own layer and of the layers below it, never above. Every
+import statement counts, including those inside functions, and so do
+``importlib.import_module("...")`` calls with a literal name.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGES = ("estimators", "soccer_env", "agents", "soccer_lab")
+
+#: The layers, lowest first: (name, module prefixes). The package root ``soccer_env`` registers
+#: the environments, so it belongs to their layer.
+LAYERS = (
+    ("estimators", ("estimators",)),
+    ("presets and state", ("soccer_env.presets", "soccer_env.state", "soccer_env.validation")),
+    ("simulation", ("soccer_env.sim",)),
+    ("sensors", ("soccer_env.sensors",)),
+    ("perception", ("soccer_env.perception",)),
+    ("observations", ("soccer_env.observations",)),
+    ("rendering", ("soccer_env.render",)),
+    ("environments", ("soccer_env.envs", "soccer_env")),
+    ("agents", ("agents",)),
+    ("application", ("soccer_lab",)),
+)
+#: What the estimators may import besides the standard library and themselves: numpy, and
+#: OpenCV in the colour operations of the image trackers only.
+ESTIMATOR_LIBRARIES = {"numpy": None, "cv2": ("estimators.colour", "estimators.image.colour")}
+
+
+def module_name(path: Path) -> str:
+    parts = list(path.relative_to(ROOT).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def is_module(name: str) -> bool:
+    base = ROOT.joinpath(*name.split("."))
+    return base.with_suffix(".py").exists() or (base / "__init__.py").exists()
+
+
+def imports_of(path: Path) -> list[tuple[int, str]]:
+    """``(line, module)`` of every import in ``path`` (relative ones resolved; ``from p
+    import m`` counts as ``p.m`` when ``m`` is a module)."""
+    me = module_name(path)
+    return imports_in(path.read_text(), me if path.name == "__init__.py"
+                      else me.rpartition(".")[0])
+
+
+def imports_in(source: str, package: str) -> list[tuple[int, str]]:
+    """:func:`imports_of` for the ``source`` of a module of ``package``."""
+    out = []
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Import):
+            out += [(node.lineno, alias.name) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                parent = package.split(".")[: len(package.split(".")) - node.level + 1]
+                base = ".".join(parent + ([base] if base else []))
+            for alias in node.names:
+                sub = f"{base}.{alias.name}"
+                out.append((node.lineno, sub if is_module(sub) else base))
+        elif (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+              and node.func.attr == "import_module" and node.args
+              and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str)
+              and not node.args[0].value.startswith(".")):
+            out.append((node.lineno, node.args[0].value))
+    return out
+
+
+def layer_of(module: str) -> int | None:
+    """Index of the layer of ``module`` (the longest matching prefix), None outside the
+    package's code."""
+    best, best_len = None, -1
+    for i, (_, prefixes) in enumerate(LAYERS):
+        for p in prefixes:
+            if (module == p or module.startswith(p + ".")) and len(p) > best_len:
+                best, best_len = i, len(p)
+    return best
+
+
+def source_files() -> list[Path]:
+    return sorted(p for pkg in PACKAGES for p in (ROOT / pkg).rglob("*.py"))
+
+
+def test_every_module_has_a_layer():
+    assert source_files(), "no source files found"
+    assert [module_name(p) for p in source_files() if layer_of(module_name(p)) is None] == []
+
+
+@pytest.mark.parametrize("path", source_files(), ids=lambda p: module_name(p))
+def test_imports_point_down(path):
+    me = module_name(path)
+    mine = layer_of(me)
+    wrong = []
+    for line, target in imports_of(path):
+        theirs = layer_of(target)
+        if theirs is not None and theirs > mine:
+            wrong.append(f"line {line}: {target} ({LAYERS[theirs][0]})")
+    assert not wrong, f"{me} ({LAYERS[mine][0]}) imports from higher layers: {wrong}"
+
+
+@pytest.mark.parametrize("path", sorted((ROOT / "estimators").rglob("*.py")),
+                         ids=lambda p: module_name(p))
+def test_estimators_need_numpy_only(path):
+    import sys
+
+    me = module_name(path)
+    third_party = []
+    for line, target in imports_of(path):
+        top = target.split(".")[0]
+        if top in sys.stdlib_module_names or top == "estimators" or top == "__future__":
+            continue
+        allowed = ESTIMATOR_LIBRARIES.get(top, ())
+        if allowed is None or me in (allowed or ()):
+            continue
+        third_party.append(f"line {line}: {target}")
+    assert not third_party, f"{me} imports {third_party}"
+
+
+def test_the_checker_sees_imports_inside_functions():
+    """The check is not vacuous: upward imports hidden in a function, relative or dynamic,
+    are found."""
+    source = ("def f():\n    from agents import ScriptedGoalkeeper\n"
+              "    from ..envs import goalkeeper\n"
+              "    import importlib\n    importlib.import_module('soccer_lab.cli')\n")
+    sim = layer_of("soccer_env.sim")
+    found = [t for _, t in imports_in(source, "soccer_env.sim") if (layer_of(t) or 0) > sim]
+    assert found == ["agents", "soccer_env.envs.goalkeeper", "soccer_lab.cli"]
