@@ -52,7 +52,6 @@ from stable_baselines3.common.vec_env.base_vec_env import VecEnvIndices, VecEnvS
 import soccer_env
 from agents.policies import IdlePolicy, NumpyPolicy, SB3Policy
 from agents.team import TEAMS, ScriptedTeam
-from soccer_env.sim.commands import validate_actions
 
 __all__ = ["MatchVecEnv", "SelfPlayCallback", "make_match_vec_env", "LEARNERS",
            "OPPONENT_NAMES"]
@@ -346,7 +345,7 @@ class MatchVecEnv(VecEnv):
                              f"vy, omega, kick, chip, dribble per batch entry), got {a.shape}")
         # Check every row before any match moves, so that a bad row leaves all matches as
         # they were (the matches check again, at no cost for valid actions).
-        self._actions = validate_actions(a, self._entry_names, self._out_of_range)
+        self._actions = soccer_env.validate_actions(a, self._entry_names, self._out_of_range)
 
     def step_wait(self) -> VecEnvStepReturn:
         """Step every match once; finished matches are reset (see the module docstring)."""

@@ -40,9 +40,9 @@ from typing import Any
 import numpy as np
 
 from estimators import FrictionBallModel
+from soccer_env import MAX_TEAM_SIZE
 from soccer_env.envs.keeper import ScriptedGoalkeeper, drive_command, turn_command
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
-from soccer_env.sim.world import MAX_TEAM_SIZE
 
 __all__ = ["ScriptedTeam", "TEAMS"]
 

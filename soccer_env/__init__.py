@@ -13,7 +13,8 @@ from gymnasium.envs.registration import register, registry
 
 from soccer_env import presets
 from soccer_env.envs import GoalkeeperEnv, ShotDistribution, SoccerParallelEnv, env, parallel_env
-from soccer_env.sim.world import COMMAND_FIELDS, World
+from soccer_env.sim.commands import OUT_OF_RANGE_MODES, validate_actions
+from soccer_env.sim.world import COMMAND_FIELDS, MAX_TEAM_SIZE, World
 from soccer_env.state import WorldState
 
 __version__ = "0.1.0"
@@ -27,6 +28,9 @@ __all__ = [
     "parallel_env",
     "World",
     "COMMAND_FIELDS",
+    "MAX_TEAM_SIZE",
+    "validate_actions",
+    "OUT_OF_RANGE_MODES",
     "WorldState",
     "__version__",
 ]
