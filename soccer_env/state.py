@@ -3,8 +3,12 @@
 * :class:`WorldState`: the truth at one instant (from the simulation);
 * :class:`HeadState`: every robot's head servos, gait sway and blindness (from the walk
   engine; what the head cameras read);
+* :class:`BodyState`: what the robots' bodies report (heads, odometry, gait, falls; from the
+  walk engine; what a humanoid's perception reads besides its camera frames);
 * :class:`Belief`: what a team or a robot believes, laid out like the truth (from perception;
-  what the observation builder reads).
+  what the observation builder reads);
+* :class:`Attention`: what a robot believes that its head controller needs (from perception;
+  what the simulation's head control reads).
 """
 
 from __future__ import annotations
@@ -13,7 +17,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["WorldState", "HeadState", "Belief", "state_dict", "BALL_FIELDS", "ROBOT_FIELDS"]
+__all__ = ["WorldState", "HeadState", "BodyState", "Belief", "Attention", "state_dict",
+           "BALL_FIELDS", "ROBOT_FIELDS"]
 
 #: Columns of :attr:`WorldState.ball`.
 BALL_FIELDS = ("x", "y", "z", "vx", "vy", "vz")
@@ -100,3 +105,40 @@ class Belief(NamedTuple):
     time: float
     ball: np.ndarray
     robots: np.ndarray
+
+
+class BodyState(NamedTuple):
+    """What every robot's own body reports at one step (the walk engine's view of the
+    humanoids; SSL robots report zeros and are never fallen), per robot in world order.
+
+    Attributes:
+        heads: the :class:`HeadState` of every robot.
+        odometry: the displacement ``(dx, dy, dtheta)`` [m, m, rad] that the robot's walk
+            engine believes it made over the last step, in the body frame at the step's start.
+        gait: the gait's body-frame velocity ``(vx, vy, omega)`` [m/s, rad/s].
+        fallen: the robot is down (fallen or getting up): it neither acts, sees nor sends.
+        lying: direction [rad, body frame] of a fallen robot's body once it lies on the ground,
+            else None.
+    """
+
+    heads: HeadState
+    odometry: tuple[tuple[float, float, float], ...]
+    gait: tuple[tuple[float, float, float], ...]
+    fallen: tuple[bool, ...]
+    lying: tuple[float | None, ...]
+
+
+class Attention(NamedTuple):
+    """What a robot's head controller needs to know of its belief at one instant.
+
+    Attributes:
+        pose: its believed pose ``(x, y, theta)`` [m, m, rad].
+        ball: the believed ball ``(x, y, vx, vy)`` [m, m/s], or None if never seen.
+        ball_age: time since the latest sighting of the ball, its own or a team-mate's [s].
+        landmark_age: time since it last saw a landmark [s].
+    """
+
+    pose: np.ndarray
+    ball: np.ndarray | None
+    ball_age: float
+    landmark_age: float

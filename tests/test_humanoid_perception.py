@@ -134,7 +134,7 @@ def test_a_fallen_robot_sends_nothing_until_it_has_got_up():
     env = keeper(mates=3)
     env.reset(seed=0)
     world = env.world
-    brain = env._perception.humanoid_team(0)._brains[0]
+    brain = env.pipelines[0].brain(0)
 
     def heard_from_mate():
         _, _, _, _, info = env.step(STAND)

@@ -131,7 +131,7 @@ def test_every_ball_filter_runs_in_the_environment(ball_filter):
 
 def test_sensor_and_filters_share_the_measurement_models():
     env = gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived", perception="ssl-2012")
-    p = env.unwrapped._perception
+    p = env.unwrapped.pipelines[0]
     assert p.ball_tracker.measurement is p.sensor.ball_model
     assert p.robot_tracker.r == tuple(np.diag(p.sensor.robot_model.R))
     assert p.sensor.ball_model.sigma == 0.025

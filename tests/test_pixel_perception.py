@@ -34,7 +34,7 @@ def test_overhead_images_track_the_keeper_and_the_ball():
     assert np.median(pose_err[10:]) < 0.03  # a 640 px image of a 6.6 m field: 1 cm pixels
     assert np.median(ball_err[10:]) < 0.03
     # The camera delivers images, and their detections are weighed by the pixel size.
-    pipeline = env._perception
+    pipeline = env.pipelines[0]
     assert type(pipeline.sensor).__name__ == "OverheadImageCamera"
     assert type(pipeline.detector).__name__ == "OverheadPixelDetector"
     assert (pipeline.measurements.ball_model.sigma
@@ -75,7 +75,7 @@ def test_humanoids_find_the_ball_in_their_head_camera_images():
         errors.append(np.hypot(*(info["estimate"]["ball_position"]
                                  - info["truth"]["ball_position"])))
     assert np.median(errors[30:]) < 0.3
-    sensor = env._perception.humanoid_team(0).sensor
+    sensor = env.pipelines[0].sensor
     assert type(sensor).__name__ == "PixelHeadCamera"
 
 

@@ -8,26 +8,15 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-import gymnasium as gym
 import numpy as np
 
 from soccer_env import presets
+from soccer_env.envs.base import SingleAgentTask, resolve_world
 from soccer_env.observations import ObservationBuilder
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
-from soccer_env.perception.match import MatchPerception
-from soccer_env.perception.overhead import make_perception
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
-from soccer_env.render.renderer import RENDER_MODES, RenderingMixin
-from soccer_env.sim.commands import (
-    OUT_OF_RANGE_MODES,
-    CommandChannel,
-    robot_model,
-    validate_actions,
-)
-from soccer_env.sim.heads import HEAD_MODES, aim_heads
 from soccer_env.sim.referee import classify_exit
-from soccer_env.sim.world import World
-from soccer_env.state import state_dict
+from soccer_env.state import WorldState
 from soccer_env.validation import (
     check_choice,
     check_int,
@@ -174,7 +163,7 @@ def mate_poses(field: FieldSpec, n: int, radius: float) -> np.ndarray:
     return np.array(slots[:n], dtype=np.float64).reshape(n, 3)
 
 
-class GoalkeeperEnv(RenderingMixin, gym.Env):
+class GoalkeeperEnv(SingleAgentTask):
     """A keeper robot defends its goal against one shot per episode.
 
     ## Description
@@ -246,8 +235,6 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
     * v0: first release.
     """
 
-    metadata = {"render_modes": list(RENDER_MODES), "render_fps": 60}
-
     def __init__(
         self,
         robot: str | RobotSpec = "ssl",
@@ -268,120 +255,76 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
     ) -> None:
         reject_unknown("GoalkeeperEnv", unknown, keyword_names(GoalkeeperEnv.__init__))
         check_choice("obs_mode", obs_mode, OBS_MODES)
-        check_choice("render_mode", render_mode, [None, *RENDER_MODES])
-        check_choice("out_of_range_actions", out_of_range_actions, OUT_OF_RANGE_MODES)
-        check_choice("head", head, HEAD_MODES)
-        self.robot_spec = presets.robot(robot)
-        humanoid = self.robot_spec.kind == "humanoid"
-        self.field = presets.field(field if field is not None
-                                   else presets.default_field(self.robot_spec))
-        self.ball_spec = presets.ball(ball if ball is not None else self.field.ball)
+        spec, fld, bl = resolve_world(robot, field, ball)
+        humanoid = spec.kind == "humanoid"
         if mates is None:
             mates = MAX_MATES if humanoid else 0
         self.n_mates = check_int("mates" + ("" if humanoid else " (team-mates watch only for "
                                             "humanoid keepers; SSL vision sees everything)"),
                                  mates, 0, MAX_MATES if humanoid else 0)
-        self.head = head
         self.shots = ShotDistribution.create(HUMANOID_SHOTS if humanoid and shots is None
                                              else shots)
-        self.shots.check_field(self.field)
+        self.shots.check_field(fld)
         self.shaping = parse_scales("shaping", shaping, GOALKEEPER_SHAPING)
         self._shaping_on = any(self.shaping.values())
         self._zero_shaping = dict.fromkeys(GOALKEEPER_SHAPING, 0.0)
-        self.obs_mode = obs_mode
-        self.render_mode = render_mode
-        self.out_of_range_actions = out_of_range_actions
-        n = 1 + self.n_mates
-        self.world = World(self.field, self.ball_spec, self.robot_spec, n, 0, control_dt,
-                           physics_dt)
-        self.metadata = {**self.metadata, "render_fps": round(1.0 / self.world.control_dt)}
-        self.robot_model = robot_model(self.robot_spec)
+        config = PerceptionConfig.create(perception, obs_mode, spec.kind)
+        self._build(team_specs=(spec, spec), n_blue=1 + self.n_mates, n_yellow=0, field=fld,
+                    ball=bl, obs_mode=obs_mode, perceptions=(config, config),
+                    control_dt=control_dt, physics_dt=physics_dt,
+                    out_of_range_actions=out_of_range_actions, render_mode=render_mode,
+                    render_width=render_width, head=head, policy_heads=[0])
+        self.robot_model = self._models[0]
         self.action_space = self.robot_model.action_space()
         self.builder = ObservationBuilder(self.field, [0], [0])
         self.observation_space = self.builder.space()
-        self.perception = PerceptionConfig.create(perception, obs_mode, self.robot_spec.kind)
-        spec = self.perception.vision
-        # The actuation latency applies in whole control steps (humanoids walk on board).
-        delay = 0 if humanoid else round(spec.actuation_latency / self.world.control_dt)
-        self._channel = CommandChannel(n, delay, 0.0 if humanoid else spec.command_loss)
-        if humanoid:  # the keeper's belief, its team-mates' heads and broadcasts
-            self._perception = MatchPerception(obs_mode, (self.perception, self.perception),
-                                               self.field, self.ball_spec, self.world, head)
-        else:
-            self._perception = make_perception(obs_mode, self.perception, self.field,
-                                               self.robot_spec, self.ball_spec, n,
-                                               delay * self.world.control_dt,
-                                               self.world.teams.tolist(),
-                                               self.world.robot_specs)
-        self._render_width = int(render_width)
-        self._names = self.world.names
         # Half-width of the goal mouth the intercept shaping limits its crossing point to [m].
         self._mouth = 0.5 * self.field.goal_width + self.ball_spec.radius
         self._shot: dict[str, Any] | None = None
 
     # ------------------------------------------------------------------------------------
+    # Task hooks
+    # ------------------------------------------------------------------------------------
 
-    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
-        super().reset(seed=seed)
-        rng = self.np_random
+    def _place(self, rng: np.random.Generator) -> tuple[np.ndarray, tuple[float, float]]:
         f, r = self.field, self.robot_spec
         keeper = (-f.half_length + r.radius + 0.05,
                   rng.uniform(-0.25 * f.goal_width, 0.25 * f.goal_width), 0.0)
         self._shot = self.shots.sample(rng, f, self.ball_spec)
-        # Sensors and radio draw from their own stream, seeded from the episode's: the shots
-        # and the keeper's start are then the same whatever the perception configuration.
-        sensor_rng = np.random.default_rng(rng.integers(2**63))
         poses = np.concatenate([[keeper], mate_poses(f, self.n_mates, r.radius)])
-        # The humanoids' falls and odometry draw from a stream of their own, too.
-        self.world.reset(poses, self._shot["position"],
-                         np.random.default_rng(rng.integers(2**63)))
-        aim_heads(self.world)
+        return poses, self._shot["position"]
+
+    def _streams(self, rng: np.random.Generator
+                 ) -> tuple[np.random.Generator, np.random.Generator]:
+        # This task seeds the sensors' stream before the world's (its recorded episodes
+        # depend on the order).
+        sensor_rng = np.random.default_rng(rng.integers(2**63))
+        return np.random.default_rng(rng.integers(2**63)), sensor_rng
+
+    def _begin(self, rng: np.random.Generator) -> None:
         self._fired = False
         self._touched = False
         if self._shot["delay"] <= 0.0:
             self._fire()
-        state = self.world.snapshot()
-        self._channel.reset(sensor_rng)
-        seen, current = self._perception.reset(state, sensor_rng)
-        self._shown_belief = current
-        obs = self.builder.build(seen)[0]
-        info = self._info(state, current, dict.fromkeys(("outcome", *self.shaping), 0.0), None)
-        return obs, info
 
-    def step(self, action):
-        if self._shot is None:
-            raise RuntimeError("call reset() before step()")
-        act = np.asarray(action, dtype=np.float64)
-        if act.shape != (6,):
-            raise ValueError(f"action must have shape (6,) (vx, vy, omega, kick, chip, "
-                             f"dribble), got {act.shape}")
-        act = validate_actions(act[None], self._names[:1], self.out_of_range_actions)
+    def _after_physics(self) -> None:
         world = self.world
-        if world.walk is not None:  # the mates stand; heads aimed as configured
-            full = np.zeros((world.n_robots, 6))
-            full[0] = act[0]
-            for i in range(world.n_robots):
-                if i > 0 or self.head != "action":
-                    full[i, 4:6] = self.robot_model.action_for_head(
-                        *self._perception.head_targets(i, world.time))
-            commands = self.robot_model.commands(full)
-        else:
-            commands = self.robot_model.commands(act)
-        world.step(self._channel.send(commands))
         if not self._fired and world.time >= self._shot["delay"] - 1e-9:
             self._fire()
         self._touched = self._touched or world.touched[0]
-        state = world.snapshot()
-        outcome = self._outcome(state)
-        terms = self._reward_terms(state, act[0], outcome)
-        reward = float(sum(terms.values()))
-        seen, current = self._perception.update(state)
-        self._shown_belief = current
-        obs = self.builder.build(seen)[0]
-        info = self._info(state, current, terms, outcome)
-        if self.render_mode == "human":
-            self.render()
-        return obs, reward, outcome is not None, False, info
+
+    def _observe(self, belief: Any) -> np.ndarray:
+        return self.builder.build(belief)[0]
+
+    def _zero_terms(self) -> dict[str, float]:
+        return dict.fromkeys(("outcome", *self.shaping), 0.0)
+
+    def _success(self, outcome: str) -> bool:
+        return outcome != "goal"
+
+    def _task_info(self) -> dict[str, Any]:
+        return {"shot": dict(self._shot), "shot_fired": self._fired,
+                "keeper_touched": self._touched}
 
     # ------------------------------------------------------------------------------------
 
@@ -402,7 +345,7 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
             world.set_ball(bx, by, v * ux, v * uy, sliding=True)
         self._fired = True
 
-    def _outcome(self, state) -> str | None:
+    def _outcome(self, state: WorldState, event: Any = None) -> str | None:
         world = self.world
         if world.ball_exit is not None:
             kind = classify_exit(world.ball_exit, self.field, self.ball_spec)
@@ -416,7 +359,8 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
             return "cleared"
         return None
 
-    def _reward_terms(self, state, act: np.ndarray, outcome: str | None) -> dict[str, float]:
+    def _reward_terms(self, state: WorldState, act: np.ndarray, outcome: str | None
+                      ) -> dict[str, float]:
         terms = {"outcome": 0.0 if outcome is None else (-1.0 if outcome == "goal" else 1.0)}
         sc = self.shaping
         if not self._shaping_on:
@@ -449,25 +393,6 @@ class GoalkeeperEnv(RenderingMixin, gym.Env):
         else:
             terms["outside_area"] = 0.0
         return terms
-
-    def _info(self, state, belief, terms: dict[str, float], outcome: str | None
-              ) -> dict[str, Any]:
-        truth = state.truth_dict()
-        info = {
-            "truth": truth,
-            "estimate": truth if belief is state else state_dict(
-                belief.time, belief.ball, belief.robots, self._names),
-            "reward_terms": terms,
-            "outcome": outcome,
-            "shot": dict(self._shot),
-            "shot_fired": self._fired,
-            "keeper_touched": self._touched,
-        }
-        if self.world.walk is not None:
-            info["robot_state"] = self.world.humanoid_state()
-        if outcome is not None:
-            info["is_success"] = outcome != "goal"
-        return info
 
     # ------------------------------------------------------------------------------------
 

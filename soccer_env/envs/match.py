@@ -11,21 +11,18 @@ from pettingzoo import ParallelEnv
 from pettingzoo.utils import parallel_to_aec
 
 from soccer_env import presets
+from soccer_env.envs.base import SoccerCore
 from soccer_env.observations import ObservationBuilder
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
-from soccer_env.perception.match import MatchPerception
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
-from soccer_env.render.renderer import RENDER_MODES, RenderingMixin
+from soccer_env.render.renderer import RENDER_MODES
 from soccer_env.sim.commands import (
     OUT_OF_RANGE_MODES,
-    CommandChannel,
-    robot_model,
     validate_actions,
 )
-from soccer_env.sim.heads import HEAD_MODES, aim_heads
+from soccer_env.sim.heads import HEAD_MODES
 from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff
-from soccer_env.sim.world import MAX_TEAM_SIZE, World
-from soccer_env.state import state_dict
+from soccer_env.sim.world import MAX_TEAM_SIZE
 from soccer_env.validation import (
     check_choice,
     check_int,
@@ -59,7 +56,7 @@ def _per_team(name: str, value: Any) -> tuple[Any, Any]:
     return value, value
 
 
-class SoccerParallelEnv(RenderingMixin, ParallelEnv):
+class SoccerParallelEnv(SoccerCore, ParallelEnv):
     """A match between a blue and a yellow team (PettingZoo ``ParallelEnv``) of SSL robots,
     humanoids, or one team of each.
 
@@ -159,25 +156,20 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         self.max_cycles = max_cycles
         self.formation_jitter = check_range("formation_jitter", formation_jitter, 0.0, 1.0)
         team_specs = tuple(presets.robot(r) for r in _per_team("robot", robot))
-        self.team_specs = team_specs
         first = team_specs[0] if blue else team_specs[1]
-        self.field = presets.field(field if field is not None else presets.default_field(first))
-        self.ball_spec = presets.ball(ball if ball is not None else self.field.ball)
-        #: The first robot's model (every robot's when the teams play the same robot).
-        self.robot_spec = first
+        fld = presets.field(field if field is not None else presets.default_field(first))
+        bl = presets.ball(ball if ball is not None else fld.ball)
         self.shaping = parse_scales("shaping", shaping, MATCH_SHAPING)
-        self.obs_mode = obs_mode
-        self.render_mode = render_mode
-        self.out_of_range_actions = out_of_range_actions
-        self.head = head
-        self.world = World(self.field, self.ball_spec,
-                           [team_specs[0]] * blue + [team_specs[1]] * yellow, blue, yellow,
-                           control_dt, physics_dt)
-        self.metadata = {**self.metadata, "render_fps": round(1.0 / self.world.control_dt)}
-        self._models = [robot_model(s) for s in team_specs]
+        perceptions = tuple(PerceptionConfig.create(p, obs_mode, s.kind) for p, s in
+                            zip(_per_team("perception", perception), team_specs))
+        self._build(team_specs=team_specs, n_blue=blue, n_yellow=yellow, field=fld, ball=bl,
+                    obs_mode=obs_mode, perceptions=perceptions, control_dt=control_dt,
+                    physics_dt=physics_dt, out_of_range_actions=out_of_range_actions,
+                    render_mode=render_mode, render_width=render_width, head=head,
+                    policy_heads=range(blue + yellow))
+        w = self.world
         #: The first robot's action mapping.
         self.robot_model = self._models[0] if blue else self._models[1]
-        w = self.world
         self.possible_agents = list(w.names)
         self.agents: list[str] = []
         game_low, game_high = (0.0, 0.0, 0.0, -1.0), (1.0, 1000.0, 1000.0, 1.0)
@@ -187,19 +179,6 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         self._observation_spaces = {a: self.builder.space() for a in self.possible_agents}
         self._action_spaces = {a: self._models[t].action_space()
                                for a, t in zip(self.possible_agents, self._teams)}
-        self.perceptions = tuple(PerceptionConfig.create(p, obs_mode, s.kind) for p, s in
-                                 zip(_per_team("perception", perception), team_specs))
-        #: Blue's perception configuration (the match's, when both teams share one).
-        self.perception = self.perceptions[0]
-        self._perception = MatchPerception(obs_mode, self.perceptions, self.field,
-                                           self.ball_spec, w, head)
-        # Commands reach each team's robots with its actuation latency, in whole control steps
-        # (none for humanoids, whose walk engine is on board).
-        self._slices = [slice(0, blue), slice(blue, blue + yellow)]
-        self._channels = [CommandChannel(n, d, 0.0 if s.kind == "humanoid" else
-                                         cfg.vision.command_loss)
-                          for n, d, s, cfg in zip((blue, yellow), self._perception.delays,
-                                                  team_specs, self.perceptions)]
         # One observation builder per group of robots that share a belief.
         self._builders = [(g, ObservationBuilder(self.field, w.teams, g, game_low, game_high,
                                                  GAME_NAMES))
@@ -209,8 +188,42 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         self.score = [0, 0]
         self.restart_team = -1
         self.cycles = 0
-        self._render_width = int(render_width)
         self._rng: np.random.Generator | None = None
+
+    # ------------------------------------------------------------------------------------
+    # Task hooks
+    # ------------------------------------------------------------------------------------
+
+    def _place(self, rng: np.random.Generator) -> tuple[np.ndarray, tuple[float, float]]:
+        self._kickoff = int(rng.integers(2))
+        return place_kickoff(self.world, self._kickoff, rng, self.formation_jitter), (0.0, 0.0)
+
+    def _begin(self, rng: np.random.Generator) -> None:
+        self.agents = list(self.possible_agents)
+        self.score = [0, 0]
+        self.restart_team = self._kickoff
+        self.cycles = 0
+
+    def _after_physics(self) -> tuple[str | None, int]:
+        """The referee: the step's event (None, ``"goal"``, ``"touch"``, ``"goal_line"``,
+        ``"over_bar"``) and the scoring team (-1 if none)."""
+        w = self.world
+        self.cycles += 1
+        if any(w.touched):
+            self.restart_team = -1
+        event, scorer = None, -1
+        if w.ball_exit is not None:
+            kind = classify_exit(w.ball_exit, self.field, self.ball_spec)
+            event = kind.kind
+            if kind.kind == "goal":
+                scorer = kind.scorer
+                self.score[scorer] += 1
+                self.restart_team = 1 - scorer
+                w.place_all(place_kickoff(w, 1 - scorer, self._rng, self.formation_jitter))
+            else:
+                self.restart_team = place_free_kick(w, w.ball_exit, kind)
+            w.clear_exit()
+        return event, scorer
 
     # ------------------------------------------------------------------------------------
     # PettingZoo API
@@ -225,23 +238,7 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
     def reset(self, seed: int | None = None, options: dict | None = None):
         if seed is not None or self._rng is None:
             self._rng = np.random.default_rng(seed)
-        rng = self._rng
-        w = self.world
-        kickoff = int(rng.integers(2))
-        w.reset(place_kickoff(w, kickoff, rng, self.formation_jitter), (0.0, 0.0),
-                np.random.default_rng(rng.integers(2**63)))
-        aim_heads(w)
-        self.agents = list(self.possible_agents)
-        self.score = [0, 0]
-        self.restart_team = kickoff
-        self.cycles = 0
-        state = w.snapshot()
-        # Sensors and radio draw from their own stream (see GoalkeeperEnv.reset).
-        sensor_rng = np.random.default_rng(rng.integers(2**63))
-        for channel in self._channels:
-            channel.reset(sensor_rng)
-        self._perception.reset(state, sensor_rng)
-        self._shown_belief = self._perception.current(0)
+        state = self._start(self._rng)
         obs = self._observe()
         zero = dict.fromkeys(("goal", *MATCH_SHAPING), 0.0)
         infos = self._infos(state, {a: zero for a in self.agents}, None)
@@ -253,36 +250,8 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
         act = self._gather(actions)
         w = self.world
         ball_x_before = float(w.ball_array()[0]) if self.shaping["ball_progress"] else 0.0
-        if w.walk is not None:  # humanoids' heads
-            now = w.time
-            for i in w.humanoid_indices:
-                if self.head != "action":
-                    model = self._models[self._teams[i]]
-                    act[i, 4:6] = model.action_for_head(*self._perception.head_targets(i, now))
-        w.step(np.concatenate([ch.send(m.commands(act[sl])) for ch, m, sl in
-                               zip(self._channels, self._models, self._slices)]))
-        self.cycles += 1
-        if any(w.touched):
-            self.restart_team = -1
-
-        event = None
-        scorer = -1
-        if w.ball_exit is not None:
-            kind = classify_exit(w.ball_exit, self.field, self.ball_spec)
-            event = kind.kind
-            if kind.kind == "goal":
-                scorer = kind.scorer
-                self.score[scorer] += 1
-                self.restart_team = 1 - scorer
-                w.place_all(place_kickoff(w, 1 - scorer, self._rng, self.formation_jitter))
-            else:
-                self.restart_team = place_free_kick(w, w.ball_exit, kind)
-            w.clear_exit()
-
-        state = w.snapshot()
+        state, (event, scorer) = self._advance(act)
         rewards, terms = self._rewards(state, event, scorer, ball_x_before)
-        self._perception.update(state)
-        self._shown_belief = self._perception.current(0)
         obs = self._observe()
         done = w.time >= self.match_duration - 1e-9
         trunc = self.max_cycles is not None and self.cycles >= self.max_cycles
@@ -383,8 +352,7 @@ class SoccerParallelEnv(RenderingMixin, ParallelEnv):
             belief = self._perception.current(i)
             key = id(belief)
             if key not in estimates:
-                estimates[key] = truth if belief is state else state_dict(
-                    belief.time, belief.ball, belief.robots, state.names)
+                estimates[key] = self._estimate(state, belief, truth)
             infos[a] = self._agent_info(truth, estimates[key], terms[a], event)
             if robot_state is not None:
                 infos[a]["robot_state"] = robot_state

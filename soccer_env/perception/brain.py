@@ -1,4 +1,4 @@
-"""One humanoid's estimation stack (:class:`_Brain`): odometry, its head-camera frames, the
+"""One humanoid's estimation stack (:class:`Brain`): odometry, its head-camera frames, the
 team-mates' radio messages, Hough fusion and ball tracking, as described in
 :mod:`soccer_env.perception.humanoid`.
 """
@@ -20,7 +20,7 @@ from soccer_env.state import WorldState
 if TYPE_CHECKING:  # the team's pipeline, which owns its robots' brains
     from soccer_env.perception.humanoid import HumanoidTeamPerception
 
-__all__ = ["landmark_sightings"]
+__all__ = ["Brain", "landmark_sightings"]
 
 #: Fused sightings older than this many frame periods are not fused with a new one.
 _FUSION_WINDOW_FRAMES = 1.5
@@ -73,7 +73,7 @@ class _Line:
     range: float
 
 
-class _Brain:
+class Brain:
     """One humanoid's estimation stack (see the module docstring)."""
 
     def __init__(self, index: int, name: str, team: int, perception: HumanoidTeamPerception,
@@ -337,3 +337,7 @@ class _Brain:
         for j, (_t, pos, vel) in self.opponents.items():
             robots[j, 0:2], robots[j, 3:5] = pos, vel
         return ball, robots
+
+
+# alias for callers outside soccer_env; removed when they move to Brain
+_Brain = Brain

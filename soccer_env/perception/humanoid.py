@@ -46,13 +46,12 @@ from typing import Any
 import numpy as np
 
 from estimators import KLDConfig, KLDLocalizer, ParticleBallTracker
-from soccer_env.perception.brain import _FUSION_WINDOW_FRAMES, _Brain
+from soccer_env.perception.brain import _FUSION_WINDOW_FRAMES, Brain
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.presets.sensors import HeadCameraSpec, RadioSpec
 from soccer_env.sensors.headcam import HeadCameraSensor, HeadFrame, field_landmarks
 from soccer_env.sensors.radio import TeamRadio
-from soccer_env.sim.heads import HEAD_MODES, HeadController
-from soccer_env.state import HeadState, WorldState
+from soccer_env.state import Attention, BodyState, WorldState
 
 __all__ = ["HumanoidTeamPerception"]
 
@@ -71,13 +70,15 @@ class HumanoidTeamPerception:
         observers: indices of the humanoids whose beliefs are modelled.
         camera: the head camera of the observers.
         radio: the team radio's link.
-        head_mode: ``"auto"``, ``"scan"`` or ``"action"`` (see :data:`HEAD_MODES`).
+
+    Reads, per step, the world's :class:`~soccer_env.state.WorldState` (what the cameras see;
+    the oracle localization's pose) and :class:`~soccer_env.state.BodyState` (head angles,
+    odometry, gait, falls); writes nothing but its own state.
     """
 
     def __init__(self, config: Any, field: FieldSpec, ball: BallSpec,
                  specs: Sequence[RobotSpec], teams: Sequence[int], names: Sequence[str],
-                 observers: Sequence[int], camera: HeadCameraSpec, radio: RadioSpec,
-                 head_mode: str = "auto") -> None:
+                 observers: Sequence[int], camera: HeadCameraSpec, radio: RadioSpec) -> None:
         self.config = config
         self.field, self.ball_spec = field, ball
         self.specs = list(specs)
@@ -133,22 +134,16 @@ class HumanoidTeamPerception:
         #: Without an own frame for this long [s], team-mates' sightings are fused as they
         #: arrive.
         self.frame_gap = 1.5 / camera.frame_rate if camera.frame_rate else 0.05
-        if head_mode not in HEAD_MODES:
-            raise ValueError(f"head must be one of {list(HEAD_MODES)}, got {head_mode!r}")
-        self.head_mode = head_mode
-        self.heads = {i: HeadController(self.specs[i], camera.height,
-                                        "scan" if head_mode == "scan" else "auto")
-                      for i in self.observers}
-        self._brains: dict[int, _Brain] = {}
+        self._brains: dict[int, Brain] = {}
         self._radios: dict[int, TeamRadio] = {}
-        self._walk_index: dict[int, dict[int, int]] = {}
 
     # ------------------------------------------------------------------------------------
 
-    def reset(self, state: WorldState, heads: HeadState, rng: np.random.Generator) -> None:
-        """Start an episode at ``state`` (the robots' poses at the start are known)."""
+    def reset(self, state: WorldState, body: BodyState, rng: np.random.Generator) -> None:
+        """Start an episode at ``state`` (the robots' poses at the start are known; ``body``
+        gives their heads)."""
         self._rngs = rng.spawn(len(self.observers) + 2)
-        self._brains = {i: _Brain(i, self.names[i], self.teams[i], self, r)
+        self._brains = {i: Brain(i, self.names[i], self.teams[i], self, r)
                         for i, r in zip(self.observers, self._rngs)}
         self._radios = {}
         for t, members in self.team_members.items():
@@ -159,33 +154,28 @@ class HumanoidTeamPerception:
                 self._radios[t] = radio
         for b in self._brains.values():
             b.reset(state)
-        for h in self.heads.values():
-            h.reset()
         self.time = state.time
-        self._consume(self.sensor.reset(state, heads, self._rngs[-1]), state, None)
+        self._consume(self.sensor.reset(state, body.heads, self._rngs[-1]), state, None)
 
-    def update(self, state: WorldState, heads: HeadState, walk: Any) -> None:
+    def update(self, state: WorldState, body: BodyState) -> None:
         """Advance to ``state``: odometry, frames, radio, fusion and tracking."""
         self.time = state.time
-        self._consume(self.sensor.step(state, heads), state, walk)
+        self._consume(self.sensor.step(state, body.heads), state, body)
 
-    def _consume(self, frames: list[HeadFrame], state: WorldState, walk: Any) -> None:
-        """The estimation of one step (the sensor simulation done): odometry, the frames,
-        the radio."""
+    def _consume(self, frames: list[HeadFrame], state: WorldState, body: BodyState | None
+                 ) -> None:
+        """The estimation of one step (the sensor simulation done): odometry (none at the
+        start, ``body=None``), the frames, the radio."""
         now = state.time
-        if walk is not None:
-            pos = self._walk_index.get(id(walk))
-            if pos is None:  # robot index -> position in the walk engine, once per world
-                pos = self._walk_index[id(walk)] = {i: j for j, i in enumerate(walk.indices)}
+        if body is not None:
             for i, b in self._brains.items():
-                j = pos[i]
-                b.odometry(now, walk.odometry[j], state.robots[i, 0:3])
-                b.gait_velocity = tuple(walk.gait[j])
-                radio = self._radios[b.team]
-                radio.set_silent(b.name, walk.fallen[j])
-                if b.down and not walk.fallen[j]:
-                    b.stood_up(walk.specs[j].fall_heading_sigma)
-                b.down = walk.fallen[j]
+                b.odometry(now, body.odometry[i], state.robots[i, 0:3])
+                b.gait_velocity = body.gait[i]
+                fallen = body.fallen[i]
+                self._radios[b.team].set_silent(b.name, fallen)
+                if b.down and not fallen:
+                    b.stood_up(self.specs[i].fall_heading_sigma)
+                b.down = fallen
         for f in frames:
             b = self._brains[f.robot]
             msg = b.frame(f)
@@ -202,13 +192,16 @@ class HumanoidTeamPerception:
         """Robot ``i``'s belief at ``t``: ``ball`` (6,) and ``robots`` (N, 6)."""
         return self._brains[i].belief(t)
 
-    def head_targets(self, i: int, now: float) -> tuple[float, float]:
-        """Where robot ``i``'s head controller aims now (pan, tilt) [rad]."""
+    def attention(self, i: int, now: float) -> Attention:
+        """What robot ``i``'s head controller needs of its belief at ``now``."""
         b = self._brains[i]
-        ball = b.ball_point(now)
-        age = now - max(b.ball_seen, b.ball_heard)
-        return self.heads[i].targets(now, b.estimate_pose(), ball, age,
-                                     now - b.landmark_seen)
+        return Attention(b.estimate_pose(), b.ball_point(now),
+                         now - max(b.ball_seen, b.ball_heard), now - b.landmark_seen)
+
+    def brain(self, i: int) -> Brain:
+        """Robot ``i``'s estimation stack (its localization, tracker, the team-mates' poses
+        and sightings it has heard)."""
+        return self._brains[i]
 
     def localization(self, i: int) -> KLDLocalizer | None:
         """Robot ``i``'s localization filter (None unless ``localization="kld"``)."""

@@ -5,22 +5,21 @@ pipeline, and a belief per robot.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
 from soccer_env.perception.base import PerceptionConfig
+from soccer_env.perception.humanoid import HumanoidTeamPerception
 from soccer_env.perception.overhead import (
     FilteredPerception,
     RawPerception,
     TruthPerception,
     make_perception,
 )
-from soccer_env.presets import BallSpec, FieldSpec
-from soccer_env.presets.sensors import (
-    head_camera,
-)
-from soccer_env.state import Belief, WorldState
+from soccer_env.presets import BallSpec, FieldSpec, HeadCameraSpec, RobotSpec, head_camera
+from soccer_env.state import Attention, Belief, BodyState, WorldState
 
 __all__ = ["MatchPerception"]
 
@@ -38,55 +37,58 @@ class MatchPerception:
         obs_mode: the observation mode.
         configs: the two teams' :class:`PerceptionConfig` (blue, yellow).
         field, ball: the world's field and ball.
-        world: the :class:`~soccer_env.sim.world.World`.
-        head: who aims humanoid agents' heads (see
-            :data:`~soccer_env.sim.heads.HEAD_MODES`).
+        robots: every robot's model, in world order (blue first).
+        teams: every robot's team (0 blue, 1 yellow).
+        names: every robot's name.
+        control_dt: the world's control step [s] (the actuation latency is applied in whole
+            steps).
+
+    Reads the world's :class:`~soccer_env.state.WorldState` and, with humanoids,
+    :class:`~soccer_env.state.BodyState` snapshots; never the world itself.
     """
 
     def __init__(self, obs_mode: str, configs: tuple[PerceptionConfig, PerceptionConfig],
-                 field: FieldSpec, ball: BallSpec, world: Any, head: str = "auto") -> None:
-        from soccer_env.perception.humanoid import HumanoidTeamPerception
-        from soccer_env.sim.heads import HeadController
-
-        self.obs_mode, self.world = obs_mode, world
-        n = world.n_robots
-        teams = world.teams.tolist()
+                 field: FieldSpec, ball: BallSpec, robots: Sequence[RobotSpec],
+                 teams: Sequence[int], names: Sequence[str], control_dt: float) -> None:
+        self.obs_mode = obs_mode
+        specs = list(robots)
+        teams = [int(t) for t in teams]
+        n = len(specs)
         members = [[i for i in range(n) if teams[i] == t] for t in (0, 1)]
-        kinds = [world.robot_specs[m[0]].kind if m else None for m in members]
+        kinds = [specs[m[0]].kind if m else None for m in members]
+        #: Every team's actuation latency in whole control steps (0 for humanoids).
         self.delays = [0, 0]
+        #: The head camera of every humanoid (robot index -> spec).
+        self.cameras: dict[int, HeadCameraSpec] = {}
         self._groups: list[tuple[list[int], Any]] = []  # (robots, pipeline)
         self._humanoid: dict[int, Any] = {}  # robot -> its team's HumanoidTeamPerception
-        self._heads: dict[int, Any] = {}
         ssl_teams = [t for t in (0, 1) if kinds[t] == "ssl"]
         if ssl_teams:
             shared = len(ssl_teams) == 2 and configs[0] == configs[1]
             for t in ([ssl_teams[0]] if shared else ssl_teams):
                 spec = configs[t].vision
-                delay = round(spec.actuation_latency / world.control_dt)
-                robots = members[0] + members[1] if shared else members[t]
-                pipe = make_perception(obs_mode, configs[t], field,
-                                       world.robot_specs[members[t][0]], ball, n,
-                                       delay * world.control_dt, teams, world.robot_specs)
+                delay = round(spec.actuation_latency / control_dt)
+                group = members[0] + members[1] if shared else members[t]
+                pipe = make_perception(obs_mode, configs[t], field, specs[members[t][0]], ball,
+                                       n, delay * control_dt, teams, specs)
                 for tt in (ssl_teams if shared else [t]):
                     self.delays[tt] = delay
-                self._groups.append((robots, pipe))
+                self._groups.append((group, pipe))
         for t in (0, 1):
             if kinds[t] != "humanoid":
                 continue
             cfg = configs[t]
-            spec = world.robot_specs[members[t][0]]
+            spec = specs[members[t][0]]
             camera = cfg.camera if cfg.camera is not None else head_camera(spec.camera)
+            self.cameras.update(dict.fromkeys(members[t], camera))
             if obs_mode == "truth":
                 self._groups.append((members[t], TruthPerception(cfg)))
-                for i in members[t]:
-                    self._heads[i] = HeadController(world.robot_specs[i], camera.height,
-                                                    "scan" if head == "scan" else "auto")
                 continue
             if obs_mode == "raw":
                 cfg = dataclasses.replace(cfg, localization="odometry", fusion="own",
                                           ball_tracker="none")
-            team = HumanoidTeamPerception(cfg, field, ball, world.robot_specs, teams,
-                                          world.names, members[t], camera, cfg.radio, head)
+            team = HumanoidTeamPerception(cfg, field, ball, specs, teams, names, members[t],
+                                          camera, cfg.radio)
             for i in members[t]:
                 self._humanoid[i] = team
             self._groups.append((members[t], team))
@@ -115,17 +117,16 @@ class MatchPerception:
         ``i`` (perceived and raw modes)."""
         return self._humanoid[i]
 
-    def reset(self, state: WorldState, rng: np.random.Generator) -> tuple[Any, Any]:
-        """Start an episode at ``state``; returns robot 0's beliefs (for its observation,
-        now)."""
-        from soccer_env.sim.heads import head_state
-
+    def reset(self, state: WorldState, rng: np.random.Generator, body: BodyState | None = None
+              ) -> tuple[Any, Any]:
+        """Start an episode at ``state`` (``body``: the robots' bodies, needed with
+        humanoids); returns robot 0's beliefs (for its observation, now)."""
         # One pipeline draws from the episode's sensor stream itself, several from streams
         # spawned from it.
         rngs = [rng] if len(self._groups) == 1 else rng.spawn(len(self._groups))
         for (robots, pipe), r in zip(self._groups, rngs):
-            if hasattr(pipe, "head_targets"):
-                pipe.reset(state, head_state(self.world), r)
+            if isinstance(pipe, HumanoidTeamPerception):
+                pipe.reset(state, body, r)
             else:
                 seen, now = pipe.reset(state, r)
                 for i in robots:
@@ -133,15 +134,12 @@ class MatchPerception:
         self._collect(state.time)
         return self._beliefs[0], self._current[0]
 
-    def update(self, state: WorldState) -> tuple[Any, Any]:
-        """Advance to ``state``; returns robot 0's beliefs (for its observation, now)."""
-        from soccer_env.sim.heads import head_state
-
-        heads = None
+    def update(self, state: WorldState, body: BodyState | None = None) -> tuple[Any, Any]:
+        """Advance to ``state`` (``body``: the robots' bodies, needed with humanoids);
+        returns robot 0's beliefs (for its observation, now)."""
         for robots, pipe in self._groups:
-            if hasattr(pipe, "head_targets"):
-                heads = heads if heads is not None else head_state(self.world)
-                pipe.update(state, heads, self.world.walk)
+            if isinstance(pipe, HumanoidTeamPerception):
+                pipe.update(state, body)
             else:
                 seen, now = pipe.update(state)
                 for i in robots:
@@ -163,11 +161,11 @@ class MatchPerception:
         """Robot ``i``'s belief at the present time."""
         return self._current[i]
 
-    def head_targets(self, i: int, now: float) -> tuple[float, float]:
-        """Pan and tilt targets [rad] of humanoid ``i``'s head controller."""
+    def attention(self, i: int, now: float) -> Attention:
+        """What humanoid ``i``'s head controller needs of its belief at ``now`` (in truth
+        mode: the true pose and ball, just seen)."""
         if i in self._humanoid:
-            return self._humanoid[i].head_targets(i, now)
+            return self._humanoid[i].attention(i, now)
         s = self._beliefs[i]
         b = s.ball
-        return self._heads[i].targets(now, s.robots[i, 0:3],
-                                      np.array([b[0], b[1], b[3], b[4]]), 0.0, 0.0)
+        return Attention(s.robots[i, 0:3], np.array([b[0], b[1], b[3], b[4]]), 0.0, 0.0)

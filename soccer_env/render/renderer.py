@@ -199,10 +199,11 @@ class Renderer:
 class RenderingMixin:
     """``render()`` and ``close()`` for the environments.
 
-    Expects ``render_mode``, ``field``, ``robot_spec``, ``ball_spec``, ``world``,
-    ``metadata["render_fps"]`` and ``_render_width`` on the environment, and a ``_hud()``
-    method returning the lines of text to overlay; ``_shown_belief``, if set, is drawn over
-    the truth (the perception's present-time belief). The renderer is created on first use.
+    Expects ``render_mode``, ``field``, ``ball_spec``, ``world`` (its robot specs),
+    ``metadata["render_fps"]`` and ``_render_width`` on the environment, a ``_scene()``
+    method returning what to draw (the truth, the belief to draw over it or None, and the
+    humanoids' camera views, as :meth:`Renderer.draw` takes them) and a ``_hud()`` method
+    returning the lines of text to overlay. The renderer is created on first use.
     """
 
     _renderer: Renderer | None = None
@@ -218,34 +219,15 @@ class RenderingMixin:
             gymnasium.logger.warn("render() called without a render_mode; pass render_mode= "
                                   "when creating the environment")
             return None
-        world = self.world
         if self._renderer is None:
-            self._renderer = Renderer(self.field, list(world.robot_specs), self.ball_spec,
+            self._renderer = Renderer(self.field, list(self.world.robot_specs), self.ball_spec,
                                       self.render_mode, self._render_width,
                                       self.metadata["render_fps"])
-        state = world.snapshot()
-        belief = getattr(self, "_shown_belief", None)
-        heads = None
-        walk = world.walk
-        if walk is not None:
-            from soccer_env.presets.sensors import head_camera
-
-            heads = {}
-            config = getattr(self, "perception", None)
-            for j, i in enumerate(walk.indices):
-                spec = world.robot_specs[i]
-                cam = (config.camera if config is not None and config.camera is not None
-                       else head_camera(spec.camera))
-                lying = ((walk.lie_angle[j], spec.lying_length)
-                         if walk.fallen[j] and walk.lie_at[j] is None else None)
-                heads[i] = (walk.pan[j] + walk.sway_pan[j], cam.hfov, 1.0, lying)
-        return self._renderer.draw(state, self._hud(), None if belief is None
-                                   or belief is state else belief, heads)
+        state, belief, heads = self._scene()
+        return self._renderer.draw(state, self._hud(), belief, heads or None)
 
     def close(self) -> None:
         """Close the window, if any."""
         if self._renderer is not None:
             self._renderer.close()
             self._renderer = None
-
-

@@ -114,6 +114,13 @@ class HumanoidRobot:
         out[:, 3] = np.where(motion > 0.0, out[:, 3], np.where(motion < -0.5, DIVE, 0.0))
         return out
 
+    def head_command(self, pan: float, tilt: float) -> tuple[float, float]:
+        """The walk engine's head commands ``(head_pan, head_tilt)`` [rad] that aim the head at
+        ``pan``, ``tilt`` [rad]: what :meth:`commands` makes of the action entries
+        :meth:`action_for_head` gives (clipped into the head's range)."""
+        a4, a5 = self.action_for_head(pan, tilt)
+        return (a4 * self._fwd[4] + self._offset[4], a5 * self._fwd[5] + self._offset[5])
+
     def action_for_head(self, pan: float, tilt: float) -> tuple[float, float]:
         """The action entries 4 and 5 that aim the head at ``pan``, ``tilt`` [rad] (clipped
         into the head's range)."""

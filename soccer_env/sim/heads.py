@@ -1,43 +1,33 @@
 """Head control of humanoids: where their pan/tilt heads look.
 
-:class:`HeadController` turns what a robot believes (its pose, the ball, how old its sightings
-are) into the targets of its head servos; :func:`aim_heads` turns every head to the ball at the
-start of an episode; :func:`head_state` reads the heads' state for the cameras.
+A robot's head controller (:class:`HeadController`) turns what the robot believes, an
+:class:`~soccer_env.state.Attention` from its perception (its pose, the ball, how old its
+sightings are), into the targets of its head servos; :class:`HeadControl` does so for the
+humanoids of a world whose heads are not the policy's to move and writes the targets into
+their commands. :func:`aim_heads` turns every head to the ball at the start of an episode.
+The heads' state for the cameras is :meth:`World.head_state
+<soccer_env.sim.world.World.head_state>`.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
 
 from soccer_env.presets import HumanoidRobotSpec
 from soccer_env.presets.sensors import head_camera
-from soccer_env.state import HeadState
+from soccer_env.sim.commands import HumanoidRobot
+from soccer_env.state import Attention
 
-__all__ = ["HeadController", "HEAD_MODES", "head_state", "aim_heads"]
+__all__ = ["HeadController", "HeadControl", "HEAD_MODES", "aim_heads", "look_at"]
 
 #: Who aims a humanoid's head: the :class:`HeadController` (``"auto"``: at the believed ball,
 #: scanning when it is lost or the localization needs landmarks), a fixed scan, or the
 #: policy's action entries 4 and 5.
 HEAD_MODES = ("auto", "scan", "action")
-
-
-def head_state(world: Any) -> HeadState:
-    """The :class:`~soccer_env.state.HeadState` of every robot of ``world`` from its walk
-    engine (zeros and not blind for SSL robots)."""
-    n = world.n_robots
-    pan, tilt, sp, st = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
-    blind = np.zeros(n, dtype=bool)
-    walk = world.walk
-    if walk is not None:
-        idx = walk.indices
-        pan[idx], tilt[idx] = walk.pan, walk.tilt
-        sp[idx], st[idx] = walk.sway_pan, walk.sway_tilt
-        blind[idx] = walk.fallen
-    return HeadState(pan, tilt, sp, st, blind)
 
 
 def look_at(spec: HumanoidRobotSpec, camera_height: float, pose: Sequence[float],
@@ -123,3 +113,44 @@ class HeadController:
         if ball_age > self.ball_lost_after:
             return self.scan(now)
         return look_at(self.spec, self.h, pose, ball[0], ball[1])
+
+
+class HeadControl:
+    """The head controllers of the humanoids ``robots`` of a world (robot indices), each
+    aiming its robot's head from the robot's own :class:`~soccer_env.state.Attention`.
+
+    Args:
+        specs: every robot's model, in world order.
+        robots: the humanoids whose heads this controls (not those the policy aims).
+        camera_heights: the height [m] of each controlled robot's camera (the tilt that
+            centres a ground point depends on it), in the order of ``robots``.
+        mode: ``"auto"`` or ``"scan"`` (see :class:`HeadController`).
+    """
+
+    def __init__(self, specs: Sequence[Any], robots: Sequence[int],
+                 camera_heights: Sequence[float], mode: str = "auto") -> None:
+        if mode not in HEAD_MODES:
+            raise ValueError(f"head must be one of {list(HEAD_MODES)}, got {mode!r}")
+        self.robots = [int(i) for i in robots]
+        self.controllers = {i: HeadController(specs[i], h, "scan" if mode == "scan" else "auto")
+                            for i, h in zip(self.robots, camera_heights)}
+        self._models = {i: HumanoidRobot(specs[i]) for i in self.robots}
+
+    def reset(self) -> None:
+        """Start an episode (no glance under way)."""
+        for c in self.controllers.values():
+            c.reset()
+
+    def apply(self, commands: np.ndarray, now: float,
+              attention: Callable[[int, float], Attention]) -> None:
+        """Write the head targets at ``now`` of every controlled robot into its row of the
+        world's ``commands`` (columns ``head_pan``, ``head_tilt``; in place), from
+        ``attention(i, now)``, what robot ``i`` believes.
+
+        The targets take the same normalised route as a policy's head action entries
+        (:meth:`~soccer_env.sim.commands.HumanoidRobot.action_for_head`), so both command
+        exactly the same angles."""
+        for i in self.robots:
+            a = attention(i, now)
+            target = self.controllers[i].targets(now, a.pose, a.ball, a.ball_age, a.landmark_age)
+            commands[i, 4:6] = self._models[i].head_command(*target)

@@ -52,7 +52,7 @@ from soccer_env.presets import (
     SSLRobotSpec,
 )
 from soccer_env.sim.walk import WalkEngine
-from soccer_env.state import WorldState
+from soccer_env.state import BodyState, HeadState, WorldState
 from soccer_env.validation import check_int, check_range
 
 __all__ = ["World", "COMMAND_FIELDS", "idle_commands", "BallExit", "robot_outline"]
@@ -635,6 +635,38 @@ class World:
             "sway": (walk.sway_pan[j], walk.sway_tilt[j]),
             "odometry": walk.odometry[j], "falls": walk.falls[j], "kicks": walk.kicks[j],
         } for j, i in enumerate(walk.indices)}
+
+    def head_state(self) -> HeadState:
+        """The :class:`~soccer_env.state.HeadState` of every robot (zeros and never blind for
+        SSL robots)."""
+        n = self.n_robots
+        pan, tilt, sp, st = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+        blind = np.zeros(n, dtype=bool)
+        walk = self.walk
+        if walk is not None:
+            idx = walk.indices
+            pan[idx], tilt[idx] = walk.pan, walk.tilt
+            sp[idx], st[idx] = walk.sway_pan, walk.sway_tilt
+            blind[idx] = walk.fallen
+        return HeadState(pan, tilt, sp, st, blind)
+
+    def body_state(self) -> BodyState:
+        """What every robot's body reports now (:class:`~soccer_env.state.BodyState`)."""
+        n = self.n_robots
+        still = (0.0, 0.0, 0.0)
+        odometry, gait = [still] * n, [still] * n
+        fallen: list[bool] = [False] * n
+        lying: list[float | None] = [None] * n
+        walk = self.walk
+        if walk is not None:
+            for j, i in enumerate(walk.indices):
+                odometry[i] = walk.odometry[j]
+                gait[i] = tuple(walk.gait[j])
+                fallen[i] = walk.fallen[j]
+                if walk.fallen[j] and walk.lie_at[j] is None:
+                    lying[i] = walk.lie_angle[j]
+        return BodyState(self.head_state(), tuple(odometry), tuple(gait), tuple(fallen),
+                         tuple(lying))
 
     def _read_state(self) -> None:
         """Copy the ball's and robots' positions and velocities into ``self._state``.

@@ -190,7 +190,6 @@ def _episode(args: tuple) -> dict[str, Any]:
     from soccer_env import presets
     from soccer_env.presets.sensors import head_camera
     from soccer_env.sensors.images.head import HeadFrameRenderer
-    from soccer_env.sim.heads import head_state
     from soccer_env.sim.world import World
 
     robot_name, variant, index, seed, duration, size, appearance, scales = args
@@ -307,7 +306,7 @@ def _episode(args: tuple) -> dict[str, Any]:
     hist = None
     for k in range(n_frames):
         state = world.snapshot()
-        heads = head_state(world)
+        heads = world.head_state()
         robot = state.robots[0]
         pan, tl = float(heads.pan[0]), float(heads.tilt[0])
         u, v, depth = _view(robot, state.ball, pan + float(heads.sway_pan[0]),

@@ -56,7 +56,7 @@ from soccer_env.perception.brain import _Brain, landmark_sightings
 from soccer_env.perception.humanoid import HumanoidTeamPerception
 from soccer_env.presets.sensors import RADIO_PRESETS, head_camera
 from soccer_env.render.plots import pyplot, save_figure
-from soccer_env.sim.heads import head_state
+from soccer_env.sim.heads import HeadController
 from soccer_env.sim.world import World
 from soccer_lab.papers._io import map_jobs, write_report
 
@@ -148,9 +148,8 @@ def _episode(duration: float, seed: int, kidnap: bool) -> dict[str, Any]:
     # and scanning head; no brain runs (the filters are replayed below), so it needs no
     # perception config.
     team = HumanoidTeamPerception(None, field, ball, world.robot_specs, world.teams,
-                                  world.names, [0], camera, RADIO_PRESETS["ideal"],
-                                  head_mode="scan")
-    head = team.heads[0]
+                                  world.names, [0], camera, RADIO_PRESETS["ideal"])
+    head = HeadController(spec, camera.height, "scan")
     start = np.array([-1.5, 0.6, 0.3])
     world.reset(start[None, :], (0.0, -(field.half_width + 0.45)), walk_rng)
     n_steps = int(round(duration / CONTROL_DT))
@@ -168,7 +167,7 @@ def _episode(duration: float, seed: int, kidnap: bool) -> dict[str, Any]:
 
     events: list[tuple] = []
     times, poses, omegas = [world.time], [world.robot_array()[0, 0:3].copy()], [0.0]
-    frames_to_events(team.sensor.reset(world.snapshot(), head_state(world), cam_rng))
+    frames_to_events(team.sensor.reset(world.snapshot(), world.head_state(), cam_rng))
     kidnap_time, kidnap_to = None, None
     falls = 0
     for k in range(n_steps):
@@ -186,7 +185,7 @@ def _episode(duration: float, seed: int, kidnap: bool) -> dict[str, Any]:
         times.append(state.time)
         poses.append(state.robots[0, 0:3].copy())
         omegas.append(float(world.walk.gait[0][2]))
-        frames_to_events(team.sensor.step(state, head_state(world)))
+        frames_to_events(team.sensor.step(state, world.head_state()))
         falls = world.walk.falls[0]
     times_a, poses_a = np.array(times), np.array(poses)
     frame_t = np.array([ev[1] for ev in events if ev[0] == "frame"])

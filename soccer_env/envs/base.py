@@ -1,0 +1,320 @@
+"""The fixed part of every environment, and the hooks a task fills in.
+
+Data flows one way through a step (see the README's architecture section)::
+
+    actions -> robot models -> head control -> command channels -> World.step
+            -> task events (a shot is fired, the referee restarts play)
+            -> WorldState -> perception (sensors, estimators) -> beliefs -> observations
+            -> outcome, reward terms, info
+
+:class:`SoccerCore` owns that loop: the world and its robots' action models, the perception of
+both teams (:class:`~soccer_env.perception.match.MatchPerception`), the command channels with
+each team's actuation latency and command loss, the humanoids' head control, and rendering. A
+task builds it once (:meth:`SoccerCore._build`) and implements the hooks:
+
+* :meth:`~SoccerCore._place` (required): where the robots and the ball start an episode;
+* :meth:`~SoccerCore._streams`: the random streams of the world and of the sensors (default:
+  seeded from the episode's generator, the world's first);
+* :meth:`~SoccerCore._begin`: the task's own state at the start (counters, a shot to fire);
+* :meth:`~SoccerCore._after_physics`: what happens between the physics and the snapshot (a
+  shot is fired, the referee restarts play); returns the step's event;
+* the outcome, reward terms and info of the task, in the Gymnasium or PettingZoo wrapper's
+  terms (:class:`SingleAgentTask` for Gymnasium tasks, the match for PettingZoo).
+
+:class:`SingleAgentTask` is the Gymnasium side: robot 0 is the learner, every other robot acts
+through :meth:`SingleAgentTask._others` (standing team-mates, a scripted keeper), and
+``reset``/``step`` are fixed; a task adds :meth:`~SingleAgentTask._observe`,
+:meth:`~SingleAgentTask._outcome`, :meth:`~SingleAgentTask._reward_terms` and
+:meth:`~SingleAgentTask._task_info`. ``soccer_env/envs/shootout.py`` is a complete task in one
+file.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+from soccer_env import presets
+from soccer_env.perception.base import OBS_MODES, PerceptionConfig
+from soccer_env.perception.match import MatchPerception
+from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
+from soccer_env.render import RENDER_MODES, RenderingMixin
+from soccer_env.sim.commands import (
+    OUT_OF_RANGE_MODES,
+    CommandChannel,
+    HumanoidRobot,
+    SSLRobot,
+    robot_model,
+    validate_actions,
+)
+from soccer_env.sim.heads import HEAD_MODES, HeadControl, aim_heads
+from soccer_env.sim.world import World
+from soccer_env.state import Belief, WorldState, state_dict
+from soccer_env.validation import check_choice
+
+__all__ = ["SoccerCore", "SingleAgentTask"]
+
+
+class SoccerCore(RenderingMixin):
+    """The world, perception, command channels, head control and rendering of an
+    environment, and the fixed parts of its reset and step (see the module docstring).
+
+    Attributes set by :meth:`_build`: ``field``, ``ball_spec``, ``team_specs`` (blue's and
+    yellow's robot model), ``robot_spec`` (the first robot's), ``world``, ``obs_mode``,
+    ``perceptions`` (both teams' :class:`~soccer_env.perception.base.PerceptionConfig`),
+    ``perception`` (blue's), ``render_mode``, ``out_of_range_actions``, ``head``.
+    """
+
+    metadata: dict[str, Any] = {"render_modes": list(RENDER_MODES), "render_fps": 60}
+
+    # ------------------------------------------------------------------------------------
+    # Construction
+    # ------------------------------------------------------------------------------------
+
+    def _build(self, *, team_specs: tuple[RobotSpec, RobotSpec], n_blue: int, n_yellow: int,
+               field: FieldSpec, ball: BallSpec, obs_mode: str,
+               perceptions: tuple[PerceptionConfig, PerceptionConfig], control_dt: float,
+               physics_dt: float, out_of_range_actions: str, render_mode: str | None,
+               render_width: int, head: str, policy_heads: Sequence[int]) -> None:
+        """Build the world and everything around it.
+
+        ``policy_heads``: the humanoids whose head the policy aims with its action entries 4
+        and 5 (with ``head="action"``); every other humanoid's head is aimed by the head
+        control.
+        """
+        check_choice("obs_mode", obs_mode, OBS_MODES)
+        check_choice("render_mode", render_mode, [None, *RENDER_MODES])
+        check_choice("out_of_range_actions", out_of_range_actions, OUT_OF_RANGE_MODES)
+        check_choice("head", head, HEAD_MODES)
+        self.team_specs = team_specs
+        self.field, self.ball_spec = field, ball
+        self.obs_mode = obs_mode
+        self.render_mode = render_mode
+        self.out_of_range_actions = out_of_range_actions
+        self.head = head
+        self.world = World(field, ball, [team_specs[0]] * n_blue + [team_specs[1]] * n_yellow,
+                           n_blue, n_yellow, control_dt, physics_dt)
+        w = self.world
+        #: The first robot's model (every robot's when the teams play the same robot).
+        self.robot_spec = w.robot_spec
+        self.metadata = {**self.metadata, "render_fps": round(1.0 / w.control_dt)}
+        self._models: list[SSLRobot | HumanoidRobot] = [robot_model(s) for s in team_specs]
+        self.perceptions = perceptions
+        #: Blue's perception configuration (the match's, when both teams share one).
+        self.perception = perceptions[0]
+        self._perception = MatchPerception(obs_mode, perceptions, field, ball, w.robot_specs,
+                                           w.teams.tolist(), w.names, w.control_dt)
+        # Commands reach each team's robots with its actuation latency, in whole control
+        # steps, and its command loss (none for humanoids, whose walk engine is on board).
+        self._slices = [slice(0, n_blue), slice(n_blue, n_blue + n_yellow)]
+        self._channels = [
+            CommandChannel(n, d, 0.0 if s.kind == "humanoid" else cfg.vision.command_loss)
+            for n, d, s, cfg in zip((n_blue, n_yellow), self._perception.delays, team_specs,
+                                    perceptions)]
+        free = set(policy_heads) if head == "action" else set()
+        auto = [i for i in w.humanoid_indices if i not in free]
+        self._heads = (HeadControl(w.robot_specs, auto,
+                                   [self._perception.cameras[i].height for i in auto], head)
+                       if auto else None)
+        self._render_width = int(render_width)
+        self._shown_belief: Any = None
+
+    # ------------------------------------------------------------------------------------
+    # Hooks
+    # ------------------------------------------------------------------------------------
+
+    def _place(self, rng: np.random.Generator) -> tuple[np.ndarray, tuple[float, float]]:
+        """The robots' poses ``(N, 3)`` and the ball's position at the start of an episode,
+        drawn from the episode's generator ``rng``."""
+        raise NotImplementedError
+
+    def _streams(self, rng: np.random.Generator
+                 ) -> tuple[np.random.Generator, np.random.Generator]:
+        """The generators of the world's random events (humanoids' falls, kicks, odometry)
+        and of the sensors and radio, seeded from ``rng`` after :meth:`_place`: their own
+        streams, so that the episode's placements do not depend on the perception
+        configuration."""
+        world_rng = np.random.default_rng(rng.integers(2**63))
+        return world_rng, np.random.default_rng(rng.integers(2**63))
+
+    def _begin(self, rng: np.random.Generator) -> None:
+        """The task's own state at the start of an episode (after the world is placed)."""
+
+    def _after_physics(self) -> Any:
+        """Events between the physics step and the snapshot; returns the step's event (None
+        by default)."""
+        return None
+
+    # ------------------------------------------------------------------------------------
+    # The fixed parts of reset and step
+    # ------------------------------------------------------------------------------------
+
+    def _start(self, rng: np.random.Generator) -> WorldState:
+        """Start an episode from ``rng``: place, seed the streams, reset the world, turn the
+        heads to the ball, the task's start, the channels and the perception."""
+        poses, ball = self._place(rng)
+        world_rng, sensor_rng = self._streams(rng)
+        w = self.world
+        w.reset(poses, ball, world_rng)
+        aim_heads(w)
+        if self._heads is not None:
+            self._heads.reset()
+        self._begin(rng)
+        state = w.snapshot()
+        for channel in self._channels:
+            channel.reset(sensor_rng)
+        body = w.body_state() if w.walk is not None else None
+        self._perception.reset(state, sensor_rng, body)
+        self._shown_belief = self._perception.current(0)
+        return state
+
+    def _advance(self, actions: np.ndarray) -> tuple[WorldState, Any]:
+        """One step with every robot's validated ``actions`` ``(N, 6)``: commands, heads,
+        channels, physics, the task's events, perception. Returns the new state and the
+        step's event."""
+        w = self.world
+        commands = np.concatenate([m.commands(actions[sl]) for m, sl in
+                                   zip(self._models, self._slices)])
+        if self._heads is not None:
+            self._heads.apply(commands, w.time, self._perception.attention)
+        w.step(np.concatenate([ch.send(commands[sl]) for ch, sl in
+                               zip(self._channels, self._slices)]))
+        event = self._after_physics()
+        state = w.snapshot()
+        self._perception.update(state, w.body_state() if w.walk is not None else None)
+        self._shown_belief = self._perception.current(0)
+        return state, event
+
+    # ------------------------------------------------------------------------------------
+    # Reading
+    # ------------------------------------------------------------------------------------
+
+    @property
+    def pipelines(self) -> list[Any]:
+        """The teams' perception pipelines, to inspect their sensors, filters and trackers:
+        an SSL team's (:mod:`soccer_env.perception.overhead`; two SSL teams with the same
+        configuration share one), a humanoid team's
+        (:class:`~soccer_env.perception.humanoid.HumanoidTeamPerception`), or the truth."""
+        return self._perception.pipelines
+
+    def _estimate(self, state: WorldState, belief: Any, truth: dict[str, Any]
+                  ) -> dict[str, Any]:
+        """``info["estimate"]`` of ``belief`` (the truth's dict itself in truth mode)."""
+        if belief is state:
+            return truth
+        return state_dict(belief.time, belief.ball, belief.robots, state.names)
+
+    def _scene(self) -> tuple[WorldState, Belief | None, dict[int, tuple]]:
+        """What :meth:`render` draws: the truth, the shown belief (None when it is the truth)
+        and every humanoid's camera view (see :meth:`~soccer_env.render.Renderer.draw`)."""
+        w = self.world
+        state = w.snapshot()
+        belief = self._shown_belief
+        heads: dict[int, tuple] = {}
+        if w.walk is not None:
+            body = w.body_state()
+            for i in w.humanoid_indices:
+                lying = body.lying[i]
+                heads[i] = (body.heads.pan[i] + body.heads.sway_pan[i],
+                            self._perception.cameras[i].hfov, 1.0,
+                            None if lying is None else (lying, w.robot_specs[i].lying_length))
+        return state, None if belief is None or belief is state else belief, heads
+
+
+class SingleAgentTask(SoccerCore, gym.Env):
+    """A Gymnasium task on :class:`SoccerCore`: robot 0 (blue) is the learner.
+
+    ``reset`` and ``step`` are fixed. A task implements :meth:`_place`, :meth:`_observe`,
+    :meth:`_outcome`, :meth:`_reward_terms`, :meth:`_task_info` and, when it has other
+    robots, :meth:`_others`; optionally :meth:`_streams`, :meth:`_begin` and
+    :meth:`_after_physics` (see :class:`SoccerCore`).
+
+    The episode ends (terminated) when :meth:`_outcome` names an outcome; ``info["outcome"]``
+    names it and ``info["is_success"]`` says whether it is a success (:meth:`_success`).
+    Truncation is left to the registration's ``max_episode_steps``.
+    """
+
+    def _observe(self, belief: Any) -> np.ndarray:
+        """The learner's observation from its ``belief``."""
+        raise NotImplementedError
+
+    def _others(self, actions: np.ndarray) -> None:
+        """Fill the rows of the other robots in ``actions`` ``(N, 6)`` (row 0 is the
+        learner's; the others are zeros: standing still)."""
+
+    def _outcome(self, state: WorldState, event: Any) -> str | None:
+        """The episode's outcome at ``state`` (None while it goes on)."""
+        raise NotImplementedError
+
+    def _success(self, outcome: str) -> bool:
+        """Whether ``outcome`` is a success (``info["is_success"]``)."""
+        raise NotImplementedError
+
+    def _reward_terms(self, state: WorldState, action: np.ndarray, outcome: str | None
+                      ) -> dict[str, float]:
+        """The step's named reward terms (the reward is their sum)."""
+        raise NotImplementedError
+
+    def _task_info(self) -> dict[str, Any]:
+        """The task's own entries of ``info``."""
+        return {}
+
+    def _zero_terms(self) -> dict[str, float]:
+        """The reward terms of the first observation (all zero)."""
+        raise NotImplementedError
+
+    # ------------------------------------------------------------------------------------
+
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        super().reset(seed=seed)
+        state = self._start(self.np_random)
+        self._running = True
+        obs = self._observe(self._perception.belief(0))
+        return obs, self._info(state, self._zero_terms(), None)
+
+    def step(self, action):
+        if not getattr(self, "_running", False):
+            raise RuntimeError("call reset() before step()")
+        act = np.asarray(action, dtype=np.float64)
+        if act.shape != (6,):
+            names = ", ".join(self._models[0].action_names)
+            raise ValueError(f"action must have shape (6,) ({names}), got {act.shape}")
+        act = validate_actions(act[None], self.world.names[:1], self.out_of_range_actions)
+        if self.world.n_robots > 1:
+            full = np.zeros((self.world.n_robots, 6))
+            full[0] = act[0]
+            self._others(full)
+        else:
+            full = act
+        state, event = self._advance(full)
+        outcome = self._outcome(state, event)
+        terms = self._reward_terms(state, act[0], outcome)
+        reward = float(sum(terms.values()))
+        obs = self._observe(self._perception.belief(0))
+        info = self._info(state, terms, outcome)
+        if self.render_mode == "human":
+            self.render()
+        return obs, reward, outcome is not None, False, info
+
+    def _info(self, state: WorldState, terms: dict[str, float], outcome: str | None
+              ) -> dict[str, Any]:
+        truth = state.truth_dict()
+        info = {"truth": truth,
+                "estimate": self._estimate(state, self._perception.current(0), truth),
+                "reward_terms": terms, "outcome": outcome, **self._task_info()}
+        if self.world.walk is not None:
+            info["robot_state"] = self.world.humanoid_state()
+        if outcome is not None:
+            info["is_success"] = self._success(outcome)
+        return info
+
+
+def resolve_world(robot: Any, field: Any, ball: Any) -> tuple[RobotSpec, FieldSpec, BallSpec]:
+    """The robot, field and ball presets of an environment's arguments: the field defaults to
+    the robot preset's, the ball to the field's."""
+    spec = presets.robot(robot)
+    fld = presets.field(field if field is not None else presets.default_field(spec))
+    return spec, fld, presets.ball(ball if ball is not None else fld.ball)
