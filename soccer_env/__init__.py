@@ -9,10 +9,16 @@ Quick start::
     match = soccer_env.parallel_env(blue=3, yellow=3, field="ssl-div-b")
 """
 
-from gymnasium.envs.registration import register, registry
-
 from soccer_env import presets
-from soccer_env.envs import GoalkeeperEnv, ShotDistribution, SoccerParallelEnv, env, parallel_env
+from soccer_env.envs import (
+    GoalkeeperEnv,
+    ShootoutEnv,
+    ShotDistribution,
+    SoccerParallelEnv,
+    env,
+    parallel_env,
+)
+from soccer_env.envs.registration import GYMNASIUM, PETTINGZOO, register_all
 from soccer_env.sim.commands import OUT_OF_RANGE_MODES, validate_actions
 from soccer_env.sim.world import COMMAND_FIELDS, MAX_TEAM_SIZE, World
 from soccer_env.state import WorldState
@@ -22,6 +28,7 @@ __version__ = "0.1.0"
 __all__ = [
     "presets",
     "GoalkeeperEnv",
+    "ShootoutEnv",
     "ShotDistribution",
     "SoccerParallelEnv",
     "env",
@@ -35,24 +42,11 @@ __all__ = [
     "__version__",
 ]
 
-#: Gymnasium ids registered by this package, with their ``max_episode_steps``.
-ENV_IDS = {"soccer_env/Goalkeeper-v0": 480}
+#: Gymnasium ids registered by this package, with their ``max_episode_steps``
+#: (:data:`soccer_env.envs.registration.GYMNASIUM` has their entry points and descriptions).
+ENV_IDS = {env_id: task.max_episode_steps for env_id, task in GYMNASIUM.items()}
 #: PettingZoo ids registered by this package (``pettingzoo.make("parallel", id)`` or
 #: ``pettingzoo.make("aec", id)``).
-PETTINGZOO_IDS = ("soccer_env/Match-v0",)
+PETTINGZOO_IDS = tuple(PETTINGZOO)
 
-for _id, _steps in ENV_IDS.items():
-    if _id not in registry:
-        register(id=_id, entry_point="soccer_env.envs.goalkeeper:GoalkeeperEnv",
-                 max_episode_steps=_steps)
-
-try:  # PettingZoo >= 1.27 has a registry like Gymnasium's.
-    import pettingzoo as _pz
-
-    if "soccer_env/Match-v0" not in _pz.parallel_registry:
-        _pz.register("parallel", "soccer_env/Match-v0",
-                     entry_point="soccer_env.envs.match:parallel_env")
-    if "soccer_env/Match-v0" not in _pz.aec_registry:
-        _pz.register("aec", "soccer_env/Match-v0", entry_point="soccer_env.envs.match:env")
-except AttributeError:  # pragma: no cover - older PettingZoo
-    pass
+register_all()

@@ -11,7 +11,7 @@ from typing import Any, TypeVar
 import numpy as np
 
 __all__ = ["reject_unknown", "keyword_names", "check_choice", "check_range", "check_int",
-           "parse_scales", "resolve_preset"]
+           "parse_scales", "check_fields", "from_mapping", "resolve_preset"]
 
 
 def keyword_names(func: Callable[..., Any]) -> list[str]:
@@ -81,6 +81,36 @@ def parse_scales(name: str, given: Mapping[str, float] | None, known: Mapping[st
 _S = TypeVar("_S")
 
 
+def check_fields(cls: Any, keys: Iterable[str], what: str, *, exclude: Iterable[str] = (),
+                 error: type[Exception] = ValueError, noun: str = "key") -> None:
+    """Raise ``error`` unless every one of ``keys`` names a field of the dataclass ``cls``
+    (or of an instance), ``exclude`` left out: "unknown {what} {noun}(s) [...]; allowed:
+    [...]". The one check behind every mapping of a dataclass's fields the package accepts
+    (:func:`from_mapping`, :func:`resolve_preset`)."""
+    allowed = {f.name for f in dataclasses.fields(cls)} - set(exclude)
+    unknown = sorted(set(keys) - allowed)
+    if unknown:
+        raise error(f"unknown {what} {noun}(s) {unknown}; allowed: {sorted(allowed)}")
+
+
+def from_mapping(cls: type[_S], value: _S | Mapping[str, Any] | None, what: str,
+                 defaults: Mapping[str, Any] | None = None) -> _S:
+    """An instance of the dataclass ``cls`` from an argument ``what``: an instance (returned
+    as it is), None (``cls(**defaults)``) or a mapping of its fields over ``defaults``
+    (unknown keys raise ``ValueError``; lists become tuples, as JSON gives them). Anything else
+    raises ``TypeError``."""
+    if value is None:
+        return cls(**dict(defaults or {}))
+    if isinstance(value, cls):
+        return value
+    if isinstance(value, Mapping):
+        check_fields(cls, value, what)
+        given = {k: tuple(v) if isinstance(v, list) else v for k, v in value.items()}
+        return cls(**{**dict(defaults or {}), **given})
+    raise TypeError(f"{what} must be a {cls.__name__} or a mapping of its fields, got "
+                    f"{type(value).__name__}")
+
+
 def resolve_preset(kind: str, table: Mapping[str, _S], value: str | _S,
                    overrides: dict[str, Any]) -> _S:
     """The preset ``value`` of ``table`` (a name, or a spec of the table's type) with the
@@ -99,9 +129,7 @@ def resolve_preset(kind: str, table: Mapping[str, _S], value: str | _S,
             f"{type(next(iter(table.values()))).__name__}, got {type(value).__name__}"
         )
     if overrides:
-        allowed = {f.name for f in dataclasses.fields(spec)} - {"name", "source"}
-        unknown = sorted(set(overrides) - allowed)
-        if unknown:
-            raise TypeError(f"unknown {kind} parameter(s) {unknown}; allowed: {sorted(allowed)}")
+        check_fields(spec, overrides, kind, exclude=("name", "source"), error=TypeError,
+                     noun="parameter")
         spec = dataclasses.replace(spec, **overrides)
     return spec

@@ -6,7 +6,7 @@ import math
 import gymnasium as gym
 import numpy as np
 import pytest
-from conftest import make_world
+from worlds import make_world
 
 import soccer_env
 from soccer_env import presets

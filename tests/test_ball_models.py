@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from conftest import make_world, park
+from worlds import make_world, park
 
 from estimators import FrictionBallModel
 from soccer_env.sim.world import idle_commands

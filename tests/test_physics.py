@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pymunk
 import pytest
-from conftest import make_world, park, run
+from worlds import make_world, park, run
 
 from soccer_env.presets import GRAVITY
 from soccer_env.sim.world import idle_commands

@@ -9,7 +9,7 @@ paths, so the comparison runs only where that fingerprint matches the recording 
 skipped, saying why, elsewhere). A change that is meant to alter behaviour re-records the
 digests with::
 
-    python tests/test_regression.py --update
+    python -m tests.test_regression --update     # from the repository's root
 
 and says so in its commit message.
 """
@@ -72,8 +72,16 @@ def _feed(h: Any, obj: Any) -> None:
 
 
 def _goalkeeper(**kwargs: Any) -> Callable[[int], str]:
+    return _gym("soccer_env/Goalkeeper-v0", **kwargs)
+
+
+def _shootout(**kwargs: Any) -> Callable[[int], str]:
+    return _gym("soccer_env/Shootout-v0", **kwargs)
+
+
+def _gym(env_id: str, **kwargs: Any) -> Callable[[int], str]:
     def run(seed: int) -> str:
-        env = gym.make("soccer_env/Goalkeeper-v0", **kwargs)
+        env = gym.make(env_id, **kwargs)
         actions = np.random.default_rng(1000 + seed).uniform(-1.0, 1.0, (GOALKEEPER_STEPS, 6))
         h = hashlib.sha256()
         obs, info = env.reset(seed=seed)
@@ -141,6 +149,10 @@ CASES.update({
         robot="humanoid-2012", obs_mode="perceived",
         perception={"localization": "truth", "ball_tracker": "bootstrap",
                     "fusion": "inverse_square"}),
+    "shootout-ssl-truth": _shootout(),
+    "shootout-ssl-perceived-realistic": _shootout(obs_mode="perceived", perception="realistic"),
+    "shootout-ssl-raw-harsh": _shootout(obs_mode="raw", perception="harsh"),
+    "shootout-humanoid2012-perceived": _shootout(robot="humanoid-2012", obs_mode="perceived"),
     "match-ssl-3v3-truth": _match(blue=3, yellow=3),
     "match-ssl-3v3-raw": _match(blue=3, yellow=3, obs_mode="raw", perception="harsh"),
     "match-ssl-3v3-perceived": _match(blue=3, yellow=3, obs_mode="perceived"),
@@ -203,7 +215,7 @@ def recorded() -> dict[str, Any]:
         diff = {k: (data["fingerprint"].get(k), v) for k, v in here.items()
                 if data["fingerprint"].get(k) != v}
         pytest.skip(f"digests recorded under another environment {diff}; re-record with "
-                    "python tests/test_regression.py --update to compare here")
+                    "python -m tests.test_regression --update to compare here")
     return data["cases"]
 
 
@@ -224,7 +236,7 @@ def test_every_case_is_recorded():
 
 if __name__ == "__main__":
     if sys.argv[1:] != ["--update"]:
-        sys.exit("usage: python tests/test_regression.py --update")
+        sys.exit("usage: python -m tests.test_regression --update")
     cases = {name: [run(s) for s in SEEDS]
              for name, run in sorted({**CASES, **PIXEL_CASES}.items())}
     DIGESTS.parent.mkdir(exist_ok=True)

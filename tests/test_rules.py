@@ -5,7 +5,7 @@ import math
 import gymnasium as gym
 import numpy as np
 import pytest
-from conftest import make_world, park
+from worlds import make_world, park
 
 import soccer_env
 from soccer_env.sim.referee import STOP_DISTANCE, classify_exit, place_kickoff

@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import make_world, park
+from worlds import make_world, park
 
 from soccer_env.presets.sensors import vision
 from soccer_env.sensors.overhead import Camera, OverheadVision, default_cameras

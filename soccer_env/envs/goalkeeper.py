@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -20,6 +19,7 @@ from soccer_env.state import WorldState
 from soccer_env.validation import (
     check_choice,
     check_int,
+    from_mapping,
     keyword_names,
     parse_scales,
     reject_unknown,
@@ -109,18 +109,7 @@ class ShotDistribution:
     @classmethod
     def create(cls, value: ShotDistribution | Mapping[str, Any] | None) -> ShotDistribution:
         """Accept an instance, a mapping of its fields (unknown keys rejected) or None."""
-        if value is None:
-            return cls()
-        if isinstance(value, cls):
-            return value
-        if isinstance(value, Mapping):
-            allowed = {f.name for f in dataclasses.fields(cls)}
-            unknown = sorted(set(value) - allowed)
-            if unknown:
-                raise ValueError(f"unknown shots key(s) {unknown}; allowed: {sorted(allowed)}")
-            return cls(**{k: tuple(v) if isinstance(v, list) else v for k, v in value.items()})
-        raise TypeError(f"shots must be a ShotDistribution or a mapping, got "
-                        f"{type(value).__name__}")
+        return from_mapping(cls, value, "shots")
 
     def sample(self, rng: np.random.Generator, fld: FieldSpec, bl: BallSpec) -> dict[str, Any]:
         """Draw one shot: start point, target, speed, chip flag and delay."""

@@ -27,7 +27,6 @@ ahead by the actuation latency) and the one at the present time, reported in
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, Protocol
@@ -47,6 +46,7 @@ from soccer_env.presets.sensors import (
     vision,
 )
 from soccer_env.state import WorldState
+from soccer_env.validation import from_mapping
 
 __all__ = ["LOCALIZATIONS", "FUSIONS", "BALL_TRACKERS", "Perception", "PerceptionConfig",
            "OBS_MODES", "BALL_FILTERS", "ball_filter_config"]
@@ -176,13 +176,8 @@ class PerceptionConfig:
                 raise ValueError(f"unknown vision preset {value!r}; known: {sorted(VISION)}")
             return cls(vision(value))
         if isinstance(value, Mapping):
-            allowed = {f.name for f in dataclasses.fields(cls)}
-            unknown = sorted(set(value) - allowed)
-            if unknown:
-                raise ValueError(f"unknown perception key(s) {unknown}; allowed: "
-                                 f"{sorted(allowed)}")
-            return cls(**{"vision": default_vision if kind == "humanoid" else "realistic",
-                          **value})
+            return from_mapping(cls, value, "perception", defaults={
+                "vision": default_vision if kind == "humanoid" else "realistic"})
         raise TypeError(f"perception must be a preset name, a VisionSpec or HeadCameraSpec, a "
                         f"mapping or a PerceptionConfig, got {type(value).__name__}")
 
