@@ -1,4 +1,13 @@
-"""Validation helpers shared by the environments: clear errors that list what is allowed."""
+"""Validation helpers of the whole package: clear errors that name the argument and say what
+is allowed.
+
+* arguments of the environments and tools: :func:`check_choice`, :func:`check_range` (returns
+  the value as a float), :func:`check_int`, :func:`reject_unknown`, :func:`parse_scales`;
+* fields of the presets' dataclasses: :func:`check_number`, :func:`check_integer`,
+  :func:`check_flag`, :func:`check_rgb`;
+* mappings of a dataclass's fields: :func:`check_fields`, :func:`from_mapping`,
+  :func:`resolve_preset`.
+"""
 
 from __future__ import annotations
 
@@ -10,8 +19,11 @@ from typing import Any, TypeVar
 
 import numpy as np
 
+from estimators.registry import Registry
+
 __all__ = ["reject_unknown", "keyword_names", "check_choice", "check_range", "check_int",
-           "parse_scales", "check_fields", "from_mapping", "resolve_preset"]
+           "parse_scales", "check_number", "check_integer", "check_flag", "check_rgb",
+           "check_fields", "from_mapping", "resolve_preset", "preset_table"]
 
 
 def keyword_names(func: Callable[..., Any]) -> list[str]:
@@ -55,6 +67,43 @@ def check_int(name: str, value: Any, low: int, high: int) -> int:
             low <= value <= high):
         raise ValueError(f"{name} must be an integer in {low}..{high}, got {value!r}")
     return int(value)
+
+
+def check_number(name: str, value: Any, low: float, high: float, *, low_open: bool = False,
+                 high_open: bool = False, unit: str = "") -> None:
+    """Raise ``ValueError`` unless ``value`` is a finite number (not a bool) in the interval
+    from ``low`` to ``high`` (open at an end where said): "``name`` must be in [low,
+    high]``unit``, got ...". For the fields of a spec, which keep the value as given."""
+    ok = (isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
+          and math.isfinite(value) and (value > low if low_open else value >= low)
+          and (value < high if high_open else value <= high))
+    if not ok:
+        lo, hi = "(" if low_open else "[", ")" if high_open else "]"
+        raise ValueError(f"{name} must be in {lo}{low}, {high}{hi}{unit}, got {value!r}")
+
+
+def check_integer(name: str, value: Any, low: int, high: int, unit: str = "") -> None:
+    """Raise ``ValueError`` unless ``value`` is an integer (not a bool) in ``[low, high]``."""
+    if not (isinstance(value, (int, np.integer)) and not isinstance(value, bool)
+            and low <= value <= high):
+        raise ValueError(f"{name} must be an integer in [{low}, {high}]{unit}, got {value!r}")
+
+
+def check_flag(name: str, value: Any) -> None:
+    """Raise ``ValueError`` unless ``value`` is True or False."""
+    if not isinstance(value, bool):
+        raise ValueError(f"{name} must be True or False, got {value!r}")
+
+
+def check_rgb(name: str, value: Any) -> None:
+    """Raise ``ValueError`` unless ``value`` is an ``(r, g, b)`` tuple of integers in
+    [0, 255]."""
+    ok = (isinstance(value, tuple) and len(value) == 3
+          and all(isinstance(c, int) and not isinstance(c, bool) and 0 <= c <= 255
+                  for c in value))
+    if not ok:
+        raise ValueError(f"{name} must be an (r, g, b) tuple of integers in [0, 255], got "
+                         f"{value!r}")
 
 
 def parse_scales(name: str, given: Mapping[str, float] | None, known: Mapping[str, str]
@@ -133,3 +182,11 @@ def resolve_preset(kind: str, table: Mapping[str, _S], value: str | _S,
                      noun="parameter")
         spec = dataclasses.replace(spec, **overrides)
     return spec
+
+
+def preset_table(family: str, specs: Mapping[str, _S]) -> Registry[_S]:
+    """A registry of the frozen ``specs`` of one preset family (``"field"``, ``"vision"``,
+    ...), each described by its ``source``; the table :func:`resolve_preset` reads. Register
+    more with ``table.register(name, spec, spec.source)``."""
+    return Registry(f"{family} preset", [(name, spec, getattr(spec, "source", "") or name)
+                                         for name, spec in specs.items()])

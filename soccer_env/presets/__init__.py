@@ -1,8 +1,12 @@
 """Presets: the single source of truth for every physical and sensor constant of the package.
 
 Each preset names its source. Units are SI throughout (metres, seconds, kilograms, radians).
-A preset is a frozen dataclass; derive a variant with the function of its table (:func:`field`,
-:func:`ball`, :func:`robot`, :func:`vision`, :func:`head_camera`, :func:`overhead_frame`,
+A preset is a frozen dataclass in a table, a :class:`~estimators.registry.Registry` of one
+family (:data:`FIELDS`, :data:`BALLS`, :data:`ROBOTS`, :data:`VISION`, :data:`HEAD_CAMERAS`,
+:data:`RADIO_PRESETS`, :data:`OVERHEAD_FRAMES`, :data:`HEAD_FRAMES`) that describes each
+preset by its source; register your own with ``TABLE.register(name, spec, source)``. Derive a
+variant with the function of its table (:func:`field`, :func:`ball`, :func:`robot`,
+:func:`vision`, :func:`head_camera`, :func:`radio`, :func:`overhead_frame`,
 :func:`head_frame`), which validates the overrides::
 
     >>> from soccer_env import presets
@@ -37,6 +41,7 @@ from soccer_env.presets.sensors import (
     RadioSpec,
     VisionSpec,
     head_camera,
+    radio,
     vision,
 )
 from soccer_env.presets.world import (
@@ -60,6 +65,6 @@ __all__ = [
     "FieldSpec", "BallSpec", "SSLRobotSpec", "HumanoidRobotSpec", "RobotSpec", "FIELDS", "BALLS",
     "ROBOTS", "DEFAULT_FIELDS", "field", "ball", "robot", "default_field", "GRAVITY",
     "VisionSpec", "VISION", "vision", "HeadCameraSpec", "HEAD_CAMERAS", "head_camera",
-    "RadioSpec", "RADIO_PRESETS", "RGB", "COLOURS", "OverheadFrameSpec", "OVERHEAD_FRAMES",
+    "RadioSpec", "RADIO_PRESETS", "radio", "RGB", "COLOURS", "OverheadFrameSpec", "OVERHEAD_FRAMES",
     "overhead_frame", "HeadFrameSpec", "HEAD_FRAMES", "head_frame",
 ]

@@ -7,9 +7,15 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
-from soccer_env.validation import resolve_preset
+from estimators.registry import Registry
+from soccer_env.validation import (
+    check_flag,
+    check_integer,
+    check_number,
+    check_rgb,
+    preset_table,
+    resolve_preset,
+)
 
 __all__ = ["RGB", "COLOURS", "OVERHEAD_CLASSES", "CLASS_ALIASES", "OverheadFrameSpec",
            "OVERHEAD_FRAMES", "overhead_frame",
@@ -42,33 +48,6 @@ OVERHEAD_CLASSES: dict[str, RGB] = {
     c: COLOURS[c] for c in ("orange", "blue", "yellow", "pink", "green", "carpet")}
 #: Other names of those classes.
 CLASS_ALIASES = {"ball": "orange"}
-
-
-def _check_number(prefix: str, name: str, v: object, low: float, high: float,
-                  low_open: bool = False) -> None:
-    ok = (isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-          and (v > low if low_open else v >= low) and v <= high)
-    if not ok:
-        lo = "(" if low_open else "["
-        raise ValueError(f"{prefix}.{name} must be in {lo}{low}, {high}], got {v!r}")
-
-
-def _check_int(prefix: str, name: str, v: object, low: int, high: int) -> None:
-    if not (isinstance(v, (int, np.integer)) and not isinstance(v, bool) and low <= v <= high):
-        raise ValueError(f"{prefix}.{name} must be an integer in [{low}, {high}], got {v!r}")
-
-
-def _check_rgb(prefix: str, name: str, v: object) -> None:
-    ok = (isinstance(v, tuple) and len(v) == 3
-          and all(isinstance(c, int) and not isinstance(c, bool) and 0 <= c <= 255 for c in v))
-    if not ok:
-        raise ValueError(f"{prefix}.{name} must be an (r, g, b) tuple of integers in [0, 255], "
-                         f"got {v!r}")
-
-
-def _check_bool(prefix: str, name: str, v: object) -> None:
-    if not isinstance(v, bool):
-        raise ValueError(f"{prefix}.{name} must be True or False, got {v!r}")
 
 
 @dataclass(frozen=True)
@@ -117,8 +96,8 @@ class OverheadFrameSpec:
 
     def __post_init__(self) -> None:
         p = "overhead_frame"
-        _check_int(p, "width", self.width, 16, 8192)
-        _check_int(p, "height", self.height, 16, 8192)
+        check_integer(f"{p}.width", self.width, 16, 8192)
+        check_integer(f"{p}.height", self.height, 16, 8192)
         if self.region is not None:
             r = self.region
             ok = (isinstance(r, tuple) and len(r) == 4
@@ -127,20 +106,20 @@ class OverheadFrameSpec:
             if not ok:
                 raise ValueError(f"{p}.region must be None or (x_min, x_max, y_min, y_max) with "
                                  f"x_min < x_max and y_min < y_max [m], got {r!r}")
-        _check_number(p, "frame_rate", self.frame_rate, 1.0, 1000.0)
-        _check_number(p, "exposure", self.exposure, 0.0, 0.1)
-        _check_int(p, "blur_samples", self.blur_samples, 2, 64)
-        _check_number(p, "gain_sigma", self.gain_sigma, 0.0, 0.5)
-        _check_number(p, "gradient", self.gradient, 0.0, 0.9)
-        _check_number(p, "noise_sigma", self.noise_sigma, 0.0, 64.0)
-        _check_number(p, "camera_height", self.camera_height, 0.5, 50.0)
-        _check_bool(p, "chip_parallax", self.chip_parallax)
-        _check_bool(p, "antialias", self.antialias)
-        _check_rgb(p, "carpet", self.carpet)
-        _check_rgb(p, "line", self.line)
+        check_number(f"{p}.frame_rate", self.frame_rate, 1.0, 1000.0)
+        check_number(f"{p}.exposure", self.exposure, 0.0, 0.1)
+        check_integer(f"{p}.blur_samples", self.blur_samples, 2, 64)
+        check_number(f"{p}.gain_sigma", self.gain_sigma, 0.0, 0.5)
+        check_number(f"{p}.gradient", self.gradient, 0.0, 0.9)
+        check_number(f"{p}.noise_sigma", self.noise_sigma, 0.0, 64.0)
+        check_number(f"{p}.camera_height", self.camera_height, 0.5, 50.0)
+        check_flag(f"{p}.chip_parallax", self.chip_parallax)
+        check_flag(f"{p}.antialias", self.antialias)
+        check_rgb(f"{p}.carpet", self.carpet)
+        check_rgb(f"{p}.line", self.line)
 
 
-OVERHEAD_FRAMES: dict[str, OverheadFrameSpec] = {
+OVERHEAD_FRAMES: Registry[OverheadFrameSpec] = preset_table('overhead_frame', {
     # No imperfection: no blur, no lighting change, no noise. 640 x 480 (paper 003's image)
     # at 60 Hz (SSL-Vision's 60-75 Hz, as vision.VISION["realistic"]).
     "clean": OverheadFrameSpec(
@@ -163,7 +142,7 @@ OVERHEAD_FRAMES: dict[str, OverheadFrameSpec] = {
         source="paper 003 (640 x 480, 33 ms cycle); exposure, height, lighting and noise "
                "assumed",
     ),
-}
+})
 
 
 def overhead_frame(spec: str | OverheadFrameSpec = "realistic", **overrides: object
@@ -201,15 +180,15 @@ class HeadFrameSpec:
 
     def __post_init__(self) -> None:
         p = "head_frame"
-        _check_number(p, "gain_sigma", self.gain_sigma, 0.0, 0.5)
-        _check_number(p, "gradient", self.gradient, 0.0, 0.9)
-        _check_number(p, "noise_sigma", self.noise_sigma, 0.0, 64.0)
-        _check_bool(p, "antialias", self.antialias)
+        check_number(f"{p}.gain_sigma", self.gain_sigma, 0.0, 0.5)
+        check_number(f"{p}.gradient", self.gradient, 0.0, 0.9)
+        check_number(f"{p}.noise_sigma", self.noise_sigma, 0.0, 64.0)
+        check_flag(f"{p}.antialias", self.antialias)
         for name in ("sky", "floor", "carpet", "line", "body"):
-            _check_rgb(p, name, getattr(self, name))
+            check_rgb(f"{p}.{name}", getattr(self, name))
 
 
-HEAD_FRAMES: dict[str, HeadFrameSpec] = {
+HEAD_FRAMES: Registry[HeadFrameSpec] = preset_table('head_frame', {
     "clean": HeadFrameSpec(name="clean", source="no imperfection"),
     # Paper 000's CCD camera of 2012 under hall lighting. Assumptions (ours): 5 % gain
     # changes (auto exposure, flicker), up to 20 % ramp, 4 grey levels of noise.
@@ -217,7 +196,7 @@ HEAD_FRAMES: dict[str, HeadFrameSpec] = {
         name="realistic", gain_sigma=0.05, gradient=0.2, noise_sigma=4.0,
         source="lighting and noise assumed (CCD head camera of paper 000's era)",
     ),
-}
+})
 
 
 def head_frame(spec: str | HeadFrameSpec = "realistic", **overrides: object) -> HeadFrameSpec:

@@ -6,9 +6,16 @@ import math
 from dataclasses import dataclass
 
 from estimators import HeadCamera
-from soccer_env.validation import resolve_preset
+from estimators.registry import Registry
+from soccer_env.validation import (
+    check_flag,
+    check_integer,
+    check_number,
+    preset_table,
+    resolve_preset,
+)
 
-__all__ = ["HeadCameraSpec", "HEAD_CAMERAS", "head_camera", "RadioSpec", "RADIO_PRESETS",
+__all__ = ["HeadCameraSpec", "HEAD_CAMERAS", "head_camera", "RadioSpec", "RADIO_PRESETS", "radio",
            "VisionSpec", "VISION", "vision"]
 
 
@@ -54,9 +61,7 @@ class VisionSpec:
 
     def __post_init__(self) -> None:
         def check(name: str, low: float, high: float) -> None:
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and low <= v <= high):
-                raise ValueError(f"vision.{name} must be in [{low}, {high}], got {v!r}")
+            check_number(f"vision.{name}", getattr(self, name), low, high)
 
         if self.frame_rate is not None:
             check("frame_rate", 1.0, 1000.0)
@@ -74,7 +79,7 @@ class VisionSpec:
         check("camera_overlap", 0.0, 10.0)
 
 
-VISION: dict[str, VisionSpec] = {
+VISION: Registry[VisionSpec] = preset_table('vision', {
     # Perfect sensing: every step, no noise, no delay, nothing missed or hidden.
     "ideal": VisionSpec(
         name="ideal", frame_rate=None, latency=0.0, latency_jitter=0.0, actuation_latency=0.0,
@@ -120,7 +125,7 @@ VISION: dict[str, VisionSpec] = {
         camera_height=4.0, camera_overlap=0.5,
         source="our choice: larger noise, latency and loss than 'realistic'",
     ),
-}
+})
 
 
 def vision(spec: str | VisionSpec = "realistic", **overrides) -> VisionSpec:
@@ -175,22 +180,13 @@ class HeadCameraSpec:
     def __post_init__(self) -> None:
         def check(name: str, low: float, high: float, *, low_open: bool = False,
                   high_open: bool = False) -> None:
-            v = getattr(self, name)
-            ok = (isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-                  and (v > low if low_open else v >= low)
-                  and (v < high if high_open else v <= high))
-            if not ok:
-                lo, hi = "(" if low_open else "[", ")" if high_open else "]"
-                raise ValueError(f"head_camera.{name} must be in {lo}{low}, {high}{hi}, "
-                                 f"got {v!r}")
+            check_number(f"head_camera.{name}", getattr(self, name), low, high,
+                         low_open=low_open, high_open=high_open)
 
         check("height", 0.05, 5.0)
         check("hfov", 0.0, math.pi, low_open=True, high_open=True)
         for name in ("width", "height_px"):
-            v = getattr(self, name)
-            if not (isinstance(v, int) and not isinstance(v, bool) and 2 <= v <= 100_000):
-                raise ValueError(f"head_camera.{name} must be an integer in [2, 100000] "
-                                 f"pixels, got {v!r}")
+            check_integer(f"head_camera.{name}", getattr(self, name), 2, 100_000, " pixels")
         if self.frame_rate is not None:
             check("frame_rate", 1.0, 1000.0)
         for name in ("latency", "latency_jitter"):
@@ -202,9 +198,7 @@ class HeadCameraSpec:
             check(name, 0.0, 1.0)
         check("false_ball_rate", 0.0, 1000.0)
         for name in ("occlusion", "distinct_goals"):
-            if not isinstance(getattr(self, name), bool):
-                raise ValueError(f"head_camera.{name} must be True or False, "
-                                 f"got {getattr(self, name)!r}")
+            check_flag(f"head_camera.{name}", getattr(self, name))
 
     @property
     def camera(self) -> HeadCamera:
@@ -214,7 +208,7 @@ class HeadCameraSpec:
                           height_px=self.height_px)
 
 
-HEAD_CAMERAS: dict[str, HeadCameraSpec] = {
+HEAD_CAMERAS: Registry[HeadCameraSpec] = preset_table('head_camera', {
     # Perfect sensing: paper 000's camera geometry, a frame at every step call
     # (frame_rate=None), no delay, no noise, every object in view and range detected, no
     # spurious balls. Occlusion stays on: it is geometry, not an imperfection. Ranges of
@@ -261,7 +255,7 @@ HEAD_CAMERAS: dict[str, HeadCameraSpec] = {
         source="current Humanoid KidSize rules (white goals); camera as paper 000; timing, "
                "noise, ranges, detection and false rates assumed",
     ),
-}
+})
 
 
 def head_camera(spec: str | HeadCameraSpec = "kidsize", **overrides: object) -> HeadCameraSpec:
@@ -277,16 +271,25 @@ class RadioSpec:
     latency: float = 0.03
     jitter: float = 0.02
     loss: float = 0.1
+    name: str = "custom"
+    source: str = ""
 
     def __post_init__(self) -> None:
-        if not (math.isfinite(self.latency) and 0.0 <= self.latency <= 10.0):
-            raise ValueError(f"latency must be in [0, 10] s, got {self.latency!r}")
-        if not (math.isfinite(self.jitter) and 0.0 <= self.jitter <= 10.0):
-            raise ValueError(f"jitter must be in [0, 10] s, got {self.jitter!r}")
-        if not 0.0 <= self.loss <= 1.0:
-            raise ValueError(f"loss must be in [0, 1], got {self.loss!r}")
+        check_number("latency", self.latency, 0, 10, unit=" s")
+        check_number("jitter", self.jitter, 0, 10, unit=" s")
+        check_number("loss", self.loss, 0, 1)
 
 
-#: Named links: ``ideal`` (instant, lossless); ``zigbee`` (our reading of a crowded 2.4 GHz
-#: ZigBee network at a RoboCup venue: tens of milliseconds, one packet in ten lost).
-RADIO_PRESETS = {"ideal": RadioSpec(0.0, 0.0, 0.0), "zigbee": RadioSpec(0.03, 0.02, 0.1)}
+#: Named links.
+RADIO_PRESETS: Registry[RadioSpec] = preset_table("radio", {
+    "ideal": RadioSpec(0.0, 0.0, 0.0, name="ideal", source="instant and lossless"),
+    # Paper 000's robots talk over a self-organising ZigBee network; it gives no figures.
+    "zigbee": RadioSpec(0.03, 0.02, 0.1, name="zigbee",
+                        source="our reading of a crowded 2.4 GHz ZigBee network at a RoboCup "
+                               "venue: tens of milliseconds, one packet in ten lost"),
+})
+
+
+def radio(spec: str | RadioSpec = "zigbee", **overrides: object) -> RadioSpec:
+    """Return a radio preset (by name or spec) with optional validated overrides."""
+    return resolve_preset("radio", RADIO_PRESETS, spec, overrides)

@@ -9,21 +9,14 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from soccer_env.validation import resolve_preset
+from estimators.registry import Registry
+from soccer_env.validation import check_number, preset_table, resolve_preset
 
 __all__ = ["ROBOTS", "FieldSpec", "BallSpec", "SSLRobotSpec", "HumanoidRobotSpec", "RobotSpec",
            "FIELDS", "BALLS", "field", "ball", "robot", "default_field", "GRAVITY"]
 
 #: Standard gravity [m/s^2] (ISO 80000-3).
 GRAVITY = 9.80665
-
-
-def _check(name: str, value: float, low: float, high: float, *, low_open: bool = False) -> None:
-    """Raise ``ValueError`` unless ``low <(=) value <= high`` (and finite)."""
-    ok = math.isfinite(value) and (value > low if low_open else value >= low) and value <= high
-    if not ok:
-        bracket = "(" if low_open else "["
-        raise ValueError(f"{name} must be in {bracket}{low}, {high}], got {value!r}")
 
 
 @dataclass(frozen=True)
@@ -55,18 +48,18 @@ class FieldSpec:
     source: str
 
     def __post_init__(self) -> None:
-        _check("length", self.length, 0.5, 50.0)
-        _check("width", self.width, 0.5, 50.0)
-        _check("boundary", self.boundary, 0.05, 5.0)
-        _check("goal_width", self.goal_width, 0.1, self.width)
-        _check("goal_depth", self.goal_depth, 0.05, self.boundary - 0.01)
-        _check("goal_height", self.goal_height, 0.05, 5.0)
-        _check("goal_wall_thickness", self.goal_wall_thickness, 0.001, 0.5)
-        _check("defense_width", self.defense_width, 0.0, self.width)
-        _check("defense_depth", self.defense_depth, 0.0, self.length / 2)
-        _check("center_circle_radius", self.center_circle_radius, 0.0, self.width / 2)
-        _check("line_width", self.line_width, 0.0, 0.5)
-        _check("wall_restitution", self.wall_restitution, 0.0, 1.0)
+        check_number("length", self.length, 0.5, 50.0)
+        check_number("width", self.width, 0.5, 50.0)
+        check_number("boundary", self.boundary, 0.05, 5.0)
+        check_number("goal_width", self.goal_width, 0.1, self.width)
+        check_number("goal_depth", self.goal_depth, 0.05, self.boundary - 0.01)
+        check_number("goal_height", self.goal_height, 0.05, 5.0)
+        check_number("goal_wall_thickness", self.goal_wall_thickness, 0.001, 0.5)
+        check_number("defense_width", self.defense_width, 0.0, self.width)
+        check_number("defense_depth", self.defense_depth, 0.0, self.length / 2)
+        check_number("center_circle_radius", self.center_circle_radius, 0.0, self.width / 2)
+        check_number("line_width", self.line_width, 0.0, 0.5)
+        check_number("wall_restitution", self.wall_restitution, 0.0, 1.0)
 
     @property
     def half_length(self) -> float:
@@ -112,16 +105,16 @@ class BallSpec:
     source: str
 
     def __post_init__(self) -> None:
-        _check("radius", self.radius, 0.005, 0.5)
-        _check("mass", self.mass, 0.001, 5.0)
-        _check("sliding_deceleration", self.sliding_deceleration, 0.0, 50.0)
-        _check("rolling_deceleration", self.rolling_deceleration, 0.0, 50.0)
-        _check("k_switch", self.k_switch, 0.0, 1.0)
-        _check("chip_damping_xy_first", self.chip_damping_xy_first, 0.0, 1.0)
-        _check("chip_damping_xy_other", self.chip_damping_xy_other, 0.0, 1.0)
-        _check("chip_damping_z", self.chip_damping_z, 0.0, 0.99)
-        _check("min_hop_height", self.min_hop_height, 0.0, 1.0)
-        _check("surface_friction", self.surface_friction, 0.0, 2.0)
+        check_number("radius", self.radius, 0.005, 0.5)
+        check_number("mass", self.mass, 0.001, 5.0)
+        check_number("sliding_deceleration", self.sliding_deceleration, 0.0, 50.0)
+        check_number("rolling_deceleration", self.rolling_deceleration, 0.0, 50.0)
+        check_number("k_switch", self.k_switch, 0.0, 1.0)
+        check_number("chip_damping_xy_first", self.chip_damping_xy_first, 0.0, 1.0)
+        check_number("chip_damping_xy_other", self.chip_damping_xy_other, 0.0, 1.0)
+        check_number("chip_damping_z", self.chip_damping_z, 0.0, 0.99)
+        check_number("min_hop_height", self.min_hop_height, 0.0, 1.0)
+        check_number("surface_friction", self.surface_friction, 0.0, 2.0)
 
     @property
     def diameter(self) -> float:
@@ -176,27 +169,27 @@ class SSLRobotSpec:
     kind = "ssl"
 
     def __post_init__(self) -> None:
-        _check("radius", self.radius, 0.02, 1.0)
-        _check("front_distance", self.front_distance, 0.3 * self.radius, self.radius)
-        _check("height", self.height, 0.01, 2.0)
-        _check("mass", self.mass, 0.1, 100.0)
-        _check("moment_of_inertia", self.moment_of_inertia, 0.0, 100.0, low_open=True)
-        _check("max_speed", self.max_speed, 0.0, 20.0, low_open=True)
-        _check("max_acceleration", self.max_acceleration, 0.0, 100.0, low_open=True)
-        _check("max_angular_speed", self.max_angular_speed, 0.0, 100.0, low_open=True)
-        _check("max_angular_acceleration", self.max_angular_acceleration, 0.0, 1000.0,
+        check_number("radius", self.radius, 0.02, 1.0)
+        check_number("front_distance", self.front_distance, 0.3 * self.radius, self.radius)
+        check_number("height", self.height, 0.01, 2.0)
+        check_number("mass", self.mass, 0.1, 100.0)
+        check_number("moment_of_inertia", self.moment_of_inertia, 0.0, 100.0, low_open=True)
+        check_number("max_speed", self.max_speed, 0.0, 20.0, low_open=True)
+        check_number("max_acceleration", self.max_acceleration, 0.0, 100.0, low_open=True)
+        check_number("max_angular_speed", self.max_angular_speed, 0.0, 100.0, low_open=True)
+        check_number("max_angular_acceleration", self.max_angular_acceleration, 0.0, 1000.0,
                low_open=True)
         chord = 2.0 * math.sqrt(self.radius**2 - self.front_distance**2)
-        _check("kicker_width", self.kicker_width, 0.0, chord, low_open=True)
-        _check("kicker_max_speed", self.kicker_max_speed, 0.0, 20.0)
-        _check("kick_speed_cap", self.kick_speed_cap, 0.0, 20.0, low_open=True)
-        _check("chip_max_speed", self.chip_max_speed, 0.0, 20.0)
-        _check("chip_angle", self.chip_angle, 0.0, 0.5 * math.pi, low_open=True)
-        _check("kick_cooldown", self.kick_cooldown, 0.0, 60.0)
-        _check("dribbler_force", self.dribbler_force, 0.0, 100.0)
-        _check("dribbler_restitution", self.dribbler_restitution, 0.0, 1.0)
-        _check("restitution", self.restitution, 0.0, 1.0)
-        _check("surface_friction", self.surface_friction, 0.0, 2.0)
+        check_number("kicker_width", self.kicker_width, 0.0, chord, low_open=True)
+        check_number("kicker_max_speed", self.kicker_max_speed, 0.0, 20.0)
+        check_number("kick_speed_cap", self.kick_speed_cap, 0.0, 20.0, low_open=True)
+        check_number("chip_max_speed", self.chip_max_speed, 0.0, 20.0)
+        check_number("chip_angle", self.chip_angle, 0.0, 0.5 * math.pi, low_open=True)
+        check_number("kick_cooldown", self.kick_cooldown, 0.0, 60.0)
+        check_number("dribbler_force", self.dribbler_force, 0.0, 100.0)
+        check_number("dribbler_restitution", self.dribbler_restitution, 0.0, 1.0)
+        check_number("restitution", self.restitution, 0.0, 1.0)
+        check_number("surface_friction", self.surface_friction, 0.0, 2.0)
 
     @property
     def front_width(self) -> float:
@@ -291,45 +284,45 @@ class HumanoidRobotSpec:
     kind = "humanoid"
 
     def __post_init__(self) -> None:
-        _check("radius", self.radius, 0.02, 1.0)
-        _check("height", self.height, 0.1, 3.0)
-        _check("mass", self.mass, 0.1, 200.0)
-        _check("moment_of_inertia", self.moment_of_inertia, 0.0, 100.0, low_open=True)
+        check_number("radius", self.radius, 0.02, 1.0)
+        check_number("height", self.height, 0.1, 3.0)
+        check_number("mass", self.mass, 0.1, 200.0)
+        check_number("moment_of_inertia", self.moment_of_inertia, 0.0, 100.0, low_open=True)
         for name in ("max_forward_speed", "max_backward_speed", "max_sideways_speed"):
-            _check(name, getattr(self, name), 0.0, 5.0, low_open=True)
-        _check("max_turn_speed", self.max_turn_speed, 0.0, 20.0, low_open=True)
-        _check("max_acceleration", self.max_acceleration, 0.0, 50.0, low_open=True)
-        _check("max_angular_acceleration", self.max_angular_acceleration, 0.0, 500.0,
+            check_number(name, getattr(self, name), 0.0, 5.0, low_open=True)
+        check_number("max_turn_speed", self.max_turn_speed, 0.0, 20.0, low_open=True)
+        check_number("max_acceleration", self.max_acceleration, 0.0, 50.0, low_open=True)
+        check_number("max_angular_acceleration", self.max_angular_acceleration, 0.0, 500.0,
                low_open=True)
-        _check("step_frequency", self.step_frequency, 0.0, 10.0, low_open=True)
-        _check("sway_pan", self.sway_pan, 0.0, 0.5)
-        _check("sway_tilt", self.sway_tilt, 0.0, 0.5)
-        _check("head_pan_limit", self.head_pan_limit, 0.0, math.pi)
-        _check("head_tilt_min", self.head_tilt_min, -0.5 * math.pi, 0.5 * math.pi)
-        _check("head_tilt_max", self.head_tilt_max, self.head_tilt_min, 0.5 * math.pi)
-        _check("head_speed", self.head_speed, 0.0, 50.0, low_open=True)
-        _check("kick_duration", self.kick_duration, 0.0, 10.0, low_open=True)
-        _check("kick_fire_time", self.kick_fire_time, 0.0, self.kick_duration)
-        _check("kick_max_speed", self.kick_max_speed, 0.0, 20.0)
-        _check("kick_reach", self.kick_reach, 0.0, 1.0, low_open=True)
-        _check("kick_width", self.kick_width, 0.0, 2.0 * self.radius + 0.5, low_open=True)
-        _check("kick_direction_sigma", self.kick_direction_sigma, 0.0, math.pi)
-        _check("fall_speed_min", self.fall_speed_min, 0.0, 10.0)
-        _check("fall_speed_certain", self.fall_speed_certain, self.fall_speed_min, 10.0,
+        check_number("step_frequency", self.step_frequency, 0.0, 10.0, low_open=True)
+        check_number("sway_pan", self.sway_pan, 0.0, 0.5)
+        check_number("sway_tilt", self.sway_tilt, 0.0, 0.5)
+        check_number("head_pan_limit", self.head_pan_limit, 0.0, math.pi)
+        check_number("head_tilt_min", self.head_tilt_min, -0.5 * math.pi, 0.5 * math.pi)
+        check_number("head_tilt_max", self.head_tilt_max, self.head_tilt_min, 0.5 * math.pi)
+        check_number("head_speed", self.head_speed, 0.0, 50.0, low_open=True)
+        check_number("kick_duration", self.kick_duration, 0.0, 10.0, low_open=True)
+        check_number("kick_fire_time", self.kick_fire_time, 0.0, self.kick_duration)
+        check_number("kick_max_speed", self.kick_max_speed, 0.0, 20.0)
+        check_number("kick_reach", self.kick_reach, 0.0, 1.0, low_open=True)
+        check_number("kick_width", self.kick_width, 0.0, 2.0 * self.radius + 0.5, low_open=True)
+        check_number("kick_direction_sigma", self.kick_direction_sigma, 0.0, math.pi)
+        check_number("fall_speed_min", self.fall_speed_min, 0.0, 10.0)
+        check_number("fall_speed_certain", self.fall_speed_certain, self.fall_speed_min, 10.0,
                low_open=True)
         if not self.fall_speed_certain > self.fall_speed_min:
             raise ValueError(f"fall_speed_certain must be greater than fall_speed_min "
                              f"({self.fall_speed_min}), got {self.fall_speed_certain!r}")
-        _check("fall_time", self.fall_time, 0.0, 5.0)
-        _check("lying_length", self.lying_length, 0.0, 3.0)
-        _check("lying_width", self.lying_width, 0.0, 1.0)
-        _check("get_up_time", self.get_up_time, self.fall_time, 120.0)
-        _check("fall_heading_sigma", self.fall_heading_sigma, 0.0, math.pi)
-        _check("odometry_trans_sigma", self.odometry_trans_sigma, 0.0, 2.0)
-        _check("odometry_rot_sigma", self.odometry_rot_sigma, 0.0, 2.0)
-        _check("odometry_turn_slip", self.odometry_turn_slip, 0.0, 1.0)
-        _check("restitution", self.restitution, 0.0, 1.0)
-        _check("surface_friction", self.surface_friction, 0.0, 2.0)
+        check_number("fall_time", self.fall_time, 0.0, 5.0)
+        check_number("lying_length", self.lying_length, 0.0, 3.0)
+        check_number("lying_width", self.lying_width, 0.0, 1.0)
+        check_number("get_up_time", self.get_up_time, self.fall_time, 120.0)
+        check_number("fall_heading_sigma", self.fall_heading_sigma, 0.0, math.pi)
+        check_number("odometry_trans_sigma", self.odometry_trans_sigma, 0.0, 2.0)
+        check_number("odometry_rot_sigma", self.odometry_rot_sigma, 0.0, 2.0)
+        check_number("odometry_turn_slip", self.odometry_turn_slip, 0.0, 1.0)
+        check_number("restitution", self.restitution, 0.0, 1.0)
+        check_number("surface_friction", self.surface_friction, 0.0, 2.0)
 
     @property
     def max_speed(self) -> float:
@@ -350,7 +343,7 @@ RobotSpec = SSLRobotSpec | HumanoidRobotSpec
 # Fields
 # --------------------------------------------------------------------------------------------
 
-FIELDS: dict[str, FieldSpec] = {
+FIELDS: Registry[FieldSpec] = preset_table('field', {
     # Paper 002 (Zhao, Wang, Li 2012): "a 6.1 m x 4.7 m green carpet", the SSL 5 vs 5 field of
     # 2012. Goal 0.7 m wide, 0.18 m deep, 0.16 m high (SSL rules 2012). The 2012 defense area
     # was two quarter circles of radius 0.8 m around the posts joined by a 0.35 m line; it is
@@ -400,7 +393,7 @@ FIELDS: dict[str, FieldSpec] = {
         wall_restitution=0.3, ball="kidsize",
         source="RoboCup Humanoid KidSize rules 2020+",
     ),
-}
+})
 
 # --------------------------------------------------------------------------------------------
 # Balls
@@ -418,7 +411,7 @@ _SSL_BALL = BallSpec(
     source="SSL rules (golf ball); SSL teams' two-phase and fixed-loss ball models",
 )
 
-BALLS: dict[str, BallSpec] = {
+BALLS: Registry[BallSpec] = preset_table('ball', {
     "ssl": _SSL_BALL,
     # Humanoid KidSize of 2012 (paper 000's era): an orange ball of tennis-ball size on green
     # carpet. Our reading of the rules of that era and assumptions where we found no figure:
@@ -447,7 +440,7 @@ BALLS: dict[str, BallSpec] = {
         _SSL_BALL, name="ssl-2012", rolling_deceleration=0.23,
         source="paper 002 (a_f = 0.23 m/s^2); otherwise as 'ssl'",
     ),
-}
+})
 
 # --------------------------------------------------------------------------------------------
 # Robots
@@ -470,7 +463,7 @@ _SSL_ROBOT = SSLRobotSpec(
     source="SSL rules (size, 6.5 m/s); grSim default robot (front, kicker)",
 )
 
-ROBOTS: dict[str, RobotSpec] = {
+ROBOTS: Registry[RobotSpec] = preset_table('robot', {
     "ssl": _SSL_ROBOT,
     # Paper 002: SSL robots of 2012 reach more than 2.5 m/s with more than 2.5 m/s^2 and kick
     # at 5.0 m/s or more; the paper's decision cycle is 40 ms. Body as 'ssl'.
@@ -480,7 +473,7 @@ ROBOTS: dict[str, RobotSpec] = {
         chip_max_speed=5.0,
         source="paper 002 (2.5 m/s, 2.5 m/s^2, 5 m/s kicks); body as 'ssl'",
     ),
-}
+})
 
 # A KidSize humanoid (RoboCup Humanoid League, 2020 onwards; the figures are of the order of
 # published KidSize platforms such as Darwin-OP, NimbRo-OP and Wolfgang-OP, rounded, and
@@ -512,17 +505,18 @@ _KIDSIZE = HumanoidRobotSpec(
            "(camera 0.56 m); gait sway, falls and odometry noise assumed",
 )
 
-ROBOTS["humanoid"] = _KIDSIZE
+ROBOTS.register("humanoid", _KIDSIZE, _KIDSIZE.source)
 # Paper 000's 21-servo robot of 2012: the same body with the slower walk of that era's
 # KidSize robots (0.2 m/s forward, assumed) and paper 000's camera (25 Hz, 720 x 625, 51
 # degrees at 0.56 m).
-ROBOTS["humanoid-2012"] = dataclasses.replace(
+_KIDSIZE_2012 = dataclasses.replace(
     _KIDSIZE, name="humanoid-2012", max_forward_speed=0.2, max_backward_speed=0.1,
     max_sideways_speed=0.1, max_turn_speed=0.6, max_acceleration=0.3, kick_max_speed=2.5,
     camera="kidsize-2012",
     source="paper 000 (21 servos, head camera 0.56 m, 51 degrees, 25 Hz); walk of 2012 "
            "KidSize robots assumed; otherwise as 'humanoid'",
 )
+ROBOTS.register("humanoid-2012", _KIDSIZE_2012, _KIDSIZE_2012.source)
 
 #: The field a robot preset plays on by default (by preset name, then by kind).
 DEFAULT_FIELDS = {"humanoid-2012": "humanoid-2012", "humanoid": "humanoid-kid", "ssl": "ssl-div-b"}

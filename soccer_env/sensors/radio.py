@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from soccer_env.presets.sensors import RADIO_PRESETS, RadioSpec
+from soccer_env.presets.sensors import RadioSpec, radio
 
 __all__ = ["Message", "TeamRadio"]
 
@@ -55,10 +55,7 @@ class TeamRadio:
 
     def __init__(self, spec: RadioSpec | str, rng: np.random.Generator) -> None:
         if isinstance(spec, str):
-            if spec not in RADIO_PRESETS:
-                raise ValueError(f"unknown radio preset {spec!r}; allowed: "
-                                 f"{sorted(RADIO_PRESETS)}")
-            spec = RADIO_PRESETS[spec]
+            spec = radio(spec)
         if not isinstance(rng, np.random.Generator):
             raise TypeError("rng must be a numpy.random.Generator")
         self.spec, self.rng = spec, rng
