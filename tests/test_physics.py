@@ -331,19 +331,13 @@ def test_pymunk_version_pinned():
 
 @pytest.mark.parametrize("n_blue,n_yellow", [(1, 0), (2, 1), (3, 3)])
 def test_direct_and_batch_state_reads_agree(n_blue, n_yellow):
-    import soccer_env.sim.world as physics
-
     w = park(make_world(n_blue, n_yellow))
     w.set_ball(0.0, 0.0, 2.0, 1.0, sliding=True)
     rng = np.random.default_rng(0)
     run(w, 20, rng.uniform(-1, 1, (w.n_robots, 6)) * (3, 3, 10, 0, 0, 0))
-    limit = physics._DIRECT_READ_MAX_ROBOTS
-    try:
-        physics._DIRECT_READ_MAX_ROBOTS = 99
-        w._read_state()
-        direct = w._state.copy()
-        physics._DIRECT_READ_MAX_ROBOTS = -1
-        w._read_state()
-        np.testing.assert_array_equal(direct, w._state)
-    finally:
-        physics._DIRECT_READ_MAX_ROBOTS = limit
+    w.read_state(batch=False)
+    direct = w.snapshot()
+    w.read_state(batch=True)
+    batch = w.snapshot()
+    np.testing.assert_array_equal(direct.robots, batch.robots)
+    np.testing.assert_array_equal(direct.ball, batch.ball)

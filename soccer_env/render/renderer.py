@@ -16,7 +16,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
-from soccer_env.sim.world import robot_outline
+from soccer_env.sim.ssl import robot_outline
 from soccer_env.state import WorldState
 
 __all__ = ["Renderer", "RenderingMixin", "RENDER_MODES", "TEAM_COLOURS"]

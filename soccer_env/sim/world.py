@@ -51,48 +51,28 @@ from soccer_env.presets import (
     RobotSpec,
     SSLRobotSpec,
 )
+from soccer_env.sim.arena import BALL, HUMANOID, OUT, ROBOT, WALL, add_walls
+from soccer_env.sim.humanoid_bodies import HumanoidBodies
+from soccer_env.sim.ssl import MOUTH_TOLERANCE, KickerDribbler, robot_outline
 from soccer_env.sim.walk import WalkEngine
-from soccer_env.state import BodyState, HeadState, WorldState
+from soccer_env.state import WorldState
 from soccer_env.validation import check_int, check_range
 
-__all__ = ["World", "COMMAND_FIELDS", "idle_commands", "BallExit", "robot_outline"]
+__all__ = ["World", "COMMAND_FIELDS", "idle_commands", "BallExit", "MAX_TEAM_SIZE"]
 
-_BALL, _ROBOT, _WALL, _OUT, _HUMANOID = 1, 2, 3, 4, 5
 _BODY_FIELDS = (
     pbatch.BodyFields.POSITION
     | pbatch.BodyFields.ANGLE
     | pbatch.BodyFields.VELOCITY
     | pbatch.BodyFields.ANGULAR_VELOCITY
 )
-#: Minimum thickness [m] of goal walls in the physics. Real SSL goal walls are 2 cm thick; a
-#: wall that thin could be tunnelled by a fast ball in one substep, so walls are grown outward
-#: (the goal keeps its inner size).
-MIN_GOAL_WALL = 0.05
-#: Thickness [m] of the boundary walls, grown outward from the walled area.
-BOUNDARY_WALL = 1.0
 #: pymunk contact slop [m]: penetration allowed before correction (pymunk's default is 0.1,
 #: which is meant for pixels and far too large in metres).
 COLLISION_SLOP = 5e-4
 #: Up to this many robots the state is read body by body rather than in one batch.
-_DIRECT_READ_MAX_ROBOTS = 3
+DIRECT_READ_MAX_ROBOTS = 3
 #: Largest team size (SSL Division A plays 11 vs 11).
 MAX_TEAM_SIZE = 11
-#: A resting ball counts as "in the mouth" of a robot if its surface is within this distance
-#: [m] of the flat front (the kicker's light barrier), even without contact.
-MOUTH_TOLERANCE = 5e-3
-
-
-def robot_outline(spec: SSLRobotSpec, n_arc: int = 16) -> list[tuple[float, float]]:
-    """Vertices of the robot's footprint in its body frame: a circle cut flat at the front.
-
-    The arc runs counter-clockwise from ``+acos(d / r)`` to ``2 pi - acos(d / r)`` with
-    ``n_arc`` segments; the polygon closes along the flat front at ``x = d``.
-    """
-    a0 = math.acos(spec.front_distance / spec.radius)
-    return [
-        (spec.radius * math.cos(a), spec.radius * math.sin(a))
-        for a in np.linspace(a0, 2.0 * math.pi - a0, n_arc + 1)
-    ]
 
 
 #: Columns of the ``(N, 6)`` command array of :meth:`World.step`: body-frame velocity ``vx, vy``
@@ -122,7 +102,7 @@ class BallExit:
     time: float
 
 
-class World:
+class World(KickerDribbler, HumanoidBodies):
     """Physics of one field with a ball and ``n_blue + n_yellow`` robots (SSL, humanoid or
     both).
 
@@ -226,57 +206,15 @@ class World:
         space.collision_slop = COLLISION_SLOP
         space.iterations = 10
         self.space = space
-        self._add_walls(space)
-
-        bs = self.ball_spec
-        ball = pymunk.Body(bs.mass, math.inf)
-        ball_shape = pymunk.Circle(ball, bs.radius)
-        ball_shape.elasticity = 1.0
-        ball_shape.friction = bs.surface_friction
-        ball_shape.collision_type = _BALL
-        space.add(ball, ball_shape)
-        friction = pymunk.PivotJoint(space.static_body, ball, (0.0, 0.0), (0.0, 0.0))
-        friction.max_bias = 0.0
-        friction.max_force = self._roll_force
-        space.add(friction)
-        self._ball, self._friction = ball, friction
-
-        self._bodies: list[pymunk.Body] = []
-        self._controls: list[pymunk.Body] = []
-        self._drives: list[tuple[pymunk.PivotJoint, pymunk.GearJoint]] = []
-        self._shape_index: dict[pymunk.Shape, int] = {}
-        outlines: dict[int, list[tuple[float, float]]] = {}
-        for i, rs in enumerate(self.robot_specs):
-            body = pymunk.Body(rs.mass, rs.moment_of_inertia)
-            if rs.kind == "ssl":
-                outline = outlines.setdefault(id(rs), robot_outline(rs))
-                shape = pymunk.Poly(body, outline)
-                shape.collision_type = _ROBOT
-            else:
-                shape = pymunk.Circle(body, rs.radius)
-                shape.collision_type = _HUMANOID
-            shape.elasticity = rs.restitution
-            shape.friction = rs.surface_friction
-            space.add(body, shape)
-            self._bodies.append(body)
-            self._shape_index[shape] = i
-        for rs, body in zip(self.robot_specs, self._bodies):
-            control = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
-            drive = pymunk.PivotJoint(control, body, (0.0, 0.0), (0.0, 0.0))
-            drive.max_bias = 0.0
-            drive.max_force = rs.mass * rs.max_acceleration
-            turn = pymunk.GearJoint(control, body, 0.0, 1.0)
-            turn.max_bias = 0.0
-            turn.max_force = rs.moment_of_inertia * rs.max_angular_acceleration
-            space.add(control, drive, turn)
-            self._controls.append(control)
-            self._drives.append((drive, turn))
-        space.on_collision(_BALL, _ROBOT, pre_solve=self._ball_robot_contact)
-        space.on_collision(_BALL, _OUT, begin=self._ball_out)
+        add_walls(space, self.field, self.ball_spec.radius)
+        self._add_ball(space)
+        self._add_robots(space)
+        space.on_collision(BALL, ROBOT, pre_solve=self._ball_robot_contact)
+        space.on_collision(BALL, OUT, begin=self._ball_out)
         if self.walk is not None:
-            space.on_collision(_BALL, _HUMANOID, pre_solve=self._ball_touch)
-            for other in (_ROBOT, _HUMANOID, _WALL):
-                space.on_collision(_HUMANOID, other, begin=self._humanoid_impact)
+            space.on_collision(BALL, HUMANOID, pre_solve=self._ball_touch)
+            for other in (ROBOT, HUMANOID, WALL):
+                space.on_collision(HUMANOID, other, begin=self._humanoid_impact)
             self.walk.reset(rng if rng is not None else np.random.default_rng(0))
         self._impacts: dict[int, float] = {}
         self._lying: dict[int, pymunk.Shape] = {}
@@ -286,9 +224,9 @@ class World:
         # never adds or removes objects while stepping; Chipmunk's own step is equivalent
         # (tests/test_physics.py checks that both give identical trajectories).
         self._space_step = functools.partial(_cp.cpSpaceStep, space._space)
-        self._ball_handle = ball._body
+        self._ball_handle = self._ball._body
         self._control_handles = [c._body for c in self._controls]
-        self._body_handles = [ball._body] + [b._body for b in self._bodies]
+        self._body_handles = [self._ball._body] + [b._body for b in self._bodies]
 
         n = self.n_robots
         self.time = 0.0
@@ -311,6 +249,55 @@ class World:
         self.ball_exit: BallExit | None = None
         self.place_all(poses, ball_position)
 
+    def _add_ball(self, space: pymunk.Space) -> None:
+        """The ball and its carpet friction (a pivot joint to the static body)."""
+        bs = self.ball_spec
+        ball = pymunk.Body(bs.mass, math.inf)
+        ball_shape = pymunk.Circle(ball, bs.radius)
+        ball_shape.elasticity = 1.0
+        ball_shape.friction = bs.surface_friction
+        ball_shape.collision_type = BALL
+        space.add(ball, ball_shape)
+        friction = pymunk.PivotJoint(space.static_body, ball, (0.0, 0.0), (0.0, 0.0))
+        friction.max_bias = 0.0
+        friction.max_force = self._roll_force
+        space.add(friction)
+        self._ball, self._friction = ball, friction
+
+    def _add_robots(self, space: pymunk.Space) -> None:
+        """Every robot's body and shape (SSL: the flat-front polygon; humanoid: a disc), then
+        its kinematic control body with the drive joints (pivot and gear, bounded force)."""
+        self._bodies: list[pymunk.Body] = []
+        self._controls: list[pymunk.Body] = []
+        self._drives: list[tuple[pymunk.PivotJoint, pymunk.GearJoint]] = []
+        self._shape_index: dict[pymunk.Shape, int] = {}
+        outlines: dict[int, list[tuple[float, float]]] = {}
+        for i, rs in enumerate(self.robot_specs):
+            body = pymunk.Body(rs.mass, rs.moment_of_inertia)
+            if rs.kind == "ssl":
+                outline = outlines.setdefault(id(rs), robot_outline(rs))
+                shape = pymunk.Poly(body, outline)
+                shape.collision_type = ROBOT
+            else:
+                shape = pymunk.Circle(body, rs.radius)
+                shape.collision_type = HUMANOID
+            shape.elasticity = rs.restitution
+            shape.friction = rs.surface_friction
+            space.add(body, shape)
+            self._bodies.append(body)
+            self._shape_index[shape] = i
+        for rs, body in zip(self.robot_specs, self._bodies):
+            control = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+            drive = pymunk.PivotJoint(control, body, (0.0, 0.0), (0.0, 0.0))
+            drive.max_bias = 0.0
+            drive.max_force = rs.mass * rs.max_acceleration
+            turn = pymunk.GearJoint(control, body, 0.0, 1.0)
+            turn.max_bias = 0.0
+            turn.max_force = rs.moment_of_inertia * rs.max_angular_acceleration
+            space.add(control, drive, turn)
+            self._controls.append(control)
+            self._drives.append((drive, turn))
+
     def _validated_poses(self, robot_poses: np.ndarray) -> np.ndarray:
         poses = np.asarray(robot_poses, dtype=np.float64)
         if poses.shape != (self.n_robots, 3):
@@ -320,42 +307,6 @@ class World:
             if not math.isfinite(th):
                 raise ValueError(f"robot {self.names[i]} heading must be finite, got {th!r}")
         return poses
-
-    def _add_walls(self, space: pymunk.Space) -> None:
-        f = self.field
-        hx, hy = f.half_length, f.half_width
-        wx, wy, t = self._walls_x, self._walls_y, BOUNDARY_WALL
-        boxes = [
-            (-wx - t, wy, wx + t, wy + t),  # top
-            (-wx - t, -wy - t, wx + t, -wy),  # bottom
-            (wx, -wy, wx + t, wy),  # right
-            (-wx - t, -wy, -wx, wy),  # left
-        ]
-        side = max(f.goal_wall_thickness, MIN_GOAL_WALL)
-        back = min(max(f.goal_wall_thickness, MIN_GOAL_WALL), f.boundary - f.goal_depth)
-        gw = 0.5 * f.goal_width
-        for s in (-1.0, 1.0):
-            x0, x1 = s * hx, s * (hx + f.goal_depth)
-            x2 = s * (hx + f.goal_depth + back)
-            boxes.append((min(x1, x2), -gw - side, max(x1, x2), gw + side))  # back wall
-            boxes.append((min(x0, x2), gw, max(x0, x2), gw + side))  # left side wall
-            boxes.append((min(x0, x2), -gw - side, max(x0, x2), -gw))  # right side wall
-        for x0, y0, x1, y1 in boxes:
-            shape = pymunk.Poly(space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
-            shape.elasticity = f.wall_restitution
-            shape.friction = 1.0
-            shape.collision_type = _WALL
-            space.add(shape)
-        # Sensors beyond the lines: the ball overlaps one exactly when its centre is more than
-        # one radius past a goal line or touch line, i.e. the whole ball is out. Their "begin"
-        # callback records the substep at which that first happens, at no cost per substep.
-        d = 2.0 * self.ball_spec.radius
-        for x0, y0, x1, y1 in [(hx + d, -wy, wx, wy), (-wx, -wy, -hx - d, wy),
-                               (-wx, hy + d, wx, wy), (-wx, -wy, wx, -hy - d)]:
-            sensor = pymunk.Poly(space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
-            sensor.sensor = True
-            sensor.collision_type = _OUT
-            space.add(sensor)
 
     # ------------------------------------------------------------------------------------
     # Placement
@@ -521,23 +472,7 @@ class World:
 
         if walk is not None:
             self._humanoid_events(t0)
-        self._read_state()
-
-    # ------------------------------------------------------------------------------------
-    # Humanoids
-    # ------------------------------------------------------------------------------------
-
-    def _humanoid_impact(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
-        """``begin`` of a humanoid's contact with a robot or a wall: record the approach
-        speed along the contact normal (the largest of the step per humanoid)."""
-        a, b = arbiter.shapes
-        n = arbiter.normal
-        va, vb = a.body.velocity, b.body.velocity
-        speed = abs((va.x - vb.x) * n.x + (va.y - vb.y) * n.y)
-        for shape in (a, b):
-            i = self._shape_index.get(shape)
-            if i is not None and self.robot_specs[i].kind == "humanoid":
-                self._impacts[i] = max(self._impacts.get(i, 0.0), speed)
+        self.read_state()
 
     def _ball_touch(self, arbiter: pymunk.Arbiter, space: pymunk.Space = None, data=None
                     ) -> int:
@@ -552,131 +487,19 @@ class World:
         self.last_touch = i
         return i
 
-    def _humanoid_events(self, t0: float) -> None:
-        """After the substeps of a step that started at ``t0``: falls from this step's
-        impacts, robots standing up (turned), and foot strikes of kicks."""
-        walk = self.walk
-        now = self.time
-        if self._impacts:
-            for i, speed in self._impacts.items():
-                walk.maybe_fall(walk.indices.index(i), speed, now)
-            self._impacts = {}
-        # A fallen robot is held by its friction on the ground (force mu m g, torque about
-        # the lying body's middle), not by its walk; standing, by the walk's limits again.
-        for j, i in enumerate(walk.indices):
-            if walk.fallen[j] == (i in self._grounded):
-                continue
-            spec = self.robot_specs[i]
-            drive, turn = self._drives[i]
-            if walk.fallen[j]:
-                force = spec.surface_friction * spec.mass * GRAVITY
-                drive.max_force = force
-                turn.max_force = force * max(0.5 * spec.lying_length, spec.radius)
-                self._grounded.add(i)
-            else:
-                drive.max_force = spec.mass * spec.max_acceleration
-                turn.max_force = spec.moment_of_inertia * spec.max_angular_acceleration
-                self._grounded.discard(i)
-        for j, angle in walk.lying_due(now):
-            i = walk.indices[j]
-            spec = self.robot_specs[i]
-            if spec.lying_length > 0.0:
-                body = self._bodies[i]
-                end = (spec.lying_length * math.cos(angle), spec.lying_length * math.sin(angle))
-                shape = pymunk.Segment(body, (0.0, 0.0), end, 0.5 * spec.lying_width)
-                shape.elasticity = spec.restitution
-                shape.friction = spec.surface_friction
-                shape.collision_type = _HUMANOID
-                self.space.add(shape)
-                self._shape_index[shape] = i
-                self._lying[i] = shape
-        for j, turn in walk.stand_up_due(now):
-            i = walk.indices[j]
-            body = self._bodies[i]
-            shape = self._lying.pop(i, None)
-            if shape is not None:
-                self.space.remove(shape)
-                del self._shape_index[shape]
-            body.angle = body.angle + turn
-            body.angular_velocity = 0.0
-        for j, speed in walk.kick_due(t0, now):
-            i = walk.indices[j]
-            spec = self.robot_specs[i]
-            body = self._bodies[i]
-            rx, ry = body.position
-            bx, by = self._ball.position
-            a = body.angle
-            c, s = math.cos(a), math.sin(a)
-            u = c * (bx - rx) + s * (by - ry)  # ahead of the robot's centre
-            v = c * (by - ry) - s * (bx - rx)  # to its left
-            r0 = spec.radius + self.ball_spec.radius
-            if (self._z <= spec.height and r0 - 0.02 <= u <= r0 + spec.kick_reach
-                    and abs(v) <= 0.5 * spec.kick_width):
-                d = a + walk.kick_direction_noise(j)
-                self._ball.velocity = (speed * math.cos(d), speed * math.sin(d))
-                self._z = self._vz = 0.0
-                self._airborne = False
-                self._set_sliding(True, speed)
-                walk.kicks[j] += 1
-                self.kicked[i] = True
-                self.touched[i] = True
-                self.last_touch = i
-
-    def humanoid_state(self) -> dict[str, dict[str, object]]:
-        """Per humanoid (by name): ``fallen``, ``kicking``, head ``pan`` and ``tilt`` [rad],
-        ``sway`` ``(pan, tilt)`` [rad], ``odometry`` (the last step's ``dx, dy, dtheta`` in
-        the body frame), ``falls`` and ``kicks`` since reset. Empty without humanoids."""
-        walk = self.walk
-        if walk is None:
-            return {}
-        return {self.names[i]: {
-            "fallen": walk.fallen[j], "kicking": walk.kick_start[j] is not None,
-            "pan": walk.pan[j], "tilt": walk.tilt[j],
-            "sway": (walk.sway_pan[j], walk.sway_tilt[j]),
-            "odometry": walk.odometry[j], "falls": walk.falls[j], "kicks": walk.kicks[j],
-        } for j, i in enumerate(walk.indices)}
-
-    def head_state(self) -> HeadState:
-        """The :class:`~soccer_env.state.HeadState` of every robot (zeros and never blind for
-        SSL robots)."""
-        n = self.n_robots
-        pan, tilt, sp, st = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
-        blind = np.zeros(n, dtype=bool)
-        walk = self.walk
-        if walk is not None:
-            idx = walk.indices
-            pan[idx], tilt[idx] = walk.pan, walk.tilt
-            sp[idx], st[idx] = walk.sway_pan, walk.sway_tilt
-            blind[idx] = walk.fallen
-        return HeadState(pan, tilt, sp, st, blind)
-
-    def body_state(self) -> BodyState:
-        """What every robot's body reports now (:class:`~soccer_env.state.BodyState`)."""
-        n = self.n_robots
-        still = (0.0, 0.0, 0.0)
-        odometry, gait = [still] * n, [still] * n
-        fallen: list[bool] = [False] * n
-        lying: list[float | None] = [None] * n
-        walk = self.walk
-        if walk is not None:
-            for j, i in enumerate(walk.indices):
-                odometry[i] = walk.odometry[j]
-                gait[i] = tuple(walk.gait[j])
-                fallen[i] = walk.fallen[j]
-                if walk.fallen[j] and walk.lie_at[j] is None:
-                    lying[i] = walk.lie_angle[j]
-        return BodyState(self.head_state(), tuple(odometry), tuple(gait), tuple(fallen),
-                         tuple(lying))
-
-    def _read_state(self) -> None:
-        """Copy the ball's and robots' positions and velocities into ``self._state``.
+    def read_state(self, batch: bool | None = None) -> None:
+        """Read the ball's and robots' positions and velocities from the physics (every step
+        does at its end; the arrays of :meth:`robot_array` and :meth:`snapshot` come from
+        here).
 
         With many robots one :mod:`pymunk.batch` call is cheapest; with a few, reading each
         body through Chipmunk's getters costs less than the batch call's fixed overhead
-        (about 3 against 6 microseconds for a keeper and the ball).
+        (about 3 against 6 microseconds for a keeper and the ball). ``batch=None`` chooses:
+        body by body up to :data:`DIRECT_READ_MAX_ROBOTS` robots; True or False forces one
+        way (both give identical numbers).
         """
         state = self._state
-        if self.n_robots <= _DIRECT_READ_MAX_ROBOTS:
+        if not (self.n_robots > DIRECT_READ_MAX_ROBOTS if batch is None else batch):
             pos, vel = _cp.cpBodyGetPosition, _cp.cpBodyGetVelocity
             ang, spin = _cp.cpBodyGetAngle, _cp.cpBodyGetAngularVelocity
             rows = []
@@ -704,82 +527,6 @@ class World:
             # The callback runs inside the substep, before ``time`` is advanced past it.
             self.ball_exit = BallExit(x, y, self._z, self.time + self.substep_dt)
 
-    def _ball_robot_contact(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
-        """pre_solve for ball-robot contacts: fly-over, touches, kicker and dribbler."""
-        i = self._ball_touch(arbiter)
-        if i < 0:
-            return
-        armed = self._armed[i] > 0.0 and self.time >= self._ready_at[i]
-        if (armed or self._dribble[i]) and self._in_mouth(i):
-            if armed:
-                self._pending_kick = i
-            else:
-                # A spinning dribbler bar damps the ball's bounce off the front.
-                arbiter.restitution = self.robot_specs[i].dribbler_restitution
-
-    def _mouth_holds(self, i: int, rx: float, ry: float, a: float, bx: float, by: float
-                     ) -> bool:
-        """Whether a ball at ``(bx, by)`` is in the mouth of SSL robot ``i`` at pose
-        ``(rx, ry, a)``: its surface within :data:`MOUTH_TOLERANCE` of the flat front (or
-        pressed into it) and its centre within half the kicker width of the front's
-        middle."""
-        c, s = math.cos(a), math.sin(a)
-        dx, dy = bx - rx, by - ry
-        u = c * dx + s * dy  # along the heading
-        v = c * dy - s * dx  # sideways
-        return self._mouth_lo[i] <= u <= self._mouth_hi[i] and abs(v) <= self._mouth_half[i]
-
-    def _in_mouth(self, i: int) -> bool:
-        """:meth:`_mouth_holds` for robot ``i`` and the ball, from the live bodies."""
-        body = self._bodies[i]
-        rx, ry = body.position
-        bx, by = self._ball.position
-        return self._mouth_holds(i, rx, ry, body.angle, bx, by)
-
-    def _kick_resting_ball(self) -> None:
-        """Fire an armed kicker whose mouth already holds the ball (no new contact needed).
-
-        Uses the state read at the end of the previous step.
-        """
-        rows = self._state.tolist()
-        bx, by = rows[0][0:2]
-        for i, ((rx, ry, a, *_), speed) in enumerate(zip(rows[1:], self._armed)):
-            if speed <= 0.0 or self._z > self._heights[i]:
-                continue
-            reach2 = (self.robot_specs[i].radius + self.ball_spec.radius + MOUTH_TOLERANCE) ** 2
-            if ((bx - rx) ** 2 + (by - ry) ** 2 < reach2
-                    and self.time >= self._ready_at[i]
-                    and self._mouth_holds(i, rx, ry, a, bx, by)):
-                self._fire(i)
-                return
-
-    def _fire(self, i: int) -> None:
-        rs = self.robot_specs[i]
-        speed = self._armed[i]
-        a = self._bodies[i].angle
-        c, s = math.cos(a), math.sin(a)
-        ball = self._ball
-        if self._chip[i]:
-            horizontal = speed * math.cos(rs.chip_angle)
-            ball.velocity = (horizontal * c, horizontal * s)
-            self._z = 0.0
-            self._vz = speed * math.sin(rs.chip_angle)
-            self._airborne = True
-            self._hops = 0
-            self._sliding = False
-            self._friction.max_force = 0.0
-        else:
-            # A flat kick drives the ball along the carpet (a low bouncing ball included).
-            ball.velocity = (speed * c, speed * s)
-            self._z = self._vz = 0.0
-            self._airborne = False
-            self._set_sliding(True, speed)
-        self._armed[i] = 0.0
-        self._ready_at[i] = self.time + rs.kick_cooldown
-        self.kicked[i] = True
-        self.touched[i] = True
-        self.last_touch = i
-
     def _fly(self, h: float) -> None:
         """Ballistic height update over one substep, with fixed-loss bounces."""
         z = self._z + self._vz * h - 0.5 * GRAVITY * h * h
@@ -801,55 +548,6 @@ class World:
             self._set_sliding(False, 0.0)
         else:
             self._z, self._vz = 0.0, vz
-
-    def _dribble_candidates(self) -> list[int]:
-        """Robots with the dribbler on whose mouth is near enough to the ball to reach it
-        within this step (checked from the last state, so only these are checked per
-        substep)."""
-        bx, by, _, bvx, bvy, _ = self._state[0].tolist()
-        out = []
-        robots = self._state[1:, 0:3].tolist()
-        for i, ((rx, ry, a), on) in enumerate(zip(robots, self._dribble)):
-            if not on:
-                continue
-            rs = self.robot_specs[i]
-            reach = rs.front_distance + self.ball_spec.radius
-            near = 0.05 + (math.hypot(bvx, bvy) + 2.0 * rs.max_speed) * self.control_dt
-            if (bx - rx) ** 2 + (by - ry) ** 2 > (near + reach) ** 2:
-                continue
-            mouth_x, mouth_y = rx + reach * math.cos(a), ry + reach * math.sin(a)
-            if math.hypot(bx - mouth_x, by - mouth_y) < near:
-                out.append(i)
-        return out
-
-    def _apply_dribbler(self, i: int) -> None:
-        """Hold the ball against robot ``i``'s front for the next substep (see SSLRobotSpec).
-
-        Acts while the ball is in the mouth (touching the flat front within the kicker width,
-        or within the light barrier's tolerance of it) and on the carpet below the robot's
-        height.
-        """
-        if self._z > self._heights[i] or not self._in_mouth(i):
-            return
-        body, ball = self._bodies[i], self._ball
-        rx, ry = body.position
-        bx, by = ball.position
-        a = body.angle
-        c, s = math.cos(a), math.sin(a)
-        dx, dy = bx - rx, by - ry
-        rvx, rvy = body.velocity
-        w = body.angular_velocity
-        bvx, bvy = ball.velocity
-        # Sideways slip of the ball relative to the robot's surface point under it.
-        slip = -s * (bvx - (rvx - w * dy)) + c * (bvy - (rvy + w * dx))
-        force = self.robot_specs[i].dribbler_force
-        lateral = max(-force, min(force, -self.ball_spec.mass * slip / self.substep_dt))
-        fx = -force * c - lateral * s
-        fy = -force * s + lateral * c
-        ball.force = (fx, fy)
-        body.force = (-fx, -fy)
-        self.touched[i] = True
-        self.last_touch = i
 
     # ------------------------------------------------------------------------------------
     # Reading

@@ -49,7 +49,7 @@ from soccer_env.presets.images import (
 from soccer_env.sensors.images.common import _ONE, _SHIFT, _check_state, _per_robot, _Photometry
 from soccer_env.sensors.images.patterns import PATTERN
 from soccer_env.sensors.overhead import Camera
-from soccer_env.sim.world import robot_outline
+from soccer_env.sim.ssl import robot_outline
 from soccer_env.state import WorldState
 
 __all__ = ["OverheadRenderer"]
