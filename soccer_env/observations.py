@@ -56,6 +56,9 @@ class ObservationBuilder:
         agents: robot indices that get an observation, in the order of the output rows.
         game_low, game_high: bounds of the task's game-state entries.
         game_names: names of the game-state entries.
+        implementation: ``"auto"`` (plain Python for few agents seeing few robots, the linear
+            map otherwise: see :meth:`build`), ``"python"`` or ``"arrays"``; all give the
+            same observations.
 
     An agent's team-mates are the other robots of its team and its opponents those of the
     other team, both in robot order; every agent sees the other ``N - 1`` robots, so the rows
@@ -71,7 +74,12 @@ class ObservationBuilder:
         game_low: Sequence[float] = (),
         game_high: Sequence[float] = (),
         game_names: Sequence[str] = (),
+        implementation: str = "auto",
     ) -> None:
+        if implementation not in ("auto", "python", "arrays"):
+            raise ValueError(f"implementation must be one of ['auto', 'python', 'arrays'], "
+                             f"got {implementation!r}")
+        self.implementation = implementation
         self.teams = [int(t) for t in teams]
         self.n_robots = len(self.teams)
         self.own = list(agents)
@@ -190,9 +198,15 @@ class ObservationBuilder:
         assert len(perm) == self.size
         self._perm = np.asarray(perm, dtype=np.int64)
         # Few agents seeing few robots: plain Python beats numpy's per-call overhead.
-        self._small = n * (k + 2) <= 8
+        self._small = (n * (k + 2) <= 8 if self.implementation == "auto"
+                       else self.implementation == "python")
         self._low_list = self.low.tolist()
         self._high_list = self.high.tolist()
+
+    @property
+    def path(self) -> str:
+        """The implementation :meth:`build` uses: ``"python"`` or ``"arrays"``."""
+        return "python" if self._small else "arrays"
 
     def space(self) -> spaces.Box:
         """A fresh ``Box`` for one agent's observation."""

@@ -332,7 +332,10 @@ class HeadCameraSensor:
         The visibility test runs as one array pass over every (frame, object) pair of the step
         (the frames due in one step share the truth); the few objects that pass it (a handful
         per frame) are finished in plain Python, where numpy's per-call overhead would cost
-        more than the arithmetic.
+        more than the arithmetic. One function on purpose (it is longer than the package's
+        80-line guide): it is the hot path of humanoid perception, and the array pass and the
+        loop that finishes its candidates share a dozen intermediate arrays that helpers
+        would have to pass back and forth.
         """
         spec = self.spec
         m, p = self._m, self._p

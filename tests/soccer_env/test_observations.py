@@ -46,8 +46,8 @@ def test_builder_matches_reference(n_blue, n_yellow, path):
     blue, yellow = list(range(n_blue)), list(range(n_blue, n))
     teams = [0] * n_blue + [1] * n_yellow
     agents = list(range(n))[::-1]  # any order
-    b = ObservationBuilder(field, teams, agents, (-5, -5), (5, 5), ("g0", "g1"))
-    b._small = path == "python"  # force the implementation under test
+    b = ObservationBuilder(field, teams, agents, (-5, -5), (5, 5), ("g0", "g1"),
+                           implementation=path)
     game = rng.uniform(-1, 1, (n, 2))
     obs = b.build(state, game)
     assert obs.shape == (n, b.size) and obs.dtype == np.float32
@@ -67,8 +67,7 @@ def test_builder_matches_reference(n_blue, n_yellow, path):
 @pytest.mark.parametrize("path", ["python", "arrays"])
 def test_values_clipped_to_bounds(path):
     field = presets.field("ssl-div-b")
-    b = ObservationBuilder(field, [0], [0])
-    b._small = path == "python"
+    b = ObservationBuilder(field, [0], [0], implementation=path)
     robots = np.array([[0.0, 0.0, 0.0, 0.0, 0.0, 0.0]])
     ball = np.array([0.0, 0.0, 0.0, 1e6, 0.0, 0.0])  # absurd ball speed
     obs = b.build(WorldState(0.0, ball, robots, ("blue_0",), np.zeros(1)))[0]
@@ -78,5 +77,8 @@ def test_values_clipped_to_bounds(path):
 
 def test_implementation_choice():
     field = presets.field("ssl-div-b")
-    assert ObservationBuilder(field, [0], [0])._small
-    assert not ObservationBuilder(field, [0] * 6 + [1] * 6, range(12))._small
+    assert ObservationBuilder(field, [0], [0]).path == "python"
+    assert ObservationBuilder(field, [0] * 6 + [1] * 6, range(12)).path == "arrays"
+    assert ObservationBuilder(field, [0], [0], implementation="arrays").path == "arrays"
+    with pytest.raises(ValueError, match="implementation must be one of"):
+        ObservationBuilder(field, [0], [0], implementation="c")
