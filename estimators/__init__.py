@@ -5,9 +5,7 @@ Everything here takes and returns numpy arrays, depends on numpy only, and never
 """
 
 from .ball import CHI2_2DOF_999, BallFilterConfig, BallTracker, LeastSquaresBall
-from .ball_models import FrictionBallModel
 from .ball_pf import ParticleBallTracker
-from .camera import HeadCamera
 from .hough import FusedSighting, fuse_sightings, fusion_weights, hough_fuse, hough_lines
 from .kalman import KalmanFilter
 from .localization import KLDConfig, KLDLocalizer, kld_sample_size
@@ -26,7 +24,9 @@ from .models import (
     MIN_SIGMA_XY,
     PAPER_CYCLE,
     ConstantVelocityMotion,
+    FrictionBallModel,
     FrictionBallMotion,
+    HeadCamera,
     PoseMeasurement,
     PositionMeasurement,
     wrap_angle,
