@@ -4,10 +4,16 @@ Everything here takes and returns numpy arrays, depends on numpy only, and never
 ``soccer_env``. Random draws come from explicit ``numpy.random.Generator`` arguments.
 """
 
-from .ball import CHI2_2DOF_999, BallFilterConfig, BallTracker, LeastSquaresBall
 from .ball_pf import ParticleBallTracker
 from .hough import FusedSighting, fuse_sightings, fusion_weights, hough_fuse, hough_lines
-from .kalman import KalmanFilter
+from .kalman import (
+    CHI2_2DOF_999,
+    BallFilterConfig,
+    BallTracker,
+    KalmanFilter,
+    LeastSquaresBall,
+    RobotTracker,
+)
 from .localization import KLDConfig, KLDLocalizer, kld_sample_size
 from .meanshift import (
     KalmanMeanShift,
@@ -40,7 +46,6 @@ from .particle import (
     ungm_model,
     ungm_simulate,
 )
-from .robots import RobotTracker
 from .triangulation import Fix, triangulate
 
 __all__ = [

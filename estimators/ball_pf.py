@@ -65,7 +65,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .kalman import KalmanFilter
+from .kalman.core import KalmanFilter
 from .particle import FBPF, MFBPF, BootstrapPF
 
 __all__ = ["ParticleBallTracker", "FILTERS", "CHI2_2DOF_9999"]

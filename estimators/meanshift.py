@@ -115,7 +115,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from .kalman import KalmanFilter
+from .kalman.core import KalmanFilter
 from .particle import systematic_resample
 
 __all__ = ["mean_shift", "MeanShiftParticleFilter", "ParticleFilterTracker", "KalmanMeanShift",

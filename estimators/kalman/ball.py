@@ -20,7 +20,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .models import FrictionBallMotion, PositionMeasurement
+from ..models.measurement import PositionMeasurement
+from ..models.motion import FrictionBallMotion
 
 __all__ = ["BallFilterConfig", "BallTracker", "LeastSquaresBall", "CHI2_2DOF_999"]
 

@@ -32,7 +32,7 @@ import math
 
 import numpy as np
 
-from .models import MIN_SIGMA_THETA, MIN_SIGMA_XY, PoseMeasurement
+from ..models.measurement import MIN_SIGMA_THETA, MIN_SIGMA_XY, PoseMeasurement
 
 __all__ = ["RobotTracker"]
 
