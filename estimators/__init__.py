@@ -4,7 +4,6 @@ Everything here takes and returns numpy arrays, depends on numpy only, and never
 ``soccer_env``. Random draws come from explicit ``numpy.random.Generator`` arguments.
 """
 
-from .ball_pf import ParticleBallTracker
 from .hough import FusedSighting, fuse_sightings, fusion_weights, hough_fuse, hough_lines
 from .kalman import (
     CHI2_2DOF_999,
@@ -14,7 +13,6 @@ from .kalman import (
     LeastSquaresBall,
     RobotTracker,
 )
-from .localization import KLDConfig, KLDLocalizer, kld_sample_size
 from .meanshift import (
     KalmanMeanShift,
     MeanShiftParticleFilter,
@@ -41,6 +39,10 @@ from .particle import (
     FBPF,
     MFBPF,
     BootstrapPF,
+    KLDConfig,
+    KLDLocalizer,
+    ParticleBallTracker,
+    kld_sample_size,
     sfn,
     systematic_resample,
     ungm_model,

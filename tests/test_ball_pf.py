@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from estimators import ParticleBallTracker
-from estimators.ball_pf import FILTERS
+from estimators.particle.ball import FILTERS
 
 SIGMA = 0.1  # measurement noise [m]
 V = np.array([1.0, -0.5])  # the rolling ball's velocity [m/s]

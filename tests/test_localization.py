@@ -8,7 +8,12 @@ import math
 import numpy as np
 import pytest
 
-from estimators.localization import KLDConfig, KLDLocalizer, _normal_quantile, kld_sample_size
+from estimators.particle.localization import (
+    KLDConfig,
+    KLDLocalizer,
+    _normal_quantile,
+    kld_sample_size,
+)
 
 # Goal posts, corners and the centre-line ends of a 6 m x 4 m field.
 LANDMARKS = np.array([[3, 0.7], [3, -0.7], [-3, 0.7], [-3, -0.7], [3, 2], [3, -2], [-3, 2],

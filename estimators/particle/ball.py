@@ -65,8 +65,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .kalman.core import KalmanFilter
-from .particle import FBPF, MFBPF, BootstrapPF
+from ..kalman.core import KalmanFilter
+from .core import FBPF, MFBPF, BootstrapPF
 
 __all__ = ["ParticleBallTracker", "FILTERS", "CHI2_2DOF_9999"]
 
