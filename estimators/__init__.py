@@ -4,7 +4,15 @@ Everything here takes and returns numpy arrays, depends on numpy only, and never
 ``soccer_env``. Random draws come from explicit ``numpy.random.Generator`` arguments.
 """
 
-from .hough import FusedSighting, fuse_sightings, fusion_weights, hough_fuse, hough_lines
+from .fusion import (
+    Fix,
+    FusedSighting,
+    fuse_sightings,
+    fusion_weights,
+    hough_fuse,
+    hough_lines,
+    triangulate,
+)
 from .kalman import (
     CHI2_2DOF_999,
     BallFilterConfig,
@@ -48,7 +56,6 @@ from .particle import (
     ungm_model,
     ungm_simulate,
 )
-from .triangulation import Fix, triangulate
 
 __all__ = [
     "KalmanFilter",

@@ -1,6 +1,6 @@
 """Particle-filter ball tracking with paper 000's filters (SPEC 1.1).
 
-The fused ball positions of a team (Hough fusion, :func:`~estimators.hough.fuse_sightings`)
+The fused ball positions of a team (Hough fusion, :func:`~estimators.fusion.fuse_sightings`)
 jitter around the truth; paper 000 smooths and predicts them with a particle filter on the
 ball's state ``X = (px, py, vx, vy)`` [m, m, m/s, m/s] in the field frame.
 
