@@ -13,15 +13,7 @@ from .fusion import (
     hough_lines,
     triangulate,
 )
-from .kalman import (
-    CHI2_2DOF_999,
-    BallFilterConfig,
-    BallTracker,
-    KalmanFilter,
-    LeastSquaresBall,
-    RobotTracker,
-)
-from .meanshift import (
+from .image import (
     KalmanMeanShift,
     MeanShiftParticleFilter,
     ParticleFilterTracker,
@@ -31,6 +23,14 @@ from .meanshift import (
     ego_motion_shift,
     focal_length_px,
     mean_shift,
+)
+from .kalman import (
+    CHI2_2DOF_999,
+    BallFilterConfig,
+    BallTracker,
+    KalmanFilter,
+    LeastSquaresBall,
+    RobotTracker,
 )
 from .models import (
     MIN_SIGMA_XY,

@@ -115,8 +115,8 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from .kalman.core import KalmanFilter
-from .particle.core import systematic_resample
+from ..kalman.core import KalmanFilter
+from ..particle.core import systematic_resample
 
 __all__ = ["mean_shift", "MeanShiftParticleFilter", "ParticleFilterTracker", "KalmanMeanShift",
            "PlainMeanShift", "depth_from_size", "focal_length_px", "apparent_height",
