@@ -1,16 +1,30 @@
-"""Trackers on weight images."""
+"""Trackers on weight images (a colour-probability image, i.e. the back-projection of a colour
+table or a hue histogram, or a frame difference), whatever made the images.
 
-from .meanshift import (
+* :mod:`~estimators.image.meanshift`: mean shift on a weight image (:func:`mean_shift`) and
+  the batched window machinery the trackers share;
+* :mod:`~estimators.image.mspf`: paper 003's feature-restricted mean-shift particle filter
+  (:class:`MeanShiftParticleFilter`) and the plain particle filter it is compared with
+  (:class:`ParticleFilterTracker`);
+* :mod:`~estimators.image.following`: paper 004's Kalman-started mean shift with ego-motion
+  compensation (:class:`KalmanMeanShift`), plain mean shift (:class:`PlainMeanShift`), and the
+  pinhole helpers (:func:`ego_motion_shift`, :func:`depth_from_size`,
+  :func:`apparent_height`, :func:`focal_length_px`).
+
+Everything here is numpy-only: making the weight images from camera frames (colour tables,
+histograms) is the caller's business.
+"""
+
+from .following import (
     KalmanMeanShift,
-    MeanShiftParticleFilter,
-    ParticleFilterTracker,
     PlainMeanShift,
     apparent_height,
     depth_from_size,
     ego_motion_shift,
     focal_length_px,
-    mean_shift,
 )
+from .meanshift import mean_shift
+from .mspf import MeanShiftParticleFilter, ParticleFilterTracker
 
 __all__ = [
     "mean_shift",
