@@ -5,6 +5,7 @@ Everything here takes and returns numpy arrays, depends on numpy only, and never
 """
 
 from .fusion import (
+    FUSION_WEIGHTINGS,
     Fix,
     FusedSighting,
     fuse_sightings,
@@ -14,6 +15,7 @@ from .fusion import (
     triangulate,
 )
 from .image import (
+    MEAN_SHIFT_KERNELS,
     KalmanMeanShift,
     MeanShiftParticleFilter,
     ParticleFilterTracker,
@@ -46,6 +48,7 @@ from .models import (
 from .particle import (
     FBPF,
     MFBPF,
+    PARTICLE_FILTERS,
     BootstrapPF,
     KLDConfig,
     KLDLocalizer,
@@ -56,6 +59,7 @@ from .particle import (
     ungm_model,
     ungm_simulate,
 )
+from .registry import Registry
 
 __all__ = [
     "KalmanFilter",
@@ -100,4 +104,8 @@ __all__ = [
     "focal_length_px",
     "apparent_height",
     "ego_motion_shift",
+    "Registry",
+    "PARTICLE_FILTERS",
+    "FUSION_WEIGHTINGS",
+    "MEAN_SHIFT_KERNELS",
 ]

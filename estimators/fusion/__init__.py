@@ -7,7 +7,14 @@
   landmarks (:func:`triangulate`).
 """
 
-from .hough import FusedSighting, fuse_sightings, fusion_weights, hough_fuse, hough_lines
+from .hough import (
+    FUSION_WEIGHTINGS,
+    FusedSighting,
+    fuse_sightings,
+    fusion_weights,
+    hough_fuse,
+    hough_lines,
+)
 from .triangulation import Fix, triangulate
 
 __all__ = [
@@ -16,6 +23,7 @@ __all__ = [
     "fusion_weights",
     "fuse_sightings",
     "FusedSighting",
+    "FUSION_WEIGHTINGS",
     "Fix",
     "triangulate",
 ]

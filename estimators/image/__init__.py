@@ -23,11 +23,12 @@ from .following import (
     ego_motion_shift,
     focal_length_px,
 )
-from .meanshift import mean_shift
+from .meanshift import MEAN_SHIFT_KERNELS, mean_shift
 from .mspf import MeanShiftParticleFilter, ParticleFilterTracker
 
 __all__ = [
     "mean_shift",
+    "MEAN_SHIFT_KERNELS",
     "MeanShiftParticleFilter",
     "ParticleFilterTracker",
     "KalmanMeanShift",

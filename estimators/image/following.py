@@ -42,7 +42,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..kalman.core import KalmanFilter
-from .meanshift import KERNELS, _count, _image, _number, _point, _window_size, _Windows
+from .meanshift import MEAN_SHIFT_KERNELS, _count, _image, _number, _point, _window_size, _Windows
 
 __all__ = ["KalmanMeanShift", "PlainMeanShift", "depth_from_size", "focal_length_px",
            "apparent_height", "ego_motion_shift"]
@@ -145,8 +145,7 @@ class _MeanShiftTrack:
                             max(int(round(h * self.window_scale)), 1))
         self.max_iter = _count("max_iter", max_iter)
         self.eps = _number("eps", eps, allow_low=True)
-        if kernel not in KERNELS:
-            raise ValueError(f"kernel must be one of {KERNELS}, got {kernel!r}")
+        MEAN_SHIFT_KERNELS.check(kernel, "kernel")
         self.kernel = kernel
         self.min_fill = _number("min_fill", min_fill, allow_low=True, high=1.0)
         self._win: _Windows | None = None

@@ -40,9 +40,34 @@ from collections.abc import Sequence
 
 import numpy as np
 
-__all__ = ["mean_shift"]
+from ..registry import Registry
 
-KERNELS = ("flat", "epanechnikov")
+__all__ = ["mean_shift", "MEAN_SHIFT_KERNELS"]
+
+
+def _flat(xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
+    """The flat kernel: every pixel of the window weighs 1."""
+    return np.ones_like(xs)
+
+
+def _epanechnikov(xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
+    """The Epanechnikov profile ``k = max(0, 1 - r^2)`` on the ellipse inscribed in the
+    window (see the module docstring)."""
+    h, w = xs.shape
+    cx, cy = 0.5 * (w - 1), 0.5 * (h - 1)
+    r2 = ((xs - cx) / (0.5 * w)) ** 2 + ((ys - cy) / (0.5 * h)) ** 2
+    return np.maximum(1.0 - r2, 0.0)
+
+
+#: Mean-shift kernels by name: ``k(xs, ys) -> (h, w)`` weights of a window's pixels from their
+#: local coordinates ``xs``, ``ys`` (``(h, w)`` arrays, ``0 .. w - 1`` and ``0 .. h - 1``).
+MEAN_SHIFT_KERNELS = Registry("mean-shift kernel", [
+    ("flat", _flat,
+     "flat kernel: every pixel in the window counts the same (as OpenCV's cv2.meanShift)"),
+    ("epanechnikov", _epanechnikov,
+     "Epanechnikov kernel (Comaniciu et al.): pixels weighted by 1 - r^2 on the ellipse "
+     "inscribed in the window, so those near its centre count most"),
+])
 
 
 # ------------------------------------------------------------------------------------------
@@ -112,8 +137,7 @@ class _Windows:
 
     def __init__(self, w: int, h: int, shape: tuple[int, int], kernel: str = "flat",
                  opencv: bool = False) -> None:
-        if kernel not in KERNELS:
-            raise ValueError(f"kernel must be one of {KERNELS}, got {kernel!r}")
+        profile = MEAN_SHIFT_KERNELS[MEAN_SHIFT_KERNELS.check(kernel, "kernel")]
         height, width = shape
         if w > width or h > height:
             raise ValueError(f"window size ({w}, {h}) must fit in the image ({width} x "
@@ -123,11 +147,7 @@ class _Windows:
         self.cx, self.cy = 0.5 * (w - 1), 0.5 * (h - 1)
         # The point the centroid is compared with: the window's centre, or OpenCV's w / 2.
         self.ox, self.oy = (0.5 * w, 0.5 * h) if opencv else (self.cx, self.cy)
-        if kernel == "flat":
-            k = np.ones_like(xs)
-        else:  # Epanechnikov profile k = 1 - r^2 on the ellipse inscribed in the window
-            r2 = ((xs - self.cx) / (0.5 * w)) ** 2 + ((ys - self.cy) / (0.5 * h)) ** 2
-            k = np.maximum(1.0 - r2, 0.0)
+        k = profile(xs, ys)
         self.moments = np.stack([k, k * xs, k * ys, np.ones_like(xs)], axis=-1).reshape(-1, 4)
         self.offsets = (np.arange(h)[:, None] * width + np.arange(w)[None, :]).ravel()
         self.area = w * h
@@ -203,7 +223,8 @@ def mean_shift(weight_image: np.ndarray, window: Sequence[int], max_iter: int = 
             inside the image if it sticks out.
         max_iter: at most this many mean-shift steps.
         eps: stop when the window moves less than this [px] (or not at all).
-        kernel: ``"flat"`` (as ``cv2.meanShift``) or ``"epanechnikov"``.
+        kernel: a name in :data:`MEAN_SHIFT_KERNELS`: ``"flat"`` (as ``cv2.meanShift``) or
+            ``"epanechnikov"``.
         opencv_compatible: compare the centroid with ``(w / 2, h / 2)`` as OpenCV does (its
             windows, exactly) instead of the window's centre ``((w - 1) / 2, (h - 1) / 2)``.
 

@@ -56,7 +56,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..particle.core import systematic_resample
-from .meanshift import KERNELS, _count, _image, _number, _point, _window_size, _Windows
+from .meanshift import MEAN_SHIFT_KERNELS, _count, _image, _number, _point, _window_size, _Windows
 
 __all__ = ["MeanShiftParticleFilter", "ParticleFilterTracker"]
 
@@ -226,7 +226,8 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         max_motion_weight: the saturated ``a`` (0: colour only).
         mean_shift_iter: mean-shift steps per particle and frame (at most).
         eps: mean shift stops when a window moves less than this [px].
-        kernel: ``"flat"`` or ``"epanechnikov"``.
+        kernel: a name in :data:`~estimators.image.meanshift.MEAN_SHIFT_KERNELS` (``"flat"``
+            or ``"epanechnikov"``).
         area: the target's colour mass ``sum_W M_c`` with the window on it [px^2] (its patch
             area weighted by colour probability); None: measured on the first image,
             in the window that mean shift (colour only) reaches from ``position``.
@@ -258,8 +259,7 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
                          v_ref=v_ref, max_motion_weight=max_motion_weight)
         self.mean_shift_iter = _count("mean_shift_iter", mean_shift_iter, 0)
         self.eps = _number("eps", eps, allow_low=True)
-        if kernel not in KERNELS:
-            raise ValueError(f"kernel must be one of {KERNELS}, got {kernel!r}")
+        MEAN_SHIFT_KERNELS.check(kernel, "kernel")
         self.kernel = kernel
         self.area = None if area is None else _number("area", area)
         self.area_tolerance = _number("area_tolerance", area_tolerance)

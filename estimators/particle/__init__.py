@@ -14,6 +14,7 @@ from .ball import CHI2_2DOF_9999, ParticleBallTracker
 from .core import (
     FBPF,
     MFBPF,
+    PARTICLE_FILTERS,
     BootstrapPF,
     sfn,
     systematic_resample,
@@ -26,6 +27,7 @@ __all__ = [
     "BootstrapPF",
     "FBPF",
     "MFBPF",
+    "PARTICLE_FILTERS",
     "sfn",
     "systematic_resample",
     "ungm_model",

@@ -66,9 +66,9 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..kalman.core import KalmanFilter
-from .core import FBPF, MFBPF, BootstrapPF
+from .core import PARTICLE_FILTERS, BootstrapPF
 
-__all__ = ["ParticleBallTracker", "FILTERS", "CHI2_2DOF_9999"]
+__all__ = ["ParticleBallTracker", "CHI2_2DOF_9999"]
 
 #: 99.99 % quantile of the chi-square distribution with 2 degrees of freedom, ``-2 ln 1e-4``.
 CHI2_2DOF_9999 = 18.420680743952367
@@ -76,9 +76,6 @@ CHI2_2DOF_9999 = 18.420680743952367
 #: A re-initialisation takes its velocity from the measurement before it if that is at most
 #: this old [s].
 _MAX_DIFFERENCE_SPAN = 0.3
-
-#: Names of the filters :class:`ParticleBallTracker` can run.
-FILTERS = ("bootstrap", "fbpf", "mfbpf")
 
 
 def _positive(name: str, value: float, allow_zero: bool = False) -> float:
@@ -114,7 +111,8 @@ class ParticleBallTracker:
 
     Args:
         rng: the generator of every random draw.
-        filter: ``"bootstrap"``, ``"fbpf"`` or ``"mfbpf"`` (paper 000's, the default).
+        filter: a name in :data:`~estimators.particle.core.PARTICLE_FILTERS`:
+            ``"bootstrap"``, ``"fbpf"`` or ``"mfbpf"`` (paper 000's, the default).
         n_particles: number of particles (paper 000: 100).
         accel_sigma: standard deviation of the white acceleration noise ``W`` [m/s^2].
         deceleration: rolling deceleration ``a`` [m/s^2]; 0 is the plain constant-velocity
@@ -155,8 +153,7 @@ class ParticleBallTracker:
                  kalman_start: int = 10) -> None:
         if not isinstance(rng, np.random.Generator):
             raise TypeError("rng must be a numpy.random.Generator")
-        if filter not in FILTERS:
-            raise ValueError(f"filter must be one of {list(FILTERS)}, got {filter!r}")
+        PARTICLE_FILTERS.check(filter, "filter")
         if isinstance(n_particles, bool) or not isinstance(n_particles, (int, np.integer)) \
                 or n_particles < 2:
             raise ValueError(f"n_particles must be an integer >= 2, got {n_particles!r}")
@@ -195,7 +192,7 @@ class ParticleBallTracker:
             kwargs["fission_variance"] = fs * fs
         if filter == "mfbpf":
             kwargs["sfn_when"] = sfn_when
-        self._cls = {"bootstrap": BootstrapPF, "fbpf": FBPF, "mfbpf": MFBPF}[filter]
+        self._cls = PARTICLE_FILTERS[filter]
         self._kwargs = kwargs
         self.reset()
 
