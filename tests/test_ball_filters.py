@@ -49,20 +49,20 @@ def trajectory(duration=3.0, fps=25.0, a=0.23, v0=(2.0, 1.2), wall_y=None, e=0.6
 def test_tracker_contract(name):
     f = make(name)
     assert f.estimate(0.0) is None and not f.initialized
-    f.add(0.0, np.zeros((0, 2)))  # an empty frame is fine
+    f.update(0.0, np.zeros((0, 2)))  # an empty frame is fine
     assert f.estimate(0.0) is None
     t, truth = trajectory(1.0)
     rng = np.random.default_rng(0)
     for tk, s in zip(t, truth):
-        f.add(tk, (s[:2] + rng.normal(0, 0.01, 2))[None])
+        f.update(tk, (s[:2] + rng.normal(0, 0.01, 2))[None])
     est = f.estimate(t[-1] + 0.1)
     assert est.shape == (4,) and np.isfinite(est).all()
     np.testing.assert_array_equal(est, f.estimate(t[-1] + 0.1))  # estimating changes nothing
     with pytest.raises(ValueError, match="NaN measurements are refused"):
-        f.add(t[-1] + 0.04, np.array([[np.nan, 0.0]]))
+        f.update(t[-1] + 0.04, np.array([[np.nan, 0.0]]))
     np.testing.assert_array_equal(est, f.estimate(t[-1] + 0.1))
     with pytest.raises(ValueError):
-        f.add(t[-1] + 0.04, np.zeros((1, 3)))
+        f.update(t[-1] + 0.04, np.zeros((1, 3)))
     f.reset()
     assert f.estimate(1.0) is None
 
@@ -80,7 +80,7 @@ def test_constant_velocity_tracker_matches_filterpy():
     rng = np.random.default_rng(3)
     for k, (tk, s) in enumerate(zip(t, truth)):
         z = s[:2] + rng.normal(0, cfg.sigma_xy, 2)
-        ours.add(tk, z[None])
+        ours.update(tk, z[None])
         if k == 0:
             ref.x = np.array([z[0], z[1], 0.0, 0.0])
             ref.P = np.eye(4) * cfg.tau**2
@@ -105,7 +105,7 @@ def test_tracker_arithmetic_equals_the_generic_filter(propagation):
     for tk, s in zip(t + rng.uniform(0, 0.01, len(t)), truth):
         z = s[:2] + rng.normal(0, 0.02, 2)
         robot = s[:2] + rng.normal(0, 0.3, 2)
-        ours.add(tk, z[None], robot[None])
+        ours.update(tk, z[None], robot[None])
         if ref is None:
             ref = KalmanFilter([z[0], z[1], 0, 0], np.eye(4) * cfg.tau**2)
         else:
@@ -127,7 +127,7 @@ def present_time_errors(tracker, latency, fps=25.0, noise=0.025, seed=0, **traj)
     lag = int(round(latency * fps))
     est_err, raw_err = [], []
     for k in range(lag, len(t)):
-        tracker.add(t[k - lag], z[k - lag][None])  # captured lag frames ago, arriving now
+        tracker.update(t[k - lag], z[k - lag][None])  # captured lag frames ago, arriving now
         est = tracker.estimate(t[k])
         est_err.append(np.hypot(*(est[:2] - truth[k, :2])))
         raw_err.append(np.hypot(*(z[k - lag] - truth[k, :2])))
@@ -152,8 +152,8 @@ def test_no_compensation_lags_by_the_latency():
     lag = 3
     comp, naive = make("ekf"), make("ekf")
     for k in range(lag, len(t)):
-        comp.add(t[k - lag], truth[k - lag, :2][None])
-        naive.add(t[k], truth[k - lag, :2][None])  # pretends the detection is fresh
+        comp.update(t[k - lag], truth[k - lag, :2][None])
+        naive.update(t[k], truth[k - lag, :2][None])  # pretends the detection is fresh
     x_true = truth[-1, 0]
     assert abs(comp.estimate(t[-1])[0] - x_true) < 0.01
     assert abs(naive.estimate(t[-1])[0] - x_true) > 0.15  # ~ 120 ms at 2 m/s
@@ -170,7 +170,7 @@ def test_gate_ignores_false_detections():
             dets.append(rng.uniform(-4, 4, 2))
         if k % 11 == 7:  # or alone, with the ball missed
             dets = [rng.uniform(-4, 4, 2)]
-        f.add(tk, np.array(dets))
+        f.update(tk, np.array(dets))
         errors.append(np.hypot(*(f.estimate(tk)[:2] - s[:2])))
         if k == 10:
             locked = (f.resets, f.rejected)  # the first frames lock on with one reset
@@ -184,7 +184,7 @@ def test_reset_after_a_bounce_locks_on_within_a_few_frames():
     f = make("ekf")
     errs = []
     for tk, s in zip(t, truth):
-        f.add(tk, s[:2][None])
+        f.update(tk, s[:2][None])
         errs.append(np.hypot(*(f.estimate(tk)[2:] - s[2:])))
     assert f.resets + f.maneuvers >= 1
     assert max(errs[bounce + 4:]) < 0.2  # velocity re-acquired within 4 frames
@@ -201,17 +201,17 @@ def test_out_of_order_frames_are_replayed():
     frames = [(tk, model.predict(start, tk)[:2] + rng.normal(0, 0.01, 2)) for tk in times]
     in_order, jumbled = make("ekf"), make("ekf")
     for tk, z in frames:
-        in_order.add(tk, z[None])
+        in_order.update(tk, z[None])
     order = np.arange(len(frames))
     for k in range(0, len(order) - 3, 4):  # swap neighbours within 0.1 s
         order[[k, k + 2]] = order[[k + 2, k]]
     for k in order:
-        jumbled.add(frames[k][0], frames[k][1][None])
+        jumbled.update(frames[k][0], frames[k][1][None])
     np.testing.assert_allclose(jumbled.estimate(2.1), in_order.estimate(2.1), atol=1e-12)
     late = make("ekf")
     for tk, z in frames:
-        late.add(tk, z[None])
-    late.add(0.0, np.zeros((1, 2)))  # older than the replay window: dropped, counted
+        late.update(tk, z[None])
+    late.update(0.0, np.zeros((1, 2)))  # older than the replay window: dropped, counted
     assert late.late == 1
 
 
@@ -240,10 +240,10 @@ def test_two_phase_model_follows_a_kick():
     for name, two in (("one", None), ("two", (bs.sliding_deceleration, bs.k_switch))):
         f = BallTracker(BallFilterConfig(deceleration=bs.rolling_deceleration, sigma_xy=0.002,
                                          two_phase=two))
-        f.add(0.0, np.zeros((1, 2)))
+        f.update(0.0, np.zeros((1, 2)))
         errs = []
         for k, (xt, vt) in enumerate(truth):
-            f.add((k + 1) * dt, np.array([[xt, 0.0]]))
+            f.update((k + 1) * dt, np.array([[xt, 0.0]]))
             ahead = f.estimate((k + 1) * dt + 0.1)  # 100 ms ahead
             errs.append(abs(ahead[2] - max(vt - 3.0 * 0.1, 0.0)))
         errors[name] = np.mean(errs[5:25])
@@ -274,7 +274,7 @@ def test_covariance_stays_symmetric_positive_definite():
         else:
             dets = state[None, :2] + rng.normal(0, 0.01, (1, 2))
         obstacles = rng.uniform(-4, 4, (3, 2))
-        f.add(t, dets, obstacles)
+        f.update(t, dets, obstacles)
         if k % 97 == 0:
             _, P = f.estimate_with_covariance(t + 0.05)
             assert np.allclose(P, P.T) and np.linalg.eigvalsh(P).min() > 0
@@ -317,12 +317,12 @@ def test_reset_from_simultaneous_camera_views_still_finds_the_velocity():
     """Overlapping cameras capturing at the same instant give two detections with one time
     stamp; a reset must not take a zero velocity from them."""
     f = BallTracker(BallFilterConfig(sigma_xy=0.0014, maneuver_radius=None))
-    f.add(0.0, [(0.0, 0.0)])
+    f.update(0.0, [(0.0, 0.0)])
     for k in range(1, 10):
         t = k / 60
         z = (3.0 * t, 0.0)
-        f.add(t, [z])
-        f.add(t, [z])  # the same ball seen by a second camera at the same capture time
+        f.update(t, [z])
+        f.update(t, [z])  # the same ball seen by a second camera at the same capture time
     assert f.resets >= 1
     assert f.estimate(9 / 60)[2] == pytest.approx(3.0, abs=0.1)
 
@@ -331,9 +331,9 @@ def test_maneuver_follows_a_kick_at_once():
     """A ball at rest kicked at 5 m/s: the first moving detection opens up the velocity."""
     f = BallTracker(BallFilterConfig(sigma_xy=0.0014))
     for k in range(10):
-        f.add(k / 60, [(0.0, 0.0)])
+        f.update(k / 60, [(0.0, 0.0)])
     for k in range(1, 6):
-        f.add(9 / 60 + k / 60, [(5.0 * k / 60, 0.0)])
+        f.update(9 / 60 + k / 60, [(5.0 * k / 60, 0.0)])
         if k == 1:
             assert f.maneuvers == 1 and f.resets == 0
             assert f.estimate(9 / 60 + k / 60)[2] > 2.0
@@ -344,8 +344,8 @@ def test_no_maneuver_from_a_detection_too_far_for_the_time_elapsed():
     """A spurious detection 10 cm away a millisecond later is not a kick."""
     f = BallTracker(BallFilterConfig(sigma_xy=0.0014))
     for k in range(10):
-        f.add(k / 60, [(0.0, 0.0)])
-    f.add(9 / 60 + 0.001, [(0.1, 0.0)])
+        f.update(k / 60, [(0.0, 0.0)])
+    f.update(9 / 60 + 0.001, [(0.1, 0.0)])
     assert f.maneuvers == 0 and f.rejected == 1
     assert abs(f.estimate(0.2)[2]) < 0.1
 
@@ -358,15 +358,15 @@ def test_reset_from_views_a_moment_apart_keeps_a_physical_speed():
     sigma = 0.025
     f = BallTracker(BallFilterConfig(sigma_xy=sigma, maneuver_radius=None))
     for k in range(10):
-        f.add(k * 0.04, [(0.0, 0.0)])
+        f.update(k * 0.04, [(0.0, 0.0)])
     # Knocked 0.5 m away at 4 m/s along x; seen by two cameras 0.3 ms apart, noise 2 sigma
     # in opposite directions along y.
     t1 = 0.4
-    f.add(t1, [(0.5, 2 * sigma)])
-    f.add(t1 + 0.0003, [(0.5 + 4.0 * 0.0003, -2 * sigma)])
+    f.update(t1, [(0.5, 2 * sigma)])
+    f.update(t1 + 0.0003, [(0.5 + 4.0 * 0.0003, -2 * sigma)])
     assert f.resets == 1
     assert np.hypot(*f.estimate(t1 + 0.0003)[2:]) < 10.0
     for k in range(1, 6):
         t = t1 + k * 0.04
-        f.add(t, [(0.5 + 4.0 * (t - t1), 0.0)])
+        f.update(t, [(0.5 + 4.0 * (t - t1), 0.0)])
     assert f.estimate(t1 + 0.2)[2] == pytest.approx(4.0, abs=0.5)

@@ -94,7 +94,7 @@ def test_robot_tracker_equals_six_state_filter():
         who = [i for i in range(2) if rng.random() < 0.8]
         z = np.column_stack([rng.uniform(-1, 1, (len(who), 2)),
                              wrap_angle(rng.uniform(-4, 4, len(who)))])
-        tracker.update(who, t, z)
+        tracker.update(t, z, who)
         for k, i in enumerate(who):
             if filters[i] is None:
                 filters[i] = KalmanFilter(np.concatenate([z[k], np.zeros(3)]),
@@ -121,10 +121,10 @@ def test_robot_tracker_follows_a_turning_robot_across_the_angle_wrap():
         t = k / 60
         truth = np.array([math.cos(t), math.sin(t), wrap_angle(3.0 + 4.0 * t)])
         z = truth + rng.normal(0, [0.002, 0.002, 0.01])
-        tracker.update([0], t, z[None])
-        pose, vel = tracker.estimate(t)
-        errs.append(abs(wrap_angle(pose[0, 2] - truth[2])))
-        omegas.append(vel[0, 2])
+        tracker.update(t, z[None], [0])
+        est = tracker.estimate(t)
+        errs.append(abs(wrap_angle(est[0, 2] - truth[2])))
+        omegas.append(est[0, 5])
     assert max(errs[50:]) < 0.05
     assert np.mean(omegas[100:]) == pytest.approx(4.0, rel=0.05)
 
@@ -132,11 +132,11 @@ def test_robot_tracker_follows_a_turning_robot_across_the_angle_wrap():
 def test_robot_tracker_bad_input():
     tr = RobotTracker(2)
     with pytest.raises(ValueError, match=r"index must be in 0..1"):
-        tr.update([2], 0.0, np.zeros((1, 3)))
+        tr.update(0.0, np.zeros((1, 3)), [2])
     with pytest.raises(ValueError, match="NaN measurements are refused"):
-        tr.update([0], 0.0, np.array([[np.nan, 0, 0]]))
+        tr.update(0.0, np.array([[np.nan, 0, 0]]), [0])
     with pytest.raises(ValueError, match=r"z must have shape \(1, 3\)"):
-        tr.update([0], 0.0, np.zeros((1, 2)))
+        tr.update(0.0, np.zeros((1, 2)), [0])
     assert not tr.seen.any()
-    tr.update([0, 0], [1.0, 0.5], np.zeros((2, 3)))  # the second is older: dropped
+    tr.update([1.0, 0.5], np.zeros((2, 3)), [0, 0])  # the second is older: dropped
     assert tr.seen.tolist() == [True, False] and tr.dropped == 1

@@ -1,8 +1,10 @@
 """Ball trackers for delayed overhead-camera detections: the EKF of paper 002 and its baselines.
 
-Every tracker takes detection frames ``add(t, detections, obstacles)`` (capture time ``t`` [s],
-detected ball positions ``(k, 2)`` [m], robot positions ``(j, 2)`` seen in the same frame) and
-answers ``estimate(t) -> (x, y, vx, vy)`` for any later time ``t``.
+Both trackers follow the tracker protocol (:class:`~estimators.protocol.Tracker`): they take
+detection frames ``update(t, detections, obstacles)`` (capture time ``t`` [s], detected ball
+positions ``(k, 2)`` [m], robot positions ``(j, 2)`` seen in the same frame), answer
+``estimate(t) -> (x, y, vx, vy)`` for any later time ``t`` (None before the first detection)
+and forget everything on ``reset()``.
 
 Latency compensation (paper 002, SPEC 1.3): a measurement corrects the state *at its capture
 time*, and the estimate is predicted from there to whatever time is asked, the present or the
@@ -293,7 +295,7 @@ class BallTracker:
 
     # ------------------------------------------------------------------------------------
 
-    def add(self, t: float, detections, obstacles=None) -> None:
+    def update(self, t: float, detections, obstacles=None) -> None:
         """Process one frame captured at ``t`` with ball detections ``(k, 2)`` (k may be 0)
         and robot positions seen in it (for eq. 19; ``(j, 2)``, or poses whose first two
         entries are the position)."""
@@ -320,6 +322,8 @@ class BallTracker:
         horizon = self._log[-1][0] - self.config.history
         while len(self._log) > 1 and self._log[0][0] < horizon:
             self._base = self._log.pop(0)[3]
+
+    add = update  # alias for callers outside estimators; removed when they move to the protocol
 
     def estimate(self, t: float) -> np.ndarray | None:
         """State ``(x, y, vx, vy)`` predicted to time ``t`` (None before the first frame)."""
@@ -473,6 +477,7 @@ class LeastSquaresBall:
         self.reset()
 
     def reset(self) -> None:
+        """Forget everything (a new episode)."""
         self._t: list[float] = []
         self._z: list[np.ndarray] = []
 
@@ -484,7 +489,9 @@ class LeastSquaresBall:
     def time(self) -> float:
         return self._t[-1] if self._t else -math.inf
 
-    def add(self, t: float, detections, obstacles=None) -> None:
+    def update(self, t: float, detections, obstacles=None) -> None:
+        """Process one frame captured at ``t`` with ball detections ``(k, 2)`` (k may be 0);
+        ``obstacles`` is accepted for the protocol's sake and not used."""
         dets = np.asarray(detections, dtype=np.float64).reshape(-1, 2) if len(
             detections) else np.zeros((0, 2))
         if not (math.isfinite(t) and np.isfinite(dets).all()):
@@ -500,7 +507,11 @@ class LeastSquaresBall:
         self._z.insert(i, z.copy())
         del self._t[: -self.window], self._z[: -self.window]
 
+    add = update  # alias for callers outside estimators; removed when they move to the protocol
+
     def estimate(self, t: float) -> np.ndarray | None:
+        """State ``(x, y, vx, vy)`` extrapolated to time ``t`` (None before the first
+        detection)."""
         if not self._t:
             return None
         if len(self._t) == 1:
