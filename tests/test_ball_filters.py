@@ -109,7 +109,7 @@ def test_tracker_arithmetic_equals_the_generic_filter(propagation):
         if ref is None:
             ref = KalmanFilter([z[0], z[1], 0, 0], np.eye(4) * cfg.tau**2)
         else:
-            sigma_v = ours._sigma_v(ref.x[:2], [robot.tolist()])
+            sigma_v = ours.velocity_sigma(ref.x[:2], robot[None])
             x_pred, F, Q = motion.transition(ref.x, tk - t_prev, sigma_v)
             ref.predict(F, Q, x_pred)
             ref.update(z, meas.H, meas.R)
@@ -218,9 +218,9 @@ def test_out_of_order_frames_are_replayed():
 def test_collision_noise_follows_eq_19():
     f = BallTracker(PAPER)
     c = PAPER
-    far = f._sigma_v((0.0, 0.0), [[5.0, 0.0]])
-    near = f._sigma_v((0.0, 0.0), [[0.2, 0.0], [3.0, 1.0]])
-    assert far == c.sigma_r
+    far = f.velocity_sigma((0.0, 0.0), [[5.0, 0.0]])
+    near = f.velocity_sigma((0.0, 0.0), np.array([[0.2, 0.0], [3.0, 1.0]]))
+    assert far == c.sigma_r and f.velocity_sigma((0.0, 0.0)) == c.sigma_r  # no robots
     assert near == pytest.approx(c.gain_k * (c.robot_radius + c.ball_radius) / 0.2 * c.sigma_r)
 
 

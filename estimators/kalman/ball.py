@@ -356,8 +356,17 @@ class BallTracker:
             decel = c.two_phase[0]
         return self.motion.step(*tr.x, dt, decel)
 
+    def velocity_sigma(self, position, obstacles=None) -> float:
+        """The velocity noise ``sigma_v`` [m/s per paper cycle] of eq. 19 for a ball at
+        ``position`` ``(x, y)`` [m] with robots at ``obstacles`` (``(j, 2)``, or poses whose
+        first two entries are the position; None: no robots): ``sigma_r``, raised near a robot
+        when ``collision_noise`` is on (what :meth:`update` uses between two frames)."""
+        obs = _points("obstacles", obstacles, exact=False) if obstacles is not None else []
+        return self._sigma_v(position, obs)
+
     def _sigma_v(self, position, obstacles: list) -> float:
-        """Eq. 19 of paper 002."""
+        """Eq. 19 of paper 002 (:meth:`velocity_sigma` with the obstacles already a list of
+        rows)."""
         c = self.config
         if not c.collision_noise or not obstacles:
             return c.sigma_r

@@ -21,7 +21,7 @@ from .core import (
     ungm_model,
     ungm_simulate,
 )
-from .localization import KLDConfig, KLDLocalizer, kld_sample_size
+from .localization import KLDConfig, KLDLocalizer, kld_sample_size, normal_quantile
 
 __all__ = [
     "BootstrapPF",
@@ -37,4 +37,5 @@ __all__ = [
     "KLDConfig",
     "KLDLocalizer",
     "kld_sample_size",
+    "normal_quantile",
 ]
