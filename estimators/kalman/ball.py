@@ -146,7 +146,7 @@ def _points(name: str, value, exact: bool = True) -> list:
 # the state is a 4-tuple and the covariance three 2 x 2 row-major blocks
 # ``P = [[P11, P12], [P12^T, P22]]``; with ``F = [[I, A], [0, B]]`` and ``H = [I 0]`` the
 # equations of :class:`~estimators.kalman.KalmanFilter` reduce to the block forms below.
-# tests/test_ball_filters.py checks them against that class to 1e-10.
+# tests/estimators/kalman/test_ball.py checks them against that class to 1e-10.
 # --------------------------------------------------------------------------------------------
 
 _Mat = tuple[float, float, float, float]

@@ -18,7 +18,7 @@ and updating with ``z`` of variance ``r``: ``y = z - p``, ``S = P00 + r``, ``K =
 
 These are a dozen multiply-adds per axis, so they run in plain Python floats: a camera frame
 brings a handful of detections, sizes at which numpy's per-call overhead would cost more than
-the arithmetic. ``tests/test_kalman.py`` checks them against the 6-state
+the arithmetic. ``tests/estimators/kalman/test_robots.py`` checks them against the 6-state
 :class:`~estimators.kalman.KalmanFilter` to 1e-9.
 
 Measurements carry their capture time; a robot is predicted to it before the update, so
