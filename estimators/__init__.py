@@ -2,6 +2,14 @@
 
 Everything here takes and returns numpy arrays, depends on numpy only (never on ``soccer_env``
 or ``agents``), and draws random numbers from explicit ``numpy.random.Generator`` arguments.
+
+"Paper 000" to "paper 004" are the five source papers, listed with full citations in the
+README's "Source papers" section: 000 Xu, Xie, Wang, Ni 2012 (target localization by
+cooperative soccer robots in Hough space); 001 Guo, Li 2013 (mobile-robot localization from
+obstacle-ground corners); 002 Zhao, Wang, Li 2012 (the extended Kalman filter in robot soccer);
+003 Li, Wu, Kong 2010 (the mean-shift, feature-restricted particle filter); 004 Yu, Wei, Zhang
+2010 (person following with a monocular camera).
+
 Every public name is importable from here (``from estimators import BallTracker``); the
 subpackages group them:
 
@@ -44,13 +52,6 @@ distance)`` -> ``(x, y, vx, vy)``; :class:`PlainMeanShift`: ``update(weight_imag
 **Option families** are registries (:class:`Registry`: name -> value and a one-line
 description, errors that list the options): :data:`PARTICLE_FILTERS`,
 :data:`FUSION_WEIGHTINGS`, :data:`MEAN_SHIFT_KERNELS`.
-
-**Sources.** "Paper 000" to "paper 004" are the five source papers, listed with full citations
-in the README's "Source papers" section: 000 Xu, Xie, Wang, Ni 2012 (target localization by
-cooperative soccer robots in Hough space); 001 Guo, Li 2013 (mobile-robot localization from
-obstacle-ground corners); 002 Zhao, Wang, Li 2012 (the extended Kalman filter in robot soccer);
-003 Li, Wu, Kong 2010 (the mean-shift, feature-restricted particle filter); 004 Yu, Wei, Zhang
-2010 (person following with a monocular camera).
 """
 
 from .fusion import (

@@ -1,4 +1,4 @@
-"""Geometric fusion of sightings (paper 000).
+"""Geometric fusion of sightings (paper 000, Xu, Xie, Wang, Ni 2012).
 
 * :mod:`~estimators.fusion.hough`: Hough-space fusion of several robots' sighting lines of one
   target (:func:`hough_fuse`, :func:`fusion_weights`), and of a team's timestamped sightings

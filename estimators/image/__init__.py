@@ -3,13 +3,13 @@ table or a hue histogram, or a frame difference), whatever made the images.
 
 * :mod:`~estimators.image.meanshift`: mean shift on a weight image (:func:`mean_shift`) and
   the batched window machinery the trackers share;
-* :mod:`~estimators.image.mspf`: paper 003's feature-restricted mean-shift particle filter
-  (:class:`MeanShiftParticleFilter`) and the plain particle filter it is compared with
-  (:class:`ParticleFilterTracker`);
-* :mod:`~estimators.image.following`: paper 004's Kalman-started mean shift with ego-motion
-  compensation (:class:`KalmanMeanShift`), plain mean shift (:class:`PlainMeanShift`), and the
-  pinhole helpers (:func:`ego_motion_shift`, :func:`depth_from_size`,
-  :func:`apparent_height`, :func:`focal_length_px`).
+* :mod:`~estimators.image.mspf`: the feature-restricted mean-shift particle filter of paper
+  003 (Li, Wu, Kong 2010; :class:`MeanShiftParticleFilter`) and the plain particle filter it
+  is compared with (:class:`ParticleFilterTracker`);
+* :mod:`~estimators.image.following`: the Kalman-started mean shift with ego-motion
+  compensation of paper 004 (Yu, Wei, Zhang 2010; :class:`KalmanMeanShift`), plain mean shift
+  (:class:`PlainMeanShift`), and the pinhole helpers (:func:`ego_motion_shift`,
+  :func:`depth_from_size`, :func:`apparent_height`, :func:`focal_length_px`).
 
 Everything here is numpy-only: making the weight images from camera frames (colour tables,
 histograms) is the caller's business.

@@ -1,6 +1,7 @@
-"""The Kalman-started mean shift with ego-motion compensation of paper 004 (SPEC 1.5), plain
-mean shift from the last position, and depth from a target's apparent size, on weight images
-(images, points, windows and mean shift as in :mod:`estimators.image.meanshift`).
+"""The Kalman-started mean shift with ego-motion compensation of paper 004 (Yu, Wei, Zhang
+2010, SPEC 1.5), plain mean shift from the last position, and depth from a target's apparent
+size, on weight images (images, points, windows and mean shift as in
+:mod:`estimators.image.meanshift`).
 
 **Paper 004 (Kalman-started mean shift).** :class:`KalmanMeanShift` filters the image-plane
 state ``X = (x, y, vx, vy)`` [px, px, px/frame, px/frame] of a target seen by a camera on a

@@ -1,6 +1,6 @@
 """Mean shift on weight images: the building block of the image trackers of paper 003
-(:mod:`estimators.image.mspf`) and paper 004 (:mod:`estimators.image.following`), with the
-window machinery and argument checks they share.
+(Li, Wu, Kong 2010; :mod:`estimators.image.mspf`) and paper 004 (Yu, Wei, Zhang 2010;
+:mod:`estimators.image.following`), with the window machinery and argument checks they share.
 
 **Images and coordinates.** Every image is a 2-D array of non-negative weights (float32 in
 ``[0, 1]`` in practice: a colour-probability image, i.e. the back-projection of a colour table

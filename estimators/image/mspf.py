@@ -1,6 +1,6 @@
-"""The feature-restricted mean-shift particle filter of paper 003 (SPEC 1.4) and the plain
-particle filter it is compared with, on weight images (images, points, windows and mean shift
-as in :mod:`estimators.image.meanshift`).
+"""The feature-restricted mean-shift particle filter of paper 003 (Li, Wu, Kong 2010,
+SPEC 1.4) and the plain particle filter it is compared with, on weight images (images, points,
+windows and mean shift as in :mod:`estimators.image.meanshift`).
 
 **Paper 003 (feature-restricted mean-shift particle filter).** State per particle
 ``(x, y, vx, vy)`` [px, px, px/frame, px/frame]; the heading ``phi`` of the paper's state is

@@ -1,4 +1,5 @@
-"""Ball trackers for delayed overhead-camera detections: the EKF of paper 002 and its baselines.
+"""Ball trackers for delayed overhead-camera detections: the EKF of paper 002 (Zhao, Wang, Li
+2012) and its baselines.
 
 Both trackers follow the tracker protocol (:class:`~estimators.protocol.Tracker`): they take
 detection frames ``update(t, detections, obstacles)`` (capture time ``t`` [s], detected ball

@@ -18,9 +18,10 @@ __all__ = [
     "PAPER_CYCLE",
 ]
 
-#: The decision cycle of paper 002 [s]. The paper's velocity noise ``sigma_v`` is per cycle;
-#: for other step lengths its variance scales with ``dt / PAPER_CYCLE`` (a velocity random
-#: walk), so that the filter's behaviour does not depend on how often it is predicted.
+#: The decision cycle of paper 002 (Zhao, Wang, Li 2012) [s]. The paper's velocity noise
+#: ``sigma_v`` is per cycle; for other step lengths its variance scales with
+#: ``dt / PAPER_CYCLE`` (a velocity random walk), so that the filter's behaviour does not
+#: depend on how often it is predicted.
 PAPER_CYCLE = 0.04
 
 

@@ -1,4 +1,5 @@
-"""Particle-filter ball tracking with paper 000's filters (SPEC 1.1).
+"""Particle-filter ball tracking with the filters of paper 000 (Xu, Xie, Wang, Ni 2012,
+SPEC 1.1).
 
 The fused ball positions of a team (Hough fusion, :func:`~estimators.fusion.fuse_sightings`)
 jitter around the truth; paper 000 smooths and predicts them with a particle filter on the
@@ -12,11 +13,11 @@ step of ``dT`` seconds taken from the time stamps:
     B = [[dT^2/2, 0], [0, dT^2/2], [dT, 0], [0, dT]],
     W_t ~ N(0, accel_sigma^2 I_2)   (white acceleration noise [m/s^2]).
 
-With ``deceleration = a > 0`` (rolling friction, as in paper 002) the deterministic part
-``A X`` is replaced by uniform deceleration along the motion that stops the ball instead of
-reversing it: with speed ``s = |v|``, unit direction ``u`` and ``tau = min(dT, s / a)``,
-``p' = p + u (s tau - a tau^2 / 2)``, ``v' = u (s - a tau)``; the noise ``B W`` is added as
-before. ``deceleration = 0`` is the paper's plain constant-velocity model.
+With ``deceleration = a > 0`` (rolling friction, as in paper 002, Zhao, Wang, Li 2012) the
+deterministic part ``A X`` is replaced by uniform deceleration along the motion that stops the
+ball instead of reversing it: with speed ``s = |v|``, unit direction ``u`` and
+``tau = min(dT, s / a)``, ``p' = p + u (s tau - a tau^2 / 2)``, ``v' = u (s - a tau)``; the
+noise ``B W`` is added as before. ``deceleration = 0`` is the paper's plain constant-velocity model.
 
 **Measurement**: a position ``z`` [m] with covariance ``R`` (``sigma^2 I`` for a scalar
 ``sigma``, or a full 2 x 2 matrix, per measurement), ``p(z | X) = N(z; (px, py), R)``,

@@ -1,5 +1,5 @@
 """Bootstrap, fission-bootstrap (FBPF) and the modified FBPF (MFBPF) particle filters of
-paper 000 (SPEC 1.1), on ``(N, d)`` particle arrays.
+paper 000 (Xu, Xie, Wang, Ni 2012, SPEC 1.1), on ``(N, d)`` particle arrays.
 
 The model is the user's: ``transition(particles, k, rng) -> particles`` draws
 ``x_k ~ p(x_k | x_{k-1})`` for every row, ``likelihood(particles, y) -> (N,)`` evaluates

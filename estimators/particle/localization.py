@@ -1,4 +1,5 @@
-"""Adaptive particle-filter self-localization with KLD-sampling (paper 001, SPEC 1.2).
+"""Adaptive particle-filter self-localization with KLD-sampling (paper 001, Guo, Li 2013,
+SPEC 1.2).
 
 State ``(x, y, theta)`` in the field frame [m, m, rad]; particles ``(N, 3)``.
 
