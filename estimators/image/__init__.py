@@ -1,5 +1,5 @@
 """Trackers on weight images (a colour-probability image, i.e. the back-projection of a colour
-table or a hue histogram, or a frame difference), whatever made the images.
+table or a hue histogram, or a frame difference); numpy-only, whatever made the images.
 
 * :mod:`~estimators.image.meanshift`: mean shift on a weight image (:func:`mean_shift`) and
   the batched window machinery the trackers share;
@@ -10,9 +10,6 @@ table or a hue histogram, or a frame difference), whatever made the images.
   compensation of paper 004 (Yu, Wei, Zhang 2010; :class:`KalmanMeanShift`), plain mean shift
   (:class:`PlainMeanShift`), and the pinhole helpers (:func:`ego_motion_shift`,
   :func:`depth_from_size`, :func:`apparent_height`, :func:`focal_length_px`).
-
-Everything here is numpy-only: making the weight images from camera frames (colour tables,
-histograms) is the caller's business.
 """
 
 from .following import (
