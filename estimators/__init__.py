@@ -1,17 +1,71 @@
-"""Estimators and motion models for robot soccer, usable without the environment.
+"""Estimators and models for robot soccer, usable without the environment.
 
-Everything here takes and returns numpy arrays, depends on numpy only, and never on
-``soccer_env``. Random draws come from explicit ``numpy.random.Generator`` arguments.
+Everything here takes and returns numpy arrays, depends on numpy only (never on ``soccer_env``
+or ``agents``), and draws random numbers from explicit ``numpy.random.Generator`` arguments.
+
+"Paper 000" to "paper 004" are the five source papers, listed with full citations in the
+README's "Source papers" section: 000 Xu, Xie, Wang, Ni 2012 (target localization by
+cooperative soccer robots in Hough space); 001 Guo, Li 2013 (mobile-robot localization from
+obstacle-ground corners); 002 Zhao, Wang, Li 2012 (the extended Kalman filter in robot soccer);
+003 Li, Wu, Kong 2010 (the mean-shift, feature-restricted particle filter); 004 Yu, Wei, Zhang
+2010 (person following with a monocular camera).
+
+Every public name is importable from here (``from estimators import BallTracker``); the
+subpackages group them:
+
+* :mod:`estimators.models`: motion and measurement models, the rolling ball, the head camera;
+* :mod:`estimators.kalman`: the Kalman filter core, the ball trackers of paper 002, the robot
+  tracker;
+* :mod:`estimators.particle`: the particle filters of paper 000, the particle ball tracker, the
+  KLD-sampling localization of paper 001;
+* :mod:`estimators.fusion`: Hough-space fusion and three-landmark triangulation (paper 000);
+* :mod:`estimators.image`: mean shift and the trackers on weight images (papers 003 and 004).
+
+**Time-stamped trackers** follow one protocol (:class:`Tracker`, :mod:`estimators.protocol`):
+``update(t, z, ...)`` fuses a measurement captured at time ``t`` [s], ``estimate(t)`` predicts
+the state to any time ``t`` without changing the tracker (None before the first measurement),
+``reset()`` forgets everything:
+
+* :class:`BallTracker` and :class:`LeastSquaresBall`: ``update(t, detections, obstacles=None)``
+  (one camera frame's ball detections ``(k, 2)`` and the robots seen in it), ``estimate(t)``
+  -> ``(x, y, vx, vy)``;
+* :class:`ParticleBallTracker`: ``update(t, z, sigma)`` (a fused position and its noise),
+  ``estimate(t)`` -> ``(x, y, vx, vy)``;
+* :class:`RobotTracker` (many robots): ``update(t, z, index)`` (a batch of poses ``(k, 3)`` and
+  their robots, checked), ``update_robot(t, z, i)`` (one pose, unchecked: the per-detection
+  fast path), ``estimate(t)`` -> ``(n, 6)`` rows ``x, y, theta, vx, vy, omega`` for all robots,
+  never None (robots never seen read as zeros, see ``seen``).
+
+**Frame-synchronous image trackers** step once per image, the frame being the time step:
+``update(image, ...)`` returns the estimate [px, px/frame]. :class:`MeanShiftParticleFilter`
+and :class:`ParticleFilterTracker`: ``update(colour_image, motion_image=None, ...)`` ->
+``(x, y, vx, vy)``; :class:`KalmanMeanShift`: ``update(weight_image, rotation, advance,
+distance)`` -> ``(x, y, vx, vy)``; :class:`PlainMeanShift`: ``update(weight_image)`` ->
+``(x, y)``.
+
+**Filter cores**, the building blocks the trackers are made of, keep their textbook verbs:
+:class:`KalmanFilter` ``predict(F, Q)`` / ``update(z, H, R)``; :class:`BootstrapPF`,
+:class:`FBPF`, :class:`MFBPF` ``predict()`` / ``correct(y)`` / ``step(y)``;
+:class:`KLDLocalizer` ``predict(odometry)`` / ``update(landmarks, ranges, bearings)`` /
+``update_kinds(...)`` / ``estimate()`` (the current pose: it keeps no clock).
+
+**Option families** are registries (:class:`Registry`: name -> value and a one-line
+description, errors that list the options): :data:`PARTICLE_FILTERS`,
+:data:`FUSION_WEIGHTINGS`, :data:`MEAN_SHIFT_KERNELS`.
 """
 
-from .ball import CHI2_2DOF_999, BallFilterConfig, BallTracker, LeastSquaresBall
-from .ball_models import FrictionBallModel
-from .ball_pf import ParticleBallTracker
-from .camera import HeadCamera
-from .hough import FusedSighting, fuse_sightings, fusion_weights, hough_fuse, hough_lines
-from .kalman import KalmanFilter
-from .localization import KLDConfig, KLDLocalizer, kld_sample_size
-from .meanshift import (
+from .fusion import (
+    FUSION_WEIGHTINGS,
+    Fix,
+    FusedSighting,
+    fuse_sightings,
+    fusion_weights,
+    hough_fuse,
+    hough_lines,
+    triangulate,
+)
+from .image import (
+    MEAN_SHIFT_KERNELS,
     KalmanMeanShift,
     MeanShiftParticleFilter,
     ParticleFilterTracker,
@@ -22,11 +76,21 @@ from .meanshift import (
     focal_length_px,
     mean_shift,
 )
+from .kalman import (
+    CHI2_2DOF_999,
+    BallFilterConfig,
+    BallTracker,
+    KalmanFilter,
+    LeastSquaresBall,
+    RobotTracker,
+)
 from .models import (
     MIN_SIGMA_XY,
     PAPER_CYCLE,
     ConstantVelocityMotion,
+    FrictionBallModel,
     FrictionBallMotion,
+    HeadCamera,
     PoseMeasurement,
     PositionMeasurement,
     wrap_angle,
@@ -34,14 +98,19 @@ from .models import (
 from .particle import (
     FBPF,
     MFBPF,
+    PARTICLE_FILTERS,
     BootstrapPF,
+    KLDConfig,
+    KLDLocalizer,
+    ParticleBallTracker,
+    kld_sample_size,
     sfn,
     systematic_resample,
     ungm_model,
     ungm_simulate,
 )
-from .robots import RobotTracker
-from .triangulation import Fix, triangulate
+from .protocol import Tracker
+from .registry import Registry
 
 __all__ = [
     "KalmanFilter",
@@ -86,4 +155,9 @@ __all__ = [
     "focal_length_px",
     "apparent_height",
     "ego_motion_shift",
+    "Tracker",
+    "Registry",
+    "PARTICLE_FILTERS",
+    "FUSION_WEIGHTINGS",
+    "MEAN_SHIFT_KERNELS",
 ]

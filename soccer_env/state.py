@@ -78,7 +78,7 @@ class HeadState(NamedTuple):
 
     Attributes:
         pan, tilt: head servo angles as the robot knows them [rad]; pan positive to the left,
-            tilt positive looking down (as :class:`estimators.camera.HeadCamera`).
+            tilt positive looking down (as :class:`estimators.HeadCamera`).
         sway_pan, sway_tilt: the gait's sway of the camera's true orientation [rad], unknown
             to the robot (the true angles are ``pan + sway_pan``, ``tilt + sway_tilt``).
         blind: the robot sees nothing (fallen or getting up).

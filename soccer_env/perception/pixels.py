@@ -5,7 +5,7 @@ Overhead (:class:`OverheadPixelDetector`, SSL teams): the overhead camera
 (:class:`~soccer_env.sensors.images.cameras.OverheadImageCamera`) delivers images with the
 vision preset's timing; the detector finds the robots and the ball in each:
 
-* the colour look-up table (:class:`~estimators.colour.ColourTable`, built offline from the
+* the colour look-up table (:class:`~estimators.image.colour.ColourTable`, built offline from the
   nominal colours as MiroSot teams do) turns the image into class probabilities; the frame
   difference gives the motion image;
 * every robot is tracked by paper 003's mean-shift particle filter
@@ -80,7 +80,7 @@ class OverheadPixelDetector:
     """
 
     def __init__(self, camera: OverheadImageCamera, spec: VisionSpec) -> None:
-        from estimators.colour import ColourTable, frame_difference
+        from estimators.image.colour import ColourTable, frame_difference
         from soccer_env.sensors.images.patterns import PATTERN, PATTERN_IDS
 
         self.renderer = camera.renderer
@@ -205,7 +205,7 @@ class BallImageTracker:
 
     def __init__(self, spec: HeadCameraSpec, ball: BallSpec,
                  size: tuple[int, int] = HEAD_IMAGE_SIZE) -> None:
-        from estimators.colour import back_project, hue_histogram
+        from estimators.image.colour import back_project, hue_histogram
         from soccer_env.presets.images import COLOURS
 
         self.spec, self.ball = spec, ball

@@ -202,7 +202,7 @@ class HeadCameraSpec:
 
     @property
     def camera(self) -> HeadCamera:
-        """The pinhole model (:class:`estimators.camera.HeadCamera`) with this geometry: the
+        """The pinhole model (:class:`estimators.HeadCamera`) with this geometry: the
         filters' measurement model of this sensor."""
         return HeadCamera(height=self.height, hfov=self.hfov, width=self.width,
                           height_px=self.height_px)

@@ -4,7 +4,7 @@ paper 001; SPEC 1.1 and 1.2).
 Geometry. The camera of observer ``i`` sits ``spec.height`` above the robot's centre
 ``(x_i, y_i)`` and looks along the robot's heading ``theta_i`` turned by the head: pan ``alpha``
 about the vertical (positive to the left) and then tilt ``beta`` about the panned horizontal
-axis (positive looking down), the pinhole model of :class:`estimators.camera.HeadCamera`. A
+axis (positive looking down), the pinhole model of :class:`estimators.HeadCamera`. A
 field point ``p`` at offset ``(dx, dy, dz)`` from the camera, with ``psi = theta_i + alpha``,
 has the camera coordinates
 
@@ -446,7 +446,7 @@ class HeadCameraSensor:
         ``z = plane`` and the bearing [rad] of its ray, for the believed head ``(cos pan, sin
         pan, cos tilt, sin tilt)``: the camera ray ``(a, 1, e) = ((u - u0) / f, 1, (v0 - v) /
         f)`` turned back by ``Rz(pan)^T Rx(tilt)^T`` (as
-        :meth:`~estimators.camera.HeadCamera.ground_point`), scaled by ``t = (plane - h) /
+        :meth:`~estimators.HeadCamera.ground_point`), scaled by ``t = (plane - h) /
         ray_z`` if positive, else ``(nan, nan)``."""
         ca, sa, ct, st = head
         f, u0, v0 = self._f, self._u0, self._v0

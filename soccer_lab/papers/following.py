@@ -32,8 +32,8 @@ Even episodes leave the ball lying still; odd episodes roll it slowly: whenever 
 (``follow``: 1.5-2.5 m) from the robot within 0.35 rad of its bearing. The scene's script reads
 the truth; the trackers see only the images and the robot's odometry.
 
-Trackers, on the same frames (the hue back-projection, :func:`~estimators.colour.back_project`,
-of a 16-bin hue histogram of the first frame's ball: the pixels within 0.8 of its apparent
+Trackers, on the same frames (the hue back-projection,
+:func:`~estimators.image.colour.back_project`, of a 16-bin hue histogram of the first frame's ball: the pixels within 0.8 of its apparent
 radius of its true centre, as an operator marking the target would give), all started at the
 ball's true pixel of the first frame. The target window is the ball's apparent diameter there
 (``2 round(r) + 1`` px); each tracker runs at each of ``window_scales`` times it: 1 (the target
@@ -44,7 +44,7 @@ same amount of target must be in any window: a round ball fills only ``pi / 16``
 twice its size, below 0.2). Otherwise the estimators' defaults (flat kernel, 10 iterations;
 Kalman noise 2 px/frame^2 and 2 px):
 
-* ``kalman``: :class:`estimators.meanshift.KalmanMeanShift` (paper 004) fed with the robot's
+* ``kalman``: :class:`estimators.KalmanMeanShift` (paper 004) fed with the robot's
   own motion between frames: the rotation is the walk engine's odometry ``dtheta`` summed
   over the frame's control steps, the advance the odometry's displacement projected on the
   bearing of the tracked position (the paper's ``s`` towards the target). Odometry, not the
@@ -52,7 +52,7 @@ Kalman noise 2 px/frame^2 and 2 px):
   and does not see the sway). The camera height above the ball's centre and the ball's
   diameter (``target_height_m``: depth from the apparent size each frame, the first frame's
   size-based depth to start) are given. When lost it only predicts (its velocity kept).
-* ``plain``: :class:`estimators.meanshift.PlainMeanShift`, mean shift from the last position;
+* ``plain``: :class:`estimators.PlainMeanShift`, mean shift from the last position;
   when lost it stays where it was.
 
 Neither searches the whole image after a loss (paper 004 has no such step).
@@ -66,8 +66,8 @@ from how long it then stays lost); the pixel error (median over all these frames
 those on target); losses and recoveries (on -> off and off -> on target); time per update (the
 tracker only; the back-projection, shared, is timed apart); and the depth from the ball's known
 size: the ball's apparent height in a region twice the target window around the tracker's
-position (:func:`~estimators.meanshift.apparent_height`), ``D = f 2 r / height``
-(:func:`~estimators.meanshift.depth_from_size`), turned into a ground distance with the pixel's
+position (:func:`~estimators.apparent_height`), ``D = f 2 r / height``
+(:func:`~estimators.depth_from_size`), turned into a ground distance with the pixel's
 ray (``sqrt(R^2 - (h - r)^2)``, ``R`` the range along the ray) and compared with the true ground
 distance (median relative and median signed error, frames on target and not reported lost). The
 same rates by turn-rate bin (the true body turn rate over the frame period: slow below a third
@@ -186,7 +186,7 @@ def _labels(scales: tuple[float, ...]) -> list[str]:
 
 def _episode(args: tuple) -> dict[str, Any]:
     """One seeded episode of ``variant``; per-frame truth and every tracker's output."""
-    from estimators.colour import back_project, hue_histogram
+    from estimators.image.colour import back_project, hue_histogram
     from soccer_env import presets
     from soccer_env.presets.sensors import head_camera
     from soccer_env.sensors.images.head import HeadFrameRenderer

@@ -3,7 +3,7 @@
 ``soccer-env paper hough``: five robots at the paper's positions (a 6 m x 4 m field), the ball
 moving in 50 mm steps in a straight line from (3000, 3200) to (4500, 1200) mm. Each robot's
 sighting becomes a line from its (estimated) position towards its estimate of the ball, and
-:func:`estimators.hough.hough_fuse` fuses the lines with equal, ``1/L`` and ``1/L^2`` weights.
+:func:`estimators.hough_fuse` fuses the lines with equal, ``1/L`` and ``1/L^2`` weights.
 Two noise models:
 
 * **head camera** (ours): each robot turns its head (:class:`estimators.HeadCamera`, 0.56 m,

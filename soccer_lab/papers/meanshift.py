@@ -4,10 +4,10 @@
 overhead camera films them; every robot is tracked in the images by three trackers, which all
 read the same frames:
 
-* ``ms-pf-20``: paper 003's :class:`estimators.meanshift.MeanShiftParticleFilter` with 20
+* ``ms-pf-20``: paper 003's :class:`estimators.MeanShiftParticleFilter` with 20
   particles (AR(2) motion, mean shift on every particle, the feature restriction, lost-track
   handling by a global search) and an identity check by the robot's player dots (below);
-* ``pf-20`` and ``pf-200``: the plain :class:`estimators.meanshift.ParticleFilterTracker`
+* ``pf-20`` and ``pf-200``: the plain :class:`estimators.ParticleFilterTracker`
   (the paper's baseline: same motion model and likelihood, no mean shift, no restriction, no
   lost-track handling) with 20 and 200 particles.
 
@@ -36,8 +36,8 @@ noise) renders every second step, starting with the robots at rest at time 0.
 <soccer_env.sensors.images.overhead.OverheadRenderer.colour_table>`, built once, offline in the
 paper's terms) gives per frame the probability images of blue, yellow, pink and green; a robot's
 trackers read its team colour's image (so its team-mates are distractors of the same colour) and
-the frame difference (:func:`estimators.colour.frame_difference`; none on the first frame). The
-search window is a square of the team patch's diameter in pixels (odd, 13 px here). Every
+the frame difference (:func:`estimators.image.colour.frame_difference`; none on the first
+frame). The search window is a square of the team patch's diameter in pixels (odd, 13 px here). Every
 tracker starts at the robot's true first position with zero velocity and uses the estimators'
 default parameters (AR noise 4 px, likelihood sigma 0.15, motion weight up to 0.5 at 20
 px/frame; mean shift 5 iterations; colour mass within +-30 % of the mass measured on the first
@@ -235,7 +235,7 @@ def _episode(args: tuple[int, float, int]) -> dict[str, Any]:
     """One seeded episode: simulate, render, track; per-kind errors and timings."""
     import cv2
 
-    from estimators.colour import frame_difference
+    from estimators.image.colour import frame_difference
     from soccer_env.sensors.images.overhead import OverheadRenderer
     from soccer_env.sensors.images.patterns import PATTERN, PATTERN_IDS
     from soccer_env.sim.world import World

@@ -20,7 +20,7 @@ centre is ``(W / 2, H / 2)``: the convention of :class:`estimators.HeadCamera`.
   sensor's timing.
 
 The colour and motion operations that image trackers apply to these frames (colour look-up
-table, hue back-projection, frame difference) are estimators: :mod:`estimators.colour`.
+table, hue back-projection, frame difference) are estimators: :mod:`estimators.image.colour`.
 
 Cost on a 2-core machine with OpenCV 5 (``soccer-env bench --frames`` measures it): a
 640 x 480 overhead frame with 12 robots about 0.5 ms clean, 2 ms with lighting and noise

@@ -60,7 +60,7 @@ class HeadFrameRenderer:
         size: ``(width, height)`` [pixels] to render at instead of the camera's, keeping its
             horizontal field of view (the focal length in pixels scales with the width).
 
-    :attr:`camera` is the :class:`estimators.camera.HeadCamera` of the rendered image:
+    :attr:`camera` is the :class:`estimators.HeadCamera` of the rendered image:
     ``camera.project(points, pan, tilt)`` gives the pixels of robot-frame points.
     """
 

@@ -37,7 +37,7 @@ except ImportError as err:  # pragma: no cover - depends on the installation
     raise ImportError("soccer_env.sensors.images.overhead needs OpenCV; install it with: "
                       "pip install 'soccer-env[pixels]'") from err
 
-from estimators.colour import ColourTable
+from estimators.image.colour import ColourTable
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.presets.images import (
     CLASS_ALIASES,

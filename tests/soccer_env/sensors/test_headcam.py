@@ -83,7 +83,7 @@ def test_landmark_straight_ahead_is_seen_at_its_true_position():
 
 def test_ideal_detections_are_exactly_what_the_pinhole_model_sees():
     """For random poses and head angles, the landmarks reported are those whose projection
-    (estimators.camera.HeadCamera, the filters' model) lies in the image, at their true
+    (estimators.HeadCamera, the filters' model) lies in the image, at their true
     robot-frame positions; the ball likewise, projected onto its centre's plane."""
     rng = np.random.default_rng(5)
     spec = head_camera("ideal")

@@ -7,7 +7,7 @@ import pytest
 
 pytest.importorskip("cv2", reason="rendered frames need the 'pixels' extra (OpenCV)")
 
-from estimators.colour import ColourTable, back_project, frame_difference, hue_histogram
+from estimators.image.colour import ColourTable, back_project, frame_difference, hue_histogram
 from soccer_env import presets
 from soccer_env.presets.images import (
     CLASS_ALIASES,

@@ -18,12 +18,18 @@ and updating with ``z`` of variance ``r``: ``y = z - p``, ``S = P00 + r``, ``K =
 
 These are a dozen multiply-adds per axis, so they run in plain Python floats: a camera frame
 brings a handful of detections, sizes at which numpy's per-call overhead would cost more than
-the arithmetic. ``tests/test_kalman.py`` checks them against the 6-state
+the arithmetic. ``tests/estimators/kalman/test_robots.py`` checks them against the 6-state
 :class:`~estimators.kalman.KalmanFilter` to 1e-9.
 
 Measurements carry their capture time; a robot is predicted to it before the update, so
 delayed frames are handled. A detection older than the robot's latest update is dropped
 (robots are slow next to the camera rate, so a replay is not worth its cost).
+
+:class:`RobotTracker` follows the tracker protocol (:class:`~estimators.protocol.Tracker`) as a
+multi-target tracker: ``update(t, z, index)`` fuses a batch of detections with their robots'
+indices (checked), ``update_robot(t, z, i)`` one detection (unchecked, the per-detection fast
+path), and ``estimate(t)`` answers for all ``n`` robots at once, an ``(n, 6)`` array that is
+never None (robots never seen read as zeros; :attr:`~RobotTracker.seen` tells which).
 """
 
 from __future__ import annotations
@@ -32,7 +38,7 @@ import math
 
 import numpy as np
 
-from .models import MIN_SIGMA_THETA, MIN_SIGMA_XY, PoseMeasurement
+from ..models.measurement import MIN_SIGMA_THETA, MIN_SIGMA_XY, PoseMeasurement
 
 __all__ = ["RobotTracker"]
 
@@ -108,11 +114,13 @@ class RobotTracker:
 
     @property
     def seen(self) -> np.ndarray:
+        """``(n,)`` whether each robot has been detected."""
         return np.array([a is not None for a in self._axes], dtype=bool)
 
-    def update(self, index, t, z) -> None:
+    def update(self, t, z, index) -> None:
         """Fuse pose detections ``z`` ``(k, 3)`` of robots ``index`` ``(k,)`` captured at
-        times ``t`` (``(k,)`` or one time for all), in the given order."""
+        times ``t`` (``(k,)`` or one time for all), in the given order (checked; see
+        :meth:`update_robot` for one detection of validated data)."""
         index = np.asarray(index, dtype=np.int64).reshape(-1)
         z = np.asarray(z, dtype=np.float64)
         k = len(index)
@@ -124,11 +132,12 @@ class RobotTracker:
         if k and (index.min() < 0 or index.max() >= self.n):
             raise ValueError(f"index must be in 0..{self.n - 1}, got {index.tolist()}")
         for i, ti, zi in zip(index.tolist(), t.tolist(), z.tolist()):
-            self.update_one(i, ti, zi)
+            self.update_robot(ti, zi, i)
 
-    def update_one(self, i: int, t: float, z) -> None:
+    def update_robot(self, t: float, z, i: int) -> None:
         """Fuse one pose detection ``z = (x, y, theta)`` of robot ``i`` captured at ``t``
-        (unchecked: callers with validated data avoid the array round trip)."""
+        (unchecked: the fast path for callers with validated data, one call per detection
+        without the array round trip of :meth:`update`)."""
         axes = self._axes[i]
         if axes is None:
             self._axes[i] = [[z[a], 0.0, self.r[a], 0.0, self.var_v0] for a in range(3)]
@@ -142,14 +151,14 @@ class RobotTracker:
         for a in (0, 1, 2):
             _predict_update(axes[a], z[a], T, self.q[a], self.r[a], a == 2)
 
-    def estimate(self, t: float) -> tuple[np.ndarray, np.ndarray]:
-        """Poses ``(n, 3)`` and velocities ``(n, 3)`` predicted to time ``t`` (robots never
-        seen read as zeros; see :attr:`seen`)."""
-        both = self.estimate_array(t)
-        return both[:, 0:3], both[:, 3:6]
+    # alias for callers outside estimators; removed when they move to the protocol
+    def update_one(self, i: int, t: float, z) -> None:
+        """``update_robot(t, z, i)``."""
+        self.update_robot(t, z, i)
 
-    def estimate_array(self, t: float) -> np.ndarray:
-        """``(n, 6)`` rows ``x, y, theta, vx, vy, omega`` predicted to time ``t``."""
+    def estimate(self, t: float) -> np.ndarray:
+        """``(n, 6)`` rows ``x, y, theta, vx, vy, omega`` predicted to time ``t`` (robots never
+        seen read as zeros; see :attr:`seen`)."""
         rows = []
         for axes, ti in zip(self._axes, self._t):
             if axes is None:
@@ -160,6 +169,9 @@ class RobotTracker:
             rows.append((px + vx * dt, py + vy * dt, math.remainder(pt + vt * dt, _TWO_PI),
                          vx, vy, vt))
         return np.array(rows).reshape(-1, 6)
+
+    # alias for callers outside estimators; removed when they move to the protocol
+    estimate_array = estimate
 
     @property
     def p(self) -> np.ndarray:

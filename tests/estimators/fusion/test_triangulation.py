@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from estimators.triangulation import triangulate
+from estimators.fusion import triangulate
 
 # Two goal posts and the far corner of a 6 m x 4 m humanoid field (paper 000's), in metres.
 LANDMARKS = np.array([[3.0, 0.7], [3.0, -0.7], [-3.0, 2.0]])

@@ -1,8 +1,11 @@
-"""Ball trackers for delayed overhead-camera detections: the EKF of paper 002 and its baselines.
+"""Ball trackers for delayed overhead-camera detections: the EKF of paper 002 (Zhao, Wang, Li
+2012) and its baselines.
 
-Every tracker takes detection frames ``add(t, detections, obstacles)`` (capture time ``t`` [s],
-detected ball positions ``(k, 2)`` [m], robot positions ``(j, 2)`` seen in the same frame) and
-answers ``estimate(t) -> (x, y, vx, vy)`` for any later time ``t``.
+Both trackers follow the tracker protocol (:class:`~estimators.protocol.Tracker`): they take
+detection frames ``update(t, detections, obstacles)`` (capture time ``t`` [s], detected ball
+positions ``(k, 2)`` [m], robot positions ``(j, 2)`` seen in the same frame), answer
+``estimate(t) -> (x, y, vx, vy)`` for any later time ``t`` (None before the first detection)
+and forget everything on ``reset()``.
 
 Latency compensation (paper 002, SPEC 1.3): a measurement corrects the state *at its capture
 time*, and the estimate is predicted from there to whatever time is asked, the present or the
@@ -20,7 +23,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .models import FrictionBallMotion, PositionMeasurement
+from ..models.measurement import PositionMeasurement
+from ..models.motion import FrictionBallMotion
 
 __all__ = ["BallFilterConfig", "BallTracker", "LeastSquaresBall", "CHI2_2DOF_999"]
 
@@ -143,7 +147,7 @@ def _points(name: str, value, exact: bool = True) -> list:
 # the state is a 4-tuple and the covariance three 2 x 2 row-major blocks
 # ``P = [[P11, P12], [P12^T, P22]]``; with ``F = [[I, A], [0, B]]`` and ``H = [I 0]`` the
 # equations of :class:`~estimators.kalman.KalmanFilter` reduce to the block forms below.
-# tests/test_ball_filters.py checks them against that class to 1e-10.
+# tests/estimators/kalman/test_ball.py checks them against that class to 1e-10.
 # --------------------------------------------------------------------------------------------
 
 _Mat = tuple[float, float, float, float]
@@ -292,7 +296,7 @@ class BallTracker:
 
     # ------------------------------------------------------------------------------------
 
-    def add(self, t: float, detections, obstacles=None) -> None:
+    def update(self, t: float, detections, obstacles=None) -> None:
         """Process one frame captured at ``t`` with ball detections ``(k, 2)`` (k may be 0)
         and robot positions seen in it (for eq. 19; ``(j, 2)``, or poses whose first two
         entries are the position)."""
@@ -319,6 +323,8 @@ class BallTracker:
         horizon = self._log[-1][0] - self.config.history
         while len(self._log) > 1 and self._log[0][0] < horizon:
             self._base = self._log.pop(0)[3]
+
+    add = update  # alias for callers outside estimators; removed when they move to the protocol
 
     def estimate(self, t: float) -> np.ndarray | None:
         """State ``(x, y, vx, vy)`` predicted to time ``t`` (None before the first frame)."""
@@ -351,8 +357,17 @@ class BallTracker:
             decel = c.two_phase[0]
         return self.motion.step(*tr.x, dt, decel)
 
+    def velocity_sigma(self, position, obstacles=None) -> float:
+        """The velocity noise ``sigma_v`` [m/s per paper cycle] of eq. 19 for a ball at
+        ``position`` ``(x, y)`` [m] with robots at ``obstacles`` (``(j, 2)``, or poses whose
+        first two entries are the position; None: no robots): ``sigma_r``, raised near a robot
+        when ``collision_noise`` is on (what :meth:`update` uses between two frames)."""
+        obs = _points("obstacles", obstacles, exact=False) if obstacles is not None else []
+        return self._sigma_v(position, obs)
+
     def _sigma_v(self, position, obstacles: list) -> float:
-        """Eq. 19 of paper 002."""
+        """Eq. 19 of paper 002 (:meth:`velocity_sigma` with the obstacles already a list of
+        rows)."""
         c = self.config
         if not c.collision_noise or not obstacles:
             return c.sigma_r
@@ -472,6 +487,7 @@ class LeastSquaresBall:
         self.reset()
 
     def reset(self) -> None:
+        """Forget everything (a new episode)."""
         self._t: list[float] = []
         self._z: list[np.ndarray] = []
 
@@ -483,7 +499,9 @@ class LeastSquaresBall:
     def time(self) -> float:
         return self._t[-1] if self._t else -math.inf
 
-    def add(self, t: float, detections, obstacles=None) -> None:
+    def update(self, t: float, detections, obstacles=None) -> None:
+        """Process one frame captured at ``t`` with ball detections ``(k, 2)`` (k may be 0);
+        ``obstacles`` is accepted for the protocol's sake and not used."""
         dets = np.asarray(detections, dtype=np.float64).reshape(-1, 2) if len(
             detections) else np.zeros((0, 2))
         if not (math.isfinite(t) and np.isfinite(dets).all()):
@@ -499,7 +517,11 @@ class LeastSquaresBall:
         self._z.insert(i, z.copy())
         del self._t[: -self.window], self._z[: -self.window]
 
+    add = update  # alias for callers outside estimators; removed when they move to the protocol
+
     def estimate(self, t: float) -> np.ndarray | None:
+        """State ``(x, y, vx, vy)`` extrapolated to time ``t`` (None before the first
+        detection)."""
         if not self._t:
             return None
         if len(self._t) == 1:

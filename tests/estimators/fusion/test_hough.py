@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from estimators.hough import FusedSighting, fuse_sightings, fusion_weights, hough_fuse, hough_lines
+from estimators.fusion import FusedSighting, fuse_sightings, fusion_weights, hough_fuse, hough_lines
 
 # Paper 000, Table 1 (millimetres): the five robots and the ball's start.
 ROBOTS = np.array([[1000, 3500], [250, 2000], [1750, 350], [4250, 2400], [5600, 3900]],

@@ -17,7 +17,7 @@ import numpy as np
 try:
     import cv2
 except ImportError as err:  # pragma: no cover - depends on the installation
-    raise ImportError("estimators.colour needs OpenCV; install it with: "
+    raise ImportError("estimators.image.colour needs OpenCV; install it with: "
                       "pip install 'soccer-env[pixels]'") from err
 
 __all__ = ["RGB", "ColourTable", "hue_histogram", "back_project", "frame_difference"]

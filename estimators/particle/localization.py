@@ -1,4 +1,5 @@
-"""Adaptive particle-filter self-localization with KLD-sampling (paper 001, SPEC 1.2).
+"""Adaptive particle-filter self-localization with KLD-sampling (paper 001, Guo, Li 2013,
+SPEC 1.2).
 
 State ``(x, y, theta)`` in the field frame [m, m, rad]; particles ``(N, 3)``.
 
@@ -51,10 +52,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["KLDConfig", "KLDLocalizer", "kld_sample_size"]
+__all__ = ["KLDConfig", "KLDLocalizer", "kld_sample_size", "normal_quantile"]
 
 
-def _normal_quantile(p: float) -> float:
+def normal_quantile(p: float) -> float:
     """The standard normal quantile (Acklam's rational approximation, |error| < 1.2e-9),
     to keep the module numpy-only."""
     if not 0.0 < p < 1.0:
@@ -72,7 +73,7 @@ def _normal_quantile(p: float) -> float:
         return (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) / \
             ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0)
     if p > 1.0 - 0.02425:
-        return -_normal_quantile(1.0 - p)
+        return -normal_quantile(1.0 - p)
     q = p - 0.5
     r = q * q
     return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q / \
@@ -84,7 +85,7 @@ def kld_sample_size(k: int | np.ndarray, epsilon: float, delta: float) -> np.nda
     between the sample-based and the true (binned) posterior below ``epsilon`` with
     probability ``1 - delta``, for ``k`` occupied bins (1 for ``k <= 1``)."""
     k = np.asarray(k, dtype=np.float64)
-    z = _normal_quantile(1.0 - delta)
+    z = normal_quantile(1.0 - delta)
     km1 = np.maximum(k - 1.0, 1.0)
     a = 2.0 / (9.0 * km1)
     n = km1 / (2.0 * epsilon) * (1.0 - a + np.sqrt(a) * z) ** 3

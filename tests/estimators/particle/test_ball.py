@@ -9,8 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from estimators import ParticleBallTracker
-from estimators.ball_pf import FILTERS
+from estimators import PARTICLE_FILTERS, ParticleBallTracker
 
 SIGMA = 0.1  # measurement noise [m]
 V = np.array([1.0, -0.5])  # the rolling ball's velocity [m/s]
@@ -30,7 +29,7 @@ def _roll(tracker, rng, steps=150, t0=0.0, p0=P0, v=V, sigma=SIGMA):
     return ts, truth, zs, np.array(est)
 
 
-@pytest.mark.parametrize("name", FILTERS)
+@pytest.mark.parametrize("name", list(PARTICLE_FILTERS))
 def test_tracks_a_rolling_ball_well_below_the_measurement_noise(name):
     ratios, speed_err = [], []
     for seed in range(4):
@@ -165,7 +164,7 @@ def test_full_covariance_measurements():
     assert errs[:, 1].mean() < 0.02 < errs[:, 0].mean() < 0.2
 
 
-@pytest.mark.parametrize("name", FILTERS)
+@pytest.mark.parametrize("name", list(PARTICLE_FILTERS))
 def test_same_seed_same_estimates(name):
     runs = []
     for _ in range(2):

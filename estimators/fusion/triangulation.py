@@ -1,4 +1,5 @@
-"""Self-localization from the bearings of three known landmarks (paper 000, SPEC 1.1).
+"""Self-localization from the bearings of three known landmarks (paper 000, Xu, Xie, Wang, Ni
+2012, SPEC 1.1).
 
 A robot at ``R = (x, y)`` with heading ``theta`` measures the bearing ``phi_i`` of landmark
 ``P_i`` relative to its heading (counter-clockwise positive; with a panning head, the camera's

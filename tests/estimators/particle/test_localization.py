@@ -8,7 +8,12 @@ import math
 import numpy as np
 import pytest
 
-from estimators.localization import KLDConfig, KLDLocalizer, _normal_quantile, kld_sample_size
+from estimators.particle.localization import (
+    KLDConfig,
+    KLDLocalizer,
+    kld_sample_size,
+    normal_quantile,
+)
 
 # Goal posts, corners and the centre-line ends of a 6 m x 4 m field.
 LANDMARKS = np.array([[3, 0.7], [3, -0.7], [-3, 0.7], [-3, -0.7], [3, 2], [3, -2], [-3, 2],
@@ -43,7 +48,7 @@ def _walk(loc, pose, steps, rng):
 
 def test_kld_bound_and_quantile():
     for p, z in ((0.5, 0.0), (0.975, 1.959963985), (0.99, 2.326347874), (0.001, -3.090232306)):
-        assert _normal_quantile(p) == pytest.approx(z, abs=1e-8)
+        assert normal_quantile(p) == pytest.approx(z, abs=1e-8)
     n = kld_sample_size(np.array([1, 2, 10, 100]), 0.05, 0.01)
     assert n[0] == 1
     k, z = 100, 2.326347874

@@ -1,6 +1,7 @@
-"""Particle-filter ball tracking with paper 000's filters (SPEC 1.1).
+"""Particle-filter ball tracking with the filters of paper 000 (Xu, Xie, Wang, Ni 2012,
+SPEC 1.1).
 
-The fused ball positions of a team (Hough fusion, :func:`~estimators.hough.fuse_sightings`)
+The fused ball positions of a team (Hough fusion, :func:`~estimators.fusion.fuse_sightings`)
 jitter around the truth; paper 000 smooths and predicts them with a particle filter on the
 ball's state ``X = (px, py, vx, vy)`` [m, m, m/s, m/s] in the field frame.
 
@@ -12,11 +13,11 @@ step of ``dT`` seconds taken from the time stamps:
     B = [[dT^2/2, 0], [0, dT^2/2], [dT, 0], [0, dT]],
     W_t ~ N(0, accel_sigma^2 I_2)   (white acceleration noise [m/s^2]).
 
-With ``deceleration = a > 0`` (rolling friction, as in paper 002) the deterministic part
-``A X`` is replaced by uniform deceleration along the motion that stops the ball instead of
-reversing it: with speed ``s = |v|``, unit direction ``u`` and ``tau = min(dT, s / a)``,
-``p' = p + u (s tau - a tau^2 / 2)``, ``v' = u (s - a tau)``; the noise ``B W`` is added as
-before. ``deceleration = 0`` is the paper's plain constant-velocity model.
+With ``deceleration = a > 0`` (rolling friction, as in paper 002, Zhao, Wang, Li 2012) the
+deterministic part ``A X`` is replaced by uniform deceleration along the motion that stops the
+ball instead of reversing it: with speed ``s = |v|``, unit direction ``u`` and
+``tau = min(dT, s / a)``, ``p' = p + u (s tau - a tau^2 / 2)``, ``v' = u (s - a tau)``; the
+noise ``B W`` is added as before. ``deceleration = 0`` is the paper's plain constant-velocity model.
 
 **Measurement**: a position ``z`` [m] with covariance ``R`` (``sigma^2 I`` for a scalar
 ``sigma``, or a full 2 x 2 matrix, per measurement), ``p(z | X) = N(z; (px, py), R)``,
@@ -65,10 +66,10 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .kalman import KalmanFilter
-from .particle import FBPF, MFBPF, BootstrapPF
+from ..kalman.core import KalmanFilter
+from .core import PARTICLE_FILTERS, BootstrapPF
 
-__all__ = ["ParticleBallTracker", "FILTERS", "CHI2_2DOF_9999"]
+__all__ = ["ParticleBallTracker", "CHI2_2DOF_9999"]
 
 #: 99.99 % quantile of the chi-square distribution with 2 degrees of freedom, ``-2 ln 1e-4``.
 CHI2_2DOF_9999 = 18.420680743952367
@@ -76,9 +77,6 @@ CHI2_2DOF_9999 = 18.420680743952367
 #: A re-initialisation takes its velocity from the measurement before it if that is at most
 #: this old [s].
 _MAX_DIFFERENCE_SPAN = 0.3
-
-#: Names of the filters :class:`ParticleBallTracker` can run.
-FILTERS = ("bootstrap", "fbpf", "mfbpf")
 
 
 def _positive(name: str, value: float, allow_zero: bool = False) -> float:
@@ -114,7 +112,8 @@ class ParticleBallTracker:
 
     Args:
         rng: the generator of every random draw.
-        filter: ``"bootstrap"``, ``"fbpf"`` or ``"mfbpf"`` (paper 000's, the default).
+        filter: a name in :data:`~estimators.particle.core.PARTICLE_FILTERS`:
+            ``"bootstrap"``, ``"fbpf"`` or ``"mfbpf"`` (paper 000's, the default).
         n_particles: number of particles (paper 000: 100).
         accel_sigma: standard deviation of the white acceleration noise ``W`` [m/s^2].
         deceleration: rolling deceleration ``a`` [m/s^2]; 0 is the plain constant-velocity
@@ -155,8 +154,7 @@ class ParticleBallTracker:
                  kalman_start: int = 10) -> None:
         if not isinstance(rng, np.random.Generator):
             raise TypeError("rng must be a numpy.random.Generator")
-        if filter not in FILTERS:
-            raise ValueError(f"filter must be one of {list(FILTERS)}, got {filter!r}")
+        PARTICLE_FILTERS.check(filter, "filter")
         if isinstance(n_particles, bool) or not isinstance(n_particles, (int, np.integer)) \
                 or n_particles < 2:
             raise ValueError(f"n_particles must be an integer >= 2, got {n_particles!r}")
@@ -195,7 +193,7 @@ class ParticleBallTracker:
             kwargs["fission_variance"] = fs * fs
         if filter == "mfbpf":
             kwargs["sfn_when"] = sfn_when
-        self._cls = {"bootstrap": BootstrapPF, "fbpf": FBPF, "mfbpf": MFBPF}[filter]
+        self._cls = PARTICLE_FILTERS[filter]
         self._kwargs = kwargs
         self.reset()
 

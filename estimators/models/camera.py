@@ -1,5 +1,5 @@
 """Pinhole model of a humanoid's head camera, and the ground projection of a sighting
-(paper 000, SPEC 1.1).
+(paper 000, Xu, Xie, Wang, Ni 2012, SPEC 1.1).
 
 Frames: the robot frame has its origin on the ground under the camera, ``x`` forward, ``y``
 to the left, ``z`` up [m]. The paper's world frame at the robot is ``(x_w, y_w, z_w) =

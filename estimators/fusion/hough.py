@@ -1,4 +1,5 @@
-"""Hough-space fusion of several robots' sightings of one target (paper 000, SPEC 1.1).
+"""Hough-space fusion of several robots' sightings of one target (paper 000, Xu, Xie, Wang, Ni
+2012, SPEC 1.1).
 
 Robot ``i`` at ``p_i`` sees the target along the direction ``psi_i`` (its estimated heading
 plus the sighting's bearing). The line ``L_i`` through ``p_i`` along ``psi_i`` maps to the point
@@ -34,11 +35,24 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["hough_lines", "hough_fuse", "fusion_weights", "fuse_sightings", "FusedSighting",
-           "WEIGHTINGS"]
+from ..registry import Registry
 
-#: Weightings of :func:`fusion_weights`: name -> power of the distance in ``K_i = 1 / L_i^p``.
-WEIGHTINGS = {"equal": 0, "inverse": 1, "inverse_square": 2}
+__all__ = ["hough_lines", "hough_fuse", "fusion_weights", "fuse_sightings", "FusedSighting",
+           "FUSION_WEIGHTINGS"]
+
+#: Weightings of :func:`fusion_weights` and :func:`fuse_sightings` by name: the power ``p`` of
+#: the distance in ``K_i = 1 / L_i^p``.
+FUSION_WEIGHTINGS: Registry[int] = Registry("fusion weighting", [
+    ("equal", 0,
+     "equal weights: every robot's sighting line counts the same (the plain Hough fusion of "
+     "paper 000, Xu, Xie, Wang, Ni 2012)"),
+    ("inverse", 1,
+     "weights 1 / distance: a robot's sighting counts in inverse proportion to its distance "
+     "from the target (the weighted fusion of paper 000, Xu, Xie, Wang, Ni 2012)"),
+    ("inverse_square", 2,
+     "weights 1 / distance^2: near sightings dominate, as a bearing error's effect grows "
+     "with the distance"),
+])
 
 #: Below this ratio of the normal matrix's eigenvalues the lines are taken as parallel (no
 #: unique crossing point).
@@ -89,13 +103,14 @@ def fusion_weights(distances: np.ndarray | Sequence[float], weighting: str = "in
                    ) -> np.ndarray:
     """``K_i = 1 / L_i^p`` for the distances ``L_i`` [m] from each robot to the target, with
     ``p`` = 0, 1, 2 for ``weighting`` ``"equal"``, ``"inverse"`` (the paper's weighted
-    fusion), ``"inverse_square"``."""
-    if weighting not in WEIGHTINGS:
-        raise ValueError(f"weighting must be one of {list(WEIGHTINGS)}, got {weighting!r}")
+    fusion), ``"inverse_square"`` (the names and powers of :data:`FUSION_WEIGHTINGS`)."""
+    power = FUSION_WEIGHTINGS.get(weighting)
+    if power is None:
+        FUSION_WEIGHTINGS.check(weighting, "weighting")  # raises, naming the options
     L = np.asarray(distances, dtype=np.float64)
     if L.ndim != 1 or not np.all(np.isfinite(L)) or np.any(L <= 0.0):
         raise ValueError(f"distances must be a 1-d array of positive finite numbers, got {L}")
-    return L ** -float(WEIGHTINGS[weighting])
+    return L ** -float(power)
 
 
 def hough_fuse(origins: np.ndarray | Sequence[Sequence[float]],
@@ -227,6 +242,11 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
     Raises:
         ValueError: bad shapes or values, or no position (a single bearing-only sighting,
             or bearing-only lines that are parallel).
+
+    Why one long function: it is a hot path (every camera frame of every robot, on a handful
+    of lines), written in plain floats because numpy's per-call overhead cost several times
+    the arithmetic; the checks, steps 1 to 5 and their shared intermediate lists stay in one
+    frame so that no extra calls or argument passing are added to it.
     """
     p = np.asarray(origins, dtype=np.float64)
     if p.ndim != 2 or p.shape[1] != 2 or len(p) == 0:
@@ -243,8 +263,9 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
     known = np.isfinite(r)
     if np.any(r[known] <= 0.0):
         raise ValueError(f"ranges must be > 0 (or NaN for bearing only), got {ranges!r}")
-    if weighting not in WEIGHTINGS:
-        raise ValueError(f"weighting must be one of {list(WEIGHTINGS)}, got {weighting!r}")
+    power = FUSION_WEIGHTINGS.get(weighting)
+    if power is None:
+        FUSION_WEIGHTINGS.check(weighting, "weighting")  # raises, naming the options
     for name, value in (("bearing_sigma", bearing_sigma), ("range_sigma_rel", range_sigma_rel)):
         if not (math.isfinite(value) and value > 0.0):
             raise ValueError(f"{name} must be finite and > 0, got {value!r}")
@@ -268,7 +289,6 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
     uy = [math.sin(a) for a in psi.tolist()]
     R = r.tolist()
     has = known.tolist()
-    power = WEIGHTINGS[weighting]
     if n >= 2:
         far = 2.0 * max((v for v, h in zip(R, has) if h), default=0.5)
         k = [(v if h else far) ** -power for v, h in zip(R, has)]

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from estimators.camera import HeadCamera
+from estimators.models import HeadCamera
 
 CAM = HeadCamera()
 

@@ -1,4 +1,5 @@
-"""Motion models of a ball rolling on carpet."""
+"""The closed-form motion of a ball rolling on carpet: the ball model of paper 002 (Zhao, Wang,
+Li 2012)."""
 
 from __future__ import annotations
 

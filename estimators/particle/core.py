@@ -1,5 +1,5 @@
 """Bootstrap, fission-bootstrap (FBPF) and the modified FBPF (MFBPF) particle filters of
-paper 000 (SPEC 1.1), on ``(N, d)`` particle arrays.
+paper 000 (Xu, Xie, Wang, Ni 2012, SPEC 1.1), on ``(N, d)`` particle arrays.
 
 The model is the user's: ``transition(particles, k, rng) -> particles`` draws
 ``x_k ~ p(x_k | x_{k-1})`` for every row, ``likelihood(particles, y) -> (N,)`` evaluates
@@ -46,8 +46,10 @@ from collections.abc import Callable
 
 import numpy as np
 
-__all__ = ["BootstrapPF", "FBPF", "MFBPF", "systematic_resample", "sfn", "ungm_model",
-           "ungm_simulate"]
+from ..registry import Registry
+
+__all__ = ["BootstrapPF", "FBPF", "MFBPF", "PARTICLE_FILTERS", "systematic_resample", "sfn",
+           "ungm_model", "ungm_simulate"]
 
 Transition = Callable[[np.ndarray, int, np.random.Generator], np.ndarray]
 Likelihood = Callable[[np.ndarray, np.ndarray], np.ndarray]
@@ -247,6 +249,24 @@ class MFBPF(FBPF):
         else:
             BootstrapPF._refresh(self)  # copy high-weight particles over low-weight ones
         return estimate
+
+
+#: The particle filters by name: the class, with the constructor
+#: ``(particles, transition, likelihood, rng, threshold, ...)`` (how
+#: :class:`~estimators.particle.ParticleBallTracker` picks its filter).
+PARTICLE_FILTERS: Registry[type[BootstrapPF]] = Registry("particle filter", [
+    ("bootstrap", BootstrapPF,
+     "bootstrap particle filter (sampling importance resampling): particles weighted by the "
+     "measurement likelihood and resampled systematically when the effective sample size "
+     "falls below the threshold"),
+    ("fbpf", FBPF,
+     "fission bootstrap particle filter (Cheng and Zhang 2008): bootstrap PF with "
+     "sort-fission-normalise against sample impoverishment"),
+    ("mfbpf", MFBPF,
+     "modified fission bootstrap particle filter of paper 000 (Xu, Xie, Wang, Ni 2012): FBPF "
+     "simplified for embedded hardware, weights kept between resamplings and fission while "
+     "the effective sample size is high"),
+])
 
 
 # ------------------------------------------------------------------------------------------

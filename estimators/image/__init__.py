@@ -1,0 +1,37 @@
+"""Trackers on weight images (a colour-probability image, i.e. the back-projection of a colour
+table or a hue histogram, or a frame difference); numpy-only, whatever made the images.
+
+* :mod:`~estimators.image.meanshift`: mean shift on a weight image (:func:`mean_shift`) and
+  the batched window machinery the trackers share;
+* :mod:`~estimators.image.mspf`: the feature-restricted mean-shift particle filter of paper
+  003 (Li, Wu, Kong 2010; :class:`MeanShiftParticleFilter`) and the plain particle filter it
+  is compared with (:class:`ParticleFilterTracker`);
+* :mod:`~estimators.image.following`: the Kalman-started mean shift with ego-motion
+  compensation of paper 004 (Yu, Wei, Zhang 2010; :class:`KalmanMeanShift`), plain mean shift
+  (:class:`PlainMeanShift`), and the pinhole helpers (:func:`ego_motion_shift`,
+  :func:`depth_from_size`, :func:`apparent_height`, :func:`focal_length_px`).
+"""
+
+from .following import (
+    KalmanMeanShift,
+    PlainMeanShift,
+    apparent_height,
+    depth_from_size,
+    ego_motion_shift,
+    focal_length_px,
+)
+from .meanshift import MEAN_SHIFT_KERNELS, mean_shift
+from .mspf import MeanShiftParticleFilter, ParticleFilterTracker
+
+__all__ = [
+    "mean_shift",
+    "MEAN_SHIFT_KERNELS",
+    "MeanShiftParticleFilter",
+    "ParticleFilterTracker",
+    "KalmanMeanShift",
+    "PlainMeanShift",
+    "depth_from_size",
+    "focal_length_px",
+    "apparent_height",
+    "ego_motion_shift",
+]

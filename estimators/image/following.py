@@ -1,0 +1,334 @@
+"""The Kalman-started mean shift with ego-motion compensation of paper 004 (Yu, Wei, Zhang
+2010, SPEC 1.5), plain mean shift from the last position, and depth from a target's apparent
+size, on weight images (images, points, windows and mean shift as in
+:mod:`estimators.image.meanshift`).
+
+**Paper 004 (Kalman-started mean shift).** :class:`KalmanMeanShift` filters the image-plane
+state ``X = (x, y, vx, vy)`` [px, px, px/frame, px/frame] of a target seen by a camera on a
+moving robot: ``X_{k+1} = A X_k + B(u_k) + w_k``, ``A`` constant velocity over one frame, and
+the robot's own motion ``u = (theta, s)`` over the last frame as control input (the paper's
+linear angle-to-pixel model, a pixel column at angle ``(x - x_B / 2) gamma_x / x_B`` from the
+optical axis):
+
+* a rotation ``theta`` [rad] (positive counter-clockwise seen from above, i.e. a turn to the
+  left) moves the scene to the right in the image: ``dx = +theta * x_B / gamma_x`` (``x_B``
+  the image width [px], ``gamma_x`` the horizontal field of view [rad]);
+* a forward motion ``s`` [m] towards the target (``d_{k+1} = d_k - s``, ``d`` its ground
+  distance [m]) increases the angle of the line of sight below the horizon,
+  ``alpha = arctan(h / d)`` (``h`` the camera's height above the target's centre [m]), which
+  moves the target down (``y`` grows): ``dy = (arctan(h / d_{k+1}) - arctan(h / d_k)) *
+  y_B / gamma_y``.
+
+Mean shift on the weight image (the target's hue back-projection) starts at the prediction; its
+converged centroid ``z`` is the measurement. By default the posterior's position is replaced by
+``z`` (the paper; the velocity and covariance come from a standard Kalman update with ``z``);
+``posterior="update"`` keeps the standard Kalman update. The mean-shift window is the target
+size times ``window_scale`` (1 by default; 2 is the paper's back-projection region ``R``).
+The track is lost in a frame when the converged window's mean weight is below ``min_fill``:
+the filter then only predicts and reports ``lost``. :class:`PlainMeanShift` is the baseline:
+mean shift from the last position, no prediction.
+
+**Depth** from the target's known size (pinhole camera): ``d = f * size / apparent_size``, ``f``
+the focal length [px] (:func:`focal_length_px`: ``f = (n / 2) / tan(fov / 2)`` for ``n``
+pixels across a field of view ``fov``), and the apparent size measured by a shape histogram
+(:func:`apparent_height`). :class:`KalmanMeanShift` uses it for ``d_k`` when given the
+target's height.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from ..kalman.core import KalmanFilter
+from .meanshift import MEAN_SHIFT_KERNELS, _count, _image, _number, _point, _window_size, _Windows
+
+__all__ = ["KalmanMeanShift", "PlainMeanShift", "depth_from_size", "focal_length_px",
+           "apparent_height", "ego_motion_shift"]
+
+
+# ------------------------------------------------------------------------------------------
+# Paper 004: Kalman-started mean shift with ego-motion compensation
+# ------------------------------------------------------------------------------------------
+
+def focal_length_px(pixels: float, fov: float) -> float:
+    """Pinhole focal length [px] of ``pixels`` across a field of view ``fov`` [rad]:
+    ``f = (pixels / 2) / tan(fov / 2)``."""
+    n = _number("pixels", pixels)
+    a = _number("fov", fov)
+    if a >= math.pi:
+        raise ValueError(f"fov must be < pi rad, got {fov!r}")
+    return 0.5 * n / math.tan(0.5 * a)
+
+
+def depth_from_size(size_m: float, apparent_size_px: float, focal_px: float) -> float:
+    """Distance [m] of a target of known size ``size_m`` [m] that appears ``apparent_size_px``
+    [px] large (pinhole): ``d = f * size / apparent_size``, ``f = focal_px`` [px]."""
+    return (_number("focal_px", focal_px) * _number("size_m", size_m)
+            / _number("apparent_size_px", apparent_size_px))
+
+
+def apparent_height(weight_image: np.ndarray, window: Sequence[int], threshold: float = 0.5,
+                    min_fraction: float = 0.2) -> float:
+    """The target's height [px] in ``window`` ``(x, y, w, h)`` by a shape histogram (paper
+    004): the foreground pixels (weight ``>= threshold``) are projected onto the vertical
+    axis (a count per row); the target spans the rows from the first to the last whose count
+    is at least ``min_fraction`` times the largest. Returns 0 when no pixel is foreground.
+    The window is clipped to the image."""
+    img = _image("weight_image", weight_image)
+    try:
+        x, y, w, h = (int(v) for v in window)
+    except (TypeError, ValueError):
+        raise ValueError(f"window must be four integers (x, y, w, h), got {window!r}") from None
+    _count("window w", w)
+    _count("window h", h)
+    _number("threshold", threshold, allow_low=True)
+    _number("min_fraction", min_fraction, allow_low=True, high=1.0)
+    x1, y1 = max(x, 0), max(y, 0)
+    x2, y2 = min(x + w, img.shape[1]), min(y + h, img.shape[0])
+    if x2 <= x1 or y2 <= y1:
+        return 0.0
+    counts = (img[y1:y2, x1:x2] >= threshold).sum(axis=1)
+    top = counts.max()
+    if top == 0:
+        return 0.0
+    rows = np.flatnonzero(counts >= max(min_fraction * top, 1))
+    return float(rows[-1] - rows[0] + 1)
+
+
+def ego_motion_shift(rotation: float, advance: float, image_size: Sequence[int],
+                     fov: Sequence[float], camera_height: float = 0.0,
+                     distance: float | None = None) -> np.ndarray:
+    """Image shift ``(dx, dy)`` [px] of a target caused by the robot's own motion over one
+    frame (paper 004, see the module docstring):
+    ``dx = theta * x_B / gamma_x`` (``theta = rotation`` [rad], positive counter-clockwise,
+    i.e. a left turn, which moves the scene right) and
+    ``dy = (arctan(h / (d - s)) - arctan(h / d)) * y_B / gamma_y`` (``s = advance`` [m]
+    towards the target, ``d = distance`` [m] before the move, ``h = camera_height`` [m] above
+    the target's centre; ``d - s`` floored at 1 mm). ``distance`` is needed when
+    ``advance != 0``."""
+    theta = float(rotation)
+    s = float(advance)
+    if not (math.isfinite(theta) and math.isfinite(s)):
+        raise ValueError(f"rotation and advance must be finite, got {rotation!r}, {advance!r}")
+    xb, yb = _window_size("image_size", image_size)
+    try:
+        gx, gy = (float(a) for a in fov)
+    except (TypeError, ValueError):
+        raise ValueError(f"fov must be (gamma_x, gamma_y) [rad], got {fov!r}") from None
+    _number("fov[0] (gamma_x)", gx)
+    _number("fov[1] (gamma_y)", gy)
+    dx = theta * xb / gx
+    dy = 0.0
+    if s != 0.0:
+        if distance is None:
+            raise ValueError("distance is needed when advance != 0")
+        d = _number("distance", distance)
+        h = float(camera_height)
+        if not math.isfinite(h):
+            raise ValueError(f"camera_height must be finite, got {camera_height!r}")
+        d1 = max(d - s, 1e-3)
+        dy = (math.atan2(h, d1) - math.atan2(h, d)) * yb / gy
+    return np.array([dx, dy])
+
+
+class _MeanShiftTrack:
+    """Shared by the two mean-shift trackers: the window, one mean shift, the lost test."""
+
+    def __init__(self, window_size, window_scale: float, max_iter: int, eps: float,
+                 kernel: str, min_fill: float) -> None:
+        w, h = _window_size("window_size", window_size)
+        self.window_scale = _number("window_scale", window_scale)
+        self.target_size = (w, h)
+        self.window_size = (max(int(round(w * self.window_scale)), 1),
+                            max(int(round(h * self.window_scale)), 1))
+        self.max_iter = _count("max_iter", max_iter)
+        self.eps = _number("eps", eps, allow_low=True)
+        MEAN_SHIFT_KERNELS.check(kernel, "kernel")
+        self.kernel = kernel
+        self.min_fill = _number("min_fill", min_fill, allow_low=True, high=1.0)
+        self._win: _Windows | None = None
+        self.lost = False
+        self.lost_frames = 0
+        self.fill = 0.0
+        self.window: tuple[int, int, int, int] | None = None
+
+    def _shift_from(self, image, start: np.ndarray) -> tuple[np.ndarray | None, np.ndarray]:
+        """Mean shift from the window centred at ``start``; returns the centroid (None if
+        the converged window's mean weight is below ``min_fill``) and the flat image."""
+        img = _image("weight_image", image)
+        if self._win is None or (self._win.height, self._win.width) != img.shape:
+            self._win = _Windows(*self.window_size, img.shape, self.kernel)
+        win = self._win
+        x0, y0 = win.corner(start[None, :])
+        x0, y0, _, mom = win.shift([(img.ravel(), 1.0)], x0, y0, self.max_iter, self.eps)
+        self.window = (int(x0[0]), int(y0[0]), win.w, win.h)
+        self.fill = float(mom[0, 3]) / win.area
+        if self.fill < self.min_fill:
+            return None, img
+        return win.centroids(mom, x0, y0)[0], img
+
+
+class PlainMeanShift(_MeanShiftTrack):
+    """Mean shift from the last position, no prediction: paper 004's baseline.
+
+    Args:
+        position: initial ``(x, y)`` [px].
+        window_size: the target's size ``(w, h)`` [px].
+        window_scale: the mean-shift window is ``window_scale`` times the target size.
+        max_iter, eps, kernel: as :func:`mean_shift`.
+        min_fill: the track is lost in a frame whose converged window's mean weight is below
+            this (the position then stays).
+
+    Attributes:
+        position: ``(x, y)`` [px]; lost, lost_frames, fill (the last window's mean weight),
+        window (the last converged window).
+    """
+
+    def __init__(self, position, window_size, *, window_scale: float = 1.0, max_iter: int = 10,
+                 eps: float = 0.5, kernel: str = "flat", min_fill: float = 0.2) -> None:
+        super().__init__(window_size, window_scale, max_iter, eps, kernel, min_fill)
+        self.position = _point("position", position).copy()
+
+    def update(self, weight_image: np.ndarray) -> np.ndarray:
+        """One frame on the weight image ``(H, W)``; returns the position ``(x, y)`` [px]."""
+        z, _ = self._shift_from(weight_image, self.position)
+        self.lost = z is None
+        if self.lost:
+            self.lost_frames += 1
+        else:
+            self.position = z
+        return self.position.copy()
+
+
+class KalmanMeanShift(_MeanShiftTrack):
+    """Kalman-started mean shift with ego-motion compensation, paper 004 (Yu, Wei and Zhang
+    2010); see the module docstring for the model, the sign conventions and our readings.
+
+    Args:
+        position: initial ``(x, y)`` [px].
+        window_size: the target's size ``(w, h)`` in the image [px].
+        image_size: ``(x_B, y_B)``, the image's width and height [px].
+        fov: ``(gamma_x, gamma_y)``, the horizontal and vertical fields of view [rad].
+        camera_height: ``h``, the camera's height above the target's centre [m].
+        distance: the target's ground distance ``d`` [m] now, if known (updated by dead
+            reckoning ``d - s`` and, with ``target_height_m``, from the apparent size).
+        target_height_m: the target's real height [m]: each frame's distance is then
+            estimated from its apparent height (:func:`apparent_height` in a region twice the
+            window, :func:`depth_from_size` with the vertical focal length).
+        velocity: initial ``(vx, vy)`` [px/frame].
+        accel_sigma: white-acceleration process noise [px/frame^2].
+        measurement_sigma: mean shift's position noise [px].
+        init_sigma: initial ``(position, velocity)`` standard deviations [px, px/frame].
+        posterior: ``"replace"`` (the paper: the posterior position is the mean-shift
+            position) or ``"update"`` (a standard Kalman update).
+        window_scale: the mean-shift window is ``window_scale`` times the target size
+            (1 by default; 2 is the paper's back-projection region ``R``).
+        max_iter, eps, kernel: as :func:`mean_shift`.
+        min_fill: the track is lost in a frame whose converged window's mean weight is below
+            this.
+
+    Attributes:
+        kf: the :class:`~estimators.kalman.KalmanFilter` on ``(x, y, vx, vy)``.
+        lost, lost_frames, fill, window: as :class:`PlainMeanShift`.
+        prediction: the last predicted ``(x, y)`` [px] (where mean shift started).
+        distance: the target's current distance estimate [m] (None if unknown).
+    """
+
+    def __init__(self, position, window_size, *, image_size: Sequence[int],
+                 fov: Sequence[float], camera_height: float = 0.0,
+                 distance: float | None = None, target_height_m: float | None = None,
+                 velocity=(0.0, 0.0), accel_sigma: float = 2.0, measurement_sigma: float = 2.0,
+                 init_sigma: Sequence[float] = (2.0, 5.0), posterior: str = "replace",
+                 window_scale: float = 1.0, max_iter: int = 10, eps: float = 0.5,
+                 kernel: str = "flat", min_fill: float = 0.2) -> None:
+        super().__init__(window_size, window_scale, max_iter, eps, kernel, min_fill)
+        self.image_size = _window_size("image_size", image_size)
+        ego_motion_shift(0.0, 0.0, self.image_size, fov)  # validates fov
+        self.fov = (float(fov[0]), float(fov[1]))
+        self.camera_height = float(camera_height)
+        if not math.isfinite(self.camera_height):
+            raise ValueError(f"camera_height must be finite, got {camera_height!r}")
+        self.distance = None if distance is None else _number("distance", distance)
+        self.target_height_m = (None if target_height_m is None
+                                else _number("target_height_m", target_height_m))
+        self.focal_y = focal_length_px(self.image_size[1], self.fov[1])
+        if posterior not in ("replace", "update"):
+            raise ValueError(f"posterior must be 'replace' or 'update', got {posterior!r}")
+        self.posterior = posterior
+        sa = _number("accel_sigma", accel_sigma, allow_low=True)
+        sm = _number("measurement_sigma", measurement_sigma)
+        try:
+            sp, sv = (float(v) for v in init_sigma)
+        except (TypeError, ValueError):
+            raise ValueError(f"init_sigma must be (position, velocity) standard deviations, "
+                             f"got {init_sigma!r}") from None
+        _number("init_sigma[0]", sp)
+        _number("init_sigma[1]", sv)
+        x = np.concatenate([_point("position", position), _point("velocity", velocity)])
+        self.kf = KalmanFilter(x, np.diag([sp * sp, sp * sp, sv * sv, sv * sv]))
+        self.F = np.array([[1.0, 0, 1, 0], [0, 1, 0, 1], [0, 0, 1, 0], [0, 0, 0, 1]])
+        G = np.array([[0.5, 0], [0, 0.5], [1, 0], [0, 1]])
+        self.Q = sa * sa * G @ G.T  # white acceleration over one frame
+        self.H = np.eye(2, 4)
+        self.R = sm * sm * np.eye(2)
+        self.prediction = x[:2].copy()
+
+    @property
+    def state(self) -> np.ndarray:
+        """``(x, y, vx, vy)`` [px, px/frame]."""
+        return self.kf.x.copy()
+
+    def predict(self, rotation: float = 0.0, advance: float = 0.0,
+                distance: float | None = None) -> np.ndarray:
+        """Time update with the robot's motion ``u = (rotation [rad], advance [m])`` over the
+        last frame: ``X = A X + (dx, dy, 0, 0)`` with the ego-motion shift
+        (:func:`ego_motion_shift`), ``P = A P A^T + Q``. ``distance`` [m] overrides the
+        tracker's distance estimate (needed when ``advance != 0``). Returns the predicted
+        ``(x, y)`` [px]."""
+        d = self.distance if distance is None else _number("distance", distance)
+        shift = ego_motion_shift(rotation, advance, self.image_size, self.fov,
+                                 self.camera_height, d)
+        x_pred = self.F @ self.kf.x
+        x_pred[:2] += shift
+        self.kf.predict(self.F, self.Q, x_pred)
+        if d is not None:
+            self.distance = max(d - float(advance), 1e-3)
+        self.prediction = self.kf.x[:2].copy()
+        return self.prediction.copy()
+
+    def shift(self, du: float, dv: float) -> None:
+        """Move the state by an image shift known from elsewhere [px], e.g. the head's servos:
+        a pan by ``a`` [rad] (left positive) moves the scene by ``a x_B / gamma_x`` to the
+        right, a tilt by ``b`` (down positive) by ``b y_B / gamma_y`` upwards (``dv < 0``)."""
+        self.kf.x[0] += float(du)
+        self.kf.x[1] += float(dv)
+
+    def update(self, weight_image: np.ndarray, rotation: float = 0.0, advance: float = 0.0,
+               distance: float | None = None) -> np.ndarray:
+        """One frame: :meth:`predict` with the robot's motion, mean shift on ``weight_image``
+        (the hue back-projection, ``(H, W)``) from the prediction, then the measurement
+        update (or, when lost, the prediction alone). Returns ``(x, y, vx, vy)``."""
+        start = self.predict(rotation, advance, distance)
+        z, img = self._shift_from(weight_image, start)
+        self.lost = z is None
+        if self.lost:
+            # A lost target is taken to stand where it was last predicted: its own velocity
+            # is forgotten (extrapolating it would carry the window away for good), while
+            # the robot's own motion still moves it in the image.
+            self.lost_frames += 1
+            self.kf.update(None, self.H, self.R)
+            self.kf.x[2:] = 0.0
+            return self.state
+        self.kf.update(z, self.H, self.R)
+        if self.posterior == "replace":
+            self.kf.x[:2] = z
+        if self.target_height_m is not None:
+            w, h = self.window_size
+            region = (int(round(z[0] - w)), int(round(z[1] - h)), 2 * w, 2 * h)
+            size = apparent_height(img, region)
+            if size > 0.0:
+                self.distance = depth_from_size(self.target_height_m, size, self.focal_y)
+        return self.state

@@ -1,0 +1,253 @@
+"""Mean shift on weight images: the building block of the image trackers of paper 003
+(Li, Wu, Kong 2010; :mod:`estimators.image.mspf`) and paper 004 (Yu, Wei, Zhang 2010;
+:mod:`estimators.image.following`), with the window machinery and argument checks they share.
+
+**Images and coordinates.** Every image is a 2-D array of non-negative weights (float32 in
+``[0, 1]`` in practice: a colour-probability image, i.e. the back-projection of a colour table
+or a hue histogram, or a frame difference), so the filters do not depend on how the images were
+made. A point is ``(x, y)`` [px], ``x`` the column to the right and ``y`` the row downwards,
+pixel centres at integer coordinates (pixel ``image[r, c]`` is the point ``(c, r)``). A window
+is ``(x, y, w, h)`` [px], integers: its top-left pixel and its size; it covers columns
+``x .. x + w - 1`` and rows ``y .. y + h - 1`` and its centre is ``(x + (w - 1) / 2,
+y + (h - 1) / 2)``. Windows are kept inside the image by shifting them (never by shrinking).
+Velocities are in pixels per frame [px/frame]: the filters step once per image.
+
+**Mean shift** (:func:`mean_shift`, flat kernel, as OpenCV's ``cv2.meanShift``): with
+``m_00 = sum_W I``, ``m_10 = sum_W x I``, ``m_01 = sum_W y I`` the zeroth and first moments of
+the weights inside the window ``W``, the window moves by
+``round(m_10 / m_00 - c_x, m_01 / m_00 - c_y)`` (``c`` its centre, ``round`` half to even as
+``cvRound``) until it moves less than ``eps`` pixels (or not at all), at most ``max_iter``
+times, or stops where it holds no weight. The Epanechnikov option weights every pixel with
+``k = max(0, 1 - r^2)``, ``r^2 = ((x - c_x) / (w / 2))^2 + ((y - c_y) / (h / 2))^2``, in the
+moments (the kernel of Comaniciu et al.). OpenCV offsets the centroid by ``w / 2`` rather than
+``(w - 1) / 2``, a bias of half a pixel towards the top left that changes where the rounded
+steps stall (on a noisy background often by a pixel or two); ``opencv_compatible=True``
+reproduces OpenCV's windows exactly.
+
+Every tracker runs mean shift on all its windows at once: one gather of the ``N`` windows'
+pixels through flat indices, ``(N, h w)``, and one matrix product with the ``(h w, 4)`` matrix
+of ``[k, k x, k y, 1]`` per iteration, so a frame costs ``O(N iterations h w)``, independent
+of the image size. Summed-area tables (integral images) make a window's sum ``O(1)`` but cost
+``O(H W)`` per image and per moment (three tables per image for mean shift): they pay when
+many targets share one image, and are used here only for the global search (one table, the
+sum of every window position at once).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from ..registry import Registry
+
+__all__ = ["mean_shift", "MEAN_SHIFT_KERNELS"]
+
+
+def _flat(xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
+    """The flat kernel: every pixel of the window weighs 1."""
+    return np.ones_like(xs)
+
+
+def _epanechnikov(xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
+    """The Epanechnikov profile ``k = max(0, 1 - r^2)`` on the ellipse inscribed in the
+    window (see the module docstring)."""
+    h, w = xs.shape
+    cx, cy = 0.5 * (w - 1), 0.5 * (h - 1)
+    r2 = ((xs - cx) / (0.5 * w)) ** 2 + ((ys - cy) / (0.5 * h)) ** 2
+    return np.maximum(1.0 - r2, 0.0)
+
+
+#: Mean-shift kernels by name: ``k(xs, ys) -> (h, w)`` weights of a window's pixels from their
+#: local coordinates ``xs``, ``ys`` (``(h, w)`` arrays, ``0 .. w - 1`` and ``0 .. h - 1``).
+MEAN_SHIFT_KERNELS = Registry("mean-shift kernel", [
+    ("flat", _flat,
+     "flat kernel: every pixel in the window counts the same (as OpenCV's cv2.meanShift)"),
+    ("epanechnikov", _epanechnikov,
+     "Epanechnikov kernel (Comaniciu et al.): pixels weighted by 1 - r^2 on the ellipse "
+     "inscribed in the window, so those near its centre count most"),
+])
+
+
+# ------------------------------------------------------------------------------------------
+# Argument checks
+# ------------------------------------------------------------------------------------------
+
+def _number(name: str, value, low: float = 0.0, allow_low: bool = False,
+            high: float | None = None) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(v) or v < low or (v == low and not allow_low) or (
+            high is not None and v > high):
+        rng = f"{'>=' if allow_low else '>'} {low}" + ("" if high is None else f", <= {high}")
+        raise ValueError(f"{name} must be finite and {rng}, got {value!r}")
+    return v
+
+
+def _count(name: str, value, low: int = 1) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
+        raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
+    return int(value)
+
+
+def _image(name: str, image, shape: tuple[int, int] | None = None,
+           scan: bool = False) -> np.ndarray:
+    """``image`` as a C-contiguous float32/float64 2-D array (a copy only if needed). Values
+    are scanned (finite, non-negative) only when ``scan``: a per-frame scan of a 640 x 480
+    image would cost as much as the tracking."""
+    arr = np.asarray(image)
+    if arr.ndim != 2 or arr.shape[0] < 1 or arr.shape[1] < 1:
+        raise ValueError(f"{name} must be a 2-D image, got shape {arr.shape}")
+    if arr.dtype not in (np.float32, np.float64):
+        if not (np.issubdtype(arr.dtype, np.number) and not np.iscomplexobj(arr)):
+            raise ValueError(f"{name} must be a real-valued image, got dtype {arr.dtype}")
+        arr = arr.astype(np.float32)
+    if shape is not None and arr.shape != shape:
+        raise ValueError(f"{name} must have shape {shape}, got {arr.shape}")
+    if scan and not (np.all(np.isfinite(arr)) and arr.min() >= 0.0):
+        raise ValueError(f"{name} must be finite and non-negative")
+    return np.ascontiguousarray(arr)
+
+
+def _window_size(name: str, value) -> tuple[int, int]:
+    try:
+        w, h = value
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be (w, h) in pixels, got {value!r}") from None
+    return _count(f"{name}[0] (w)", w), _count(f"{name}[1] (h)", h)
+
+
+def _point(name: str, value) -> np.ndarray:
+    arr = np.asarray(value, dtype=np.float64)
+    if arr.shape != (2,) or not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be a finite (x, y) pair, got {value!r}")
+    return arr
+
+
+# ------------------------------------------------------------------------------------------
+# Batched mean shift on windows of one size
+# ------------------------------------------------------------------------------------------
+
+class _Windows:
+    """Windows of one size ``(w, h)`` in images of one shape: flat pixel offsets and the
+    moment matrix ``[k, k x, k y, 1]`` ((h w, 4), local coordinates) of the kernel ``k``."""
+
+    def __init__(self, w: int, h: int, shape: tuple[int, int], kernel: str = "flat",
+                 opencv: bool = False) -> None:
+        profile = MEAN_SHIFT_KERNELS[MEAN_SHIFT_KERNELS.check(kernel, "kernel")]
+        height, width = shape
+        if w > width or h > height:
+            raise ValueError(f"window size ({w}, {h}) must fit in the image ({width} x "
+                             f"{height})")
+        self.w, self.h, self.width, self.height = w, h, width, height
+        ys, xs = np.mgrid[0:h, 0:w].astype(np.float64)
+        self.cx, self.cy = 0.5 * (w - 1), 0.5 * (h - 1)
+        # The point the centroid is compared with: the window's centre, or OpenCV's w / 2.
+        self.ox, self.oy = (0.5 * w, 0.5 * h) if opencv else (self.cx, self.cy)
+        k = profile(xs, ys)
+        self.moments = np.stack([k, k * xs, k * ys, np.ones_like(xs)], axis=-1).reshape(-1, 4)
+        self.offsets = (np.arange(h)[:, None] * width + np.arange(w)[None, :]).ravel()
+        self.area = w * h
+
+    def corner(self, centres: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Top-left pixels of the windows centred (to the nearest pixel) at ``centres``
+        ((N, 2)), shifted inside the image."""
+        x0 = np.clip(np.rint(centres[:, 0] - self.cx), 0, self.width - self.w).astype(np.intp)
+        y0 = np.clip(np.rint(centres[:, 1] - self.cy), 0, self.height - self.h).astype(np.intp)
+        return x0, y0
+
+    def gather(self, flat: np.ndarray, x0: np.ndarray, y0: np.ndarray) -> np.ndarray:
+        """The windows' pixels, ``(N, h w)``."""
+        return flat[(y0 * self.width + x0)[:, None] + self.offsets]
+
+    def moments_of(self, flats: Sequence[tuple[np.ndarray, float]], x0: np.ndarray,
+                   y0: np.ndarray) -> np.ndarray:
+        """``(N, 4)`` kernel moments ``(m00, m10, m01, mass)`` (local coordinates; ``mass``
+        the plain sum) of the image ``sum_j c_j I_j`` given as ``[(flat I_j, c_j)]``."""
+        patch = None
+        for flat, c in flats:
+            p = self.gather(flat, x0, y0)
+            part = p if c == 1.0 else c * p
+            patch = part if patch is None else patch + part
+        return patch.astype(np.float64, copy=False) @ self.moments
+
+    def shift(self, flats: Sequence[tuple[np.ndarray, float]], x0: np.ndarray, y0: np.ndarray,
+              max_iter: int, eps: float
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Mean shift of every window (see the module docstring). Returns the converged
+        corners, the iteration counts and the moments at the converged windows."""
+        x0, y0 = x0.copy(), y0.copy()
+        n = len(x0)
+        iters = np.zeros(n, dtype=np.intp)
+        active = np.arange(n)
+        eps2 = eps * eps
+        for _ in range(max_iter):
+            mom = self.moments_of(flats, x0[active], y0[active])
+            m00 = mom[:, 0]
+            has_mass = m00 > 1e-12
+            safe = np.where(has_mass, m00, 1.0)
+            dx = np.where(has_mass, np.rint(mom[:, 1] / safe - self.ox), 0.0).astype(np.intp)
+            dy = np.where(has_mass, np.rint(mom[:, 2] / safe - self.oy), 0.0).astype(np.intp)
+            nx = np.clip(x0[active] + dx, 0, self.width - self.w)
+            ny = np.clip(y0[active] + dy, 0, self.height - self.h)
+            mx, my = nx - x0[active], ny - y0[active]
+            iters[active[has_mass]] += 1
+            x0[active], y0[active] = nx, ny
+            moving = has_mass & ((mx != 0) | (my != 0)) & (mx * mx + my * my >= eps2)
+            active = active[moving]
+            if active.size == 0:
+                break
+        return x0, y0, iters, self.moments_of(flats, x0, y0)
+
+    def centroids(self, mom: np.ndarray, x0: np.ndarray, y0: np.ndarray) -> np.ndarray:
+        """Image coordinates of the kernel-weighted centroids ((N, 2)); the window centre
+        where the window holds no weight."""
+        m00 = mom[:, 0]
+        safe = np.where(m00 > 1e-12, m00, 1.0)
+        cx = np.where(m00 > 1e-12, mom[:, 1] / safe, self.cx)
+        cy = np.where(m00 > 1e-12, mom[:, 2] / safe, self.cy)
+        return np.stack([x0 + cx, y0 + cy], axis=1)
+
+
+def mean_shift(weight_image: np.ndarray, window: Sequence[int], max_iter: int = 10,
+               eps: float = 0.5, kernel: str = "flat", opencv_compatible: bool = False
+               ) -> tuple[np.ndarray, tuple[int, int, int, int], int, float]:
+    """Mean shift of one window on a non-negative weight image (see the module docstring).
+
+    Args:
+        weight_image: ``(H, W)`` non-negative weights (e.g. a colour back-projection).
+        window: ``(x, y, w, h)`` [px], the starting window (top-left pixel and size); shifted
+            inside the image if it sticks out.
+        max_iter: at most this many mean-shift steps.
+        eps: stop when the window moves less than this [px] (or not at all).
+        kernel: a name in :data:`MEAN_SHIFT_KERNELS`: ``"flat"`` (as ``cv2.meanShift``) or
+            ``"epanechnikov"``.
+        opencv_compatible: compare the centroid with ``(w / 2, h / 2)`` as OpenCV does (its
+            windows, exactly) instead of the window's centre ``((w - 1) / 2, (h - 1) / 2)``.
+
+    Returns:
+        ``(centre, window, iterations, mass)``: the centroid ``(x, y)`` [px] of the
+        (kernel-weighted) weights in the converged window (its centre if it holds none), the
+        converged window ``(x, y, w, h)``, the number of steps taken and the sum of the
+        weights inside the converged window.
+    """
+    img = _image("weight_image", weight_image, scan=True)
+    try:
+        x, y, w, h = (int(v) for v in window)
+        if any(float(a) != int(a) for a in window):
+            raise TypeError
+    except (TypeError, ValueError):
+        raise ValueError(f"window must be four integers (x, y, w, h), got {window!r}") from None
+    _count("window w", w)
+    _count("window h", h)
+    max_iter = _count("max_iter", max_iter)
+    eps = _number("eps", eps, allow_low=True)
+    win = _Windows(w, h, img.shape, kernel, bool(opencv_compatible))
+    x0 = np.clip(np.array([x], dtype=np.intp), 0, img.shape[1] - w)
+    y0 = np.clip(np.array([y], dtype=np.intp), 0, img.shape[0] - h)
+    x0, y0, iters, mom = win.shift([(img.ravel(), 1.0)], x0, y0, max_iter, eps)
+    centre = win.centroids(mom, x0, y0)[0]
+    return centre, (int(x0[0]), int(y0[0]), w, h), int(iters[0]), float(mom[0, 3])

@@ -1,0 +1,427 @@
+"""The feature-restricted mean-shift particle filter of paper 003 (Li, Wu, Kong 2010,
+SPEC 1.4) and the plain particle filter it is compared with, on weight images (images, points,
+windows and mean shift as in :mod:`estimators.image.meanshift`).
+
+**Paper 003 (feature-restricted mean-shift particle filter).** State per particle
+``(x, y, vx, vy)`` [px, px, px/frame, px/frame]; the heading ``phi`` of the paper's state is
+left to the ``feature_check`` hook (it needs the patch layout, not the weight images). The
+2nd-order autoregressive model ``S_t - S_{t-1} = S_{t-1} - S_{t-2} + w``,
+``w ~ N(0, process_sigma^2 I)`` on ``(x, y)``, is the constant-velocity model with
+``v_{t-1} = S_{t-1} - S_{t-2}``: ``p_t = p_{t-1} + v_{t-1} + w``, ``v_t = v_{t-1} + w``. Per
+frame (:meth:`MeanShiftParticleFilter.update`):
+
+1. propagate the particles with the AR model;
+2. mean shift on every particle's window (size ``window_size``, from the target's patch) over
+   the combined image ``M = (1 - a) M_c + a M_m`` (``M_c`` the colour probability, ``M_m``
+   the frame difference); ``a = max_motion_weight * min(1, |v| / v_ref)``, ``|v|`` the
+   previous estimate's speed. The paper has ``a`` proportional to the speed, normalised; we
+   cap it at ``max_motion_weight`` (0.5) because a frame difference alone has two lobes, at
+   the target's old and new position, and pure motion weight would pull windows back to the
+   old one. The particle moves to the weights' centroid in its converged window, and its
+   velocity takes the same shift (``v = p_t - p_{t-1}`` of the AR model);
+3. reweight: ``Dis = sqrt(1 - M / M_t)`` with ``M`` the window's sum of the combined image and
+   ``M_t`` its pixel count, ``w = exp(-Dis^2 / (2 sigma^2))`` (the paper's factor
+   ``1 / (sqrt(2 pi) sigma)`` cancels in the normalisation);
+4. estimate: the weighted mean of the particles (position and velocity), then systematic
+   resampling;
+5. feature restriction (our reading of the paper's "the colour, area and relative position of
+   the patches restrict the search to a region" and "the particle set inside the target
+   window"): a particle is allowed when its window's colour mass ``sum_W M_c`` is within
+   ``area * (1 +- area_tolerance)`` (``area`` the target's colour mass, i.e. its patch area
+   [px^2] weighted by colour probability, measured on the first image when not given) and the
+   user's ``feature_check(windows, colour_image)`` predicate (patch layout, heading, identity)
+   accepts it. Particles that are not allowed get zero weight, so resampling replaces them by
+   allowed ones: the particle set stays on windows that look like the target, which is what
+   lets about 20 particles do. (Moving them back into the allowed region is what mean shift
+   has already tried in step 2.)
+
+**Lost track**: no particle is allowed (the target's colour mass is nowhere near the
+particles). A robot then keeps its previous estimate (velocity set to zero) and is searched
+globally in the next frame: the window position with the largest colour mass among those
+allowed by the area restriction (a box filter of ``M_c`` through one integral image, so the
+whole image costs ``O(H W)``), refined by mean shift and accepted if ``feature_check`` agrees;
+the particles restart around it. The ball (pass ``robots=`` to ``update``): if a robot is in
+the ball's search window (:meth:`MeanShiftParticleFilter.occluded_by`), the ball is occluded
+and placed at that robot, and the particles restart there; otherwise as a robot.
+
+:class:`ParticleFilterTracker` is the paper's baseline: the same motion model and likelihood,
+no mean shift, no feature restriction, no lost-track handling.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from ..particle.core import systematic_resample
+from .meanshift import MEAN_SHIFT_KERNELS, _count, _image, _number, _point, _window_size, _Windows
+
+__all__ = ["MeanShiftParticleFilter", "ParticleFilterTracker"]
+
+FeatureCheck = Callable[[np.ndarray, np.ndarray], np.ndarray]
+
+
+# ------------------------------------------------------------------------------------------
+# Paper 003: particle filters on window likelihoods
+# ------------------------------------------------------------------------------------------
+
+class _WindowParticleFilter:
+    """The motion model, likelihood and bookkeeping shared by the two particle trackers."""
+
+    def __init__(self, position, window_size, rng: np.random.Generator, *, n_particles: int,
+                 velocity=(0.0, 0.0), process_sigma: float = 4.0,
+                 likelihood_sigma: float = 0.15, init_sigma: float = 2.0, v_ref: float = 20.0,
+                 max_motion_weight: float = 0.5) -> None:
+        if not isinstance(rng, np.random.Generator):
+            raise ValueError(f"rng must be a numpy.random.Generator, got {type(rng).__name__}")
+        self.rng = rng
+        p = _point("position", position)
+        v = _point("velocity", velocity)
+        self.window_size = _window_size("window_size", window_size)
+        self.n = _count("n_particles", n_particles, 2)
+        self.process_sigma = _number("process_sigma", process_sigma, allow_low=True)
+        self.likelihood_sigma = _number("likelihood_sigma", likelihood_sigma)
+        self.init_sigma = _number("init_sigma", init_sigma, allow_low=True)
+        self.v_ref = _number("v_ref", v_ref)
+        self.max_motion_weight = _number("max_motion_weight", max_motion_weight,
+                                         allow_low=True, high=1.0)
+        self.estimate = np.concatenate([p, v])
+        self._seed(p, v)
+        self.frame = 0
+        self.motion_weight = 0.0
+        self._win: _Windows | None = None
+
+    def _seed(self, p: np.ndarray, v: np.ndarray) -> None:
+        """Particles ``N(p, init_sigma^2 I)`` with velocity ``v``, equal weights."""
+        self.particles = np.empty((self.n, 4))
+        self.particles[:, :2] = p + self.rng.normal(0.0, self.init_sigma, (self.n, 2))
+        self.particles[:, 2:] = v
+        self.weights = np.full(self.n, 1.0 / self.n)
+
+    def _images(self, colour_image, motion_image):
+        colour = _image("colour_image", colour_image)
+        motion = None if motion_image is None else _image("motion_image", motion_image,
+                                                          colour.shape)
+        if self._win is None or (self._win.height, self._win.width) != colour.shape:
+            self._win = self._make_windows(colour.shape)
+        return colour, motion
+
+    def _make_windows(self, shape: tuple[int, int]) -> _Windows:
+        return _Windows(*self.window_size, shape)
+
+    def _flats(self, colour: np.ndarray, motion: np.ndarray | None
+               ) -> list[tuple[np.ndarray, float]]:
+        """The combined image ``(1 - a) M_c + a M_m`` as weighted flat images, with
+        ``a = max_motion_weight * min(1, |v| / v_ref)`` from the previous estimate."""
+        if motion is None:
+            self.motion_weight = 0.0
+            return [(colour.ravel(), 1.0)]
+        speed = math.hypot(self.estimate[2], self.estimate[3])
+        a = self.max_motion_weight * min(1.0, speed / self.v_ref)
+        self.motion_weight = a
+        if a == 0.0:
+            return [(colour.ravel(), 1.0)]
+        return [(colour.ravel(), 1.0 - a), (motion.ravel(), a)]
+
+    def _propagate(self) -> None:
+        """AR(2) model: ``p += v + w``, ``v += w``, ``w ~ N(0, process_sigma^2 I)``."""
+        w = self.rng.normal(0.0, self.process_sigma, (self.n, 2)) if self.process_sigma else 0.0
+        self.particles[:, 2:] += w
+        self.particles[:, :2] += self.particles[:, 2:]
+        h, wd = self._win.height, self._win.width
+        np.clip(self.particles[:, 0], 0.0, wd - 1.0, out=self.particles[:, 0])
+        np.clip(self.particles[:, 1], 0.0, h - 1.0, out=self.particles[:, 1])
+
+    def _log_likelihood(self, combined_mass: np.ndarray) -> np.ndarray:
+        """``log w = -Dis^2 / (2 sigma^2)``, ``Dis^2 = 1 - M / M_t``."""
+        dis2 = np.maximum(1.0 - combined_mass / self._win.area, 0.0)
+        return -dis2 / (2.0 * self.likelihood_sigma ** 2)
+
+    def _weigh_and_estimate(self, logw: np.ndarray, allowed: np.ndarray | None = None
+                            ) -> np.ndarray:
+        """Normalised weights (zero where not ``allowed``), weighted-mean estimate, then
+        systematic resampling."""
+        if allowed is not None:
+            logw = np.where(allowed, logw, -np.inf)
+        w = np.exp(logw - logw.max())
+        w /= w.sum()
+        self.weights = w
+        self.estimate = w @ self.particles
+        idx = systematic_resample(w, self.rng)
+        self.particles = self.particles[idx]
+        self.weights = np.full(self.n, 1.0 / self.n)
+        return self.estimate.copy()
+
+    def windows(self) -> np.ndarray:
+        """The particles' current windows ``(N, 4)`` as ``(x, y, w, h)`` [px] (after the
+        first update; before it, unclamped)."""
+        w, h = self.window_size
+        if self._win is None:
+            x0 = np.rint(self.particles[:, 0] - 0.5 * (w - 1)).astype(np.intp)
+            y0 = np.rint(self.particles[:, 1] - 0.5 * (h - 1)).astype(np.intp)
+        else:
+            x0, y0 = self._win.corner(self.particles)
+        return np.stack([x0, y0, np.full_like(x0, w), np.full_like(x0, h)], axis=1)
+
+
+class ParticleFilterTracker(_WindowParticleFilter):
+    """Plain particle filter on window likelihoods: paper 003's baseline (see the module
+    docstring): AR(2) motion, the likelihood ``exp(-Dis^2 / (2 sigma^2))`` of the combined
+    colour/motion image over each particle's window, weighted-mean estimate, systematic
+    resampling every frame; no mean shift, no feature restriction, no lost-track handling.
+
+    Args:
+        position: initial ``(x, y)`` [px].
+        window_size: ``(w, h)`` of the search window [px] (from the target's patch).
+        rng: the generator of every random draw.
+        n_particles: number of particles (the paper: at least 200).
+        velocity: initial ``(vx, vy)`` [px/frame].
+        process_sigma: standard deviation of the AR noise ``w`` [px].
+        likelihood_sigma: ``sigma`` of the likelihood (dimensionless, ``Dis`` is in
+            ``[0, 1]``).
+        init_sigma: spread of the initial particles [px].
+        v_ref: speed [px/frame] at which the motion image's weight ``a`` saturates.
+        max_motion_weight: the saturated ``a`` (0: colour only).
+    """
+
+    def __init__(self, position, window_size, rng: np.random.Generator, *,
+                 n_particles: int = 200, velocity=(0.0, 0.0), process_sigma: float = 4.0,
+                 likelihood_sigma: float = 0.15, init_sigma: float = 2.0, v_ref: float = 20.0,
+                 max_motion_weight: float = 0.5) -> None:
+        super().__init__(position, window_size, rng, n_particles=n_particles,
+                         velocity=velocity, process_sigma=process_sigma,
+                         likelihood_sigma=likelihood_sigma, init_sigma=init_sigma,
+                         v_ref=v_ref, max_motion_weight=max_motion_weight)
+
+    def update(self, colour_image: np.ndarray, motion_image: np.ndarray | None = None
+               ) -> np.ndarray:
+        """One frame: propagate, weigh, estimate, resample. ``colour_image`` ``(H, W)`` is the
+        target's colour probability, ``motion_image`` (optional, same shape) the frame
+        difference. Returns the estimate ``(x, y, vx, vy)`` [px, px/frame]."""
+        colour, motion = self._images(colour_image, motion_image)
+        flats = self._flats(colour, motion)
+        self.frame += 1
+        self._propagate()
+        x0, y0 = self._win.corner(self.particles)
+        mom = self._win.moments_of(flats, x0, y0)
+        return self._weigh_and_estimate(self._log_likelihood(mom[:, 3]))
+
+
+class MeanShiftParticleFilter(_WindowParticleFilter):
+    """Feature-restricted mean-shift particle filter of paper 003 (Li, Wu and Kong 2010) for
+    one target (see the module docstring for the maths and our readings).
+
+    Args:
+        position: initial ``(x, y)`` [px].
+        window_size: ``(w, h)`` of the search window ``W`` [px] (from the target's patch).
+        rng: the generator of every random draw.
+        n_particles: number of particles (the paper: about 20).
+        velocity: initial ``(vx, vy)`` [px/frame].
+        process_sigma: standard deviation of the AR noise ``w`` [px].
+        likelihood_sigma: ``sigma`` of the likelihood (``Dis`` is in ``[0, 1]``).
+        init_sigma: spread of the particles at a (re-)start [px].
+        v_ref: speed [px/frame] at which the motion image's weight ``a`` saturates.
+        max_motion_weight: the saturated ``a`` (0: colour only).
+        mean_shift_iter: mean-shift steps per particle and frame (at most).
+        eps: mean shift stops when a window moves less than this [px].
+        kernel: a name in :data:`~estimators.image.meanshift.MEAN_SHIFT_KERNELS` (``"flat"``
+            or ``"epanechnikov"``).
+        area: the target's colour mass ``sum_W M_c`` with the window on it [px^2] (its patch
+            area weighted by colour probability); None: measured on the first image,
+            in the window that mean shift (colour only) reaches from ``position``.
+        area_tolerance: a window is allowed when its colour mass is within
+            ``area * (1 +- area_tolerance)``.
+        feature_check: optional ``f(windows, colour_image) -> (N,) bool``, ``windows`` an
+            ``(N, 4)`` int array of ``(x, y, w, h)``: further patch constraints (layout,
+            heading, identity); also applied to the global search's candidate.
+
+    Attributes:
+        estimate: ``(x, y, vx, vy)`` [px, px/frame].
+        lost: the track was lost in the last frame (the next update searches globally).
+        occluded: the last frame placed the target at an occluding robot (ball rule).
+        occluder: that robot's index, else None.
+        lost_frames: frames reported lost so far.
+        area: the target's colour mass in use [px^2].
+        motion_weight: the last frame's ``a``.
+    """
+
+    def __init__(self, position, window_size, rng: np.random.Generator, *,
+                 n_particles: int = 20, velocity=(0.0, 0.0), process_sigma: float = 4.0,
+                 likelihood_sigma: float = 0.15, init_sigma: float = 2.0, v_ref: float = 20.0,
+                 max_motion_weight: float = 0.5, mean_shift_iter: int = 5, eps: float = 0.5,
+                 kernel: str = "flat", area: float | None = None, area_tolerance: float = 0.3,
+                 feature_check: FeatureCheck | None = None) -> None:
+        super().__init__(position, window_size, rng, n_particles=n_particles,
+                         velocity=velocity, process_sigma=process_sigma,
+                         likelihood_sigma=likelihood_sigma, init_sigma=init_sigma,
+                         v_ref=v_ref, max_motion_weight=max_motion_weight)
+        self.mean_shift_iter = _count("mean_shift_iter", mean_shift_iter, 0)
+        self.eps = _number("eps", eps, allow_low=True)
+        MEAN_SHIFT_KERNELS.check(kernel, "kernel")
+        self.kernel = kernel
+        self.area = None if area is None else _number("area", area)
+        self.area_tolerance = _number("area_tolerance", area_tolerance)
+        if feature_check is not None and not callable(feature_check):
+            raise ValueError("feature_check must be callable or None")
+        self.feature_check = feature_check
+        self.lost = False
+        self.occluded = False
+        self.occluder: int | None = None
+        self.lost_frames = 0
+
+    def _make_windows(self, shape: tuple[int, int]) -> _Windows:
+        return _Windows(*self.window_size, shape, self.kernel)
+
+    def _allowed(self, colour_mass: np.ndarray, x0: np.ndarray, y0: np.ndarray,
+                 colour: np.ndarray) -> np.ndarray:
+        """The feature restriction: colour mass within tolerance, and ``feature_check``."""
+        ok = np.abs(colour_mass - self.area) <= self.area_tolerance * self.area
+        if self.feature_check is not None and ok.any():
+            w, h = self.window_size
+            wins = np.stack([x0, y0, np.full_like(x0, w), np.full_like(x0, h)], axis=1)
+            res = np.asarray(self.feature_check(wins, colour), dtype=bool)
+            if res.shape != (len(x0),):
+                raise ValueError(f"feature_check must return ({len(x0)},) booleans, got "
+                                 f"shape {res.shape}")
+            ok &= res
+        return ok
+
+    def occluded_by(self, robot_positions, robot_radius_px: float,
+                    predicted=None) -> int | None:
+        """Paper 003's ball occlusion test: the index of the robot nearest to the target's
+        predicted position among those inside its search window, else None. A robot (a square
+        of half-side ``robot_radius_px`` [px] around its ``(x, y)``) is inside when it
+        overlaps the search window (``window_size`` centred at the predicted position), which
+        includes the robot's square containing the predicted position.
+
+        Args:
+            robot_positions: ``(R, 2)`` robot positions [px] (the robots' estimates).
+            robot_radius_px: the robots' half-size in the image [px].
+            predicted: the target's predicted ``(x, y)`` [px]; default: the estimate moved by
+                its velocity (the AR model's mean prediction).
+        """
+        r = _number("robot_radius_px", robot_radius_px, allow_low=True)
+        robots = np.asarray(robot_positions, dtype=np.float64).reshape(-1, 2) \
+            if np.size(robot_positions) else np.empty((0, 2))
+        if not np.all(np.isfinite(robots)):
+            raise ValueError("robot_positions must be finite (x, y) rows")
+        p = (self.estimate[:2] + self.estimate[2:] if predicted is None
+             else _point("predicted", predicted))
+        if len(robots) == 0:
+            return None
+        w, h = self.window_size
+        d = np.abs(robots - p)
+        inside = (d[:, 0] <= 0.5 * w + r) & (d[:, 1] <= 0.5 * h + r)
+        if not inside.any():
+            return None
+        dist = np.where(inside, np.hypot(d[:, 0], d[:, 1]), np.inf)
+        return int(np.argmin(dist))
+
+    def global_search(self, colour_image: np.ndarray, candidates: int = 8
+                      ) -> np.ndarray | None:
+        """The target over the whole image: the ``candidates`` windows of largest colour mass
+        (box sums from one integral image), each at least a window apart, refined by mean
+        shift; the first that passes the feature restriction (colour mass and
+        ``feature_check``: a look-alike, such as a team-mate, is passed over) gives the
+        centroid ``(x, y)`` [px]; None if none does."""
+        colour, _ = self._images(colour_image, None)
+        win = self._win
+        w, h = win.w, win.h
+        s = np.zeros((colour.shape[0] + 1, colour.shape[1] + 1))
+        np.cumsum(colour, axis=0, out=s[1:, 1:])
+        np.cumsum(s[1:, 1:], axis=1, out=s[1:, 1:])
+        box = s[h:, w:] - s[:-h, w:] - s[h:, :-w] + s[:-h, :-w]  # (H-h+1, W-w+1)
+        area = self._area_in_use(colour)
+        ok = np.abs(box - area) <= self.area_tolerance * area
+        if not ok.any():
+            return None
+        score = np.where(ok, box, -np.inf).ravel()
+        top = np.argsort(-score)[: 50 * candidates]
+        picks: list[tuple[int, int]] = []
+        for flat in top.tolist():  # greedy: the largest masses, a window apart
+            if not math.isfinite(score[flat]) or len(picks) == candidates:
+                break
+            y, x = divmod(flat, box.shape[1])
+            if all(abs(x - px) >= w or abs(y - py) >= h for px, py in picks):
+                picks.append((x, y))
+        x0 = np.array([p[0] for p in picks], dtype=np.intp)
+        y0 = np.array([p[1] for p in picks], dtype=np.intp)
+        flats = [(colour.ravel(), 1.0)]
+        x0, y0, _, mom = win.shift(flats, x0, y0, max(self.mean_shift_iter, 1), self.eps)
+        allowed = self._allowed(mom[:, 3], x0, y0, colour)
+        if not allowed.any():
+            return None
+        return win.centroids(mom, x0, y0)[int(np.argmax(allowed))]
+
+    def _area_in_use(self, colour: np.ndarray) -> float:
+        if self.area is None:  # calibrate on the first image, mean shift from the start
+            x0, y0 = self._win.corner(self.estimate[None, :2])
+            _, _, _, mom = self._win.shift([(colour.ravel(), 1.0)], x0, y0,
+                                           max(self.mean_shift_iter, 1), self.eps)
+            mass = float(mom[0, 3])
+            if mass <= 0.0:
+                raise ValueError("area is None and the first colour image holds no weight in "
+                                 "the initial window: pass area")
+            self.area = mass
+        return self.area
+
+    def update(self, colour_image: np.ndarray, motion_image: np.ndarray | None = None,
+               robots=None, robot_radius_px: float | None = None) -> np.ndarray:
+        """One frame (see the module docstring).
+
+        Args:
+            colour_image: ``(H, W)`` colour probability of the target's class, in ``[0, 1]``.
+            motion_image: optional ``(H, W)`` frame difference in ``[0, 1]``.
+            robots: for a ball, the robots' estimated positions ``(R, 2)`` [px]: when the
+                track is lost and :meth:`occluded_by` finds a robot, the ball is placed at it.
+            robot_radius_px: the robots' half-size [px] (needed with ``robots``).
+
+        Returns:
+            the estimate ``(x, y, vx, vy)`` [px, px/frame].
+        """
+        if robots is not None and robot_radius_px is None:
+            raise ValueError("robot_radius_px is needed with robots")
+        colour, motion = self._images(colour_image, motion_image)
+        self._area_in_use(colour)
+        self.frame += 1
+        self.occluded, self.occluder = False, None
+        if self.lost:  # re-initialise by a global search
+            found = self.global_search(colour)
+            if found is None:
+                self.lost_frames += 1
+                return self.estimate.copy()
+            self.lost = False
+            self.estimate = np.array([found[0], found[1], 0.0, 0.0])
+            self._seed(found, np.zeros(2))
+            return self.estimate.copy()
+        prior = self.estimate.copy()
+        flats = self._flats(colour, motion)
+        self._propagate()
+        win = self._win
+        x0, y0 = win.corner(self.particles)
+        if self.mean_shift_iter > 0:
+            x0, y0, _, mom = win.shift(flats, x0, y0, self.mean_shift_iter, self.eps)
+            moved = win.centroids(mom, x0, y0)
+            shift = moved - self.particles[:, :2]
+            self.particles[:, :2] = moved
+            self.particles[:, 2:] += shift  # v_t = p_t - p_{t-1}
+        else:
+            mom = win.moments_of(flats, x0, y0)
+        colour_mass = mom[:, 3] if len(flats) == 1 else win.gather(colour.ravel(), x0, y0).sum(1)
+        allowed = self._allowed(colour_mass, x0, y0, colour)
+        if not allowed.any():
+            occ = None if robots is None else self.occluded_by(robots, robot_radius_px,
+                                                               prior[:2] + prior[2:])
+            if occ is not None:  # the ball is hidden by that robot
+                at = np.asarray(robots, dtype=np.float64).reshape(-1, 2)[occ]
+                self.occluded, self.occluder = True, occ
+                self.estimate = np.array([at[0], at[1], 0.0, 0.0])
+                self._seed(at, np.zeros(2))
+            else:  # lost: keep the last estimate, search globally next frame
+                self.lost = True
+                self.lost_frames += 1
+                self.estimate = np.array([prior[0], prior[1], 0.0, 0.0])
+            return self.estimate.copy()
+        return self._weigh_and_estimate(self._log_likelihood(mom[:, 3]), allowed)

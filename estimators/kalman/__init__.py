@@ -1,0 +1,25 @@
+"""Kalman filters: the filter core and the trackers built on its equations.
+
+* :mod:`~estimators.kalman.core`: :class:`KalmanFilter`, one set of equations for the linear
+  filter and the EKF (a building block: ``predict`` / ``update`` / ``innovation``);
+* :mod:`~estimators.kalman.ball`: ball trackers for delayed overhead-camera detections, the
+  EKF of paper 002 (Zhao, Wang, Li 2012; :class:`BallTracker`, :class:`BallFilterConfig`) and
+  its least-squares baseline (:class:`LeastSquaresBall`);
+* :mod:`~estimators.kalman.robots`: decoupled constant-velocity pose trackers for many robots
+  (:class:`RobotTracker`).
+"""
+
+from .ball import CHI2_2DOF_999, BallFilterConfig, BallTracker, LeastSquaresBall
+from .core import KalmanFilter, check_matrix, check_vector
+from .robots import RobotTracker
+
+__all__ = [
+    "KalmanFilter",
+    "check_vector",
+    "check_matrix",
+    "BallFilterConfig",
+    "BallTracker",
+    "LeastSquaresBall",
+    "CHI2_2DOF_999",
+    "RobotTracker",
+]

@@ -1,0 +1,41 @@
+"""Particle filters: the filter cores and the trackers built on them.
+
+* :mod:`~estimators.particle.core`: the bootstrap, fission-bootstrap and modified fission-
+  bootstrap particle filters of paper 000 (Xu, Xie, Wang, Ni 2012) on ``(N, d)`` particle
+  arrays (building blocks: ``predict`` / ``correct`` / ``step``), their resampling and SFN
+  steps, and paper 000's UNGM benchmark;
+* :mod:`~estimators.particle.ball`: a ball tracker on those filters for a team's fused ball
+  positions (:class:`ParticleBallTracker`);
+* :mod:`~estimators.particle.localization`: adaptive self-localization by KLD-sampling, paper
+  001 (Guo, Li 2013; :class:`KLDLocalizer`).
+"""
+
+from .ball import CHI2_2DOF_9999, ParticleBallTracker
+from .core import (
+    FBPF,
+    MFBPF,
+    PARTICLE_FILTERS,
+    BootstrapPF,
+    sfn,
+    systematic_resample,
+    ungm_model,
+    ungm_simulate,
+)
+from .localization import KLDConfig, KLDLocalizer, kld_sample_size, normal_quantile
+
+__all__ = [
+    "BootstrapPF",
+    "FBPF",
+    "MFBPF",
+    "PARTICLE_FILTERS",
+    "sfn",
+    "systematic_resample",
+    "ungm_model",
+    "ungm_simulate",
+    "ParticleBallTracker",
+    "CHI2_2DOF_9999",
+    "KLDConfig",
+    "KLDLocalizer",
+    "kld_sample_size",
+    "normal_quantile",
+]

@@ -1,0 +1,38 @@
+"""The tracker protocol: one verb pair for every time-stamped tracker.
+
+A time-stamped tracker takes measurements with the time they were captured and answers for any
+time asked, so a caller never has to know how the tracker keeps its state (a Kalman filter, a
+particle set, a least-squares fit) or how it handles late measurements:
+
+* ``update(t, z, ...)``: fuse the measurement ``z`` captured at time ``t`` [s]; the further
+  arguments are the tracker's own (the robots seen in the same frame, the measurement noise, a
+  robot index);
+* ``estimate(t)``: the state predicted to time ``t`` [s] (the present, or the present plus the
+  actuation latency), without changing the tracker; None before the first measurement;
+* ``reset()``: forget everything (a new episode).
+
+The classes that follow it are listed in the package docstring (:mod:`estimators`).
+"""
+
+from __future__ import annotations
+
+from typing import Any, Protocol, runtime_checkable
+
+import numpy as np
+
+__all__ = ["Tracker"]
+
+
+@runtime_checkable
+class Tracker(Protocol):
+    """A time-stamped tracker (see the module docstring). ``isinstance(x, Tracker)`` checks
+    that ``x`` has the three methods, not their signatures."""
+
+    def update(self, t: float, z: Any, /, *args: Any, **kwargs: Any) -> None:
+        """Fuse the measurement ``z`` captured at time ``t`` [s]."""
+
+    def estimate(self, t: float) -> np.ndarray | None:
+        """The state predicted to time ``t`` [s]; None before the first measurement."""
+
+    def reset(self) -> None:
+        """Forget everything (a new episode)."""

@@ -1,0 +1,151 @@
+"""Paper 003's feature-restricted mean-shift particle filter and the plain particle filter on
+synthetic weight images: a manoeuvring target, a distractor of a similar colour, a target that
+disappears and reappears, a ball occluded by a robot, reproducibility, the feature-check hook,
+bad arguments."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from weight_images import H, W, frame_differences, manoeuvre, rmse, weight_image
+
+from estimators import (
+    MeanShiftParticleFilter,
+    ParticleFilterTracker,
+)
+
+GEN = np.random.default_rng(0)
+IMG = np.zeros((H, W), np.float32)
+
+
+def test_mean_shift_pf_with_20_particles_beats_plain_pf_on_a_manoeuvring_target():
+    ms20, pf20, pf200 = [], [], []
+    for seed in range(3):
+        rng = np.random.default_rng(seed)
+        truth = manoeuvre(rng)
+        frames = [weight_image(rng, [p], [(60.0, 60.0), (260.0, 180.0)]) for p in truth]
+        motion = frame_differences(frames)
+        for out, cls, n in ((ms20, MeanShiftParticleFilter, 20),
+                            (pf20, ParticleFilterTracker, 20),
+                            (pf200, ParticleFilterTracker, 200)):
+            f = cls(truth[0], (17, 17), np.random.default_rng(100 + seed), n_particles=n,
+                    process_sigma=6.0, velocity=truth[1] - truth[0])
+            est = [f.update(c, m) for c, m in zip(frames, motion)]
+            out.append(rmse(est, truth))
+            if cls is MeanShiftParticleFilter:
+                assert f.lost_frames == 0
+    ms20, pf20, pf200 = np.mean(ms20), np.mean(pf20), np.mean(pf200)
+    assert ms20 < 1.5, ms20  # well within the blob (sigma 4 px) through every turn
+    assert ms20 < 0.5 * pf20, (ms20, pf20)
+    assert ms20 <= pf200 + 0.5, (ms20, pf200)  # as good as ten times the particles
+
+
+def test_lost_track_and_global_reacquisition():
+    rng = np.random.default_rng(5)
+    first = np.array([[60.0 + 4 * k, 60.0 + 2 * k] for k in range(15)])
+    second = np.array([[250.0 - 3 * k, 190.0 - 2 * k] for k in range(10)])
+    distractor = [(160.0, 200.0)]  # similar colour, too little of it: never taken
+    frames = ([weight_image(rng, [p], distractor) for p in first]
+              + [weight_image(rng, [], distractor) for _ in range(4)]
+              + [weight_image(rng, [p], distractor) for p in second])
+    f = MeanShiftParticleFilter(first[0], (17, 17), np.random.default_rng(0), velocity=(4, 2))
+    lost, est = [], []
+    for c in frames:
+        est.append(f.update(c))
+        lost.append(f.lost)
+    assert not any(lost[:15])
+    assert all(lost[15:19])  # lost while invisible, keeping the last estimate
+    for e in est[15:19]:
+        np.testing.assert_allclose(e[:2], est[14][:2])
+        assert np.all(e[2:] == 0.0)
+    assert f.lost_frames == 4
+    assert not any(lost[19:])  # the global search finds it in the frame it reappears
+    err = np.hypot(*(np.array(est[19:])[:, :2] - second).T)
+    assert err.max() < 2.0, err
+
+
+def test_ball_occluded_by_a_robot_is_placed_at_the_robot():
+    ball = np.array([[50.0 + 6 * k, 100.0] for k in range(12)])
+    robot = np.array([122.0, 101.0])  # the ball rolls under it at frame 12
+    robots = np.array([[250.0, 40.0], robot])
+    rng = np.random.default_rng(3)
+    frames = ([weight_image(rng, [p], sigma=2.5) for p in ball]
+              + [weight_image(rng, [], sigma=2.5)] * 3)
+    results = {}
+    for with_robots in (True, False):
+        f = MeanShiftParticleFilter(ball[0], (11, 11), np.random.default_rng(1),
+                                    velocity=(6, 0))
+        for c in frames[:12]:
+            f.update(c)
+        assert f.occluded_by(robots, 8.0) == 1  # the predicted position is at the robot
+        assert f.occluded_by(robots[:1], 8.0) is None
+        e = f.update(frames[12], robots=robots if with_robots else None, robot_radius_px=8.0)
+        results[with_robots] = (e, f.lost, f.occluded, f.occluder)
+    e, lost, occluded, occluder = results[True]
+    np.testing.assert_allclose(e, [robot[0], robot[1], 0.0, 0.0])
+    assert occluded and occluder == 1 and not lost
+    e, lost, occluded, _ = results[False]
+    assert lost and not occluded
+    assert abs(e[0] - ball[-1, 0]) < 2.0  # fell back to the last estimate
+
+
+def test_same_seed_same_track_and_a_different_seed_differs():
+    rng = np.random.default_rng(7)
+    truth = manoeuvre(rng, steps=15)
+    frames = [weight_image(rng, [p]) for p in truth]
+    motion = frame_differences(frames)
+
+    def run(seed, cls):
+        f = cls(truth[0], (17, 17), np.random.default_rng(seed))
+        est = [f.update(c, m) for c, m in zip(frames, motion)]
+        return np.array(est), f.particles.copy()
+
+    for cls in (MeanShiftParticleFilter, ParticleFilterTracker):
+        a, pa = run(11, cls)
+        b, pb = run(11, cls)
+        c, pc = run(12, cls)
+        np.testing.assert_array_equal(a, b)
+        np.testing.assert_array_equal(pa, pb)
+        assert not np.array_equal(pa, pc)
+
+
+def test_feature_check_hook_vetoes_windows():
+    rng = np.random.default_rng(4)
+    img = weight_image(rng, [(100.0, 100.0)], [(200.0, 100.0)])
+    calls = []
+
+    def left_half_only(windows, colour):
+        calls.append(windows.shape)
+        assert colour.shape == (H, W)
+        return windows[:, 0] < 150
+
+    f = MeanShiftParticleFilter((100.0, 100.0), (17, 17), np.random.default_rng(0),
+                                feature_check=left_half_only)
+    f.update(img)
+    assert calls and calls[0][1] == 4 and not f.lost
+    f = MeanShiftParticleFilter((100.0, 100.0), (17, 17), np.random.default_rng(0),
+                                feature_check=lambda w, c: np.zeros(len(w), bool))
+    f.update(img)
+    assert f.lost
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda: MeanShiftParticleFilter((1, 1), (5, 5), GEN, n_particles=1), "n_particles"),
+    (lambda: MeanShiftParticleFilter((1, 1), (0, 5), GEN), "window_size"),
+    (lambda: MeanShiftParticleFilter((1, np.nan), (5, 5), GEN), "position"),
+    (lambda: MeanShiftParticleFilter((1, 1), (5, 5), None), "rng"),
+    (lambda: MeanShiftParticleFilter((1, 1), (5, 5), GEN, likelihood_sigma=0), "likelihood_sigma"),
+    (lambda: MeanShiftParticleFilter((1, 1), (5, 5), GEN, area_tolerance=-1), "area_tolerance"),
+    (lambda: MeanShiftParticleFilter((1, 1), (5, 5), GEN, max_motion_weight=2),
+     "max_motion_weight"),
+    (lambda: MeanShiftParticleFilter((1, 1), (5, 5), GEN, feature_check=3), "feature_check"),
+    (lambda: MeanShiftParticleFilter((1, 1), (5, 5), GEN, area=1.0).update(IMG, IMG[:5]),
+     "motion_image"),
+    (lambda: MeanShiftParticleFilter((1, 1), (5, 5), GEN, area=1.0).update(IMG, robots=[]),
+     "robot_radius_px"),
+    (lambda: MeanShiftParticleFilter((1, 1), (5, 5), GEN).update(IMG), "area"),
+    (lambda: ParticleFilterTracker((1, 1), (5, 5), GEN, process_sigma=-1), "process_sigma"),
+])
+def test_bad_arguments_raise_value_error_naming_them(call, name):
+    with pytest.raises(ValueError, match=name):
+        call()

@@ -1,0 +1,73 @@
+"""The batched robot tracker against the 6-state Kalman filter core, across the angle wrap,
+and bad input."""
+
+import math
+
+import numpy as np
+import pytest
+
+from estimators import ConstantVelocityMotion, KalmanFilter, PoseMeasurement, RobotTracker
+from estimators.models import wrap_angle
+
+
+def test_robot_tracker_equals_six_state_filter():
+    """The decoupled, batched equations are the 6-state Kalman filter exactly."""
+    q_xy, q_th, s_xy, s_th, s_v0 = 4.0, 30.0, 0.01, 0.03, 2.0
+    tracker = RobotTracker(2, q_xy, q_th, s_xy, s_th, s_v0)
+    motion = ConstantVelocityMotion(3, q=[q_xy, q_xy, q_th], angle_axes=(2,))
+    meas = PoseMeasurement(s_xy, s_th)
+    rng = np.random.default_rng(1)
+    filters = [None, None]
+    t_last = [0.0, 0.0]
+    t = 0.0
+    for _ in range(300):
+        t += rng.uniform(0.01, 0.03)
+        who = [i for i in range(2) if rng.random() < 0.8]
+        z = np.column_stack([rng.uniform(-1, 1, (len(who), 2)),
+                             wrap_angle(rng.uniform(-4, 4, len(who)))])
+        tracker.update(t, z, who)
+        for k, i in enumerate(who):
+            if filters[i] is None:
+                filters[i] = KalmanFilter(np.concatenate([z[k], np.zeros(3)]),
+                                          np.diag(list(meas.R.diagonal()) + [s_v0**2] * 3))
+            else:
+                x_pred, F, Q = motion.transition(filters[i].x, t - t_last[i])
+                filters[i].predict(F, Q, x_pred)
+                filters[i].update(z[k], meas.H, meas.R, z_pred=meas.expected(filters[i].x),
+                                  residual=meas.residual)
+                filters[i].x[2] = wrap_angle(filters[i].x[2])
+            t_last[i] = t
+        for i in range(2):
+            if filters[i] is not None:
+                np.testing.assert_allclose(tracker.p[i], filters[i].x[:3], atol=1e-9)
+                np.testing.assert_allclose(tracker.v[i], filters[i].x[3:], atol=1e-9)
+                np.testing.assert_allclose(tracker.covariance(i), filters[i].P, atol=1e-9)
+
+
+def test_robot_tracker_follows_a_turning_robot_across_the_angle_wrap():
+    tracker = RobotTracker(1, q_theta=5.0, sigma_xy=0.002, sigma_theta=0.01)
+    rng = np.random.default_rng(2)
+    errs, omegas = [], []
+    for k in range(200):
+        t = k / 60
+        truth = np.array([math.cos(t), math.sin(t), wrap_angle(3.0 + 4.0 * t)])
+        z = truth + rng.normal(0, [0.002, 0.002, 0.01])
+        tracker.update(t, z[None], [0])
+        est = tracker.estimate(t)
+        errs.append(abs(wrap_angle(est[0, 2] - truth[2])))
+        omegas.append(est[0, 5])
+    assert max(errs[50:]) < 0.05
+    assert np.mean(omegas[100:]) == pytest.approx(4.0, rel=0.05)
+
+
+def test_robot_tracker_bad_input():
+    tr = RobotTracker(2)
+    with pytest.raises(ValueError, match=r"index must be in 0..1"):
+        tr.update(0.0, np.zeros((1, 3)), [2])
+    with pytest.raises(ValueError, match="NaN measurements are refused"):
+        tr.update(0.0, np.array([[np.nan, 0, 0]]), [0])
+    with pytest.raises(ValueError, match=r"z must have shape \(1, 3\)"):
+        tr.update(0.0, np.zeros((1, 2)), [0])
+    assert not tr.seen.any()
+    tr.update([1.0, 0.5], np.zeros((2, 3)), [0, 0])  # the second is older: dropped
+    assert tr.seen.tolist() == [True, False] and tr.dropped == 1
