@@ -33,8 +33,8 @@ Even episodes leave the ball lying still; odd episodes roll it slowly: whenever 
 the truth; the trackers see only the images and the robot's odometry.
 
 Trackers, on the same frames (the hue back-projection,
-:func:`~estimators.image.colour.back_project`, of a 16-bin hue histogram of the first frame's ball: the pixels within 0.8 of its apparent
-radius of its true centre, as an operator marking the target would give), all started at the
+:func:`~estimators.image.colour.back_project`, of a 16-bin hue histogram of the first frame's
+ball: the pixels within 0.8 of its apparent radius of its true centre, as an operator marking the target would give), all started at the
 ball's true pixel of the first frame. The target window is the ball's apparent diameter there
 (``2 round(r) + 1`` px); each tracker runs at each of ``window_scales`` times it: 1 (the target
 size: the bandwidth of paper 004's argument) and 2 (the paper's back-projection region ``R``,
