@@ -34,15 +34,15 @@ the truth; the trackers see only the images and the robot's odometry.
 
 Trackers, on the same frames (the hue back-projection,
 :func:`~estimators.image.colour.back_project`, of a 16-bin hue histogram of the first frame's
-ball: the pixels within 0.8 of its apparent radius of its true centre, as an operator marking the target would give), all started at the
-ball's true pixel of the first frame. The target window is the ball's apparent diameter there
-(``2 round(r) + 1`` px); each tracker runs at each of ``window_scales`` times it: 1 (the target
-size: the bandwidth of paper 004's argument) and 2 (the paper's back-projection region ``R``,
-twice the target). A tracker reports lost when the mean weight in its converged window is below
-``0.2 / scale^2`` (the estimators' default 0.2 for a target-sized window, scaled so that the
-same amount of target must be in any window: a round ball fills only ``pi / 16`` of a window
-twice its size, below 0.2). Otherwise the estimators' defaults (flat kernel, 10 iterations;
-Kalman noise 2 px/frame^2 and 2 px):
+ball: the pixels within 0.8 of its apparent radius of its true centre, as an operator marking
+the target would give), all started at the ball's true pixel of the first frame. The target
+window is the ball's apparent diameter there (``2 round(r) + 1`` px); each tracker runs at each
+of ``window_scales`` times it: 1 (the target size: the bandwidth of paper 004's argument) and 2
+(the paper's back-projection region ``R``, twice the target). A tracker reports lost when the
+mean weight in its converged window is below ``0.2 / scale^2`` (the estimators' default 0.2 for
+a target-sized window, scaled so that the same amount of target must be in any window: a round
+ball fills only ``pi / 16`` of a window twice its size, below 0.2). Otherwise the estimators'
+defaults (flat kernel, 10 iterations; Kalman noise 2 px/frame^2 and 2 px):
 
 * ``kalman``: :class:`estimators.KalmanMeanShift` (paper 004) fed with the robot's
   own motion between frames: the rotation is the walk engine's odometry ``dtheta`` summed

@@ -37,11 +37,11 @@ noise) renders every second step, starting with the robots at rest at time 0.
 paper's terms) gives per frame the probability images of blue, yellow, pink and green; a robot's
 trackers read its team colour's image (so its team-mates are distractors of the same colour) and
 the frame difference (:func:`estimators.image.colour.frame_difference`; none on the first
-frame). The search window is a square of the team patch's diameter in pixels (odd, 13 px
-here). Every tracker starts at the robot's true first position with zero velocity and uses the estimators'
-default parameters (AR noise 4 px, likelihood sigma 0.15, motion weight up to 0.5 at 20
-px/frame; mean shift 5 iterations; colour mass within +-30 % of the mass measured on the first
-frame): nothing was tuned to this benchmark.
+frame). The search window is a square of the team patch's diameter in pixels (odd, 13 px here).
+Every tracker starts at the robot's true first position with zero velocity and uses the
+estimators' default parameters (AR noise 4 px, likelihood sigma 0.15, motion weight up to 0.5 at
+20 px/frame; mean shift 5 iterations; colour mass within +-30 % of the mass measured on the
+first frame): nothing was tuned to this benchmark.
 
 **Identity check** (the paper's step 5, our reading; the ``feature_check`` hook of the
 mean-shift PF, applied to its particles' windows and to the global search's candidate). Box
