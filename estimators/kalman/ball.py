@@ -324,7 +324,6 @@ class BallTracker:
         while len(self._log) > 1 and self._log[0][0] < horizon:
             self._base = self._log.pop(0)[3]
 
-    add = update  # alias for callers outside estimators; removed when they move to the protocol
 
     def estimate(self, t: float) -> np.ndarray | None:
         """State ``(x, y, vx, vy)`` predicted to time ``t`` (None before the first frame)."""
@@ -517,7 +516,6 @@ class LeastSquaresBall:
         self._z.insert(i, z.copy())
         del self._t[: -self.window], self._z[: -self.window]
 
-    add = update  # alias for callers outside estimators; removed when they move to the protocol
 
     def estimate(self, t: float) -> np.ndarray | None:
         """State ``(x, y, vx, vy)`` extrapolated to time ``t`` (None before the first

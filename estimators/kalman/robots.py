@@ -151,11 +151,6 @@ class RobotTracker:
         for a in (0, 1, 2):
             _predict_update(axes[a], z[a], T, self.q[a], self.r[a], a == 2)
 
-    # alias for callers outside estimators; removed when they move to the protocol
-    def update_one(self, i: int, t: float, z) -> None:
-        """``update_robot(t, z, i)``."""
-        self.update_robot(t, z, i)
-
     def estimate(self, t: float) -> np.ndarray:
         """``(n, 6)`` rows ``x, y, theta, vx, vy, omega`` predicted to time ``t`` (robots never
         seen read as zeros; see :attr:`seen`)."""
@@ -169,9 +164,6 @@ class RobotTracker:
             rows.append((px + vx * dt, py + vy * dt, math.remainder(pt + vt * dt, _TWO_PI),
                          vx, vy, vt))
         return np.array(rows).reshape(-1, 6)
-
-    # alias for callers outside estimators; removed when they move to the protocol
-    estimate_array = estimate
 
     @property
     def p(self) -> np.ndarray:

@@ -198,11 +198,11 @@ class FilteredPerception(_VisionPerception):
         for f in sorted(frames, key=lambda f: f.t_capture):
             t = f.t_capture
             for i, pose in zip(f.robot_ids, f.robots):
-                robots.update_one(i, t, pose)
+                robots.update_robot(t, pose, i)
             if f.balls:
                 # Without latency compensation a pipeline stamps frames when they arrive.
                 stamp = t if self._capture_times else f.t_delivered
-                ball.add(stamp, f.balls, f.robots)
+                ball.update(stamp, f.balls, f.robots)
 
     def _beliefs(self, now: float):
         current = self._belief(now)
@@ -212,7 +212,7 @@ class FilteredPerception(_VisionPerception):
         est = self.ball_tracker.estimate(t)
         ball = np.zeros(6) if est is None else np.array((est[0], est[1], 0.0, est[2], est[3],
                                                          0.0))
-        return Belief(t, ball, self.robot_tracker.estimate_array(t))
+        return Belief(t, ball, self.robot_tracker.estimate(t))
 
 
 def make_perception(obs_mode: str, config: PerceptionConfig, field: FieldSpec,

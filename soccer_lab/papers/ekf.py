@@ -152,7 +152,7 @@ def _run_estimator(name: str, ep: _Episode, ahead: float) -> tuple[np.ndarray, n
     for k, frames in enumerate(ep.frames):
         for f in frames:
             if f.balls:
-                tracker.add(f.t_capture if capture else f.t_delivered, f.balls, f.robots)
+                tracker.update(f.t_capture if capture else f.t_delivered, f.balls, f.robots)
         t = ep.times[k]
         est = tracker.estimate(t)
         if est is not None:

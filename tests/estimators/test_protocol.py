@@ -100,14 +100,3 @@ def test_filter_cores_and_image_trackers_are_not_time_stamped_trackers():
     assert not isinstance(KLDLocalizer((-1.0, 1.0, -1.0, 1.0), np.random.default_rng(0)),
                           Tracker)
     assert not isinstance(PlainMeanShift((5.0, 5.0), (3, 3)), Tracker)
-
-
-def test_aliases_for_callers_outside_estimators():
-    """The old names still in use outside ``estimators`` (delete with the aliases)."""
-    assert BallTracker.add is BallTracker.update
-    assert LeastSquaresBall.add is LeastSquaresBall.update
-    assert RobotTracker.estimate_array is RobotTracker.estimate
-    a, b = RobotTracker(2), RobotTracker(2)
-    a.update_one(1, 0.5, [1.0, 2.0, 0.3])
-    b.update_robot(0.5, [1.0, 2.0, 0.3], 1)
-    np.testing.assert_array_equal(a.estimate(1.0), b.estimate(1.0))
