@@ -7,6 +7,18 @@ Quick start::
 
     env = gym.make("soccer_env/Goalkeeper-v0")
     match = soccer_env.parallel_env(blue=3, yellow=3, field="ssl-div-b")
+
+Layers, each importing only those below it (``tests/test_layers.py`` checks every import):
+:mod:`~soccer_env.presets` and :mod:`~soccer_env.state` (every preset table, the snapshots
+that flow between layers), :mod:`~soccer_env.sim` (the world, walk engine, commands, referee,
+head control), :mod:`~soccer_env.sensors` (overhead cameras, head cameras, radio, rendered
+images), :mod:`~soccer_env.perception` (what a team believes), :mod:`~soccer_env.observations`,
+:mod:`~soccer_env.render` and :mod:`~soccer_env.envs` (a core with task hooks, the tasks, their
+registration). Below all of them, :mod:`estimators` (numpy only); above, :mod:`agents` and the
+application layer :mod:`soccer_lab`, which this package never imports.
+
+"Paper 000" to "paper 004" are the five source papers, cited in full in the README's "Source
+papers" section.
 """
 
 from soccer_env import presets
