@@ -12,6 +12,8 @@ import pytest
 from estimators import HeadCamera
 from soccer_lab.papers import following
 
+pytestmark = pytest.mark.slow
+
 
 @pytest.fixture(scope="module")
 def short_run(tmp_path_factory):

@@ -20,6 +20,8 @@ from soccer_env.perception.brain import _Brain
 from soccer_lab.cli import main
 from soccer_lab.papers import localization
 
+pytestmark = pytest.mark.slow
+
 KLD = "KLD-sampling (50-5000)"
 SEEDS = [4, 5]
 #: Figures that do not depend on timing.

@@ -20,6 +20,8 @@ from soccer_env.sensors.images.patterns import PATTERN, PATTERN_IDS
 from soccer_env.sim.world import World
 from soccer_lab.papers import meanshift
 
+pytestmark = pytest.mark.slow
+
 #: Figures that do not depend on timing.
 FIGURES = ("median_px", "p90_px", "rmse_px", "median_mm", "rmse_mm", "lost_share",
            "off_target_share", "on_teammate_share")
