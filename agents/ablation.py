@@ -45,7 +45,7 @@ from pathlib import Path
 from typing import Any
 
 from agents.cli_args import key_values
-from agents.evaluation import GOALKEEPER_ID, EvalResult, _mp_context, evaluate, wilson
+from agents.evaluation import GOALKEEPER_ID, EvalResult, evaluate, process_context, wilson
 from soccer_env.perception.base import BALL_FILTERS, OBS_MODES, PerceptionConfig
 from soccer_env.presets.sensors import HEAD_CAMERAS, VISION
 
@@ -536,7 +536,7 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
         # forkserver (or spawn), not fork: a parent that has used torch deadlocks forked
         # children. The jobs carry their environment's keyword arguments, so configurations
         # registered at run time need not exist in the workers.
-        with ProcessPoolExecutor(min(workers, len(jobs)), mp_context=_mp_context()) as pool:
+        with ProcessPoolExecutor(min(workers, len(jobs)), mp_context=process_context()) as pool:
             futures = {pool.submit(_run_job, job): i for i, job in enumerate(jobs)}
             for done, fut in enumerate(as_completed(futures), 1):
                 outs[futures[fut]] = fut.result()

@@ -29,7 +29,8 @@ import gymnasium as gym
 import soccer_env  # noqa: F401  (registers the environments)
 from agents.policies import make_policy
 
-__all__ = ["wilson", "EvalResult", "evaluate", "record_video", "GOALKEEPER_ID"]
+__all__ = ["wilson", "EvalResult", "evaluate", "record_video", "process_context",
+           "GOALKEEPER_ID"]
 
 GOALKEEPER_ID = "soccer_env/Goalkeeper-v0"
 
@@ -186,7 +187,7 @@ def evaluate(policy: str | os.PathLike | Callable = "scripted",
     jobs = [(policy, env_id, env_kwargs, c, measure_estimator) for c in chunks]
     if workers > 1:
         # forkserver, not fork: a parent that has used torch deadlocks forked children.
-        with ProcessPoolExecutor(workers, mp_context=_mp_context()) as pool:
+        with ProcessPoolExecutor(workers, mp_context=process_context()) as pool:
             parts = list(pool.map(_run_episodes, jobs))
     else:
         parts = [_run_episodes(jobs[0])]
@@ -210,7 +211,12 @@ def evaluate(policy: str | os.PathLike | Callable = "scripted",
         seconds=sum(p["seconds"] for p in parts), saved=saved)
 
 
-def _mp_context() -> Any:
+def process_context() -> Any:
+    """The :mod:`multiprocessing` context for process pools of evaluation work (give it to
+    ``ProcessPoolExecutor(mp_context=...)``): ``"forkserver"`` where the platform has it, else
+    ``"spawn"``; never ``"fork"``, since a parent that has used torch deadlocks forked
+    children. Workers import what they need afresh, so jobs must carry everything they use
+    (functions at module level, picklable arguments)."""
     import multiprocessing as mp
 
     return mp.get_context("forkserver" if "forkserver" in mp.get_all_start_methods()

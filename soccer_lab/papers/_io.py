@@ -20,9 +20,9 @@ def map_jobs(fn: Callable[[Any], Any], jobs: Sequence[Any], workers: int | None)
     n = min(workers or os.cpu_count() or 1, len(jobs))
     if n <= 1:
         return [fn(j) for j in jobs]
-    from agents.evaluation import _mp_context
+    from agents.evaluation import process_context
 
-    with ProcessPoolExecutor(n, mp_context=_mp_context()) as pool:
+    with ProcessPoolExecutor(n, mp_context=process_context()) as pool:
         return list(pool.map(fn, jobs))
 
 
