@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from collections.abc import Callable
 
 __all__ = ["main"]
 
@@ -144,26 +143,32 @@ def _cmd_bench(argv: list[str]) -> int:
     return bench_main(argv)
 
 
-def _agents_command(module: str) -> Callable[[list[str]], int]:
-    """A command implemented by ``agents.<module>.main`` (imported when run: training needs
-    the ``train`` extra)."""
+def _cmd_train(argv: list[str]) -> int:
+    # Imported when run: training needs the ``train`` extra.
+    from soccer_lab.commands.train import main as train_main
 
-    def run(argv: list[str]) -> int:
-        import importlib
+    return train_main(argv)
 
-        return importlib.import_module(f"agents.{module}").main(argv)
 
-    return run
+def _cmd_eval(argv: list[str]) -> int:
+    from soccer_lab.commands.evaluate import main as eval_main
+
+    return eval_main(argv)
+
+
+def _cmd_ablation(argv: list[str]) -> int:
+    from soccer_lab.commands.ablation import main as ablation_main
+
+    return ablation_main(argv)
 
 
 _COMMANDS = {
     "demo": (_cmd_demo, "run the goalkeeper demo and write its video and figures"),
     "bench": (_cmd_bench, "measure environment step rates against bare pymunk"),
     "paper": (_cmd_paper, "reproduce a source paper's claims (tables and plots)"),
-    "train": (_agents_command("training"), "train a policy with stable-baselines3"),
-    "eval": (_agents_command("evaluation"), "evaluate a keeper policy on the fixed shot suite"),
-    "ablation": (_agents_command("ablation"), "compare estimators in closed loop, per sensor "
-                                              "preset"),
+    "train": (_cmd_train, "train a policy with stable-baselines3"),
+    "eval": (_cmd_eval, "evaluate a keeper policy on the fixed shot suite"),
+    "ablation": (_cmd_ablation, "compare estimators in closed loop, per sensor preset"),
     "list": (_cmd_list, "list environments and presets"),
 }
 
