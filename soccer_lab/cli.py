@@ -87,7 +87,7 @@ def _cmd_paper(argv: list[str]) -> int:
     p = argparse.ArgumentParser(prog="soccer-env paper",
                                 description="Reproduce a source paper's claims.")
     p.add_argument("name", choices=sorted(PAPERS), help="; ".join(
-        f"{k}: {v}" for k, v in PAPERS.items()))
+        f"{k}: {v}" for k, v in PAPERS.descriptions().items()))
     p.add_argument("--out", default="paper_output", help="output folder")
     p.add_argument("--episodes", type=int, default=200, help="ekf: open-loop episodes")
     p.add_argument("--shots", type=int, default=1000, help="ekf: closed-loop shots per cell")
@@ -113,21 +113,18 @@ def _cmd_paper(argv: list[str]) -> int:
         p.error("--particles must be >= 2")
     if args.workers is not None and args.workers < 1:
         p.error("--workers must be >= 1")
-    import importlib
-
-    module = importlib.import_module(f".papers.{args.name}", __package__)
+    run = PAPERS[args.name]
     runs = {
-        "ekf": lambda: module.run(args.out, args.episodes, args.shots, args.workers,
-                                  closed=not args.no_closed_loop, seed=args.seed),
-        "hough": lambda: module.run(args.out, args.trials, seed=args.seed),
-        "localization": lambda: module.run(args.out, seed=args.seed, episodes=args.walks,
-                                           workers=args.workers),
-        "ungm": lambda: module.run(args.out, args.runs, args.particles, seed=args.seed),
-        "team": lambda: module.run(args.out, args.matches, args.duration, args.keeper_shots,
-                                   args.workers, seed=args.seed,
-                                   keeper=not args.no_closed_loop),
-        "meanshift": lambda: module.run(args.out, seed=args.seed, workers=args.workers),
-        "following": lambda: module.run(args.out, seed=args.seed, workers=args.workers),
+        "ekf": lambda: run(args.out, args.episodes, args.shots, args.workers,
+                           closed=not args.no_closed_loop, seed=args.seed),
+        "hough": lambda: run(args.out, args.trials, seed=args.seed),
+        "localization": lambda: run(args.out, seed=args.seed, episodes=args.walks,
+                                    workers=args.workers),
+        "ungm": lambda: run(args.out, args.runs, args.particles, seed=args.seed),
+        "team": lambda: run(args.out, args.matches, args.duration, args.keeper_shots,
+                            args.workers, seed=args.seed, keeper=not args.no_closed_loop),
+        "meanshift": lambda: run(args.out, seed=args.seed, workers=args.workers),
+        "following": lambda: run(args.out, seed=args.seed, workers=args.workers),
     }
     res = runs[args.name]()
     print(res["text"])

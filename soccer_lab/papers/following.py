@@ -1,11 +1,12 @@
-"""Paper 004's Kalman-started mean shift with ego-motion compensation, on a turning humanoid's
-head-camera images.
+"""The Kalman-started mean shift of paper 004 (Yu, Wei, Zhang 2010) with ego-motion
+compensation, on a turning humanoid's head-camera images.
 
-``soccer-env paper following``: one ``humanoid-2012`` robot (paper 000's robot: 0.6 rad/s top
-turn rate, 3 rad/s^2, 0.2 m/s forward; :mod:`soccer_env.sim.walk`'s walk engine with its gait
-sway and odometry errors in :class:`~soccer_env.sim.world.World`) on the ``humanoid-2012`` field
-(6 m x 4 m, orange ball of 33 mm radius) watches the ball through its ``kidsize-2012`` head
-camera (0.56 m, 51 degrees, 25 Hz). ``robot="humanoid"`` runs the current KidSize robot instead
+``soccer-env paper following``: one ``humanoid-2012`` robot (the robot of paper 000 (Xu, Xie,
+Wang, Ni 2012): 0.6 rad/s top turn rate, 3 rad/s^2, 0.2 m/s forward;
+:mod:`soccer_env.sim.walk`'s walk engine with its gait sway and odometry errors in
+:class:`~soccer_env.sim.world.World`) on the ``humanoid-2012`` field (6 m x 4 m, orange ball of
+33 mm radius) watches the ball through its ``kidsize-2012`` head camera (0.56 m, 51 degrees,
+25 Hz). ``robot="humanoid"`` runs the current KidSize robot instead
 (1 rad/s, ``humanoid-kid`` field, size-1 ball of 76 mm radius, ``kidsize`` camera at 30 Hz).
 Frames are rendered at the camera's frame rate with
 :class:`~soccer_env.sensors.images.head.HeadFrameRenderer` at ``size`` (320 x 240 by default,

@@ -1,4 +1,5 @@
-"""Paper 000's cooperative ball localization: Hough-space fusion on its Table 1 geometry.
+"""Cooperative ball localization of paper 000 (Xu, Xie, Wang, Ni 2012): Hough-space fusion
+on its Table 1 geometry.
 
 ``soccer-env paper hough``: five robots at the paper's positions (a 6 m x 4 m field), the ball
 moving in 50 mm steps in a straight line from (3000, 3200) to (4500, 1200) mm. Each robot's

@@ -1,5 +1,5 @@
-"""Paper 001's adaptive localization: KLD-sampling against fixed-size particle filters on a walking
-humanoid, with a kidnapping.
+"""The adaptive localization of paper 001 (Guo, Li 2013): KLD-sampling against fixed-size
+particle filters on a walking humanoid, with a kidnapping.
 
 ``soccer-env paper localization``: one ``humanoid-2012`` robot (:mod:`soccer_env.sim.walk`'s
 walk engine in :class:`~soccer_env.sim.world.World`) walks a scripted route on the

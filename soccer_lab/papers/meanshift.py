@@ -1,4 +1,5 @@
-"""Paper 003's feature-restricted mean-shift particle filter on fast robots seen from above.
+"""The feature-restricted mean-shift particle filter of paper 003 (Li, Wu, Kong 2010) on fast
+robots seen from above.
 
 ``soccer-env paper meanshift``: robots of both teams manoeuvre sharply on a small field and an
 overhead camera films them; every robot is tracked in the images by three trackers, which all

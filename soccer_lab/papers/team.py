@@ -1,4 +1,5 @@
-"""Paper 000 in the closed loop: what a humanoid team knows about the ball, alone or together.
+"""Paper 000 (Xu, Xie, Wang, Ni 2012) in the closed loop: what a humanoid team knows about
+the ball, alone or together.
 
 ``soccer-env paper team``:
 

@@ -1,4 +1,5 @@
-"""Paper 000's particle-filter benchmark: the univariate nonstationary growth model (UNGM).
+"""The particle-filter benchmark of paper 000 (Xu, Xie, Wang, Ni 2012): the univariate
+nonstationary growth model (UNGM).
 
 ``soccer-env paper ungm``: bootstrap PF, FBPF and MFBPF (:mod:`estimators.particle`) with 100
 particles on ``runs`` simulated 50-step UNGM trajectories (``x_0 ~ N(0, 10)``, process noise
