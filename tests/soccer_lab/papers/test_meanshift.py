@@ -19,6 +19,7 @@ from soccer_env.sensors.images.overhead import OverheadRenderer
 from soccer_env.sensors.images.patterns import PATTERN, PATTERN_IDS
 from soccer_env.sim.world import World
 from soccer_lab.papers import meanshift
+from soccer_lab.papers.meanshift.scene import IdentityCheck
 
 pytestmark = pytest.mark.slow
 
@@ -112,8 +113,8 @@ def test_identity_check_tells_team_mates_apart():
     windows = np.column_stack([np.rint(u - 0.5 - 6), np.rint(v - 0.5 - 6),
                                np.full(3, 13), np.full(3, 13)]).astype(int)
     for own in range(3):
-        check = meanshift._IdentityCheck(own, [0, 1, 2], dots,
-                                         {j: PATTERN_IDS[j] for j in range(3)})
+        check = IdentityCheck(own, [0, 1, 2], dots,
+                              {j: PATTERN_IDS[j] for j in range(3)})
         check.set_images(pink, green)
         assert check(windows, None).tolist() == [j == own for j in range(3)]
 
