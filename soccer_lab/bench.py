@@ -46,7 +46,7 @@ PERCEIVED_PRESETS = ("realistic", "ssl-2012")
 HUMANOID, HUMANOID_CAMERA = "humanoid-2012", "kidsize-2012"
 
 #: rSoccer (ODE, Gymnasium, ground truth only) on this kind of machine, for reference, and the
-#: aims of the foundation issue (ten times rSoccer).
+#: step rates aimed at (ten times rSoccer).
 REFERENCE = {
     "goalkeeper": {"rsoccer_task": "1-robot shooting task", "rsoccer_steps_per_s": 1700,
                    "aim_steps_per_s": 15000},

@@ -33,7 +33,7 @@ global start and to recover after the kidnapping (until the position error is be
 stays so for a second; "never" counts as infinitely late, and the episodes in which it never
 happened are counted); the share of frames whose estimate sits at the mirror pose (the field
 turned by 180 degrees, which only the goal posts' colours tell apart). Beside it, each episode's
-median position error per filter. The issue's aims (judged on these medians: the particles at
+median position error per filter. The aims (judged on these medians: the particles at
 the start against the mean while tracking, and the median position error, with the number of
 episodes in which the position aim holds) and paper 001's claims are printed beside.
 """
@@ -65,7 +65,7 @@ __all__ = ["run", "Settings", "PAPER", "AIMS"]
 
 PAPER = ("Paper 001: KLD-sampling keeps many particles while uncertain and few once converged; "
          "errors are larger in turns (wheel slip); robot speed <= 0.5 m/s.")
-AIMS = ("Issue aims: KLD-sampling using at least 3 times fewer particles while tracking than "
+AIMS = ("Aims: KLD-sampling using at least 3 times fewer particles while tracking than "
         "while globally localizing, with median position error under 0.15 m while walking.")
 ROBOT = "humanoid-2012"
 FIELD = "humanoid-2012"
@@ -292,7 +292,7 @@ _MEDIAN_KEYS = ("median_pos_m", "median_head_deg", "median_pos_turning_m",
                 "tracking_particles", "tracking_particles_median", "ms_per_update", "mirror_pct")
 #: Times that may never happen (None): their median counts "never" as infinitely late.
 _NEVER_KEYS = ("localized_s", "recovery_s")
-#: The issue's position aim while walking [m].
+#: The position aim while walking [m].
 AIM_POS_M = 0.15
 
 

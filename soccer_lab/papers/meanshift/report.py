@@ -25,7 +25,7 @@ PAPER = {"plain_pf_particles": 200, "ms_pf_particles": 20, "cycle_ms": 33.0,
                  "stays about 33 ms (Pentium 4 2.6 GHz, 640 x 480)."}
 #: The aims of the reproduction.
 AIMS = {"ms_per_robot": 5.0,
-        "text": "Issue aims: the 20-particle mean-shift PF at least as accurate as the "
+        "text": "Aims: the 20-particle mean-shift PF at least as accurate as the "
                 "200-particle plain PF (the paper's claim); under 5 ms per tracked robot per "
                 "640 x 480 frame."}
 #: Error CDF bins [mm].

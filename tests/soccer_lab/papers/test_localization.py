@@ -42,11 +42,11 @@ def test_kld_adapts_tracks_and_recovers(short_run):
     assert set(res["results"]) == {KLD, "fixed 1000"}
     kld = res["results"][KLD]
     assert kld["episodes"] == len(SEEDS)
-    # Many particles at the global start, few while tracking (the 3 times fewer).
+    # Many particles at the global start, few while tracking (the aim: 3 times fewer).
     assert kld["initial_particles"] == KLDConfig().max_particles
     assert kld["initial_particles"] >= 3 * kld["tracking_particles"]
     assert kld["tracking_particles_median"] <= 2 * KLDConfig().min_particles
-    # Small errors once converged (the aim while walking), in every episode here.
+    # Small errors once converged (the aim while walking), in every episode here.
     assert kld["median_pos_m"] < 0.15 and kld["pos_aim_episodes"] == len(SEEDS)
     assert kld["median_head_deg"] < 5.0
     # Localized from the global start in every episode, and found again after the

@@ -82,7 +82,7 @@ def test_every_tracker_kind_measured_consistently(short_run):
     for key in ("true_area_fail_share", "true_id_fail_share", "lost_while_passable_share"):
         assert 0.0 <= diag[key] <= 1.0
     assert res["cycle_ms"] > res["prep_ms_per_frame"] > 0.0
-    # The paper's claims and the aims are printed, with a verdict.
+    # The paper's claims and the aims are printed, with a verdict.
     assert meanshift.PAPER["text"] in res["text"] and meanshift.AIMS["text"] in res["text"]
     assert res["text"].count("met (") + res["text"].count("not met (") >= 2
     assert isinstance(res["aims"]["accurate"], bool)
