@@ -203,6 +203,7 @@ HUMANOID_CONFIGS: Registry[EstimatorConfig] = _registry(
                          detector="pixels"),
     ))
 
+
 @dataclass(frozen=True)
 class RobotKind:
     """The keepers of one robot kind in the ablation.
