@@ -8,11 +8,12 @@ interval, ball estimation RMSE (believed against true ball position over all ste
 estimator's compute per step. The same seed gives the same shot in every cell, so the cells
 differ only in what the policy perceives.
 
-Estimator configurations live in registries, :data:`ESTIMATOR_CONFIGS` for SSL robots and
-:data:`HUMANOID_CONFIGS` for humanoids (``robot="humanoid"``: the keeper and its team-mates
-with head cameras, localization, team fusion and ball tracking); a new estimator (with its own
-perception options) is one more :class:`EstimatorConfig` given to :func:`register_config`.
-Sensor presets are the names of :data:`soccer_env.presets.VISION` (SSL) or
+Estimator configurations live in one :class:`~estimators.registry.Registry` per robot kind
+(:data:`ROBOT_KINDS`): :data:`ESTIMATOR_CONFIGS` for SSL robots and :data:`HUMANOID_CONFIGS`
+for humanoids (``robot="humanoid"``: the keeper and its team-mates with head cameras,
+localization, team fusion and ball tracking); a new estimator (with its own perception
+options) is one more :class:`EstimatorConfig` given to :func:`register_config`. Sensor presets
+are the names of :data:`soccer_env.presets.VISION` (SSL) or
 :data:`soccer_env.presets.HEAD_CAMERAS` (humanoids).
 
 The work is split into jobs of (configuration, preset, chunk of ``chunk_size`` consecutive
@@ -20,22 +21,20 @@ seeds) spread over processes. Chunks do not depend on the number of workers and 
 seed order, so every number except the timings (estimator us/step, seconds) is identical for
 any ``workers``.
 
-Outputs (:func:`write_outputs`): ``ablation.md`` (tables, the policy and the command),
-``ablation.csv`` (one row per cell), ``ablation.json`` (settings, configurations and all
-numbers, including which seeds were saved in each cell) and ``ablation.png`` (save rates with
-their intervals, RMSE and compute per preset and configuration).
+Outputs (:func:`write_outputs`, :mod:`agents.ablation_report`): ``ablation.md`` (tables, the
+policy and the command), ``ablation.csv`` (one row per cell), ``ablation.json`` (settings,
+configurations and all numbers, including which seeds were saved in each cell) and
+``ablation.png`` (save rates with their intervals, RMSE and compute per preset and
+configuration).
 """
 
 from __future__ import annotations
 
-import argparse
-import csv
 import dataclasses
 import json
 import math
 import os
 import shlex
-import sys
 import time
 from collections import Counter
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -44,14 +43,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from agents.cli_args import key_values
-from agents.evaluation import GOALKEEPER_ID, EvalResult, _mp_context, evaluate, wilson
+from agents import ablation_report
+from agents.ablation_report import write_outputs
+from agents.evaluation import GOALKEEPER_ID, EvalResult, evaluate, process_context, wilson
+from estimators.registry import Registry
 from soccer_env.perception.base import BALL_FILTERS, OBS_MODES, PerceptionConfig
 from soccer_env.presets.sensors import HEAD_CAMERAS, VISION
 
 __all__ = ["EstimatorConfig", "ESTIMATOR_CONFIGS", "HUMANOID_CONFIGS", "ROBOT_KINDS",
-           "register_config", "AblationResult", "run_ablation", "write_outputs", "parse_names",
-           "default_presets", "main", "DEFAULT_CHUNK_SIZE"]
+           "RobotKind", "robot_kind", "register_config", "AblationResult", "run_ablation",
+           "write_outputs", "parse_names", "default_presets", "DEFAULT_CHUNK_SIZE"]
 
 #: Consecutive seeds per job: small enough to keep every core busy to the end, large enough
 #: that building the environment and the policy per job costs little.
@@ -145,9 +146,14 @@ def _filter_config(name: str, source: str) -> EstimatorConfig:
                            perception={"ball_filter": name})
 
 
-#: The estimator configurations, by name, in table order.
-ESTIMATOR_CONFIGS: dict[str, EstimatorConfig] = {
-    c.name: c for c in (
+def _registry(family: str, configs: Iterable[EstimatorConfig]) -> Registry[EstimatorConfig]:
+    """A registry of ``configs`` by name, each described by its description."""
+    return Registry(family, [(c.name, c, c.description) for c in configs])
+
+
+#: The estimator configurations of SSL robots, by name, in table order.
+ESTIMATOR_CONFIGS: Registry[EstimatorConfig] = _registry(
+    "estimator configuration", (
         EstimatorConfig("truth", "truth", "oracle: the true state (the preset's actuation "
                         "latency and command loss still apply)", "upper bound"),
         EstimatorConfig("raw", "raw", "latest delayed detections, unfiltered (velocity from "
@@ -158,8 +164,7 @@ ESTIMATOR_CONFIGS: dict[str, EstimatorConfig] = {
         _filter_config("ekf-improved", "paper 002 (improved EKF)"),
         _filter_config("ekf-2phase", "soccer_env (paper 002's EKF with a two-phase ball)"),
         _filter_config("ls", "paper 002 (least-squares baseline)"),
-    )
-}
+    ))
 
 
 def _humanoid_config(name: str, description: str, obs_mode: str = "perceived",
@@ -173,8 +178,8 @@ DEFAULT_HUMANOID = "humanoid-2012"
 
 #: The humanoid estimator configurations, by name, in table order: what the keeper believes
 #: about the ball (its own pose from KLD-sampling localization in all perceived ones).
-HUMANOID_CONFIGS: dict[str, EstimatorConfig] = {
-    c.name: c for c in (
+HUMANOID_CONFIGS: Registry[EstimatorConfig] = _registry(
+    "estimator configuration", (
         _humanoid_config("truth", "oracle: the true state", "truth", "upper bound"),
         _humanoid_config("raw", "dead reckoning and the keeper's own latest sighting, "
                          "unfiltered", "raw", "lower bound"),
@@ -196,42 +201,54 @@ HUMANOID_CONFIGS: dict[str, EstimatorConfig] = {
                          "rendered head-camera images (Kalman-started mean shift)",
                          source="papers 000 and 004", fusion="inverse", ball_tracker="mfbpf",
                          detector="pixels"),
-    )
-}
-
-#: Robot kinds of the ablation: the names of their configuration registries in this module,
-#: and their sensor presets.
-ROBOT_KINDS = {"ssl": ("ESTIMATOR_CONFIGS", VISION),
-               "humanoid": ("HUMANOID_CONFIGS", HEAD_CAMERAS)}
+    ))
 
 
-def _kind(robot: str) -> tuple[dict[str, EstimatorConfig], Mapping[str, Any]]:
-    """The configuration registry and the sensor presets of a robot kind (the registry
-    looked up when called, so that a replaced module attribute is the one used)."""
-    if robot not in ROBOT_KINDS:
-        raise ValueError(f"robot must be one of {list(ROBOT_KINDS)}, got {robot!r}")
-    name, presets = ROBOT_KINDS[robot]
-    return globals()[name], presets
+@dataclass(frozen=True)
+class RobotKind:
+    """The keepers of one robot kind in the ablation.
+
+    Attributes:
+        configs: its estimator configurations.
+        presets: its sensor presets (specs with a ``source``), by name.
+        presets_name: where the presets live, for the tables.
+    """
+
+    configs: Registry[EstimatorConfig]
+    presets: Mapping[str, Any]
+    presets_name: str
+
+
+#: Robot kinds of the ablation: their configuration registries and sensor presets.
+ROBOT_KINDS: Registry[RobotKind] = Registry("robot", [
+    ("ssl", RobotKind(ESTIMATOR_CONFIGS, VISION, "soccer_env.presets.VISION"),
+     "SSL keepers: overhead vision and its ball filters"),
+    ("humanoid", RobotKind(HUMANOID_CONFIGS, HEAD_CAMERAS, "soccer_env.presets.HEAD_CAMERAS"),
+     "humanoid keepers with three team-mates: head cameras, localization, team fusion and "
+     "ball tracking"),
+])
+
+
+def robot_kind(robot: str) -> RobotKind:
+    """The configurations and sensor presets of robot kind ``robot`` (looked up in
+    :data:`ROBOT_KINDS` when called); ``ValueError`` for an unknown kind."""
+    return ROBOT_KINDS[ROBOT_KINDS.check(robot, "robot")]
 
 
 def register_config(config: EstimatorConfig, replace: bool = False) -> EstimatorConfig:
     """Add ``config`` to the registry of its robot kind (:data:`ESTIMATOR_CONFIGS` or
-    :data:`HUMANOID_CONFIGS`, after the existing ones). A name already registered raises
-    ``ValueError`` unless ``replace``."""
+    :data:`HUMANOID_CONFIGS`, after the existing ones; its description is the registry's). A
+    name already registered raises ``ValueError`` unless ``replace``."""
     if not isinstance(config, EstimatorConfig):
         raise TypeError(f"config must be an EstimatorConfig, got {type(config).__name__}")
-    registry = _kind(config.robot)[0]
-    if config.name in registry and not replace:
-        raise ValueError(f"estimator configuration {config.name!r} is already registered "
-                         f"(pass replace=True to replace it)")
-    registry[config.name] = config
-    return config
+    return robot_kind(config.robot).configs.register(config.name, config, config.description,
+                                                     replace=replace)
 
 
 def default_presets(robot: str = "ssl") -> list[str]:
     """All sensor presets of the robot kind: :data:`soccer_env.presets.VISION` for SSL
     robots, :data:`soccer_env.presets.HEAD_CAMERAS` for humanoids."""
-    return list(_kind(robot)[1])
+    return list(robot_kind(robot).presets)
 
 
 def parse_names(value: str | Iterable[str] | None, allowed: Iterable[str], what: str
@@ -294,7 +311,13 @@ class AblationResult:
     @property
     def preset_table(self) -> Mapping[str, Any]:
         """The sensor presets of the robot kind (their specs have a ``source``)."""
-        return _kind(self.robot)[1]
+        return robot_kind(self.robot).presets
+
+    @property
+    def preset_table_name(self) -> str:
+        """Where the robot kind's sensor presets live (``soccer_env.presets.VISION`` or
+        ``soccer_env.presets.HEAD_CAMERAS``)."""
+        return robot_kind(self.robot).presets_name
 
     def cell(self, preset: str, config: str) -> EvalResult:
         """The evaluation of ``config`` under ``preset``."""
@@ -318,95 +341,15 @@ class AblationResult:
 
     def rows(self) -> list[dict[str, Any]]:
         """One flat row per cell (preset-major), as in ``ablation.csv``."""
-        keys = sorted({k for r in self.cells.values() for k in r.outcomes})
-        rows = []
-        for preset in self.presets:
-            for name in self.configs:
-                r, spec = self.cell(preset, name), self.config_specs[name]
-                rows.append({
-                    "preset": preset, "config": name, "obs_mode": spec.obs_mode,
-                    "ball_filter": spec.ball_filter or "", "episodes": r.episodes,
-                    "saves": r.saves, "save_rate": r.save_rate, "ci_low": r.ci_low,
-                    "ci_high": r.ci_high, "ball_rmse_mm": 1000 * r.ball_rmse_m,
-                    "estimator_us_per_step": r.estimator_us_per_step,
-                    "steps": r.steps, "mean_steps": r.mean_steps, "seconds": r.seconds,
-                    **{f"outcome_{k.replace(' ', '_')}": r.outcomes.get(k, 0) for k in keys},
-                })
-        return rows
+        return ablation_report.rows(self)
 
     def to_dict(self) -> dict[str, Any]:
         """Settings, configurations and every number (``ablation.json``)."""
-        cells = []
-        for preset in self.presets:
-            for name in self.configs:
-                r = self.cell(preset, name)
-                d = r.to_dict()
-                d["saved"] = [int(s) for s in d["saved"]]
-                cells.append({"preset": preset, "config": name, **d})
-        return {
-            "settings": {
-                "policy": self.policy, "episodes": self.episodes,
-                "start_seed": self.start_seed,
-                "seeds": [self.start_seed, self.start_seed + self.episodes - 1],
-                "presets": self.presets, "configs": self.configs, "env_id": self.env_id,
-                "env_kwargs": self.env_kwargs, "workers": self.workers,
-                "chunk_size": self.chunk_size, "command": self.command(),
-                "save": "episode terminated without a goal (time limit: not saved)",
-                "interval": "Wilson score interval, 95 %",
-            },
-            "configs": {n: self.config_specs[n].to_dict() for n in self.configs},
-            "presets": {p: {"source": self.preset_table[p].source}
-                        if p in self.preset_table else {} for p in self.presets},
-            "cells": cells,
-            "seconds": self.seconds,
-        }
+        return ablation_report.data(self)
 
     def markdown(self) -> str:
         """The tables of ``ablation.md``."""
-        lines = [
-            "# Estimator ablation",
-            "",
-            f"Policy `{self.policy}` on `{self.env_id}`, {self.episodes} seeded shots per cell "
-            f"(seeds {self.start_seed}-{self.start_seed + self.episodes - 1}, the same shots "
-            "in every cell). Save: the episode ends without a goal; Wilson 95 % interval. "
-            "RMSE: believed against true ball position over all steps. Compute: time in the "
-            "perception's filters per environment step (sensor simulation excluded).",
-            "",
-            f"Command: `{self.command()}` ({self.seconds:.0f} s wall time).",
-            "",
-            "Save rate [%] (95 % CI):",
-            "",
-            "| sensor preset | " + " | ".join(self.configs) + " |",
-            "|---|" + "---|" * len(self.configs),
-        ]
-        for preset in self.presets:
-            cells = [_rate(self.cell(preset, c)) for c in self.configs]
-            lines.append(f"| {preset} | " + " | ".join(cells) + " |")
-        lines += ["", "| sensor preset | estimator | save rate [%] (95 % CI) | saves "
-                  "| ball RMSE [mm] | estimator [us/step] |", "|---|---|---|---|---|---|"]
-        for preset in self.presets:
-            for c in self.configs:
-                r = self.cell(preset, c)
-                us = ("-" if r.estimator_us_per_step is None
-                      else f"{r.estimator_us_per_step:.1f}")
-                lines.append(f"| {preset} | {c} | {_rate(r)} | {r.saves}/{r.episodes} | "
-                             f"{1000 * r.ball_rmse_m:.1f} | {us} |")
-        lines += ["", "Estimator configurations:", ""]
-        for c in self.configs:
-            spec = self.config_specs[c]
-            src = f" Source: {spec.source}." if spec.source else ""
-            lines.append(f"- `{c}` ({spec.obs_mode}): {spec.description}.{src}")
-        table = ("soccer_env.presets.HEAD_CAMERAS" if self.robot == "humanoid"
-                 else "soccer_env.presets.VISION")
-        lines += ["", f"Sensor presets (`{table}`):", ""]
-        for p in self.presets:
-            src = f": {self.preset_table[p].source}" if p in self.preset_table else ""
-            lines.append(f"- `{p}`{src}.")
-        return "\n".join(lines)
-
-
-def _rate(r: EvalResult) -> str:
-    return f"{100 * r.save_rate:.1f} ({100 * r.ci_low:.1f}-{100 * r.ci_high:.1f})"
+        return ablation_report.markdown(self)
 
 
 def _describe(policy: Any) -> str:
@@ -494,56 +437,32 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
         ValueError: unknown preset or configuration names, ``episodes``, ``workers`` or
             ``chunk_size`` below 1, or a policy reference that cannot be resolved.
     """
-    if isinstance(episodes, bool) or int(episodes) != episodes or episodes < 1:
-        raise ValueError(f"episodes must be an integer >= 1, got {episodes!r}")
-    if int(chunk_size) < 1:
-        raise ValueError(f"chunk_size must be >= 1, got {chunk_size!r}")
-    workers = (os.cpu_count() or 1) if workers is None else int(workers)
-    if workers < 1:
-        raise ValueError(f"workers must be >= 1, got {workers!r}")
-    registry, preset_table = _kind(robot)
-    preset_names = parse_names(presets, preset_table, "sensor preset(s)")
-    config_names = parse_names(configs, registry, "estimator configuration(s)")
-    specs = {n: registry[n] for n in config_names}
+    episodes, chunk_size, workers = _check_counts(episodes, chunk_size, workers)
+    kind = robot_kind(robot)
+    preset_names = parse_names(presets, kind.presets, "sensor preset(s)")
+    config_names = parse_names(configs, kind.configs, "estimator configuration(s)")
+    specs = {n: kind.configs[n] for n in config_names}
     base = dict(env_kwargs or {})
     cell_keys = sorted({"obs_mode", "perception"} & set(base))
     if cell_keys:
         raise ValueError(f"env_kwargs: {cell_keys} are set by each cell's configuration and "
                          "preset")
-    episodes, start_seed, chunk_size = int(episodes), int(start_seed), int(chunk_size)
+    start_seed = int(start_seed)
     job_policy = _resolve_policy(policy, env_id,
                                  specs[config_names[0]].make_env_kwargs(preset_names[0], base))
 
     t0 = time.perf_counter()
-    starts = list(range(start_seed, start_seed + episodes, chunk_size))
     keys, jobs = [], []
     # Seed chunks outermost: every configuration runs throughout, so that a change in the
     # machine's load during the run biases no configuration's timing.
-    for s in starts:
+    for s in range(start_seed, start_seed + episodes, chunk_size):
         for name in config_names:
             for preset in preset_names:
-                kwargs = specs[name].make_env_kwargs(preset, base)
                 keys.append((preset, name))
-                jobs.append((job_policy, env_id, kwargs, s,
+                jobs.append((job_policy, env_id, specs[name].make_env_kwargs(preset, base), s,
                              min(chunk_size, start_seed + episodes - s)))
-    outs: list[EvalResult | None] = [None] * len(jobs)
-    if workers == 1 or len(jobs) == 1:
-        for i, job in enumerate(jobs):
-            outs[i] = _run_job(job)
-            if progress:
-                progress(i + 1, len(jobs))
-    else:
-        # forkserver (or spawn), not fork: a parent that has used torch deadlocks forked
-        # children. The jobs carry their environment's keyword arguments, so configurations
-        # registered at run time need not exist in the workers.
-        with ProcessPoolExecutor(min(workers, len(jobs)), mp_context=_mp_context()) as pool:
-            futures = {pool.submit(_run_job, job): i for i, job in enumerate(jobs)}
-            for done, fut in enumerate(as_completed(futures), 1):
-                outs[futures[fut]] = fut.result()
-                if progress:
-                    progress(done, len(jobs))
     parts: dict[tuple[str, str], list[EvalResult]] = {}
-    for key, out in zip(keys, outs):
+    for key, out in zip(keys, _run_jobs(jobs, workers, progress)):
         parts.setdefault(key, []).append(out)
     label = _describe(policy)
     cells = {(p, c): _merge(parts[(p, c)], label) for p in preset_names for c in config_names}
@@ -553,150 +472,35 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
                           chunk_size=chunk_size, seconds=time.perf_counter() - t0, robot=robot)
 
 
-# ------------------------------------------------------------------------------------------
-# Outputs
-# ------------------------------------------------------------------------------------------
-
-def _plot(res: AblationResult, path: Path) -> str:
-    """Grouped bars per preset: save rate with its interval, ball RMSE, compute per step."""
-    import numpy as np
-
-    from soccer_env.render.plots import pyplot, save_figure
-
-    plt = pyplot()
-    n_p, n_c = len(res.presets), len(res.configs)
-    fig, axes = plt.subplots(3, 1, figsize=(max(7.0, 1.6 + 0.32 * n_p * n_c), 9.5), sharex=True)
-    width = 0.8 / n_c
-    x = np.arange(n_p)
-    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    for j, name in enumerate(res.configs):
-        cells = [res.cell(p, name) for p in res.presets]
-        pos = x + (j - (n_c - 1) / 2) * width
-        color = colors[j % len(colors)]
-        rate = np.array([c.save_rate for c in cells]) * 100
-        err = np.array([[c.save_rate - c.ci_low, c.ci_high - c.save_rate] for c in cells]).T
-        axes[0].bar(pos, rate, width, yerr=err * 100, capsize=2, color=color, label=name)
-        rmse = np.array([c.ball_rmse_m for c in cells]) * 1000
-        axes[1].bar(pos, np.where(rmse > 0, rmse, np.nan), width, color=color)
-        us = np.array([c.estimator_us_per_step or 0.0 for c in cells])
-        axes[2].bar(pos, us, width, color=color)
-    axes[0].set_ylabel("save rate [%]")
-    axes[0].set_ylim(0, 105)
-    axes[0].set_title(f"Policy {res.policy}: {res.episodes} shots per bar (95 % CI)")
-    axes[0].legend(fontsize=8, ncol=min(n_c, 4), loc="lower left")
-    axes[1].set_ylabel("ball RMSE [mm]")
-    if any(res.cell(p, c).ball_rmse_m > 0 for p in res.presets for c in res.configs):
-        from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
-
-        axes[1].set_yscale("log")
-        # Ticks at 1, 2 and 5 per decade: a range within one decade still gets labels.
-        axes[1].yaxis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
-        axes[1].yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-        axes[1].yaxis.set_minor_formatter(NullFormatter())
-    axes[1].set_title("Ball estimation error (truth: 0, not drawn)", fontsize=10)
-    axes[2].set_ylabel("estimator [us/step]")
-    axes[2].set_title("Estimator compute per step", fontsize=10)
-    axes[2].set_xticks(x, res.presets)
-    axes[2].set_xlabel("sensor preset")
-    for ax in axes:
-        ax.grid(axis="y", alpha=0.3)
-    return save_figure(fig, path)
+def _check_counts(episodes: Any, chunk_size: Any, workers: Any) -> tuple[int, int, int]:
+    """``episodes``, ``chunk_size`` and ``workers`` (None: every core) as integers >= 1, else
+    ``ValueError``."""
+    if isinstance(episodes, bool) or int(episodes) != episodes or episodes < 1:
+        raise ValueError(f"episodes must be an integer >= 1, got {episodes!r}")
+    if int(chunk_size) < 1:
+        raise ValueError(f"chunk_size must be >= 1, got {chunk_size!r}")
+    workers = (os.cpu_count() or 1) if workers is None else int(workers)
+    if workers < 1:
+        raise ValueError(f"workers must be >= 1, got {workers!r}")
+    return int(episodes), int(chunk_size), workers
 
 
-def write_outputs(res: AblationResult, out: str | os.PathLike) -> dict[str, Path]:
-    """Write ``ablation.md``, ``.csv``, ``.json`` and ``.png`` to ``out``; return their
-    paths by kind."""
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    files = {k: out / f"ablation.{k}" for k in ("md", "csv", "json", "png")}
-    files["md"].write_text(res.markdown() + "\n")
-    rows = res.rows()
-    with files["csv"].open("w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    files["json"].write_text(json.dumps(res.to_dict(), indent=1) + "\n")
-    _plot(res, files["png"])
-    return files
-
-
-# ------------------------------------------------------------------------------------------
-# Command line
-# ------------------------------------------------------------------------------------------
-
-def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
-        prog="soccer-env ablation",
-        description="Evaluate one keeper policy on the same seeded shots under every estimator "
-                    "configuration and sensor preset: save rate with Wilson 95 % interval, "
-                    "ball estimation RMSE and estimator compute per step.")
-    p.add_argument("--policy", default="scripted",
-                   help="policy reference: scripted, idle, baseline:NAME, a .zip/.npz file or "
-                        "a training run folder (default: scripted)")
-    p.add_argument("--episodes", type=int, default=1000,
-                   help="shots per cell, seeds start-seed onwards (default: 1000)")
-    p.add_argument("--robot", default="ssl", choices=list(ROBOT_KINDS),
-                   help="the keeper's robot kind: ssl (overhead vision) or humanoid (head "
-                        "cameras, localization, team fusion; robot humanoid-2012 unless "
-                        "--env-kwarg robot=... names another) (default: ssl)")
-    p.add_argument("--presets", default=None,
-                   help=f"comma-separated sensor presets (default: all; ssl: "
-                        f"{','.join(VISION)}; humanoid: {','.join(HEAD_CAMERAS)})")
-    p.add_argument("--configs", default="all",
-                   help="comma-separated estimator configurations (default: all; ssl: "
-                        f"{','.join(ESTIMATOR_CONFIGS)}; humanoid: "
-                        f"{','.join(HUMANOID_CONFIGS)})")
-    p.add_argument("--workers", type=int, default=None,
-                   help="processes (default: all cores); the results do not depend on it")
-    p.add_argument("--out", default="ablation_output",
-                   help="output folder (default: ablation_output)")
-    p.add_argument("--start-seed", type=int, default=0, help="seed of the first shot")
-    p.add_argument("--chunk-size", type=int, default=DEFAULT_CHUNK_SIZE,
-                   help=f"consecutive seeds per job (default: {DEFAULT_CHUNK_SIZE})")
-    p.add_argument("--env-kwarg", action="append", default=[], metavar="KEY=VALUE",
-                   help="environment keyword argument shared by all cells (value parsed as "
-                        "JSON), repeatable, e.g. control_dt=0.04 or field=ssl-2012; obs_mode "
-                        "and perception belong to the cells")
-    p.add_argument("--quiet", action="store_true", help="no progress on stderr")
-    return p
-
-
-def main(argv: Sequence[str] | None = None) -> int:
-    """``soccer-env ablation``: run the ablation, write its outputs and print the table."""
-    p = _parser()
-    args = p.parse_args(list(sys.argv[1:] if argv is None else argv))
-    for name in ("episodes", "chunk_size"):
-        if getattr(args, name) < 1:
-            p.error(f"--{name.replace('_', '-')} must be >= 1, got {getattr(args, name)}")
-    if args.workers is not None and args.workers < 1:
-        p.error(f"--workers must be >= 1, got {args.workers}")
-    try:
-        registry, preset_table = _kind(args.robot)
-        presets = parse_names(args.presets, preset_table, "sensor preset(s)")
-        configs = parse_names(args.configs, registry, "estimator configuration(s)")
-        env_kwargs = key_values(args.env_kwarg, "--env-kwarg")
-    except ValueError as exc:
-        p.error(str(exc))
-    t0 = time.perf_counter()
-
-    def progress(done: int, total: int) -> None:
-        if not args.quiet and (done == total or done % max(1, total // 20) == 0):
-            print(f"ablation: {done}/{total} jobs ({time.perf_counter() - t0:.0f} s)",
-                  file=sys.stderr, flush=True)
-
-    try:
-        res = run_ablation(args.policy, args.episodes, presets, configs, args.start_seed,
-                           args.workers, args.chunk_size, env_kwargs=env_kwargs,
-                           progress=progress, robot=args.robot)
-    except (ValueError, TypeError, FileNotFoundError) as exc:
-        p.error(str(exc))
-    files = write_outputs(res, args.out)
-    print(res.markdown())
-    for path in files.values():
-        print(f"wrote {path}")
-    print(f"{len(res.cells)} cells x {res.episodes} shots in {res.seconds:.0f} s")
-    return 0
-
-
-if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+def _run_jobs(jobs: list[tuple], workers: int,
+              progress: Callable[[int, int], None] | None) -> list[EvalResult]:
+    """Every job's evaluation, in job order, over ``workers`` processes (here for one)."""
+    outs: list[EvalResult | None] = [None] * len(jobs)
+    if workers == 1 or len(jobs) == 1:
+        for i, job in enumerate(jobs):
+            outs[i] = _run_job(job)
+            if progress:
+                progress(i + 1, len(jobs))
+        return outs
+    # The jobs carry their environment's keyword arguments, so configurations registered at
+    # run time need not exist in the workers.
+    with ProcessPoolExecutor(min(workers, len(jobs)), mp_context=process_context()) as pool:
+        futures = {pool.submit(_run_job, job): i for i, job in enumerate(jobs)}
+        for done, fut in enumerate(as_completed(futures), 1):
+            outs[futures[fut]] = fut.result()
+            if progress:
+                progress(done, len(jobs))
+    return outs

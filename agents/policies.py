@@ -140,7 +140,7 @@ class NumpyPolicy:
                      for k, *rest in self.layers]
 
     def __call__(self, obs: np.ndarray) -> np.ndarray:
-        action = self._network(obs)
+        action = self.network_action(obs)
         if self.action_map is not None:
             from agents.wrappers import action_to_command
 
@@ -148,8 +148,11 @@ class NumpyPolicy:
                                      self.action_map["params"] or None)
         return action
 
-    def _network(self, obs: np.ndarray) -> np.ndarray:
-        """The network's action (before any change of frame)."""
+    def network_action(self, obs: np.ndarray) -> np.ndarray:
+        """The network's action for ``obs`` (one observation or a batch): the action the
+        stable-baselines3 model predicts deterministically, before any action map turns it
+        into the native command (for a policy without an action map, what calling it
+        returns)."""
         x = np.asarray(obs, dtype=np.float32)
         if x.shape[-1:] != (self.obs_size,) or x.ndim > 2:
             raise ValueError(f"obs must have shape ({self.obs_size},) or (n, {self.obs_size}), "

@@ -31,14 +31,11 @@ the reported save rate.
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 import inspect
 import json
-import math
 import os
 import platform
-import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -46,13 +43,12 @@ from typing import Any
 
 import numpy as np
 
-from agents.cli_args import add_env_arguments, env_kwargs_from_args, key_values
 from agents.evaluation import GOALKEEPER_ID, evaluate
 from agents.policies import SB3_ALGORITHMS, NumpyPolicy
 from agents.wrappers import ACTION_MAPS, wrap_actions
 
-__all__ = ["TrainConfig", "train", "main", "EVAL_SEED_START", "MATCH_ID", "DEFAULT_HYPERPARAMS",
-           "rollout_timer", "goalkeeper_env_fn"]
+__all__ = ["TrainConfig", "train", "check_env_kwargs", "make_vec_env", "EVAL_SEED_START",
+           "MATCH_ID", "DEFAULT_HYPERPARAMS", "rollout_timer", "goalkeeper_env_fn"]
 
 #: First seed of the shots used for model selection during training.
 EVAL_SEED_START = 1_000_000
@@ -229,9 +225,10 @@ def _action_map(cfg: TrainConfig) -> dict[str, Any] | None:
     return {"kind": cfg.actions, "params": params or {}}
 
 
-def _check_env_kwargs(cfg: TrainConfig) -> None:
-    """Build one environment here so that bad keyword arguments fail before any process
-    starts, with the environment's own message."""
+def check_env_kwargs(cfg: TrainConfig) -> None:
+    """Build one environment of ``cfg`` (and its evaluation environment) here, so that bad
+    keyword arguments fail before any process starts, with the environment's own message
+    (``TypeError`` or ``ValueError``)."""
     if cfg.env_id == MATCH_ID:
         import soccer_env
 
@@ -361,10 +358,9 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
           command: list[str] | None = None) -> dict[str, Any]:
     """Train as ``cfg`` says (continuing from the checkpoint ``resume`` if given) and write the
     run folder. Returns the summary."""
-    import stable_baselines3 as sb3
     import torch
 
-    _check_env_kwargs(cfg)
+    check_env_kwargs(cfg)
     out = Path(cfg.out)
     out.mkdir(parents=True, exist_ok=True)
     torch.set_num_threads(cfg.torch_threads)
@@ -373,37 +369,8 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
         **cfg.to_dict(), "action_map": action_map, "command": command,
         "resumed_from": None if resume is None else os.fspath(resume),
         "versions": _versions()}, indent=2))
-
-    from stable_baselines3.common.vec_env import VecNormalize
-
-    from agents.policies import vecnormalize_path
-
-    venv = make_vec_env(cfg)
-    algo = getattr(sb3, cfg.algorithm)
-    params = {**DEFAULT_HYPERPARAMS.get(cfg.algorithm, {}), **cfg.hyperparams}
-    if cfg.algorithm == "PPO":
-        # Keep one rollout at about n_steps * n_envs and a whole number of minibatches.
-        params["batch_size"] = min(params["batch_size"], params["n_steps"] * venv.num_envs)
-    if cfg.normalize_obs or cfg.normalize_reward:
-        stats = vecnormalize_path(resume) if resume is not None else None
-        if stats is not None and stats.exists():
-            venv = VecNormalize.load(str(stats), venv)
-        else:
-            venv = VecNormalize(venv, norm_obs=cfg.normalize_obs,
-                                norm_reward=cfg.normalize_reward,
-                                gamma=params.get("gamma", 0.99))
-    if resume is not None:
-        # The hyperparameters of this configuration replace the saved ones (so that a run
-        # can be fine-tuned, e.g. with another entropy bonus or learning rate); the network
-        # (policy_kwargs) is the saved model's.
-        params.pop("policy_kwargs", None)
-        model = algo.load(resume, env=venv, device=cfg.device,
-                          tensorboard_log=str(out / "tb"), **params)
-        done_steps = int(model.num_timesteps)
-    else:
-        model = algo("MlpPolicy", venv, seed=cfg.seed, device=cfg.device,
-                     tensorboard_log=str(out / "tb"), verbose=0, **params)
-        done_steps = 0
+    venv, params = _training_env(cfg, resume)
+    model, done_steps = _model(cfg, venv, params, resume, out)
     callbacks, timer, evaluator = _callbacks(cfg, out, action_map)
     remaining = max(0, cfg.total_steps - done_steps)
     t0 = time.perf_counter()
@@ -413,21 +380,7 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
     finally:
         venv.close()
     seconds = time.perf_counter() - t0
-    model.save(out / "final_model.zip")
-    norm = model.get_vec_normalize_env()
-    if norm is not None:
-        norm.save(out / "final_vecnormalize.pkl")
-    final_eval = None
-    if evaluator is not None:
-        if not evaluator.history or evaluator.history[-1]["steps"] != model.num_timesteps:
-            evaluator.run()
-        final_eval = evaluator.history[-1]
-    policy = None
-    try:
-        policy = NumpyPolicy.from_sb3(model, _meta(cfg, final_eval), norm, action_map)
-        policy.save(out / "final_policy.npz")
-    except ValueError:  # a network numpy cannot copy: the .zip is the model
-        pass
+    final_eval = _save_final(cfg, model, out, evaluator, action_map)
     summary = {
         "steps": int(model.num_timesteps), "trained_steps": remaining,
         "seconds": seconds, "steps_per_s": remaining / seconds if seconds > 0 else None,
@@ -441,6 +394,72 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
     return summary
 
 
+def _training_env(cfg: TrainConfig, resume: str | os.PathLike | None
+                  ) -> tuple[Any, dict[str, Any]]:
+    """The training VecEnv of ``cfg`` behind ``VecNormalize`` if asked (the statistics of
+    the checkpoint ``resume`` where it has them), and the algorithm's keyword arguments."""
+    from stable_baselines3.common.vec_env import VecNormalize
+
+    from agents.policies import vecnormalize_path
+
+    venv = make_vec_env(cfg)
+    params = {**DEFAULT_HYPERPARAMS.get(cfg.algorithm, {}), **cfg.hyperparams}
+    if cfg.algorithm == "PPO":
+        # Keep one rollout at about n_steps * n_envs and a whole number of minibatches.
+        params["batch_size"] = min(params["batch_size"], params["n_steps"] * venv.num_envs)
+    if cfg.normalize_obs or cfg.normalize_reward:
+        stats = vecnormalize_path(resume) if resume is not None else None
+        if stats is not None and stats.exists():
+            venv = VecNormalize.load(str(stats), venv)
+        else:
+            venv = VecNormalize(venv, norm_obs=cfg.normalize_obs,
+                                norm_reward=cfg.normalize_reward,
+                                gamma=params.get("gamma", 0.99))
+    return venv, params
+
+
+def _model(cfg: TrainConfig, venv: Any, params: dict[str, Any],
+           resume: str | os.PathLike | None, out: Path) -> tuple[Any, int]:
+    """A new model of ``cfg.algorithm`` on ``venv``, or the checkpoint ``resume`` loaded onto
+    it; and the steps it has already trained."""
+    import stable_baselines3 as sb3
+
+    algo = getattr(sb3, cfg.algorithm)
+    if resume is not None:
+        # The hyperparameters of this configuration replace the saved ones (so that a run
+        # can be fine-tuned, e.g. with another entropy bonus or learning rate); the network
+        # (policy_kwargs) is the saved model's.
+        params.pop("policy_kwargs", None)
+        model = algo.load(resume, env=venv, device=cfg.device,
+                          tensorboard_log=str(out / "tb"), **params)
+        return model, int(model.num_timesteps)
+    model = algo("MlpPolicy", venv, seed=cfg.seed, device=cfg.device,
+                 tensorboard_log=str(out / "tb"), verbose=0, **params)
+    return model, 0
+
+
+def _save_final(cfg: TrainConfig, model: Any, out: Path, evaluator: Any,
+                action_map: dict[str, Any] | None) -> dict[str, Any] | None:
+    """Save the final model, its ``VecNormalize`` statistics and its numpy copy; evaluate it
+    unless the last periodic evaluation was at its step count. Returns the final
+    evaluation (None without periodic evaluations)."""
+    model.save(out / "final_model.zip")
+    norm = model.get_vec_normalize_env()
+    if norm is not None:
+        norm.save(out / "final_vecnormalize.pkl")
+    final_eval = None
+    if evaluator is not None:
+        if not evaluator.history or evaluator.history[-1]["steps"] != model.num_timesteps:
+            evaluator.run()
+        final_eval = evaluator.history[-1]
+    try:
+        policy = NumpyPolicy.from_sb3(model, _meta(cfg, final_eval), norm, action_map)
+        policy.save(out / "final_policy.npz")
+    except ValueError:  # a network numpy cannot copy: the .zip is the model
+        pass
+    return final_eval
+
+
 def _versions() -> dict[str, str]:
     import gymnasium
     import stable_baselines3
@@ -449,105 +468,3 @@ def _versions() -> dict[str, str]:
     return {"python": platform.python_version(), "stable_baselines3": stable_baselines3.__version__,
             "torch": torch.__version__, "gymnasium": gymnasium.__version__,
             "numpy": np.__version__}
-
-
-# ------------------------------------------------------------------------------------------
-# Command line
-# ------------------------------------------------------------------------------------------
-
-def main(argv: list[str] | None = None) -> int:
-    p = argparse.ArgumentParser(
-        prog="soccer-env train", description="Train a policy with stable-baselines3.",
-        epilog="example: soccer-env train --obs-mode perceived --perception ssl-2012 "
-               "--steps 2000000 --out runs/keeper")
-    p.add_argument("--env", default=None, help=f"environment id: {GOALKEEPER_ID} "
-                   f"(default) or {MATCH_ID}")
-    add_env_arguments(p)
-    p.add_argument("--algo", default=None, type=str.upper, choices=SB3_ALGORITHMS,
-                   help="algorithm (default PPO)")
-    p.add_argument("--steps", type=int, default=None, help="total environment steps "
-                   "(default 1,000,000)")
-    p.add_argument("--n-envs", type=int, default=None, help="parallel environments (16)")
-    p.add_argument("--workers", type=int, default=None,
-                   help="subprocesses stepping them (2; 0 runs them in this process)")
-    p.add_argument("--seed", type=int, default=None)
-    p.add_argument("--out", default=None, help="run folder (default runs/keeper)")
-    p.add_argument("--hp", action="append", default=[], metavar="KEY=VALUE",
-                   help="algorithm hyperparameter (JSON value), repeatable, e.g. "
-                        "--hp learning_rate=1e-4 --hp policy_kwargs='{\"net_arch\": [64, 64]}'")
-    p.add_argument("--checkpoint-every", type=int, default=None)
-    p.add_argument("--eval-every", type=int, default=None)
-    p.add_argument("--eval-episodes", type=int, default=None)
-    p.add_argument("--eval-obs-mode", choices=("truth", "raw", "perceived"), default=None,
-                   help="select the best model under this observation mode instead")
-    p.add_argument("--eval-perception", default=None)
-    p.add_argument("--actions", choices=tuple(ACTION_MAPS), default=None,
-                   help="keeper learner's actions: native (the robot's command, default), "
-                        "velocity (field-frame velocity and turn rate), target (where to "
-                        "stand, reached by a motion controller) or guard (where to stand on "
-                        "the guard line); see agents.wrappers")
-    p.add_argument("--learner", choices=("blue", "yellow", "both"), default=None,
-                   help="match: learning team")
-    p.add_argument("--opponent", default=None,
-                   help="match: scripted (default), idle, self (frozen copy), or a model path")
-    p.add_argument("--resume", default=None, metavar="CHECKPOINT",
-                   help="continue from a checkpoint .zip; the rest of the configuration comes "
-                        "from its run's config.json unless given here")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    args = p.parse_args(argv)
-
-    base: dict[str, Any] = {}
-    if args.resume:
-        ckpt = Path(args.resume)
-        if not ckpt.is_file():
-            p.error(f"--resume: no checkpoint at {ckpt}")
-        run = ckpt.parent.parent if ckpt.parent.name == "checkpoints" else ckpt.parent
-        if not (run / "config.json").exists():
-            p.error(f"--resume: no config.json in {run}")
-        saved = json.loads((run / "config.json").read_text())
-        base = {k: v for k, v in saved.items()
-                if k not in ("command", "resumed_from", "versions", "action_map")}
-        base.setdefault("out", str(run))
-    try:
-        env_kwargs = env_kwargs_from_args(args, base.get("env_kwargs"))
-        eval_kwargs = base.get("eval_env_kwargs")
-        if args.eval_obs_mode or args.eval_perception:
-            eval_kwargs = dict(env_kwargs)
-            if args.eval_obs_mode:
-                eval_kwargs["obs_mode"] = args.eval_obs_mode
-            if args.eval_perception:
-                eval_kwargs["perception"] = args.eval_perception
-        hyper = {**base.get("hyperparams", {}), **key_values(args.hp, "--hp")}
-        fields = {**base, "env_kwargs": env_kwargs, "hyperparams": hyper,
-                  "eval_env_kwargs": eval_kwargs, "progress_bar": not args.no_progress}
-        for name, value in (("env_id", args.env), ("algorithm", args.algo),
-                            ("total_steps", args.steps), ("n_envs", args.n_envs),
-                            ("n_workers", args.workers), ("seed", args.seed),
-                            ("out", args.out), ("checkpoint_every", args.checkpoint_every),
-                            ("eval_every", args.eval_every),
-                            ("eval_episodes", args.eval_episodes), ("learner", args.learner),
-                            ("actions", args.actions),
-                            ("opponent", args.opponent)):
-            if value is not None:
-                fields[name] = value
-        cfg = TrainConfig.from_dict(fields)
-        _check_env_kwargs(cfg)
-    except (ValueError, TypeError) as err:
-        p.error(str(err))
-    summary = train(cfg, resume=args.resume, command=["soccer-env", "train", *(argv or [])])
-    rate = summary["rollout_steps_per_s"]
-    print(f"trained {summary['trained_steps']:,} steps in {summary['seconds'] / 60:.1f} min "
-          f"({summary['steps_per_s']:,.0f} steps/s overall, "
-          f"{rate:,.0f} steps/s collecting rollouts)" if math.isfinite(rate) else "")
-    for key in ("last_evaluation", "best_evaluation"):
-        ev = summary.get(key)
-        if ev:
-            print(f"{key.replace('_', ' ')}: save rate {100 * ev['save_rate']:.1f} % "
-                  f"({100 * ev['ci_low']:.1f}-{100 * ev['ci_high']:.1f}) at {ev['steps']:,} "
-                  "steps")
-    print(f"run folder: {cfg.out}")
-    return 0
-
-
-if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())

@@ -1,6 +1,8 @@
-"""Step-rate benchmarks: the environments against bare pymunk stepping the same bodies.
+"""The benchmarks: step rates (``soccer-env bench``), the keepers' save rates and the rollout
+collection rate of training.
 
-Run ``soccer-env bench`` (or ``python benchmarks/bench_step.py``). Each figure is the median of
+**Step rates**: the environments against bare pymunk stepping the same bodies. Run
+``soccer-env bench`` (or ``python benchmarks/bench_step.py``). Each figure is the median of
 ``repeats`` timed runs, each of ``steps`` steps with actions drawn beforehand from a seeded
 generator (sampling is not timed); Goalkeeper-v0 runs through ``gymnasium.make`` with its
 default wrappers and includes its resets, as a training loop would. The cost of perceived
@@ -11,6 +13,14 @@ with its three watching team-mates (four robots, each with its camera, localizat
 fusion and tracker when perceived) and a 3 vs 3 match; their random actions neither kick nor
 dive (a robot that dives at random lies blind most of the time, which would understate the
 perception's cost).
+
+**Save rates** (:func:`keeper_save_rates`, ``python benchmarks/keeper_save_rate.py``): the
+scripted keeper and a keeper that stands still on Goalkeeper-v0's seeded shots
+(:func:`agents.evaluation.evaluate`).
+
+**Rollout rates** (:func:`rollout_rate`, ``python benchmarks/rollout_rate.py``): environment
+steps per second while stable-baselines3's PPO collects rollouts, in
+:class:`~agents.vec_env.WorkerVecEnv` against stable-baselines3's own vectorised environments.
 """
 
 from __future__ import annotations
@@ -26,7 +36,9 @@ import gymnasium as gym
 import numpy as np
 import pymunk
 
-__all__ = ["run_benchmarks", "bench_frames", "format_table", "REFERENCE", "PERCEIVED_PRESETS"]
+__all__ = ["run_benchmarks", "bench_frames", "format_table", "REFERENCE", "PERCEIVED_PRESETS",
+           "main", "keeper_save_rates", "format_save_rates", "save_rate_main", "ROLLOUT_CONFIGS",
+           "rollout_rate", "rollout_rates", "format_rollout_rates", "rollout_main"]
 
 #: Sensor presets timed with ``obs_mode="perceived"`` (default EKF), against truth.
 PERCEIVED_PRESETS = ("realistic", "ssl-2012")
@@ -34,7 +46,7 @@ PERCEIVED_PRESETS = ("realistic", "ssl-2012")
 HUMANOID, HUMANOID_CAMERA = "humanoid-2012", "kidsize-2012"
 
 #: rSoccer (ODE, Gymnasium, ground truth only) on this kind of machine, for reference, and the
-#: aims of the foundation issue (ten times rSoccer).
+#: step rates aimed at (ten times rSoccer).
 REFERENCE = {
     "goalkeeper": {"rsoccer_task": "1-robot shooting task", "rsoccer_steps_per_s": 1700,
                    "aim_steps_per_s": 15000},
@@ -280,7 +292,9 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of ``soccer-env bench``."""
     import argparse
 
-    p = argparse.ArgumentParser(prog="soccer-env bench", description=__doc__.split("\n\n")[0])
+    p = argparse.ArgumentParser(prog="soccer-env bench",
+                                description="Step-rate benchmarks: the environments against "
+                                            "bare pymunk stepping the same bodies.")
     p.add_argument("--json", action="store_true", help="print the results as JSON")
     p.add_argument("--steps", type=int, default=20000, help="Goalkeeper steps per run")
     p.add_argument("--match-steps", type=int, default=5000, help="match steps per run")
@@ -298,4 +312,142 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     res = run_benchmarks(args.steps, args.match_steps, args.repeats)
     print(json.dumps(res, indent=2) if args.json else format_table(res))
+    return 0
+
+
+# ------------------------------------------------------------------------------------------
+# Keepers' save rates
+# ------------------------------------------------------------------------------------------
+
+def keeper_save_rates(episodes: int = 300, field: str = "ssl-div-b", workers: int | None = None,
+                      policies: tuple[str, ...] = ("scripted", "idle")) -> dict[str, Any]:
+    """The evaluation (:class:`~agents.evaluation.EvalResult`) of each of ``policies`` on
+    Goalkeeper-v0's shots of seeds ``0 .. episodes - 1`` on ``field``, truth observations, in
+    ``workers`` processes (default: all cores; the result does not depend on it)."""
+    import os
+
+    from agents.evaluation import evaluate
+
+    workers = workers or os.cpu_count() or 1
+    return {name: evaluate(name, {"field": field}, episodes, workers=workers)
+            for name in policies}
+
+
+def format_save_rates(results: dict[str, Any]) -> str:
+    """One line per policy: save rate, Wilson 95 % interval and outcomes (commonest first)."""
+    lines = []
+    for name, res in results.items():
+        outcomes = dict(sorted(res.outcomes.items(), key=lambda kv: (-kv[1], kv[0])))
+        lines.append(f"{name:9s} save rate {res.save_rate:6.1%} (95 % CI {res.ci_low:.1%}-"
+                     f"{res.ci_high:.1%}) over {res.episodes} shots: {outcomes}")
+    return "\n".join(lines)
+
+
+def save_rate_main(argv: list[str] | None = None) -> int:
+    """Entry point of ``benchmarks/keeper_save_rate.py``."""
+    import argparse
+    import os
+
+    p = argparse.ArgumentParser(description="Save rate of the scripted keeper and of a keeper "
+                                            "that stands still on Goalkeeper-v0.")
+    p.add_argument("--episodes", type=int, default=300)
+    p.add_argument("--field", default="ssl-div-b")
+    p.add_argument("--workers", type=int, default=os.cpu_count() or 1,
+                   help="processes (default: all cores); the result does not depend on it")
+    args = p.parse_args(argv)
+    if args.episodes < 1 or args.workers < 1:
+        p.error("--episodes and --workers must be >= 1")
+    print(format_save_rates(keeper_save_rates(args.episodes, args.field, args.workers)))
+    return 0
+
+
+# ------------------------------------------------------------------------------------------
+# Rollout collection rate
+# ------------------------------------------------------------------------------------------
+
+#: Vectorised environments compared by :func:`rollout_rates`: 16 environments in 2
+#: :class:`~agents.vec_env.WorkerVecEnv` processes (what ``soccer-env train`` uses), and
+#: stable-baselines3's ``SubprocVecEnv`` and ``DummyVecEnv`` with 2 environments.
+ROLLOUT_CONFIGS = ("worker-16x2", "subproc-2", "dummy-2")
+
+
+def _rollout_venv(name: str, env_kwargs: dict[str, Any]) -> Any:
+    from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
+
+    from agents.training import goalkeeper_env_fn
+    from agents.vec_env import WorkerVecEnv
+
+    if name == "worker-16x2":
+        return WorkerVecEnv([goalkeeper_env_fn(env_kwargs) for _ in range(16)], n_workers=2)
+    if name == "subproc-2":
+        return SubprocVecEnv([goalkeeper_env_fn(env_kwargs) for _ in range(2)])
+    return DummyVecEnv([goalkeeper_env_fn(env_kwargs) for _ in range(2)])
+
+
+def rollout_rate(name: str, env_kwargs: dict[str, Any], steps: int, seed: int = 0) -> float:
+    """Steps per second spent collecting rollouts while PPO (default MLP policy, ``n_steps *
+    n_envs`` about 4096 per rollout) trains ``steps`` steps on Goalkeeper-v0 in the
+    vectorised environment ``name`` of :data:`ROLLOUT_CONFIGS`."""
+    import torch
+    from stable_baselines3 import PPO
+
+    from agents.training import rollout_timer
+
+    torch.set_num_threads(1)
+    venv = _rollout_venv(name, env_kwargs)
+    venv.seed(seed)
+    try:
+        n_steps = max(64, 4096 // venv.num_envs)
+        model = PPO("MlpPolicy", venv, n_steps=n_steps, batch_size=512, seed=seed,
+                    device="cpu")
+        timer = rollout_timer()
+        model.learn(steps, callback=timer)
+    finally:
+        venv.close()
+    return timer.rate
+
+
+def rollout_rates(env_kwargs: dict[str, Any], steps: int, repeats: int
+                  ) -> dict[str, list[float]]:
+    """:func:`rollout_rate` of every configuration, ``repeats`` times in alternation (seed
+    ``r`` in round ``r``), so that the machine's drift cancels in their ratios."""
+    rates: dict[str, list[float]] = {c: [] for c in ROLLOUT_CONFIGS}
+    for r in range(repeats):
+        for name in ROLLOUT_CONFIGS:
+            rates[name].append(rollout_rate(name, env_kwargs, steps, seed=r))
+    return rates
+
+
+def format_rollout_rates(rates: dict[str, list[float]], env_kwargs: dict[str, Any]) -> str:
+    """The median rate of each configuration, its range and its ratio to ``dummy-2``."""
+    base = statistics.median(rates["dummy-2"])
+    lines = [f"Goalkeeper-v0 {env_kwargs}, PPO rollouts, median of "
+             f"{len(rates['dummy-2'])}:"]
+    for name in ROLLOUT_CONFIGS:
+        med = statistics.median(rates[name])
+        spread = f"{min(rates[name]):,.0f}-{max(rates[name]):,.0f}"
+        lines.append(f"  {name:12s} {med:8,.0f} steps/s ({spread})  x{med / base:.2f} vs "
+                     "dummy-2")
+    return "\n".join(lines)
+
+
+def rollout_main(argv: list[str] | None = None) -> int:
+    """Entry point of ``benchmarks/rollout_rate.py``."""
+    import argparse
+
+    p = argparse.ArgumentParser(description="PPO rollout collection rate on Goalkeeper-v0: "
+                                            "environment steps per second while "
+                                            "stable-baselines3 collects rollouts (policy "
+                                            "forward passes included, gradient updates "
+                                            "excluded).")
+    p.add_argument("--obs-mode", default="perceived", choices=("truth", "raw", "perceived"))
+    p.add_argument("--perception", default="ssl-2012")
+    p.add_argument("--steps", type=int, default=40_000)
+    p.add_argument("--repeats", type=int, default=3)
+    args = p.parse_args(argv)
+    if args.steps < 4096 or args.repeats < 1:
+        p.error("--steps must be >= 4096 and --repeats >= 1")
+    env_kwargs = {"obs_mode": args.obs_mode, "perception": args.perception}
+    rates = rollout_rates(env_kwargs, args.steps, args.repeats)
+    print(format_rollout_rates(rates, env_kwargs))
     return 0

@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from collections.abc import Callable
 
 __all__ = ["main"]
 
@@ -88,7 +87,7 @@ def _cmd_paper(argv: list[str]) -> int:
     p = argparse.ArgumentParser(prog="soccer-env paper",
                                 description="Reproduce a source paper's claims.")
     p.add_argument("name", choices=sorted(PAPERS), help="; ".join(
-        f"{k}: {v}" for k, v in PAPERS.items()))
+        f"{k}: {v}" for k, v in PAPERS.descriptions().items()))
     p.add_argument("--out", default="paper_output", help="output folder")
     p.add_argument("--episodes", type=int, default=200, help="ekf: open-loop episodes")
     p.add_argument("--shots", type=int, default=1000, help="ekf: closed-loop shots per cell")
@@ -114,21 +113,18 @@ def _cmd_paper(argv: list[str]) -> int:
         p.error("--particles must be >= 2")
     if args.workers is not None and args.workers < 1:
         p.error("--workers must be >= 1")
-    import importlib
-
-    module = importlib.import_module(f".papers.{args.name}", __package__)
+    run = PAPERS[args.name]
     runs = {
-        "ekf": lambda: module.run(args.out, args.episodes, args.shots, args.workers,
-                                  closed=not args.no_closed_loop, seed=args.seed),
-        "hough": lambda: module.run(args.out, args.trials, seed=args.seed),
-        "localization": lambda: module.run(args.out, seed=args.seed, episodes=args.walks,
-                                           workers=args.workers),
-        "ungm": lambda: module.run(args.out, args.runs, args.particles, seed=args.seed),
-        "team": lambda: module.run(args.out, args.matches, args.duration, args.keeper_shots,
-                                   args.workers, seed=args.seed,
-                                   keeper=not args.no_closed_loop),
-        "meanshift": lambda: module.run(args.out, seed=args.seed, workers=args.workers),
-        "following": lambda: module.run(args.out, seed=args.seed, workers=args.workers),
+        "ekf": lambda: run(args.out, args.episodes, args.shots, args.workers,
+                           closed=not args.no_closed_loop, seed=args.seed),
+        "hough": lambda: run(args.out, args.trials, seed=args.seed),
+        "localization": lambda: run(args.out, seed=args.seed, episodes=args.walks,
+                                    workers=args.workers),
+        "ungm": lambda: run(args.out, args.runs, args.particles, seed=args.seed),
+        "team": lambda: run(args.out, args.matches, args.duration, args.keeper_shots,
+                            args.workers, seed=args.seed, keeper=not args.no_closed_loop),
+        "meanshift": lambda: run(args.out, seed=args.seed, workers=args.workers),
+        "following": lambda: run(args.out, seed=args.seed, workers=args.workers),
     }
     res = runs[args.name]()
     print(res["text"])
@@ -144,26 +140,32 @@ def _cmd_bench(argv: list[str]) -> int:
     return bench_main(argv)
 
 
-def _agents_command(module: str) -> Callable[[list[str]], int]:
-    """A command implemented by ``agents.<module>.main`` (imported when run: training needs
-    the ``train`` extra)."""
+def _cmd_train(argv: list[str]) -> int:
+    # Imported when run: training needs the ``train`` extra.
+    from soccer_lab.commands.train import main as train_main
 
-    def run(argv: list[str]) -> int:
-        import importlib
+    return train_main(argv)
 
-        return importlib.import_module(f"agents.{module}").main(argv)
 
-    return run
+def _cmd_eval(argv: list[str]) -> int:
+    from soccer_lab.commands.evaluate import main as eval_main
+
+    return eval_main(argv)
+
+
+def _cmd_ablation(argv: list[str]) -> int:
+    from soccer_lab.commands.ablation import main as ablation_main
+
+    return ablation_main(argv)
 
 
 _COMMANDS = {
     "demo": (_cmd_demo, "run the goalkeeper demo and write its video and figures"),
     "bench": (_cmd_bench, "measure environment step rates against bare pymunk"),
     "paper": (_cmd_paper, "reproduce a source paper's claims (tables and plots)"),
-    "train": (_agents_command("training"), "train a policy with stable-baselines3"),
-    "eval": (_agents_command("evaluation"), "evaluate a keeper policy on the fixed shot suite"),
-    "ablation": (_agents_command("ablation"), "compare estimators in closed loop, per sensor "
-                                              "preset"),
+    "train": (_cmd_train, "train a policy with stable-baselines3"),
+    "eval": (_cmd_eval, "evaluate a keeper policy on the fixed shot suite"),
+    "ablation": (_cmd_ablation, "compare estimators in closed loop, per sensor preset"),
     "list": (_cmd_list, "list environments and presets"),
 }
 

@@ -338,6 +338,3 @@ class Brain:
             robots[j, 0:2], robots[j, 3:5] = pos, vel
         return ball, robots
 
-
-# alias for callers outside soccer_env; removed when they move to Brain
-_Brain = Brain

@@ -1,5 +1,5 @@
-"""What the paper benchmarks share: running their episodes over processes, and writing their
-tables (Markdown, CSV and JSON files)."""
+"""What the paper benchmarks share: checking their settings, running their episodes over
+processes, and writing their tables (Markdown, CSV and JSON files)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,18 @@ from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
-__all__ = ["write_csv", "write_report", "map_jobs"]
+import numpy as np
+
+__all__ = ["check_count", "write_csv", "write_report", "map_jobs"]
+
+
+def check_count(name: str, value: Any, lo: int, hi: int) -> int:
+    """``value`` as an ``int`` if it is an integer (not a bool) in ``[lo, hi]``, else
+    ``ValueError`` naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) \
+            or not lo <= value <= hi:
+        raise ValueError(f"{name} must be an integer in [{lo}, {hi}], got {value!r}")
+    return int(value)
 
 
 def map_jobs(fn: Callable[[Any], Any], jobs: Sequence[Any], workers: int | None) -> list[Any]:
@@ -20,9 +31,9 @@ def map_jobs(fn: Callable[[Any], Any], jobs: Sequence[Any], workers: int | None)
     n = min(workers or os.cpu_count() or 1, len(jobs))
     if n <= 1:
         return [fn(j) for j in jobs]
-    from agents.evaluation import _mp_context
+    from agents.evaluation import process_context
 
-    with ProcessPoolExecutor(n, mp_context=_mp_context()) as pool:
+    with ProcessPoolExecutor(n, mp_context=process_context()) as pool:
         return list(pool.map(fn, jobs))
 
 

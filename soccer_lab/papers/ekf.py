@@ -38,7 +38,7 @@ from soccer_env.sensors.overhead import OverheadVision
 from soccer_env.sim.world import World, idle_commands
 from soccer_lab.papers._io import write_csv
 
-__all__ = ["run", "open_loop", "closed_loop", "PAPER_CLAIMS", "ESTIMATORS"]
+__all__ = ["run", "Settings", "open_loop", "closed_loop", "PAPER_CLAIMS", "ESTIMATORS"]
 
 #: What paper 002 reports, for the tables.
 PAPER_CLAIMS = {
@@ -340,28 +340,67 @@ def _plots(open_res: dict | None, closed_res: dict | None, out: Path) -> list[st
     return files
 
 
+@dataclass(frozen=True)
+class Settings:
+    """What one run simulates (validated on construction).
+
+    Attributes:
+        out: the output folder.
+        episodes: open-loop shots (seeds ``seed`` onwards), >= 1.
+        shots: closed-loop shots per preset and configuration (seeds 0 onwards), >= 1.
+        workers: processes of the closed loop (None: all cores).
+        closed: run the closed loop.
+        seed: the open loop's first seed.
+    """
+
+    out: Path
+    episodes: int = 200
+    shots: int = 1000
+    workers: int | None = None
+    closed: bool = True
+    seed: int = 0
+
+    def __post_init__(self) -> None:
+        for name in ("episodes", "shots"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or int(value) != value or value < 1:
+                raise ValueError(f"{name} must be an integer >= 1, got {value!r}")
+        if self.workers is not None and (isinstance(self.workers, bool)
+                                         or int(self.workers) != self.workers
+                                         or self.workers < 1):
+            raise ValueError(f"workers must be an integer >= 1, got {self.workers!r}")
+
+
 def run(out: str | Path = "paper_output", episodes: int = 200, shots: int = 1000,
         workers: int | None = None, closed: bool = True, seed: int = 0) -> dict[str, Any]:
     """Run both experiments, write the tables and plots to ``out`` and return the results."""
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    s = Settings(Path(out), episodes, shots, workers, closed, seed)
+    s.out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
-    open_res = open_loop(episodes, seed)
-    closed_res = closed_loop(shots, workers) if closed else None
+    open_res = open_loop(s.episodes, s.seed)
+    closed_res = closed_loop(s.shots, s.workers) if s.closed else None
+    text = _write_tables(s.out, open_res, closed_res)
+    files = _plots(open_res, closed_res, s.out)
+    summary = {"open_loop": {k: v for k, v in open_res.items() if k != "trace"},
+               "closed_loop": closed_res, "paper": PAPER_CLAIMS, "files": files,
+               "seconds": time.perf_counter() - t0}
+    (s.out / "paper_ekf_summary.json").write_text(json.dumps(summary, indent=2))
+    summary["text"] = text
+    return summary
+
+
+def _write_tables(out: Path, open_res: dict[str, Any], closed_res: dict[str, Any] | None
+                  ) -> str:
+    """Write the open-loop (and closed-loop) tables as Markdown and CSV; return the printed
+    text."""
     text = _markdown_open(open_res)
     (out / "paper_ekf_open_loop.md").write_text(text + "\n")
     write_csv(out / "paper_ekf_open_loop.csv",
-         [{"estimator": k, **v} for k, v in open_res["estimators"].items()])
+              [{"estimator": k, **v} for k, v in open_res["estimators"].items()])
     if closed_res:
         text += "\n\n" + _markdown_closed(closed_res)
         (out / "paper_ekf_closed_loop.md").write_text(_markdown_closed(closed_res) + "\n")
         write_csv(out / "paper_ekf_closed_loop.csv",
-             [{"preset": p, "mode": m, **r} for p, rows in closed_res["presets"].items()
-              for m, r in rows.items()])
-    files = _plots(open_res, closed_res, out)
-    summary = {"open_loop": {k: v for k, v in open_res.items() if k != "trace"},
-               "closed_loop": closed_res, "paper": PAPER_CLAIMS, "files": files,
-               "seconds": time.perf_counter() - t0}
-    (out / "paper_ekf_summary.json").write_text(json.dumps(summary, indent=2))
-    summary["text"] = text
-    return summary
+                  [{"preset": p, "mode": m, **r} for p, rows in closed_res["presets"].items()
+                   for m, r in rows.items()])
+    return text

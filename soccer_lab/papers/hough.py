@@ -1,4 +1,5 @@
-"""Paper 000's cooperative ball localization: Hough-space fusion on its Table 1 geometry.
+"""Cooperative ball localization of paper 000 (Xu, Xie, Wang, Ni 2012): Hough-space fusion
+on its Table 1 geometry.
 
 ``soccer-env paper hough``: five robots at the paper's positions (a 6 m x 4 m field), the ball
 moving in 50 mm steps in a straight line from (3000, 3200) to (4500, 1200) mm. Each robot's
@@ -29,6 +30,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass
 from itertools import combinations
 from pathlib import Path
 from typing import Any
@@ -39,7 +41,7 @@ from estimators import HeadCamera, fusion_weights, hough_fuse
 from soccer_env.render.plots import pyplot, save_figure
 from soccer_lab.papers._io import write_report
 
-__all__ = ["run", "ROBOTS_MM", "PATH_MM", "PAPER"]
+__all__ = ["run", "Settings", "ROBOTS_MM", "PATH_MM", "PAPER"]
 
 #: Table 1 of paper 000 (millimetres): robot positions, the ball's straight path.
 ROBOTS_MM = np.array([[1000, 3500], [250, 2000], [1750, 350], [4250, 2400], [5600, 3900]],
@@ -143,36 +145,89 @@ def _evaluate(model: str, trials: int, rng: np.random.Generator, **kw: float
             "parallel_fallbacks": fallbacks[0]}
 
 
+@dataclass(frozen=True)
+class Settings:
+    """What one run simulates (validated on construction).
+
+    Attributes:
+        out: the output folder.
+        trials: noise draws per ball position (>= 1).
+        seed: seeds the noise of both models.
+        pixel_sigma: the ball's pixel noise of the head-camera model [px].
+        pose_sigma, heading_sigma: the error of a robot's belief about its position [m] and
+            heading [rad].
+        sway_sigma: the gait's tilt sway that the robot does not know of [rad].
+    """
+
+    out: Path
+    trials: int = 20
+    seed: int = 0
+    pixel_sigma: float = 2.0
+    pose_sigma: float = 0.03
+    heading_sigma: float = math.radians(1.0)
+    sway_sigma: float = math.radians(2.0)
+
+    def __post_init__(self) -> None:
+        trials = self.trials
+        if isinstance(trials, bool) or int(trials) != trials or trials < 1:
+            raise ValueError(f"trials must be an integer >= 1, got {trials!r}")
+        for name in ("pixel_sigma", "pose_sigma", "heading_sigma", "sway_sigma"):
+            v = getattr(self, name)
+            if not (math.isfinite(v) and v >= 0.0):
+                raise ValueError(f"{name} must be >= 0, got {v!r}")
+
+
 def run(out: str | Path = "paper_output", trials: int = 20, seed: int = 0,
         pixel_sigma: float = 2.0, pose_sigma: float = 0.03,
         heading_sigma: float = math.radians(1.0), sway_sigma: float = math.radians(2.0)
         ) -> dict[str, Any]:
     """Run both noise models; write ``paper_hough.md``, ``.csv``, ``.json``, ``.png``."""
-    if isinstance(trials, bool) or int(trials) != trials or trials < 1:
-        raise ValueError(f"trials must be an integer >= 1, got {trials!r}")
-    for name, v in (("pixel_sigma", pixel_sigma), ("pose_sigma", pose_sigma),
-                    ("heading_sigma", heading_sigma), ("sway_sigma", sway_sigma)):
-        if not (math.isfinite(v) and v >= 0.0):
-            raise ValueError(f"{name} must be >= 0, got {v!r}")
+    s = Settings(Path(out), trials, seed, pixel_sigma, pose_sigma, heading_sigma, sway_sigma)
     t0 = time.perf_counter()
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    rng = np.random.default_rng(seed)
-    cam = _evaluate("camera", int(trials), rng, pixel_sigma=pixel_sigma,
-                    pose_sigma=pose_sigma, heading_sigma=heading_sigma,
-                    sway_sigma=sway_sigma)
-    paper = _evaluate("paper", int(trials), rng, sigma=0.192)
-    mm = 1000.0
+    s.out.mkdir(parents=True, exist_ok=True)
+    cam, paper = _simulate(s)
+    text, rows = _tables(s, cam, paper)
+    files = write_report(s.out, "paper_hough", text, rows, {
+        "trials": s.trials, "seed": s.seed, "pixel_sigma": s.pixel_sigma,
+        "pose_sigma": s.pose_sigma, "heading_sigma": s.heading_sigma,
+        "sway_sigma": s.sway_sigma, "camera": cam, "paper_reading": paper, "paper": PAPER})
+    files.append(_plot(s, cam, paper))
+    return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
+            "camera": cam, "paper_reading": paper}
+
+
+def _simulate(s: Settings) -> tuple[dict[str, Any], dict[str, Any]]:
+    """Both noise models' errors, the head camera's first, from one generator."""
+    rng = np.random.default_rng(s.seed)
+    cam = _evaluate("camera", int(s.trials), rng, pixel_sigma=s.pixel_sigma,
+                    pose_sigma=s.pose_sigma, heading_sigma=s.heading_sigma,
+                    sway_sigma=s.sway_sigma)
+    paper = _evaluate("paper", int(s.trials), rng, sigma=0.192)
+    return cam, paper
+
+
+# ------------------------------------------------------------------------------------------
+# Report
+# ------------------------------------------------------------------------------------------
+
+#: Millimetres per metre, for the tables.
+_MM = 1000.0
+
+
+def _tables(s: Settings, cam: dict[str, Any], paper: dict[str, Any]
+            ) -> tuple[str, list[dict[str, Any]]]:
+    """The printed report and the CSV rows."""
+    mm = _MM
     lines = [f"Paper 000, Table 1 geometry: 5 robots, the ball in 50 mm steps from (3000, 3200) "
-             f"to (4500, 1200) mm, {trials} noise draws per position. Mean error of the "
+             f"to (4500, 1200) mm, {s.trials} noise draws per position. Mean error of the "
              "fused ball position [mm].", "",
              "| noise model | equal weights | 1/L | 1/L^2 | best single robot | 4 robots "
              "(1/L, all subsets) | 1/L over equal | 4 robots over best single |",
              "|---|---|---|---|---|---|---|---|"]
     rows = []
-    for label, res in ((f"head camera ({pixel_sigma:g} px, sway {math.degrees(sway_sigma):g} "
-                        f"deg, pose {pose_sigma * mm:g} mm / {math.degrees(heading_sigma):g} deg)",
-                        cam),
+    for label, res in ((f"head camera ({s.pixel_sigma:g} px, sway "
+                        f"{math.degrees(s.sway_sigma):g} deg, pose {s.pose_sigma * mm:g} mm / "
+                        f"{math.degrees(s.heading_sigma):g} deg)", cam),
                        ("paper's reading (192 mm on each estimate)", paper)):
         m = res["mean_m"]
         four = res["by_count_m"][4]
@@ -196,18 +251,16 @@ def run(out: str | Path = "paper_output", trials: int = 20, seed: int = 0,
     for label, res in (("head camera", cam), ("paper's reading", paper)):
         lines.append(f"| {label} | " + " | ".join(
             f"{res['by_count_m'][k] * mm:.0f}" for k in range(1, 6)) + " |")
-    text = "\n".join(lines)
-    files = write_report(out, "paper_hough", text, rows, {
-        "trials": trials, "seed": seed, "pixel_sigma": pixel_sigma, "pose_sigma": pose_sigma,
-        "heading_sigma": heading_sigma, "sway_sigma": sway_sigma, "camera": cam,
-        "paper_reading": paper, "paper": PAPER})
+    return "\n".join(lines), rows
+
+
+def _plot(s: Settings, cam: dict[str, Any], paper: dict[str, Any]) -> str:
+    """The mean error against the number of robots, both noise models."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6, 4))
     ks = list(range(1, 6))
     for label, res in (("head camera", cam), ("paper's reading", paper)):
-        ax.plot(ks, [res["by_count_m"][k] * mm for k in ks], "o-", label=label)
+        ax.plot(ks, [res["by_count_m"][k] * _MM for k in ks], "o-", label=label)
     ax.set(xlabel="robots", ylabel="mean error [mm]", title="Hough fusion, paper 000 Table 1")
     ax.legend()
-    files.append(save_figure(fig, out / "paper_hough.png"))
-    return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
-            "camera": cam, "paper_reading": paper}
+    return save_figure(fig, s.out / "paper_hough.png")

@@ -1,5 +1,5 @@
-"""Paper 001's adaptive localization: KLD-sampling against fixed-size particle filters on a walking
-humanoid, with a kidnapping.
+"""The adaptive localization of paper 001 (Guo, Li 2013): KLD-sampling against fixed-size
+particle filters on a walking humanoid, with a kidnapping.
 
 ``soccer-env paper localization``: one ``humanoid-2012`` robot (:mod:`soccer_env.sim.walk`'s
 walk engine in :class:`~soccer_env.sim.world.World`) walks a scripted route on the
@@ -33,7 +33,7 @@ global start and to recover after the kidnapping (until the position error is be
 stays so for a second; "never" counts as infinitely late, and the episodes in which it never
 happened are counted); the share of frames whose estimate sits at the mirror pose (the field
 turned by 180 degrees, which only the goal posts' colours tell apart). Beside it, each episode's
-median position error per filter. The issue's aims (judged on these medians: the particles at
+median position error per filter. The aims (judged on these medians: the particles at
 the start against the mean while tracking, and the median position error, with the number of
 episodes in which the position aim holds) and paper 001's claims are printed beside.
 """
@@ -45,6 +45,7 @@ import math
 import os
 import time
 from collections import deque
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -52,19 +53,19 @@ import numpy as np
 
 from estimators import KLDConfig, KLDLocalizer
 from soccer_env import presets
-from soccer_env.perception.brain import _Brain, landmark_sightings
+from soccer_env.perception.brain import Brain, landmark_sightings
 from soccer_env.perception.humanoid import HumanoidTeamPerception
 from soccer_env.presets.sensors import RADIO_PRESETS, head_camera
 from soccer_env.render.plots import pyplot, save_figure
 from soccer_env.sim.heads import HeadController
 from soccer_env.sim.world import World
-from soccer_lab.papers._io import map_jobs, write_report
+from soccer_lab.papers._io import check_count, map_jobs, write_report
 
-__all__ = ["run", "PAPER", "AIMS"]
+__all__ = ["run", "Settings", "PAPER", "AIMS"]
 
 PAPER = ("Paper 001: KLD-sampling keeps many particles while uncertain and few once converged; "
          "errors are larger in turns (wheel slip); robot speed <= 0.5 m/s.")
-AIMS = ("Issue aims: KLD-sampling using at least 3 times fewer particles while tracking than "
+AIMS = ("Aims: KLD-sampling using at least 3 times fewer particles while tracking than "
         "while globally localizing, with median position error under 0.15 m while walking.")
 ROBOT = "humanoid-2012"
 FIELD = "humanoid-2012"
@@ -94,9 +95,9 @@ class _Replay:
     a frame's capture time, turned into the filter's mid-step convention) on this filter."""
 
     kind = "kld"
-    odometry = _Brain.odometry
-    _odometry_until = _Brain._odometry_until
-    _predict = _Brain._predict
+    odometry = Brain.odometry
+    _odometry_until = Brain._odometry_until
+    _predict = Brain._predict
 
     def __init__(self, loc: KLDLocalizer) -> None:
         self.loc = loc
@@ -290,7 +291,7 @@ _MEDIAN_KEYS = ("median_pos_m", "median_head_deg", "median_pos_turning_m",
                 "tracking_particles", "tracking_particles_median", "ms_per_update", "mirror_pct")
 #: Times that may never happen (None): their median counts "never" as infinitely late.
 _NEVER_KEYS = ("localized_s", "recovery_s")
-#: The issue's position aim while walking [m].
+#: The position aim while walking [m].
 AIM_POS_M = 0.15
 
 
@@ -350,10 +351,50 @@ def _over_episodes(per: list[dict[str, Any]], kidnap: bool) -> dict[str, Any]:
     return out
 
 
-def _check_count(name: str, v: Any, lo: int, hi: int) -> int:
-    if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or not lo <= v <= hi:
-        raise ValueError(f"{name} must be an integer in [{lo}, {hi}], got {v!r}")
-    return int(v)
+@dataclass(frozen=True)
+class Settings:
+    """What one run simulates (validated on construction; the counts become ``int``).
+
+    Attributes:
+        out: the output folder.
+        duration: each walk's length [s], in [15, 3600].
+        seed: the first episode's seed (>= 0); episodes use ``seed .. seed + episodes - 1``.
+        fixed_sizes: the particle counts of the fixed-size filters (each in [1, 100000]).
+        episodes: walking episodes, in [1, 1000].
+        workers: processes (None: all cores), in [1, 1024].
+        kidnap: kidnap the robot at two thirds of each episode.
+    """
+
+    out: Path
+    duration: float = 60.0
+    seed: int = 0
+    fixed_sizes: tuple[int, ...] = (100, 300, 1000, 3000)
+    episodes: int = 5
+    workers: int | None = None
+    kidnap: bool = True
+
+    def __post_init__(self) -> None:
+        duration = self.duration
+        if not (isinstance(duration, (int, float)) and math.isfinite(duration)
+                and 15.0 <= duration <= 3600.0):
+            raise ValueError(f"duration must be in [15, 3600] s, got {duration!r}")
+        sizes = tuple(self.fixed_sizes)
+        if not all(isinstance(n, (int, np.integer)) and not isinstance(n, bool)
+                   and 1 <= n <= 100000 for n in sizes):
+            raise ValueError(f"fixed_sizes must be particle counts in [1, 100000], got "
+                             f"{sizes!r}")
+        seed = self.seed
+        if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+            raise ValueError(f"seed must be a non-negative integer, got {seed!r}")
+        object.__setattr__(self, "fixed_sizes", sizes)
+        object.__setattr__(self, "episodes", check_count("episodes", self.episodes, 1, 1000))
+        if self.workers is not None:
+            object.__setattr__(self, "workers", check_count("workers", self.workers, 1, 1024))
+
+    @property
+    def seeds(self) -> list[int]:
+        """The episodes' seeds."""
+        return list(range(int(self.seed), int(self.seed) + self.episodes))
 
 
 def run(out: str | Path = "paper_output", duration: float = 60.0, seed: int = 0,
@@ -366,35 +407,51 @@ def run(out: str | Path = "paper_output", duration: float = 60.0, seed: int = 0,
     ``out``. ``workers`` processes share the episodes (default: all cores; 1 runs them here;
     the figures other than the timings do not depend on it). ``kidnap=False`` leaves the
     robot where it walks."""
-    if not (isinstance(duration, (int, float)) and math.isfinite(duration)
-            and 15.0 <= duration <= 3600.0):
-        raise ValueError(f"duration must be in [15, 3600] s, got {duration!r}")
-    sizes = tuple(fixed_sizes)
-    if not all(isinstance(n, (int, np.integer)) and not isinstance(n, bool) and 1 <= n <= 100000
-               for n in sizes):
-        raise ValueError(f"fixed_sizes must be particle counts in [1, 100000], got {sizes!r}")
-    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
-        raise ValueError(f"seed must be a non-negative integer, got {seed!r}")
-    episodes = _check_count("episodes", episodes, 1, 1000)
-    if workers is not None:
-        workers = _check_count("workers", workers, 1, 1024)
+    s = Settings(Path(out), duration, seed, fixed_sizes, episodes, workers, kidnap)
     t0 = time.perf_counter()
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    seeds = list(range(int(seed), int(seed) + episodes))
-    jobs = [(s, float(duration), bool(kidnap), sizes) for s in seeds]
-    n_workers = min(workers or os.cpu_count() or 1, len(jobs))
-    eps = map_jobs(_episode_results, jobs, n_workers)
-    first = eps[0]
-    kld_name = first["kld_name"]
-    names = list(first["results"])
+    s.out.mkdir(parents=True, exist_ok=True)
+    eps = _walk_episodes(s)
+    names = list(eps[0]["results"])
     per_episode = [{name: {k: v for k, v in ep["results"][name].items()
                            if not isinstance(v, list)} for name in names} for ep in eps]
-    summary = {name: _over_episodes([pe[name] for pe in per_episode], bool(kidnap))
+    summary = {name: _over_episodes([pe[name] for pe in per_episode], bool(s.kidnap))
                for name in names}
-    kld = summary[kld_name]
-    kld_cfg = KLDConfig(**first["kld_config"])
-    tk = first["kidnap_time"]
+    text = _text(s, eps, summary)
+    rows = [{"filter": name, "episode": "median",
+             **{k: v for k, v in r.items() if not isinstance(v, list)}}
+            for name, r in summary.items()]
+    rows += [{"filter": name, "episode": sd, **pe[name]}
+             for sd, pe in zip(s.seeds, per_episode) for name in names]
+    files = write_report(s.out, "paper_localization", text, rows,
+                         {"duration": s.duration, "seed": s.seed, "episodes": s.episodes,
+                          "seeds": s.seeds, "kidnap_time": eps[0]["kidnap_time"],
+                          "kld_config": eps[0]["kld_config"], "summary": summary,
+                          "per_episode": [{k: v for k, v in ep.items()
+                                           if k not in ("kld_name", "kld_config")}
+                                          for ep in eps]})
+    files.append(_plot(s, eps))
+    return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
+            "results": summary, "episodes": [
+                {"seed": sd, "kidnap_time": ep["kidnap_time"], "kidnap_to": ep["kidnap_to"],
+                 "falls": ep["falls"], "results": pe}
+                for sd, ep, pe in zip(s.seeds, eps, per_episode)]}
+
+
+def _walk_episodes(s: Settings) -> list[dict[str, Any]]:
+    """Every episode recorded and replayed into every filter (:func:`_episode_results`),
+    in seed order, over ``s.workers`` processes."""
+    jobs = [(sd, float(s.duration), bool(s.kidnap), s.fixed_sizes) for sd in s.seeds]
+    return map_jobs(_episode_results, jobs, min(s.workers or os.cpu_count() or 1, len(jobs)))
+
+
+# ------------------------------------------------------------------------------------------
+# Report
+# ------------------------------------------------------------------------------------------
+
+def _text(s: Settings, eps: list[dict[str, Any]], summary: dict[str, Any]) -> str:
+    """The printed report: the setting, the filters' medians over the episodes, each
+    episode's median position error, KLD-sampling against the aims, and the paper."""
+    seeds, tk = s.seeds, eps[0]["kidnap_time"]
     spec = presets.robot(ROBOT)
     span = f"seed {seeds[0]}" if len(seeds) == 1 else f"seeds {seeds[0]}-{seeds[-1]}"
     frames = int(np.median([ep["frames"] for ep in eps]))
@@ -404,7 +461,7 @@ def run(out: str | Path = "paper_output", duration: float = 60.0, seed: int = 0,
            f"at least 2 m away and turned by 90 deg or more, unknown to the filters")
     lines = [
         f"Walking humanoid ({ROBOT}, {CRUISE * spec.max_forward_speed:.2f} m/s, turning now "
-        f"and then and at the edges) in {episodes} episode(s) of {duration:g} s ({span}; "
+        f"and then and at the edges) in {s.episodes} episode(s) of {s.duration:g} s ({span}; "
         f"route, camera noise and kidnapping drawn from the seed) on the {FIELD} field "
         f"(6 m x 4 m), head scanning +-90 deg, {CAMERA} camera (51 deg, 25 Hz, landmarks by "
         f"kind within 4 m: median {frames} frames per episode, {seen} with landmarks); the walk "
@@ -412,47 +469,12 @@ def run(out: str | Path = "paper_output", duration: float = 60.0, seed: int = 0,
         f"into every filter. Errors and tracking particles after the first {SETTLE:g} s, "
         f"leaving out the {SETTLE:g} s after the kidnapping; localized / recovered: position "
         f"error below {RECOVERED_M:g} m for {RECOVERED_HOLD:g} s.", "",
-        f"Per filter, the median over the {episodes} episode(s) of each episode's figure (the "
-        "times: \"never\" counts as infinitely late, the episodes in which it never happened "
-        "in brackets):", "",
-        "| filter | median position error [m] | median heading error [deg] | particles at the "
-        "start (global) | mean particles in the first second | mean particles while tracking "
-        "| median particles while tracking | ms per update | localized after [s] | recovered "
-        "after the kidnapping [s] | frames at the mirror pose [%] |",
-        "|---|---|---|---|---|---|---|---|---|---|---|"]
-    for name, r in summary.items():
-        rec = "-" if not kidnap else _fmt_never(r["recovery_s"], r["recovery_never"])
-        lines.append(f"| {name} | {r['median_pos_m']:.3f} | {r['median_head_deg']:.1f} | "
-                     f"{r['initial_particles']:.0f} | {r['first_second_particles']:.0f} | "
-                     f"{r['tracking_particles']:.0f} | {r['tracking_particles_median']:.0f} | "
-                     f"{r['ms_per_update']:.2f} | "
-                     f"{_fmt_never(r['localized_s'], r['localized_never'])} | {rec} | "
-                     f"{r['mirror_pct']:.0f} |")
-    lines += ["", "Median position error while tracking per episode [m]:", "",
-              "| filter | " + " | ".join(f"seed {s}" for s in seeds) + " |",
-              "|---|" + "---|" * len(seeds)]
-    for name, r in summary.items():
-        lines.append(f"| {name} | "
-                     + " | ".join(f"{v:.3f}" for v in r["median_pos_m_per_episode"]) + " |")
+        *_filter_table(s, summary)]
     if tk is not None:
         lines += ["", "Kidnapped to (x [m], y [m], heading [deg]): " + "; ".join(
             f"seed {ep['seed']} ({ep['kidnap_to'][0]:.2f}, {ep['kidnap_to'][1]:.2f}, "
             f"{math.degrees(ep['kidnap_to'][2]):.0f})" for ep in eps) + "."]
-    ratio = kld["initial_particles"] / max(kld["tracking_particles"], 1.0)
-    met = ratio >= 3.0 and kld["median_pos_m"] < AIM_POS_M
-    at_min = float(np.median([ep["kld_at_min_pct"] for ep in eps]))
-    lines += ["", f"KLD-sampling, medians over the {episodes} episode(s): {ratio:.0f} times fewer "
-              f"particles while tracking than while globally localizing (the start); median "
-              f"position error {kld['median_pos_m']:.3f} m while walking, under "
-              f"{AIM_POS_M:g} m in {kld['pos_aim_episodes']} of {episodes} episode(s): "
-              f"{'aims met' if met else 'aims NOT met'}. It keeps its global set only until the "
-              f"first frame with landmarks (mean {kld['first_second_particles']:.0f} in the "
-              f"first second) and sits at its minimum of {kld_cfg.min_particles} in "
-              f"{at_min:.0f} % of the frames (median {kld['tracking_particles_median']:.0f} "
-              f"while tracking)"
-              + ("; the mean while tracking comes from the recovery's uniform draws, which "
-                 "grow it to thousands." if kld["tracking_particles"]
-                 > 1.5 * kld["tracking_particles_median"] else "."), "",
+    lines += ["", *_kld_lines(s, eps, summary), "",
               "Median position error while tracking, in turns / walking straight (medians "
               "over the episodes): "
               + "; ".join(f"{name} {_fmt2(r['median_pos_turning_m'])} / "
@@ -464,27 +486,70 @@ def run(out: str | Path = "paper_output", duration: float = 60.0, seed: int = 0,
               "until it sees a post (the last column).", "", AIMS, "", PAPER]
     fell = [(ep["seed"], ep["falls"]) for ep in eps if ep["falls"]]
     if fell:
-        lines += ["", "The robot fell: " + "; ".join(f"seed {s} {n} time(s)" for s, n in fell)
+        lines += ["", "The robot fell: " + "; ".join(f"seed {sd} {n} time(s)" for sd, n in fell)
                   + "."]
-    text = "\n".join(lines)
-    rows = [{"filter": name, "episode": "median",
-             **{k: v for k, v in r.items() if not isinstance(v, list)}}
-            for name, r in summary.items()]
-    rows += [{"filter": name, "episode": s, **pe[name]}
-             for s, pe in zip(seeds, per_episode) for name in names]
-    files = write_report(out, "paper_localization", text, rows,
-                         {"duration": duration, "seed": seed, "episodes": episodes,
-                          "seeds": seeds, "kidnap_time": tk,
-                          "kld_config": first["kld_config"], "summary": summary,
-                          "per_episode": [{k: v for k, v in ep.items()
-                                           if k not in ("kld_name", "kld_config")}
-                                          for ep in eps]})
+    return "\n".join(lines)
+
+
+def _filter_table(s: Settings, summary: dict[str, Any]) -> list[str]:
+    """The filters' medians over the episodes, and each episode's median position error."""
+    lines = [
+        f"Per filter, the median over the {s.episodes} episode(s) of each episode's figure "
+        "(the times: \"never\" counts as infinitely late, the episodes in which it never "
+        "happened in brackets):", "",
+        "| filter | median position error [m] | median heading error [deg] | particles at the "
+        "start (global) | mean particles in the first second | mean particles while tracking "
+        "| median particles while tracking | ms per update | localized after [s] | recovered "
+        "after the kidnapping [s] | frames at the mirror pose [%] |",
+        "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for name, r in summary.items():
+        rec = "-" if not s.kidnap else _fmt_never(r["recovery_s"], r["recovery_never"])
+        lines.append(f"| {name} | {r['median_pos_m']:.3f} | {r['median_head_deg']:.1f} | "
+                     f"{r['initial_particles']:.0f} | {r['first_second_particles']:.0f} | "
+                     f"{r['tracking_particles']:.0f} | {r['tracking_particles_median']:.0f} | "
+                     f"{r['ms_per_update']:.2f} | "
+                     f"{_fmt_never(r['localized_s'], r['localized_never'])} | {rec} | "
+                     f"{r['mirror_pct']:.0f} |")
+    lines += ["", "Median position error while tracking per episode [m]:", "",
+              "| filter | " + " | ".join(f"seed {sd}" for sd in s.seeds) + " |",
+              "|---|" + "---|" * len(s.seeds)]
+    for name, r in summary.items():
+        lines.append(f"| {name} | "
+                     + " | ".join(f"{v:.3f}" for v in r["median_pos_m_per_episode"]) + " |")
+    return lines
+
+
+def _kld_lines(s: Settings, eps: list[dict[str, Any]], summary: dict[str, Any]) -> list[str]:
+    """KLD-sampling's particles and error against the aims."""
+    kld = summary[eps[0]["kld_name"]]
+    kld_cfg = KLDConfig(**eps[0]["kld_config"])
+    ratio = kld["initial_particles"] / max(kld["tracking_particles"], 1.0)
+    met = ratio >= 3.0 and kld["median_pos_m"] < AIM_POS_M
+    at_min = float(np.median([ep["kld_at_min_pct"] for ep in eps]))
+    return [f"KLD-sampling, medians over the {s.episodes} episode(s): {ratio:.0f} times fewer "
+            f"particles while tracking than while globally localizing (the start); median "
+            f"position error {kld['median_pos_m']:.3f} m while walking, under "
+            f"{AIM_POS_M:g} m in {kld['pos_aim_episodes']} of {s.episodes} episode(s): "
+            f"{'aims met' if met else 'aims NOT met'}. It keeps its global set only until the "
+            f"first frame with landmarks (mean {kld['first_second_particles']:.0f} in the "
+            f"first second) and sits at its minimum of {kld_cfg.min_particles} in "
+            f"{at_min:.0f} % of the frames (median {kld['tracking_particles_median']:.0f} "
+            f"while tracking)"
+            + ("; the mean while tracking comes from the recovery's uniform draws, which "
+               "grow it to thousands." if kld["tracking_particles"]
+               > 1.5 * kld["tracking_particles_median"] else ".")]
+
+
+def _plot(s: Settings, eps: list[dict[str, Any]]) -> str:
+    """The first episode's position errors of every filter; every episode's KLD error and
+    particle count."""
+    first, kld_name, tk = eps[0], eps[0]["kld_name"], eps[0]["kidnap_time"]
     plt = pyplot()
     fig, (ax1, ax2, ax3) = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
     t = np.array(first["frame_t"])
     for name, r in first["results"].items():
         ax1.plot(t, np.maximum(r["pos_err"], 1e-3), lw=1, label=name)
-    ax1.set(ylabel=f"position error [m]\n(seed {seeds[0]})", yscale="log")
+    ax1.set(ylabel=f"position error [m]\n(seed {s.seeds[0]})", yscale="log")
     ax1.legend(fontsize=7)
     for ep in eps:
         r = ep["results"][kld_name]
@@ -500,9 +565,4 @@ def run(out: str | Path = "paper_output", duration: float = 60.0, seed: int = 0,
         for ax in (ax1, ax2, ax3):
             ax.axvline(tk, color="r", ls="--", lw=1)
         ax1.text(tk, ax1.get_ylim()[1], " kidnapped", color="r", va="top", fontsize=8)
-    files.append(save_figure(fig, out / "paper_localization.png"))
-    return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
-            "results": summary, "episodes": [
-                {"seed": s, "kidnap_time": ep["kidnap_time"], "kidnap_to": ep["kidnap_to"],
-                 "falls": ep["falls"], "results": pe}
-                for s, ep, pe in zip(seeds, eps, per_episode)]}
+    return save_figure(fig, s.out / "paper_localization.png")

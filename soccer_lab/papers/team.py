@@ -1,4 +1,5 @@
-"""Paper 000 in the closed loop: what a humanoid team knows about the ball, alone or together.
+"""Paper 000 (Xu, Xie, Wang, Ni 2012) in the closed loop: what a humanoid team knows about
+the ball, alone or together.
 
 ``soccer-env paper team``:
 
@@ -25,6 +26,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -33,7 +35,8 @@ import numpy as np
 from soccer_env.render.plots import pyplot, save_figure
 from soccer_lab.papers._io import map_jobs, write_report
 
-__all__ = ["run", "MATCH_CONFIGS", "KEEPER_CONFIGS", "PAPER"]
+__all__ = ["run", "Settings", "match_errors", "keeper_saves", "MATCH_CONFIGS", "KEEPER_CONFIGS",
+           "PAPER"]
 
 #: Blue's ball estimation in the match: names of :data:`agents.ablation.HUMANOID_CONFIGS`.
 MATCH_CONFIGS = ("own", "own-mfbpf", "fusion", "fusion-mfbpf")
@@ -127,23 +130,64 @@ def keeper_saves(shots: int = 500, workers: int | None = None,
         for c in configs for r in [res.cell(CAMERA, c)]}}
 
 
+@dataclass(frozen=True)
+class Settings:
+    """What one run simulates (validated on construction).
+
+    Attributes:
+        out: the output folder.
+        matches: seeded matches per configuration (seeds ``seed`` onwards), >= 1.
+        duration: match length [s], in [1, 3600].
+        shots: the keeper's shots per configuration, >= 1.
+        workers: processes (None: all cores).
+        seed: the first match's seed.
+        keeper: run the keeper comparison.
+    """
+
+    out: Path
+    matches: int = 4
+    duration: float = 60.0
+    shots: int = 500
+    workers: int | None = None
+    seed: int = 0
+    keeper: bool = True
+
+    def __post_init__(self) -> None:
+        for name, lo in (("matches", 1), ("shots", 1)):
+            v = getattr(self, name)
+            if isinstance(v, bool) or int(v) != v or v < lo:
+                raise ValueError(f"{name} must be an integer >= {lo}, got {v!r}")
+        if not (math.isfinite(self.duration) and 1.0 <= self.duration <= 3600.0):
+            raise ValueError(f"duration must be in [1, 3600] s, got {self.duration!r}")
+
+
 def run(out: str | Path = "paper_output", matches: int = 4, duration: float = 60.0,
         shots: int = 500, workers: int | None = None, seed: int = 0,
         keeper: bool = True) -> dict[str, Any]:
     """Run the match and keeper comparisons; write ``paper_team.md``, ``.csv``, ``.json`` and
     ``.png`` into ``out``."""
-    for name, v, lo in (("matches", matches, 1), ("shots", shots, 1)):
-        if isinstance(v, bool) or int(v) != v or v < lo:
-            raise ValueError(f"{name} must be an integer >= {lo}, got {v!r}")
-    if not (math.isfinite(duration) and 1.0 <= duration <= 3600.0):
-        raise ValueError(f"duration must be in [1, 3600] s, got {duration!r}")
+    s = Settings(Path(out), matches, duration, shots, workers, seed, keeper)
     t0 = time.perf_counter()
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    m = match_errors(int(matches), float(duration), workers, seed)
-    k = keeper_saves(int(shots), workers) if keeper else None
+    s.out.mkdir(parents=True, exist_ok=True)
+    m = match_errors(int(s.matches), float(s.duration), s.workers, s.seed)
+    k = keeper_saves(int(s.shots), s.workers) if s.keeper else None
+    text, rows = _tables(s, m, k)
+    files = write_report(s.out, "paper_team", text, rows,
+                         {"matches": m, "keeper": k, "paper": PAPER, "seed": s.seed})
+    files.append(_plot(s, m))
+    return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
+            "matches": m, "keeper": k}
+
+
+# ------------------------------------------------------------------------------------------
+# Report
+# ------------------------------------------------------------------------------------------
+
+def _tables(s: Settings, m: dict[str, Any], k: dict[str, Any] | None
+            ) -> tuple[str, list[dict[str, Any]]]:
+    """The printed report and the CSV rows: the matches, then the keeper."""
     lines = [f"Humanoid matches on paper 000's field: {BLUE} blue ({ROBOT}, camera {CAMERA}) "
-             f"against {YELLOW} yellow, {matches} seeded match(es) of {duration:g} s per "
+             f"against {YELLOW} yellow, {s.matches} seeded match(es) of {s.duration:g} s per "
              "configuration of blue's ball estimation; blue robots' ball belief against the "
              "truth at every step.", "",
              "| blue's ball estimation | mean error [m] | median [m] | within 0.3 m | "
@@ -162,16 +206,18 @@ def run(out: str | Path = "paper_output", matches: int = 4, duration: float = 60
               f"-> {PAPER['fused_mm']:.0f} mm)."]
     if k is not None:
         lines += ["", f"Humanoid keeper ({ROBOT}, 3 watching team-mates), scripted, "
-                  f"{shots} seeded shots per configuration; `{k['command']}`:", "",
+                  f"{s.shots} seeded shots per configuration; `{k['command']}`:", "",
                   "| ball estimation | save rate [%] (95 % CI) | ball RMSE [mm] |",
                   "|---|---|---|"]
         for name, r in k["configs"].items():
             lines.append(f"| {name} | {100 * r['save_rate']:.1f} ({100 * r['ci_low']:.1f}-"
                          f"{100 * r['ci_high']:.1f}) | {1000 * r['ball_rmse_m']:.0f} |")
             rows.append({"part": "keeper", "config": name, **r})
-    text = "\n".join(lines)
-    files = write_report(out, "paper_team", text, rows,
-                         {"matches": m, "keeper": k, "paper": PAPER, "seed": seed})
+    return "\n".join(lines), rows
+
+
+def _plot(s: Settings, m: dict[str, Any]) -> str:
+    """The distribution of blue's ball belief error per configuration."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(7, 4))
     edges = np.linspace(0, 3, 31)
@@ -182,6 +228,4 @@ def run(out: str | Path = "paper_output", matches: int = 4, duration: float = 60
            ylabel="share of blue robot-steps", title="Humanoid match: ball belief error")
     ax.grid(alpha=0.3)
     ax.legend()
-    files.append(save_figure(fig, out / "paper_team.png"))
-    return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
-            "matches": m, "keeper": k}
+    return save_figure(fig, s.out / "paper_team.png")

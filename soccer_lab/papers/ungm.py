@@ -1,4 +1,5 @@
-"""Paper 000's particle-filter benchmark: the univariate nonstationary growth model (UNGM).
+"""The particle-filter benchmark of paper 000 (Xu, Xie, Wang, Ni 2012): the univariate
+nonstationary growth model (UNGM).
 
 ``soccer-env paper ungm``: bootstrap PF, FBPF and MFBPF (:mod:`estimators.particle`) with 100
 particles on ``runs`` simulated 50-step UNGM trajectories (``x_0 ~ N(0, 10)``, process noise
@@ -13,6 +14,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -22,7 +24,7 @@ from estimators import FBPF, MFBPF, BootstrapPF, ungm_model, ungm_simulate
 from soccer_env.render.plots import pyplot, save_figure
 from soccer_lab.papers._io import write_report
 
-__all__ = ["run", "FILTERS", "PAPER_CLAIM"]
+__all__ = ["run", "Settings", "FILTERS", "PAPER_CLAIM"]
 
 PAPER_CLAIM = ("Paper 000 (Fig. 12): with 100 particles, N_th = 50 and fission variance 1 on "
                "50 UNGM steps, MFBPF's RMSE is slightly lower than FBPF's (no numbers given).")
@@ -85,21 +87,62 @@ def _time_per_step(particles: int, repeats: int = 5, steps: int = 400) -> dict[s
     return out
 
 
+@dataclass(frozen=True)
+class Settings:
+    """What one run simulates (validated on construction).
+
+    Attributes:
+        out: the output folder.
+        runs: simulated trajectories (>= 1).
+        particles: particles per filter (>= 2).
+        steps: steps per trajectory (>= 1).
+        seed: seeds the trajectories and the filters' initial particles.
+    """
+
+    out: Path
+    runs: int = 200
+    particles: int = 100
+    steps: int = 50
+    seed: int = 0
+
+    def __post_init__(self) -> None:
+        for name, lo in (("runs", 1), ("particles", 2), ("steps", 1)):
+            value = getattr(self, name)
+            if isinstance(value, bool) or int(value) != value or value < lo:
+                raise ValueError(f"{name} must be an integer >= {lo}, got {value!r}")
+
+
 def run(out: str | Path = "paper_output", runs: int = 200, particles: int = 100,
         steps: int = 50, seed: int = 0) -> dict[str, Any]:
     """Run the benchmark, write ``paper_ungm.md``, ``.csv``, ``.json`` and ``.png`` into
     ``out`` and return ``{"text", "files", "seconds", "rmse", "us_per_step"}``."""
-    for name, value, lo in (("runs", runs, 1), ("particles", particles, 2), ("steps", steps, 1)):
-        if isinstance(value, bool) or int(value) != value or value < lo:
-            raise ValueError(f"{name} must be an integer >= {lo}, got {value!r}")
+    settings = Settings(Path(out), runs, particles, steps, seed)
     t0 = time.perf_counter()
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    rmse, example = _rmse_runs(int(runs), int(particles), int(steps), seed)
-    timing = _time_per_step(int(particles))
-    lines = [f"UNGM, paper 000's benchmark: {runs} runs of {steps} steps, {particles} particles, "
-             "N_th = N/2, fission variance 1; RMSE over each run (mean, standard deviation, "
-             "median over runs) and time per filter step (median of 5 timings of 400 steps).",
+    settings.out.mkdir(parents=True, exist_ok=True)
+    rmse, example = _rmse_runs(int(settings.runs), int(settings.particles), int(settings.steps),
+                               settings.seed)
+    timing = _time_per_step(int(settings.particles))
+    text, rows = _tables(settings, rmse, timing)
+    files = write_report(settings.out, "paper_ungm", text, rows, {
+        "runs": settings.runs, "particles": settings.particles, "steps": settings.steps,
+        "seed": settings.seed, "rows": rows,
+        "rmse_per_run": {k: v.tolist() for k, v in rmse.items()}})
+    files.append(_plot(settings, rmse, example))
+    return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
+            "rmse": {k: float(v.mean()) for k, v in rmse.items()}, "us_per_step": timing}
+
+
+# ------------------------------------------------------------------------------------------
+# Report
+# ------------------------------------------------------------------------------------------
+
+def _tables(s: Settings, rmse: dict[str, np.ndarray], timing: dict[str, float]
+            ) -> tuple[str, list[dict[str, Any]]]:
+    """The printed report and the CSV rows."""
+    lines = [f"UNGM, paper 000's benchmark: {s.runs} runs of {s.steps} steps, {s.particles} "
+             "particles, N_th = N/2, fission variance 1; RMSE over each run (mean, standard "
+             "deviation, median over runs) and time per filter step (median of 5 timings of "
+             "400 steps).",
              "",
              "| filter | RMSE mean | RMSE std | RMSE median | us per step |",
              "|---|---|---|---|---|"]
@@ -115,10 +158,11 @@ def run(out: str | Path = "paper_output", runs: int = 200, particles: int = 100,
     lines += ["", f"MFBPF minus FBPF RMSE per run: mean {diff.mean():+.3f}, MFBPF lower in "
               f"{np.mean(diff < 0):.0%} of runs, equal in {np.mean(diff == 0):.0%}.", "",
               PAPER_CLAIM]
-    text = "\n".join(lines)
-    files = write_report(out, "paper_ungm", text, rows, {
-        "runs": runs, "particles": particles, "steps": steps, "seed": seed, "rows": rows,
-        "rmse_per_run": {k: v.tolist() for k, v in rmse.items()}})
+    return "\n".join(lines), rows
+
+
+def _plot(s: Settings, rmse: dict[str, np.ndarray], example: dict[str, Any]) -> str:
+    """Run 0's trajectory with the filters' estimates, and the RMSE per filter over runs."""
     plt = pyplot()
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4))
     ax1.plot(example["truth"], "k-", lw=2, label="true state")
@@ -128,7 +172,5 @@ def run(out: str | Path = "paper_output", runs: int = 200, particles: int = 100,
     ax1.legend(fontsize=8)
     ax2.boxplot([rmse[n] for n in FILTERS])
     ax2.set_xticks(range(1, len(FILTERS) + 1), list(FILTERS))
-    ax2.set(ylabel="RMSE over 50 steps", title=f"{runs} runs, {particles} particles")
-    files.append(save_figure(fig, out / "paper_ungm.png"))
-    return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
-            "rmse": {k: float(v.mean()) for k, v in rmse.items()}, "us_per_step": timing}
+    ax2.set(ylabel="RMSE over 50 steps", title=f"{s.runs} runs, {s.particles} particles")
+    return save_figure(fig, s.out / "paper_ungm.png")

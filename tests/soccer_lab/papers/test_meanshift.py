@@ -19,6 +19,9 @@ from soccer_env.sensors.images.overhead import OverheadRenderer
 from soccer_env.sensors.images.patterns import PATTERN, PATTERN_IDS
 from soccer_env.sim.world import World
 from soccer_lab.papers import meanshift
+from soccer_lab.papers.meanshift.scene import IdentityCheck
+
+pytestmark = pytest.mark.slow
 
 #: Figures that do not depend on timing.
 FIGURES = ("median_px", "p90_px", "rmse_px", "median_mm", "rmse_mm", "lost_share",
@@ -79,7 +82,7 @@ def test_every_tracker_kind_measured_consistently(short_run):
     for key in ("true_area_fail_share", "true_id_fail_share", "lost_while_passable_share"):
         assert 0.0 <= diag[key] <= 1.0
     assert res["cycle_ms"] > res["prep_ms_per_frame"] > 0.0
-    # The paper's claims and the aims are printed, with a verdict.
+    # The paper's claims and the aims are printed, with a verdict.
     assert meanshift.PAPER["text"] in res["text"] and meanshift.AIMS["text"] in res["text"]
     assert res["text"].count("met (") + res["text"].count("not met (") >= 2
     assert isinstance(res["aims"]["accurate"], bool)
@@ -110,8 +113,8 @@ def test_identity_check_tells_team_mates_apart():
     windows = np.column_stack([np.rint(u - 0.5 - 6), np.rint(v - 0.5 - 6),
                                np.full(3, 13), np.full(3, 13)]).astype(int)
     for own in range(3):
-        check = meanshift._IdentityCheck(own, [0, 1, 2], dots,
-                                         {j: PATTERN_IDS[j] for j in range(3)})
+        check = IdentityCheck(own, [0, 1, 2], dots,
+                              {j: PATTERN_IDS[j] for j in range(3)})
         check.set_images(pink, green)
         assert check(windows, None).tolist() == [j == own for j in range(3)]
 

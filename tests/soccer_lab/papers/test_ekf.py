@@ -8,6 +8,8 @@ import pytest
 from soccer_lab.cli import main
 from soccer_lab.papers import ekf
 
+pytestmark = pytest.mark.slow
+
 
 def test_open_loop_orderings():
     res = ekf.open_loop(episodes=12, seed=1)["estimators"]
@@ -37,7 +39,6 @@ def test_wilson_interval():
     assert lo == pytest.approx(0.8256, abs=1e-3) and hi == pytest.approx(0.9448, abs=1e-3)
 
 
-@pytest.mark.slow
 def test_paper_command_writes_tables_and_plots(tmp_path: Path, capsys):
     assert main(["paper", "ekf", "--out", str(tmp_path), "--episodes", "4", "--shots", "2",
                  "--workers", "1"]) == 0

@@ -1,15 +1,11 @@
-"""Evaluation on the fixed shot suite: determinism, the statistics, the command."""
+"""Evaluation on the fixed shot suite: determinism and the statistics."""
 
 from __future__ import annotations
-
-import json
-import math
 
 import numpy as np
 import pytest
 
 from agents.evaluation import evaluate, wilson
-from soccer_lab.cli import main
 
 
 def test_wilson_interval():
@@ -64,27 +60,3 @@ def test_bad_arguments():
         evaluate("scripted", episodes=2, workers=0)
     with pytest.raises(TypeError, match="unknown"):
         evaluate("scripted", {"obs_mod": "raw"}, episodes=1)
-
-
-def test_eval_command_writes_result_and_video(tmp_path, capsys):
-    out = tmp_path / "ev"
-    assert main(["eval", "--policy", "scripted", "--obs-mode", "perceived", "--perception",
-                 "ssl-2012", "--episodes", "6", "--workers", "1", "--video", "1", "--out",
-                 str(out)]) == 0
-    text = capsys.readouterr().out
-    assert "save rate" in text
-    record = json.loads((out / "eval.json").read_text())
-    assert record["episodes"] == 6 and len(record["saved"]) == 6
-    assert math.isfinite(record["ball_rmse_m"])
-    video = out / record["video"].split("/")[-1]
-    assert video.exists() and video.stat().st_size > 1000
-
-
-def test_eval_command_rejects_bad_input(tmp_path, capsys):
-    with pytest.raises(SystemExit):
-        main(["eval", "--episodes", "0"])
-    with pytest.raises(SystemExit):
-        main(["eval", "--policy", "nowhere.zip", "--out", str(tmp_path)])
-    assert "no model at" in capsys.readouterr().err
-    with pytest.raises(SystemExit):
-        main(["eval", "--perception", "foggy", "--out", str(tmp_path)])

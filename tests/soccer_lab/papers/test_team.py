@@ -9,6 +9,8 @@ import pytest
 
 from soccer_lab.papers import team
 
+pytestmark = pytest.mark.slow
+
 
 def test_team_benchmark_measures_every_configuration_and_writes_its_outputs(tmp_path: Path):
     res = team.run(tmp_path, matches=1, duration=3.0, shots=2, workers=1)

@@ -65,7 +65,7 @@ def test_ruff_clean():
     ruff = shutil.which("ruff") or str(Path(sys.executable).parent / "ruff")
     if not Path(ruff).exists():
         pytest.skip("ruff not installed")
-    root = Path(__file__).resolve().parents[1]
+    root = Path(__file__).resolve().parents[2]
     res = subprocess.run([ruff, "check", "soccer_env", "estimators", "agents", "soccer_lab",
                           "tests", "benchmarks"], cwd=root, capture_output=True, text=True)
     assert res.returncode == 0, res.stdout + res.stderr

@@ -54,7 +54,7 @@ def test_shipped_model_is_the_numpy_policy(name):
     env = make_baseline_env(name)
     obs = np.stack([env.reset(seed=s)[0] for s in range(8)])
     act, _ = model.predict(norm.normalize_obs(obs), deterministic=True)
-    np.testing.assert_allclose(keeper._network(obs), act, atol=1e-5)
+    np.testing.assert_allclose(keeper.network_action(obs), act, atol=1e-5)
     expected = action_to_command(keeper.action_map["kind"], obs, act,
                                  keeper.action_map["params"])
     # The braking profile's square root amplifies float32 rounding near the target.

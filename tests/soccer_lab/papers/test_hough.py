@@ -7,6 +7,8 @@ import pytest
 from soccer_lab.cli import main
 from soccer_lab.papers import hough
 
+pytestmark = pytest.mark.slow
+
 
 def test_without_camera_noise_every_estimate_is_exact(tmp_path):
     res = hough.run(tmp_path, trials=1, pixel_sigma=0.0, pose_sigma=0.0, heading_sigma=0.0,

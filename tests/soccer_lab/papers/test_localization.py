@@ -16,9 +16,11 @@ import numpy as np
 import pytest
 
 from estimators import KLDConfig
-from soccer_env.perception.brain import _Brain
+from soccer_env.perception.brain import Brain
 from soccer_lab.cli import main
 from soccer_lab.papers import localization
+
+pytestmark = pytest.mark.slow
 
 KLD = "KLD-sampling (50-5000)"
 SEEDS = [4, 5]
@@ -40,11 +42,11 @@ def test_kld_adapts_tracks_and_recovers(short_run):
     assert set(res["results"]) == {KLD, "fixed 1000"}
     kld = res["results"][KLD]
     assert kld["episodes"] == len(SEEDS)
-    # Many particles at the global start, few while tracking (the 3 times fewer).
+    # Many particles at the global start, few while tracking (the aim: 3 times fewer).
     assert kld["initial_particles"] == KLDConfig().max_particles
     assert kld["initial_particles"] >= 3 * kld["tracking_particles"]
     assert kld["tracking_particles_median"] <= 2 * KLDConfig().min_particles
-    # Small errors once converged (the aim while walking), in every episode here.
+    # Small errors once converged (the aim while walking), in every episode here.
     assert kld["median_pos_m"] < 0.15 and kld["pos_aim_episodes"] == len(SEEDS)
     assert kld["median_head_deg"] < 5.0
     # Localized from the global start in every episode, and found again after the
@@ -125,8 +127,8 @@ def test_same_episode_for_every_filter_and_outputs(short_run):
     assert "| filter | seed 4 | seed 5 |" in md
     assert (out / "paper_localization.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     # The filters are fed by the robot brain's own odometry code.
-    assert localization._Replay._odometry_until is _Brain._odometry_until
-    assert localization._Replay._predict is _Brain._predict
+    assert localization._Replay._odometry_until is Brain._odometry_until
+    assert localization._Replay._predict is Brain._predict
 
 
 def test_reproducible_whatever_the_workers_and_without_kidnapping(tmp_path, short_run):

@@ -10,6 +10,8 @@ import pytest
 from soccer_lab.cli import main
 from soccer_lab.papers import ungm
 
+pytestmark = pytest.mark.slow
+
 
 def test_tables_plot_and_reproducibility(tmp_path):
     a = ungm.run(tmp_path / "a", runs=12, seed=3)

@@ -11,6 +11,9 @@ import pytest
 
 from estimators import HeadCamera
 from soccer_lab.papers import following
+from soccer_lab.papers.following.episode import view
+
+pytestmark = pytest.mark.slow
 
 
 @pytest.fixture(scope="module")
@@ -71,8 +74,8 @@ def test_truth_pixel_matches_the_camera_model():
     cam = HeadCamera(0.56, math.radians(51.0), 320, 240)
     robot = np.array([0.3, -0.2, 0.4])
     ball = np.array([2.0, 0.5, 0.0])
-    u, v, depth = following._view(robot, ball, 0.03, 0.3, cam.height, 0.033, cam.focal_px,
-                                  cam.centre)
+    u, v, depth = view(robot, ball, 0.03, 0.3, cam.height, 0.033, cam.focal_px,
+                       cam.centre)
     dx, dy = ball[0] - robot[0], ball[1] - robot[1]
     c, s = math.cos(robot[2]), math.sin(robot[2])
     (pu, pv), = cam.project(np.array([[c * dx + s * dy, -s * dx + c * dy, 0.033]]), 0.03,

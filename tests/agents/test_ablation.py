@@ -1,8 +1,9 @@
-"""The estimator ablation (agents.ablation, ``soccer-env ablation``): numbers that do not depend
-on how the work is split, outputs that parse, the oracle's zero error and cost, an extensible
-registry, and clear errors for bad input."""
+"""The estimator ablation (agents.ablation): numbers that do not depend on how the work is
+split, outputs that parse, the oracle's zero error and cost, an extensible registry, and clear
+errors for bad input."""
 
 import csv
+import dataclasses
 import json
 from pathlib import Path
 
@@ -11,14 +12,15 @@ import pytest
 from agents import ablation
 from agents.ablation import (
     ESTIMATOR_CONFIGS,
+    HUMANOID_CONFIGS,
     EstimatorConfig,
     parse_names,
     register_config,
     run_ablation,
     write_outputs,
 )
+from estimators.registry import Registry
 from soccer_env.presets.sensors import VISION
-from soccer_lab.cli import main as cli_main
 
 PRESETS = ["ideal", "realistic"]
 CONFIGS = ["truth", "ekf"]
@@ -106,29 +108,6 @@ def test_outputs_are_written_and_parse(runs, tmp_path: Path):
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 5000
 
 
-def test_command_line(tmp_path: Path, capsys):
-    out = tmp_path / "cli"
-    assert cli_main(["ablation", "--episodes", "2", "--presets", "ssl-2012", "--configs",
-                     "raw,kf", "--workers", "1", "--out", str(out), "--quiet"]) == 0
-    text = capsys.readouterr().out
-    assert "| ssl-2012 | raw |" in text and "| ssl-2012 | kf |" in text
-    data = json.loads((out / "ablation.json").read_text())
-    assert data["settings"]["configs"] == ["raw", "kf"]
-    assert data["settings"]["presets"] == ["ssl-2012"]
-
-
-def test_command_line_env_kwargs_reach_every_cell(tmp_path: Path, capsys):
-    out = tmp_path / "dt"
-    assert cli_main(["ablation", "--episodes", "2", "--presets", "ssl-2012", "--configs",
-                     "truth,ekf", "--workers", "1", "--env-kwarg", "control_dt=0.04",
-                     "--out", str(out), "--quiet"]) == 0
-    data = json.loads((out / "ablation.json").read_text())
-    assert "--env-kwarg control_dt=0.04" in data["settings"]["command"]
-    cells = ablation.run_ablation("scripted", 2, "ssl-2012", "truth", workers=1,
-                                  env_kwargs={"control_dt": 0.04}).cells
-    assert cells[("ssl-2012", "truth")].env_kwargs["control_dt"] == 0.04
-
-
 def test_registry_holds_the_required_configurations():
     for name in ("truth", "raw", "kf", "ekf", "ekf-improved"):
         assert ESTIMATOR_CONFIGS[name].name == name
@@ -139,15 +118,34 @@ def test_registry_holds_the_required_configurations():
     assert ESTIMATOR_CONFIGS["ekf-improved"].ball_filter == "ekf-improved"
     assert ablation.default_presets() == list(VISION)
     assert parse_names(None, ESTIMATOR_CONFIGS, "configs") == list(ESTIMATOR_CONFIGS)
+    # The registries' descriptions are the configurations' own.
+    for registry in (ESTIMATOR_CONFIGS, HUMANOID_CONFIGS):
+        for name, config in registry.items():
+            assert registry.description(name) == config.description
+    assert ablation.robot_kind("humanoid").configs is HUMANOID_CONFIGS
+    assert list(ablation.ROBOT_KINDS) == ["ssl", "humanoid"]
+
+
+def _with_copied_ssl_registry(monkeypatch) -> Registry:
+    """Point the SSL robot kind at a copy of its registry (the real one stays untouched);
+    return the copy."""
+    copy = Registry(ESTIMATOR_CONFIGS.family, [(n, c, ESTIMATOR_CONFIGS.description(n))
+                                               for n, c in ESTIMATOR_CONFIGS.items()])
+    kinds = ablation.ROBOT_KINDS
+    monkeypatch.setattr(ablation, "ROBOT_KINDS", Registry(kinds.family, [
+        (name, dataclasses.replace(kind, configs=copy) if name == "ssl" else kind,
+         kinds.description(name)) for name, kind in kinds.items()]))
+    return copy
 
 
 def test_a_registered_configuration_is_run(monkeypatch):
-    monkeypatch.setattr(ablation, "ESTIMATOR_CONFIGS", dict(ESTIMATOR_CONFIGS))
+    registry = _with_copied_ssl_registry(monkeypatch)
     new = register_config(EstimatorConfig("ls-test", "perceived", "test entry", "tests",
                                           perception={"ball_filter": "ls"}))
-    assert ablation.ESTIMATOR_CONFIGS["ls-test"] is new
+    assert registry["ls-test"] is new and registry.description("ls-test") == "test entry"
+    assert ablation.robot_kind("ssl").configs is registry
     assert "ls-test" not in ESTIMATOR_CONFIGS  # the real registry is untouched
-    assert parse_names("all", ablation.ESTIMATOR_CONFIGS, "configs")[-1] == "ls-test"
+    assert parse_names("all", registry, "configs")[-1] == "ls-test"
     with pytest.raises(ValueError, match="already registered"):
         register_config(EstimatorConfig("ls-test", "raw", "again"))
     register_config(EstimatorConfig("ls-test", "perceived", "replaced",
@@ -192,26 +190,6 @@ def test_bad_configurations_raise(kwargs, match):
         EstimatorConfig(**args)
     with pytest.raises(TypeError):
         register_config({"name": "x"})
-
-
-@pytest.mark.parametrize("argv, message", [
-    (["--configs", "truth,nope"], "unknown estimator configuration(s) 'nope'; allowed:"),
-    (["--presets", "foggy"], "unknown sensor preset(s) 'foggy'; allowed:"),
-    (["--episodes", "0"], "--episodes must be >= 1, got 0"),
-    (["--workers", "0"], "--workers must be >= 1, got 0"),
-    (["--chunk-size", "0"], "--chunk-size must be >= 1"),
-    (["--env-kwarg", "obs_mode=raw"], "set by each cell's configuration"),
-    (["--env-kwarg", "control_dt"], "--env-kwarg must be key=value"),
-    (["--episodes", "ten"], "invalid int value"),
-    (["--policy", "missing.zip", "--episodes", "1", "--presets", "ideal", "--configs",
-      "truth"], "no model at missing.zip"),
-])
-def test_bad_command_lines_exit_with_a_message(argv, message, capsys, tmp_path: Path):
-    with pytest.raises(SystemExit) as exc:
-        ablation.main([*argv, "--out", str(tmp_path / "never")])
-    assert exc.value.code == 2
-    assert message in capsys.readouterr().err
-    assert not (tmp_path / "never").exists()
 
 
 def test_a_saved_policy_runs_like_the_reference(tmp_path: Path):

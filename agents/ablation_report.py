@@ -1,0 +1,175 @@
+"""The estimator ablation's report (:func:`write_outputs`): the tables of ``ablation.md``, one
+row per cell in ``ablation.csv``, settings and every number in ``ablation.json`` and the bars
+of ``ablation.png`` (save rates with their intervals, ball RMSE and estimator compute per
+preset and configuration), from an :class:`~agents.ablation.AblationResult`."""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from agents.ablation import AblationResult
+    from agents.evaluation import EvalResult
+
+__all__ = ["write_outputs", "markdown", "rows", "data", "plot", "rate_text"]
+
+
+def markdown(res: AblationResult) -> str:
+    """The tables of ``ablation.md``."""
+    lines = [
+        "# Estimator ablation",
+        "",
+        f"Policy `{res.policy}` on `{res.env_id}`, {res.episodes} seeded shots per cell "
+        f"(seeds {res.start_seed}-{res.start_seed + res.episodes - 1}, the same shots "
+        "in every cell). Save: the episode ends without a goal; Wilson 95 % interval. "
+        "RMSE: believed against true ball position over all steps. Compute: time in the "
+        "perception's filters per environment step (sensor simulation excluded).",
+        "",
+        f"Command: `{res.command()}` ({res.seconds:.0f} s wall time).",
+        "",
+        "Save rate [%] (95 % CI):",
+        "",
+        "| sensor preset | " + " | ".join(res.configs) + " |",
+        "|---|" + "---|" * len(res.configs),
+    ]
+    for preset in res.presets:
+        cells = [rate_text(res.cell(preset, c)) for c in res.configs]
+        lines.append(f"| {preset} | " + " | ".join(cells) + " |")
+    lines += ["", "| sensor preset | estimator | save rate [%] (95 % CI) | saves "
+              "| ball RMSE [mm] | estimator [us/step] |", "|---|---|---|---|---|---|"]
+    for preset in res.presets:
+        for c in res.configs:
+            r = res.cell(preset, c)
+            us = ("-" if r.estimator_us_per_step is None
+                  else f"{r.estimator_us_per_step:.1f}")
+            lines.append(f"| {preset} | {c} | {rate_text(r)} | {r.saves}/{r.episodes} | "
+                         f"{1000 * r.ball_rmse_m:.1f} | {us} |")
+    lines += ["", "Estimator configurations:", ""]
+    for c in res.configs:
+        spec = res.config_specs[c]
+        src = f" Source: {spec.source}." if spec.source else ""
+        lines.append(f"- `{c}` ({spec.obs_mode}): {spec.description}.{src}")
+    lines += ["", f"Sensor presets (`{res.preset_table_name}`):", ""]
+    for p in res.presets:
+        src = f": {res.preset_table[p].source}" if p in res.preset_table else ""
+        lines.append(f"- `{p}`{src}.")
+    return "\n".join(lines)
+
+
+def rate_text(r: EvalResult) -> str:
+    """A save rate and its interval in percent: ``"97.0 (93.2-98.7)"``."""
+    return f"{100 * r.save_rate:.1f} ({100 * r.ci_low:.1f}-{100 * r.ci_high:.1f})"
+
+
+def rows(res: AblationResult) -> list[dict[str, Any]]:
+    """One flat row per cell (preset-major), as in ``ablation.csv``."""
+    keys = sorted({k for r in res.cells.values() for k in r.outcomes})
+    rows = []
+    for preset in res.presets:
+        for name in res.configs:
+            r, spec = res.cell(preset, name), res.config_specs[name]
+            rows.append({
+                "preset": preset, "config": name, "obs_mode": spec.obs_mode,
+                "ball_filter": spec.ball_filter or "", "episodes": r.episodes,
+                "saves": r.saves, "save_rate": r.save_rate, "ci_low": r.ci_low,
+                "ci_high": r.ci_high, "ball_rmse_mm": 1000 * r.ball_rmse_m,
+                "estimator_us_per_step": r.estimator_us_per_step,
+                "steps": r.steps, "mean_steps": r.mean_steps, "seconds": r.seconds,
+                **{f"outcome_{k.replace(' ', '_')}": r.outcomes.get(k, 0) for k in keys},
+            })
+    return rows
+
+
+def data(res: AblationResult) -> dict[str, Any]:
+    """Settings, configurations and every number (``ablation.json``)."""
+    cells = []
+    for preset in res.presets:
+        for name in res.configs:
+            r = res.cell(preset, name)
+            d = r.to_dict()
+            d["saved"] = [int(s) for s in d["saved"]]
+            cells.append({"preset": preset, "config": name, **d})
+    return {
+        "settings": {
+            "policy": res.policy, "episodes": res.episodes,
+            "start_seed": res.start_seed,
+            "seeds": [res.start_seed, res.start_seed + res.episodes - 1],
+            "presets": res.presets, "configs": res.configs, "env_id": res.env_id,
+            "env_kwargs": res.env_kwargs, "workers": res.workers,
+            "chunk_size": res.chunk_size, "command": res.command(),
+            "save": "episode terminated without a goal (time limit: not saved)",
+            "interval": "Wilson score interval, 95 %",
+        },
+        "configs": {n: res.config_specs[n].to_dict() for n in res.configs},
+        "presets": {p: {"source": res.preset_table[p].source}
+                    if p in res.preset_table else {} for p in res.presets},
+        "cells": cells,
+        "seconds": res.seconds,
+    }
+
+
+def plot(res: AblationResult, path: Path) -> str:
+    """Grouped bars per preset: save rate with its interval, ball RMSE, compute per step."""
+    import numpy as np
+
+    from soccer_env.render.plots import pyplot, save_figure
+
+    plt = pyplot()
+    n_p, n_c = len(res.presets), len(res.configs)
+    fig, axes = plt.subplots(3, 1, figsize=(max(7.0, 1.6 + 0.32 * n_p * n_c), 9.5), sharex=True)
+    width = 0.8 / n_c
+    x = np.arange(n_p)
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for j, name in enumerate(res.configs):
+        cells = [res.cell(p, name) for p in res.presets]
+        pos = x + (j - (n_c - 1) / 2) * width
+        color = colors[j % len(colors)]
+        rate = np.array([c.save_rate for c in cells]) * 100
+        err = np.array([[c.save_rate - c.ci_low, c.ci_high - c.save_rate] for c in cells]).T
+        axes[0].bar(pos, rate, width, yerr=err * 100, capsize=2, color=color, label=name)
+        rmse = np.array([c.ball_rmse_m for c in cells]) * 1000
+        axes[1].bar(pos, np.where(rmse > 0, rmse, np.nan), width, color=color)
+        us = np.array([c.estimator_us_per_step or 0.0 for c in cells])
+        axes[2].bar(pos, us, width, color=color)
+    axes[0].set_ylabel("save rate [%]")
+    axes[0].set_ylim(0, 105)
+    axes[0].set_title(f"Policy {res.policy}: {res.episodes} shots per bar (95 % CI)")
+    axes[0].legend(fontsize=8, ncol=min(n_c, 4), loc="lower left")
+    axes[1].set_ylabel("ball RMSE [mm]")
+    if any(res.cell(p, c).ball_rmse_m > 0 for p in res.presets for c in res.configs):
+        from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+        axes[1].set_yscale("log")
+        # Ticks at 1, 2 and 5 per decade: a range within one decade still gets labels.
+        axes[1].yaxis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
+        axes[1].yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+        axes[1].yaxis.set_minor_formatter(NullFormatter())
+    axes[1].set_title("Ball estimation error (truth: 0, not drawn)", fontsize=10)
+    axes[2].set_ylabel("estimator [us/step]")
+    axes[2].set_title("Estimator compute per step", fontsize=10)
+    axes[2].set_xticks(x, res.presets)
+    axes[2].set_xlabel("sensor preset")
+    for ax in axes:
+        ax.grid(axis="y", alpha=0.3)
+    return save_figure(fig, path)
+
+
+def write_outputs(res: AblationResult, out: str | os.PathLike) -> dict[str, Path]:
+    """Write ``ablation.md``, ``.csv``, ``.json`` and ``.png`` to ``out``; return their
+    paths by kind."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    files = {k: out / f"ablation.{k}" for k in ("md", "csv", "json", "png")}
+    files["md"].write_text(markdown(res) + "\n")
+    table = rows(res)
+    with files["csv"].open("w", newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=list(table[0]))
+        writer.writeheader()
+        writer.writerows(table)
+    files["json"].write_text(json.dumps(data(res), indent=1) + "\n")
+    plot(res, files["png"])
+    return files

@@ -1,0 +1,139 @@
+"""``soccer-env train``: train a policy with stable-baselines3 (:func:`agents.training.train`).
+
+The options become a :class:`~agents.training.TrainConfig`; with ``--resume`` the rest of the
+configuration comes from the checkpoint's run folder (its ``config.json``) unless given here.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+from agents.evaluation import GOALKEEPER_ID
+from agents.policies import SB3_ALGORITHMS
+from agents.training import MATCH_ID, TrainConfig, check_env_kwargs, train
+from agents.wrappers import ACTION_MAPS
+from soccer_lab.cli_args import add_env_arguments, env_kwargs_from_args, key_values
+
+__all__ = ["parser", "main"]
+
+#: Options that set a :class:`~agents.training.TrainConfig` field of the same meaning:
+#: (field, option's attribute).
+_FIELD_OPTIONS = (("env_id", "env"), ("algorithm", "algo"), ("total_steps", "steps"),
+                  ("n_envs", "n_envs"), ("n_workers", "workers"), ("seed", "seed"),
+                  ("out", "out"), ("checkpoint_every", "checkpoint_every"),
+                  ("eval_every", "eval_every"), ("eval_episodes", "eval_episodes"),
+                  ("learner", "learner"), ("actions", "actions"), ("opponent", "opponent"))
+
+
+def parser() -> argparse.ArgumentParser:
+    """The options of ``soccer-env train``."""
+    p = argparse.ArgumentParser(
+        prog="soccer-env train", description="Train a policy with stable-baselines3.",
+        epilog="example: soccer-env train --obs-mode perceived --perception ssl-2012 "
+               "--steps 2000000 --out runs/keeper")
+    p.add_argument("--env", default=None, help=f"environment id: {GOALKEEPER_ID} "
+                   f"(default) or {MATCH_ID}")
+    add_env_arguments(p)
+    p.add_argument("--algo", default=None, type=str.upper, choices=SB3_ALGORITHMS,
+                   help="algorithm (default PPO)")
+    p.add_argument("--steps", type=int, default=None, help="total environment steps "
+                   "(default 1,000,000)")
+    p.add_argument("--n-envs", type=int, default=None, help="parallel environments (16)")
+    p.add_argument("--workers", type=int, default=None,
+                   help="subprocesses stepping them (2; 0 runs them in this process)")
+    p.add_argument("--seed", type=int, default=None)
+    p.add_argument("--out", default=None, help="run folder (default runs/keeper)")
+    p.add_argument("--hp", action="append", default=[], metavar="KEY=VALUE",
+                   help="algorithm hyperparameter (JSON value), repeatable, e.g. "
+                        "--hp learning_rate=1e-4 --hp policy_kwargs='{\"net_arch\": [64, 64]}'")
+    p.add_argument("--checkpoint-every", type=int, default=None)
+    p.add_argument("--eval-every", type=int, default=None)
+    p.add_argument("--eval-episodes", type=int, default=None)
+    p.add_argument("--eval-obs-mode", choices=("truth", "raw", "perceived"), default=None,
+                   help="select the best model under this observation mode instead")
+    p.add_argument("--eval-perception", default=None)
+    p.add_argument("--actions", choices=tuple(ACTION_MAPS), default=None,
+                   help="keeper learner's actions: native (the robot's command, default), "
+                        "velocity (field-frame velocity and turn rate), target (where to "
+                        "stand, reached by a motion controller) or guard (where to stand on "
+                        "the guard line); see agents.wrappers")
+    p.add_argument("--learner", choices=("blue", "yellow", "both"), default=None,
+                   help="match: learning team")
+    p.add_argument("--opponent", default=None,
+                   help="match: scripted (default), idle, self (frozen copy), or a model path")
+    p.add_argument("--resume", default=None, metavar="CHECKPOINT",
+                   help="continue from a checkpoint .zip; the rest of the configuration comes "
+                        "from its run's config.json unless given here")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    return p
+
+
+def _resumed_fields(p: argparse.ArgumentParser, resume: str) -> dict[str, Any]:
+    """The configuration of the run that checkpoint ``resume`` belongs to (its folder, or the
+    folder above ``checkpoints/``), without what describes that run only."""
+    ckpt = Path(resume)
+    if not ckpt.is_file():
+        p.error(f"--resume: no checkpoint at {ckpt}")
+    run = ckpt.parent.parent if ckpt.parent.name == "checkpoints" else ckpt.parent
+    if not (run / "config.json").exists():
+        p.error(f"--resume: no config.json in {run}")
+    saved = json.loads((run / "config.json").read_text())
+    base = {k: v for k, v in saved.items()
+            if k not in ("command", "resumed_from", "versions", "action_map")}
+    base.setdefault("out", str(run))
+    return base
+
+
+def _config(args: argparse.Namespace, base: dict[str, Any]) -> TrainConfig:
+    """The training configuration of the options over ``base`` (a resumed run's); raises
+    ``ValueError`` or ``TypeError`` for bad values."""
+    env_kwargs = env_kwargs_from_args(args, base.get("env_kwargs"))
+    eval_kwargs = base.get("eval_env_kwargs")
+    if args.eval_obs_mode or args.eval_perception:
+        eval_kwargs = dict(env_kwargs)
+        if args.eval_obs_mode:
+            eval_kwargs["obs_mode"] = args.eval_obs_mode
+        if args.eval_perception:
+            eval_kwargs["perception"] = args.eval_perception
+    hyper = {**base.get("hyperparams", {}), **key_values(args.hp, "--hp")}
+    fields = {**base, "env_kwargs": env_kwargs, "hyperparams": hyper,
+              "eval_env_kwargs": eval_kwargs, "progress_bar": not args.no_progress}
+    for name, option in _FIELD_OPTIONS:
+        value = getattr(args, option)
+        if value is not None:
+            fields[name] = value
+    cfg = TrainConfig.from_dict(fields)
+    check_env_kwargs(cfg)
+    return cfg
+
+
+def _print_summary(summary: dict[str, Any], out: str) -> None:
+    rate = summary["rollout_steps_per_s"]
+    print(f"trained {summary['trained_steps']:,} steps in {summary['seconds'] / 60:.1f} min "
+          f"({summary['steps_per_s']:,.0f} steps/s overall, "
+          f"{rate:,.0f} steps/s collecting rollouts)" if math.isfinite(rate) else "")
+    for key in ("last_evaluation", "best_evaluation"):
+        ev = summary.get(key)
+        if ev:
+            print(f"{key.replace('_', ' ')}: save rate {100 * ev['save_rate']:.1f} % "
+                  f"({100 * ev['ci_low']:.1f}-{100 * ev['ci_high']:.1f}) at {ev['steps']:,} "
+                  "steps")
+    print(f"run folder: {out}")
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``soccer-env train``: check the configuration, train, print the summary."""
+    p = parser()
+    args = p.parse_args(argv)
+    base = _resumed_fields(p, args.resume) if args.resume else {}
+    try:
+        cfg = _config(args, base)
+    except (ValueError, TypeError) as err:
+        p.error(str(err))
+    summary = train(cfg, resume=args.resume, command=["soccer-env", "train", *(argv or [])])
+    _print_summary(summary, cfg.out)
+    return 0

@@ -1,0 +1,54 @@
+"""``soccer-env ablation``: the command runs the ablation's cells, passes environment
+arguments to every cell, and exits with a message for bad command lines before any work."""
+
+import json
+from pathlib import Path
+
+import pytest
+
+from agents import ablation
+from soccer_lab.cli import main as cli_main
+from soccer_lab.commands.ablation import main
+
+
+def test_command_line(tmp_path: Path, capsys):
+    out = tmp_path / "cli"
+    assert cli_main(["ablation", "--episodes", "2", "--presets", "ssl-2012", "--configs",
+                     "raw,kf", "--workers", "1", "--out", str(out), "--quiet"]) == 0
+    text = capsys.readouterr().out
+    assert "| ssl-2012 | raw |" in text and "| ssl-2012 | kf |" in text
+    data = json.loads((out / "ablation.json").read_text())
+    assert data["settings"]["configs"] == ["raw", "kf"]
+    assert data["settings"]["presets"] == ["ssl-2012"]
+
+
+def test_command_line_env_kwargs_reach_every_cell(tmp_path: Path, capsys):
+    out = tmp_path / "dt"
+    assert cli_main(["ablation", "--episodes", "2", "--presets", "ssl-2012", "--configs",
+                     "truth,ekf", "--workers", "1", "--env-kwarg", "control_dt=0.04",
+                     "--out", str(out), "--quiet"]) == 0
+    data = json.loads((out / "ablation.json").read_text())
+    assert "--env-kwarg control_dt=0.04" in data["settings"]["command"]
+    cells = ablation.run_ablation("scripted", 2, "ssl-2012", "truth", workers=1,
+                                  env_kwargs={"control_dt": 0.04}).cells
+    assert cells[("ssl-2012", "truth")].env_kwargs["control_dt"] == 0.04
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--configs", "truth,nope"], "unknown estimator configuration(s) 'nope'; allowed:"),
+    (["--presets", "foggy"], "unknown sensor preset(s) 'foggy'; allowed:"),
+    (["--episodes", "0"], "--episodes must be >= 1, got 0"),
+    (["--workers", "0"], "--workers must be >= 1, got 0"),
+    (["--chunk-size", "0"], "--chunk-size must be >= 1"),
+    (["--env-kwarg", "obs_mode=raw"], "set by each cell's configuration"),
+    (["--env-kwarg", "control_dt"], "--env-kwarg must be key=value"),
+    (["--episodes", "ten"], "invalid int value"),
+    (["--policy", "missing.zip", "--episodes", "1", "--presets", "ideal", "--configs",
+      "truth"], "no model at missing.zip"),
+])
+def test_bad_command_lines_exit_with_a_message(argv, message, capsys, tmp_path: Path):
+    with pytest.raises(SystemExit) as exc:
+        main([*argv, "--out", str(tmp_path / "never")])
+    assert exc.value.code == 2
+    assert message in capsys.readouterr().err
+    assert not (tmp_path / "never").exists()

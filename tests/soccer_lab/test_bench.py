@@ -1,0 +1,26 @@
+"""The benchmarks behind ``benchmarks/*.py``: the keepers' save rates and the rollout rates'
+report."""
+
+from __future__ import annotations
+
+from soccer_lab import bench
+
+
+def test_keeper_save_rates_evaluate_each_keeper_on_the_same_shots():
+    res = bench.keeper_save_rates(episodes=4, workers=1)
+    assert list(res) == ["scripted", "idle"]
+    for r in res.values():
+        assert r.episodes == 4 and sum(r.outcomes.values()) == 4
+    lines = bench.format_save_rates(res).splitlines()
+    assert [line.split()[0] for line in lines] == ["scripted", "idle"]
+    assert all("over 4 shots" in line for line in lines)
+
+
+def test_rollout_rates_report_medians_and_ratios():
+    rates = {"worker-16x2": [900.0, 1000.0, 1100.0], "subproc-2": [400.0, 500.0, 600.0],
+             "dummy-2": [200.0, 250.0, 300.0]}
+    text = bench.format_rollout_rates(rates, {"obs_mode": "truth"})
+    assert text.splitlines()[0] == ("Goalkeeper-v0 {'obs_mode': 'truth'}, PPO rollouts, "
+                                    "median of 3:")
+    assert "x4.00 vs dummy-2" in text and "(900-1,100)" in text
+    assert list(rates) == list(bench.ROLLOUT_CONFIGS)
