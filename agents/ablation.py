@@ -47,7 +47,8 @@ from agents import ablation_report
 from agents.ablation_report import write_outputs
 from agents.evaluation import GOALKEEPER_ID, EvalResult, evaluate, process_context, wilson
 from estimators.registry import Registry
-from soccer_env.perception.base import BALL_FILTERS, OBS_MODES, PerceptionConfig
+from soccer_env.perception.base import OBS_MODES, PerceptionConfig
+from soccer_env.perception.options import BALL_FILTERS
 from soccer_env.presets.sensors import HEAD_CAMERAS, VISION
 
 __all__ = ["EstimatorConfig", "ESTIMATOR_CONFIGS", "HUMANOID_CONFIGS", "ROBOT_KINDS",
@@ -141,8 +142,8 @@ class EstimatorConfig:
 
 def _filter_config(name: str, source: str) -> EstimatorConfig:
     """The ``"perceived"`` configuration with ball filter ``name`` (described as in
-    :data:`~soccer_env.perception.base.BALL_FILTERS`)."""
-    return EstimatorConfig(name, "perceived", BALL_FILTERS[name], source,
+    :data:`~soccer_env.perception.options.BALL_FILTERS`)."""
+    return EstimatorConfig(name, "perceived", BALL_FILTERS.description(name), source,
                            perception={"ball_filter": name})
 
 

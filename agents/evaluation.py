@@ -116,11 +116,10 @@ def _time_estimator(env: gym.Env) -> _Timer:
     """Time the estimation part of the env's perception (filters and belief prediction, not
     the sensor simulation), by wrapping its methods on the instance."""
     timer = _Timer()
-    perception = env.unwrapped._perception
-    # A MatchPerception (humanoids) holds the teams' pipelines; a humanoid team's estimation
-    # is its ``_consume`` and ``belief``.
-    for target in getattr(perception, "pipelines", [perception]):
-        for name in ("_consume", "_beliefs", "belief"):
+    # An SSL team's estimation is its pipeline's ``consume`` and ``beliefs``; a humanoid
+    # team's, its ``consume`` and ``belief`` (the truth has neither).
+    for target in env.unwrapped.pipelines:
+        for name in ("consume", "beliefs", "belief"):
             if hasattr(target, name):
                 setattr(target, name, timer.wrap(getattr(target, name)))
     return timer

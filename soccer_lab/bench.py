@@ -150,8 +150,9 @@ def _bare_rate(world, steps: int, repeats: int) -> float:
     n = world.n_robots
     poses = np.column_stack([rng.uniform(-3, 3, n), rng.uniform(-2, 2, n), np.zeros(n)])
     world.reset(poses, (0.0, 0.0))
-    for control in world._controls:
-        control.velocity = tuple(rng.uniform(-2, 2, 2))
+    commands = np.zeros((n, 6))
+    commands[:, 0:2] = rng.uniform(-2, 2, (n, 2))
+    world.step(commands)  # the drives take these velocities; the bare loop keeps them
     world.set_ball(0.0, 0.0, 3.0, 1.0)
     space, h, k = world.space, world.substep_dt, world.n_substeps
 

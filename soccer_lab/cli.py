@@ -46,30 +46,29 @@ def _cmd_list(argv: list[str]) -> int:
                                 description="List environments and presets.")
     p.add_argument("--json", action="store_true")
     p.parse_args(argv)
-    from soccer_env import ENV_IDS, PETTINGZOO_IDS, presets
-    from soccer_env.perception.base import (
-        BALL_FILTERS,
-        BALL_TRACKERS,
-        DETECTORS,
-        FUSIONS,
-        LOCALIZATIONS,
-    )
-    from soccer_env.presets.sensors import HEAD_CAMERAS, VISION
+    from soccer_env import presets
+    from soccer_env.envs.registration import GYMNASIUM, PETTINGZOO
+    from soccer_env.perception import options
 
-    info = {
-        "gymnasium": sorted(ENV_IDS),
-        "pettingzoo": [*PETTINGZOO_IDS, "soccer_env.parallel_env", "soccer_env.env"],
-        "fields": {k: v.source for k, v in presets.FIELDS.items()},
-        "balls": {k: v.source for k, v in presets.BALLS.items()},
-        "robots": {k: v.source for k, v in presets.ROBOTS.items()},
-        "vision (SSL)": {k: v.source for k, v in VISION.items()},
-        "head cameras (humanoids)": {k: v.source for k, v in HEAD_CAMERAS.items()},
-        "ball filters (SSL)": dict(BALL_FILTERS),
-        "localization (humanoids)": dict(LOCALIZATIONS),
-        "fusion (humanoids)": dict(FUSIONS),
-        "ball trackers (humanoids)": dict(BALL_TRACKERS),
-        "detectors": dict(DETECTORS),
+    # Every family is a registry: its names and one-line descriptions.
+    families = {
+        "gymnasium": GYMNASIUM,
+        "pettingzoo (also soccer_env.parallel_env, soccer_env.env)": PETTINGZOO,
+        "fields": presets.FIELDS,
+        "balls": presets.BALLS,
+        "robots": presets.ROBOTS,
+        "vision (SSL)": presets.VISION,
+        "head cameras (humanoids)": presets.HEAD_CAMERAS,
+        "radio (humanoids)": presets.RADIO_PRESETS,
+        "overhead frames (pixels)": presets.OVERHEAD_FRAMES,
+        "head frames (pixels)": presets.HEAD_FRAMES,
+        "ball filters (SSL)": options.BALL_FILTERS,
+        "localization (humanoids)": options.LOCALIZATIONS,
+        "fusion (humanoids)": options.FUSIONS,
+        "ball trackers (humanoids)": options.BALL_TRACKERS,
+        "detectors": options.DETECTORS,
     }
+    info = {key: family.descriptions() for key, family in families.items()}
     if "--json" in argv:
         print(json.dumps(info, indent=2))
     else:

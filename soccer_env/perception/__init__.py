@@ -1,7 +1,8 @@
 """Perception: the pipelines that turn sensor output into what a team or a robot believes.
 
-* :mod:`~soccer_env.perception.base`: configuration (:class:`PerceptionConfig`) and the option
-  families (ball filters, localization, fusion, ball trackers, detectors);
+* :mod:`~soccer_env.perception.base`: configuration (:class:`PerceptionConfig`);
+* :mod:`~soccer_env.perception.options`: the option families, one registry each (ball
+  filters, ball trackers, fusion, localization, detectors);
 * :mod:`~soccer_env.perception.overhead`: SSL teams: truth, raw detections, filtered beliefs;
 * :mod:`~soccer_env.perception.humanoid` and :mod:`~soccer_env.perception.brain`: humanoid
   teams: localization, radio, Hough fusion, particle tracking per robot;
@@ -11,18 +12,15 @@
 Perception reads the world state, head states and odometry; it never writes the simulation.
 """
 
-from soccer_env.perception.base import (
+from soccer_env.perception.base import OBS_MODES, Perception, PerceptionConfig
+from soccer_env.perception.match import MatchPerception
+from soccer_env.perception.options import (
     BALL_FILTERS,
     BALL_TRACKERS,
     DETECTORS,
     FUSIONS,
     LOCALIZATIONS,
-    OBS_MODES,
-    Perception,
-    PerceptionConfig,
-    ball_filter_config,
 )
-from soccer_env.perception.match import MatchPerception
 from soccer_env.perception.overhead import (
     FilteredPerception,
     RawPerception,
@@ -31,6 +29,6 @@ from soccer_env.perception.overhead import (
 )
 
 __all__ = ["OBS_MODES", "BALL_FILTERS", "DETECTORS", "LOCALIZATIONS", "FUSIONS",
-           "BALL_TRACKERS", "Perception", "PerceptionConfig", "ball_filter_config",
+           "BALL_TRACKERS", "Perception", "PerceptionConfig",
            "TruthPerception", "RawPerception", "FilteredPerception", "make_perception",
            "MatchPerception"]

@@ -33,8 +33,13 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from estimators import MIN_SIGMA_XY, BallFilterConfig
-from soccer_env.presets import BallSpec
+from soccer_env.perception.options import (
+    BALL_FILTERS,
+    BALL_TRACKERS,
+    DETECTORS,
+    FUSIONS,
+    LOCALIZATIONS,
+)
 from soccer_env.presets.sensors import (
     HEAD_CAMERAS,
     RADIO_PRESETS,
@@ -48,33 +53,11 @@ from soccer_env.presets.sensors import (
 from soccer_env.state import WorldState
 from soccer_env.validation import from_mapping
 
-__all__ = ["LOCALIZATIONS", "FUSIONS", "BALL_TRACKERS", "Perception", "PerceptionConfig",
-           "OBS_MODES", "BALL_FILTERS", "ball_filter_config"]
+__all__ = ["OBS_MODES", "Perception", "PerceptionConfig", "BALL_FILTERS", "BALL_TRACKERS",
+           "FUSIONS", "LOCALIZATIONS", "DETECTORS"]
 
 #: Observation modes.
 OBS_MODES = ("truth", "raw", "perceived")
-
-
-#: Where detections come from: the sensor models, or image trackers on rendered frames.
-DETECTORS = {
-    "geometric": "the sensor model's noisy detections",
-    "pixels": "rendered camera images tracked by paper 003's mean-shift particle filters "
-              "(overhead) and paper 004's Kalman-started mean shift (head cameras)",
-}
-
-
-#: Ball filter configurations of ``obs_mode="perceived"``.
-BALL_FILTERS = {
-    "kf": "constant-velocity Kalman filter fed arrival times (no latency compensation), "
-          "no gating",
-    "kf-comp": "the same with latency compensation",
-    "ekf": "paper 002's friction EKF (analytic Jacobian), latency compensation, eq. 19 "
-           "collision-aware noise, gating and reset on kicks (default)",
-    "ekf-improved": "paper 002's improved EKF (Runge-Kutta propagation, F = M), otherwise "
-                    "as 'ekf'",
-    "ekf-2phase": "'ekf' with the two-phase sliding/rolling model after detected kicks",
-    "ls": "paper 002's least-squares predictor (line fit to the last 6 detections)",
-}
 
 
 class Perception(Protocol):
@@ -99,7 +82,8 @@ class PerceptionConfig:
 
     Attributes:
         vision: a :class:`~soccer_env.presets.VisionSpec` (or preset name).
-        ball_filter: one of :data:`BALL_FILTERS` (used by ``obs_mode="perceived"``).
+        ball_filter: one of :data:`~soccer_env.perception.options.BALL_FILTERS` (used by
+            ``obs_mode="perceived"``).
         detector: ``"geometric"`` (the sensor model's detections) or ``"pixels"`` (rendered
             images tracked by paper 003's mean-shift particle filters,
             :mod:`soccer_env.perception.pixels`; needs the ``pixels`` extra).
@@ -110,9 +94,9 @@ class PerceptionConfig:
         camera: a :class:`~soccer_env.presets.HeadCameraSpec`, a preset name, or None for the
             robot preset's camera.
         radio: the team radio, a :class:`~soccer_env.presets.RadioSpec` or preset name.
-        localization: one of :data:`~soccer_env.perception.base.LOCALIZATIONS`.
-        fusion: one of :data:`~soccer_env.perception.base.FUSIONS`.
-        ball_tracker: one of :data:`~soccer_env.perception.base.BALL_TRACKERS`.
+        localization: one of :data:`~soccer_env.perception.options.LOCALIZATIONS`.
+        fusion: one of :data:`~soccer_env.perception.options.FUSIONS`.
+        ball_tracker: one of :data:`~soccer_env.perception.options.BALL_TRACKERS`.
     """
 
     vision: VisionSpec
@@ -130,12 +114,8 @@ class PerceptionConfig:
         elif not isinstance(self.vision, VisionSpec):
             raise TypeError(f"perception vision must be a preset name or a VisionSpec, got "
                             f"{type(self.vision).__name__}")
-        if self.ball_filter not in BALL_FILTERS:
-            raise ValueError(f"ball_filter must be one of {list(BALL_FILTERS)}, got "
-                             f"{self.ball_filter!r}")
-        if self.detector not in DETECTORS:
-            raise ValueError(f"detector must be one of {list(DETECTORS)}, got "
-                             f"{self.detector!r}")
+        BALL_FILTERS.check(self.ball_filter, "ball_filter")
+        DETECTORS.check(self.detector, "detector")
         if isinstance(self.camera, str):
             object.__setattr__(self, "camera", head_camera(self.camera))
         elif self.camera is not None and not isinstance(self.camera, HeadCameraSpec):
@@ -149,11 +129,9 @@ class PerceptionConfig:
         elif not isinstance(self.radio, RadioSpec):
             raise TypeError(f"perception radio must be a preset name or a RadioSpec, got "
                             f"{type(self.radio).__name__}")
-        for name, allowed in (("localization", LOCALIZATIONS), ("fusion", FUSIONS),
-                              ("ball_tracker", BALL_TRACKERS)):
-            if getattr(self, name) not in allowed:
-                raise ValueError(f"{name} must be one of {list(allowed)}, got "
-                                 f"{getattr(self, name)!r}")
+        for name, family in (("localization", LOCALIZATIONS), ("fusion", FUSIONS),
+                             ("ball_tracker", BALL_TRACKERS)):
+            family.check(getattr(self, name), name)
 
     @classmethod
     def create(cls, value: Any, obs_mode: str, kind: str = "ssl") -> PerceptionConfig:
@@ -180,51 +158,3 @@ class PerceptionConfig:
                 "vision": default_vision if kind == "humanoid" else "realistic"})
         raise TypeError(f"perception must be a preset name, a VisionSpec or HeadCameraSpec, a "
                         f"mapping or a PerceptionConfig, got {type(value).__name__}")
-
-
-def ball_filter_config(name: str, ball: BallSpec, spec: VisionSpec
-                       ) -> tuple[BallFilterConfig | None, bool]:
-    """The :class:`~estimators.BallFilterConfig` of ball filter ``name`` for this ball and
-    sensor (None for ``"ls"``), and whether it is fed capture times (latency compensation).
-
-    The filters assume the sensor's noise (at least 1 mm) and the ball's rolling
-    deceleration; the other parameters are paper 002's.
-    """
-    sigma = max(spec.ball_sigma, MIN_SIGMA_XY)
-    if name == "ls":
-        return None, True
-    if name in ("kf", "kf-comp"):
-        cfg = BallFilterConfig(deceleration=0.0, sigma_xy=sigma, collision_noise=False,
-                               gate=None, reset_after=None)
-        return cfg, name == "kf-comp"
-    two_phase = (ball.sliding_deceleration, ball.k_switch) if name == "ekf-2phase" else None
-    propagation = "rk" if name == "ekf-improved" else "jacobian"
-    return BallFilterConfig(deceleration=ball.rolling_deceleration, propagation=propagation,
-                            sigma_xy=sigma, two_phase=two_phase), True
-
-
-#: Self-localization choices.
-LOCALIZATIONS = {
-    "kld": "paper 001's KLD-sampling particle filter on odometry and landmark sightings",
-    "odometry": "dead reckoning from the known start pose (no landmarks)",
-    "truth": "the true pose (oracle, for ablations)",
-}
-
-
-#: Ball fusion choices: the robot's own sighting only, or paper 000's Hough-space fusion of
-#: the team's sightings with the weighting named.
-FUSIONS = {
-    "own": "the robot's own sighting only",
-    "equal": "Hough-space fusion of the team's sightings, equal weights",
-    "inverse": "Hough-space fusion, weights 1/L (paper 000's weighted fusion)",
-    "inverse_square": "Hough-space fusion, weights 1/L^2",
-}
-
-
-#: Ball trackers fed by the fused sightings.
-BALL_TRACKERS = {
-    "none": "no tracking: the latest fused point, velocity from the last two",
-    "bootstrap": "bootstrap particle filter, 100 particles",
-    "fbpf": "fission bootstrap particle filter (FBPF), 100 particles",
-    "mfbpf": "paper 000's modified FBPF, 100 particles",
-}

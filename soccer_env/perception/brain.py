@@ -12,7 +12,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from estimators import KLDLocalizer, ParticleBallTracker, fuse_sightings
+from estimators import fuse_sightings
+from soccer_env.perception.options import BALL_TRACKERS, FUSIONS, LOCALIZATIONS
 from soccer_env.sensors.headcam import HeadFrame
 from soccer_env.sensors.radio import Message
 from soccer_env.state import WorldState
@@ -84,24 +85,20 @@ class Brain:
         cfg = perception.config
         self.kind = cfg.localization
         self.fusion = cfg.fusion
-        if perception.pixels:
-            from soccer_env.perception.pixels import BallImageTracker
-
-            self.finder: Any = BallImageTracker(perception.camera, perception.ball_spec)
-        else:
-            self.finder = None
-        self.tracker = (None if cfg.ball_tracker == "none" else ParticleBallTracker(
-            rng, filter=cfg.ball_tracker, n_particles=100, accel_sigma=1.0,
-            deceleration=perception.ball_spec.rolling_deceleration,
-            lost_after=2.0, max_speed=_MAX_BALL_SPEED, reinit_after=2))
+        finder = perception.ball_finder
+        self.finder: Any = None if finder is None else finder(perception.camera,
+                                                               perception.ball_spec)
+        tracker = BALL_TRACKERS[cfg.ball_tracker]
+        self.tracker = (None if tracker is None else tracker(
+            rng, perception.ball_spec.rolling_deceleration, _MAX_BALL_SPEED))
+        self._localizer = LOCALIZATIONS[self.kind]
 
     def reset(self, state: WorldState) -> None:
         p = self.p
         start = state.robots[self.i, 0:3].copy()  # placed at a known pose
         self.pose = start.copy()
-        self.loc = (KLDLocalizer(p.bounds, self.rng, p.kld_config, pose=start,
-                                 pose_sigma=(0.05, 0.05, 0.05))
-                    if self.kind == "kld" else None)
+        self.loc = (None if self._localizer is None
+                    else self._localizer(p.bounds, self.rng, p.kld_config, start))
         self._loc_estimate = start
         self.odo: deque[tuple[float, tuple[float, float, float]]] = deque()
         self.gait_velocity = (0.0, 0.0, 0.0)
@@ -281,7 +278,7 @@ class Brain:
                 speed = math.hypot(*velocity)
                 if speed > _MAX_BALL_SPEED:  # never move lines by an impossible motion
                     velocity = velocity * (_MAX_BALL_SPEED / speed)
-        weighting = "inverse" if self.fusion == "own" else self.fusion
+        weighting = FUSIONS[self.fusion]
         ranges = np.array([ln.range for ln in lines])
         known = ranges[np.isfinite(ranges)]
         p = self.p

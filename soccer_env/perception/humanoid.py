@@ -47,9 +47,10 @@ import numpy as np
 
 from estimators import KLDConfig, KLDLocalizer, ParticleBallTracker
 from soccer_env.perception.brain import _FUSION_WINDOW_FRAMES, Brain
+from soccer_env.perception.options import DETECTORS
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.presets.sensors import HeadCameraSpec, RadioSpec
-from soccer_env.sensors.headcam import HeadCameraSensor, HeadFrame, field_landmarks
+from soccer_env.sensors.headcam import HeadFrame, field_landmarks
 from soccer_env.sensors.radio import TeamRadio
 from soccer_env.state import Attention, BodyState, WorldState
 
@@ -90,15 +91,11 @@ class HumanoidTeamPerception:
         self.team_members = {t: [i for i in self.observers if self.teams[i] == t]
                              for t in (0, 1)}
         self.camera, self.radio_spec = camera, radio
-        self.pixels = getattr(config, "detector", "geometric") == "pixels"
-        if self.pixels:  # rendered images; the robots find the ball in them
-            from soccer_env.sensors.images.cameras import PixelHeadCamera
-
-            self.sensor = PixelHeadCamera(camera, field, ball, self.specs, self.teams,
-                                          self.observers)
-        else:
-            self.sensor = HeadCameraSensor(camera, field, ball, [s.radius for s in self.specs],
-                                           self.teams, self.observers)
+        detector = DETECTORS[getattr(config, "detector", "geometric")]
+        self.sensor = detector.head(camera, field, ball, self.specs, self.teams, self.observers)
+        #: Builds a robot's ball finder for its frame images (None: the frames carry ball
+        #: detections).
+        self.ball_finder = detector.ball_finder
         positions, kinds = field_landmarks(field, camera.distinct_goals)
         table: dict[str, list] = {}
         for pos, kind in zip(positions, kinds):
@@ -155,14 +152,14 @@ class HumanoidTeamPerception:
         for b in self._brains.values():
             b.reset(state)
         self.time = state.time
-        self._consume(self.sensor.reset(state, body.heads, self._rngs[-1]), state, None)
+        self.consume(self.sensor.reset(state, body.heads, self._rngs[-1]), state, None)
 
     def update(self, state: WorldState, body: BodyState) -> None:
         """Advance to ``state``: odometry, frames, radio, fusion and tracking."""
         self.time = state.time
-        self._consume(self.sensor.step(state, body.heads), state, body)
+        self.consume(self.sensor.step(state, body.heads), state, body)
 
-    def _consume(self, frames: list[HeadFrame], state: WorldState, body: BodyState | None
+    def consume(self, frames: list[HeadFrame], state: WorldState, body: BodyState | None
                  ) -> None:
         """The estimation of one step (the sensor simulation done): odometry (none at the
         start, ``body=None``), the frames, the radio."""

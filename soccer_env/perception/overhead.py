@@ -18,15 +18,11 @@ from typing import Any
 
 import numpy as np
 
-from estimators import BallTracker, LeastSquaresBall, RobotTracker
-from soccer_env.perception.base import (
-    OBS_MODES,
-    Perception,
-    PerceptionConfig,
-    ball_filter_config,
-)
+from estimators import RobotTracker
+from soccer_env.perception.base import OBS_MODES, Perception, PerceptionConfig
+from soccer_env.perception.options import BALL_FILTERS, DETECTORS
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
-from soccer_env.sensors.overhead import DetectionFrame, OverheadVision
+from soccer_env.sensors.overhead import DetectionFrame
 from soccer_env.state import Belief, WorldState
 
 __all__ = ["TruthPerception", "RawPerception", "FilteredPerception", "make_perception"]
@@ -53,21 +49,11 @@ class _VisionPerception:
                  robots: Sequence[Any] | None = None) -> None:
         self.config = config
         self.vision_spec = config.vision
-        #: Turns the sensor's frames into detection frames (None: they are detections).
-        self.detector: Any = None
-        if config.detector == "pixels":
-            try:
-                from soccer_env.perception.pixels import OverheadPixelDetector
-                from soccer_env.sensors.images.cameras import OverheadImageCamera
-            except ImportError as err:  # pragma: no cover - depends on the installation
-                raise ImportError("detector='pixels' needs OpenCV; install it with: "
-                                  "pip install 'soccer-env[pixels]'") from err
-            self.sensor = OverheadImageCamera(config.vision, field,
-                                              robots or [robot] * n_robots, ball,
-                                              teams if teams is not None else [0] * n_robots)
-            self.detector = OverheadPixelDetector(self.sensor, config.vision)
-        else:
-            self.sensor = OverheadVision(config.vision, field, robot, ball, n_robots)
+        #: The overhead sensor, and what turns its frames into detection frames (None: they
+        #: are detections already), as the detector option builds them.
+        self.sensor, self.detector = DETECTORS[config.detector].overhead(
+            config.vision, field, robot, robots or [robot] * n_robots, ball,
+            teams if teams is not None else [0] * n_robots)
         #: The detections' measurement models (the filters weigh them with these).
         self.measurements = self.detector if self.detector is not None else self.sensor
         self.n_robots = n_robots
@@ -82,23 +68,25 @@ class _VisionPerception:
             image_rng = np.random.default_rng(rng.integers(2**63))
             self.detector.reset(state, np.random.default_rng(rng.integers(2**63)))
             frames = self.detector.detections(self.sensor.reset(state, rng, image_rng))
-        self._consume(frames, state.time)
-        return self._beliefs(state.time)
+        self.consume(frames, state.time)
+        return self.beliefs(state.time)
 
     def update(self, state: WorldState):
         frames = self.sensor.step(state)
         if self.detector is not None:
             frames = self.detector.detections(frames)
-        self._consume(frames, state.time)
-        return self._beliefs(state.time)
+        self.consume(frames, state.time)
+        return self.beliefs(state.time)
 
     def _clear(self) -> None:
         raise NotImplementedError
 
-    def _consume(self, frames: list[DetectionFrame], now: float) -> None:
+    def consume(self, frames: list[DetectionFrame], now: float) -> None:
+        """The estimation of one step: take the detection frames delivered by ``now``."""
         raise NotImplementedError
 
-    def _beliefs(self, now: float):
+    def beliefs(self, now: float):
+        """``(belief for the observation, belief now)`` at ``now``."""
         raise NotImplementedError
 
 
@@ -119,7 +107,7 @@ class RawPerception(_VisionPerception):
         self._ball = [None, None]  # last two (t, x, y)
         self._robots = [[None, None] for _ in range(n)]
 
-    def _consume(self, frames: list[DetectionFrame], now: float) -> None:
+    def consume(self, frames: list[DetectionFrame], now: float) -> None:
         for f in sorted(frames, key=lambda f: f.t_capture):
             t = f.t_capture
             if f.balls:
@@ -133,7 +121,7 @@ class RawPerception(_VisionPerception):
             for i, pose in zip(f.robot_ids, f.robots):
                 _push(self._robots[i], (t, *pose), self._min_gap)
 
-    def _beliefs(self, now: float):
+    def beliefs(self, now: float):
         ball = np.zeros(6)
         ball[0:2], ball[3:5] = _last_and_rate(self._ball, 2)
         robots = np.zeros((self.n_robots, 6))
@@ -182,16 +170,15 @@ class FilteredPerception(_VisionPerception):
         spec = config.vision
         # The filters weigh detections with the sensor's own measurement models.
         self.robot_tracker = RobotTracker(n_robots, measurement=self.measurements.robot_model)
-        cfg, self._capture_times = ball_filter_config(config.ball_filter, ball, spec)
-        self.ball_tracker = (LeastSquaresBall() if cfg is None
-                             else BallTracker(cfg, self.measurements.ball_model))
+        built = BALL_FILTERS.create(config.ball_filter, ball, spec, self.measurements.ball_model)
+        self.ball_tracker, self._capture_times = built.tracker, built.capture_times
         self.ahead = spec.actuation_latency
 
     def _clear(self) -> None:
         self.robot_tracker.reset()
         self.ball_tracker.reset()
 
-    def _consume(self, frames: list[DetectionFrame], now: float) -> None:
+    def consume(self, frames: list[DetectionFrame], now: float) -> None:
         if not frames:
             return
         robots, ball = self.robot_tracker, self.ball_tracker
@@ -204,7 +191,7 @@ class FilteredPerception(_VisionPerception):
                 stamp = t if self._capture_times else f.t_delivered
                 ball.update(stamp, f.balls, f.robots)
 
-    def _beliefs(self, now: float):
+    def beliefs(self, now: float):
         current = self._belief(now)
         return (self._belief(now + self.ahead) if self.ahead else current), current
 

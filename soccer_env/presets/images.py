@@ -121,16 +121,16 @@ class OverheadFrameSpec:
 
 OVERHEAD_FRAMES: Registry[OverheadFrameSpec] = preset_table('overhead_frame', {
     # No imperfection: no blur, no lighting change, no noise. 640 x 480 (paper 003's image)
-    # at 60 Hz (SSL-Vision's 60-75 Hz, as vision.VISION["realistic"]).
+    # at 60 Hz (SSL-Vision's 60-75 Hz, as VISION["realistic"]).
     "clean": OverheadFrameSpec(
         name="clean", source="no imperfection; 640 x 480 (paper 003), 60 Hz (SSL-Vision)"),
-    # An SSL-Vision-like camera: 60 Hz, 4 m high (vision.VISION). Assumptions (ours): 5 ms
+    # An SSL-Vision-like camera: 60 Hz, 4 m high (VISION). Assumptions (ours): 5 ms
     # exposure (teams shorten it to limit blur), 3 % flicker of the hall lighting, up to 15 %
     # brightness ramp across the image (uneven lighting), 3 grey levels of sensor noise.
     "realistic": OverheadFrameSpec(
         name="realistic", frame_rate=60.0, exposure=0.005, gain_sigma=0.03, gradient=0.15,
         noise_sigma=3.0, camera_height=4.0,
-        source="SSL-Vision rate and height (vision.VISION); exposure, lighting and noise "
+        source="SSL-Vision rate and height (VISION); exposure, lighting and noise "
                "assumed",
     ),
     # Paper 003's MiroSot camera: 640 x 480, about 33 ms per cycle (30 Hz). Assumptions

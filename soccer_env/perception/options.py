@@ -1,0 +1,239 @@
+"""The option families of perception, one registry each: a name, what builds the option, and a
+one-line description (what ``soccer-env list``, the ablation and the error messages read).
+
+* :data:`BALL_FILTERS` (SSL teams, ``ball_filter=``): name -> ``factory(ball, vision,
+  measurement) -> BallFilter`` (the tracker and whether it is fed capture times);
+* :data:`BALL_TRACKERS` (humanoids, ``ball_tracker=``): ``"none"`` or one of the estimators'
+  :data:`~estimators.PARTICLE_FILTERS`, name -> ``factory(rng, deceleration, max_speed)``
+  (None for ``"none"``);
+* :data:`FUSIONS` (humanoids, ``fusion=``): the robot's own sighting, or Hough-space fusion with
+  one of the estimators' :data:`~estimators.FUSION_WEIGHTINGS`; name -> the weighting of
+  :func:`~estimators.fuse_sightings`;
+* :data:`LOCALIZATIONS` (humanoids, ``localization=``): name -> ``factory(bounds, rng, config,
+  pose)`` of the localization filter, or None for dead reckoning and the oracle, which the
+  robot's :class:`~soccer_env.perception.brain.Brain` keeps itself;
+* :data:`DETECTORS` (``detector=``): name -> :class:`Detector`, the factories of the overhead
+  sensor (and its detector), the head-camera sensor and a robot's ball finder.
+
+A new option is one ``register`` call on its family.
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Callable, Sequence
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from estimators import (
+    FUSION_WEIGHTINGS,
+    MIN_SIGMA_XY,
+    PARTICLE_FILTERS,
+    BallFilterConfig,
+    BallTracker,
+    KLDConfig,
+    KLDLocalizer,
+    LeastSquaresBall,
+    ParticleBallTracker,
+    PositionMeasurement,
+)
+from estimators.registry import Registry
+from soccer_env.presets import BallSpec, FieldSpec, HeadCameraSpec, RobotSpec, VisionSpec
+from soccer_env.sensors.headcam import HeadCameraSensor
+from soccer_env.sensors.overhead import OverheadVision
+
+__all__ = ["BallFilter", "BALL_FILTERS", "BALL_TRACKERS", "FUSIONS", "LOCALIZATIONS",
+           "Detector", "DETECTORS", "PARTICLES"]
+
+
+# --------------------------------------------------------------------------------------------
+# Ball filters of SSL teams
+# --------------------------------------------------------------------------------------------
+
+
+class BallFilter(NamedTuple):
+    """A built ball filter: the tracker (``update(t, detections, robots)``,
+    ``estimate(t)``) and whether it is fed capture times (latency compensation) rather than
+    arrival times."""
+
+    tracker: Any
+    capture_times: bool
+
+
+def _sigma(vision: VisionSpec) -> float:
+    """The measurement noise the filters assume: the sensor's, at least 1 mm."""
+    return max(vision.ball_sigma, MIN_SIGMA_XY)
+
+
+def _kalman(compensated: bool, ball: BallSpec, vision: VisionSpec,
+            measurement: PositionMeasurement) -> BallFilter:
+    """The constant-velocity Kalman filter: no friction, no collision noise, no gating."""
+    cfg = BallFilterConfig(deceleration=0.0, sigma_xy=_sigma(vision), collision_noise=False,
+                           gate=None, reset_after=None)
+    return BallFilter(BallTracker(cfg, measurement), compensated)
+
+
+def _ekf(propagation: str, two_phase: bool, ball: BallSpec, vision: VisionSpec,
+         measurement: PositionMeasurement) -> BallFilter:
+    """Paper 002's friction EKF with the ball's rolling deceleration (and, with
+    ``two_phase``, its sliding phase after kicks); its other parameters are the paper's."""
+    cfg = BallFilterConfig(deceleration=ball.rolling_deceleration, propagation=propagation,
+                           sigma_xy=_sigma(vision),
+                           two_phase=((ball.sliding_deceleration, ball.k_switch) if two_phase
+                                      else None))
+    return BallFilter(BallTracker(cfg, measurement), True)
+
+
+def _least_squares(ball: BallSpec, vision: VisionSpec, measurement: PositionMeasurement
+                   ) -> BallFilter:
+    return BallFilter(LeastSquaresBall(), True)
+
+
+#: Ball filters of ``obs_mode="perceived"`` for SSL teams.
+BALL_FILTERS: Registry[Callable[..., BallFilter]] = Registry("ball filter", [
+    ("kf", functools.partial(_kalman, False),
+     "constant-velocity Kalman filter fed arrival times (no latency compensation), no gating"),
+    ("kf-comp", functools.partial(_kalman, True), "the same with latency compensation"),
+    ("ekf", functools.partial(_ekf, "jacobian", False),
+     "paper 002's friction EKF (analytic Jacobian), latency compensation, eq. 19 "
+     "collision-aware noise, gating and reset on kicks (default)"),
+    ("ekf-improved", functools.partial(_ekf, "rk", False),
+     "paper 002's improved EKF (Runge-Kutta propagation, F = M), otherwise as 'ekf'"),
+    ("ekf-2phase", functools.partial(_ekf, "jacobian", True),
+     "'ekf' with the two-phase sliding/rolling model after detected kicks"),
+    ("ls", _least_squares,
+     "paper 002's least-squares predictor (line fit to the last 6 detections)"),
+])
+
+
+# --------------------------------------------------------------------------------------------
+# Humanoid teams: ball trackers, fusion, localization
+# --------------------------------------------------------------------------------------------
+
+#: Particles of a humanoid's ball tracker (paper 000: 100).
+PARTICLES = 100
+
+
+def _particle_tracker(name: str, rng: np.random.Generator, deceleration: float,
+                      max_speed: float) -> ParticleBallTracker:
+    """A humanoid's ball tracker on the particle filter ``name`` (see
+    :class:`~estimators.ParticleBallTracker`): 1 m/s^2 of acceleration noise, the ball's
+    rolling deceleration, restarted after 2 s without a fused sighting or after two
+    implausible ones in a row."""
+    return ParticleBallTracker(rng, filter=name, n_particles=PARTICLES, accel_sigma=1.0,
+                               deceleration=deceleration, lost_after=2.0, max_speed=max_speed,
+                               reinit_after=2)
+
+
+#: Ball trackers fed by a humanoid's fused sightings: none, or one per particle filter of the
+#: estimators.
+BALL_TRACKERS: Registry[Callable[..., ParticleBallTracker] | None] = Registry(
+    "ball tracker",
+    [("none", None, "no tracking: the latest fused point, velocity from the last two")]
+    + [(name, functools.partial(_particle_tracker, name),
+        f"{PARTICLE_FILTERS.description(name)}; {PARTICLES} particles")
+       for name in PARTICLE_FILTERS])
+
+#: Ball fusion: the robot's own sighting only, or paper 000's Hough-space fusion of the team's
+#: sightings with one of the estimators' weightings (the value: the weighting
+#: :func:`~estimators.fuse_sightings` applies; a lone own line is weighted as ``"inverse"``).
+FUSIONS: Registry[str] = Registry(
+    "fusion",
+    [("own", "inverse", "the robot's own sighting only")]
+    + [(name, name, f"Hough-space fusion of the team's sightings, "
+                    f"{FUSION_WEIGHTINGS.description(name)}")
+       for name in FUSION_WEIGHTINGS])
+
+
+def _kld(bounds: tuple[float, float, float, float], rng: np.random.Generator,
+         config: KLDConfig, pose: np.ndarray) -> KLDLocalizer:
+    """Paper 001's KLD-sampling localization started at the known pose (5 cm, 0.05 rad)."""
+    return KLDLocalizer(bounds, rng, config, pose=pose, pose_sigma=(0.05, 0.05, 0.05))
+
+
+#: Self-localization of a humanoid: a filter's factory, or None where the robot keeps its pose
+#: itself (dead reckoning, the oracle).
+LOCALIZATIONS: Registry[Callable[..., KLDLocalizer] | None] = Registry("localization", [
+    ("kld", _kld, "paper 001's KLD-sampling particle filter on odometry and landmark "
+                  "sightings"),
+    ("odometry", None, "dead reckoning from the known start pose (no landmarks)"),
+    ("truth", None, "the true pose (oracle, for ablations)"),
+])
+
+
+# --------------------------------------------------------------------------------------------
+# Detectors
+# --------------------------------------------------------------------------------------------
+
+
+class Detector(NamedTuple):
+    """Where detections come from, as factories:
+
+    * ``overhead(vision, field, robot, robots, ball, teams) -> (sensor, detector)``: an SSL
+      team's overhead sensor and what turns its frames into detection frames (None: they are
+      detections already);
+    * ``head(camera, field, ball, robots, teams, observers) -> sensor``: the humanoids' head
+      cameras;
+    * ``ball_finder(camera, ball)``: what finds the ball in a humanoid's frame images (None:
+      the frames carry ball detections).
+    """
+
+    overhead: Callable[..., tuple[Any, Any]]
+    head: Callable[..., Any]
+    ball_finder: Callable[..., Any] | None
+
+
+def _geometric_overhead(vision: VisionSpec, field: FieldSpec, robot: RobotSpec,
+                        robots: Sequence[RobotSpec], ball: BallSpec, teams: Sequence[int]
+                        ) -> tuple[OverheadVision, None]:
+    return OverheadVision(vision, field, robot, ball, len(robots)), None
+
+
+def _geometric_head(camera: HeadCameraSpec, field: FieldSpec, ball: BallSpec,
+                    robots: Sequence[RobotSpec], teams: Sequence[int],
+                    observers: Sequence[int]) -> HeadCameraSensor:
+    return HeadCameraSensor(camera, field, ball, [s.radius for s in robots], teams, observers)
+
+
+def _needs_opencv(err: ImportError) -> ImportError:
+    return ImportError("detector='pixels' needs OpenCV; install it with: "
+                       "pip install 'soccer-env[pixels]'")
+
+
+def _pixels_overhead(vision: VisionSpec, field: FieldSpec, robot: RobotSpec,
+                     robots: Sequence[RobotSpec], ball: BallSpec, teams: Sequence[int]
+                     ) -> tuple[Any, Any]:
+    try:
+        from soccer_env.perception.pixels import OverheadPixelDetector
+        from soccer_env.sensors.images.cameras import OverheadImageCamera
+    except ImportError as err:  # pragma: no cover - depends on the installation
+        raise _needs_opencv(err) from err
+    camera = OverheadImageCamera(vision, field, robots, ball, teams)
+    return camera, OverheadPixelDetector(camera, vision)
+
+
+def _pixels_head(camera: HeadCameraSpec, field: FieldSpec, ball: BallSpec,
+                 robots: Sequence[RobotSpec], teams: Sequence[int],
+                 observers: Sequence[int]) -> Any:
+    try:
+        from soccer_env.sensors.images.cameras import PixelHeadCamera
+    except ImportError as err:  # pragma: no cover - depends on the installation
+        raise _needs_opencv(err) from err
+    return PixelHeadCamera(camera, field, ball, robots, teams, observers)
+
+
+def _pixels_ball_finder(camera: HeadCameraSpec, ball: BallSpec) -> Any:
+    from soccer_env.perception.pixels import BallImageTracker
+
+    return BallImageTracker(camera, ball)
+
+
+#: Where detections come from: the sensor models, or image trackers on rendered frames.
+DETECTORS: Registry[Detector] = Registry("detector", [
+    ("geometric", Detector(_geometric_overhead, _geometric_head, None),
+     "the sensor model's noisy detections"),
+    ("pixels", Detector(_pixels_overhead, _pixels_head, _pixels_ball_finder),
+     "rendered camera images tracked by paper 003's mean-shift particle filters (overhead) and "
+     "paper 004's Kalman-started mean shift (head cameras); needs the pixels extra"),
+])
