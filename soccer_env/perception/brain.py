@@ -99,7 +99,7 @@ class Brain:
         self.pose = start.copy()
         self.loc = (None if self._localizer is None
                     else self._localizer(p.bounds, self.rng, p.kld_config, start))
-        self._loc_estimate = start
+        self.loc_estimate = start
         self.odo: deque[tuple[float, tuple[float, float, float]]] = deque()
         self.gait_velocity = (0.0, 0.0, 0.0)
         self.own_line: _Line | None = None
@@ -142,21 +142,23 @@ class Brain:
         return np.array([pose[0] + c * d[0] - s * d[1], pose[1] + s * d[0] + c * d[1],
                          math.remainder(pose[2] + d[2], 2.0 * math.pi)])
 
-    def _odometry_until(self, t: float) -> tuple[float, float, float]:
+    def odometry_until(self, t: float) -> tuple[float, float, float]:
         """Compose and drop the odometry of the steps that ended by ``t``."""
         total = (0.0, 0.0, 0.0)
         while self.odo and self.odo[0][0] <= t + 1e-9:
             total = _compose(total, self.odo.popleft()[1])
         return total
 
-    def _predict(self, d: tuple[float, float, float]) -> None:
+    def move_localization(self, d: tuple[float, float, float]) -> None:
+        """Move the localization filter by the odometry ``d`` (``dx, dy, dtheta``, body frame
+        at its start); its estimate is kept in :attr:`loc_estimate`."""
         if d == (0.0, 0.0, 0.0) or self.loc is None:
             return
         # KLDLocalizer rotates the displacement by the mid-step heading; ``d`` is in the
         # start frame, so express it in the frame turned by half its rotation.
         c, s = math.cos(0.5 * d[2]), math.sin(0.5 * d[2])
         self.loc.predict((c * d[0] + s * d[1], -s * d[0] + c * d[1], d[2]))
-        self._loc_estimate = self.loc.estimate()
+        self.loc_estimate = self.loc.estimate()
 
     def stood_up(self, heading_sigma: float) -> None:
         """The robot got up, turned by an angle its odometry does not report (Gaussian,
@@ -166,13 +168,13 @@ class Brain:
         p = self.loc.particles
         turn = self.rng.normal(0.0, heading_sigma, len(p))
         p[:, 2] = np.remainder(p[:, 2] + turn + math.pi, 2.0 * math.pi) - math.pi
-        self._loc_estimate = self.loc.estimate()
+        self.loc_estimate = self.loc.estimate()
 
     def estimate_pose(self) -> np.ndarray:
         """The present pose estimate (localization plus the odometry not yet applied)."""
         if self.loc is None:
             return self.pose
-        pose = self._loc_estimate
+        pose = self.loc_estimate
         for _, d in self.odo:
             pose = self._moved(pose, d)
         return pose
@@ -184,12 +186,12 @@ class Brain:
         p = self.p
         self.last_frame = f.t_delivered
         if self.loc is not None:
-            self._predict(self._odometry_until(f.t_capture))
+            self.move_localization(self.odometry_until(f.t_capture))
             kinds, ranges, bearings = landmark_sightings(f)
             if kinds:
                 self.loc.update_kinds(kinds, ranges, bearings, p.landmark_table)
                 self.landmark_seen = f.t_capture
-            pose = self._loc_estimate = self.loc.estimate()
+            pose = self.loc_estimate = self.loc.estimate()
         else:
             pose = self.pose
             if any(math.isfinite(d[3]) for d in f.landmarks):

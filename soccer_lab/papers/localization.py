@@ -89,20 +89,20 @@ MIRROR_M, MIRROR_RAD = 0.5, math.radians(30.0)
 TURNING = 0.1
 
 
-class _Replay:
+class BrainReplay:
     """A filter fed as :class:`~soccer_env.perception.humanoid`'s robot brain feeds its
     localization: the brain's own odometry bookkeeping (kept with time stamps, composed up to
     a frame's capture time, turned into the filter's mid-step convention) on this filter."""
 
     kind = "kld"
     odometry = Brain.odometry
-    _odometry_until = Brain._odometry_until
-    _predict = Brain._predict
+    odometry_until = Brain.odometry_until
+    move_localization = Brain.move_localization
 
     def __init__(self, loc: KLDLocalizer) -> None:
         self.loc = loc
         self.odo: deque[tuple[float, tuple[float, float, float]]] = deque()
-        self._loc_estimate = loc.estimate()
+        self.loc_estimate = loc.estimate()
 
 
 def _route_command(pose: np.ndarray, t: float, segments: list[tuple[float, float]],
@@ -218,7 +218,7 @@ def _run_filter(ep: dict[str, Any], config: KLDConfig, seed: int) -> dict[str, A
     (at the frame's capture time) and the summary figures."""
     team = ep["team"]
     table = team.landmark_table
-    rep = _Replay(KLDLocalizer(team.bounds, np.random.default_rng(seed), config))
+    rep = BrainReplay(KLDLocalizer(team.bounds, np.random.default_rng(seed), config))
     loc = rep.loc
     initial = loc.n
     est, counts = [], []
@@ -229,12 +229,12 @@ def _run_filter(ep: dict[str, Any], config: KLDConfig, seed: int) -> dict[str, A
             continue
         _, t_cap, kinds, ranges, bearings = ev
         t0 = time.perf_counter()
-        rep._predict(rep._odometry_until(t_cap))
+        rep.move_localization(rep.odometry_until(t_cap))
         if kinds:
             loc.update_kinds(kinds, ranges, bearings, table)
-        rep._loc_estimate = loc.estimate()
+        rep.loc_estimate = loc.estimate()
         seconds += time.perf_counter() - t0
-        est.append(rep._loc_estimate)
+        est.append(rep.loc_estimate)
         counts.append(loc.n)
     t, truth = ep["frame_t"], ep["frame_truth"]
     e = np.array(est)
@@ -286,7 +286,7 @@ def _fmt_never(v: float | None, never: int) -> str:
 
 #: Per-episode figures summarized by their median over the episodes (None where an episode
 #: has none: left out; None if no episode has one).
-_MEDIAN_KEYS = ("median_pos_m", "median_head_deg", "median_pos_turning_m",
+MEDIAN_KEYS = ("median_pos_m", "median_head_deg", "median_pos_turning_m",
                 "median_pos_straight_m", "initial_particles", "first_second_particles",
                 "tracking_particles", "tracking_particles_median", "ms_per_update", "mirror_pct")
 #: Times that may never happen (None): their median counts "never" as infinitely late.
@@ -335,7 +335,7 @@ def _over_episodes(per: list[dict[str, Any]], kidnap: bool) -> dict[str, Any]:
     times to localize and to recover, the median with "never" as infinitely late (None when
     that is the median) and the number of episodes in which it never happened."""
     out: dict[str, Any] = {"episodes": len(per)}
-    for key in _MEDIAN_KEYS:
+    for key in MEDIAN_KEYS:
         vals = [r[key] for r in per if r[key] is not None]
         out[key] = float(np.median(vals)) if vals else None
     for key in _NEVER_KEYS:

@@ -68,7 +68,7 @@ def test_medians_over_episodes_and_per_episode_table(short_run):
     assert [ep["seed"] for ep in res["episodes"]] == SEEDS
     for name, r in res["results"].items():
         per = [ep["results"][name] for ep in res["episodes"]]
-        for key in localization._MEDIAN_KEYS:
+        for key in localization.MEDIAN_KEYS:
             vals = [p[key] for p in per if p[key] is not None]
             assert r[key] == pytest.approx(float(np.median(vals)))
         for key in ("localized_s", "recovery_s"):  # "never" counts as infinitely late
@@ -127,8 +127,8 @@ def test_same_episode_for_every_filter_and_outputs(short_run):
     assert "| filter | seed 4 | seed 5 |" in md
     assert (out / "paper_localization.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     # The filters are fed by the robot brain's own odometry code.
-    assert localization._Replay._odometry_until is Brain._odometry_until
-    assert localization._Replay._predict is Brain._predict
+    assert localization.BrainReplay.odometry_until is Brain.odometry_until
+    assert localization.BrainReplay.move_localization is Brain.move_localization
 
 
 def test_reproducible_whatever_the_workers_and_without_kidnapping(tmp_path, short_run):
