@@ -50,6 +50,7 @@ from estimators.registry import Registry
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.perception.options import BALL_FILTERS
 from soccer_env.presets.sensors import HEAD_CAMERAS, VISION
+from soccer_env.validation import check_fields
 
 __all__ = ["EstimatorConfig", "ESTIMATOR_CONFIGS", "HUMANOID_CONFIGS", "ROBOT_KINDS",
            "RobotKind", "robot_kind", "register_config", "AblationResult", "run_ablation",
@@ -96,12 +97,9 @@ class EstimatorConfig:
         if self.obs_mode not in OBS_MODES:
             raise ValueError(f"obs_mode of configuration {self.name!r} must be one of "
                              f"{list(OBS_MODES)}, got {self.obs_mode!r}")
-        allowed = {f.name for f in dataclasses.fields(PerceptionConfig)} - {"vision"}
-        unknown = sorted(set(self.perception) - allowed)
-        if unknown:
-            raise ValueError(f"unknown perception key(s) {unknown} in configuration "
-                             f"{self.name!r}; allowed: {sorted(allowed)} (the vision is the "
-                             f"preset)")
+        # The vision is the preset, not a configuration's.
+        check_fields(PerceptionConfig, self.perception, "perception", exclude=("vision",),
+                     where=f" in configuration {self.name!r} (its vision is the preset)")
         # Validates the values too (e.g. the ball filter's name).
         PerceptionConfig(vision="ideal", **self.perception)
         if self.robot not in ("ssl", "humanoid"):

@@ -46,6 +46,7 @@ import numpy as np
 from agents.evaluation import GOALKEEPER_ID, evaluate
 from agents.policies import SB3_ALGORITHMS, NumpyPolicy
 from agents.wrappers import ACTION_MAPS, wrap_actions
+from soccer_env.validation import check_fields
 
 __all__ = ["TrainConfig", "train", "check_env_kwargs", "make_vec_env", "EVAL_SEED_START",
            "MATCH_ID", "DEFAULT_HYPERPARAMS", "rollout_timer", "goalkeeper_env_fn"]
@@ -155,11 +156,7 @@ class TrainConfig:
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> TrainConfig:
-        allowed = {f.name for f in dataclasses.fields(cls)}
-        unknown = sorted(set(data) - allowed)
-        if unknown:
-            raise ValueError(f"unknown training config key(s) {unknown}; allowed: "
-                             f"{sorted(allowed)}")
+        check_fields(cls, data, "training config")
         return cls(**data)
 
     def to_dict(self) -> dict[str, Any]:

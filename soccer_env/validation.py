@@ -131,15 +131,16 @@ _S = TypeVar("_S")
 
 
 def check_fields(cls: Any, keys: Iterable[str], what: str, *, exclude: Iterable[str] = (),
-                 error: type[Exception] = ValueError, noun: str = "key") -> None:
+                 error: type[Exception] = ValueError, noun: str = "key", where: str = ""
+                 ) -> None:
     """Raise ``error`` unless every one of ``keys`` names a field of the dataclass ``cls``
-    (or of an instance), ``exclude`` left out: "unknown {what} {noun}(s) [...]; allowed:
-    [...]". The one check behind every mapping of a dataclass's fields the package accepts
-    (:func:`from_mapping`, :func:`resolve_preset`)."""
+    (or of an instance), ``exclude`` left out: "unknown {what} {noun}(s) [...]{where};
+    allowed: [...]". The one check behind every mapping of a dataclass's fields the package
+    accepts (:func:`from_mapping`, :func:`resolve_preset`, the agents' configurations)."""
     allowed = {f.name for f in dataclasses.fields(cls)} - set(exclude)
     unknown = sorted(set(keys) - allowed)
     if unknown:
-        raise error(f"unknown {what} {noun}(s) {unknown}; allowed: {sorted(allowed)}")
+        raise error(f"unknown {what} {noun}(s) {unknown}{where}; allowed: {sorted(allowed)}")
 
 
 def from_mapping(cls: type[_S], value: _S | Mapping[str, Any] | None, what: str,
