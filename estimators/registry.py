@@ -51,6 +51,13 @@ class Registry(Mapping[str, T], Generic[T]):
         self._descriptions[name] = " ".join(description.split())
         return value
 
+    def unregister(self, name: str) -> T:
+        """Remove option ``name`` (unknown names raise ``ValueError`` listing the options) and
+        return its value."""
+        self.check(name)
+        del self._descriptions[name]
+        return self._values.pop(name)
+
     # Mapping ------------------------------------------------------------------------------
 
     def __getitem__(self, name: str) -> T:

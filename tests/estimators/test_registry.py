@@ -84,3 +84,11 @@ def test_unknown_estimator_options_are_refused_with_the_options_listed():
     with pytest.raises(ValueError, match=r"^kernel must be one of \['flat', 'epanechnikov'\], "
                                          r"got 'gauss'$"):
         mean_shift(np.zeros((8, 8)), (0, 0, 2, 2), kernel="gauss")
+
+
+def test_unregister_removes_an_option():
+    reg = Registry("kernel", [("flat", 1, "flat"), ("cone", 2, "cone")])
+    assert reg.unregister("flat") == 1
+    assert list(reg) == ["cone"] and reg.descriptions() == {"cone": "cone"}
+    with pytest.raises(ValueError, match="kernel must be one of"):
+        reg.unregister("flat")
