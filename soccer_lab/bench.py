@@ -36,6 +36,8 @@ import gymnasium as gym
 import numpy as np
 import pymunk
 
+import soccer_env  # noqa: F401  (registers the environments)
+
 __all__ = ["run_benchmarks", "bench_frames", "format_table", "REFERENCE", "PERCEIVED_PRESETS",
            "main", "keeper_save_rates", "format_save_rates", "save_rate_main", "ROLLOUT_CONFIGS",
            "rollout_rate", "rollout_rates", "format_rollout_rates", "rollout_main"]

@@ -243,7 +243,7 @@ class GoalkeeperEnv(SingleAgentTask):
         **unknown: Any,
     ) -> None:
         reject_unknown("GoalkeeperEnv", unknown, keyword_names(GoalkeeperEnv.__init__))
-        check_choice("obs_mode", obs_mode, OBS_MODES)
+        check_choice("obs_mode", obs_mode, OBS_MODES)  # before it picks the default perception
         spec, fld, bl = resolve_world(robot, field, ball)
         humanoid = spec.kind == "humanoid"
         if mates is None:

@@ -11,16 +11,14 @@ from pettingzoo import ParallelEnv
 from pettingzoo.utils import parallel_to_aec
 
 from soccer_env import presets
-from soccer_env.envs.base import SoccerCore
+from soccer_env.envs.base import SoccerCore, resolve_world
 from soccer_env.observations import ObservationBuilder
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.render.renderer import RENDER_MODES
 from soccer_env.sim.commands import (
-    OUT_OF_RANGE_MODES,
     validate_actions,
 )
-from soccer_env.sim.heads import HEAD_MODES
 from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff
 from soccer_env.sim.world import MAX_TEAM_SIZE
 from soccer_env.validation import (
@@ -140,15 +138,12 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         **unknown: Any,
     ) -> None:
         reject_unknown("parallel_env", unknown, keyword_names(SoccerParallelEnv.__init__))
-        check_choice("head", head, HEAD_MODES)
         blue = check_int("blue", blue, 0, MAX_TEAM_SIZE)
         yellow = check_int("yellow", yellow, 0, MAX_TEAM_SIZE)
         if blue + yellow < 1:
             raise ValueError(f"a match needs at least one robot: blue + yellow must be >= 1, "
                              f"got {blue} + {yellow}")
-        check_choice("obs_mode", obs_mode, OBS_MODES)
-        check_choice("render_mode", render_mode, [None, *RENDER_MODES])
-        check_choice("out_of_range_actions", out_of_range_actions, OUT_OF_RANGE_MODES)
+        check_choice("obs_mode", obs_mode, OBS_MODES)  # before it picks the default perception
         self.match_duration = check_range("match_duration", match_duration, 1e-3, 1e6)
         if max_cycles is not None:
             max_cycles = check_int("max_cycles (a positive integer or None)", max_cycles, 1,
@@ -156,9 +151,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         self.max_cycles = max_cycles
         self.formation_jitter = check_range("formation_jitter", formation_jitter, 0.0, 1.0)
         team_specs = tuple(presets.robot(r) for r in _per_team("robot", robot))
-        first = team_specs[0] if blue else team_specs[1]
-        fld = presets.field(field if field is not None else presets.default_field(first))
-        bl = presets.ball(ball if ball is not None else fld.ball)
+        _, fld, bl = resolve_world(team_specs[0] if blue else team_specs[1], field, ball)
         self.shaping = parse_scales("shaping", shaping, MATCH_SHAPING)
         perceptions = tuple(PerceptionConfig.create(p, obs_mode, s.kind) for p, s in
                             zip(_per_team("perception", perception), team_specs))

@@ -203,7 +203,7 @@ class ShootoutEnv(SingleAgentTask):
         **unknown: Any,
     ) -> None:
         reject_unknown("ShootoutEnv", unknown, keyword_names(ShootoutEnv.__init__))
-        check_choice("obs_mode", obs_mode, OBS_MODES)
+        check_choice("obs_mode", obs_mode, OBS_MODES)  # before it picks the default perception
         spec, fld, bl = resolve_world(robot, field, ball)
         self.start = ShootoutStart.create(start)
         self.start.check_field(fld, spec.radius)

@@ -24,3 +24,20 @@ def test_rollout_rates_report_medians_and_ratios():
                                     "median of 3:")
     assert "x4.00 vs dummy-2" in text and "(900-1,100)" in text
     assert list(rates) == list(bench.ROLLOUT_CONFIGS)
+
+
+def test_the_bench_command_runs_in_a_fresh_interpreter():
+    """``soccer-env bench`` at a tiny size, in a process of its own (as a user runs it: nothing
+    imported beforehand registers the environments for it)."""
+    import json
+    import subprocess
+    import sys
+
+    code = ("import sys; from soccer_lab.cli import main; sys.exit(main(['bench', '--json', "
+            "'--steps', '200', '--match-steps', '100', '--repeats', '1']))")
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=300)
+    assert res.returncode == 0, res.stderr
+    out = json.loads(res.stdout)
+    assert out["goalkeeper"]["steps_per_s"] > 0 and out["match_6v6_div_b"]["steps_per_s"] > 0
+    assert set(out["perceived"]) == set(bench.PERCEIVED_PRESETS)
