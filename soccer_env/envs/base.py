@@ -114,6 +114,13 @@ class SoccerCore(RenderingMixin):
             CommandChannel(n, d, 0.0 if s.kind == "humanoid" else cfg.vision.command_loss)
             for n, d, s, cfg in zip((n_blue, n_yellow), self._perception.delays, team_specs,
                                     perceptions)]
+        # The teams with robots, as (action model, their rows, command channel): with one,
+        # a step maps and sends the whole command array at once.
+        self._teams_in_play = [(m, sl, ch) for m, sl, ch, n in
+                               zip(self._models, self._slices, self._channels,
+                                   (n_blue, n_yellow)) if n]
+        #: Whether the perception reads the robots' bodies (humanoid teams' pipelines do).
+        self._reads_bodies = self._perception.reads_bodies
         free = set(policy_heads) if head == "action" else set()
         auto = [i for i in w.humanoid_indices if i not in free]
         self._heads = (HeadControl(w.robot_specs, auto,
@@ -166,8 +173,8 @@ class SoccerCore(RenderingMixin):
         state = w.snapshot()
         for channel in self._channels:
             channel.reset(sensor_rng)
-        body = w.body_state() if w.walk is not None else None
-        self._perception.reset(state, sensor_rng, body)
+        self._perception.reset(state, sensor_rng,
+                               w.body_state() if self._reads_bodies else None)
         self._shown_belief = self._perception.current(0)
         return state
 
@@ -176,15 +183,21 @@ class SoccerCore(RenderingMixin):
         channels, physics, the task's events, perception. Returns the new state and the
         step's event."""
         w = self.world
-        commands = np.concatenate([m.commands(actions[sl]) for m, sl in
-                                   zip(self._models, self._slices)])
+        teams = self._teams_in_play
+        if len(teams) == 1:
+            model, _, channel = teams[0]
+            commands = model.commands(actions)
+        else:
+            commands = np.concatenate([m.commands(actions[sl]) for m, sl, _ in teams])
         if self._heads is not None:
             self._heads.apply(commands, w.time, self._perception.attention)
-        w.step(np.concatenate([ch.send(commands[sl]) for ch, sl in
-                               zip(self._channels, self._slices)]))
+        if len(teams) == 1:
+            w.step(channel.send(commands))
+        else:
+            w.step(np.concatenate([ch.send(commands[sl]) for _, sl, ch in teams]))
         event = self._after_physics()
         state = w.snapshot()
-        self._perception.update(state, w.body_state() if w.walk is not None else None)
+        self._perception.update(state, w.body_state() if self._reads_bodies else None)
         self._shown_belief = self._perception.current(0)
         return state, event
 

@@ -96,6 +96,12 @@ class MatchPerception:
         self._current: dict[int, Any] = {}
 
     @property
+    def reads_bodies(self) -> bool:
+        """Whether :meth:`reset` and :meth:`update` need the robots'
+        :class:`~soccer_env.state.BodyState` (a humanoid team's pipeline reads it)."""
+        return bool(self._humanoid)
+
+    @property
     def groups(self) -> list[list[int]]:
         """Robots that share one belief (a list per belief source; a humanoid team's robots
         each have their own)."""
