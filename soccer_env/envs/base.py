@@ -127,6 +127,9 @@ class SoccerCore(RenderingMixin):
                                    [self._perception.cameras[i].height for i in auto], head)
                        if auto else None)
         self._render_width = int(render_width)
+        #: Robot 0's beliefs: for its observation, and at the present time (shown and
+        #: reported in ``info["estimate"]``).
+        self._seen: Any = None
         self._shown_belief: Any = None
 
     # ------------------------------------------------------------------------------------
@@ -173,9 +176,8 @@ class SoccerCore(RenderingMixin):
         state = w.snapshot()
         for channel in self._channels:
             channel.reset(sensor_rng)
-        self._perception.reset(state, sensor_rng,
-                               w.body_state() if self._reads_bodies else None)
-        self._shown_belief = self._perception.current(0)
+        self._seen, self._shown_belief = self._perception.reset(
+            state, sensor_rng, w.body_state() if self._reads_bodies else None)
         return state
 
     def _advance(self, actions: np.ndarray) -> tuple[WorldState, Any]:
@@ -197,8 +199,9 @@ class SoccerCore(RenderingMixin):
             w.step(np.concatenate([ch.send(commands[sl]) for _, sl, ch in teams]))
         event = self._after_physics()
         state = w.snapshot()
-        self._perception.update(state, w.body_state() if self._reads_bodies else None)
-        self._shown_belief = self._perception.current(0)
+        # Robot 0's beliefs, for its observation and at the present time.
+        self._seen, self._shown_belief = self._perception.update(
+            state, w.body_state() if self._reads_bodies else None)
         return state, event
 
     # ------------------------------------------------------------------------------------
@@ -285,7 +288,7 @@ class SingleAgentTask(SoccerCore, gym.Env):
         super().reset(seed=seed)
         state = self._start(self.np_random)
         self._running = True
-        obs = self._observe(self._perception.belief(0))
+        obs = self._observe(self._seen)
         return obs, self._info(state, self._zero_terms(), None)
 
     def step(self, action):
@@ -306,7 +309,7 @@ class SingleAgentTask(SoccerCore, gym.Env):
         outcome = self._outcome(state, event)
         terms = self._reward_terms(state, act[0], outcome)
         reward = float(sum(terms.values()))
-        obs = self._observe(self._perception.belief(0))
+        obs = self._observe(self._seen)
         info = self._info(state, terms, outcome)
         if self.render_mode == "human":
             self.render()
@@ -316,7 +319,7 @@ class SingleAgentTask(SoccerCore, gym.Env):
               ) -> dict[str, Any]:
         truth = state.truth_dict()
         info = {"truth": truth,
-                "estimate": self._estimate(state, self._perception.current(0), truth),
+                "estimate": self._estimate(state, self._shown_belief, truth),
                 "reward_terms": terms, "outcome": outcome, **self._task_info()}
         if self.world.walk is not None:
             info["robot_state"] = self.world.humanoid_state()

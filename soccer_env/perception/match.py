@@ -150,7 +150,8 @@ class MatchPerception:
                 seen, now = pipe.update(state)
                 for i in robots:
                     self._beliefs[i], self._current[i] = seen, now
-        self._collect(state.time)
+        if self._humanoid:
+            self._collect(state.time)
         return self._beliefs[0], self._current[0]
 
     def _collect(self, t: float) -> None:
