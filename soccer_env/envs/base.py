@@ -98,6 +98,7 @@ class SoccerCore(RenderingMixin):
         self.world = World(field, ball, [team_specs[0]] * n_blue + [team_specs[1]] * n_yellow,
                            n_blue, n_yellow, control_dt, physics_dt)
         w = self.world
+        self._learner = w.names[:1]  # robot 0, named as validate_actions names it
         #: The first robot's model (every robot's when the teams play the same robot).
         self.robot_spec = w.robot_spec
         self.metadata = {**self.metadata, "render_fps": round(1.0 / w.control_dt)}
@@ -119,6 +120,7 @@ class SoccerCore(RenderingMixin):
         self._teams_in_play = [(m, sl, ch) for m, sl, ch, n in
                                zip(self._models, self._slices, self._channels,
                                    (n_blue, n_yellow)) if n]
+        self._one_team = self._teams_in_play[0] if len(self._teams_in_play) == 1 else None
         #: Whether the perception reads the robots' bodies (humanoid teams' pipelines do).
         self._reads_bodies = self._perception.reads_bodies
         free = set(policy_heads) if head == "action" else set()
@@ -185,16 +187,15 @@ class SoccerCore(RenderingMixin):
         channels, physics, the task's events, perception. Returns the new state and the
         step's event."""
         w = self.world
-        teams = self._teams_in_play
-        if len(teams) == 1:
-            model, _, channel = teams[0]
-            commands = model.commands(actions)
+        teams, one = self._teams_in_play, self._one_team
+        if one is not None:
+            commands = one[0].commands(actions)
         else:
             commands = np.concatenate([m.commands(actions[sl]) for m, sl, _ in teams])
         if self._heads is not None:
             self._heads.apply(commands, w.time, self._perception.attention)
-        if len(teams) == 1:
-            w.step(channel.send(commands))
+        if one is not None:
+            w.step(one[2].send(commands))
         else:
             w.step(np.concatenate([ch.send(commands[sl]) for _, sl, ch in teams]))
         event = self._after_physics()
@@ -284,6 +285,9 @@ class SingleAgentTask(SoccerCore, gym.Env):
 
     # ------------------------------------------------------------------------------------
 
+    #: Whether an episode runs (set by :meth:`reset`).
+    _running = False
+
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         super().reset(seed=seed)
         state = self._start(self.np_random)
@@ -292,15 +296,16 @@ class SingleAgentTask(SoccerCore, gym.Env):
         return obs, self._info(state, self._zero_terms(), None)
 
     def step(self, action):
-        if not getattr(self, "_running", False):
+        if not self._running:
             raise RuntimeError("call reset() before step()")
         act = np.asarray(action, dtype=np.float64)
         if act.shape != (6,):
             names = ", ".join(self._models[0].action_names)
             raise ValueError(f"action must have shape (6,) ({names}), got {act.shape}")
-        act = validate_actions(act[None], self.world.names[:1], self.out_of_range_actions)
-        if self.world.n_robots > 1:
-            full = np.zeros((self.world.n_robots, 6))
+        act = validate_actions(act[None], self._learner, self.out_of_range_actions)
+        n = self.world.n_robots
+        if n > 1:
+            full = np.zeros((n, 6))
             full[0] = act[0]
             self._others(full)
         else:

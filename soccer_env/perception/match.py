@@ -51,6 +51,9 @@ class MatchPerception:
                  field: FieldSpec, ball: BallSpec, robots: Sequence[RobotSpec],
                  teams: Sequence[int], names: Sequence[str], control_dt: float) -> None:
         self.obs_mode = obs_mode
+        # In truth mode every robot believes the truth: the latest state is every belief.
+        self._truth = obs_mode == "truth"
+        self._state: WorldState | None = None
         specs = list(robots)
         teams = [int(t) for t in teams]
         n = len(specs)
@@ -92,6 +95,10 @@ class MatchPerception:
             for i in members[t]:
                 self._humanoid[i] = team
             self._groups.append((members[t], team))
+        #: The groups with whether their pipeline is a humanoid team's (it reads the bodies
+        #: and keeps a belief per robot).
+        self._kinds = [(robots, pipe, isinstance(pipe, HumanoidTeamPerception))
+                       for robots, pipe in self._groups]
         self._beliefs: dict[int, Any] = {}
         self._current: dict[int, Any] = {}
 
@@ -127,6 +134,9 @@ class MatchPerception:
               ) -> tuple[Any, Any]:
         """Start an episode at ``state`` (``body``: the robots' bodies, needed with
         humanoids); returns robot 0's beliefs (for its observation, now)."""
+        if self._truth:
+            self._state = state
+            return state, state
         # One pipeline draws from the episode's sensor stream itself, several from streams
         # spawned from it.
         rngs = [rng] if len(self._groups) == 1 else rng.spawn(len(self._groups))
@@ -143,16 +153,20 @@ class MatchPerception:
     def update(self, state: WorldState, body: BodyState | None = None) -> tuple[Any, Any]:
         """Advance to ``state`` (``body``: the robots' bodies, needed with humanoids);
         returns robot 0's beliefs (for its observation, now)."""
-        for robots, pipe in self._groups:
-            if isinstance(pipe, HumanoidTeamPerception):
+        if self._truth:
+            self._state = state
+            return state, state
+        beliefs, current = self._beliefs, self._current
+        for robots, pipe, humanoid in self._kinds:
+            if humanoid:
                 pipe.update(state, body)
             else:
                 seen, now = pipe.update(state)
                 for i in robots:
-                    self._beliefs[i], self._current[i] = seen, now
+                    beliefs[i], current[i] = seen, now
         if self._humanoid:
             self._collect(state.time)
-        return self._beliefs[0], self._current[0]
+        return beliefs[0], current[0]
 
     def _collect(self, t: float) -> None:
         for i, team in self._humanoid.items():
@@ -162,17 +176,17 @@ class MatchPerception:
 
     def belief(self, i: int) -> Any:
         """Robot ``i``'s belief for its observation (a WorldState in truth mode)."""
-        return self._beliefs[i]
+        return self._state if self._truth else self._beliefs[i]
 
     def current(self, i: int) -> Any:
         """Robot ``i``'s belief at the present time."""
-        return self._current[i]
+        return self._state if self._truth else self._current[i]
 
     def attention(self, i: int, now: float) -> Attention:
         """What humanoid ``i``'s head controller needs of its belief at ``now`` (in truth
         mode: the true pose and ball, just seen)."""
         if i in self._humanoid:
             return self._humanoid[i].attention(i, now)
-        s = self._beliefs[i]
+        s = self.belief(i)
         b = s.ball
         return Attention(s.robots[i, 0:3], np.array([b[0], b[1], b[3], b[4]]), 0.0, 0.0)

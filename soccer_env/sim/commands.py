@@ -100,6 +100,9 @@ class HumanoidRobot:
         self._back = self._fwd.copy()
         self._back[0] = spec.max_backward_speed
         self._offset = np.array([0.0, 0.0, 0.0, 0.0, 0.0, mid])
+        # The head columns' scale and offset as Python floats, for one robot at a time.
+        self._head = (float(self._fwd[4]), float(self._offset[4]), float(self._fwd[5]),
+                      float(self._offset[5]))
 
     def action_space(self) -> spaces.Box:
         """A fresh ``Box(-1, 1, (6,), float32)``."""
@@ -119,7 +122,8 @@ class HumanoidRobot:
         ``pan``, ``tilt`` [rad]: what :meth:`commands` makes of the action entries
         :meth:`action_for_head` gives (clipped into the head's range)."""
         a4, a5 = self.action_for_head(pan, tilt)
-        return (a4 * self._fwd[4] + self._offset[4], a5 * self._fwd[5] + self._offset[5])
+        k4, o4, k5, o5 = self._head
+        return a4 * k4 + o4, a5 * k5 + o5
 
     def action_for_head(self, pan: float, tilt: float) -> tuple[float, float]:
         """The action entries 4 and 5 that aim the head at ``pan``, ``tilt`` [rad] (clipped
