@@ -1,6 +1,6 @@
 """The fixed part of every environment, and the hooks a task fills in.
 
-Data flows one way through a step (see the README's architecture section)::
+Data flows one way through a step (the README's "Layout" section has the layers)::
 
     actions -> robot models -> head control -> command channels -> World.step
             -> task events (a shot is fired, the referee restarts play)
@@ -275,9 +275,8 @@ class SingleAgentTask(SoccerCore, gym.Env):
         """The step's named reward terms (the reward is their sum)."""
         raise NotImplementedError
 
-    def _task_info(self) -> dict[str, Any]:
-        """The task's own entries of ``info``."""
-        return {}
+    def _task_info(self, info: dict[str, Any]) -> None:
+        """Add the task's own entries to ``info`` (in place)."""
 
     def _zero_terms(self) -> dict[str, float]:
         """The reward terms of the first observation (all zero)."""
@@ -325,7 +324,8 @@ class SingleAgentTask(SoccerCore, gym.Env):
         truth = state.truth_dict()
         info = {"truth": truth,
                 "estimate": self._estimate(state, self._shown_belief, truth),
-                "reward_terms": terms, "outcome": outcome, **self._task_info()}
+                "reward_terms": terms, "outcome": outcome}
+        self._task_info(info)
         if self.world.walk is not None:
             info["robot_state"] = self.world.humanoid_state()
         if outcome is not None:

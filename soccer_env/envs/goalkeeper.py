@@ -311,9 +311,10 @@ class GoalkeeperEnv(SingleAgentTask):
     def _success(self, outcome: str) -> bool:
         return outcome != "goal"
 
-    def _task_info(self) -> dict[str, Any]:
-        return {"shot": dict(self._shot), "shot_fired": self._fired,
-                "keeper_touched": self._touched}
+    def _task_info(self, info: dict[str, Any]) -> None:
+        info["shot"] = dict(self._shot)
+        info["shot_fired"] = self._fired
+        info["keeper_touched"] = self._touched
 
     # ------------------------------------------------------------------------------------
 

@@ -282,8 +282,9 @@ class ShootoutEnv(SingleAgentTask):
                                 * dt)
         return terms
 
-    def _task_info(self) -> dict[str, Any]:
-        return {"start": dict(self._start_draw), "keeper_touched": self._keeper_touched}
+    def _task_info(self, info: dict[str, Any]) -> None:
+        info["start"] = dict(self._start_draw)
+        info["keeper_touched"] = self._keeper_touched
 
     def _hud(self) -> list[str]:
         return [f"t = {self.world.time:5.2f} s", "shootout"]

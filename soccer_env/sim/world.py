@@ -590,7 +590,7 @@ class World(KickerDribbler, HumanoidBodies):
     def snapshot(self) -> WorldState:
         """An immutable :class:`WorldState` of the present truth."""
         robots = self._state[1:].copy()
-        robots.flags.writeable = False
+        robots.setflags(write=False)  # (cheaper than through ``flags.writeable``)
         ball = self.ball_array()
-        ball.flags.writeable = False
+        ball.setflags(write=False)
         return WorldState(self.time, ball, robots, self.names, self.teams)
