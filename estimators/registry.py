@@ -90,9 +90,6 @@ class Registry(Mapping[str, T], Generic[T]):
                              f"got {name!r}")
         return name
 
-    def get(self, name: str, default: Any = None) -> Any:  # noqa: D102 (Mapping.get)
-        return self._values.get(name, default)
-
     def create(self, name: str, *args: Any, **kwargs: Any) -> Any:
         """Call the factory registered as ``name`` with the given arguments (after checking
         the name)."""

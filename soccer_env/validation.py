@@ -63,10 +63,15 @@ def check_range(name: str, value: float, low: float, high: float) -> float:
 def check_int(name: str, value: Any, low: int, high: int) -> int:
     """Return ``int(value)``; raise ``ValueError`` unless an integer (not a bool) in
     ``[low, high]``."""
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not (
-            low <= value <= high):
+    if not _is_integer_in(value, low, high):
         raise ValueError(f"{name} must be an integer in {low}..{high}, got {value!r}")
     return int(value)
+
+
+def _is_integer_in(value: Any, low: int, high: int) -> bool:
+    """Whether ``value`` is an integer (not a bool) in ``[low, high]``."""
+    return (isinstance(value, (int, np.integer)) and not isinstance(value, bool)
+            and low <= value <= high)
 
 
 def check_number(name: str, value: Any, low: float, high: float, *, low_open: bool = False,
@@ -84,8 +89,7 @@ def check_number(name: str, value: Any, low: float, high: float, *, low_open: bo
 
 def check_integer(name: str, value: Any, low: int, high: int, unit: str = "") -> None:
     """Raise ``ValueError`` unless ``value`` is an integer (not a bool) in ``[low, high]``."""
-    if not (isinstance(value, (int, np.integer)) and not isinstance(value, bool)
-            and low <= value <= high):
+    if not _is_integer_in(value, low, high):
         raise ValueError(f"{name} must be an integer in [{low}, {high}]{unit}, got {value!r}")
 
 

@@ -31,7 +31,7 @@ LAYERS = (
 )
 #: What the estimators may import besides the standard library and themselves: numpy, and
 #: OpenCV in the colour operations of the image trackers only.
-ESTIMATOR_LIBRARIES = {"numpy": None, "cv2": ("estimators.image.colour", "estimators.image.colour")}
+ESTIMATOR_LIBRARIES = {"numpy": None, "cv2": ("estimators.image.colour",)}
 
 
 def module_name(path: Path) -> str:

@@ -55,7 +55,7 @@ from soccer_env.sim.world import World
 from soccer_env.state import Belief, WorldState, state_dict
 from soccer_env.validation import check_choice
 
-__all__ = ["SoccerCore", "SingleAgentTask"]
+__all__ = ["SoccerCore", "SingleAgentTask", "resolve_world", "action_cost"]
 
 
 class SoccerCore(RenderingMixin):
@@ -255,8 +255,9 @@ class SingleAgentTask(SoccerCore, gym.Env):
     """
 
     def _observe(self, belief: Any) -> np.ndarray:
-        """The learner's observation from its ``belief``."""
-        raise NotImplementedError
+        """The learner's observation from its ``belief`` (default: the task's
+        ``builder``, an :class:`~soccer_env.observations.ObservationBuilder` for robot 0)."""
+        return self.builder.build(belief)[0]
 
     def _others(self, actions: np.ndarray) -> None:
         """Fill the rows of the other robots in ``actions`` ``(N, 6)`` (row 0 is the
@@ -279,8 +280,9 @@ class SingleAgentTask(SoccerCore, gym.Env):
         """Add the task's own entries to ``info`` (in place)."""
 
     def _zero_terms(self) -> dict[str, float]:
-        """The reward terms of the first observation (all zero)."""
-        raise NotImplementedError
+        """The reward terms of the first observation, all zero (default: ``"outcome"`` and
+        every term of the task's ``shaping`` scales)."""
+        return dict.fromkeys(("outcome", *self.shaping), 0.0)
 
     # ------------------------------------------------------------------------------------
 
@@ -331,6 +333,12 @@ class SingleAgentTask(SoccerCore, gym.Env):
         if outcome is not None:
             info["is_success"] = self._success(outcome)
         return info
+
+
+def action_cost(action: np.ndarray, scale: float, dt: float) -> float:
+    """The ``action_cost`` shaping term of a step of ``dt`` seconds: ``-scale (vx^2 + vy^2 +
+    omega^2) / 3`` of the normalised ``action`` per second."""
+    return -scale * float(action[0:3] @ action[0:3]) / 3.0 * dt
 
 
 def resolve_world(robot: Any, field: Any, ball: Any) -> tuple[RobotSpec, FieldSpec, BallSpec]:

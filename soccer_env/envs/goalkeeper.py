@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from soccer_env import presets
-from soccer_env.envs.base import SingleAgentTask, resolve_world
+from soccer_env.envs.base import SingleAgentTask, action_cost, resolve_world
 from soccer_env.observations import ObservationBuilder
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
@@ -302,12 +302,6 @@ class GoalkeeperEnv(SingleAgentTask):
             self._fire()
         self._touched = self._touched or world.touched[0]
 
-    def _observe(self, belief: Any) -> np.ndarray:
-        return self.builder.build(belief)[0]
-
-    def _zero_terms(self) -> dict[str, float]:
-        return dict.fromkeys(("outcome", *self.shaping), 0.0)
-
     def _success(self, outcome: str) -> bool:
         return outcome != "goal"
 
@@ -374,7 +368,7 @@ class GoalkeeperEnv(SingleAgentTask):
             terms["intercept"] = 0.0
         terms["ball_distance"] = (-sc["ball_distance"] * math.hypot(bx - kx, by - ky) * dt
                                   if sc["ball_distance"] else 0.0)
-        terms["action_cost"] = (-sc["action_cost"] * float(act[0:3] @ act[0:3]) / 3.0 * dt
+        terms["action_cost"] = (action_cost(act, sc["action_cost"], dt)
                                 if sc["action_cost"] else 0.0)
         if sc["outside_area"]:
             inside = (kx <= -f.half_length + f.defense_depth

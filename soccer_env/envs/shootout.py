@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from soccer_env.envs.base import SingleAgentTask, resolve_world
+from soccer_env.envs.base import SingleAgentTask, action_cost, resolve_world
 from soccer_env.envs.keeper import ScriptedGoalkeeper
 from soccer_env.observations import ObservationBuilder
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
@@ -249,9 +249,6 @@ class ShootoutEnv(SingleAgentTask):
         if touched[1]:
             self._keeper_touched = True
 
-    def _observe(self, belief: Any) -> np.ndarray:
-        return self.builder.build(belief)[0]
-
     def _outcome(self, state: WorldState, event: Any = None) -> str | None:
         world = self.world
         if world.ball_exit is not None:
@@ -266,9 +263,6 @@ class ShootoutEnv(SingleAgentTask):
     def _success(self, outcome: str) -> bool:
         return outcome == "goal"
 
-    def _zero_terms(self) -> dict[str, float]:
-        return dict.fromkeys(("outcome", *self.shaping), 0.0)
-
     def _reward_terms(self, state: WorldState, action: np.ndarray, outcome: str | None
                       ) -> dict[str, float]:
         sc, dt = self.shaping, self.world.control_dt
@@ -278,8 +272,7 @@ class ShootoutEnv(SingleAgentTask):
         self._ball_to_goal = d
         a, b = state.robots[0, 0:2], state.ball[0:2]
         terms["ball_distance"] = -sc["ball_distance"] * math.hypot(*(b - a)) * dt
-        terms["action_cost"] = (-sc["action_cost"] * float(action[0:3] @ action[0:3]) / 3.0
-                                * dt)
+        terms["action_cost"] = action_cost(action, sc["action_cost"], dt)
         return terms
 
     def _task_info(self, info: dict[str, Any]) -> None:

@@ -13,8 +13,6 @@ import numpy as np
 from soccer_env.perception.base import PerceptionConfig
 from soccer_env.perception.humanoid import HumanoidTeamPerception
 from soccer_env.perception.overhead import (
-    FilteredPerception,
-    RawPerception,
     TruthPerception,
     make_perception,
 )
@@ -63,7 +61,9 @@ class MatchPerception:
         self.delays = [0, 0]
         #: The head camera of every humanoid (robot index -> spec).
         self.cameras: dict[int, HeadCameraSpec] = {}
-        self._groups: list[tuple[list[int], Any]] = []  # (robots, pipeline)
+        # (robots, pipeline, whether it is a humanoid team's: it reads the bodies and keeps a
+        # belief per robot)
+        self._groups: list[tuple[list[int], Any, bool]] = []
         self._humanoid: dict[int, Any] = {}  # robot -> its team's HumanoidTeamPerception
         ssl_teams = [t for t in (0, 1) if kinds[t] == "ssl"]
         if ssl_teams:
@@ -76,7 +76,7 @@ class MatchPerception:
                                        n, delay * control_dt, teams, specs)
                 for tt in (ssl_teams if shared else [t]):
                     self.delays[tt] = delay
-                self._groups.append((group, pipe))
+                self._groups.append((group, pipe, False))
         for t in (0, 1):
             if kinds[t] != "humanoid":
                 continue
@@ -85,7 +85,7 @@ class MatchPerception:
             camera = cfg.camera if cfg.camera is not None else head_camera(spec.camera)
             self.cameras.update(dict.fromkeys(members[t], camera))
             if obs_mode == "truth":
-                self._groups.append((members[t], TruthPerception(cfg)))
+                self._groups.append((members[t], TruthPerception(cfg), False))
                 continue
             if obs_mode == "raw":
                 cfg = dataclasses.replace(cfg, localization="odometry", fusion="own",
@@ -94,11 +94,7 @@ class MatchPerception:
                                           camera, cfg.radio)
             for i in members[t]:
                 self._humanoid[i] = team
-            self._groups.append((members[t], team))
-        #: The groups with whether their pipeline is a humanoid team's (it reads the bodies
-        #: and keeps a belief per robot).
-        self._kinds = [(robots, pipe, isinstance(pipe, HumanoidTeamPerception))
-                       for robots, pipe in self._groups]
+            self._groups.append((members[t], team, True))
         self._beliefs: dict[int, Any] = {}
         self._current: dict[int, Any] = {}
 
@@ -113,17 +109,17 @@ class MatchPerception:
         """Robots that share one belief (a list per belief source; a humanoid team's robots
         each have their own)."""
         out = []
-        for robots, pipe in self._groups:
-            if isinstance(pipe, (TruthPerception, FilteredPerception, RawPerception)):
-                out.append(list(robots))
-            else:
+        for robots, _, humanoid in self._groups:
+            if humanoid:
                 out += [[i] for i in robots]
+            else:
+                out.append(list(robots))
         return out
 
     @property
     def pipelines(self) -> list[Any]:
         """The teams' pipelines (overhead vision, truth, or a humanoid team's)."""
-        return [pipe for _, pipe in self._groups]
+        return [pipe for _, pipe, _ in self._groups]
 
     def humanoid_team(self, i: int) -> Any:
         """The :class:`~soccer_env.perception.humanoid.HumanoidTeamPerception` of humanoid
@@ -140,8 +136,8 @@ class MatchPerception:
         # One pipeline draws from the episode's sensor stream itself, several from streams
         # spawned from it.
         rngs = [rng] if len(self._groups) == 1 else rng.spawn(len(self._groups))
-        for (robots, pipe), r in zip(self._groups, rngs):
-            if isinstance(pipe, HumanoidTeamPerception):
+        for (robots, pipe, humanoid), r in zip(self._groups, rngs):
+            if humanoid:
                 pipe.reset(state, body, r)
             else:
                 seen, now = pipe.reset(state, r)
@@ -157,7 +153,7 @@ class MatchPerception:
             self._state = state
             return state, state
         beliefs, current = self._beliefs, self._current
-        for robots, pipe, humanoid in self._kinds:
+        for robots, pipe, humanoid in self._groups:
             if humanoid:
                 pipe.update(state, body)
             else:

@@ -196,9 +196,8 @@ def _geometric_head(camera: HeadCameraSpec, field: FieldSpec, ball: BallSpec,
     return HeadCameraSensor(camera, field, ball, [s.radius for s in robots], teams, observers)
 
 
-def _needs_opencv(err: ImportError) -> ImportError:
-    return ImportError("detector='pixels' needs OpenCV; install it with: "
-                       "pip install 'soccer-env[pixels]'")
+#: Why the pixels detector cannot be built without OpenCV.
+_NEEDS_OPENCV = "detector='pixels' needs OpenCV; install it with: pip install 'soccer-env[pixels]'"
 
 
 def _pixels_overhead(vision: VisionSpec, field: FieldSpec, robot: RobotSpec,
@@ -208,7 +207,7 @@ def _pixels_overhead(vision: VisionSpec, field: FieldSpec, robot: RobotSpec,
         from soccer_env.perception.pixels import OverheadPixelDetector
         from soccer_env.sensors.images.cameras import OverheadImageCamera
     except ImportError as err:  # pragma: no cover - depends on the installation
-        raise _needs_opencv(err) from err
+        raise ImportError(_NEEDS_OPENCV) from err
     camera = OverheadImageCamera(vision, field, robots, ball, teams)
     return camera, OverheadPixelDetector(camera, vision)
 
@@ -219,7 +218,7 @@ def _pixels_head(camera: HeadCameraSpec, field: FieldSpec, ball: BallSpec,
     try:
         from soccer_env.sensors.images.cameras import PixelHeadCamera
     except ImportError as err:  # pragma: no cover - depends on the installation
-        raise _needs_opencv(err) from err
+        raise ImportError(_NEEDS_OPENCV) from err
     return PixelHeadCamera(camera, field, ball, robots, teams, observers)
 
 
