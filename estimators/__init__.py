@@ -36,6 +36,10 @@ the state to any time ``t`` without changing the tracker (None before the first 
   fast path), ``estimate(t)`` -> ``(n, 6)`` rows ``x, y, theta, vx, vy, omega`` for all robots,
   never None (robots never seen read as zeros, see ``seen``).
 
+The three ball trackers also follow :class:`TrackQuality`: ``covariance(t)``, ``last_fused``
+and ``since_start`` say how sure they are (the environments' belief features); the robot
+tracker's ``pose_sigma(i, t)`` and the localization's ``pose_sigma()`` give the pose's spread.
+
 **Frame-synchronous image trackers** step once per image, the frame being the time step:
 ``update(image, ...)`` returns the estimate [px, px/frame]. :class:`MeanShiftParticleFilter`
 and :class:`ParticleFilterTracker`: ``update(colour_image, motion_image=None, ...)`` ->
@@ -109,7 +113,7 @@ from .particle import (
     ungm_model,
     ungm_simulate,
 )
-from .protocol import Tracker
+from .protocol import Tracker, TrackQuality
 from .registry import Registry
 
 __all__ = [
@@ -156,6 +160,7 @@ __all__ = [
     "apparent_height",
     "ego_motion_shift",
     "Tracker",
+    "TrackQuality",
     "Registry",
     "PARTICLE_FILTERS",
     "FUSION_WEIGHTINGS",

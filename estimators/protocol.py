@@ -12,6 +12,11 @@ particle set, a least-squares fit) or how it handles late measurements:
 * ``reset()``: forget everything (a new episode).
 
 The classes that follow it are listed in the package docstring (:mod:`estimators`).
+
+Ball trackers also say how sure they are (:class:`TrackQuality`, what the environments' belief
+features read): ``covariance(t)`` of ``(x, y, vx, vy)`` predicted to ``t``, ``last_fused`` (the
+time stamp of the latest measurement fused) and ``since_start`` (measurements fused since the
+track last (re)started).
 """
 
 from __future__ import annotations
@@ -20,7 +25,7 @@ from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
-__all__ = ["Tracker"]
+__all__ = ["Tracker", "TrackQuality"]
 
 
 @runtime_checkable
@@ -36,3 +41,20 @@ class Tracker(Protocol):
 
     def reset(self) -> None:
         """Forget everything (a new episode)."""
+
+
+@runtime_checkable
+class TrackQuality(Protocol):
+    """A ball tracker's account of its own uncertainty (see the module docstring)."""
+
+    @property
+    def last_fused(self) -> float:
+        """Time stamp of the latest fused measurement [s] (``-inf`` before the first)."""
+
+    @property
+    def since_start(self) -> int:
+        """Measurements fused since the track's latest (re)start (0 before the first)."""
+
+    def covariance(self, t: float) -> np.ndarray | None:
+        """``4 x 4`` covariance of ``(x, y, vx, vy)`` at ``t``; None before the first
+        measurement."""

@@ -19,7 +19,31 @@ goals (8)          own goal's left and right post, then the opponent goal's left
                    post (left/right as seen from the centre spot facing the team's ``+x``),
                    relative position [m] in body frame
 game (g)           task-specific game state (see each environment)
+belief (9 or 11)   only with ``belief_features=True``: how sure the belief is (below)
 =================  ==========================================================================
+
+Belief features (:class:`~soccer_env.state.BeliefQuality`; names ``belief.*``):
+
+=========================  ===================================================================
+entries                    meaning
+=========================  ===================================================================
+``ball.sigma``             standard deviation of the believed ball position per axis [m]
+``ball.velocity_sigma``    the same for its velocity [m/s]
+``ball.age``               time since the capture of the latest ball measurement [s]
+``ball.tracking``,         the ball track's state, one-hot (see
+``ball.coasting``,         :data:`~soccer_env.state.BALL_STATUSES`): measured in the latest
+``ball.reset``,            frame period; predicted only; (re)started fewer than 3
+``ball.lost``              measurements ago; not seen for long (or never)
+``self.sigma_xy``          spread of the agent's own believed position per axis [m]
+``self.sigma_theta``       spread of its believed heading [rad]
+``ball.fused_age``         (environments with humanoids) time since the latest fusion of the
+                           team's sightings [s]
+``ball.seen_by``           (environments with humanoids) robots whose sightings went into it
+=========================  ===================================================================
+
+Truth mode fills them with a perfect sensor's values (no spread, no age, tracking, every
+team-mate seeing the ball); unknown spreads and ages read as their bounds
+(:data:`SIGMA_BOUND`, :data:`BALL_SPEED_BOUND`, :data:`AGE_BOUND`, ``pi``).
 
 Values are clipped to the observation space's bounds, which are wide enough that only
 pathological states reach them. The builder reads a belief, never the world, so the same
@@ -35,9 +59,10 @@ import numpy as np
 from gymnasium import spaces
 
 from soccer_env.presets import FieldSpec
-from soccer_env.state import Belief
+from soccer_env.state import BALL_STATUSES, Belief, WorldState
 
-__all__ = ["ObservationBuilder", "ROBOT_SPEED_BOUND", "ROBOT_TURN_BOUND", "BALL_SPEED_BOUND"]
+__all__ = ["ObservationBuilder", "ROBOT_SPEED_BOUND", "ROBOT_TURN_BOUND", "BALL_SPEED_BOUND",
+           "SIGMA_BOUND", "AGE_BOUND", "BELIEF_FEATURES", "HUMANOID_BELIEF_FEATURES"]
 
 #: Observation bound on robot speed components [m/s] (robots can be shoved beyond their drive).
 ROBOT_SPEED_BOUND = 10.0
@@ -45,6 +70,18 @@ ROBOT_SPEED_BOUND = 10.0
 ROBOT_TURN_BOUND = 50.0
 #: Observation bound on ball speed components [m/s].
 BALL_SPEED_BOUND = 20.0
+#: Observation bound on a belief feature's position spread [m].
+SIGMA_BOUND = 5.0
+#: Observation bound on a belief feature's age [s].
+AGE_BOUND = 5.0
+#: Team names accepted by :meth:`ObservationBuilder.names_for`.
+_TEAM_NAMES = {"blue": 0, "yellow": 1}
+
+#: Names of the belief features (after ``belief.``).
+BELIEF_FEATURES = ("ball.sigma", "ball.velocity_sigma", "ball.age",
+                   *(f"ball.{s}" for s in BALL_STATUSES), "self.sigma_xy", "self.sigma_theta")
+#: The further belief features of environments with humanoids.
+HUMANOID_BELIEF_FEATURES = ("ball.fused_age", "ball.seen_by")
 
 
 class ObservationBuilder:
@@ -59,6 +96,11 @@ class ObservationBuilder:
         implementation: ``"auto"`` (plain Python for few agents seeing few robots, the linear
             map otherwise: see :meth:`build`), ``"python"`` or ``"arrays"``; all give the
             same observations.
+        belief_features: append the belief features (see the module docstring): 9 entries,
+            or 11 with ``humanoid``.
+        humanoid: the environment has humanoids (their team fusion's two entries).
+        team_size: the most robots a team has (the bound of ``ball.seen_by``; default from
+            ``teams``).
 
     An agent's team-mates are the other robots of its team and its opponents those of the
     other team, both in robot order; every agent sees the other ``N - 1`` robots, so the rows
@@ -75,6 +117,9 @@ class ObservationBuilder:
         game_high: Sequence[float] = (),
         game_names: Sequence[str] = (),
         implementation: str = "auto",
+        belief_features: bool = False,
+        humanoid: bool = False,
+        team_size: int | None = None,
     ) -> None:
         if implementation not in ("auto", "python", "arrays"):
             raise ValueError(f"implementation must be one of ['auto', 'python', 'arrays'], "
@@ -103,13 +148,41 @@ class ObservationBuilder:
         low = [-h for h in high] + list(game_low)
         high += list(game_high)
         self._game_names = tuple(game_names)
+        self._base_size = len(high)
+        self.belief_features = bool(belief_features)
+        self._feature_names: tuple[str, ...] = ()
+        if self.belief_features:
+            self._features_init(humanoid, team_size)
+            low += [0.0] * len(self._feature_names)
+            high += list(self._feature_high)
         self.size = len(high)
         self.low = np.asarray(low, dtype=np.float32)
         self.high = np.asarray(high, dtype=np.float32)
         self._compile()
 
-    def names_for(self, team: int) -> tuple[str, ...]:
-        """Entry names of the observation of an agent of ``team``."""
+    def _features_init(self, humanoid: bool, team_size: int | None) -> None:
+        """Names, bounds and the perfect sensor's values of the belief features."""
+        names = BELIEF_FEATURES + (HUMANOID_BELIEF_FEATURES if humanoid else ())
+        self._feature_names = tuple(f"belief.{n}" for n in names)
+        self._humanoid_features = humanoid
+        if team_size is None:
+            team_size = max(self.teams.count(0), self.teams.count(1))
+        n_status = len(BALL_STATUSES)
+        high = [SIGMA_BOUND, BALL_SPEED_BOUND, AGE_BOUND, *([1.0] * n_status), SIGMA_BOUND,
+                math.pi]
+        perfect = [0.0, 0.0, 0.0, 1.0, *([0.0] * (n_status - 1)), 0.0, 0.0]
+        if humanoid:
+            high += [AGE_BOUND, float(team_size)]
+            perfect += [0.0, float(team_size)]
+        self._feature_high = np.asarray(high, dtype=np.float64)
+        self._perfect = np.tile(np.asarray(perfect, dtype=np.float32), (len(self.own), 1))
+
+    def names_for(self, team: int | str) -> tuple[str, ...]:
+        """Entry names of the observation of an agent of ``team``: 0 or ``"blue"``, 1 or
+        ``"yellow"``; anything else raises ``ValueError``."""
+        team = _TEAM_NAMES.get(team, team) if isinstance(team, str) else team
+        if isinstance(team, bool) or team not in (0, 1):
+            raise ValueError(f"team must be 0, 1, 'blue' or 'yellow', got {team!r}")
         n_mates = sum(1 for t in self.teams if t == team) - 1
         names = ["self.x", "self.y", "self.ax", "self.ay", "self.vx", "self.vy", "self.omega",
                  "ball.dx", "ball.dy", "ball.vx", "ball.vy"]
@@ -118,7 +191,7 @@ class ObservationBuilder:
             names += [f"{tag}.{e}" for e in ("dx", "dy", "cos", "sin", "vx", "vy")]
         for post in ("own_left", "own_right", "opp_left", "opp_right"):
             names += [f"goal.{post}.dx", f"goal.{post}.dy"]
-        return (*names, *self._game_names)
+        return (*names, *self._game_names, *self._feature_names)
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -195,13 +268,16 @@ class ObservationBuilder:
         for p in range(4):
             perm += z(k + 1 + p)
         perm += list(range(c_game, c_game + self.game_size))
-        assert len(perm) == self.size
+        assert len(perm) == self._base_size
         self._perm = np.asarray(perm, dtype=np.int64)
         # Few agents seeing few robots: plain Python beats numpy's per-call overhead.
         self._small = (n * (k + 2) <= 8 if self.implementation == "auto"
                        else self.implementation == "python")
-        self._low_list = self.low.tolist()
-        self._high_list = self.high.tolist()
+        # The bounds of the entries before the belief features.
+        self._base_low = self.low[: self._base_size]
+        self._base_high = self.high[: self._base_size]
+        self._low_list = self._base_low.tolist()
+        self._high_list = self._base_high.tolist()
 
     @property
     def path(self) -> str:
@@ -226,9 +302,32 @@ class ObservationBuilder:
         times that in Python). ``tests/test_observations.py`` checks both against a direct
         reading of the documentation.
         """
-        if self._small:
-            return self._build_python(belief, game)
-        return self._build_arrays(belief, game)
+        out = (self._build_python(belief, game) if self._small
+               else self._build_arrays(belief, game))
+        if self.belief_features:
+            out = np.concatenate([out, self._features(belief)], axis=1)
+        return out
+
+    def _features(self, belief: Belief | WorldState) -> np.ndarray:
+        """The belief features ``(len(own), F)`` of ``belief`` (a perfect sensor's for the
+        truth)."""
+        if isinstance(belief, WorldState):
+            return self._perfect
+        q = belief.quality
+        if q is None:
+            raise ValueError("belief features need beliefs that carry their quality: build "
+                             "the perception with features=True")
+        common = [q.ball_sigma, q.ball_velocity_sigma, q.ball_age]
+        common += [1.0 if k == q.ball_status else 0.0 for k in range(len(BALL_STATUSES))]
+        rows = np.empty((len(self.own), len(self._feature_names)), dtype=np.float64)
+        rows[:, 0:len(common)] = common
+        rows[:, len(common):len(common) + 2] = q.pose_sigma[self.own]
+        if self._humanoid_features:
+            rows[:, -2] = q.fused_age
+            rows[:, -1] = q.seen_by
+        np.minimum(rows, self._feature_high, out=rows)
+        np.maximum(rows, 0.0, out=rows)
+        return rows.astype(np.float32)
 
     def _build_python(self, belief: Belief, game: np.ndarray | None) -> np.ndarray:
         robots = belief.robots.tolist()
@@ -274,6 +373,6 @@ class ObservationBuilder:
             parts.append(game.astype(np.float32))
         flat = np.concatenate(parts, axis=1) if len(parts) > 1 else parts[0]
         out = flat[:, self._perm]
-        np.maximum(out, self.low, out=out)
-        np.minimum(out, self.high, out=out)
+        np.maximum(out, self._base_low, out=out)
+        np.minimum(out, self._base_high, out=out)
         return out

@@ -6,7 +6,8 @@
 * :class:`BodyState`: what the robots' bodies report (heads, odometry, gait, falls; from the
   walk engine; what a humanoid's perception reads besides its camera frames);
 * :class:`Belief`: what a team or a robot believes, laid out like the truth (from perception;
-  what the observation builder reads);
+  what the observation builder reads), with how sure it is (:class:`BeliefQuality`, when the
+  environment's belief features ask for it);
 * :class:`Attention`: what a robot believes that its head controller needs (from perception;
   what the simulation's head control reads).
 """
@@ -17,8 +18,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["WorldState", "HeadState", "BodyState", "Belief", "Attention", "state_dict",
-           "BALL_FIELDS", "ROBOT_FIELDS"]
+__all__ = ["WorldState", "HeadState", "BodyState", "Belief", "BeliefQuality", "Attention",
+           "state_dict", "BALL_FIELDS", "ROBOT_FIELDS", "BALL_STATUSES"]
 
 #: Columns of :attr:`WorldState.ball`.
 BALL_FIELDS = ("x", "y", "z", "vx", "vy", "vz")
@@ -97,14 +98,50 @@ class HeadState(NamedTuple):
                    np.zeros(n, dtype=bool))
 
 
+#: States of a ball track, in the order of the belief features' one-hot entries:
+#: ``tracking`` (measurements arrive), ``coasting`` (none in the latest frame period: the
+#: estimate is a prediction), ``reset`` (the track (re)started a few measurements ago: its
+#: velocity is still poorly known), ``lost`` (never seen, or not for a long time).
+BALL_STATUSES = ("tracking", "coasting", "reset", "lost")
+
+
+class BeliefQuality(NamedTuple):
+    """How sure a belief is (what the belief features of the observation read).
+
+    Attributes:
+        ball_sigma: standard deviation of the believed ball position [m] per axis
+            (``sqrt`` of the mean of the two axes' variances); ``inf`` when unknown.
+        ball_velocity_sigma: the same for its velocity [m/s].
+        ball_age: time since the capture of the latest ball measurement the robot itself
+            made or (SSL) its team's vision delivered [s]; ``inf`` if none yet.
+        ball_status: index in :data:`BALL_STATUSES`.
+        pose_sigma: ``(N, 2)`` spread of each robot's believed pose: position [m] per axis
+            and heading [rad] (a robot's own row is what its observation reads).
+        fused_age: (humanoids) time since the latest fused estimate of the team's sightings
+            [s]; for SSL teams, whose vision is fused already, ``ball_age``.
+        seen_by: (humanoids) how many robots' sightings went into the latest fused estimate;
+            for SSL teams 1 while the vision sees the ball, else 0.
+    """
+
+    ball_sigma: float
+    ball_velocity_sigma: float
+    ball_age: float
+    ball_status: int
+    pose_sigma: np.ndarray
+    fused_age: float
+    seen_by: int
+
+
 class Belief(NamedTuple):
     """A belief laid out like :class:`~soccer_env.state.WorldState`'s arrays: ``ball`` (6,)
     ``x, y, z, vx, vy, vz`` and ``robots`` (N, 6) ``x, y, theta, vx, vy, omega``, at
-    ``time``."""
+    ``time``; ``quality`` says how sure it is (None unless the environment's belief features
+    ask for it)."""
 
     time: float
     ball: np.ndarray
     robots: np.ndarray
+    quality: BeliefQuality | None = None
 
 
 class BodyState(NamedTuple):

@@ -252,6 +252,8 @@ class _Track(NamedTuple):
     P: tuple | None = None
     candidates: tuple = ()
     v_switch: float = 0.0
+    fused_at: float = -math.inf  # capture time of the latest fused detection
+    since_start: int = 0  # detections fused since the track's latest (re)start
 
 
 class BallTracker:
@@ -293,6 +295,24 @@ class BallTracker:
     def time(self) -> float:
         """Capture time of the latest processed frame (``-inf`` before the first)."""
         return self._track.t
+
+    @property
+    def last_fused(self) -> float:
+        """Capture time of the latest detection fused into the track, the one that started
+        it included (``-inf`` before the first) [s]."""
+        return self._track.fused_at
+
+    @property
+    def since_start(self) -> int:
+        """Detections fused since the track's latest (re)start, the starting one included (0
+        before the first)."""
+        return self._track.since_start
+
+    def covariance(self, t: float) -> np.ndarray | None:
+        """The ``4 x 4`` covariance of ``(x, y, vx, vy)`` [m, m/s] predicted to ``t`` (None
+        before the first detection)."""
+        out = self.estimate_with_covariance(t)
+        return None if out is None else out[1]
 
     # ------------------------------------------------------------------------------------
 
@@ -383,7 +403,7 @@ class BallTracker:
             zx, zy = dets[0]
             var = c.tau**2
             return _Track(t, (zx, zy, 0.0, 0.0), ((var, 0.0, 0.0, var), (0.0,) * 4,
-                                                   (var, 0.0, 0.0, var)))
+                                                   (var, 0.0, 0.0, var)), (), 0.0, t, 1)
         x, P = tr.x, tr.P
         dt = t - tr.t
         A = B = None
@@ -393,7 +413,7 @@ class BallTracker:
             q_step = self.motion.velocity_noise(dt, sigma_v)
             P = _predict(tr.x, P, A, B, q_step)
         if not dets:
-            return _Track(t, x, P, tr.candidates, tr.v_switch)
+            return _Track(t, x, P, tr.candidates, tr.v_switch, tr.fused_at, tr.since_start)
         # The detection nearest the prediction (Mahalanobis) is this frame's ball.
         best = None
         for z in dets:
@@ -404,7 +424,7 @@ class BallTracker:
         if c.gate is None or d2 <= c.gate:
             self.fused += 1
             x, P = _update(x, P, y, Si, r)
-            return _Track(t, x, P, (), tr.v_switch)
+            return _Track(t, x, P, (), tr.v_switch, t, tr.since_start + 1)
         # A maneuver must be near the prediction and reachable: a velocity change of at
         # most MAX_SPEED_CHANGE over the time since the last frame, plus noise.
         jump = math.hypot(*y)
@@ -424,9 +444,10 @@ class BallTracker:
             speed = math.hypot(x[2], x[3])
             v_switch = (c.two_phase[1] * speed if c.two_phase is not None
                         and speed > c.kick_speed else tr.v_switch)
-            return _Track(t, x, P, (), v_switch)
+            return _Track(t, x, P, (), v_switch, t, tr.since_start + 1)
         self.rejected += 1
-        return self._outlier(_Track(t, x, P, tr.candidates, tr.v_switch), t, z)
+        return self._outlier(_Track(t, x, P, tr.candidates, tr.v_switch, tr.fused_at,
+                                    tr.since_start), t, z)
 
     def _outlier(self, tr: _Track, t: float, z: list[float]) -> _Track:
         """Keep gated-out detections; restart the track once enough of them agree."""
@@ -442,10 +463,10 @@ class BallTracker:
             if gap > MAX_SPEED_CHANGE * (t - t0) + 5.0 * c.sigma_xy:
                 candidates = ()
             elif t <= t0:  # a second camera's view of the same instant: no new information
-                return _Track(tr.t, tr.x, tr.P, candidates, tr.v_switch)
+                return tr._replace(candidates=candidates)
         candidates = (*candidates, (t, tuple(z)))
         if len(candidates) < c.reset_after:
-            return _Track(tr.t, tr.x, tr.P, candidates, tr.v_switch)
+            return tr._replace(candidates=candidates)
         (t0, z0), (t1, z1) = candidates[0], candidates[-1]
         span = t1 - t0
         # The finite-difference velocity (z1 - z0) / span has variance 2 sigma^2 / span^2 per
@@ -468,7 +489,7 @@ class BallTracker:
         self.resets += 1
         return _Track(tr.t, (z1[0], z1[1], vx, vy),
                       ((var_p, 0.0, 0.0, var_p), (0.0,) * 4, (var_v, 0.0, 0.0, var_v)), (),
-                      v_switch)
+                      v_switch, t, 1)
 
 
 class LeastSquaresBall:
@@ -479,10 +500,14 @@ class LeastSquaresBall:
     detections in one frame it keeps the one nearest to the extrapolation.
     """
 
-    def __init__(self, window: int = 6) -> None:
+    def __init__(self, window: int = 6, sigma_xy: float = 0.01) -> None:
         if not isinstance(window, int) or window < 2:
             raise ValueError(f"window must be an integer >= 2, got {window!r}")
+        if not (math.isfinite(sigma_xy) and sigma_xy > 0.0):
+            raise ValueError(f"sigma_xy must be a finite number > 0 [m], got {sigma_xy!r}")
         self.window = window
+        #: The detections' noise [m] (per axis) that :meth:`covariance` assumes.
+        self.sigma_xy = float(sigma_xy)
         self.reset()
 
     def reset(self) -> None:
@@ -497,6 +522,43 @@ class LeastSquaresBall:
     @property
     def time(self) -> float:
         return self._t[-1] if self._t else -math.inf
+
+    @property
+    def last_fused(self) -> float:
+        """Capture time of the latest detection in the fit (``-inf`` before the first) [s]."""
+        return self.time
+
+    @property
+    def since_start(self) -> int:
+        """Detections in the fit (at most ``window``; the predictor never restarts)."""
+        return len(self._t)
+
+    def covariance(self, t: float) -> np.ndarray | None:
+        """The ``4 x 4`` covariance of ``(x, y, vx, vy)`` extrapolated to ``t``: ordinary
+        least squares with independent noise ``sigma_xy`` per axis, so per axis
+        ``var p(t) = s^2 (1/n + (t - tm)^2 / S)``, ``var v = s^2 / S`` and
+        ``cov(p, v) = s^2 (t - tm) / S`` with ``tm`` the mean and ``S`` the sum of squared
+        deviations of the ``n`` detection times. With one detection the velocity is unknown:
+        its variance is that of a ball anywhere up to ``MAX_SPEED_CHANGE``. None before the
+        first detection."""
+        if not self._t:
+            return None
+        s2 = self.sigma_xy**2
+        n = len(self._t)
+        ts = np.asarray(self._t)
+        tm = float(ts.mean())
+        S = float(np.sum((ts - tm) ** 2))
+        if n < 2 or S <= 0.0:
+            var_v = (MAX_SPEED_CHANGE / 3.0) ** 2
+            var_p, cov_pv = s2 + var_v * max(0.0, t - tm) ** 2, var_v * max(0.0, t - tm)
+        else:
+            d = t - tm
+            var_p, cov_pv, var_v = s2 * (1.0 / n + d * d / S), s2 * d / S, s2 / S
+        P = np.zeros((4, 4))
+        for a in (0, 1):
+            P[a, a], P[a, a + 2] = var_p, cov_pv
+            P[a + 2, a], P[a + 2, a + 2] = cov_pv, var_v
+        return P
 
     def update(self, t: float, detections, obstacles=None) -> None:
         """Process one frame captured at ``t`` with ball detections ``(k, 2)`` (k may be 0);

@@ -177,6 +177,18 @@ class RobotTracker:
         return np.array([[a[1] for a in axes] if axes else [0.0] * 3
                          for axes in self._axes]).reshape(-1, 3)
 
+    def pose_sigma(self, i: int, t: float) -> tuple[float, float]:
+        """Standard deviations of robot ``i``'s pose predicted to ``t``: position
+        ``sqrt((var x + var y) / 2)`` [m] and heading [rad], each axis's ``P00`` predicted as
+        in the module docstring; ``(inf, inf)`` for a robot never seen."""
+        axes = self._axes[i]
+        if axes is None:
+            return math.inf, math.inf
+        T = max(0.0, t - self._t[i])
+        var = [P00 + T * (2.0 * P01 + T * (P11 + q * T / 3.0))
+               for (_, _, P00, P01, P11), q in zip(axes, self.q)]
+        return math.sqrt(0.5 * (var[0] + var[1])), math.sqrt(var[2])
+
     def covariance(self, i: int) -> np.ndarray:
         """The 6 x 6 covariance of robot ``i`` (order ``x, y, theta, vx, vy, omega``)."""
         P = np.zeros((6, 6))

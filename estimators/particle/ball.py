@@ -272,6 +272,43 @@ class ParticleBallTracker:
         d = p - w @ p
         return math.sqrt(float(w @ np.sum(d * d, axis=1)))
 
+    @property
+    def last_fused(self) -> float:
+        """Time of the latest fused measurement, the one that started the filter included
+        (``-inf`` before the first) [s]."""
+        return self._t_fused
+
+    @property
+    def since_start(self) -> int:
+        """Measurements fused since the latest (re)start, the starting one included (0 before
+        the first)."""
+        return self._since_start
+
+    def covariance(self, t: float) -> np.ndarray | None:
+        """The ``4 x 4`` covariance of ``(px, py, vx, vy)`` [m, m/s] at time ``t``: the Kalman
+        start's ``P`` or the particles' weighted covariance at the filter's time, predicted to
+        a later ``t`` by the constant-velocity model with the acceleration noise,
+        ``P' = A P A^T + s^2 B B^T`` (``A = [[I, dt I], [0, I]]``, ``B = [dt^2/2 I; dt I]``);
+        the deceleration, which :meth:`estimate` applies to the mean, is left out of the
+        spread. None before the first measurement."""
+        if self._pf is None:
+            return None
+        if self._kf is not None:
+            P = self._kf.P.copy()
+        else:
+            w = self.weights
+            d = self._pf.particles - w @ self._pf.particles
+            P = (d * w[:, None]).T @ d
+        dt = float(t) - self._t
+        if dt > 0.0:
+            A = np.eye(4)
+            A[0, 2] = A[1, 3] = dt
+            B = np.zeros((4, 2))
+            B[0, 0] = B[1, 1] = 0.5 * dt * dt
+            B[2, 0] = B[3, 1] = dt
+            P = A @ P @ A.T + self.accel_sigma**2 * (B @ B.T)
+        return P
+
     def _check(self, t: float, z, sigma) -> tuple[float, np.ndarray, np.ndarray]:
         try:
             t = float(t)

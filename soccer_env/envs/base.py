@@ -38,6 +38,7 @@ import gymnasium as gym
 import numpy as np
 
 from soccer_env import presets
+from soccer_env.observations import ObservationBuilder
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.perception.match import MatchPerception
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
@@ -78,12 +79,14 @@ class SoccerCore(RenderingMixin):
                field: FieldSpec, ball: BallSpec, obs_mode: str,
                perceptions: tuple[PerceptionConfig, PerceptionConfig], control_dt: float,
                physics_dt: float, out_of_range_actions: str, render_mode: str | None,
-               render_width: int, head: str, policy_heads: Sequence[int]) -> None:
+               render_width: int, head: str, policy_heads: Sequence[int],
+               belief_features: bool = False) -> None:
         """Build the world and everything around it.
 
         ``policy_heads``: the humanoids whose head the policy aims with its action entries 4
         and 5 (with ``head="action"``); every other humanoid's head is aimed by the head
-        control.
+        control. ``belief_features``: the observations end with the belief features (see
+        :mod:`soccer_env.observations`; builders made by :meth:`_observation_builder`).
         """
         check_choice("obs_mode", obs_mode, OBS_MODES)
         check_choice("render_mode", render_mode, [None, *RENDER_MODES])
@@ -95,6 +98,9 @@ class SoccerCore(RenderingMixin):
         self.render_mode = render_mode
         self.out_of_range_actions = out_of_range_actions
         self.head = head
+        if not isinstance(belief_features, (bool, np.bool_)):
+            raise TypeError(f"belief_features must be True or False, got {belief_features!r}")
+        self.belief_features = bool(belief_features)
         self.world = World(field, ball, [team_specs[0]] * n_blue + [team_specs[1]] * n_yellow,
                            n_blue, n_yellow, control_dt, physics_dt)
         w = self.world
@@ -107,7 +113,8 @@ class SoccerCore(RenderingMixin):
         #: Blue's perception configuration (the match's, when both teams share one).
         self.perception = perceptions[0]
         self._perception = MatchPerception(obs_mode, perceptions, field, ball, w.robot_specs,
-                                           w.teams.tolist(), w.names, w.control_dt)
+                                           w.teams.tolist(), w.names, w.control_dt,
+                                           self.belief_features)
         # Commands reach each team's robots with its actuation latency, in whole control
         # steps, and its command loss (none for humanoids, whose walk engine is on board).
         self._slices = [slice(0, n_blue), slice(n_blue, n_blue + n_yellow)]
@@ -133,6 +140,19 @@ class SoccerCore(RenderingMixin):
         #: reported in ``info["estimate"]``).
         self._seen: Any = None
         self._shown_belief: Any = None
+
+    def _observation_builder(self, agents: Sequence[int], game_low: Sequence[float] = (),
+                             game_high: Sequence[float] = (), game_names: Sequence[str] = (),
+                             teams: Sequence[int] | None = None) -> ObservationBuilder:
+        """An :class:`~soccer_env.observations.ObservationBuilder` for the robots ``agents``
+        of this world (``teams``: the robots it lays out, default all), with the belief
+        features when the environment has them."""
+        w = self.world
+        return ObservationBuilder(self.field, w.teams if teams is None else teams, agents,
+                                  game_low, game_high, game_names,
+                                  belief_features=self.belief_features,
+                                  humanoid=bool(w.humanoid_indices),
+                                  team_size=max(w.n_blue, w.n_yellow))
 
     # ------------------------------------------------------------------------------------
     # Hooks

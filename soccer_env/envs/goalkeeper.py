@@ -11,7 +11,6 @@ import numpy as np
 
 from soccer_env import presets
 from soccer_env.envs.base import SingleAgentTask, action_cost, resolve_world
-from soccer_env.observations import ObservationBuilder
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.sim.referee import classify_exit
@@ -178,7 +177,8 @@ class GoalkeeperEnv(SingleAgentTask):
 
     ## Observation space
     ``Box((19,), float32)``, the egocentric layout of
-    :mod:`soccer_env.observations` with no team-mates, no opponents and no game state: the
+    :mod:`soccer_env.observations` with no team-mates, no opponents and no game state (with
+    ``belief_features=True``, 9 more entries, 11 for a humanoid): the
     keeper's own pose and velocity (7), the ball relative to it and its velocity (4), the four
     goal posts relative to it (8). ``obs_mode`` chooses where the values come from:
     ``"truth"``, ``"raw"`` (latest delayed camera detections) or ``"perceived"`` (the
@@ -218,7 +218,8 @@ class GoalkeeperEnv(SingleAgentTask):
     ``out_of_range_actions`` ("clip", the default, clips actions into [-1, 1]; "raise" rejects
     them), ``render_width`` (pixels); humanoids only: ``mates`` (0..3), ``head`` ("auto":
     the head follows the believed ball and scans when needed; "scan"; "action": the policy's
-    entries 4 and 5). Unknown arguments raise ``TypeError``.
+    entries 4 and 5); ``belief_features`` (append how sure the belief is: 9 entries, 11 for
+    humanoids; see :mod:`soccer_env.observations`). Unknown arguments raise ``TypeError``.
 
     ## Version history
     * v0: first release.
@@ -240,6 +241,7 @@ class GoalkeeperEnv(SingleAgentTask):
         render_width: int = 960,
         mates: int | None = None,
         head: str = "auto",
+        belief_features: bool = False,
         **unknown: Any,
     ) -> None:
         reject_unknown("GoalkeeperEnv", unknown, keyword_names(GoalkeeperEnv.__init__))
@@ -262,10 +264,11 @@ class GoalkeeperEnv(SingleAgentTask):
                     ball=bl, obs_mode=obs_mode, perceptions=(config, config),
                     control_dt=control_dt, physics_dt=physics_dt,
                     out_of_range_actions=out_of_range_actions, render_mode=render_mode,
-                    render_width=render_width, head=head, policy_heads=[0])
+                    render_width=render_width, head=head, policy_heads=[0],
+                    belief_features=belief_features)
         self.robot_model = self._models[0]
         self.action_space = self.robot_model.action_space()
-        self.builder = ObservationBuilder(self.field, [0], [0])
+        self.builder = self._observation_builder([0], teams=[0])
         self.observation_space = self.builder.space()
         # Half-width of the goal mouth the intercept shaping limits its crossing point to [m].
         self._mouth = 0.5 * self.field.goal_width + self.ball_spec.radius

@@ -12,7 +12,6 @@ from pettingzoo.utils import parallel_to_aec
 
 from soccer_env import presets
 from soccer_env.envs.base import SoccerCore, resolve_world
-from soccer_env.observations import ObservationBuilder
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.render.renderer import RENDER_MODES
@@ -110,7 +109,9 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     ``out_of_range_actions`` as in :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`;
     ``match_duration`` [s]; ``max_cycles``; ``shaping``; ``formation_jitter`` (metres of
     uniform jitter of the kick-off formation); ``render_width``; ``head`` (humanoid agents:
-    "auto", "scan" or "action").
+    "auto", "scan" or "action"); ``belief_features`` (every agent's observation ends with
+    how sure its belief is: 9 entries, 11 with humanoids in the match; see
+    :mod:`soccer_env.observations`).
     """
 
     metadata = {"name": "soccer_v0", "render_modes": list(RENDER_MODES), "render_fps": 60,
@@ -135,6 +136,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         formation_jitter: float = 0.1,
         render_width: int = 960,
         head: str = "auto",
+        belief_features: bool = False,
         **unknown: Any,
     ) -> None:
         reject_unknown("parallel_env", unknown, keyword_names(SoccerParallelEnv.__init__))
@@ -159,22 +161,22 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
                     obs_mode=obs_mode, perceptions=perceptions, control_dt=control_dt,
                     physics_dt=physics_dt, out_of_range_actions=out_of_range_actions,
                     render_mode=render_mode, render_width=render_width, head=head,
-                    policy_heads=range(blue + yellow))
+                    policy_heads=range(blue + yellow),
+                    belief_features=belief_features)
         w = self.world
         #: The first robot's action mapping.
         self.robot_model = self._models[0] if blue else self._models[1]
         self.possible_agents = list(w.names)
         self.agents: list[str] = []
         game_low, game_high = (0.0, 0.0, 0.0, -1.0), (1.0, 1000.0, 1000.0, 1.0)
-        self.builder = ObservationBuilder(self.field, w.teams, range(w.n_robots), game_low,
-                                          game_high, GAME_NAMES)
+        self.builder = self._observation_builder(range(w.n_robots), game_low, game_high,
+                                                 GAME_NAMES)
         self._teams = w.teams.tolist()
         self._observation_spaces = {a: self.builder.space() for a in self.possible_agents}
         self._action_spaces = {a: self._models[t].action_space()
                                for a, t in zip(self.possible_agents, self._teams)}
         # One observation builder per group of robots that share a belief.
-        self._builders = [(g, ObservationBuilder(self.field, w.teams, g, game_low, game_high,
-                                                 GAME_NAMES))
+        self._builders = [(g, self._observation_builder(g, game_low, game_high, GAME_NAMES))
                           for g in self._perception.groups]
         self.state_space = gymnasium.spaces.Box(-np.inf, np.inf, (6 + 6 * w.n_robots,),
                                                 np.float32)

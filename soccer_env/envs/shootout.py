@@ -178,7 +178,8 @@ class ShootoutEnv(SingleAgentTask):
     teams), ``render_mode``, ``start`` (a :class:`ShootoutStart` or a mapping of its fields),
     ``shaping`` ({term: scale}), ``control_dt``, ``physics_dt``, ``out_of_range_actions``,
     ``render_width``, ``head`` (humanoids: ``"auto"``, ``"scan"`` or ``"action"``, the
-    attacker's head only; the keeper's is always controlled). Unknown arguments raise
+    attacker's head only; the keeper's is always controlled), ``belief_features`` (as in
+    :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`). Unknown arguments raise
     ``TypeError``.
 
     ## Version history
@@ -200,6 +201,7 @@ class ShootoutEnv(SingleAgentTask):
         out_of_range_actions: str = "clip",
         render_width: int = 960,
         head: str = "auto",
+        belief_features: bool = False,
         **unknown: Any,
     ) -> None:
         reject_unknown("ShootoutEnv", unknown, keyword_names(ShootoutEnv.__init__))
@@ -213,11 +215,12 @@ class ShootoutEnv(SingleAgentTask):
                     obs_mode=obs_mode, perceptions=(config, config), control_dt=control_dt,
                     physics_dt=physics_dt, out_of_range_actions=out_of_range_actions,
                     render_mode=render_mode, render_width=render_width, head=head,
-                    policy_heads=[0])
+                    policy_heads=[0],
+                    belief_features=belief_features)
         self.robot_model = self._models[0]
         self.action_space = self.robot_model.action_space()
         teams = self.world.teams
-        self.builder = ObservationBuilder(self.field, teams, [0])
+        self.builder = self._observation_builder([0])
         self.observation_space = self.builder.space()
         self._keeper_view = ObservationBuilder(self.field, teams, [1])
         self.keeper = ScriptedGoalkeeper(self.field, self.ball_spec, spec,

@@ -27,6 +27,7 @@ ahead by the actuation latency) and the one at the present time, reported in
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, Protocol
@@ -54,10 +55,52 @@ from soccer_env.state import WorldState
 from soccer_env.validation import from_mapping
 
 __all__ = ["OBS_MODES", "Perception", "PerceptionConfig", "BALL_FILTERS", "BALL_TRACKERS",
-           "FUSIONS", "LOCALIZATIONS", "DETECTORS"]
+           "FUSIONS", "LOCALIZATIONS", "DETECTORS", "JUST_STARTED", "SSL_LOST_AFTER",
+           "COAST_FRAMES", "ball_status", "sigmas", "expected_age"]
 
 #: Observation modes.
 OBS_MODES = ("truth", "raw", "perceived")
+
+#: A ball track counts as just (re)started (status ``"reset"``) until it has fused this many
+#: measurements: with fewer, its velocity rests on one or two differences of noisy positions.
+JUST_STARTED = 3
+#: An SSL ball not measured for this long [s] counts as lost (the SSL filters predict on
+#: indefinitely; humanoid trackers restart after their own ``lost_after``).
+SSL_LOST_AFTER = 1.0
+#: A track counts as coasting once its latest measurement is older than the sensor's latency
+#: (with its jitter) plus this many frame periods: a frame that should have seen it did not.
+COAST_FRAMES = 1.5
+
+
+def expected_age(frame_rate: float | None, latency: float, jitter: float,
+                 control_dt: float = 1.0 / 60.0) -> float:
+    """The oldest a measurement is while a sensor sees the ball in every frame [s]: latency,
+    jitter and :data:`COAST_FRAMES` frame periods (a control step's for a sensor that
+    captures every step)."""
+    period = 1.0 / frame_rate if frame_rate else control_dt
+    return latency + jitter + COAST_FRAMES * period
+
+
+def ball_status(age: float, expected: float, since_start: int, lost_after: float) -> int:
+    """The track's state, an index in :data:`~soccer_env.state.BALL_STATUSES`: lost when
+    its latest measurement is older than ``lost_after`` [s] (or there is none), else reset
+    while it has fused fewer than :data:`JUST_STARTED` measurements since its (re)start, else
+    coasting when older than ``expected`` [s] (:func:`expected_age`), else tracking."""
+    if not age <= lost_after:
+        return 3
+    if since_start < JUST_STARTED:
+        return 2
+    return 1 if age > expected else 0
+
+
+def sigmas(P: np.ndarray | None) -> tuple[float, float]:
+    """Position [m] and velocity [m/s] standard deviations per axis of a ``4 x 4``
+    covariance of ``(x, y, vx, vy)``: ``sqrt`` of the mean of the two axes' variances;
+    ``inf`` for None (nothing known)."""
+    if P is None:
+        return math.inf, math.inf
+    return (math.sqrt(max(0.0, 0.5 * (P[0, 0] + P[1, 1]))),
+            math.sqrt(max(0.0, 0.5 * (P[2, 2] + P[3, 3]))))
 
 
 class Perception(Protocol):

@@ -13,10 +13,11 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from estimators import fuse_sightings
+from soccer_env.perception.base import ball_status, expected_age, sigmas
 from soccer_env.perception.options import BALL_TRACKERS, FUSIONS, LOCALIZATIONS
 from soccer_env.sensors.headcam import HeadFrame
 from soccer_env.sensors.radio import Message
-from soccer_env.state import WorldState
+from soccer_env.state import BeliefQuality, WorldState
 
 if TYPE_CHECKING:  # the team's pipeline, which owns its robots' brains
     from soccer_env.perception.humanoid import HumanoidTeamPerception
@@ -120,6 +121,13 @@ class Brain:
         self.landmark_seen = state.time
         self.last_frame = state.time
         self.down = False  # fallen at the last update
+        # The latest fusion: its capture time, how many robots' lines it used, its
+        # covariance.
+        self.fused_at = -math.inf
+        self.fused_lines = 0
+        self.fused_cov: np.ndarray | None = None
+        # Dead reckoning's variance: position per axis [m^2], heading [rad^2].
+        self.odo_var = [0.0, 0.0]
 
     # ------------------------------------------------------------------------------------
 
@@ -134,6 +142,22 @@ class Brain:
         if self.kind == "odometry":
             self.pose = self._moved(self.pose, d)
             self.odo.clear()
+            self._dead_reckoning_variance(d)
+
+    def _dead_reckoning_variance(self, d: tuple[float, float, float]) -> None:
+        """Grow the dead reckoning's variance by the step ``d`` with the walk engine's
+        odometry noise figures (which a team calibrates): per axis ``(s_t |d_xy|)^2 / 2`` of
+        relative translation error, ``(slip d_theta)^2 / 2`` of sideways slip and
+        ``var_theta |d_xy|^2 / 2`` from the heading already wrong; heading
+        ``(s_r d_theta)^2``. Errors drawn per gait step are treated as drawn per control step
+        (the same variance per metre walked)."""
+        spec = self.p.specs[self.i]
+        dist2 = d[0] * d[0] + d[1] * d[1]
+        var_xy, var_th = self.odo_var
+        var_xy += 0.5 * (spec.odometry_trans_sigma**2 * dist2
+                         + (spec.odometry_turn_slip * d[2]) ** 2 + var_th * dist2)
+        var_th += (spec.odometry_rot_sigma * d[2]) ** 2
+        self.odo_var = [var_xy, var_th]
 
     @staticmethod
     def _moved(pose: np.ndarray, d: tuple[float, float, float]) -> np.ndarray:
@@ -296,9 +320,11 @@ class Brain:
         x0, x1, y0, y1 = p.bounds
         if not (np.all(np.isfinite(point)) and x0 <= point[0] <= x1 and y0 <= point[1] <= y1):
             return  # no ball can be there (outside the walls)
+        cov = fused.cov + _MIN_SIGMA**2 * np.eye(2)
         if self.tracker is not None:
-            self.tracker.update(t, point, fused.cov + _MIN_SIGMA**2 * np.eye(2))
+            self.tracker.update(t, point, cov)
         self.points.append((t, float(point[0]), float(point[1])))
+        self.fused_at, self.fused_lines, self.fused_cov = t, len(lines), cov
 
     def ball_point(self, t: float) -> np.ndarray | None:
         """The believed ball ``(x, y, vx, vy)`` at ``t`` (None if never seen); a prediction
@@ -318,6 +344,42 @@ class Brain:
             if t1 - t0 >= _MIN_DIFF_GAP:
                 return np.array([x1, y1, (x1 - x0) / (t1 - t0), (y1 - y0) / (t1 - t0)])
         return np.array([x1, y1, 0.0, 0.0])
+
+    def quality(self, t: float, now: float) -> BeliefQuality:
+        """How sure the belief at ``t`` is (ages at ``now``): the tracker's covariance and
+        track state (with ``ball_tracker="none"``: the latest fusion's covariance and, for
+        the velocity of two fused points ``gap`` apart, ``sqrt(2) sigma / gap``), the own
+        pose's spread (the localization's particles, dead reckoning's grown variance, 0 for
+        the oracle); other robots' spreads are not modelled (``inf``)."""
+        p = self.p
+        cam = p.camera
+        expected = expected_age(cam.frame_rate, cam.latency, cam.latency_jitter) + (
+            0.0 if self.fusion == "own" else p.radio_spec.latency + p.radio_spec.jitter)
+        tracker = self.tracker
+        if tracker is not None:
+            sigma, sigma_v = sigmas(tracker.covariance(t))
+            last, since = tracker.last_fused, tracker.since_start
+            lost_after = tracker.lost_after if tracker.lost_after is not None else math.inf
+        else:
+            last, since, lost_after = self.fused_at, len(self.points), 2.0
+            sigma = sigma_v = math.inf
+            if self.fused_cov is not None:
+                sigma = math.sqrt(0.5 * float(np.trace(self.fused_cov)))
+                t1 = self.points[-1][0]
+                gaps = [t1 - t0 for t0, _, _ in self.points if t1 - t0 >= _MIN_DIFF_GAP]
+                if gaps:
+                    sigma_v = math.sqrt(2.0) * sigma / min(gaps)
+        fused_age = now - last
+        status = ball_status(fused_age, expected, since, lost_after)
+        spread = np.full((p.n_robots, 2), math.inf)
+        if self.loc is not None:
+            spread[self.i] = self.loc.pose_sigma()
+        elif self.kind == "truth":
+            spread[self.i] = 0.0
+        else:
+            spread[self.i] = (math.sqrt(self.odo_var[0]), math.sqrt(self.odo_var[1]))
+        return BeliefQuality(sigma, sigma_v, now - self.ball_seen, status, spread, fused_age,
+                             self.fused_lines if status < 3 else 0)
 
     def belief(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         """``ball`` (6,) and ``robots`` (N, 6) as this robot believes them at ``t``."""

@@ -40,6 +40,8 @@ class MatchPerception:
         names: every robot's name.
         control_dt: the world's control step [s] (the actuation latency is applied in whole
             steps).
+        features: the observations' beliefs carry their
+            :class:`~soccer_env.state.BeliefQuality` (the environments' belief features).
 
     Reads the world's :class:`~soccer_env.state.WorldState` and, with humanoids,
     :class:`~soccer_env.state.BodyState` snapshots; never the world itself.
@@ -47,8 +49,10 @@ class MatchPerception:
 
     def __init__(self, obs_mode: str, configs: tuple[PerceptionConfig, PerceptionConfig],
                  field: FieldSpec, ball: BallSpec, robots: Sequence[RobotSpec],
-                 teams: Sequence[int], names: Sequence[str], control_dt: float) -> None:
+                 teams: Sequence[int], names: Sequence[str], control_dt: float,
+                 features: bool = False) -> None:
         self.obs_mode = obs_mode
+        self.features = bool(features)
         # In truth mode every robot believes the truth: the latest state is every belief.
         self._truth = obs_mode == "truth"
         self._state: WorldState | None = None
@@ -73,7 +77,7 @@ class MatchPerception:
                 delay = round(spec.actuation_latency / control_dt)
                 group = members[0] + members[1] if shared else members[t]
                 pipe = make_perception(obs_mode, configs[t], field, specs[members[t][0]], ball,
-                                       n, delay * control_dt, teams, specs)
+                                       n, delay * control_dt, teams, specs, features)
                 for tt in (ssl_teams if shared else [t]):
                     self.delays[tt] = delay
                 self._groups.append((group, pipe, False))
@@ -165,9 +169,10 @@ class MatchPerception:
         return beliefs[0], current[0]
 
     def _collect(self, t: float) -> None:
+        features = self.features
         for i, team in self._humanoid.items():
             ball, robots = team.belief(i, t)
-            b = Belief(t, ball, robots)
+            b = Belief(t, ball, robots, team.brain(i).quality(t, t) if features else None)
             self._beliefs[i] = self._current[i] = b
 
     def belief(self, i: int) -> Any:

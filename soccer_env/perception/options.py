@@ -87,7 +87,7 @@ def _ekf(propagation: str, two_phase: bool, ball: BallSpec, vision: VisionSpec,
 
 def _least_squares(ball: BallSpec, vision: VisionSpec, measurement: PositionMeasurement
                    ) -> BallFilter:
-    return BallFilter(LeastSquaresBall(), True)
+    return BallFilter(LeastSquaresBall(sigma_xy=_sigma(vision)), True)
 
 
 #: Ball filters of ``obs_mode="perceived"`` for SSL teams.

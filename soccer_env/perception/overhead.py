@@ -19,11 +19,19 @@ from typing import Any
 import numpy as np
 
 from estimators import RobotTracker
-from soccer_env.perception.base import OBS_MODES, Perception, PerceptionConfig
+from soccer_env.perception.base import (
+    OBS_MODES,
+    SSL_LOST_AFTER,
+    Perception,
+    PerceptionConfig,
+    ball_status,
+    expected_age,
+    sigmas,
+)
 from soccer_env.perception.options import BALL_FILTERS, DETECTORS
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
 from soccer_env.sensors.overhead import DetectionFrame
-from soccer_env.state import Belief, WorldState
+from soccer_env.state import Belief, BeliefQuality, WorldState
 
 __all__ = ["TruthPerception", "RawPerception", "FilteredPerception", "make_perception"]
 
@@ -57,6 +65,11 @@ class _VisionPerception:
         #: The detections' measurement models (the filters weigh them with these).
         self.measurements = self.detector if self.detector is not None else self.sensor
         self.n_robots = n_robots
+        #: Whether the beliefs carry their :class:`~soccer_env.state.BeliefQuality` (the
+        #: environments' ``belief_features``).
+        self.features = False
+        v = config.vision
+        self._expected_age = expected_age(v.frame_rate, v.latency, v.latency_jitter)
 
     def reset(self, state: WorldState, rng: np.random.Generator):
         self._clear()
@@ -128,8 +141,25 @@ class RawPerception(_VisionPerception):
         for i, hist in enumerate(self._robots):
             pose, rate = _last_and_rate(hist, 3)
             robots[i, 0:3], robots[i, 3:6] = pose, rate
-        belief = Belief(now, ball, robots)
+        belief = Belief(now, ball, robots, self._quality(now) if self.features else None)
         return belief, belief
+
+    def _quality(self, now: float) -> BeliefQuality:
+        """The raw belief's quality: the sensor's noise on the latest sighting, the
+        difference velocity's ``sqrt(2) sigma / gap`` (unknown from one sighting)."""
+        v = self.vision_spec
+        prev, last = self._ball
+        age = math.inf if last is None else now - last[0]
+        sigma = math.inf if last is None else v.ball_sigma
+        sigma_v = (math.inf if prev is None else
+                   math.sqrt(2.0) * v.ball_sigma / (last[0] - prev[0]))
+        status = ball_status(age, self._expected_age, 3 if prev is not None else 1,
+                             SSL_LOST_AFTER)
+        known = [(v.robot_sigma, v.robot_sigma_theta) if h[1] is not None
+                 else (math.inf, math.inf) for h in self._robots]
+        return BeliefQuality(sigma, sigma_v, age, status,
+                             np.array(known, dtype=np.float64).reshape(-1, 2), age,
+                             0 if last is None else 1)
 
 
 def _push(hist: list, item: tuple, min_gap: float) -> None:
@@ -193,7 +223,10 @@ class FilteredPerception(_VisionPerception):
 
     def beliefs(self, now: float):
         current = self._belief(now)
-        return (self._belief(now + self.ahead) if self.ahead else current), current
+        seen = self._belief(now + self.ahead) if self.ahead else current
+        if self.features:
+            seen = seen._replace(quality=self._quality(seen.time, now))
+        return seen, current
 
     def _belief(self, t: float) -> Belief:
         est = self.ball_tracker.estimate(t)
@@ -201,25 +234,43 @@ class FilteredPerception(_VisionPerception):
                                                          0.0))
         return Belief(t, ball, self.robot_tracker.estimate(t))
 
+    def _quality(self, t: float, now: float) -> BeliefQuality:
+        """The filters' quality of the belief at ``t`` (ages at ``now``): the ball filter's
+        covariance and track state, the robot filters' pose spreads."""
+        ball = self.ball_tracker
+        sigma, sigma_v = sigmas(ball.covariance(t))
+        age = now - ball.last_fused
+        status = ball_status(age, self._expected_age, ball.since_start, SSL_LOST_AFTER)
+        robots = self.robot_tracker
+        spread = np.array([robots.pose_sigma(i, t) for i in range(self.n_robots)],
+                          dtype=np.float64).reshape(-1, 2)
+        return BeliefQuality(sigma, sigma_v, age, status, spread, age,
+                             int(status < 3 and age <= self._expected_age))
+
 
 def make_perception(obs_mode: str, config: PerceptionConfig, field: FieldSpec,
                     robot: SSLRobotSpec, ball: BallSpec, n_robots: int,
                     actuation_delay: float | None = None, teams: Sequence[int] | None = None,
-                    robots: Sequence[Any] | None = None) -> Perception:
+                    robots: Sequence[Any] | None = None, features: bool = False
+                    ) -> Perception:
     """The overhead-vision pipeline of ``obs_mode`` for SSL robots (humanoids:
     :class:`MatchPerception`); unknown modes raise ``ValueError``.
 
     ``actuation_delay`` [s] is how far ahead the perceived belief is predicted (default: the
     vision preset's actuation latency; environments pass the latency as they apply it, in
     whole control steps). ``teams`` and ``robots`` (every robot's team and spec) are what the
-    ``pixels`` detector draws.
+    ``pixels`` detector draws. With ``features`` the observation's belief carries its
+    :class:`~soccer_env.state.BeliefQuality`.
     """
     if obs_mode == "truth":
         return TruthPerception(config)
     if obs_mode == "raw":
-        return RawPerception(config, field, robot, ball, n_robots, teams, robots)
+        p = RawPerception(config, field, robot, ball, n_robots, teams, robots)
+        p.features = features
+        return p
     if obs_mode == "perceived":
         p = FilteredPerception(config, field, robot, ball, n_robots, teams, robots)
+        p.features = features
         if actuation_delay is not None:
             p.ahead = float(actuation_delay)
         return p
