@@ -34,6 +34,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from soccer_env.perception import randomization
 from soccer_env.perception.options import (
     BALL_FILTERS,
     BALL_TRACKERS,
@@ -140,6 +141,12 @@ class PerceptionConfig:
         localization: one of :data:`~soccer_env.perception.options.LOCALIZATIONS`.
         fusion: one of :data:`~soccer_env.perception.options.FUSIONS`.
         ball_tracker: one of :data:`~soccer_env.perception.options.BALL_TRACKERS`.
+
+    Both:
+
+    Attributes:
+        randomize: sensor figures drawn afresh every episode, ``{figure: (low, high)}``
+            (kept as sorted triples; see :mod:`soccer_env.perception.randomization`).
     """
 
     vision: VisionSpec
@@ -150,8 +157,10 @@ class PerceptionConfig:
     localization: str = "kld"
     fusion: str = "inverse"
     ball_tracker: str = "mfbpf"
+    randomize: Any = ()
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "randomize", randomization.ranges(self.randomize))
         if isinstance(self.vision, str):
             object.__setattr__(self, "vision", vision(self.vision))
         elif not isinstance(self.vision, VisionSpec):

@@ -16,6 +16,7 @@ from soccer_env.perception.overhead import (
     TruthPerception,
     make_perception,
 )
+from soccer_env.perception.randomization import check_ranges, draw
 from soccer_env.presets import BallSpec, FieldSpec, HeadCameraSpec, RobotSpec, head_camera
 from soccer_env.state import Attention, Belief, BodyState, WorldState
 
@@ -69,18 +70,28 @@ class MatchPerception:
         # belief per robot)
         self._groups: list[tuple[list[int], Any, bool]] = []
         self._humanoid: dict[int, Any] = {}  # robot -> its team's HumanoidTeamPerception
+        #: Groups whose sensor figures are drawn every episode: group index -> (the
+        #: preset's spec, the ranges, what builds the group's pipeline from a drawn spec).
+        self._randomized: dict[int, tuple[Any, Any, Any]] = {}
         ssl_teams = [t for t in (0, 1) if kinds[t] == "ssl"]
         if ssl_teams:
             shared = len(ssl_teams) == 2 and configs[0] == configs[1]
             for t in ([ssl_teams[0]] if shared else ssl_teams):
-                spec = configs[t].vision
-                delay = round(spec.actuation_latency / control_dt)
+                cfg = configs[t]
+                delay = round(cfg.vision.actuation_latency / control_dt)
                 group = members[0] + members[1] if shared else members[t]
-                pipe = make_perception(obs_mode, configs[t], field, specs[members[t][0]], ball,
-                                       n, delay * control_dt, teams, specs, features)
+
+                def build(spec, cfg=cfg, t=t, delay=delay):
+                    return make_perception(obs_mode, dataclasses.replace(cfg, vision=spec),
+                                           field, specs[members[t][0]], ball, n,
+                                           delay * control_dt, teams, specs, features)
+
                 for tt in (ssl_teams if shared else [t]):
                     self.delays[tt] = delay
-                self._groups.append((group, pipe, False))
+                if cfg.randomize and obs_mode != "truth":
+                    check_ranges(cfg.vision, cfg.randomize, "ssl")
+                    self._randomized[len(self._groups)] = (cfg.vision, cfg.randomize, build)
+                self._groups.append((group, build(cfg.vision), False))
         for t in (0, 1):
             if kinds[t] != "humanoid":
                 continue
@@ -94,11 +105,18 @@ class MatchPerception:
             if obs_mode == "raw":
                 cfg = dataclasses.replace(cfg, localization="odometry", fusion="own",
                                           ball_tracker="none")
-            team = HumanoidTeamPerception(cfg, field, ball, specs, teams, names, members[t],
-                                          camera, cfg.radio)
-            for i in members[t]:
-                self._humanoid[i] = team
-            self._groups.append((members[t], team, True))
+
+            def build_team(cam, cfg=cfg, t=t):
+                team = HumanoidTeamPerception(cfg, field, ball, specs, teams, names,
+                                              members[t], cam, cfg.radio)
+                for i in members[t]:
+                    self._humanoid[i] = team
+                return team
+
+            if cfg.randomize:
+                check_ranges(camera, cfg.randomize, "humanoid")
+                self._randomized[len(self._groups)] = (camera, cfg.randomize, build_team)
+            self._groups.append((members[t], build_team(camera), True))
         self._beliefs: dict[int, Any] = {}
         self._current: dict[int, Any] = {}
 
@@ -137,6 +155,9 @@ class MatchPerception:
         if self._truth:
             self._state = state
             return state, state
+        if self._randomized:
+            # The sensor figures of the episode, from a stream of their own taken first.
+            self._draw(np.random.default_rng(rng.integers(2**63)))
         # One pipeline draws from the episode's sensor stream itself, several from streams
         # spawned from it.
         rngs = [rng] if len(self._groups) == 1 else rng.spawn(len(self._groups))
@@ -149,6 +170,12 @@ class MatchPerception:
                     self._beliefs[i], self._current[i] = seen, now
         self._collect(state.time)
         return self._beliefs[0], self._current[0]
+
+    def _draw(self, rng: np.random.Generator) -> None:
+        """Draw the randomised groups' sensor figures and rebuild their pipelines."""
+        for g, (spec, ranges, build) in sorted(self._randomized.items()):
+            robots, _, humanoid = self._groups[g]
+            self._groups[g] = (robots, build(draw(spec, ranges, rng)), humanoid)
 
     def update(self, state: WorldState, body: BodyState | None = None) -> tuple[Any, Any]:
         """Advance to ``state`` (``body``: the robots' bodies, needed with humanoids);
