@@ -27,7 +27,7 @@ from typing import Any
 import gymnasium as gym
 
 import soccer_env  # noqa: F401  (registers the environments)
-from agents.policies import make_policy
+from agents.policies import make_policy, reset_policy
 
 __all__ = ["wilson", "EvalResult", "evaluate", "record_video", "process_context",
            "GOALKEEPER_ID"]
@@ -135,6 +135,7 @@ def _run_episodes(args: tuple) -> dict[str, Any]:
     saved, steps, sq_err, t0 = [], 0, 0.0, time.perf_counter()
     for seed in seeds:
         obs, info = env.reset(seed=int(seed))
+        reset_policy(policy)  # a policy with memory starts the episode afresh
         while True:
             obs, _, term, trunc, info = env.step(policy(obs))
             steps += 1
@@ -161,6 +162,8 @@ def evaluate(policy: str | os.PathLike | Callable = "scripted",
         policy: a policy reference for :func:`~agents.policies.make_policy` (``"scripted"``,
             ``"idle"``, ``"baseline:NAME"``, a ``.zip``/``.npz`` path) or a callable; a
             callable runs in this process only (``workers`` must be 1 unless it pickles).
+            A policy with memory is reset (its ``reset()``, see
+            :func:`~agents.policies.reset_policy`) at the start of every episode.
         env_kwargs: keyword arguments of ``gymnasium.make`` (``obs_mode``, ``perception``,
             ...).
         episodes: number of shots; seeds ``start_seed`` onwards.
@@ -241,6 +244,7 @@ def record_video(policy: str | os.PathLike | Callable, path: str | os.PathLike,
     frames = []
     for seed in seeds:
         obs, _ = env.reset(seed=int(seed))
+        reset_policy(pol)
         frames.append(env.render())
         while True:
             obs, _, term, trunc, _ = env.step(pol(obs))

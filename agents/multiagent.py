@@ -61,6 +61,9 @@ LEARNERS = ("blue", "yellow", "both")
 #: Opponents given by name.
 OPPONENT_NAMES = ("scripted", "idle")
 
+_NO_MEMORY = ("opponent policies with memory (a recurrent model, a frame-stacked numpy policy) "
+              "are not supported: the match does not reset an opponent's memory when a match "
+              "ends")
 _OPPONENT_HELP = ("'scripted', 'idle', a callable batch policy obs (k, obs_dim) -> actions "
                   "(k, 6), or a stable-baselines3 model")
 
@@ -105,7 +108,8 @@ class MatchVecEnv(VecEnv):
             :class:`~agents.policies.NumpyPolicy` when possible), a
             :class:`~agents.policies.NumpyPolicy`, or any callable ``obs (k, obs_dim) ->
             actions (k, 6)``, called with one match's team at a time (rows in robot order).
-            Must be None with ``learner="both"``.
+            Must be None with ``learner="both"``. Policies with memory (recurrent models,
+            frame-stacked numpy policies) are refused.
 
     Spaces: the match's per-agent ``Box`` observation (float32) and ``Box(-1, 1, (6,))``
     action. ``num_envs = n_matches * L`` with ``L`` the learning robots per match.
@@ -201,6 +205,8 @@ class MatchVecEnv(VecEnv):
             raise ValueError(f"opponent must be {_OPPONENT_HELP}; got the string "
                              f"{opponent!r} (names: {list(OPPONENT_NAMES)})")
         if _is_sb3_model(opponent):
+            if hasattr(opponent.policy, "lstm_actor"):
+                raise ValueError(_NO_MEMORY)
             try:
                 policy: Any = NumpyPolicy.from_sb3(opponent)
             except ValueError:  # a network numpy cannot copy: it follows the live model
@@ -210,6 +216,8 @@ class MatchVecEnv(VecEnv):
         if isinstance(opponent, ScriptedTeam):
             return _Opponent(opponent.act, False, "ScriptedTeam")
         if isinstance(opponent, NumpyPolicy):
+            if opponent.stateful:
+                raise ValueError(_NO_MEMORY)
             self._check_policy_size(opponent)
             return _Opponent(opponent, True, type(opponent).__name__)
         if callable(opponent):

@@ -8,9 +8,10 @@ evaluation workers can rebuild them in their own processes (see :func:`make_poli
 * ``"idle"``: a keeper that stands still (all-zero actions);
 * ``"baseline:NAME"``: a policy shipped in the package (:data:`agents.baselines.BASELINES`);
 * a path to a ``.npz`` written by :meth:`NumpyPolicy.save`;
-* a path to a stable-baselines3 ``.zip`` (PPO, A2C, SAC, TD3, DDPG; with the ``VecNormalize``
-  statistics saved beside it, see :func:`vecnormalize_path`, and the action map recorded in
-  its run's ``config.json``), or a training run's folder (its ``final_policy.npz``, else
+* a path to a stable-baselines3 ``.zip`` (PPO, A2C, SAC, TD3, DDPG, sb3-contrib's
+  RecurrentPPO; with the ``VecNormalize`` statistics saved beside it, see
+  :func:`vecnormalize_path`, and the action map and frame stack recorded in its run's
+  ``config.json``), or a training run's folder (its ``final_policy.npz``, else
   ``final_model.zip``).
 
 Trained networks are evaluated through :class:`NumpyPolicy`, a numpy copy of the actor's
@@ -18,6 +19,13 @@ deterministic path: a stable-baselines3 ``predict`` costs about 0.3 ms per call 
 machine, more than the environment step it drives, while the numpy copy costs about 20 us and
 needs neither torch nor stable-baselines3 (so the shipped baselines run without the training
 extra).
+
+Policies with memory (:class:`NumpyRecurrentPolicy`, the LSTM of a RecurrentPPO actor; a
+:class:`NumpyPolicy` trained on stacked frames, which keeps its own history of
+observations) act on one episode at a time: whoever runs episodes calls
+:func:`reset_policy` at each episode start (it calls the policy's ``reset()``, where there
+is one), as :func:`~agents.evaluation.evaluate` and
+:func:`~agents.evaluation.record_video` do.
 """
 
 from __future__ import annotations
@@ -30,20 +38,70 @@ from typing import Any, Protocol
 
 import numpy as np
 
-__all__ = ["Policy", "NumpyPolicy", "SB3Policy", "IdlePolicy", "make_policy", "load_sb3",
-           "vecnormalize_path", "SB3_ALGORITHMS", "POLICY_NAMES"]
+__all__ = ["Policy", "NumpyPolicy", "NumpyRecurrentPolicy", "SB3Policy", "IdlePolicy",
+           "make_policy", "load_sb3", "reset_policy", "vecnormalize_path", "algorithm_name",
+           "algorithm_class", "SB3_ALGORITHMS", "POLICY_NAMES"]
 
-#: Algorithms whose saved models :func:`load_sb3` opens, in the order it tries them.
-SB3_ALGORITHMS = ("PPO", "SAC", "TD3", "A2C", "DDPG")
+#: Algorithms that :func:`load_sb3` opens and training runs (canonical spellings, see
+#: :func:`algorithm_name`): stable-baselines3's, and sb3-contrib's ``RecurrentPPO`` (PPO with
+#: an LSTM in front of the actor's and the critic's networks; ``recurrent-ppo`` on the
+#: command line).
+SB3_ALGORITHMS = ("PPO", "SAC", "TD3", "A2C", "DDPG", "RECURRENTPPO")
+
+#: The order in which :func:`load_sb3` tries the algorithms on a file of unknown algorithm:
+#: RecurrentPPO first, because PPO opens a RecurrentPPO file without complaint (and then
+#: acts without its memory), while RecurrentPPO refuses the others' files.
+_LOAD_ORDER = ("RECURRENTPPO", "PPO", "SAC", "TD3", "A2C", "DDPG")
 
 #: Policy names that :func:`make_policy` resolves without a file.
 POLICY_NAMES = ("scripted", "idle")
 
 
 class Policy(Protocol):
-    """One observation in, one action out."""
+    """One observation in, one action out. A policy with memory also has ``reset()``, to be
+    called at each episode start (see :func:`reset_policy`)."""
 
     def __call__(self, obs: np.ndarray) -> np.ndarray: ...
+
+
+def reset_policy(policy: Any) -> None:
+    """Start a new episode for ``policy``: call its ``reset()`` if it has one (policies with
+    memory: a frame stack, an LSTM); stateless policies need nothing."""
+    reset = getattr(policy, "reset", None)
+    if callable(reset):
+        reset()
+
+
+def algorithm_name(name: str) -> str:
+    """The canonical spelling of an algorithm's name, one of :data:`SB3_ALGORITHMS`: case,
+    ``-`` and ``_`` do not matter (``"ppo"``, ``"recurrent-ppo"``, ``"RecurrentPPO"``).
+    Raises ``ValueError`` for any other name."""
+    key = str(name).upper().replace("-", "").replace("_", "")
+    if key not in SB3_ALGORITHMS:
+        raise ValueError(f"algorithm must be one of {list(SB3_ALGORITHMS)} (or recurrent-ppo), "
+                         f"got {name!r}")
+    return key
+
+
+def algorithm_class(name: str) -> type:
+    """The class of algorithm ``name`` (see :func:`algorithm_name`): stable-baselines3's, or
+    sb3-contrib's ``RecurrentPPO`` (``ImportError`` naming the package if it is missing)."""
+    key = algorithm_name(name)
+    if key == "RECURRENTPPO":
+        try:
+            from sb3_contrib import RecurrentPPO
+        except ImportError as err:
+            raise ImportError("RecurrentPPO needs sb3-contrib (pip install -e \".[train]\")"
+                              ) from err
+        return RecurrentPPO
+    import stable_baselines3 as sb3
+
+    return getattr(sb3, key)
+
+
+def _is_recurrent(model: Any) -> bool:
+    """Whether a stable-baselines3 model's policy is recurrent (sb3-contrib's LSTM policies)."""
+    return hasattr(getattr(model, "policy", None), "lstm_actor")
 
 
 class IdlePolicy:
@@ -80,12 +138,23 @@ class NumpyPolicy:
         meta: free-form description (algorithm, environment, training configuration), saved
             with the weights.
         normalize: ``(mean, var, clip, epsilon)`` of a policy trained behind
-            stable-baselines3's ``VecNormalize``: observations become
-            ``clip((obs - mean) / sqrt(var + epsilon), -clip, clip)`` first.
+            stable-baselines3's ``VecNormalize``: the network's inputs become
+            ``clip((x - mean) / sqrt(var + epsilon), -clip, clip)`` first.
         action_map: ``None`` (the network's output is the environment's action) or
             ``{"kind": ..., "params": {...}}`` for a keeper trained through one of the
             wrappers of :mod:`agents.wrappers`: its outputs become the native command with
             :func:`~agents.wrappers.action_to_command`, from the pose in the observation.
+        frame_stack: the number of observations the network reads at once (a policy trained
+            behind :func:`~agents.wrappers.stack_frames`): the policy keeps the last
+            ``frame_stack`` observations it was called with and feeds the network their
+            concatenation, oldest first, the episode's first observation repeated while there
+            are fewer; call :meth:`reset` at each episode start. It is called with single
+            observations of the plain environment; ``normalize`` applies to the concatenation.
+
+    Attributes:
+        obs_size: the size of one observation the policy is called with.
+        input_size: the size of the network's input (``frame_stack * obs_size``).
+        action_size: the size of the network's output.
 
     The policy owns copies of every array: it does not follow the model it was copied from.
     """
@@ -93,7 +162,7 @@ class NumpyPolicy:
     def __init__(self, layers: list[tuple], output: str, low: np.ndarray, high: np.ndarray,
                  meta: dict[str, Any] | None = None,
                  normalize: tuple[np.ndarray, np.ndarray, float, float] | None = None,
-                 action_map: dict[str, Any] | None = None) -> None:
+                 action_map: dict[str, Any] | None = None, frame_stack: int = 1) -> None:
         from agents.wrappers import ACTION_MAPS
 
         if output not in ("clip", "tanh", "scale"):
@@ -101,6 +170,9 @@ class NumpyPolicy:
         if action_map is not None and (action_map.get("kind") not in ACTION_MAPS):
             raise ValueError(f"action_map kind must be one of {list(ACTION_MAPS)}, got "
                              f"{action_map!r}")
+        if isinstance(frame_stack, bool) or not isinstance(frame_stack, (int, np.integer)) \
+                or frame_stack < 1:
+            raise ValueError(f"frame_stack must be an integer >= 1, got {frame_stack!r}")
         if action_map is not None and action_map["kind"] == "native":
             action_map = None
         self.action_map = None if action_map is None else {
@@ -111,6 +183,7 @@ class NumpyPolicy:
         self.low = np.array(low, dtype=np.float32)
         self.high = np.array(high, dtype=np.float32)
         self.meta = dict(meta or {})
+        self.frame_stack = int(frame_stack)
         self.normalize = None
         if normalize is not None:
             mean, var, clip, eps = normalize
@@ -121,7 +194,11 @@ class NumpyPolicy:
         linear = [layer for layer in self.layers if layer[0] == "linear"]
         if not linear:
             raise ValueError("a NumpyPolicy needs at least one linear layer")
-        self.obs_size = int(linear[0][1].shape[1])
+        self.input_size = self._input_size(linear)
+        if self.input_size % self.frame_stack:
+            raise ValueError(f"the network's input size {self.input_size} is not a multiple of "
+                             f"frame_stack {self.frame_stack}")
+        self.obs_size = self.input_size // self.frame_stack
         self.action_size = int(linear[-1][1].shape[0])
         if self.low.shape != (self.action_size,) or self.high.shape != (self.action_size,):
             raise ValueError(f"low and high must have shape ({self.action_size},)")
@@ -132,15 +209,35 @@ class NumpyPolicy:
                              f"{self.action_size}")
         if self.normalize is not None:
             mean, var, clip, eps = self.normalize
-            if mean.shape != (self.obs_size,) or var.shape != (self.obs_size,):
-                raise ValueError(f"normalize mean and var must have shape ({self.obs_size},)")
+            if mean.shape != (self.input_size,) or var.shape != (self.input_size,):
+                raise ValueError(f"normalize mean and var must have shape ({self.input_size},)")
             self._shift, self._scale = mean, 1.0 / np.sqrt(var + eps)
         # Transposed weights for row-vector products.
         self._ops = [(k, rest[0].T.copy(), rest[1]) if k == "linear" else (k, *rest)
                      for k, *rest in self.layers]
+        self._history: np.ndarray | None = None
+
+    def _input_size(self, linear: list[tuple]) -> int:
+        """The size of the network's input (that of its first linear layer)."""
+        return int(linear[0][1].shape[1])
+
+    @property
+    def stateful(self) -> bool:
+        """Whether the policy remembers earlier calls (then :meth:`reset` starts an
+        episode)."""
+        return self.frame_stack > 1
+
+    def reset(self) -> None:
+        """Forget the episode so far (the history of a frame stack): call at each episode
+        start. A policy without memory has nothing to forget."""
+        self._history = None
 
     def __call__(self, obs: np.ndarray) -> np.ndarray:
-        action = self.network_action(obs)
+        x = np.asarray(obs, dtype=np.float32)
+        if x.ndim not in (1, 2) or x.shape[-1] != self.obs_size:
+            raise ValueError(f"obs must have shape ({self.obs_size},) or (n, {self.obs_size}), "
+                             f"got {x.shape}")
+        action = self.network_action(self._stack(x) if self.frame_stack > 1 else x)
         if self.action_map is not None:
             from agents.wrappers import action_to_command
 
@@ -148,18 +245,43 @@ class NumpyPolicy:
                                      self.action_map["params"] or None)
         return action
 
-    def network_action(self, obs: np.ndarray) -> np.ndarray:
-        """The network's action for ``obs`` (one observation or a batch): the action the
-        stable-baselines3 model predicts deterministically, before any action map turns it
-        into the native command (for a policy without an action map, what calling it
-        returns)."""
-        x = np.asarray(obs, dtype=np.float32)
-        if x.shape[-1:] != (self.obs_size,) or x.ndim > 2:
-            raise ValueError(f"obs must have shape ({self.obs_size},) or (n, {self.obs_size}), "
-                             f"got {x.shape}")
+    def _stack(self, obs: np.ndarray) -> np.ndarray:
+        """Add ``obs`` (one observation or a batch) to the history; the network's input:
+        the last ``frame_stack`` observations concatenated, oldest first."""
+        history = self._history
+        if history is None:
+            history = np.repeat(obs[..., None, :], self.frame_stack, axis=-2)
+        elif history.shape[:-2] != obs.shape[:-1]:
+            raise ValueError(f"obs of shape {obs.shape} in an episode of observations of "
+                             f"shape {history.shape[:-2] + (self.obs_size,)}: call reset() "
+                             "at each episode start")
+        else:
+            history = np.concatenate([history[..., 1:, :], obs[..., None, :]], axis=-2)
+        self._history = history
+        return history.reshape(obs.shape[:-1] + (self.input_size,))
+
+    def network_action(self, x: np.ndarray) -> np.ndarray:
+        """The network's action for its input ``x`` (one input or a batch): the action the
+        stable-baselines3 model predicts deterministically for that observation, before any
+        action map turns it into the native command. The input is the observation, or for a
+        frame-stacked policy the last ``frame_stack`` observations concatenated, oldest first,
+        as the model saw them in training; for a policy without an action map or stack, what
+        calling it returns."""
+        return self._head(self._network_input(x))
+
+    def _network_input(self, x: np.ndarray) -> np.ndarray:
+        """``x`` checked and normalised (float32)."""
+        x = np.asarray(x, dtype=np.float32)
+        if x.ndim not in (1, 2) or x.shape[-1] != self.input_size:
+            raise ValueError(f"the network's input must have shape ({self.input_size},) or "
+                             f"(n, {self.input_size}), got {x.shape}")
         if self.normalize is not None:
             clip = self.normalize[2]
             x = np.clip((x - self._shift) * self._scale, -clip, clip).astype(np.float32)
+        return x
+
+    def _head(self, x: np.ndarray) -> np.ndarray:
+        """The layers and the output map on ``x``: the action."""
         for op in self._ops:
             kind = op[0]
             if kind == "linear":
@@ -180,17 +302,22 @@ class NumpyPolicy:
 
     @classmethod
     def from_sb3(cls, model: Any, meta: dict[str, Any] | None = None,
-                 vec_normalize: Any = None, action_map: dict[str, Any] | None = None
-                 ) -> NumpyPolicy:
+                 vec_normalize: Any = None, action_map: dict[str, Any] | None = None,
+                 frame_stack: int = 1) -> NumpyPolicy:
         """Copy the deterministic actor of a stable-baselines3 model (MLP policies of PPO,
-        A2C, SAC, TD3, DDPG on a flat Box observation), with the observation statistics of
-        ``vec_normalize`` (a ``VecNormalize`` it was trained behind) if given, and the
-        ``action_map`` it was trained through (see :mod:`agents.wrappers`). Raises
-        ``ValueError`` for anything else (image or dict observations, custom networks,
+        A2C, SAC, TD3, DDPG on a flat Box observation; a RecurrentPPO LSTM policy gives a
+        :class:`NumpyRecurrentPolicy`), with the observation statistics of
+        ``vec_normalize`` (a ``VecNormalize`` it was trained behind) if given, the
+        ``action_map`` it was trained through (see :mod:`agents.wrappers`) and the
+        ``frame_stack`` of its observations (see :func:`~agents.wrappers.stack_frames`).
+        Raises ``ValueError`` for anything else (image or dict observations, custom networks,
         squashed actor-critic policies). gSDE exploration does not change the deterministic
         action, so models trained with it copy too."""
         from torch import nn
 
+        if _is_recurrent(model):
+            return NumpyRecurrentPolicy.from_sb3(model, meta, vec_normalize, action_map,
+                                                 frame_stack)
         policy = model.policy
         low, high = model.action_space.low, model.action_space.high
         name = type(model).__name__
@@ -217,29 +344,13 @@ class NumpyPolicy:
             output = "tanh"
         else:
             raise ValueError(f"cannot copy the policy of a {name} model into numpy")
-        layers: list[tuple] = []
-        for m in mods:
-            kind = type(m).__name__
-            if isinstance(m, nn.Linear):
-                layers.append(("linear", m.weight.detach().cpu().numpy(),
-                               m.bias.detach().cpu().numpy()))
-            elif kind in _ACTIVATIONS:
-                act = _ACTIVATIONS[kind]
-                if act == "hardtanh":
-                    layers.append(("hardtanh", np.float32(m.min_val), np.float32(m.max_val)))
-                elif act is not None:
-                    layers.append((act,))
-            else:
-                raise ValueError(f"unsupported layer {kind} in the {name} actor")
-        normalize = None
-        if vec_normalize is not None and vec_normalize.norm_obs:
-            rms = vec_normalize.obs_rms
-            normalize = (rms.mean, rms.var, vec_normalize.clip_obs, vec_normalize.epsilon)
-        return cls(layers, output, low, high, {"algorithm": name, **(meta or {})}, normalize,
-                   action_map)
+        return cls(_numpy_layers(mods, name), output, low, high,
+                   {"algorithm": name, **(meta or {})}, _normalize_of(vec_normalize),
+                   action_map, frame_stack)
 
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the weights and description to ``path`` (``.npz``)."""
+        """Write the weights and description to ``path`` (``.npz``: arrays and a JSON header,
+        nothing pickled)."""
         path = Path(path)
         arrays: dict[str, np.ndarray] = {}
         spec = []
@@ -250,18 +361,24 @@ class NumpyPolicy:
             else:
                 spec.append([kind, *(float(v) for v in rest)])
         header: dict[str, Any] = {"layers": spec, "output": self.output, "meta": self.meta,
-                                  "action_map": self.action_map}
+                                  "action_map": self.action_map,
+                                  "frame_stack": self.frame_stack}
         if self.normalize is not None:
             mean, var, clip, eps = self.normalize
             arrays["obs_mean"], arrays["obs_var"] = mean, var
             header["normalize"] = {"clip": clip, "epsilon": eps}
+        self._save_extra(header, arrays)
         np.savez_compressed(path, header=np.array(json.dumps(header)), low=self.low,
                             high=self.high, **arrays)
         return path
 
+    def _save_extra(self, header: dict[str, Any], arrays: dict[str, np.ndarray]) -> None:
+        """Add what a subclass saves besides the layers to ``header`` and ``arrays``."""
+
     @classmethod
     def load(cls, path: str | os.PathLike) -> NumpyPolicy:
-        """Read a policy written by :meth:`save`."""
+        """Read a policy written by :meth:`save` (a :class:`NumpyRecurrentPolicy` for a
+        recurrent one)."""
         with np.load(path, allow_pickle=False) as data:
             header = json.loads(str(data["header"]))
             layers: list[tuple] = []
@@ -272,8 +389,188 @@ class NumpyPolicy:
             if "normalize" in header:
                 norm = header["normalize"]
                 normalize = (data["obs_mean"], data["obs_var"], norm["clip"], norm["epsilon"])
-            return cls(layers, header["output"], data["low"], data["high"], header["meta"],
-                       normalize, header.get("action_map"))
+            args = (layers, header["output"], data["low"], data["high"], header["meta"],
+                    normalize, header.get("action_map"), int(header.get("frame_stack", 1)))
+            if "lstm" in header:
+                cells = [tuple(data[f"lstm_{part}{k}"] for part in ("w_ih", "w_hh", "b_ih",
+                                                                      "b_hh"))
+                         for k in range(int(header["lstm"]["layers"]))]
+                return NumpyRecurrentPolicy(cells, *args)
+            if cls is not NumpyPolicy:
+                raise ValueError(f"{path} holds a feed-forward policy, not a {cls.__name__}")
+            return cls(*args)
+
+
+def _sigmoid(x: np.ndarray) -> np.ndarray:
+    """The logistic function, without overflow for large ``|x|`` (keeps the dtype)."""
+    return 0.5 * (1.0 + np.tanh(0.5 * x))
+
+
+class NumpyRecurrentPolicy(NumpyPolicy):
+    """The deterministic actor of a RecurrentPPO ``MlpLstmPolicy`` evaluated with numpy: the
+    observation (normalised as for :class:`NumpyPolicy`) goes through the actor's LSTM, whose
+    hidden state carries the episode so far, then through the feed-forward ``layers`` and the
+    ``"clip"`` output, as sb3-contrib's ``predict(obs, state, episode_start,
+    deterministic=True)`` does.
+
+    Each LSTM layer ``k`` is ``(w_ih, w_hh, b_ih, b_hh)`` as torch's ``nn.LSTM`` keeps it
+    (gates in the order input, forget, cell, output: ``w_ih`` is ``(4 H, n_in)``, ``w_hh``
+    ``(4 H, H)``); per step, with ``z = w_ih x + b_ih + w_hh h + b_hh`` split into
+    ``z_i, z_f, z_g, z_o``: ``c <- sigmoid(z_f) c + sigmoid(z_i) tanh(z_g)``,
+    ``h <- sigmoid(z_o) tanh(c)``; layer ``k``'s ``h`` is layer ``k + 1``'s input and the last
+    one's is the feed-forward layers' input.
+
+    The state ``(h, c)`` starts at zero and is kept between calls: call :meth:`reset` at each
+    episode start (sb3-contrib's ``episode_start``). A call takes one observation or a batch
+    of ``n`` (one per environment, kept separately); the batch size stays fixed within an
+    episode. The other arguments are :class:`NumpyPolicy`'s (``frame_stack`` must be 1: the
+    LSTM is the memory).
+    """
+
+    def __init__(self, lstm: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]],
+                 layers: list[tuple], output: str, low: np.ndarray, high: np.ndarray,
+                 meta: dict[str, Any] | None = None,
+                 normalize: tuple[np.ndarray, np.ndarray, float, float] | None = None,
+                 action_map: dict[str, Any] | None = None, frame_stack: int = 1) -> None:
+        if not lstm:
+            raise ValueError("a NumpyRecurrentPolicy needs at least one LSTM layer")
+        if frame_stack != 1:
+            raise ValueError(f"a recurrent policy takes frame_stack 1 (its LSTM is the memory), "
+                             f"got {frame_stack!r}")
+        self.lstm = [tuple(np.array(a, dtype=np.float32) for a in cell) for cell in lstm]
+        hidden = self.lstm[0][1].shape[1]
+        size = self.lstm[0][0].shape[1]
+        for k, (w_ih, w_hh, b_ih, b_hh) in enumerate(self.lstm):
+            if w_ih.shape != (4 * hidden, size) or w_hh.shape != (4 * hidden, hidden) or \
+                    b_ih.shape != (4 * hidden,) or b_hh.shape != (4 * hidden,):
+                raise ValueError(f"LSTM layer {k}: expected w_ih {(4 * hidden, size)}, w_hh "
+                                 f"{(4 * hidden, hidden)} and biases ({4 * hidden},), got "
+                                 f"{w_ih.shape}, {w_hh.shape}, {b_ih.shape}, {b_hh.shape}")
+            size = hidden
+        self.hidden_size = int(hidden)
+        self.n_lstm_layers = len(self.lstm)
+        super().__init__(layers, output, low, high, meta, normalize, action_map, frame_stack)
+        first = next(layer for layer in self.layers if layer[0] == "linear")
+        if first[1].shape[1] != self.hidden_size:
+            raise ValueError(f"the layers after the LSTM must take its {self.hidden_size} "
+                             f"outputs, got {first[1].shape[1]}")
+        # One product per layer and step: [x, h] @ [w_ih; w_hh]^T + (b_ih + b_hh).
+        self._cells = [(np.concatenate([w_ih, w_hh], axis=1).T.copy(), b_ih + b_hh)
+                       for w_ih, w_hh, b_ih, b_hh in self.lstm]
+        self._state: tuple[np.ndarray, np.ndarray] | None = None
+
+    def _input_size(self, linear: list[tuple]) -> int:
+        return int(self.lstm[0][0].shape[1])
+
+    @property
+    def stateful(self) -> bool:
+        return True
+
+    @property
+    def state(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """The LSTM's ``(h, c)``, each ``(n_lstm_layers, n, hidden_size)``, as sb3-contrib's
+        ``predict`` returns it (None at an episode start)."""
+        return self._state
+
+    def reset(self) -> None:
+        """Start an episode: the LSTM's state back to zero."""
+        super().reset()
+        self._state = None
+
+    def network_action(self, x: np.ndarray) -> np.ndarray:
+        """The action for the observation ``x`` (one or a batch), advancing the LSTM's state
+        by one step (see the class docstring), before any action map."""
+        x = self._network_input(x)
+        single = x.ndim == 1
+        out = x[None] if single else x
+        n = len(out)
+        if self._state is None:
+            zeros = np.zeros((self.n_lstm_layers, n, self.hidden_size), dtype=np.float32)
+            h, c = zeros, zeros
+        else:
+            h, c = self._state
+            if h.shape[1] != n:
+                raise ValueError(f"a batch of {n} observations in an episode of batches of "
+                                 f"{h.shape[1]}: call reset() at each episode start")
+        new_h, new_c = np.empty_like(h), np.empty_like(c)
+        H = self.hidden_size
+        for k, (w, b) in enumerate(self._cells):
+            z = np.concatenate([out, h[k]], axis=1) @ w + b
+            ck = _sigmoid(z[:, H:2 * H]) * c[k] + _sigmoid(z[:, :H]) * np.tanh(z[:, 2 * H:3 * H])
+            out = _sigmoid(z[:, 3 * H:]) * np.tanh(ck)
+            new_h[k], new_c[k] = out, ck
+        self._state = (new_h, new_c)
+        action = self._head(out)
+        return action[0] if single else action
+
+    @classmethod
+    def from_sb3(cls, model: Any, meta: dict[str, Any] | None = None,
+                 vec_normalize: Any = None, action_map: dict[str, Any] | None = None,
+                 frame_stack: int = 1) -> NumpyRecurrentPolicy:
+        """Copy the deterministic actor of a RecurrentPPO model (``MlpLstmPolicy`` on a flat
+        Box observation), with ``vec_normalize``'s observation statistics and the
+        ``action_map`` as :meth:`NumpyPolicy.from_sb3`. Raises ``ValueError`` for anything
+        else (other models, bidirectional or projected LSTMs, squashed outputs)."""
+        name = type(model).__name__
+        if not _is_recurrent(model):
+            raise ValueError(f"a {name} model has no LSTM policy; use NumpyPolicy.from_sb3")
+        policy = model.policy
+        if getattr(policy, "squash_output", False):
+            raise ValueError("squashed actor-critic policies are not supported")
+        _check_flatten(policy.pi_features_extractor)
+        lstm = policy.lstm_actor
+        if lstm.bidirectional or getattr(lstm, "proj_size", 0) or lstm.batch_first:
+            raise ValueError("only unidirectional LSTMs without projection are supported")
+        cells = []
+        for k in range(lstm.num_layers):
+            w_ih = getattr(lstm, f"weight_ih_l{k}").detach().cpu().numpy()
+            w_hh = getattr(lstm, f"weight_hh_l{k}").detach().cpu().numpy()
+            if lstm.bias:
+                b_ih = getattr(lstm, f"bias_ih_l{k}").detach().cpu().numpy()
+                b_hh = getattr(lstm, f"bias_hh_l{k}").detach().cpu().numpy()
+            else:
+                b_ih = b_hh = np.zeros(w_ih.shape[0], dtype=np.float32)
+            cells.append((w_ih, w_hh, b_ih, b_hh))
+        layers = _numpy_layers([*policy.mlp_extractor.policy_net, policy.action_net], name)
+        return cls(cells, layers, "clip", model.action_space.low, model.action_space.high,
+                   {"algorithm": name, **(meta or {})}, _normalize_of(vec_normalize),
+                   action_map, frame_stack)
+
+    def _save_extra(self, header: dict[str, Any], arrays: dict[str, np.ndarray]) -> None:
+        header["lstm"] = {"layers": self.n_lstm_layers, "hidden_size": self.hidden_size}
+        for k, cell in enumerate(self.lstm):
+            for part, a in zip(("w_ih", "w_hh", "b_ih", "b_hh"), cell):
+                arrays[f"lstm_{part}{k}"] = a
+
+
+def _numpy_layers(mods: list[Any], name: str) -> list[tuple]:
+    """The :class:`NumpyPolicy` layers of the torch modules ``mods`` (of a ``name`` model)."""
+    from torch import nn
+
+    layers: list[tuple] = []
+    for m in mods:
+        kind = type(m).__name__
+        if isinstance(m, nn.Linear):
+            layers.append(("linear", m.weight.detach().cpu().numpy(),
+                           m.bias.detach().cpu().numpy()))
+        elif kind in _ACTIVATIONS:
+            act = _ACTIVATIONS[kind]
+            if act == "hardtanh":
+                layers.append(("hardtanh", np.float32(m.min_val), np.float32(m.max_val)))
+            elif act is not None:
+                layers.append((act,))
+        else:
+            raise ValueError(f"unsupported layer {kind} in the {name} actor")
+    return layers
+
+
+def _normalize_of(vec_normalize: Any) -> tuple[np.ndarray, np.ndarray, float, float] | None:
+    """The observation statistics of a ``VecNormalize`` (None without one, or when it does
+    not normalise observations)."""
+    if vec_normalize is None or not vec_normalize.norm_obs:
+        return None
+    rms = vec_normalize.obs_rms
+    return rms.mean, rms.var, vec_normalize.clip_obs, vec_normalize.epsilon
 
 
 def _check_flatten(extractor: Any) -> None:
@@ -284,22 +581,37 @@ def _check_flatten(extractor: Any) -> None:
 
 class SB3Policy:
     """A stable-baselines3 model's ``predict`` as a policy (for networks that
-    :class:`NumpyPolicy` cannot copy)."""
+    :class:`NumpyPolicy` cannot copy). For a recurrent model (RecurrentPPO) it keeps the
+    LSTM state between calls: call :meth:`reset` at each episode start."""
 
     def __init__(self, model: Any, deterministic: bool = True) -> None:
         self.model = model
         self.deterministic = deterministic
+        self.recurrent = _is_recurrent(model)
+        self._state: tuple[np.ndarray, ...] | None = None
+
+    @property
+    def stateful(self) -> bool:
+        """Whether the policy remembers earlier calls (a recurrent model)."""
+        return self.recurrent
+
+    def reset(self) -> None:
+        """Start an episode (the LSTM state back to zero)."""
+        self._state = None
 
     def __call__(self, obs: np.ndarray) -> np.ndarray:
-        return self.model.predict(obs, deterministic=self.deterministic)[0]
+        if not self.recurrent:
+            return self.model.predict(obs, deterministic=self.deterministic)[0]
+        action, self._state = self.model.predict(obs, state=self._state,
+                                                 deterministic=self.deterministic)
+        return action
 
 
 def load_sb3(path: str | os.PathLike, algorithm: str | None = None, **kwargs: Any) -> Any:
-    """Load a stable-baselines3 model. ``algorithm`` (one of :data:`SB3_ALGORITHMS`) is read
-    from a training run's ``config.json`` beside the file when not given, otherwise each is
-    tried in turn."""
-    import stable_baselines3 as sb3
-
+    """Load a stable-baselines3 (or sb3-contrib RecurrentPPO) model. ``algorithm`` (one of
+    :data:`SB3_ALGORITHMS`, any spelling :func:`algorithm_name` takes) is read from a
+    training run's ``config.json`` beside the file when not given, otherwise each is tried in
+    turn (RecurrentPPO only where sb3-contrib is installed)."""
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"no model at {path}")
@@ -308,15 +620,15 @@ def load_sb3(path: str | os.PathLike, algorithm: str | None = None, **kwargs: An
         if cfg.exists():
             algorithm = json.loads(cfg.read_text()).get("algorithm")
     if algorithm is not None:
-        algorithm = algorithm.upper()
-        if algorithm not in SB3_ALGORITHMS:
-            raise ValueError(f"algorithm must be one of {list(SB3_ALGORITHMS)}, got "
-                             f"{algorithm!r}")
-        return getattr(sb3, algorithm).load(path, device="cpu", **kwargs)
+        return algorithm_class(algorithm).load(path, device="cpu", **kwargs)
     errors = []
-    for name in SB3_ALGORITHMS:
+    for name in _LOAD_ORDER:
         try:
-            return getattr(sb3, name).load(path, device="cpu", **kwargs)
+            algo = algorithm_class(name)
+        except ImportError:
+            continue
+        try:
+            return algo.load(path, device="cpu", **kwargs)
         except Exception as exc:  # wrong algorithm for this file: try the next
             errors.append(f"{name}: {type(exc).__name__}")
     raise ValueError(f"{path} is not a model of any of {list(SB3_ALGORITHMS)} ({errors})")
@@ -349,19 +661,20 @@ def _load_vecnormalize(model_path: Path) -> Any:
         return pickle.load(fh)
 
 
-def _run_action_map(model_path: Path) -> dict[str, Any] | None:
-    """The learner's action map recorded in the ``config.json`` of the training run that
-    saved ``model_path`` (the model's folder or, for checkpoints, its parent)."""
+def _run_config(model_path: Path) -> dict[str, Any]:
+    """The ``config.json`` of the training run that saved ``model_path`` (the model's folder
+    or, for checkpoints, its parent); empty if there is none."""
     for folder in (model_path.parent, model_path.parent.parent):
         config = folder / "config.json"
         if config.is_file():
-            return json.loads(config.read_text()).get("action_map")
-    return None
+            return json.loads(config.read_text())
+    return {}
 
 
 def make_policy(ref: str | os.PathLike | Callable, env: Any) -> Policy:
     """Resolve a policy reference (see the module docstring) for the environment ``env``
-    (a Goalkeeper-v0, possibly wrapped). A callable is returned as it is."""
+    (a Goalkeeper-v0, possibly wrapped). A callable is returned as it is. Policies with
+    memory need :func:`reset_policy` at each episode start."""
     if callable(ref) and not isinstance(ref, (str, os.PathLike)):
         return ref
     ref = os.fspath(ref)
@@ -384,15 +697,18 @@ def make_policy(ref: str | os.PathLike | Callable, env: Any) -> Policy:
     elif path.suffix == ".zip":
         model = load_sb3(path)
         norm = _load_vecnormalize(path)
-        action_map = _run_action_map(path)
+        run = _run_config(path)
+        action_map = run.get("action_map")
+        frame_stack = int(run.get("frame_stack", 1))
         try:
-            policy = NumpyPolicy.from_sb3(model, vec_normalize=norm, action_map=action_map)
+            policy = NumpyPolicy.from_sb3(model, vec_normalize=norm, action_map=action_map,
+                                          frame_stack=frame_stack)
         except ValueError:
-            if norm is not None or action_map is not None:
-                raise ValueError(f"{path} was trained behind VecNormalize or an action map "
-                                 "and its network cannot be copied into numpy; load it with "
-                                 "stable-baselines3, VecNormalize.load and agents.wrappers"
-                                 ) from None
+            if norm is not None or action_map is not None or frame_stack > 1:
+                raise ValueError(f"{path} was trained behind VecNormalize, an action map or a "
+                                 "frame stack and its network cannot be copied into numpy; "
+                                 "load it with stable-baselines3, VecNormalize.load and "
+                                 "agents.wrappers") from None
             policy = SB3Policy(model)
     else:
         raise ValueError(f"policy must be one of {list(POLICY_NAMES)}, 'baseline:NAME', a "

@@ -16,7 +16,17 @@ A run is described by a :class:`TrainConfig` and writes into its folder:
 
 ``resume`` continues from a checkpoint with this configuration's environment and
 hyperparameters (the network is the checkpoint's): the same run, or a fine-tuning, e.g. a
-keeper trained on true observations continued on perceived ones.
+keeper trained on true observations continued on perceived ones. ``total_steps`` counts the
+checkpoint's steps too: a resumed run trains ``total_steps`` minus the checkpoint's steps, and
+one with nothing left to train is refused.
+
+Memory, for observations that a single frame does not explain (perceived ones, with their
+latency, noise and missed detections): ``algorithm="RECURRENTPPO"`` trains sb3-contrib's
+RecurrentPPO (an LSTM in front of the actor's and the critic's networks; exported as a
+:class:`~agents.policies.NumpyRecurrentPolicy`), and ``frame_stack=N`` shows a feed-forward
+learner its last ``N`` observations at once (:func:`~agents.wrappers.stack_frames`; the
+exported :class:`~agents.policies.NumpyPolicy` keeps the history itself). Both policies act on
+the plain environment and need ``reset()`` at each episode start, which the evaluation does.
 
 Goalkeeper-v0 runs in :class:`~agents.vec_env.WorkerVecEnv` (``n_envs`` environments over
 ``n_workers`` processes) or, with ``n_workers=0``, in-process. The match
@@ -44,22 +54,30 @@ from typing import Any
 import numpy as np
 
 from agents.evaluation import GOALKEEPER_ID, evaluate
-from agents.policies import SB3_ALGORITHMS, NumpyPolicy
-from agents.wrappers import ACTION_MAPS, wrap_actions
+from agents.policies import NumpyPolicy, algorithm_class, algorithm_name
+from agents.wrappers import ACTION_MAPS, stack_frames, wrap_actions
 from soccer_env.validation import check_fields
 
 __all__ = ["TrainConfig", "train", "check_env_kwargs", "make_vec_env", "EVAL_SEED_START",
-           "MATCH_ID", "DEFAULT_HYPERPARAMS", "rollout_timer", "goalkeeper_env_fn"]
+           "MATCH_ID", "DEFAULT_HYPERPARAMS", "rollout_timer", "goalkeeper_env_fn",
+           "checkpoint_steps"]
 
 #: First seed of the shots used for model selection during training.
 EVAL_SEED_START = 1_000_000
 #: The match's registry id (PettingZoo registry), accepted as ``env_id``.
 MATCH_ID = "soccer_env/Match-v0"
 
-#: Per-algorithm defaults, tuned on Goalkeeper-v0 only as far as "learns in minutes".
+#: Per-algorithm defaults, tuned on Goalkeeper-v0 only as far as "learns in minutes". A
+#: configuration's ``policy_kwargs`` are merged key by key over the defaults' ones.
+#: RecurrentPPO's LSTM has 64 units (sb3-contrib's default, 256, trains 2.5 times slower on a
+#: 2-core machine) and its minibatches are twice PPO's (its gradient steps run the LSTM over
+#: whole sequences and dominate the training time).
 DEFAULT_HYPERPARAMS: dict[str, dict[str, Any]] = {
     "PPO": {"n_steps": 256, "batch_size": 512, "n_epochs": 10, "gamma": 0.99,
             "gae_lambda": 0.95, "learning_rate": 3e-4, "ent_coef": 0.0, "clip_range": 0.2},
+    "RECURRENTPPO": {"n_steps": 256, "batch_size": 1024, "n_epochs": 10, "gamma": 0.99,
+                     "gae_lambda": 0.95, "learning_rate": 3e-4, "ent_coef": 0.0,
+                     "clip_range": 0.2, "policy_kwargs": {"lstm_hidden_size": 64}},
     "A2C": {},
     "SAC": {"learning_starts": 5000, "batch_size": 256, "train_freq": 1, "gradient_steps": 1},
     "TD3": {"learning_starts": 5000, "batch_size": 256, "train_freq": 1, "gradient_steps": 1},
@@ -75,8 +93,11 @@ class TrainConfig:
         env_id: ``"soccer_env/Goalkeeper-v0"`` or ``"soccer_env/Match-v0"``.
         env_kwargs: keyword arguments of the environment (``obs_mode``, ``perception``,
             ``shaping``, ...).
-        algorithm: one of :data:`~agents.policies.SB3_ALGORITHMS`.
-        total_steps: environment steps to train for (agent steps for the match).
+        algorithm: one of :data:`~agents.policies.SB3_ALGORITHMS` (any spelling
+            :func:`~agents.policies.algorithm_name` takes, e.g. ``"recurrent-ppo"``; stored
+            canonical, ``"RECURRENTPPO"``).
+        total_steps: environment steps to train for (agent steps for the match), in all:
+            a resumed run counts the checkpoint's steps too.
         n_envs: environments (matches for the match) stepped in parallel.
         n_workers: worker processes for them (0: in this process).
         seed: seeds the environments, the algorithm and torch.
@@ -98,6 +119,11 @@ class TrainConfig:
             and turn rate), ``"target"`` (where to stand, reached by a motion controller) or
             ``"guard"`` (where to stand on the guard line);
             the saved numpy policy includes the map, so it acts on the plain environment.
+        frame_stack: the learner sees its last ``frame_stack`` observations concatenated,
+            oldest first (:func:`~agents.wrappers.stack_frames`; 1: the observation alone);
+            Goalkeeper-v0 and feed-forward algorithms only (RecurrentPPO's LSTM is its
+            memory). The saved numpy policy keeps the history, so it acts on the plain
+            environment's single observations.
         torch_threads: torch's intra-op threads in the learner process.
         device: torch device.
         progress_bar: show SB3's progress bar.
@@ -122,21 +148,19 @@ class TrainConfig:
     normalize_obs: bool = True
     normalize_reward: bool = False
     actions: str = "native"
+    frame_stack: int = 1
     torch_threads: int = 1
     device: str = "cpu"
     progress_bar: bool = True
 
     def __post_init__(self) -> None:
-        self.algorithm = str(self.algorithm).upper()
-        if self.algorithm not in SB3_ALGORITHMS:
-            raise ValueError(f"algorithm must be one of {list(SB3_ALGORITHMS)}, got "
-                             f"{self.algorithm!r}")
+        self.algorithm = algorithm_name(self.algorithm)
         if self.env_id not in (GOALKEEPER_ID, MATCH_ID):
             raise ValueError(f"env_id must be {GOALKEEPER_ID!r} or {MATCH_ID!r}, got "
                              f"{self.env_id!r}")
         for name, lo in (("total_steps", 1), ("n_envs", 1), ("n_workers", 0),
                          ("checkpoint_every", 0), ("eval_every", 0), ("eval_episodes", 1),
-                         ("self_play_every", 1), ("torch_threads", 1)):
+                         ("self_play_every", 1), ("torch_threads", 1), ("frame_stack", 1)):
             value = getattr(self, name)
             if not isinstance(value, (int, np.integer)) or isinstance(value, bool) or value < lo:
                 raise ValueError(f"{name} must be an integer >= {lo}, got {value!r}")
@@ -153,6 +177,16 @@ class TrainConfig:
         if self.learner not in ("blue", "yellow", "both"):
             raise ValueError(f"learner must be 'blue', 'yellow' or 'both', got "
                              f"{self.learner!r}")
+        if self.frame_stack > 1 and self.env_id != GOALKEEPER_ID:
+            raise ValueError(f"frame_stack is for {GOALKEEPER_ID} only, got {self.frame_stack}")
+        if self.frame_stack > 1 and self.algorithm == "RECURRENTPPO":
+            raise ValueError("frame_stack is for the feed-forward algorithms: RecurrentPPO's "
+                             "LSTM carries the memory")
+        if self.algorithm == "RECURRENTPPO" and self.env_id == MATCH_ID and \
+                self.opponent == "self":
+            raise ValueError("opponent 'self' takes feed-forward learners only: a recurrent "
+                             "copy cannot play the opponent team (the match does not reset "
+                             "an opponent's memory)")
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> TrainConfig:
@@ -164,9 +198,8 @@ class TrainConfig:
 
 
 def _algorithm_parameters(name: str) -> set[str]:
-    import stable_baselines3 as sb3
-
-    sig = inspect.signature(getattr(sb3, name).__init__)
+    """The keyword arguments of algorithm ``name`` that a configuration may set."""
+    sig = inspect.signature(algorithm_class(name).__init__)
     return {p for p in sig.parameters if p not in ("self", "policy", "env", "_init_setup_model",
                                                    "seed", "device", "tensorboard_log")}
 
@@ -175,16 +208,19 @@ def _algorithm_parameters(name: str) -> set[str]:
 # Environments
 # ------------------------------------------------------------------------------------------
 
-def goalkeeper_env_fn(env_kwargs: dict[str, Any], actions: str = "native"):
+def goalkeeper_env_fn(env_kwargs: dict[str, Any], actions: str = "native",
+                      frame_stack: int = 1):
     """A picklable constructor of one training environment: Goalkeeper-v0 with
-    ``env_kwargs``, the learner's action map ``actions``, behind SB3's ``Monitor``."""
+    ``env_kwargs``, the learner's action map ``actions`` and its last ``frame_stack``
+    observations stacked (:func:`~agents.wrappers.stack_frames`), behind SB3's ``Monitor``."""
     def make():
         import gymnasium as gym
         from stable_baselines3.common.monitor import Monitor
 
         import soccer_env  # noqa: F401
 
-        return Monitor(wrap_actions(gym.make(GOALKEEPER_ID, **env_kwargs), actions))
+        env = wrap_actions(gym.make(GOALKEEPER_ID, **env_kwargs), actions)
+        return Monitor(stack_frames(env, frame_stack))
 
     return make
 
@@ -197,7 +233,8 @@ def make_vec_env(cfg: TrainConfig):
         opponent = cfg.opponent
         return make_match_vec_env(cfg.env_kwargs, cfg.n_envs, cfg.learner,
                                   "idle" if opponent == "self" else opponent, cfg.seed)
-    fns = [goalkeeper_env_fn(cfg.env_kwargs, cfg.actions) for _ in range(cfg.n_envs)]
+    fns = [goalkeeper_env_fn(cfg.env_kwargs, cfg.actions, cfg.frame_stack)
+           for _ in range(cfg.n_envs)]
     if cfg.n_workers == 0:
         from stable_baselines3.common.vec_env import DummyVecEnv
 
@@ -301,7 +338,7 @@ def _callbacks(cfg: TrainConfig, out: Path, action_map: dict[str, Any] | None):
         def run(self) -> dict[str, Any]:
             norm = self.model.get_vec_normalize_env()
             policy = NumpyPolicy.from_sb3(self.model, vec_normalize=norm,
-                                          action_map=action_map)
+                                          action_map=action_map, frame_stack=cfg.frame_stack)
             kwargs = cfg.env_kwargs if cfg.eval_env_kwargs is None else cfg.eval_env_kwargs
             res = evaluate(policy, kwargs, episodes=cfg.eval_episodes,
                            start_seed=EVAL_SEED_START, workers=max(1, cfg.n_workers))
@@ -340,7 +377,8 @@ def _callbacks(cfg: TrainConfig, out: Path, action_map: dict[str, Any] | None):
 
 def _meta(cfg: TrainConfig, evaluation: dict[str, Any] | None = None) -> dict[str, Any]:
     meta = {"env_id": cfg.env_id, "env_kwargs": cfg.env_kwargs, "algorithm": cfg.algorithm,
-            "actions": cfg.actions, "hyperparams": cfg.hyperparams,
+            "actions": cfg.actions, "frame_stack": cfg.frame_stack,
+            "hyperparams": cfg.hyperparams,
             "total_steps": cfg.total_steps, "seed": cfg.seed}
     if evaluation is not None:
         meta["evaluation"] = evaluation
@@ -354,9 +392,16 @@ def _meta(cfg: TrainConfig, evaluation: dict[str, Any] | None = None) -> dict[st
 def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
           command: list[str] | None = None) -> dict[str, Any]:
     """Train as ``cfg`` says (continuing from the checkpoint ``resume`` if given) and write the
-    run folder. Returns the summary."""
+    run folder. Returns the summary. Raises ``ValueError`` when ``resume`` has already
+    trained ``cfg.total_steps`` steps or more (``total_steps`` includes its steps)."""
     import torch
 
+    if resume is not None:
+        done = checkpoint_steps(resume)
+        if cfg.total_steps <= done:
+            raise ValueError(f"total_steps {cfg.total_steps:,} leaves nothing to train: the "
+                             f"checkpoint {os.fspath(resume)} has trained {done:,} steps and "
+                             "total_steps counts them too")
     check_env_kwargs(cfg)
     out = Path(cfg.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -400,8 +445,12 @@ def _training_env(cfg: TrainConfig, resume: str | os.PathLike | None
     from agents.policies import vecnormalize_path
 
     venv = make_vec_env(cfg)
-    params = {**DEFAULT_HYPERPARAMS.get(cfg.algorithm, {}), **cfg.hyperparams}
-    if cfg.algorithm == "PPO":
+    defaults = DEFAULT_HYPERPARAMS.get(cfg.algorithm, {})
+    params = {**defaults, **cfg.hyperparams}
+    if "policy_kwargs" in defaults and "policy_kwargs" in cfg.hyperparams:
+        params["policy_kwargs"] = {**defaults["policy_kwargs"],
+                                   **cfg.hyperparams["policy_kwargs"]}
+    if cfg.algorithm in ("PPO", "RECURRENTPPO"):
         # Keep one rollout at about n_steps * n_envs and a whole number of minibatches.
         params["batch_size"] = min(params["batch_size"], params["n_steps"] * venv.num_envs)
     if cfg.normalize_obs or cfg.normalize_reward:
@@ -419,9 +468,7 @@ def _model(cfg: TrainConfig, venv: Any, params: dict[str, Any],
            resume: str | os.PathLike | None, out: Path) -> tuple[Any, int]:
     """A new model of ``cfg.algorithm`` on ``venv``, or the checkpoint ``resume`` loaded onto
     it; and the steps it has already trained."""
-    import stable_baselines3 as sb3
-
-    algo = getattr(sb3, cfg.algorithm)
+    algo = algorithm_class(cfg.algorithm)
     if resume is not None:
         # The hyperparameters of this configuration replace the saved ones (so that a run
         # can be fine-tuned, e.g. with another entropy bonus or learning rate); the network
@@ -430,7 +477,8 @@ def _model(cfg: TrainConfig, venv: Any, params: dict[str, Any],
         model = algo.load(resume, env=venv, device=cfg.device,
                           tensorboard_log=str(out / "tb"), **params)
         return model, int(model.num_timesteps)
-    model = algo("MlpPolicy", venv, seed=cfg.seed, device=cfg.device,
+    policy = "MlpLstmPolicy" if cfg.algorithm == "RECURRENTPPO" else "MlpPolicy"
+    model = algo(policy, venv, seed=cfg.seed, device=cfg.device,
                  tensorboard_log=str(out / "tb"), verbose=0, **params)
     return model, 0
 
@@ -450,11 +498,27 @@ def _save_final(cfg: TrainConfig, model: Any, out: Path, evaluator: Any,
             evaluator.run()
         final_eval = evaluator.history[-1]
     try:
-        policy = NumpyPolicy.from_sb3(model, _meta(cfg, final_eval), norm, action_map)
+        policy = NumpyPolicy.from_sb3(model, _meta(cfg, final_eval), norm, action_map,
+                                      cfg.frame_stack)
         policy.save(out / "final_policy.npz")
     except ValueError:  # a network numpy cannot copy: the .zip is the model
         pass
     return final_eval
+
+
+def checkpoint_steps(path: str | os.PathLike) -> int:
+    """The environment steps a saved stable-baselines3 model has trained (its
+    ``num_timesteps``), read from the JSON part of the ``.zip`` without loading (unpickling)
+    anything. Raises ``ValueError`` for a file that is not such a model."""
+    import zipfile
+
+    try:
+        with zipfile.ZipFile(path) as archive:
+            data = json.loads(archive.read("data"))
+        return int(data["num_timesteps"])
+    except (zipfile.BadZipFile, KeyError, ValueError, TypeError) as err:
+        raise ValueError(f"{os.fspath(path)} is not a stable-baselines3 model file ({err})"
+                         ) from None
 
 
 def _versions() -> dict[str, str]:
@@ -462,6 +526,11 @@ def _versions() -> dict[str, str]:
     import stable_baselines3
     import torch
 
-    return {"python": platform.python_version(), "stable_baselines3": stable_baselines3.__version__,
-            "torch": torch.__version__, "gymnasium": gymnasium.__version__,
-            "numpy": np.__version__}
+    versions = {"python": platform.python_version(),
+                "stable_baselines3": stable_baselines3.__version__, "torch": torch.__version__,
+                "gymnasium": gymnasium.__version__, "numpy": np.__version__}
+    try:
+        import sb3_contrib
+    except ImportError:
+        return versions
+    return {**versions, "sb3_contrib": sb3_contrib.__version__}

@@ -24,6 +24,10 @@ Each map reads the keeper's pose **from the agent's own observation** (``self.x`
 real robot, never the truth. :func:`action_to_command` is the same map as a function of
 ``(obs, action)``; :class:`~agents.policies.NumpyPolicy` applies it, so a policy trained
 through a wrapper acts on the plain environment.
+
+:func:`stack_frames` gives a feed-forward learner a short memory: it sees its last ``n``
+observations at once (``soccer-env train --frame-stack N``), and the exported numpy policy
+keeps that history itself.
 """
 
 from __future__ import annotations
@@ -38,7 +42,7 @@ import numpy as np
 from soccer_env.envs.keeper import TURN_GAIN
 
 __all__ = ["ACTION_MAPS", "FieldVelocityActions", "TargetActions", "GuardActions",
-           "action_to_command", "target_params", "wrap_actions"]
+           "action_to_command", "target_params", "wrap_actions", "stack_frames"]
 
 #: Action spaces of a learning keeper (see the module docstring) and their sizes.
 ACTION_MAPS = {"native": 6, "velocity": 3, "target": 2, "guard": 1}
@@ -207,3 +211,28 @@ def wrap_actions(env: gym.Env, kind: str) -> gym.Env:
     if kind == "guard":
         return GuardActions(env)
     raise ValueError(f"actions must be one of {list(ACTION_MAPS)}, got {kind!r}")
+
+
+def stack_frames(env: gym.Env, n: int) -> gym.Env:
+    """``env`` whose observation is its last ``n`` observations concatenated, oldest first
+    (``Box`` of ``n`` times the size); after a reset the episode's first observation fills
+    the stack (``n = 1`` returns ``env`` as it is).
+
+    Gymnasium's ``FrameStackObservation`` (with ``padding_type="reset"``: the first
+    observation repeated, not zeros, so that a stacked observation never shows a state that
+    did not happen) followed by ``FlattenObservation`` (the ``(n, k)`` stack as one vector,
+    as stable-baselines3's MLP policies take it). Wrap it outside any action map of
+    :func:`wrap_actions`, which reads the pose from the plain observation.
+    :class:`~agents.policies.NumpyPolicy` with ``frame_stack=n`` does the same stacking
+    itself, so a policy trained on stacked frames acts on the plain environment.
+    """
+    from gymnasium.wrappers import FlattenObservation, FrameStackObservation
+
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+        raise ValueError(f"n must be an integer >= 1, got {n!r}")
+    space = env.observation_space
+    if not (isinstance(space, gym.spaces.Box) and len(space.shape) == 1):
+        raise ValueError(f"stack_frames takes a flat Box observation, got {space}")
+    if n == 1:
+        return env
+    return FlattenObservation(FrameStackObservation(env, int(n), padding_type="reset"))

@@ -1,7 +1,9 @@
 """``soccer-env train``: train a policy with stable-baselines3 (:func:`agents.training.train`).
 
 The options become a :class:`~agents.training.TrainConfig`; with ``--resume`` the rest of the
-configuration comes from the checkpoint's run folder (its ``config.json``) unless given here.
+configuration comes from the checkpoint's run folder (its ``config.json``) unless given here,
+and ``--steps`` (the total, the checkpoint's steps included) must exceed the checkpoint's
+step count.
 """
 
 from __future__ import annotations
@@ -13,8 +15,8 @@ from pathlib import Path
 from typing import Any
 
 from agents.evaluation import GOALKEEPER_ID
-from agents.policies import SB3_ALGORITHMS
-from agents.training import MATCH_ID, TrainConfig, check_env_kwargs, train
+from agents.policies import algorithm_name
+from agents.training import MATCH_ID, TrainConfig, check_env_kwargs, checkpoint_steps, train
 from agents.wrappers import ACTION_MAPS
 from soccer_lab.cli_args import add_env_arguments, env_kwargs_from_args, key_values
 
@@ -26,22 +28,49 @@ _FIELD_OPTIONS = (("env_id", "env"), ("algorithm", "algo"), ("total_steps", "ste
                   ("n_envs", "n_envs"), ("n_workers", "workers"), ("seed", "seed"),
                   ("out", "out"), ("checkpoint_every", "checkpoint_every"),
                   ("eval_every", "eval_every"), ("eval_episodes", "eval_episodes"),
-                  ("learner", "learner"), ("actions", "actions"), ("opponent", "opponent"))
+                  ("learner", "learner"), ("actions", "actions"), ("opponent", "opponent"),
+                  ("frame_stack", "frame_stack"))
+
+#: The algorithms as the command line spells them.
+ALGORITHMS = ("ppo", "a2c", "sac", "td3", "ddpg", "recurrent-ppo")
+
+
+def _algorithm(text: str) -> str:
+    """``--algo``'s value in its canonical spelling (``ppo`` -> ``PPO``, ``recurrent-ppo`` ->
+    ``RECURRENTPPO``)."""
+    try:
+        return algorithm_name(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"invalid choice: {text!r} (choose from "
+                                         f"{', '.join(ALGORITHMS)})") from None
 
 
 def parser() -> argparse.ArgumentParser:
     """The options of ``soccer-env train``."""
     p = argparse.ArgumentParser(
         prog="soccer-env train", description="Train a policy with stable-baselines3.",
-        epilog="example: soccer-env train --obs-mode perceived --perception ssl-2012 "
-               "--steps 2000000 --out runs/keeper")
+        epilog="examples: soccer-env train --obs-mode perceived --perception ssl-2012 "
+               "--steps 2000000 --out runs/keeper; with memory: add --algo recurrent-ppo "
+               "(an LSTM policy) or --frame-stack 4 (the last 4 observations); to continue: "
+               "soccer-env train --resume runs/keeper/final_model.zip --steps 3000000")
     p.add_argument("--env", default=None, help=f"environment id: {GOALKEEPER_ID} "
                    f"(default) or {MATCH_ID}")
     add_env_arguments(p)
-    p.add_argument("--algo", default=None, type=str.upper, choices=SB3_ALGORITHMS,
-                   help="algorithm (default PPO)")
-    p.add_argument("--steps", type=int, default=None, help="total environment steps "
-                   "(default 1,000,000)")
+    p.add_argument("--algo", default=None, type=_algorithm,
+                   metavar="{" + ",".join(ALGORITHMS) + "}",
+                   help="algorithm (default ppo); recurrent-ppo is sb3-contrib's RecurrentPPO "
+                        "with an LSTM policy (MlpLstmPolicy), whose memory carries the episode "
+                        "so far")
+    p.add_argument("--steps", type=int, default=None,
+                   help="total environment steps (default 1,000,000); with --resume the "
+                        "total including the steps the checkpoint already trained, so it must "
+                        "exceed them (e.g. --resume model_1000000_steps.zip --steps 1500000 "
+                        "trains 500,000 more)")
+    p.add_argument("--frame-stack", type=int, default=None, metavar="N",
+                   help="feed-forward algorithms, Goalkeeper-v0: the learner sees its last N "
+                        "observations concatenated, oldest first, the episode's first "
+                        "repeated to fill (default 1: the observation alone); the saved numpy "
+                        "policy keeps the history and acts on single observations")
     p.add_argument("--n-envs", type=int, default=None, help="parallel environments (16)")
     p.add_argument("--workers", type=int, default=None,
                    help="subprocesses stepping them (2; 0 runs them in this process)")
@@ -49,7 +78,9 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default=None, help="run folder (default runs/keeper)")
     p.add_argument("--hp", action="append", default=[], metavar="KEY=VALUE",
                    help="algorithm hyperparameter (JSON value), repeatable, e.g. "
-                        "--hp learning_rate=1e-4 --hp policy_kwargs='{\"net_arch\": [64, 64]}'")
+                        "--hp learning_rate=1e-4 --hp policy_kwargs='{\"net_arch\": [64, 64]}' "
+                        "(policy_kwargs merge over the algorithm's defaults, e.g. "
+                        "recurrent-ppo's lstm_hidden_size 64)")
     p.add_argument("--checkpoint-every", type=int, default=None)
     p.add_argument("--eval-every", type=int, default=None)
     p.add_argument("--eval-episodes", type=int, default=None)
@@ -111,6 +142,28 @@ def _config(args: argparse.Namespace, base: dict[str, Any]) -> TrainConfig:
     return cfg
 
 
+def _check_resume(p: argparse.ArgumentParser, args: argparse.Namespace, cfg: TrainConfig,
+                  base: dict[str, Any]) -> None:
+    """Refuse a resumed run that would train nothing (``--steps`` at or below the
+    checkpoint's step count) or that stacks another number of frames than the checkpoint's
+    network reads."""
+    try:
+        done = checkpoint_steps(args.resume)
+    except ValueError as err:
+        p.error(f"--resume: {err}")
+    if cfg.total_steps <= done:
+        given = (f"--steps {cfg.total_steps}" if args.steps is not None else
+                 f"the run's total_steps {cfg.total_steps} (from its config.json; set it with "
+                 "--steps)")
+        p.error(f"{given} leaves nothing to train: the checkpoint {args.resume} has already "
+                f"trained {done} steps, and --steps is the total count including them; e.g. "
+                f"--steps {done + cfg.total_steps} trains {cfg.total_steps} more")
+    saved = int(base.get("frame_stack", 1))
+    if cfg.frame_stack != saved:
+        p.error(f"--frame-stack {cfg.frame_stack}: the checkpoint's network reads {saved} "
+                "stacked observation(s)")
+
+
 def _print_summary(summary: dict[str, Any], out: str) -> None:
     rate = summary["rollout_steps_per_s"]
     print(f"trained {summary['trained_steps']:,} steps in {summary['seconds'] / 60:.1f} min "
@@ -134,6 +187,8 @@ def main(argv: list[str] | None = None) -> int:
         cfg = _config(args, base)
     except (ValueError, TypeError) as err:
         p.error(str(err))
+    if args.resume:
+        _check_resume(p, args, cfg, base)
     summary = train(cfg, resume=args.resume, command=["soccer-env", "train", *(argv or [])])
     _print_summary(summary, cfg.out)
     return 0

@@ -53,6 +53,38 @@ def test_a_callable_policy_runs_in_process():
     assert res.episodes == 3 and res.policy == "<lambda>"
 
 
+class _EpisodeCounter:
+    """A policy with memory: it counts the steps since its last reset() and records, at
+    each reset, how many steps the episode before had."""
+
+    def __init__(self) -> None:
+        self.steps, self.episodes = None, []
+
+    def reset(self) -> None:
+        if self.steps is not None:
+            self.episodes.append(self.steps)
+        self.steps = 0
+
+    def __call__(self, obs):
+        assert self.steps is not None, "called before reset()"
+        self.steps += 1
+        return np.zeros(6, np.float32)
+
+
+def test_policies_with_memory_are_reset_at_every_episode_start(tmp_path):
+    policy = _EpisodeCounter()
+    res = evaluate(policy, episodes=3)
+    policy.reset()
+    assert len(policy.episodes) == 3 and sum(policy.episodes) == res.steps
+
+    from agents.evaluation import record_video
+
+    video = _EpisodeCounter()
+    record_video(video, tmp_path / "v.mp4", seeds=(0, 1), width=160)
+    video.reset()
+    assert len(video.episodes) == 2 and all(n > 0 for n in video.episodes)
+
+
 def test_bad_arguments():
     with pytest.raises(ValueError, match="episodes"):
         evaluate("scripted", episodes=0)

@@ -421,8 +421,26 @@ def test_bad_arguments_raise_value_errors_naming_what_is_allowed():
                         np.ones(6))
     with pytest.raises(ValueError, match="observations of size 3"):
         MatchVecEnv(SHORT, opponent=small)
+    size = MatchVecEnv(SHORT).observation_space.shape[0]
+    stacked = NumpyPolicy([("linear", np.zeros((6, 2 * size)), np.zeros(6))], "clip",
+                          -np.ones(6), np.ones(6), frame_stack=2)
+    with pytest.raises(ValueError, match="opponent policies with memory"):
+        MatchVecEnv(SHORT, opponent=stacked)
     with pytest.raises(ValueError, match="update_every must be an integer >= 1"):
         SelfPlayCallback(update_every=0)
+
+
+def test_recurrent_models_learn_on_matches_but_cannot_be_opponents():
+    """RecurrentPPO trains on a MatchVecEnv (each robot its own LSTM state); as an
+    opponent it would never have its memory reset, so it is refused."""
+    contrib = pytest.importorskip("sb3_contrib")
+    venv = make_match_vec_env(SHORT, n_matches=2, learner="blue", opponent="idle", seed=0)
+    model = contrib.RecurrentPPO("MlpLstmPolicy", venv, n_steps=32, batch_size=64, seed=0,
+                                 device="cpu", policy_kwargs={"lstm_hidden_size": 8})
+    model.learn(64)
+    assert model.num_timesteps == 64
+    with pytest.raises(ValueError, match="opponent policies with memory"):
+        venv.set_opponent(model)
 
 
 def test_bad_steps_raise_clear_errors():

@@ -125,3 +125,132 @@ def test_copy_is_frozen_and_carries_observation_normalisation(env, tmp_path):
     np.testing.assert_array_equal(policy(obs), before)
     loaded = NumpyPolicy.load(policy.save(tmp_path / "n.npz"))
     np.testing.assert_array_equal(loaded(obs), before)
+
+
+# ------------------------------------------------------------------------------------------
+# Policies with memory: RecurrentPPO's LSTM and stacked frames
+# ------------------------------------------------------------------------------------------
+
+def _episode_against_sb3(model, policy, env, seed, obs_fn=lambda o: o, max_steps=400):
+    """Run one episode of ``env`` with ``model``'s deterministic recurrent actions (state
+    carried, ``episode_start`` at the first step) and return the largest difference between
+    them and ``policy``'s, called on the plain observations; and the episode's length."""
+    policy.reset()
+    obs, _ = env.reset(seed=seed)
+    state, start, worst, steps = None, np.ones(1, bool), 0.0, 0
+    while steps < max_steps:
+        expected, state = model.predict(obs_fn(obs), state=state, episode_start=start,
+                                        deterministic=True)
+        start = np.zeros(1, bool)
+        worst = max(worst, float(np.abs(policy(obs) - expected).max()))
+        obs, _, term, trunc, _ = env.step(expected)
+        steps += 1
+        if term or trunc:
+            break
+    return worst, steps
+
+
+@pytest.fixture(scope="module")
+def recurrent_model():
+    """A little-trained RecurrentPPO (two LSTM layers, behind VecNormalize) and its
+    VecNormalize."""
+    contrib = pytest.importorskip("sb3_contrib")
+    from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
+
+    venv = VecNormalize(DummyVecEnv([lambda: gym.make("soccer_env/Goalkeeper-v0")] * 2))
+    model = contrib.RecurrentPPO("MlpLstmPolicy", venv, n_steps=64, batch_size=128, seed=0,
+                                 device="cpu", policy_kwargs={"lstm_hidden_size": 16,
+                                                              "n_lstm_layers": 2,
+                                                              "net_arch": [32]})
+    model.learn(256)
+    return model, venv
+
+
+def test_recurrent_numpy_copy_acts_as_the_model_over_episodes(env, recurrent_model, tmp_path):
+    """The numpy LSTM carries its state as sb3-contrib's predict(state, episode_start) does,
+    over whole episodes, after a save and load, and restarts at reset()."""
+    from agents.policies import NumpyRecurrentPolicy
+
+    model, venv = recurrent_model
+    copy = NumpyPolicy.from_sb3(model, {"note": "lstm"}, vec_normalize=venv)
+    assert isinstance(copy, NumpyRecurrentPolicy) and copy.stateful
+    assert (copy.obs_size, copy.hidden_size, copy.n_lstm_layers) == (19, 16, 2)
+    policy = NumpyPolicy.load(copy.save(tmp_path / "lstm.npz"))
+    assert isinstance(policy, NumpyRecurrentPolicy) and policy.meta["note"] == "lstm"
+    assert policy.meta["algorithm"] == "RecurrentPPO"
+    for seed in (0, 1):  # the second episode starts from a reset state
+        worst, steps = _episode_against_sb3(model, policy, env, seed, venv.normalize_obs)
+        assert steps > 20 and worst < 1e-5, (seed, steps, worst)
+    # Memory matters: the same observation after other observations gives another action.
+    obs = _observations(env, 8)
+    policy.reset()
+    first = policy(obs[0])
+    for o in obs[1:]:
+        policy(o)
+    assert not np.allclose(policy(obs[0]), first, atol=1e-4)
+    policy.reset()
+    np.testing.assert_array_equal(policy(obs[0]), first)
+
+
+def test_recurrent_numpy_copy_takes_batches_of_separate_episodes(env, recurrent_model):
+    model, venv = recurrent_model
+    policy = NumpyPolicy.from_sb3(model, vec_normalize=venv)
+    obs = _observations(env, 12)[:12].reshape(4, 3, 19)  # 4 steps of 3 environments
+    state = None
+    for t in range(4):
+        expected, state = model.predict(venv.normalize_obs(obs[t]), state=state,
+                                        episode_start=np.full(3, t == 0), deterministic=True)
+        np.testing.assert_allclose(policy(obs[t]), expected, atol=1e-5)
+    np.testing.assert_allclose(policy.state[1], state[1], atol=1e-5)
+    with pytest.raises(ValueError, match="reset"):
+        policy(obs[0, :2])
+
+
+def test_recurrent_model_loads_by_file_and_as_sb3_policy(env, recurrent_model, tmp_path):
+    """A RecurrentPPO .zip without a run's config.json is recognised as RecurrentPPO (not
+    opened as PPO, which would drop the LSTM); make_policy gives its numpy copy; SB3Policy
+    carries the state too."""
+    from agents.policies import NumpyRecurrentPolicy, load_sb3
+
+    model, _ = recurrent_model
+    model.save(tmp_path / "final_model.zip")
+    assert type(load_sb3(tmp_path / "final_model.zip")).__name__ == "RecurrentPPO"
+    policy = make_policy(tmp_path / "final_model.zip", env)  # no VecNormalize file beside it
+    assert isinstance(policy, NumpyRecurrentPolicy)
+    worst, _ = _episode_against_sb3(model, policy, env, 2)
+    assert worst < 1e-5
+    wrapped = SB3Policy(model)
+    assert wrapped.stateful
+    worst, _ = _episode_against_sb3(model, wrapped, env, 2)
+    assert worst == 0.0
+
+
+def test_numpy_policy_with_a_stack_acts_as_the_model_on_the_stacked_env(env, tmp_path):
+    """A PPO trained behind stack_frames and VecNormalize: its numpy copy, called with the
+    plain environment's single observations, gives the model's actions on the stacked
+    ones over whole episodes."""
+    from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
+
+    from agents.wrappers import stack_frames
+
+    n = 3
+    make = lambda: stack_frames(gym.make("soccer_env/Goalkeeper-v0"), n)  # noqa: E731
+    venv = VecNormalize(DummyVecEnv([make] * 2))
+    model = sb3.PPO("MlpPolicy", venv, n_steps=64, batch_size=128, seed=0, device="cpu")
+    model.learn(256)
+    policy = NumpyPolicy.load(NumpyPolicy.from_sb3(model, vec_normalize=venv, frame_stack=n)
+                              .save(tmp_path / "stack.npz"))
+    assert policy.frame_stack == n and policy.obs_size == 19 and policy.input_size == 57
+    stacked = make()
+    for seed in (0, 1):
+        policy.reset()
+        obs, _ = env.reset(seed=seed)
+        sobs, _ = stacked.reset(seed=seed)
+        steps, done = 0, False
+        while not done:
+            expected = model.predict(venv.normalize_obs(sobs), deterministic=True)[0]
+            np.testing.assert_allclose(policy(obs), expected, atol=2e-5)
+            obs, _, term, trunc, _ = env.step(expected)
+            sobs, *_ = stacked.step(expected)
+            steps, done = steps + 1, term or trunc
+        assert steps > 20

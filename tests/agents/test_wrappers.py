@@ -1,5 +1,6 @@
 """Learner action spaces: the field-frame velocity and target maps, as wrappers and as the
-function numpy policies apply."""
+function numpy policies apply; stacked observations, in the environment and in the numpy
+policy."""
 
 from __future__ import annotations
 
@@ -16,6 +17,7 @@ from agents.wrappers import (
     FieldVelocityActions,
     TargetActions,
     action_to_command,
+    stack_frames,
     target_params,
     wrap_actions,
 )
@@ -157,3 +159,68 @@ def test_bad_input():
         wrapped.step(np.zeros(6, np.float32))
     with pytest.raises(ValueError, match="finite"):
         wrapped.step(np.array([np.nan, 0, 0], np.float32))
+
+
+@pytest.mark.parametrize("n", [2, 4])
+def test_stacked_observation_is_the_last_n_plain_ones(n):
+    """Oldest first, the episode's first observation repeated to fill; a reset starts over."""
+    plain, stacked = gym.make(ID, obs_mode="perceived"), stack_frames(
+        gym.make(ID, obs_mode="perceived"), n)
+    assert stacked.observation_space.shape == (19 * n,)
+    assert stacked.observation_space.dtype == np.float32
+    rng = np.random.default_rng(0)
+    for seed in (3, 4):  # the second episode must not see the first one's observations
+        history = [plain.reset(seed=seed)[0]]
+        obs, _ = stacked.reset(seed=seed)
+        for step in range(12):
+            window = ([history[0]] * n + history)[-n:]
+            np.testing.assert_array_equal(obs, np.concatenate(window), err_msg=f"step {step}")
+            assert stacked.observation_space.contains(obs)
+            action = rng.uniform(-1, 1, 6).astype(np.float32)
+            history.append(plain.step(action)[0])
+            obs, *_ = stacked.step(action)
+    assert stack_frames(plain, 1) is plain
+
+
+def test_frame_stack_outside_an_action_map():
+    """The map reads the pose from the plain observation under the stack: the stacked,
+    mapped environment steps as the mapped one does."""
+    mapped = wrap_actions(gym.make(ID), "guard")
+    both = stack_frames(wrap_actions(gym.make(ID), "guard"), 3)
+    obs_m, _ = mapped.reset(seed=5)
+    obs_b, _ = both.reset(seed=5)
+    for a in (0.5, -0.8, 0.1, 1.0):
+        action = np.array([a], np.float32)
+        obs_m, *_ = mapped.step(action)
+        obs_b, *_ = both.step(action)
+        np.testing.assert_array_equal(obs_b[-19:], obs_m)
+    with pytest.raises(ValueError, match="n must be an integer >= 1"):
+        stack_frames(mapped, 0)
+
+
+def test_numpy_policy_keeps_the_stack_itself(tmp_path):
+    """A frame-stacked NumpyPolicy called with single observations gives what its network
+    gives on the stacked ones, round-trips with its stack size, and restarts at reset()."""
+    n = 3
+    rng = np.random.default_rng(7)
+    layers = [("linear", rng.normal(0, 0.3, (8, 19 * n)), rng.normal(0, 0.1, 8)), ("tanh",),
+              ("linear", rng.normal(0, 0.3, (6, 8)), rng.normal(0, 0.1, 6))]
+    policy = NumpyPolicy.load(NumpyPolicy(layers, "clip", -np.ones(6), np.ones(6),
+                                          frame_stack=n).save(tmp_path / "s.npz"))
+    assert policy.frame_stack == n and policy.obs_size == 19 and policy.stateful
+    plain, stacked = gym.make(ID), stack_frames(gym.make(ID), n)
+    for seed in (0, 1):
+        obs, _ = plain.reset(seed=seed)
+        sobs, _ = stacked.reset(seed=seed)
+        policy.reset()
+        for _ in range(10):
+            action = policy(obs)
+            np.testing.assert_allclose(action, policy.network_action(sobs), atol=1e-6)
+            obs, *_ = plain.step(action)
+            sobs, *_ = stacked.step(action)
+    with pytest.raises(ValueError, match="reset"):
+        policy(np.zeros((2, 19), np.float32))  # another batch shape mid-episode
+    policy.reset()
+    assert policy(np.zeros((2, 19), np.float32)).shape == (2, 6)
+    with pytest.raises(ValueError, match="multiple of frame_stack"):
+        NumpyPolicy(layers, "clip", -np.ones(6), np.ones(6), frame_stack=2)

@@ -114,9 +114,120 @@ def test_off_policy_algorithm_in_process(tmp_path):
     (["--env", "soccer_env/Tennis-v0"], "env_id must be"),
     (["--hp", "n_steps"], "--hp must be key=value"),
     (["--resume", "nowhere.zip"], "no checkpoint"),
+    (["--frame-stack", "0"], "frame_stack must be an integer >= 1"),
+    (["--algo", "dqn"], "invalid choice: 'dqn'"),
+    (["--algo", "recurrent-ppo", "--frame-stack", "2"], "RecurrentPPO's LSTM carries"),
+    (["--algo", "recurrent-ppo", "--hp", "buffer_size=10"], "unknown RECURRENTPPO hyperpar"),
 ])
 def test_bad_input_is_refused_before_training(tmp_path, capsys, args, message):
     with pytest.raises(SystemExit):
         main(["train", "--out", str(tmp_path / "x"), *args])
     assert message in capsys.readouterr().err
     assert not (tmp_path / "x").exists()
+
+
+def _episode_actions(policy, env, seed):
+    """The actions ``policy`` takes over one episode of ``env`` (reset first)."""
+    from agents.policies import reset_policy
+
+    reset_policy(policy)
+    obs, _ = env.reset(seed=seed)
+    actions = []
+    while True:
+        actions.append(policy(obs))
+        obs, _, term, trunc, _ = env.step(actions[-1])
+        if term or trunc:
+            return np.array(actions)
+
+
+def test_recurrent_ppo_run_resumes_and_refuses_a_resume_with_nothing_to_train(tmp_path, capsys):
+    """--algo recurrent-ppo trains RecurrentPPO, evaluates and exports the LSTM in numpy (the
+    .npz and the .zip act alike over episodes); a resume must ask for more steps than the
+    checkpoint has."""
+    pytest.importorskip("sb3_contrib")
+    import gymnasium as gym
+
+    from agents.policies import NumpyRecurrentPolicy
+    from agents.training import TrainConfig, train
+
+    run = tmp_path / "lstm"
+    assert main(["train", "--algo", "recurrent-ppo", "--steps", "256", "--n-envs", "2",
+                 "--workers", "0", "--hp", "n_steps=64", "--hp",
+                 "policy_kwargs={\"lstm_hidden_size\": 8}", "--eval-every", "256",
+                 "--eval-episodes", "2", "--checkpoint-every", "0", "--out", str(run),
+                 "--no-progress"]) == 0
+    config = json.loads((run / "config.json").read_text())
+    assert config["algorithm"] == "RECURRENTPPO" and "sb3_contrib" in config["versions"]
+    model = load_sb3(run / "final_model.zip")
+    assert type(model).__name__ == "RecurrentPPO"
+    assert model.policy.lstm_actor.hidden_size == 8
+    policy = NumpyPolicy.load(run / "final_policy.npz")
+    assert isinstance(policy, NumpyRecurrentPolicy)
+    assert policy.meta["algorithm"] == "RECURRENTPPO" and policy.meta["frame_stack"] == 1
+    assert policy.meta["evaluation"]["steps"] == 256
+    env = gym.make("soccer_env/Goalkeeper-v0")
+    from_zip = make_policy(run / "final_model.zip", env)
+    np.testing.assert_allclose(_episode_actions(from_zip, env, 0),
+                               _episode_actions(policy, env, 0), atol=1e-5)
+
+    # --steps is the total: at or below the checkpoint's 256 steps nothing would be trained.
+    capsys.readouterr()
+    for steps in (["--steps", "256"], ["--steps", "100"], []):
+        with pytest.raises(SystemExit):
+            main(["train", "--resume", str(run / "final_model.zip"), *steps, "--no-progress"])
+        err = capsys.readouterr().err
+        assert "leaves nothing to train" in err and "already trained 256 steps" in err, err
+    assert "from its config.json" in err  # without --steps: the run's own total
+    with pytest.raises(ValueError, match="leaves nothing to train"):
+        train(TrainConfig(algorithm="recurrent-ppo", total_steps=256, out=str(tmp_path / "x")),
+              resume=run / "final_model.zip")
+    assert not (tmp_path / "x").exists()
+    assert main(["train", "--resume", str(run / "final_model.zip"), "--steps", "384",
+                 "--eval-every", "0", "--no-progress"]) == 0
+    summary = json.loads((run / "summary.json").read_text())
+    assert summary["steps"] == 384 and summary["trained_steps"] == 128
+
+
+def test_frame_stack_run_exports_a_policy_that_keeps_the_stack(tmp_path):
+    """--frame-stack 3 with the guard map: the learner sees 57 numbers, the exported policy
+    takes the plain 19 and acts as the model does on the stacked environment."""
+    import gymnasium as gym
+
+    run = tmp_path / "stack"
+    assert main(["train", "--frame-stack", "3", "--actions", "guard", "--steps", "256",
+                 "--n-envs", "2", "--workers", "0", "--hp", "n_steps=64", "--eval-every",
+                 "256", "--eval-episodes", "2", "--checkpoint-every", "0", "--out", str(run),
+                 "--no-progress"]) == 0
+    config = json.loads((run / "config.json").read_text())
+    assert config["frame_stack"] == 3
+    model = load_sb3(run / "final_model.zip")
+    assert model.observation_space.shape == (57,)
+    policy = NumpyPolicy.load(run / "final_policy.npz")
+    assert policy.frame_stack == 3 and policy.obs_size == 19 and policy.meta["frame_stack"] == 3
+    env = gym.make("soccer_env/Goalkeeper-v0")
+    actions = _episode_actions(policy, env, 1)
+    np.testing.assert_allclose(_episode_actions(make_policy(run / "final_model.zip", env),
+                                                env, 1), actions, atol=1e-5)
+    # Against the model itself on its training environment (stacked, behind the guard map
+    # and VecNormalize): the same commands, step by step.
+    from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
+
+    from agents.training import goalkeeper_env_fn
+    from agents.wrappers import action_to_command
+
+    make = goalkeeper_env_fn({}, "guard", 3)
+    norm = VecNormalize.load(str(run / "final_vecnormalize.pkl"), DummyVecEnv([make]))
+    stacked = make()
+    policy.reset()
+    obs, _ = stacked.reset(seed=2)
+    plain, _ = env.reset(seed=2)
+    steps, done = 0, False
+    while not done:
+        guard = model.predict(norm.normalize_obs(obs), deterministic=True)[0]
+        command = policy(plain)
+        np.testing.assert_allclose(command, action_to_command(
+            "guard", plain, guard, policy.action_map["params"]), atol=1e-5)
+        obs, _, term, trunc, _ = stacked.step(guard)
+        plain, *_ = env.step(command)
+        steps, done = steps + 1, term or trunc
+    assert steps > 20 and len(actions) > 20
