@@ -321,11 +321,13 @@ class NumpyPolicy:
         policy = model.policy
         low, high = model.action_space.low, model.action_space.high
         name = type(model).__name__
+        key = getattr(policy, "actor_key", None)  # a privileged critic's actor reads one key
         if hasattr(policy, "mlp_extractor"):  # PPO, A2C
             if getattr(policy, "squash_output", False):
                 raise ValueError("squashed actor-critic policies are not supported")
-            _check_flatten(policy.pi_features_extractor if hasattr(
-                policy, "pi_features_extractor") else policy.features_extractor)
+            if key is None:
+                _check_flatten(policy.pi_features_extractor if hasattr(
+                    policy, "pi_features_extractor") else policy.features_extractor)
             mods = [*policy.mlp_extractor.policy_net, policy.action_net]
             output = "clip"
         elif hasattr(policy, "actor") and hasattr(policy.actor, "latent_pi"):  # SAC
@@ -345,7 +347,7 @@ class NumpyPolicy:
         else:
             raise ValueError(f"cannot copy the policy of a {name} model into numpy")
         return cls(_numpy_layers(mods, name), output, low, high,
-                   {"algorithm": name, **(meta or {})}, _normalize_of(vec_normalize),
+                   {"algorithm": name, **(meta or {})}, _normalize_of(vec_normalize, key),
                    action_map, frame_stack)
 
     def save(self, path: str | os.PathLike) -> Path:
@@ -564,12 +566,13 @@ def _numpy_layers(mods: list[Any], name: str) -> list[tuple]:
     return layers
 
 
-def _normalize_of(vec_normalize: Any) -> tuple[np.ndarray, np.ndarray, float, float] | None:
+def _normalize_of(vec_normalize: Any, key: str | None = None
+                  ) -> tuple[np.ndarray, np.ndarray, float, float] | None:
     """The observation statistics of a ``VecNormalize`` (None without one, or when it does
-    not normalise observations)."""
+    not normalise observations); of the entry ``key`` of a ``Dict`` observation."""
     if vec_normalize is None or not vec_normalize.norm_obs:
         return None
-    rms = vec_normalize.obs_rms
+    rms = vec_normalize.obs_rms if key is None else vec_normalize.obs_rms[key]
     return rms.mean, rms.var, vec_normalize.clip_obs, vec_normalize.epsilon
 
 

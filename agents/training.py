@@ -60,7 +60,11 @@ from soccer_env.validation import check_fields
 
 __all__ = ["TrainConfig", "train", "check_env_kwargs", "make_vec_env", "EVAL_SEED_START",
            "MATCH_ID", "DEFAULT_HYPERPARAMS", "rollout_timer", "goalkeeper_env_fn",
-           "checkpoint_steps"]
+           "checkpoint_steps", "CRITICS"]
+
+#: The critics of ``critic=``: ``"shared"`` (the actor's observation, stable-baselines3's
+#: default) or ``"privileged"`` (also the true state, :mod:`agents.privileged`).
+CRITICS = ("shared", "privileged")
 
 #: First seed of the shots used for model selection during training.
 EVAL_SEED_START = 1_000_000
@@ -124,6 +128,11 @@ class TrainConfig:
             Goalkeeper-v0 and feed-forward algorithms only (RecurrentPPO's LSTM is its
             memory). The saved numpy policy keeps the history, so it acts on the plain
             environment's single observations.
+        critic: ``"shared"`` (the critic reads the actor's observation) or ``"privileged"``
+            (asymmetric actor-critic, :mod:`agents.privileged`: the critic also reads the true
+            state, the actor only the observation); privileged for PPO and A2C on
+            Goalkeeper-v0 without frame stacking. The saved numpy policy is the actor alone,
+            acting on the plain environment.
         torch_threads: torch's intra-op threads in the learner process.
         device: torch device.
         progress_bar: show SB3's progress bar.
@@ -149,6 +158,7 @@ class TrainConfig:
     normalize_reward: bool = False
     actions: str = "native"
     frame_stack: int = 1
+    critic: str = "shared"
     torch_threads: int = 1
     device: str = "cpu"
     progress_bar: bool = True
@@ -182,6 +192,14 @@ class TrainConfig:
         if self.frame_stack > 1 and self.algorithm == "RECURRENTPPO":
             raise ValueError("frame_stack is for the feed-forward algorithms: RecurrentPPO's "
                              "LSTM carries the memory")
+        if self.critic not in CRITICS:
+            raise ValueError(f"critic must be one of {list(CRITICS)}, got {self.critic!r}")
+        if self.critic == "privileged" and (self.algorithm not in ("PPO", "A2C")
+                                            or self.env_id != GOALKEEPER_ID
+                                            or self.frame_stack > 1):
+            raise ValueError(f"critic 'privileged' is for PPO and A2C on {GOALKEEPER_ID} "
+                             f"without frame stacking, got {self.algorithm} on {self.env_id} "
+                             f"with frame_stack {self.frame_stack}")
         if self.algorithm == "RECURRENTPPO" and self.env_id == MATCH_ID and \
                 self.opponent == "self":
             raise ValueError("opponent 'self' takes feed-forward learners only: a recurrent "
@@ -209,17 +227,24 @@ def _algorithm_parameters(name: str) -> set[str]:
 # ------------------------------------------------------------------------------------------
 
 def goalkeeper_env_fn(env_kwargs: dict[str, Any], actions: str = "native",
-                      frame_stack: int = 1):
+                      frame_stack: int = 1, critic: str = "shared"):
     """A picklable constructor of one training environment: Goalkeeper-v0 with
     ``env_kwargs``, the learner's action map ``actions`` and its last ``frame_stack``
-    observations stacked (:func:`~agents.wrappers.stack_frames`), behind SB3's ``Monitor``."""
+    observations stacked (:func:`~agents.wrappers.stack_frames`), with the true state beside
+    the observation for a ``"privileged"`` critic
+    (:class:`~agents.privileged.PrivilegedObservation`), behind SB3's ``Monitor``."""
     def make():
         import gymnasium as gym
         from stable_baselines3.common.monitor import Monitor
 
         import soccer_env  # noqa: F401
 
+        # The action maps read the pose from the plain observation: they go inside.
         env = wrap_actions(gym.make(GOALKEEPER_ID, **env_kwargs), actions)
+        if critic == "privileged":
+            from agents.privileged import PrivilegedObservation
+
+            env = PrivilegedObservation(env)
         return Monitor(stack_frames(env, frame_stack))
 
     return make
@@ -233,7 +258,7 @@ def make_vec_env(cfg: TrainConfig):
         opponent = cfg.opponent
         return make_match_vec_env(cfg.env_kwargs, cfg.n_envs, cfg.learner,
                                   "idle" if opponent == "self" else opponent, cfg.seed)
-    fns = [goalkeeper_env_fn(cfg.env_kwargs, cfg.actions, cfg.frame_stack)
+    fns = [goalkeeper_env_fn(cfg.env_kwargs, cfg.actions, cfg.frame_stack, cfg.critic)
            for _ in range(cfg.n_envs)]
     if cfg.n_workers == 0:
         from stable_baselines3.common.vec_env import DummyVecEnv
@@ -377,7 +402,7 @@ def _callbacks(cfg: TrainConfig, out: Path, action_map: dict[str, Any] | None):
 
 def _meta(cfg: TrainConfig, evaluation: dict[str, Any] | None = None) -> dict[str, Any]:
     meta = {"env_id": cfg.env_id, "env_kwargs": cfg.env_kwargs, "algorithm": cfg.algorithm,
-            "actions": cfg.actions, "frame_stack": cfg.frame_stack,
+            "actions": cfg.actions, "frame_stack": cfg.frame_stack, "critic": cfg.critic,
             "hyperparams": cfg.hyperparams,
             "total_steps": cfg.total_steps, "seed": cfg.seed}
     if evaluation is not None:
@@ -477,7 +502,11 @@ def _model(cfg: TrainConfig, venv: Any, params: dict[str, Any],
         model = algo.load(resume, env=venv, device=cfg.device,
                           tensorboard_log=str(out / "tb"), **params)
         return model, int(model.num_timesteps)
-    policy = "MlpLstmPolicy" if cfg.algorithm == "RECURRENTPPO" else "MlpPolicy"
+    policy: Any = "MlpLstmPolicy" if cfg.algorithm == "RECURRENTPPO" else "MlpPolicy"
+    if cfg.critic == "privileged":
+        from agents.privileged import PrivilegedActorCriticPolicy
+
+        policy = PrivilegedActorCriticPolicy
     model = algo(policy, venv, seed=cfg.seed, device=cfg.device,
                  tensorboard_log=str(out / "tb"), verbose=0, **params)
     return model, 0

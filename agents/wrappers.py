@@ -230,9 +230,9 @@ def stack_frames(env: gym.Env, n: int) -> gym.Env:
 
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ValueError(f"n must be an integer >= 1, got {n!r}")
+    if n == 1:
+        return env
     space = env.observation_space
     if not (isinstance(space, gym.spaces.Box) and len(space.shape) == 1):
         raise ValueError(f"stack_frames takes a flat Box observation, got {space}")
-    if n == 1:
-        return env
     return FlattenObservation(FrameStackObservation(env, int(n), padding_type="reset"))

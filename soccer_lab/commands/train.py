@@ -16,7 +16,14 @@ from typing import Any
 
 from agents.evaluation import GOALKEEPER_ID
 from agents.policies import algorithm_name
-from agents.training import MATCH_ID, TrainConfig, check_env_kwargs, checkpoint_steps, train
+from agents.training import (
+    CRITICS,
+    MATCH_ID,
+    TrainConfig,
+    check_env_kwargs,
+    checkpoint_steps,
+    train,
+)
 from agents.wrappers import ACTION_MAPS
 from soccer_lab.cli_args import add_env_arguments, env_kwargs_from_args, key_values
 
@@ -29,7 +36,7 @@ _FIELD_OPTIONS = (("env_id", "env"), ("algorithm", "algo"), ("total_steps", "ste
                   ("out", "out"), ("checkpoint_every", "checkpoint_every"),
                   ("eval_every", "eval_every"), ("eval_episodes", "eval_episodes"),
                   ("learner", "learner"), ("actions", "actions"), ("opponent", "opponent"),
-                  ("frame_stack", "frame_stack"))
+                  ("frame_stack", "frame_stack"), ("critic", "critic"))
 
 #: The algorithms as the command line spells them.
 ALGORITHMS = ("ppo", "a2c", "sac", "td3", "ddpg", "recurrent-ppo")
@@ -66,6 +73,11 @@ def parser() -> argparse.ArgumentParser:
                         "total including the steps the checkpoint already trained, so it must "
                         "exceed them (e.g. --resume model_1000000_steps.zip --steps 1500000 "
                         "trains 500,000 more)")
+    p.add_argument("--critic", choices=CRITICS, default=None,
+                   help="PPO and A2C on Goalkeeper-v0: 'shared' (default: the critic reads the "
+                        "actor's observation) or 'privileged' (the critic also reads the true "
+                        "state in training, the actor only the observation; the saved numpy "
+                        "policy is the actor alone; see agents.privileged)")
     p.add_argument("--frame-stack", type=int, default=None, metavar="N",
                    help="feed-forward algorithms, Goalkeeper-v0: the learner sees its last N "
                         "observations concatenated, oldest first, the episode's first "
@@ -162,6 +174,9 @@ def _check_resume(p: argparse.ArgumentParser, args: argparse.Namespace, cfg: Tra
     if cfg.frame_stack != saved:
         p.error(f"--frame-stack {cfg.frame_stack}: the checkpoint's network reads {saved} "
                 "stacked observation(s)")
+    saved_critic = base.get("critic", "shared")
+    if cfg.critic != saved_critic:
+        p.error(f"--critic {cfg.critic}: the checkpoint's network has a {saved_critic} critic")
 
 
 def _print_summary(summary: dict[str, Any], out: str) -> None:
