@@ -74,6 +74,13 @@ def commands(preset: str, recipe: str, steps: int, out: Path) -> tuple[list[str]
     return train, evaluate
 
 
+def _runnable(command: list[str]) -> list[str]:
+    """``command`` with ``soccer-env`` taken from this interpreter's environment when it has
+    one (the script may run without the virtual environment activated)."""
+    local = Path(sys.executable).parent / command[0]
+    return [str(local), *command[1:]] if local.exists() else command
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--preset", default="ssl-2012")
@@ -96,10 +103,10 @@ def main(argv: list[str] | None = None) -> int:
             print(shlex.join(evaluate))
             continue
         if not (run / "summary.json").exists():
-            subprocess.run(train, check=True)
+            subprocess.run(_runnable(train), check=True)
         if not (run / "suite.json").exists():
             t0 = time.perf_counter()
-            res = subprocess.run(evaluate, check=True, capture_output=True, text=True)
+            res = subprocess.run(_runnable(evaluate), check=True, capture_output=True, text=True)
             record = json.loads(res.stdout)
             record["eval_seconds"] = time.perf_counter() - t0
             record["commands"] = [shlex.join(train), shlex.join(evaluate)]
