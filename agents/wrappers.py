@@ -17,7 +17,13 @@ same split:
   braking-profile controller (:func:`soccer_env.envs.keeper.drive_command`) drives the keeper to,
   facing the field, kicker off;
 * ``"guard"``: :class:`GuardActions`, the same with the point on the scripted keeper's guard
-  line (5 cm in front of the goal line, beyond the robot's radius): only ``y`` is chosen.
+  line (5 cm in front of the goal line, beyond the robot's radius): only ``y`` is chosen;
+* ``"guard-residual"``: :class:`GuardResidualActions`, the point on the guard line the
+  scripted keeper would choose from the same observation
+  (:meth:`~soccer_env.envs.keeper.ScriptedGoalkeeper.guard_y`) plus the learner's correction
+  ``a * residual`` (0.3 m): an action of 0 plays the scripted keeper's positioning, and the
+  learner only has to learn where to differ from it (residual policy learning, Silver et al.
+  2018; Johannink et al. 2019).
 
 Each map reads the keeper's pose **from the agent's own observation** (``self.x``, ``self.y``,
 ``self.ax``, ``self.ay``), so under perceived observations it uses the estimated pose, as on a
@@ -42,10 +48,18 @@ import numpy as np
 from soccer_env.envs.keeper import TURN_GAIN
 
 __all__ = ["ACTION_MAPS", "FieldVelocityActions", "TargetActions", "GuardActions",
-           "action_to_command", "target_params", "wrap_actions", "stack_frames"]
+           "GuardResidualActions", "action_to_command", "target_params", "residual_params",
+           "scripted_guard_y", "wrap_actions", "stack_frames"]
 
 #: Action spaces of a learning keeper (see the module docstring) and their sizes.
-ACTION_MAPS = {"native": 6, "velocity": 3, "target": 2, "guard": 1}
+ACTION_MAPS = {"native": 6, "velocity": 3, "target": 2, "guard": 1,
+               "guard-residual": 1}
+
+#: Indices of ``ball.dx, ball.dy, ball.vx, ball.vy`` in every observation layout.
+_BALL = (7, 8, 9, 10)
+
+#: The largest correction of the ``"guard-residual"`` map [m].
+RESIDUAL = 0.3
 
 #: Indices of ``self.x, self.y, self.ax, self.ay`` in every observation layout of
 #: :mod:`soccer_env.observations` (they open it).
@@ -63,6 +77,43 @@ def target_params(env: gym.Env, depth: float = 0.5) -> dict[str, float]:
     return {"x_min": x0, "x_max": x0 + depth, "y_max": 0.5 * f.goal_width + r.radius,
             "max_speed": r.max_speed, "max_acceleration": r.max_acceleration,
             "max_angular_speed": r.max_angular_speed}
+
+
+def residual_params(env: gym.Env, residual: float = RESIDUAL) -> dict[str, float]:
+    """The constants of the ``"guard-residual"`` map: :func:`target_params`, the goal line
+    ``goal_x`` [m], the half-width of the mouth the scripted keeper guards ``half_goal``
+    (goal and ball) [m], the ball's rolling ``deceleration`` [m/s^2] and the largest
+    correction ``residual`` [m]."""
+    u = env.unwrapped
+    f, b = u.field, u.ball_spec
+    return {**target_params(env), "goal_x": -f.half_length,
+            "half_goal": 0.5 * f.goal_width + b.radius,
+            "deceleration": b.rolling_deceleration, "residual": float(residual)}
+
+
+def scripted_guard_y(obs: np.ndarray, params: Mapping[str, float]) -> np.ndarray:
+    """:meth:`~soccer_env.envs.keeper.ScriptedGoalkeeper.guard_y` on a batch of observations
+    ``(..., n_obs)``: with the ball's position ``b`` and velocity ``v`` in the team frame,
+    ``y = b_y + v_y / v_x (x_g - b_x)`` where a ball moving towards the goal faster than
+    5 cm/s reaches the guard line ``x_g`` before it stops (it rolls straight, decelerating:
+    it covers ``s = (x_g - b_x) |v| / v_x <= |v|^2 / (2 a)``), else the crossing of the line
+    from the ball to the goal centre; within ``+-half_goal``."""
+    obs = np.asarray(obs, dtype=np.float64)
+    c, s = _heading(obs)
+    px, py = obs[..., _POSE[0]], obs[..., _POSE[1]]
+    dx, dy, bvx, bvy = (obs[..., i] for i in _BALL)
+    bx, by = px + c * dx - s * dy, py + s * dx + c * dy
+    vx, vy = c * bvx - s * bvy, s * bvx + c * bvy
+    gx, a = params["x_min"], params["deceleration"]
+    speed = np.hypot(vx, vy)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        path = (gx - bx) * speed / vx
+        crossing = by + vy / vx * (gx - bx)
+    reaches = (vx < -0.05) & (path >= 0.0) & ((a == 0.0) | (speed * speed - 2.0 * a * path
+                                                             >= 0.0))
+    frac = (gx - params["goal_x"]) / np.maximum(bx - params["goal_x"], 1e-3)
+    y = np.where(reaches, crossing, by * np.minimum(frac, 1.0))
+    return np.clip(y, -params["half_goal"], params["half_goal"])
 
 
 def _heading(obs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -112,6 +163,10 @@ def action_to_command(kind: str, obs: np.ndarray, action: np.ndarray,
         if kind == "guard":
             tx = np.full(act.shape[:-1], p["x_min"])
             ty = act[..., 0] * p["y_max"]
+        elif kind == "guard-residual":
+            tx = np.full(act.shape[:-1], p["x_min"])
+            ty = np.clip(scripted_guard_y(obs, p) + act[..., 0] * p["residual"], -p["y_max"],
+                         p["y_max"])
         else:
             tx = p["x_min"] + 0.5 * (act[..., 0] + 1.0) * (p["x_max"] - p["x_min"])
             ty = act[..., 1] * p["y_max"]
@@ -200,6 +255,17 @@ class GuardActions(_MappedActions):
         super().__init__(env, target_params(env))
 
 
+class GuardResidualActions(_MappedActions):
+    """``Box(-1, 1, (1,))``: a correction ``a * residual`` to the point on the guard line the
+    scripted keeper would choose (see :func:`scripted_guard_y` and :func:`residual_params`);
+    facing the field, kicker off."""
+
+    kind = "guard-residual"
+
+    def __init__(self, env: gym.Env) -> None:
+        super().__init__(env, residual_params(env))
+
+
 def wrap_actions(env: gym.Env, kind: str) -> gym.Env:
     """``env`` with the learner's action space ``kind`` (``"native"`` returns it as is)."""
     if kind == "native":
@@ -210,6 +276,8 @@ def wrap_actions(env: gym.Env, kind: str) -> gym.Env:
         return TargetActions(env)
     if kind == "guard":
         return GuardActions(env)
+    if kind == "guard-residual":
+        return GuardResidualActions(env)
     raise ValueError(f"actions must be one of {list(ACTION_MAPS)}, got {kind!r}")
 
 

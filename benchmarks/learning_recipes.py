@@ -42,6 +42,11 @@ RECIPES: dict[str, tuple[list[str], bool, str]] = {
         "+ sensor randomisation (ssl-2012 to realistic)"),
     "belief+privileged": (["--env-kwarg", "belief_features=true", "--critic", "privileged"],
                           True, "+ belief features + privileged critic"),
+    "residual": (["--actions", "guard-residual"], False,
+                 "a correction to the scripted keeper's guard point"),
+    "residual+belief+privileged": (["--actions", "guard-residual", "--env-kwarg",
+                                    "belief_features=true", "--critic", "privileged"], True,
+                                   "residual + belief features + privileged critic"),
     "belief+privileged+randomized": (
         ["--env-kwarg", "belief_features=true", "--critic", "privileged", "--env-kwarg",
          "perception=" + json.dumps({"vision": "{preset}", "randomize": RANDOMIZE})], True,

@@ -95,12 +95,24 @@ class ScriptedGoalkeeper:
         u = env.unwrapped
         return cls(u.field, u.ball_spec, u.robot_spec, u.builder.names, **kwargs)
 
-    def __call__(self, obs: np.ndarray) -> np.ndarray:
-        f, r = self.field, self.robot
+    def _read(self, obs: np.ndarray) -> tuple[float, ...]:
+        """Own position, heading ``(cos, sin)``, the ball's position and velocity and its
+        egocentric offset, in the team frame, from the observation."""
         px, py, ax, ay, dx, dy, bvx, bvy = (float(obs[i]) for i in self._idx)
         c, s = ax, -ay  # cos and sin of the heading in the team frame
         bx, by = px + c * dx - s * dy, py + s * dx + c * dy
         vx, vy = c * bvx - s * bvy, s * bvx + c * bvy
+        return px, py, c, s, bx, by, vx, vy, dx, dy
+
+    def guard_y(self, obs: np.ndarray) -> float:
+        """Where on the guard line the keeper goes [m, team frame] (step 2 of the class
+        docstring): the predicted crossing of a ball moving towards the goal, else the
+        crossing of the line from the ball to the goal centre; within the goal mouth."""
+        _, _, _, _, bx, by, vx, vy, _, _ = self._read(obs)
+        return self._guard_y(bx, by, vx, vy)
+
+    def _guard_y(self, bx: float, by: float, vx: float, vy: float) -> float:
+        f = self.field
         half_goal = 0.5 * f.goal_width + self.ball.radius
         goal_x = -f.half_length
         ty = None
@@ -111,7 +123,12 @@ class ScriptedGoalkeeper:
         if ty is None:
             frac = (self.guard_x - goal_x) / max(bx - goal_x, 1e-3)
             ty = by * min(frac, 1.0)
-        ty = max(-half_goal, min(half_goal, ty))
+        return max(-half_goal, min(half_goal, ty))
+
+    def __call__(self, obs: np.ndarray) -> np.ndarray:
+        r = self.robot
+        px, py, c, s, bx, by, vx, vy, dx, dy = self._read(obs)
+        ty = self._guard_y(bx, by, vx, vy)
 
         if self.humanoid:
             return self._humanoid(px, py, c, s, bx, by, vx, vy, dx, dy, ty)

@@ -102,8 +102,9 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--actions", choices=tuple(ACTION_MAPS), default=None,
                    help="keeper learner's actions: native (the robot's command, default), "
                         "velocity (field-frame velocity and turn rate), target (where to "
-                        "stand, reached by a motion controller) or guard (where to stand on "
-                        "the guard line); see agents.wrappers")
+                        "stand, reached by a motion controller), guard (where to stand on "
+                        "the guard line) or guard-residual (a correction to where the "
+                        "scripted keeper would stand on it); see agents.wrappers")
     p.add_argument("--learner", choices=("blue", "yellow", "both"), default=None,
                    help="match: learning team")
     p.add_argument("--opponent", default=None,

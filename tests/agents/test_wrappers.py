@@ -224,3 +224,37 @@ def test_numpy_policy_keeps_the_stack_itself(tmp_path):
     assert policy(np.zeros((2, 19), np.float32)).shape == (2, 6)
     with pytest.raises(ValueError, match="multiple of frame_stack"):
         NumpyPolicy(layers, "clip", -np.ones(6), np.ones(6), frame_stack=2)
+
+
+def test_guard_residual_starts_from_the_scripted_keeper():
+    """The ``guard-residual`` map's target with a zero action is the scripted keeper's point
+    on the guard line (computed from the same perceived observation), and a full action moves
+    it by the residual."""
+    import gymnasium as gym
+
+    from agents.wrappers import RESIDUAL, residual_params, scripted_guard_y
+    from soccer_env.envs.keeper import ScriptedGoalkeeper
+
+    env = wrap_actions(gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived",
+                                perception="ssl-2012"), "guard-residual")
+    keeper = ScriptedGoalkeeper.for_env(env)
+    params = residual_params(env)
+    assert params["residual"] == RESIDUAL
+    observations = []
+    for seed in range(5):
+        obs, _ = env.reset(seed=seed)
+        for _ in range(60):
+            observations.append(obs)
+            obs, _, term, trunc, _ = env.step(np.zeros(1, np.float32))
+            if term or trunc:
+                break
+    batch = np.array(observations)
+    expected = np.array([keeper.guard_y(o) for o in batch])
+    # (to float rounding: the map normalises the heading vector, the keeper does not)
+    np.testing.assert_allclose(scripted_guard_y(batch, params), expected, atol=1e-6)
+    assert np.ptp(expected) > 0.1  # the shots moved it
+    # A zero action drives to that point like the guard map aimed there.
+    for o, y in zip(batch[:20], expected[:20]):
+        guard = action_to_command("guard", o, np.array([y / params["y_max"]]), params)
+        np.testing.assert_allclose(
+            action_to_command("guard-residual", o, np.zeros(1), params), guard, atol=1e-6)
