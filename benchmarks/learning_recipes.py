@@ -47,6 +47,10 @@ RECIPES: dict[str, tuple[list[str], bool, str]] = {
     "residual+belief+privileged": (["--actions", "guard-residual", "--env-kwarg",
                                     "belief_features=true", "--critic", "privileged"], True,
                                    "residual + belief features + privileged critic"),
+    "residual+randomized": (["--actions", "guard-residual", "--env-kwarg",
+                             "perception=" + json.dumps({"vision": "{preset}",
+                                                         "randomize": RANDOMIZE})], False,
+                            "residual + sensor randomisation"),
     "belief+privileged+randomized": (
         ["--env-kwarg", "belief_features=true", "--critic", "privileged", "--env-kwarg",
          "perception=" + json.dumps({"vision": "{preset}", "randomize": RANDOMIZE})], True,
