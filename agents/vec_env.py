@@ -42,6 +42,21 @@ DEFAULT_INFO_KEYS = ("episode", "terminal_observation", "TimeLimit.truncated", "
                      "outcome")
 
 
+def _stack(observations: list) -> Any:
+    """One block's observations as a batch: an array, or for ``Dict`` observations a dict of
+    arrays (stable-baselines3's layout)."""
+    if observations and isinstance(observations[0], dict):
+        return {k: np.stack([o[k] for o in observations]) for k in observations[0]}
+    return np.stack(observations)
+
+
+def _concatenate(blocks: list) -> Any:
+    """The blocks' batches (see :func:`_stack`) as one."""
+    if blocks and isinstance(blocks[0], dict):
+        return {k: np.concatenate([b[k] for b in blocks]) for k in blocks[0]}
+    return np.concatenate(blocks)
+
+
 def _worker(remote: Any, parent: Any, fns: CloudpickleWrapper, info_keys: tuple | None
             ) -> None:
     """Serve commands for a block of environments until told to close."""
@@ -76,14 +91,14 @@ def _worker(remote: Any, parent: Any, fns: CloudpickleWrapper, info_keys: tuple 
                 dones.append(done)
                 infos.append(info)
                 reset_infos.append(reset_info)
-            remote.send((np.stack(obs_out), rewards, dones, infos, reset_infos))
+            remote.send((_stack(obs_out), rewards, dones, infos, reset_infos))
         elif cmd == "reset":
             obs_out, reset_infos = [], []
             for env, (seed, options) in zip(envs, data):
                 obs, info = env.reset(seed=seed, **({"options": options} if options else {}))
                 obs_out.append(obs)
                 reset_infos.append(trim(info))
-            remote.send((np.stack(obs_out), reset_infos))
+            remote.send((_stack(obs_out), reset_infos))
         elif cmd == "render":
             remote.send([env.render() for env in envs])
         elif cmd == "get_spaces":
@@ -175,7 +190,7 @@ class WorkerVecEnv(VecEnv):
     def step_wait(self) -> VecEnvStepReturn:
         results = [remote.recv() for remote in self.remotes]
         self.waiting = False
-        obs = np.concatenate([r[0] for r in results])
+        obs = _concatenate([r[0] for r in results])
         rewards = np.array([x for r in results for x in r[1]], dtype=np.float32)
         dones = np.array([x for r in results for x in r[2]], dtype=bool)
         infos = [x for r in results for x in r[3]]
@@ -189,7 +204,7 @@ class WorkerVecEnv(VecEnv):
         self.reset_infos = [x for r in results for x in r[1]]
         self._reset_seeds()
         self._reset_options()
-        return np.concatenate([r[0] for r in results])
+        return _concatenate([r[0] for r in results])
 
     def close(self) -> None:
         if self.closed:

@@ -132,3 +132,24 @@ def test_config_refuses_what_it_cannot_do():
                 dict(critic="privileged", env_id="soccer_env/Match-v0")):
         with pytest.raises(ValueError, match="critic"):
             TrainConfig(**bad)
+
+
+def test_worker_processes_carry_dict_observations():
+    """The training VecEnv in worker processes batches the ``Dict`` observations as
+    stable-baselines3 expects (a dict of arrays), also through ``VecNormalize``."""
+    from stable_baselines3.common.vec_env import VecNormalize
+
+    from agents.training import TrainConfig, make_vec_env
+
+    cfg = TrainConfig(env_kwargs=dict(KW), critic="privileged", n_envs=4, n_workers=2,
+                      actions="guard")
+    venv = VecNormalize(make_vec_env(cfg))
+    try:
+        obs = venv.reset()
+        assert set(obs) == {ACTOR_KEY, CRITIC_KEY}
+        assert obs[ACTOR_KEY].shape == (4, 28) and obs[CRITIC_KEY].shape == (4, 56)
+        for _ in range(3):
+            obs, _, _, _ = venv.step(np.zeros((4, 1), np.float32))
+            assert obs[CRITIC_KEY].shape == (4, 56)
+    finally:
+        venv.close()
