@@ -33,6 +33,11 @@ BASELINES: dict[str, tuple[str, str]] = {
         "PPO keeper choosing where to stand on its guard line 25 times a second, trained on "
         "true observations (1 M steps) and then on perceived ones (ssl-2012 vision, EKF; 5 M "
         "steps)"),
+    "keeper-ppo-residual-ssl2012": (
+        "keeper_ppo_residual_ssl2012",
+        "PPO keeper correcting the scripted keeper's point on its guard line (guard-residual "
+        "actions) 25 times a second, trained on perceived observations (ssl-2012 vision, EKF; "
+        "2 M steps, 18 minutes on 2 cores)"),
     "keeper-ppo-truth": (
         "keeper_ppo_truth",
         "the same PPO keeper trained on true observations only (1 M steps, ssl-2012 actuation "
