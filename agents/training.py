@@ -76,12 +76,13 @@ MATCH_ID = "soccer_env/Match-v0"
 #: RecurrentPPO's LSTM has 64 units (sb3-contrib's default, 256, trains 2.5 times slower on a
 #: 2-core machine) and its minibatches are twice PPO's (its gradient steps run the LSTM over
 #: whole sequences and dominate the training time).
+_PPO_DEFAULTS: dict[str, Any] = {
+    "n_steps": 256, "batch_size": 512, "n_epochs": 10, "gamma": 0.99, "gae_lambda": 0.95,
+    "learning_rate": 3e-4, "ent_coef": 0.0, "clip_range": 0.2}
 DEFAULT_HYPERPARAMS: dict[str, dict[str, Any]] = {
-    "PPO": {"n_steps": 256, "batch_size": 512, "n_epochs": 10, "gamma": 0.99,
-            "gae_lambda": 0.95, "learning_rate": 3e-4, "ent_coef": 0.0, "clip_range": 0.2},
-    "RECURRENTPPO": {"n_steps": 256, "batch_size": 1024, "n_epochs": 10, "gamma": 0.99,
-                     "gae_lambda": 0.95, "learning_rate": 3e-4, "ent_coef": 0.0,
-                     "clip_range": 0.2, "policy_kwargs": {"lstm_hidden_size": 64}},
+    "PPO": _PPO_DEFAULTS,
+    "RECURRENTPPO": {**_PPO_DEFAULTS, "batch_size": 1024,
+                     "policy_kwargs": {"lstm_hidden_size": 64}},
     "A2C": {},
     "SAC": {"learning_starts": 5000, "batch_size": 256, "train_freq": 1, "gradient_steps": 1},
     "TD3": {"learning_starts": 5000, "batch_size": 256, "train_freq": 1, "gradient_steps": 1},

@@ -107,6 +107,17 @@ def _drift(x: np.ndarray, dt: float, deceleration: float) -> np.ndarray:
     return out
 
 
+def _cv_matrices(dt: float) -> tuple[np.ndarray, np.ndarray]:
+    """The constant-velocity model over ``dt`` [s] for the state ``(px, py, vx, vy)``:
+    ``A = [[I, dt I], [0, I]]`` and the acceleration's input ``B = [dt^2 / 2 I; dt I]``."""
+    A = np.eye(4)
+    A[0, 2] = A[1, 3] = dt
+    B = np.zeros((4, 2))
+    B[0, 0] = B[1, 1] = 0.5 * dt * dt
+    B[2, 0] = B[3, 1] = dt
+    return A, B
+
+
 class ParticleBallTracker:
     """Ball tracker on paper 000's particle filters (see the module docstring).
 
@@ -301,11 +312,7 @@ class ParticleBallTracker:
             P = (d * w[:, None]).T @ d
         dt = float(t) - self._t
         if dt > 0.0:
-            A = np.eye(4)
-            A[0, 2] = A[1, 3] = dt
-            B = np.zeros((4, 2))
-            B[0, 0] = B[1, 1] = 0.5 * dt * dt
-            B[2, 0] = B[3, 1] = dt
+            A, B = _cv_matrices(dt)
             P = A @ P @ A.T + self.accel_sigma**2 * (B @ B.T)
         return P
 
@@ -431,11 +438,7 @@ class ParticleBallTracker:
             if kf is None:
                 self._x = self._pf.predict()
             else:
-                F = np.eye(4)
-                F[0, 2] = F[1, 3] = dt  # A
-                B = np.zeros((4, 2))
-                B[0, 0] = B[1, 1] = 0.5 * dt * dt
-                B[2, 0] = B[3, 1] = dt
+                F, B = _cv_matrices(dt)
                 # x' = drift(x) (exactly A x without deceleration), P' = A P A^T + s^2 B B^T
                 kf.predict(F, self.accel_sigma**2 * (B @ B.T),
                            _drift(kf.x[None, :], dt, self.deceleration)[0])

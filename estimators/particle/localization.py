@@ -389,11 +389,10 @@ class KLDLocalizer:
         """The particles' spread as standard deviations: position ``sqrt(tr C / 2)`` [m] (per
         axis, ``C`` the weighted position covariance) and heading ``sqrt(-2 ln R)`` [rad],
         the circular standard deviation of the weighted mean resultant length ``R``."""
-        w, p = self.weights, self.particles
-        mx, my = w @ p[:, 0], w @ p[:, 1]
-        var = float(w @ ((p[:, 0] - mx) ** 2 + (p[:, 1] - my) ** 2))
-        r = math.hypot(float(w @ np.cos(p[:, 2])), float(w @ np.sin(p[:, 2])))
-        return math.sqrt(0.5 * var), math.sqrt(-2.0 * math.log(min(1.0, max(r, 1e-300))))
+        w, headings = self.weights, self.particles[:, 2]
+        r = math.hypot(float(w @ np.cos(headings)), float(w @ np.sin(headings)))
+        return (self.spread() / math.sqrt(2.0),
+                math.sqrt(-2.0 * math.log(min(1.0, max(r, 1e-300)))))
 
     def spread(self) -> float:
         """Weighted RMS distance of the particles from the mean position [m]."""

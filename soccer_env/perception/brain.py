@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from estimators import fuse_sightings
-from soccer_env.perception.base import ball_status, expected_age, sigmas
+from soccer_env.perception.base import ball_status, sigmas
 from soccer_env.perception.options import BALL_TRACKERS, FUSIONS, LOCALIZATIONS
 from soccer_env.sensors.headcam import HeadFrame
 from soccer_env.sensors.radio import Message
@@ -352,9 +352,6 @@ class Brain:
         pose's spread (the localization's particles, dead reckoning's grown variance, 0 for
         the oracle); other robots' spreads are not modelled (``inf``)."""
         p = self.p
-        cam = p.camera
-        expected = expected_age(cam.frame_rate, cam.latency, cam.latency_jitter) + (
-            0.0 if self.fusion == "own" else p.radio_spec.latency + p.radio_spec.jitter)
         tracker = self.tracker
         if tracker is not None:
             sigma, sigma_v = sigmas(tracker.covariance(t))
@@ -370,7 +367,7 @@ class Brain:
                 if gaps:
                     sigma_v = math.sqrt(2.0) * sigma / min(gaps)
         fused_age = now - last
-        status = ball_status(fused_age, expected, since, lost_after)
+        status = ball_status(fused_age, p.coast_age, since, lost_after)
         spread = np.full((p.n_robots, 2), math.inf)
         if self.loc is not None:
             spread[self.i] = self.loc.pose_sigma()

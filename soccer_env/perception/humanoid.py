@@ -46,6 +46,7 @@ from typing import Any
 import numpy as np
 
 from estimators import KLDConfig, KLDLocalizer, ParticleBallTracker
+from soccer_env.perception.base import expected_age
 from soccer_env.perception.brain import _FUSION_WINDOW_FRAMES, Brain
 from soccer_env.perception.options import DETECTORS
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
@@ -131,6 +132,12 @@ class HumanoidTeamPerception:
         #: Without an own frame for this long [s], team-mates' sightings are fused as they
         #: arrive.
         self.frame_gap = 1.5 / camera.frame_rate if camera.frame_rate else 0.05
+        #: The oldest the latest fused sighting is while the ball is seen in every frame [s]
+        #: (beyond it the belief features call the track coasting): the camera's, plus the
+        #: radio's latency and jitter when team-mates' sightings are fused.
+        self.coast_age = expected_age(camera.frame_rate, camera.latency,
+                                      camera.latency_jitter) + (
+            0.0 if getattr(config, "fusion", "own") == "own" else radio.latency + radio.jitter)
         self._brains: dict[int, Brain] = {}
         self._radios: dict[int, TeamRadio] = {}
 

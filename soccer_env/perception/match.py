@@ -69,7 +69,8 @@ class MatchPerception:
         # (robots, pipeline, whether it is a humanoid team's: it reads the bodies and keeps a
         # belief per robot)
         self._groups: list[tuple[list[int], Any, bool]] = []
-        self._humanoid: dict[int, Any] = {}  # robot -> its team's HumanoidTeamPerception
+        # robot -> its team's HumanoidTeamPerception (see _index_humanoids)
+        self._humanoid: dict[int, Any] = {}
         #: Groups whose sensor figures are drawn every episode: group index -> (the
         #: preset's spec, the ranges, what builds the group's pipeline from a drawn spec).
         self._randomized: dict[int, tuple[Any, Any, Any]] = {}
@@ -107,16 +108,14 @@ class MatchPerception:
                                           ball_tracker="none")
 
             def build_team(cam, cfg=cfg, t=t):
-                team = HumanoidTeamPerception(cfg, field, ball, specs, teams, names,
+                return HumanoidTeamPerception(cfg, field, ball, specs, teams, names,
                                               members[t], cam, cfg.radio)
-                for i in members[t]:
-                    self._humanoid[i] = team
-                return team
 
             if cfg.randomize:
                 check_ranges(camera, cfg.randomize, "humanoid")
                 self._randomized[len(self._groups)] = (camera, cfg.randomize, build_team)
             self._groups.append((members[t], build_team(camera), True))
+        self._index_humanoids()
         self._beliefs: dict[int, Any] = {}
         self._current: dict[int, Any] = {}
 
@@ -176,6 +175,12 @@ class MatchPerception:
         for g, (spec, ranges, build) in sorted(self._randomized.items()):
             robots, _, humanoid = self._groups[g]
             self._groups[g] = (robots, build(draw(spec, ranges, rng)), humanoid)
+        self._index_humanoids()
+
+    def _index_humanoids(self) -> None:
+        """Map every humanoid of a modelled team to its team's pipeline (from the groups)."""
+        self._humanoid = {i: pipe for robots, pipe, humanoid in self._groups if humanoid
+                          for i in robots}
 
     def update(self, state: WorldState, body: BodyState | None = None) -> tuple[Any, Any]:
         """Advance to ``state`` (``body``: the robots' bodies, needed with humanoids);

@@ -265,15 +265,15 @@ def make_perception(obs_mode: str, config: PerceptionConfig, field: FieldSpec,
     if obs_mode == "truth":
         return TruthPerception(config)
     if obs_mode == "raw":
-        p = RawPerception(config, field, robot, ball, n_robots, teams, robots)
-        p.features = features
-        return p
-    if obs_mode == "perceived":
+        p: _VisionPerception = RawPerception(config, field, robot, ball, n_robots, teams,
+                                             robots)
+    elif obs_mode == "perceived":
         p = FilteredPerception(config, field, robot, ball, n_robots, teams, robots)
-        p.features = features
         if actuation_delay is not None:
             p.ahead = float(actuation_delay)
-        return p
-    raise ValueError(f"obs_mode must be one of {list(OBS_MODES)}, got {obs_mode!r}")
+    else:
+        raise ValueError(f"obs_mode must be one of {list(OBS_MODES)}, got {obs_mode!r}")
+    p.features = features
+    return p
 
 
