@@ -23,7 +23,16 @@ same split:
   (:meth:`~soccer_env.envs.keeper.ScriptedGoalkeeper.guard_y`) plus the learner's correction
   ``a * residual`` (0.3 m): an action of 0 plays the scripted keeper's positioning, and the
   learner only has to learn where to differ from it (residual policy learning, Silver et al.
-  2018; Johannink et al. 2019).
+  2018; Johannink et al. 2019);
+* ``"ball-residual"``: :class:`BallResidualActions`, for SSL and humanoid keepers alike: the
+  scripted keeper (:class:`~soccer_env.envs.keeper.ScriptedGoalkeeper`, walking and diving
+  for a humanoid) acting on the observation with the believed ball velocity corrected by
+  ``a * ball_residual`` (2 numbers, team frame, 3 m/s at most): an action of 0 plays the
+  scripted keeper, and the learner learns how the belief it is given misleads that keeper
+  (a particle filter that learns a kick's speed over several frames makes the scripted
+  humanoid dive late or not at all).
+
+The first four maps drive an SSL robot's native command and refuse a humanoid.
 
 Each map reads the keeper's pose **from the agent's own observation** (``self.x``, ``self.y``,
 ``self.ax``, ``self.ay``), so under perceived observations it uses the estimated pose, as on a
@@ -40,20 +49,43 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from functools import lru_cache
+from types import SimpleNamespace
 from typing import Any
 
 import gymnasium as gym
 import numpy as np
 
-from soccer_env.envs.keeper import TURN_GAIN
+from soccer_env.envs.keeper import TURN_GAIN, ScriptedGoalkeeper
 
 __all__ = ["ACTION_MAPS", "FieldVelocityActions", "TargetActions", "GuardActions",
-           "GuardResidualActions", "action_to_command", "target_params", "residual_params",
-           "scripted_guard_y", "wrap_actions", "stack_frames"]
+           "GuardResidualActions", "BallResidualActions", "action_to_command",
+           "target_params", "residual_params", "ball_residual_params", "scripted_guard_y",
+           "wrap_actions", "stack_frames"]
 
 #: Action spaces of a learning keeper (see the module docstring) and their sizes.
 ACTION_MAPS = {"native": 6, "velocity": 3, "target": 2, "guard": 1,
-               "guard-residual": 1}
+               "guard-residual": 1, "ball-residual": 2}
+
+#: The maps that drive an SSL robot's native command (``"ball-residual"`` takes any keeper).
+SSL_MAPS = ("velocity", "target", "guard", "guard-residual")
+
+#: The largest correction of the ``"ball-residual"`` map to the believed ball velocity [m/s]
+#: (per axis): humanoid kicks are 3-5 m/s, and a tracker that has just seen one may believe
+#: a fraction of it.
+BALL_RESIDUAL = 3.0
+
+#: Attributes of the specs that :class:`~soccer_env.envs.keeper.ScriptedGoalkeeper` reads,
+#: by spec and robot kind: what ``"ball-residual"``'s params carry to rebuild it.
+_KEEPER_SPEC = {
+    "field": ("half_length", "goal_width"),
+    "ball": ("radius", "rolling_deceleration"),
+    "ssl": ("radius", "max_speed", "max_acceleration", "max_angular_speed", "front_distance",
+            "kicker_width"),
+    "humanoid": ("radius", "lying_length", "fall_time", "max_forward_speed",
+                 "max_backward_speed", "max_sideways_speed", "max_acceleration",
+                 "max_turn_speed", "kick_reach", "kick_width"),
+}
 
 #: Indices of ``ball.dx, ball.dy, ball.vx, ball.vy`` in every observation layout.
 _BALL = (7, 8, 9, 10)
@@ -89,6 +121,64 @@ def residual_params(env: gym.Env, residual: float = RESIDUAL) -> dict[str, float
     return {**target_params(env), "goal_x": -f.half_length,
             "half_goal": 0.5 * f.goal_width + b.radius,
             "deceleration": b.rolling_deceleration, "residual": float(residual)}
+
+
+def ball_residual_params(env: gym.Env, residual: float = BALL_RESIDUAL) -> dict[str, float]:
+    """The constants of the ``"ball-residual"`` map: what the scripted keeper reads of the
+    field, ball and robot specs (``"field.half_length"``, ``"robot.fall_time"``, ...; see
+    :data:`_KEEPER_SPEC`), ``humanoid`` (1.0 for a humanoid keeper, else 0.0) and the largest
+    correction ``residual`` [m/s]."""
+    u = env.unwrapped
+    robot = u.robot_spec
+    kind = "humanoid" if robot.kind == "humanoid" else "ssl"
+    params = {"humanoid": float(kind == "humanoid"), "residual": float(residual)}
+    for part, spec, attrs in (("field", u.field, _KEEPER_SPEC["field"]),
+                              ("ball", u.ball_spec, _KEEPER_SPEC["ball"]),
+                              ("robot", robot, _KEEPER_SPEC[kind])):
+        params.update({f"{part}.{a}": float(getattr(spec, a)) for a in attrs})
+    return params
+
+
+#: Entry names the rebuilt scripted keeper reads, at their indices in every observation
+#: layout (``_POSE`` and ``_BALL``); the rest is never read.
+_LAYOUT = ("self.x", "self.y", "self.ax", "self.ay", "", "", "", "ball.dx", "ball.dy",
+           "ball.vx", "ball.vy")
+
+
+@lru_cache(maxsize=8)
+def _keeper(items: tuple[tuple[str, float], ...]) -> ScriptedGoalkeeper:
+    """The scripted keeper of ``"ball-residual"`` params (as sorted items), rebuilt from the
+    numbers alone so that a saved policy needs no environment."""
+    params = dict(items)
+    kind = "humanoid" if params.get("humanoid") else "ssl"
+    needed = ["residual", *(f"{part}.{a}" for part, spec in (("field", "field"),
+                                                             ("ball", "ball"), ("robot", kind))
+                            for a in _KEEPER_SPEC[spec])]
+    missing = [k for k in needed if k not in params]
+    if missing:
+        raise ValueError(f"the 'ball-residual' map's params lack {missing} (see "
+                         "ball_residual_params)")
+
+    def spec(part: str, **extra: Any) -> SimpleNamespace:
+        return SimpleNamespace(**{k.split(".", 1)[1]: v for k, v in params.items()
+                                  if k.startswith(part + ".")}, **extra)
+
+    return ScriptedGoalkeeper(spec("field"), spec("ball"), spec("robot", kind=kind), _LAYOUT)
+
+
+def _ball_residual_command(obs: np.ndarray, act: np.ndarray,
+                           params: Mapping[str, float]) -> np.ndarray:
+    """The ``"ball-residual"`` map on a batch: the believed ball velocity of each observation
+    plus ``a * residual`` in the team frame (rotated into the body frame the observation
+    stores it in: ``(c dvx + s dvy, -s dvx + c dvy)``), then the scripted keeper's command."""
+    keeper = _keeper(tuple(sorted(params.items())))
+    flat = np.array(obs, dtype=np.float64).reshape(-1, obs.shape[-1])
+    corr = act.reshape(-1, 2) * params["residual"]
+    c, s = _heading(flat)
+    flat[:, _BALL[2]] += c * corr[:, 0] + s * corr[:, 1]
+    flat[:, _BALL[3]] += -s * corr[:, 0] + c * corr[:, 1]
+    out = np.stack([keeper(o) for o in flat]) if len(flat) else np.empty((0, 6), np.float32)
+    return out.astype(np.float32).reshape(act.shape[:-1] + (6,))
 
 
 def scripted_guard_y(obs: np.ndarray, params: Mapping[str, float]) -> np.ndarray:
@@ -142,6 +232,10 @@ def action_to_command(kind: str, obs: np.ndarray, action: np.ndarray,
       heading to 0 (facing the field) with gain ``TURN_GAIN`` (8 /s).
 
     Kick 0, chip and dribbler off (-1).
+
+    * ``"ball-residual"`` (2 numbers): the believed ball velocity of the observation plus
+      ``(a_0, a_1) residual`` in the team frame, and the scripted keeper's command on that
+      observation (an SSL robot's or a humanoid's; see :func:`ball_residual_params`).
     """
     if kind not in ACTION_MAPS or kind == "native":
         raise ValueError(f"kind must be one of {[k for k in ACTION_MAPS if k != 'native']}, "
@@ -152,6 +246,11 @@ def action_to_command(kind: str, obs: np.ndarray, action: np.ndarray,
     if act.shape[-1] != size or act.shape[:-1] != obs.shape[:-1]:
         raise ValueError(f"a {kind!r} action must have shape (..., {size}) matching obs "
                          f"{obs.shape}, got {act.shape}")
+    if kind == "ball-residual":
+        if params is None:
+            raise ValueError("the 'ball-residual' map needs its params (see "
+                             "ball_residual_params)")
+        return _ball_residual_command(obs, act, params)
     c, s = _heading(obs)
     out = np.empty(act.shape[:-1] + (6,), dtype=np.float32)
     if kind == "velocity":
@@ -199,9 +298,14 @@ class _MappedActions(gym.Wrapper):
         if not (isinstance(native, gym.spaces.Box) and native.shape == (6,)):
             raise ValueError(f"{type(self).__name__} wraps an environment with the SSL "
                              f"robot's (6,) action space, got {native}")
+        if self.kind in SSL_MAPS and env.unwrapped.robot_spec.kind == "humanoid":
+            raise ValueError(f"the {self.kind!r} actions drive an SSL robot; a humanoid keeper "
+                             "takes 'native' or 'ball-residual' actions")
         names = env.unwrapped.builder.names
-        if tuple(names[:4]) != ("self.x", "self.y", "self.ax", "self.ay"):
-            raise ValueError("the observation must open with self.x, self.y, self.ax, self.ay")
+        if tuple(names[:4]) != ("self.x", "self.y", "self.ax", "self.ay") or tuple(
+                names[7:11]) != ("ball.dx", "ball.dy", "ball.vx", "ball.vy"):
+            raise ValueError("the observation must open with self.x, self.y, self.ax, self.ay "
+                             "and have ball.dx, ball.dy, ball.vx, ball.vy at 7-10")
         self.params = dict(params) if params is not None else None
         self.action_space = gym.spaces.Box(-1.0, 1.0, (ACTION_MAPS[self.kind],), np.float32)
         self._obs: np.ndarray | None = None
@@ -266,6 +370,17 @@ class GuardResidualActions(_MappedActions):
         super().__init__(env, residual_params(env))
 
 
+class BallResidualActions(_MappedActions):
+    """``Box(-1, 1, (2,))``: a correction ``a * residual`` (team frame, m/s) to the ball
+    velocity the scripted keeper believes, which then acts (see :func:`action_to_command`
+    and :func:`ball_residual_params`); for SSL and humanoid keepers."""
+
+    kind = "ball-residual"
+
+    def __init__(self, env: gym.Env) -> None:
+        super().__init__(env, ball_residual_params(env))
+
+
 def wrap_actions(env: gym.Env, kind: str) -> gym.Env:
     """``env`` with the learner's action space ``kind`` (``"native"`` returns it as is)."""
     if kind == "native":
@@ -278,6 +393,8 @@ def wrap_actions(env: gym.Env, kind: str) -> gym.Env:
         return GuardActions(env)
     if kind == "guard-residual":
         return GuardResidualActions(env)
+    if kind == "ball-residual":
+        return BallResidualActions(env)
     raise ValueError(f"actions must be one of {list(ACTION_MAPS)}, got {kind!r}")
 
 

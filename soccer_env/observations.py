@@ -19,7 +19,7 @@ goals (8)          own goal's left and right post, then the opponent goal's left
                    post (left/right as seen from the centre spot facing the team's ``+x``),
                    relative position [m] in body frame
 game (g)           task-specific game state (see each environment)
-belief (9 or 11)   only with ``belief_features=True``: how sure the belief is (below)
+belief (11 or 13)  only with ``belief_features=True``: how sure the belief is (below)
 =================  ==========================================================================
 
 Belief features (:class:`~soccer_env.state.BeliefQuality`; names ``belief.*``):
@@ -36,14 +36,19 @@ entries                    meaning
 ``ball.lost``              measurements ago; not seen for long (or never)
 ``self.sigma_xy``          spread of the agent's own believed position per axis [m]
 ``self.sigma_theta``       spread of its believed heading [rad]
+``ball.measured_dx``,      the latest ball measurement (the vision's latest detection; a
+``ball.measured_dy``       humanoid's own latest sighting) minus the believed ball, body frame
+                           [m]: what the filter has not taken in (after a kick, the
+                           detections run ahead of a track that still rejects or smooths
+                           them); 0 with no measurement
 ``ball.fused_age``         (environments with humanoids) time since the latest fusion of the
                            team's sightings [s]
 ``ball.seen_by``           (environments with humanoids) robots whose sightings went into it
 =========================  ===================================================================
 
 Truth mode fills them with a perfect sensor's values (no spread, no age, tracking, every
-team-mate seeing the ball); unknown spreads and ages read as their bounds
-(:data:`SIGMA_BOUND`, :data:`BALL_SPEED_BOUND`, :data:`AGE_BOUND`, ``pi``).
+team-mate seeing the ball, measurements on the belief); unknown spreads and ages read as their
+bounds (:data:`SIGMA_BOUND`, :data:`BALL_SPEED_BOUND`, :data:`AGE_BOUND`, ``pi``).
 
 Values are clipped to the observation space's bounds, which are wide enough that only
 pathological states reach them. The builder reads a belief, never the world, so the same
@@ -79,7 +84,8 @@ _TEAM_NAMES = {"blue": 0, "yellow": 1}
 
 #: Names of the belief features (after ``belief.``).
 BELIEF_FEATURES = ("ball.sigma", "ball.velocity_sigma", "ball.age",
-                   *(f"ball.{s}" for s in BALL_STATUSES), "self.sigma_xy", "self.sigma_theta")
+                   *(f"ball.{s}" for s in BALL_STATUSES), "self.sigma_xy", "self.sigma_theta",
+                   "ball.measured_dx", "ball.measured_dy")
 #: The further belief features of environments with humanoids.
 HUMANOID_BELIEF_FEATURES = ("ball.fused_age", "ball.seen_by")
 
@@ -96,8 +102,8 @@ class ObservationBuilder:
         implementation: ``"auto"`` (plain Python for few agents seeing few robots, the linear
             map otherwise: see :meth:`build`), ``"python"`` or ``"arrays"``; all give the
             same observations.
-        belief_features: append the belief features (see the module docstring): 9 entries,
-            or 11 with ``humanoid``.
+        belief_features: append the belief features (see the module docstring): 11 entries,
+            or 13 with ``humanoid``.
         humanoid: the environment has humanoids (their team fusion's two entries).
         team_size: the most robots a team has (the bound of ``ball.seen_by``; default from
             ``teams``).
@@ -152,16 +158,17 @@ class ObservationBuilder:
         self.belief_features = bool(belief_features)
         self._feature_names: tuple[str, ...] = ()
         if self.belief_features:
-            self._features_init(humanoid, team_size)
-            low += [0.0] * len(self._feature_names)
+            self._features_init(humanoid, team_size, span)
+            low += list(self._feature_low)
             high += list(self._feature_high)
         self.size = len(high)
         self.low = np.asarray(low, dtype=np.float32)
         self.high = np.asarray(high, dtype=np.float32)
         self._compile()
 
-    def _features_init(self, humanoid: bool, team_size: int | None) -> None:
-        """Names, bounds and the perfect sensor's values of the belief features."""
+    def _features_init(self, humanoid: bool, team_size: int | None, span: float) -> None:
+        """Names, bounds and the perfect sensor's values of the belief features (``span``:
+        the bound of a measurement's offset from the belief [m])."""
         names = BELIEF_FEATURES + (HUMANOID_BELIEF_FEATURES if humanoid else ())
         self._feature_names = tuple(f"belief.{n}" for n in names)
         self._humanoid_features = humanoid
@@ -169,12 +176,15 @@ class ObservationBuilder:
             team_size = max(self.teams.count(0), self.teams.count(1))
         n_status = len(BALL_STATUSES)
         high = [SIGMA_BOUND, BALL_SPEED_BOUND, AGE_BOUND, *([1.0] * n_status), SIGMA_BOUND,
-                math.pi]
-        perfect = [0.0, 0.0, 0.0, 1.0, *([0.0] * (n_status - 1)), 0.0, 0.0]
+                math.pi, span, span]
+        perfect = [0.0, 0.0, 0.0, 1.0, *([0.0] * (n_status - 1)), 0.0, 0.0, 0.0, 0.0]
         if humanoid:
             high += [AGE_BOUND, float(team_size)]
             perfect += [0.0, float(team_size)]
         self._feature_high = np.asarray(high, dtype=np.float64)
+        self._feature_low = np.zeros_like(self._feature_high)
+        self._measured_at = len(BELIEF_FEATURES) - 2  # column of ball.measured_dx
+        self._feature_low[self._measured_at:self._measured_at + 2] = -span
         self._perfect = np.tile(np.asarray(perfect, dtype=np.float32), (len(self.own), 1))
 
     def names_for(self, team: int | str) -> tuple[str, ...]:
@@ -322,11 +332,21 @@ class ObservationBuilder:
         rows = np.empty((len(self.own), len(self._feature_names)), dtype=np.float64)
         rows[:, 0:len(common)] = common
         rows[:, len(common):len(common) + 2] = q.pose_sigma[self.own]
+        m = self._measured_at
+        if q.ball_measured is None:
+            rows[:, m:m + 2] = 0.0
+        else:  # into each agent's body frame: (c dx + s dy, c dy - s dx)
+            dx = float(q.ball_measured[0] - belief.ball[0])
+            dy = float(q.ball_measured[1] - belief.ball[1])
+            th = belief.robots[self.own, 2]
+            c, s = np.cos(th), np.sin(th)
+            rows[:, m] = c * dx + s * dy
+            rows[:, m + 1] = c * dy - s * dx
         if self._humanoid_features:
             rows[:, -2] = q.fused_age
             rows[:, -1] = q.seen_by
         np.minimum(rows, self._feature_high, out=rows)
-        np.maximum(rows, 0.0, out=rows)
+        np.maximum(rows, self._feature_low, out=rows)
         return rows.astype(np.float32)
 
     def _build_python(self, belief: Belief, game: np.ndarray | None) -> np.ndarray:

@@ -121,6 +121,11 @@ class BeliefQuality(NamedTuple):
             [s]; for SSL teams, whose vision is fused already, ``ball_age``.
         seen_by: (humanoids) how many robots' sightings went into the latest fused estimate;
             for SSL teams 1 while the vision sees the ball, else 0.
+        ball_measured: field-frame ``(x, y)`` [m] of the latest ball measurement: the robot's
+            own latest sighting (humanoids; None when it had no range) or the vision's latest
+            detection (SSL teams); None if there is none. Beside the belief it shows what the
+            filter has not (yet) taken in: a kicked ball's detections that the tracker still
+            rejects or smooths away.
     """
 
     ball_sigma: float
@@ -130,6 +135,7 @@ class BeliefQuality(NamedTuple):
     pose_sigma: np.ndarray
     fused_age: float
     seen_by: int
+    ball_measured: np.ndarray | None = None
 
 
 class Belief(NamedTuple):

@@ -178,7 +178,7 @@ class GoalkeeperEnv(SingleAgentTask):
     ## Observation space
     ``Box((19,), float32)``, the egocentric layout of
     :mod:`soccer_env.observations` with no team-mates, no opponents and no game state (with
-    ``belief_features=True``, 9 more entries, 11 for a humanoid): the
+    ``belief_features=True``, 11 more entries, 13 for a humanoid): the
     keeper's own pose and velocity (7), the ball relative to it and its velocity (4), the four
     goal posts relative to it (8). ``obs_mode`` chooses where the values come from:
     ``"truth"``, ``"raw"`` (latest delayed camera detections) or ``"perceived"`` (the
@@ -218,7 +218,7 @@ class GoalkeeperEnv(SingleAgentTask):
     ``out_of_range_actions`` ("clip", the default, clips actions into [-1, 1]; "raise" rejects
     them), ``render_width`` (pixels); humanoids only: ``mates`` (0..3), ``head`` ("auto":
     the head follows the believed ball and scans when needed; "scan"; "action": the policy's
-    entries 4 and 5); ``belief_features`` (append how sure the belief is: 9 entries, 11 for
+    entries 4 and 5); ``belief_features`` (append how sure the belief is: 11 entries, 13 for
     humanoids; see :mod:`soccer_env.observations`). Unknown arguments raise ``TypeError``.
 
     ## Version history

@@ -110,7 +110,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     ``match_duration`` [s]; ``max_cycles``; ``shaping``; ``formation_jitter`` (metres of
     uniform jitter of the kick-off formation); ``render_width``; ``head`` (humanoid agents:
     "auto", "scan" or "action"); ``belief_features`` (every agent's observation ends with
-    how sure its belief is: 9 entries, 11 with humanoids in the match; see
+    how sure its belief is: 11 entries, 13 with humanoids in the match; see
     :mod:`soccer_env.observations`).
     """
 

@@ -375,8 +375,12 @@ class Brain:
             spread[self.i] = 0.0
         else:
             spread[self.i] = (math.sqrt(self.odo_var[0]), math.sqrt(self.odo_var[1]))
+        line = self.own_line
+        measured = (None if line is None or not math.isfinite(line.range) else np.array(
+            [line.origin[0] + line.range * math.cos(line.angle),
+             line.origin[1] + line.range * math.sin(line.angle)]))
         return BeliefQuality(sigma, sigma_v, now - self.ball_seen, status, spread, fused_age,
-                             self.fused_lines if status < 3 else 0)
+                             self.fused_lines if status < 3 else 0, measured)
 
     def belief(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         """``ball`` (6,) and ``robots`` (N, 6) as this robot believes them at ``t``."""

@@ -159,7 +159,8 @@ class RawPerception(_VisionPerception):
                  else (math.inf, math.inf) for h in self._robots]
         return BeliefQuality(sigma, sigma_v, age, status,
                              np.array(known, dtype=np.float64).reshape(-1, 2), age,
-                             0 if last is None else 1)
+                             0 if last is None else 1,
+                             None if last is None else np.array(last[1:3]))
 
 
 def _push(hist: list, item: tuple, min_gap: float) -> None:
@@ -207,6 +208,7 @@ class FilteredPerception(_VisionPerception):
     def _clear(self) -> None:
         self.robot_tracker.reset()
         self.ball_tracker.reset()
+        self._measured: np.ndarray | None = None  # the latest ball detection fed (x, y)
 
     def consume(self, frames: list[DetectionFrame], now: float) -> None:
         if not frames:
@@ -220,6 +222,8 @@ class FilteredPerception(_VisionPerception):
                 # Without latency compensation a pipeline stamps frames when they arrive.
                 stamp = t if self._capture_times else f.t_delivered
                 ball.update(stamp, f.balls, f.robots)
+                if self.features:  # of several detections, the one nearest the belief
+                    self._measured = np.array(_nearest(f.balls, ball.estimate(stamp)))
 
     def beliefs(self, now: float):
         current = self._belief(now)
@@ -245,7 +249,16 @@ class FilteredPerception(_VisionPerception):
         spread = np.array([robots.pose_sigma(i, t) for i in range(self.n_robots)],
                           dtype=np.float64).reshape(-1, 2)
         return BeliefQuality(sigma, sigma_v, age, status, spread, age,
-                             int(status < 3 and age <= self._expected_age))
+                             int(status < 3 and age <= self._expected_age), self._measured)
+
+
+def _nearest(balls: Sequence[Sequence[float]], est: np.ndarray | None) -> tuple[float, float]:
+    """The ``(x, y)`` of the detection in ``balls`` nearest the estimate ``est`` (the first
+    without one)."""
+    if est is None or len(balls) == 1:
+        return float(balls[0][0]), float(balls[0][1])
+    b = min(balls, key=lambda b: (b[0] - est[0]) ** 2 + (b[1] - est[1]) ** 2)
+    return float(b[0]), float(b[1])
 
 
 def make_perception(obs_mode: str, config: PerceptionConfig, field: FieldSpec,

@@ -103,8 +103,10 @@ def parser() -> argparse.ArgumentParser:
                    help="keeper learner's actions: native (the robot's command, default), "
                         "velocity (field-frame velocity and turn rate), target (where to "
                         "stand, reached by a motion controller), guard (where to stand on "
-                        "the guard line) or guard-residual (a correction to where the "
-                        "scripted keeper would stand on it); see agents.wrappers")
+                        "the guard line), guard-residual (a correction to where the "
+                        "scripted keeper would stand on it) or ball-residual (a correction to "
+                        "the ball velocity the scripted keeper believes; SSL and humanoid "
+                        "keepers); see agents.wrappers")
     p.add_argument("--learner", choices=("blue", "yellow", "both"), default=None,
                    help="match: learning team")
     p.add_argument("--opponent", default=None,

@@ -147,9 +147,9 @@ def test_worker_processes_carry_dict_observations():
     try:
         obs = venv.reset()
         assert set(obs) == {ACTOR_KEY, CRITIC_KEY}
-        assert obs[ACTOR_KEY].shape == (4, 28) and obs[CRITIC_KEY].shape == (4, 56)
+        assert obs[ACTOR_KEY].shape == (4, 30) and obs[CRITIC_KEY].shape == (4, 60)
         for _ in range(3):
             obs, _, _, _ = venv.step(np.zeros((4, 1), np.float32))
-            assert obs[CRITIC_KEY].shape == (4, 56)
+            assert obs[CRITIC_KEY].shape == (4, 60)
     finally:
         venv.close()

@@ -258,3 +258,63 @@ def test_guard_residual_starts_from_the_scripted_keeper():
         guard = action_to_command("guard", o, np.array([y / params["y_max"]]), params)
         np.testing.assert_allclose(
             action_to_command("guard-residual", o, np.zeros(1), params), guard, atol=1e-6)
+
+
+@pytest.mark.parametrize("robot,preset", [("ssl-2012", "ssl-2012"),
+                                          ("humanoid-2012", "kidsize-2012")])
+def test_ball_residual_starts_from_the_scripted_keeper(robot, preset, tmp_path):
+    """``ball-residual`` with a zero action is the scripted keeper (SSL or humanoid, walking and
+    diving) on the same perceived observation, step for step; a correction is the scripted
+    keeper on the observation whose ball velocity is corrected (team frame, rotated into the
+    body frame); a saved numpy policy rebuilds the keeper from its params alone."""
+    from agents.wrappers import BALL_RESIDUAL, ball_residual_params
+    from soccer_env.envs.keeper import ScriptedGoalkeeper
+
+    env = wrap_actions(gym.make(ID, robot=robot, obs_mode="perceived", perception=preset,
+                                belief_features=True), "ball-residual")
+    assert env.action_space.shape == (2,)
+    keeper = ScriptedGoalkeeper.for_env(env)
+    params = ball_residual_params(env)
+    assert params["residual"] == BALL_RESIDUAL and params["humanoid"] == (robot != "ssl-2012")
+    obs, _ = env.reset(seed=1)
+    seen, dived = [], False
+    for _ in range(200):
+        np.testing.assert_array_equal(
+            action_to_command("ball-residual", obs, np.zeros(2), params), keeper(obs))
+        dived |= keeper(obs)[3] < -0.5
+        seen.append(obs)
+        obs, _, term, trunc, _ = env.step(np.zeros(2, np.float32))
+        if term or trunc:
+            break
+    assert robot == "ssl-2012" or dived  # the humanoid keeper's dive went through the map
+    act = np.array([-0.5, 0.25])
+    names = env.unwrapped.builder.names
+    for o in seen[::10]:
+        c, s = o[2], -o[3]
+        vx, vy = act * BALL_RESIDUAL
+        moved = o.astype(np.float64)
+        moved[names.index("ball.vx")] += c * vx + s * vy
+        moved[names.index("ball.vy")] += -s * vx + c * vy
+        np.testing.assert_allclose(action_to_command("ball-residual", o, act, params),
+                                   keeper(moved), atol=1e-5)
+    # A numpy policy with the map acts on the plain environment from its saved params.
+    layers = [("linear", np.zeros((2, len(names))), np.array([0.3, -0.2]))]
+    policy = NumpyPolicy.load(NumpyPolicy(
+        layers, "clip", -np.ones(2), np.ones(2),
+        action_map={"kind": "ball-residual", "params": params}).save(tmp_path / "p.npz"))
+    batch = np.array(seen[:5])
+    np.testing.assert_allclose(policy(batch), action_to_command(
+        "ball-residual", batch, np.tile([0.3, -0.2], (5, 1)), params), atol=1e-6)
+
+
+def test_humanoid_refuses_the_ssl_maps_and_incomplete_params():
+    from agents.wrappers import ball_residual_params
+
+    env = gym.make(ID, robot="humanoid")
+    for kind in ("velocity", "target", "guard", "guard-residual"):
+        with pytest.raises(ValueError, match="humanoid keeper takes 'native' or 'ball-residual'"):
+            wrap_actions(env, kind)
+    params = ball_residual_params(env)
+    del params["robot.fall_time"]
+    with pytest.raises(ValueError, match="robot.fall_time"):
+        action_to_command("ball-residual", np.zeros(19), np.zeros(2), params)

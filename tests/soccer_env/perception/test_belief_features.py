@@ -63,6 +63,7 @@ def test_truth_mode_reads_a_perfect_sensor(robot):
         assert f["belief.ball.age"] == 0.0 and f["belief.ball.tracking"] == 1.0
         assert f["belief.ball.lost"] == f["belief.ball.reset"] == 0.0
         assert f["belief.self.sigma_xy"] == f["belief.self.sigma_theta"] == 0.0
+        assert f["belief.ball.measured_dx"] == f["belief.ball.measured_dy"] == 0.0
         if robot == "humanoid":  # the keeper and its three team-mates all see it
             assert f["belief.ball.seen_by"] == 4.0 and f["belief.ball.fused_age"] == 0.0
 
@@ -132,6 +133,75 @@ def test_coasting_when_frames_stop():
     assert statuses[4:10] == [0] * 6  # tracking while it is seen
     assert 1 in statuses[11:20]  # coasting once frames miss it
     assert statuses[-1] == 3  # lost after a second without it
+
+
+def _measured(env, obs):
+    """Where the latest measurement puts the ball, field frame, read from the observation:
+    the believed ball (``ball.dx, ball.dy`` from the believed pose) plus ``measured_dx,
+    measured_dy``, both in the body frame."""
+    o = dict(zip(env.unwrapped.builder.names, obs.tolist()))
+    c, s = o["self.ax"], -o["self.ay"]
+    dx = o["ball.dx"] + o["belief.ball.measured_dx"]
+    dy = o["ball.dy"] + o["belief.ball.measured_dy"]
+    return np.array([o["self.x"] + c * dx - s * dy, o["self.y"] + s * dx + c * dy])
+
+
+def _steps(env, seed):
+    """``(obs, info)`` of every step of the episode of ``seed`` (doing nothing)."""
+    obs, info = env.reset(seed=seed)
+    rows = [(obs, info)]
+    while True:
+        obs, _, term, trunc, info = env.step(np.zeros(6, np.float32))
+        rows.append((obs, info))
+        if term or trunc:
+            return rows
+
+
+def test_raw_measurement_is_the_belief():
+    """Raw SSL observations are the latest detection: the measurement is on the belief."""
+    env = gym.make(GK, obs_mode="raw", perception="ssl-2012", belief_features=True)
+    for f, _ in _episode(env, 4):
+        assert abs(f["belief.ball.measured_dx"]) < 1e-5
+        assert abs(f["belief.ball.measured_dy"]) < 1e-5
+
+
+def test_ssl_measurement_is_the_latest_detection():
+    """Perceived SSL: the measurement the features point at is within the vision's noise of
+    where the ball was at the capture of the latest detection (``ball.age`` ago)."""
+    env = gym.make(GK, obs_mode="perceived", perception="ssl-2012", belief_features=True)
+    names = env.unwrapped.builder.names
+    times, history, errors = [], [], []
+    for obs, info in _steps(env, 6):
+        times.append(info["truth"]["time"] if "truth" in info else 0.0)
+        history.append(info["truth"]["ball_position"].copy() if "truth" in info else None)
+        f = dict(zip(names, obs.tolist()))
+        if f["belief.ball.lost"] or np.hypot(*info["truth"]["ball_velocity"]) < 1.0:
+            continue  # a moving ball: the belief, predicted ahead, is elsewhere
+        captured = times[-1] - f["belief.ball.age"]
+        k = int(np.argmin(np.abs(np.array(times) - captured)))
+        errors.append(np.hypot(*(_measured(env, obs) - history[k])))
+    assert len(errors) > 20
+    assert np.median(errors) < 0.06  # 25 mm noise; the capture time rounded to a step
+
+
+def test_humanoid_kick_shows_in_the_measurement_first():
+    """With team fusion and MFBPF, a kicked ball's belief stays near the kick point for
+    several frames; the keeper's own sightings run ahead of it at once. Over 10 shots, 0.1 s
+    after the kick the measurement is nearer the true ball than the belief is."""
+    env = gym.make(GK, robot="humanoid-2012", obs_mode="perceived",
+                   perception="kidsize-2012", belief_features=True)
+    closer = 0
+    for seed in range(10):
+        fired = None
+        for obs, info in _steps(env, seed)[1:]:
+            if info["shot_fired"] and fired is None:
+                fired = info["truth"]["time"]
+            if fired is not None and info["truth"]["time"] - fired >= 0.1:
+                truth = info["truth"]["ball_position"]
+                belief = info["estimate"]["ball_position"]
+                closer += np.hypot(*(_measured(env, obs) - truth)) < np.hypot(*(belief - truth))
+                break
+    assert closer >= 8
 
 
 def test_humanoid_team_counts_sightings():
