@@ -2,7 +2,8 @@
 observations, on true observations, and with an oracle that knows the shot perfectly from the
 moment the vision could first have seen it.
 
-Usage: ``python benchmarks/keeper_bounds.py [--episodes 1000] [--workers 2]``.
+Usage: ``python benchmarks/keeper_bounds.py [--robot ssl|humanoid] [--episodes 1000]
+[--workers 2]``.
 
 The oracle observation is the truth, except that from the kick until the vision's first view
 of the moving ball (the kick time, half a frame period on average until the next capture,
@@ -11,6 +12,12 @@ fed by these cameras can know more, so the oracle's save rate bounds what better
 (or a learner on perceived observations) can reach with this keeper's way of playing. The
 actuation latency and command loss of ``ssl-2012`` apply in every case. Seeds 0..N-1 of
 Goalkeeper-v0's suite; Wilson 95 % intervals.
+
+``--robot humanoid``: the scripted humanoid keeper (``humanoid-2012``, three team-mates,
+``kidsize-2012`` head cameras, KLD localization, team fusion and MFBPF) perceived, perceived
+but with the true ball velocity (:class:`TrueBallVelocity`: believed pose and ball position,
+the velocity alone true), the first-frame oracle (the head camera's 25 Hz and 40 ms), and
+truth; 60 Hz decisions.
 """
 
 from __future__ import annotations
@@ -24,7 +31,7 @@ import numpy as np
 
 import soccer_env  # noqa: F401
 from agents.evaluation import evaluate
-from soccer_env.presets import vision
+from soccer_env.presets import HEAD_CAMERAS, vision
 from soccer_env.state import Belief
 
 GK = "soccer_env/Goalkeeper-v0"
@@ -36,7 +43,7 @@ class FirstFrameOracle(gym.ObservationWrapper):
 
     def __init__(self, env: gym.Env, preset: str = "ssl-2012") -> None:
         super().__init__(env)
-        spec = vision(preset)
+        spec = HEAD_CAMERAS[preset] if preset in HEAD_CAMERAS else vision(preset)
         period = 1.0 / spec.frame_rate if spec.frame_rate else 0.0
         self.blind = 0.5 * period + spec.latency + 0.5 * spec.latency_jitter
 
@@ -57,8 +64,31 @@ class FirstFrameOracle(gym.ObservationWrapper):
 
 
 def oracle_env(**kwargs: Any) -> gym.Env:
-    """Goalkeeper-v0 with :class:`FirstFrameOracle` observations."""
-    return FirstFrameOracle(gym.make(GK, obs_mode="truth", **kwargs))
+    """Goalkeeper-v0 with :class:`FirstFrameOracle` observations (of the ``perception``
+    preset's camera)."""
+    preset = kwargs.get("perception", "ssl-2012")
+    return FirstFrameOracle(gym.make(GK, obs_mode="truth", **kwargs), preset)
+
+
+class TrueBallVelocity(gym.ObservationWrapper):
+    """Perceived observations with the ball's velocity replaced by the true one (in the
+    believed body frame): what a keeper would do if its estimator knew the ball's motion at
+    once but nothing else better."""
+
+    def observation(self, observation: np.ndarray) -> np.ndarray:
+        base = self.env.unwrapped
+        names = base.builder.names
+        vx, vy = base.world.snapshot().ball[3:5]
+        obs = observation.copy()
+        c, s = float(obs[names.index("self.ax")]), -float(obs[names.index("self.ay")])
+        obs[names.index("ball.vx")] = c * vx + s * vy  # blue: the team frame is the field's
+        obs[names.index("ball.vy")] = -s * vx + c * vy
+        return obs
+
+
+def true_velocity_env(**kwargs: Any) -> gym.Env:
+    """Goalkeeper-v0, perceived, with :class:`TrueBallVelocity` observations."""
+    return TrueBallVelocity(gym.make(GK, obs_mode="perceived", **kwargs))
 
 
 #: The oracle environment's id, registered here for :func:`agents.evaluation.evaluate` (which
@@ -66,13 +96,36 @@ def oracle_env(**kwargs: Any) -> gym.Env:
 ORACLE_ID = "soccer_env_bench/FirstFrameOracle-v0"
 if ORACLE_ID not in gym.registry:
     gym.register(ORACLE_ID, entry_point=oracle_env)
+TRUE_VELOCITY_ID = "soccer_env_bench/TrueBallVelocity-v0"
+if TRUE_VELOCITY_ID not in gym.registry:
+    gym.register(TRUE_VELOCITY_ID, entry_point=true_velocity_env)
+
+
+def humanoid(episodes: int, workers: int) -> None:
+    """The humanoid keeper's rows (see the module docstring)."""
+    base = {"robot": "humanoid-2012", "perception": "kidsize-2012"}
+    print(f"| scripted humanoid keeper, kidsize-2012, 60 Hz | save rate ({episodes} shots, "
+          "95 % CI) |")
+    print("|---|---|")
+    rows = (("perceived (team fusion, MFBPF)", {**base, "obs_mode": "perceived"}, None),
+            ("perceived, true ball velocity", base, TRUE_VELOCITY_ID),
+            ("oracle from the first frame", base, ORACLE_ID),
+            ("truth", {**base, "obs_mode": "truth"}, None))
+    for label, kwargs, env_id in rows:
+        res = (evaluate("scripted", kwargs, episodes, 0, workers) if env_id is None else
+               evaluate("scripted", kwargs, episodes, 0, 1, env_id=env_id))
+        print(f"| {label} | {res.summary()} |", flush=True)
 
 
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--episodes", type=int, default=1000)
     p.add_argument("--workers", type=int, default=2)
+    p.add_argument("--robot", choices=("ssl", "humanoid"), default="ssl")
     args = p.parse_args(argv)
+    if args.robot == "humanoid":
+        humanoid(args.episodes, args.workers)
+        return 0
     print(f"| scripted keeper, ssl-2012 | decisions | save rate ({args.episodes} shots, 95 % "
           "CI) |")
     print("|---|---|---|")

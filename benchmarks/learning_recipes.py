@@ -51,6 +51,10 @@ RECIPES: dict[str, tuple[list[str], bool, str]] = {
                              "perception=" + json.dumps({"vision": "{preset}",
                                                          "randomize": RANDOMIZE})], False,
                             "residual + sensor randomisation"),
+    "ball-residual+belief": (["--actions", "ball-residual", "--env-kwarg",
+                             "belief_features=true"], True,
+                            "the scripted keeper acting on a learned correction of its "
+                            "believed ball velocity, + belief features"),
     "belief+privileged+randomized": (
         ["--env-kwarg", "belief_features=true", "--critic", "privileged", "--env-kwarg",
          "perception=" + json.dumps({"vision": "{preset}", "randomize": RANDOMIZE})], True,

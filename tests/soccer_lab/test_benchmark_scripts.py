@@ -62,3 +62,30 @@ def test_oracle_hides_the_kick_until_the_first_frame():
             np.testing.assert_allclose(obs, tobs, atol=1e-6)
         obs, *_ = env.step(np.zeros(6, np.float32))
         tobs, *_ = truth.step(np.zeros(6, np.float32))
+
+
+def test_true_velocity_keeps_the_belief_but_the_ball_velocity():
+    """The humanoid bound's observation: the perceived one with the true ball velocity in the
+    believed body frame (the keeper's pose and the ball's position stay believed)."""
+    bounds = _script("keeper_bounds")
+    kwargs = {"robot": "humanoid-2012", "perception": "kidsize-2012"}
+    env = bounds.true_velocity_env(**kwargs)
+    plain = gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived", **kwargs)
+    obs, _ = env.reset(seed=5)
+    pobs, _ = plain.reset(seed=5)
+    oracle = bounds.oracle_env(**kwargs)
+    assert oracle.blind == pytest.approx(0.5 / 25 + 0.04)  # the head camera's figures
+    fastest = 0.0
+    for _ in range(100):
+        others = [i for i in range(len(obs)) if i not in (9, 10)]
+        np.testing.assert_array_equal(obs[others], pobs[others])
+        c, s = obs[2], -obs[3]
+        v = env.unwrapped.world.snapshot().ball[3:5]
+        np.testing.assert_allclose(obs[9:11], [c * v[0] + s * v[1], -s * v[0] + c * v[1]],
+                                   atol=1e-5)
+        fastest = max(fastest, float(np.hypot(*v)))
+        obs, _, term, trunc, _ = env.step(np.zeros(6, np.float32))
+        pobs, *_ = plain.step(np.zeros(6, np.float32))
+        if term or trunc:
+            break
+    assert fastest > 1.0  # the shot was checked in flight
