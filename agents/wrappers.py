@@ -97,6 +97,10 @@ RESIDUAL = 0.3
 #: :mod:`soccer_env.observations` (they open it).
 _POSE = (0, 1, 2, 3)
 
+#: The entries the maps read, at the indices ``_POSE + _BALL``.
+_ENTRIES = ("self.x", "self.y", "self.ax", "self.ay", "ball.dx", "ball.dy", "ball.vx",
+            "ball.vy")
+
 
 def target_params(env: gym.Env, depth: float = 0.5) -> dict[str, float]:
     """The constants of the ``"target"`` map for a Goalkeeper environment: the box of
@@ -123,26 +127,30 @@ def residual_params(env: gym.Env, residual: float = RESIDUAL) -> dict[str, float
             "deceleration": b.rolling_deceleration, "residual": float(residual)}
 
 
+def _keeper_params(kind: str) -> tuple[tuple[str, tuple[str, ...]], ...]:
+    """``(part, attributes)`` of what the scripted keeper of robot ``kind`` (``"ssl"`` or
+    ``"humanoid"``) reads: its field, ball and robot specs' attributes (:data:`_KEEPER_SPEC`)."""
+    return (("field", _KEEPER_SPEC["field"]), ("ball", _KEEPER_SPEC["ball"]),
+            ("robot", _KEEPER_SPEC[kind]))
+
+
 def ball_residual_params(env: gym.Env, residual: float = BALL_RESIDUAL) -> dict[str, float]:
     """The constants of the ``"ball-residual"`` map: what the scripted keeper reads of the
     field, ball and robot specs (``"field.half_length"``, ``"robot.fall_time"``, ...; see
     :data:`_KEEPER_SPEC`), ``humanoid`` (1.0 for a humanoid keeper, else 0.0) and the largest
     correction ``residual`` [m/s]."""
     u = env.unwrapped
-    robot = u.robot_spec
-    kind = "humanoid" if robot.kind == "humanoid" else "ssl"
+    kind = "humanoid" if u.robot_spec.kind == "humanoid" else "ssl"
+    specs = {"field": u.field, "ball": u.ball_spec, "robot": u.robot_spec}
     params = {"humanoid": float(kind == "humanoid"), "residual": float(residual)}
-    for part, spec, attrs in (("field", u.field, _KEEPER_SPEC["field"]),
-                              ("ball", u.ball_spec, _KEEPER_SPEC["ball"]),
-                              ("robot", robot, _KEEPER_SPEC[kind])):
-        params.update({f"{part}.{a}": float(getattr(spec, a)) for a in attrs})
+    for part, attrs in _keeper_params(kind):
+        params.update({f"{part}.{a}": float(getattr(specs[part], a)) for a in attrs})
     return params
 
 
 #: Entry names the rebuilt scripted keeper reads, at their indices in every observation
 #: layout (``_POSE`` and ``_BALL``); the rest is never read.
-_LAYOUT = ("self.x", "self.y", "self.ax", "self.ay", "", "", "", "ball.dx", "ball.dy",
-           "ball.vx", "ball.vy")
+_LAYOUT = tuple(dict(zip(_POSE + _BALL, _ENTRIES)).get(i, "") for i in range(max(_BALL) + 1))
 
 
 @lru_cache(maxsize=8)
@@ -151,9 +159,8 @@ def _keeper(items: tuple[tuple[str, float], ...]) -> ScriptedGoalkeeper:
     numbers alone so that a saved policy needs no environment."""
     params = dict(items)
     kind = "humanoid" if params.get("humanoid") else "ssl"
-    needed = ["residual", *(f"{part}.{a}" for part, spec in (("field", "field"),
-                                                             ("ball", "ball"), ("robot", kind))
-                            for a in _KEEPER_SPEC[spec])]
+    needed = ["residual", *(f"{part}.{a}" for part, attrs in _keeper_params(kind)
+                            for a in attrs)]
     missing = [k for k in needed if k not in params]
     if missing:
         raise ValueError(f"the 'ball-residual' map's params lack {missing} (see "
@@ -174,11 +181,11 @@ def _ball_residual_command(obs: np.ndarray, act: np.ndarray,
     keeper = _keeper(tuple(sorted(params.items())))
     flat = np.array(obs, dtype=np.float64).reshape(-1, obs.shape[-1])
     corr = act.reshape(-1, 2) * params["residual"]
-    c, s = _heading(flat)
-    flat[:, _BALL[2]] += c * corr[:, 0] + s * corr[:, 1]
-    flat[:, _BALL[3]] += -s * corr[:, 0] + c * corr[:, 1]
+    bx, by = _to_body(*_heading(flat), corr[:, 0], corr[:, 1])
+    flat[:, _BALL[2]] += bx
+    flat[:, _BALL[3]] += by
     out = np.stack([keeper(o) for o in flat]) if len(flat) else np.empty((0, 6), np.float32)
-    return out.astype(np.float32).reshape(act.shape[:-1] + (6,))
+    return out.reshape(act.shape[:-1] + (6,))
 
 
 def scripted_guard_y(obs: np.ndarray, params: Mapping[str, float]) -> np.ndarray:
@@ -204,6 +211,13 @@ def scripted_guard_y(obs: np.ndarray, params: Mapping[str, float]) -> np.ndarray
     frac = (gx - params["goal_x"]) / np.maximum(bx - params["goal_x"], 1e-3)
     y = np.where(reaches, crossing, by * np.minimum(frac, 1.0))
     return np.clip(y, -params["half_goal"], params["half_goal"])
+
+
+def _to_body(c: np.ndarray, s: np.ndarray, x: np.ndarray, y: np.ndarray
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """The team-frame vector ``(x, y)`` in the body frame of a robot with heading
+    ``(cos, sin) = (c, s)``: rotated by ``-heading``, ``(c x + s y, -s x + c y)``."""
+    return c * x + s * y, -s * x + c * y
 
 
 def _heading(obs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -277,8 +291,7 @@ def action_to_command(kind: str, obs: np.ndarray, action: np.ndarray,
         scale = np.where(dist > 1e-6, speed / np.maximum(dist, 1e-6), 0.0) / p["max_speed"]
         wx, wy = ex * scale, ey * scale
         omega = np.clip(TURN_GAIN * -np.arctan2(s, c) / p["max_angular_speed"], -1.0, 1.0)
-    out[..., 0] = c * wx + s * wy
-    out[..., 1] = -s * wx + c * wy
+    out[..., 0], out[..., 1] = _to_body(c, s, wx, wy)
     out[..., 2] = omega
     out[..., 3] = 0.0
     out[..., 4] = -1.0
@@ -302,10 +315,9 @@ class _MappedActions(gym.Wrapper):
             raise ValueError(f"the {self.kind!r} actions drive an SSL robot; a humanoid keeper "
                              "takes 'native' or 'ball-residual' actions")
         names = env.unwrapped.builder.names
-        if tuple(names[:4]) != ("self.x", "self.y", "self.ax", "self.ay") or tuple(
-                names[7:11]) != ("ball.dx", "ball.dy", "ball.vx", "ball.vy"):
-            raise ValueError("the observation must open with self.x, self.y, self.ax, self.ay "
-                             "and have ball.dx, ball.dy, ball.vx, ball.vy at 7-10")
+        if tuple(names[i] for i in _POSE + _BALL) != _ENTRIES:
+            raise ValueError(f"the observation must have {', '.join(_ENTRIES)} at indices "
+                             f"{_POSE + _BALL}")
         self.params = dict(params) if params is not None else None
         self.action_space = gym.spaces.Box(-1.0, 1.0, (ACTION_MAPS[self.kind],), np.float32)
         self._obs: np.ndarray | None = None

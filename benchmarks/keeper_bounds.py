@@ -31,7 +31,7 @@ import numpy as np
 
 import soccer_env  # noqa: F401
 from agents.evaluation import evaluate
-from soccer_env.presets import HEAD_CAMERAS, vision
+from soccer_env.presets import HEAD_CAMERAS, head_camera, vision
 from soccer_env.state import Belief
 
 GK = "soccer_env/Goalkeeper-v0"
@@ -43,7 +43,7 @@ class FirstFrameOracle(gym.ObservationWrapper):
 
     def __init__(self, env: gym.Env, preset: str = "ssl-2012") -> None:
         super().__init__(env)
-        spec = HEAD_CAMERAS[preset] if preset in HEAD_CAMERAS else vision(preset)
+        spec = head_camera(preset) if preset in HEAD_CAMERAS else vision(preset)
         period = 1.0 / spec.frame_rate if spec.frame_rate else 0.0
         self.blind = 0.5 * period + spec.latency + 0.5 * spec.latency_jitter
 
@@ -75,14 +75,18 @@ class TrueBallVelocity(gym.ObservationWrapper):
     believed body frame): what a keeper would do if its estimator knew the ball's motion at
     once but nothing else better."""
 
+    def __init__(self, env: gym.Env) -> None:
+        super().__init__(env)
+        names = env.unwrapped.builder.names
+        self._ax, self._ay, self._vx, self._vy = (
+            names.index(n) for n in ("self.ax", "self.ay", "ball.vx", "ball.vy"))
+
     def observation(self, observation: np.ndarray) -> np.ndarray:
-        base = self.env.unwrapped
-        names = base.builder.names
-        vx, vy = base.world.snapshot().ball[3:5]
+        vx, vy = self.env.unwrapped.world.snapshot().ball[3:5]
         obs = observation.copy()
-        c, s = float(obs[names.index("self.ax")]), -float(obs[names.index("self.ay")])
-        obs[names.index("ball.vx")] = c * vx + s * vy  # blue: the team frame is the field's
-        obs[names.index("ball.vy")] = -s * vx + c * vy
+        c, s = float(obs[self._ax]), -float(obs[self._ay])
+        obs[self._vx] = c * vx + s * vy  # blue: the team frame is the field's
+        obs[self._vy] = -s * vx + c * vy
         return obs
 
 

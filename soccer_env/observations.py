@@ -183,7 +183,7 @@ class ObservationBuilder:
             perfect += [0.0, float(team_size)]
         self._feature_high = np.asarray(high, dtype=np.float64)
         self._feature_low = np.zeros_like(self._feature_high)
-        self._measured_at = len(BELIEF_FEATURES) - 2  # column of ball.measured_dx
+        self._measured_at = BELIEF_FEATURES.index("ball.measured_dx")
         self._feature_low[self._measured_at:self._measured_at + 2] = -span
         self._perfect = np.tile(np.asarray(perfect, dtype=np.float32), (len(self.own), 1))
 

@@ -125,11 +125,7 @@ class RawPerception(_VisionPerception):
             t = f.t_capture
             if f.balls:
                 last = self._ball[1]
-                balls = f.balls
-                if last is not None and len(balls) > 1:
-                    bx, by = min(balls, key=lambda b: math.hypot(b[0] - last[1], b[1] - last[2]))
-                else:
-                    bx, by = balls[0]
+                bx, by = _nearest(f.balls, None if last is None else last[1:3])
                 _push(self._ball, (t, bx, by), self._min_gap)
             for i, pose in zip(f.robot_ids, f.robots):
                 _push(self._robots[i], (t, *pose), self._min_gap)
@@ -252,8 +248,9 @@ class FilteredPerception(_VisionPerception):
                              int(status < 3 and age <= self._expected_age), self._measured)
 
 
-def _nearest(balls: Sequence[Sequence[float]], est: np.ndarray | None) -> tuple[float, float]:
-    """The ``(x, y)`` of the detection in ``balls`` nearest the estimate ``est`` (the first
+def _nearest(balls: Sequence[Sequence[float]], est: Sequence[float] | None
+             ) -> tuple[float, float]:
+    """The ``(x, y)`` of the detection in ``balls`` nearest the point ``est`` (the first
     without one)."""
     if est is None or len(balls) == 1:
         return float(balls[0][0]), float(balls[0][1])
