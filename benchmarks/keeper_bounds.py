@@ -2,15 +2,16 @@
 observations, on true observations, and with an oracle that knows the shot perfectly from the
 moment the vision could first have seen it.
 
-Usage: ``python benchmarks/keeper_bounds.py [--robot ssl|humanoid] [--episodes 1000]
-[--workers 2]``.
+Usage: ``python benchmarks/keeper_bounds.py [--robot ssl|humanoid] [--preset ssl-2012]
+[--episodes 1000] [--workers 2]``.
 
 The oracle observation is the truth, except that from the kick until the vision's first view
 of the moving ball (the kick time, half a frame period on average until the next capture,
 plus the vision latency) the ball reads as lying still where it was kicked from: no estimator
 fed by these cameras can know more, so the oracle's save rate bounds what better estimation
 (or a learner on perceived observations) can reach with this keeper's way of playing. The
-actuation latency and command loss of ``ssl-2012`` apply in every case. Seeds 0..N-1 of
+actuation latency and command loss of the preset (``--preset``, default ``ssl-2012``) apply in
+every case. Seeds 0..N-1 of
 Goalkeeper-v0's suite; Wilson 95 % intervals.
 
 ``--robot humanoid``: the scripted humanoid keeper (``humanoid-2012``, three team-mates,
@@ -126,15 +127,17 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--episodes", type=int, default=1000)
     p.add_argument("--workers", type=int, default=2)
     p.add_argument("--robot", choices=("ssl", "humanoid"), default="ssl")
+    p.add_argument("--preset", choices=("ssl-2012", "realistic", "harsh"), default="ssl-2012",
+                   help="the SSL keeper's vision preset (default: %(default)s)")
     args = p.parse_args(argv)
     if args.robot == "humanoid":
         humanoid(args.episodes, args.workers)
         return 0
-    print(f"| scripted keeper, ssl-2012 | decisions | save rate ({args.episodes} shots, 95 % "
-          "CI) |")
+    print(f"| scripted keeper, {args.preset} | decisions | save rate ({args.episodes} shots, "
+          "95 % CI) |")
     print("|---|---|---|")
     for hz, dt in ((25, 0.04), (60, 1.0 / 60.0)):
-        base = {"perception": "ssl-2012", "control_dt": dt}
+        base = {"perception": args.preset, "control_dt": dt}
         for label, kwargs in (("perceived (EKF)", {**base, "obs_mode": "perceived"}),
                               ("truth", {**base, "obs_mode": "truth"})):
             res = evaluate("scripted", kwargs, args.episodes, 0, args.workers)

@@ -29,6 +29,9 @@ from pathlib import Path
 RANDOMIZE = {"frame_rate": [25, 60], "latency": [0.045, 0.08], "ball_sigma": [0.0014, 0.025],
              "robot_sigma": [0.0013, 0.025], "ball_detection": [0.95, 1.0]}
 
+#: Whole presets drawn per episode (cameras, noise, latency and command link together).
+PRESETS = {"preset": ["ssl-2012", "realistic"]}
+
 #: recipe -> (training options beyond the base, whether its observation has belief features,
 #: description).
 RECIPES: dict[str, tuple[list[str], bool, str]] = {
@@ -51,6 +54,16 @@ RECIPES: dict[str, tuple[list[str], bool, str]] = {
                              "perception=" + json.dumps({"vision": "{preset}",
                                                          "randomize": RANDOMIZE})], False,
                             "residual + sensor randomisation"),
+    "residual+presets": (["--actions", "guard-residual", "--env-kwarg",
+                          "perception=" + json.dumps({"vision": "{preset}",
+                                                      "randomize": PRESETS})], False,
+                         "residual, each episode under ssl-2012 or realistic"),
+    "residual+belief+presets": (["--actions", "guard-residual", "--env-kwarg",
+                                 "belief_features=true", "--env-kwarg",
+                                 "perception=" + json.dumps({"vision": "{preset}",
+                                                             "randomize": PRESETS})], True,
+                                "residual + belief features, each episode under ssl-2012 or "
+                                "realistic"),
     "ball-residual+belief": (["--actions", "ball-residual", "--env-kwarg",
                              "belief_features=true"], True,
                             "the scripted keeper acting on a learned correction of its "

@@ -62,8 +62,10 @@ class MatchPerception:
         n = len(specs)
         members = [[i for i in range(n) if teams[i] == t] for t in (0, 1)]
         kinds = [specs[m[0]].kind if m else None for m in members]
-        #: Every team's actuation latency in whole control steps (0 for humanoids).
+        #: Every team's actuation latency in whole control steps and command loss
+        #: probability (0 for humanoids); with randomised figures, this episode's.
         self.delays = [0, 0]
+        self.losses = [0.0, 0.0]
         #: The head camera of every humanoid (robot index -> spec).
         self.cameras: dict[int, HeadCameraSpec] = {}
         # (robots, pipeline, whether it is a humanoid team's: it reads the bodies and keeps a
@@ -72,26 +74,31 @@ class MatchPerception:
         # robot -> its team's HumanoidTeamPerception (see _index_humanoids)
         self._humanoid: dict[int, Any] = {}
         #: Groups whose sensor figures are drawn every episode: group index -> (the
-        #: preset's spec, the ranges, what builds the group's pipeline from a drawn spec).
-        self._randomized: dict[int, tuple[Any, Any, Any]] = {}
+        #: preset's spec, the randomisation, what builds the group's pipeline from a drawn
+        #: spec, the robot kind).
+        self._randomized: dict[int, tuple[Any, Any, Any, str]] = {}
         ssl_teams = [t for t in (0, 1) if kinds[t] == "ssl"]
         if ssl_teams:
             shared = len(ssl_teams) == 2 and configs[0] == configs[1]
             for t in ([ssl_teams[0]] if shared else ssl_teams):
                 cfg = configs[t]
-                delay = round(cfg.vision.actuation_latency / control_dt)
                 group = members[0] + members[1] if shared else members[t]
+                tts = ssl_teams if shared else [t]
 
-                def build(spec, cfg=cfg, t=t, delay=delay):
+                def build(spec, cfg=cfg, t=t, tts=tts):
+                    # The commands' latency in whole control steps and their loss follow the
+                    # (drawn) spec; the filters predict to when the commands take effect.
+                    delay = round(spec.actuation_latency / control_dt)
+                    for tt in tts:
+                        self.delays[tt], self.losses[tt] = delay, spec.command_loss
                     return make_perception(obs_mode, dataclasses.replace(cfg, vision=spec),
                                            field, specs[members[t][0]], ball, n,
                                            delay * control_dt, teams, specs, features)
 
-                for tt in (ssl_teams if shared else [t]):
-                    self.delays[tt] = delay
                 if cfg.randomize and obs_mode != "truth":
                     check_ranges(cfg.vision, cfg.randomize, "ssl")
-                    self._randomized[len(self._groups)] = (cfg.vision, cfg.randomize, build)
+                    self._randomized[len(self._groups)] = (cfg.vision, cfg.randomize, build,
+                                                           "ssl")
                 self._groups.append((group, build(cfg.vision), False))
         for t in (0, 1):
             if kinds[t] != "humanoid":
@@ -113,7 +120,8 @@ class MatchPerception:
 
             if cfg.randomize:
                 check_ranges(camera, cfg.randomize, "humanoid")
-                self._randomized[len(self._groups)] = (camera, cfg.randomize, build_team)
+                self._randomized[len(self._groups)] = (camera, cfg.randomize, build_team,
+                                                       "humanoid")
             self._groups.append((members[t], build_team(camera), True))
         self._index_humanoids()
         self._beliefs: dict[int, Any] = {}
@@ -172,9 +180,9 @@ class MatchPerception:
 
     def _draw(self, rng: np.random.Generator) -> None:
         """Draw the randomised groups' sensor figures and rebuild their pipelines."""
-        for g, (spec, ranges, build) in sorted(self._randomized.items()):
+        for g, (spec, ranges, build, kind) in sorted(self._randomized.items()):
             robots, _, humanoid = self._groups[g]
-            self._groups[g] = (robots, build(draw(spec, ranges, rng)), humanoid)
+            self._groups[g] = (robots, build(draw(spec, ranges, rng, kind)), humanoid)
         self._index_humanoids()
 
     def _index_humanoids(self) -> None:

@@ -187,8 +187,16 @@ class CommandChannel:
         self.passthrough = self.delay_steps == 0 and self.loss == 0.0
         self.reset(None)
 
-    def reset(self, rng: np.random.Generator | None) -> None:
-        """Empty the pipe: until the first commands arrive the robots stand still."""
+    def reset(self, rng: np.random.Generator | None, delay_steps: int | None = None,
+              loss: float | None = None) -> None:
+        """Empty the pipe: until the first commands arrive the robots stand still. A
+        ``delay_steps`` or ``loss`` given replaces the channel's (an episode's drawn
+        figures)."""
+        if delay_steps is not None:
+            self.delay_steps = int(delay_steps)
+        if loss is not None:
+            self.loss = float(loss)
+        self.passthrough = self.delay_steps == 0 and self.loss == 0.0
         self._rng = rng
         idle = np.zeros((self.n, 6))
         self._queue = deque([idle] * self.delay_steps)

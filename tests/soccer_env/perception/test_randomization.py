@@ -84,8 +84,59 @@ def test_humanoid_camera_figures():
     assert len(seen) == 3
 
 
+def test_drawn_actuation_latency_delays_the_commands():
+    """The command latency is drawn per episode: the robot starts moving as many control
+    steps after the first command as the drawn latency spans."""
+    env = gym.make(GK, obs_mode="perceived",
+                   perception={"vision": "ssl-2012", "randomize": {"actuation_latency": (0, 0.1)}})
+    dt, delays = env.unwrapped.world.control_dt, set()
+    forward = np.array([1, 0, 0, 0, 0, 0], np.float32)
+    for seed in range(8):
+        env.reset(seed=seed)
+        delay = round(env.unwrapped.pipelines[0].vision_spec.actuation_latency / dt)
+        moved = None
+        for k in range(10):
+            info = env.step(forward)[-1]
+            if np.abs(info["truth"]["robot_velocity"]["blue_0"]).max() > 1e-3:
+                moved = k
+                break
+        assert moved == delay
+        delays.add(delay)
+    assert len(delays) >= 3
+
+
+def test_whole_presets_are_drawn_with_their_links():
+    """``"preset"`` alternates whole presets, each with its own command latency and loss, and
+    the figures named beside it replace the drawn preset's."""
+    env = gym.make(GK, obs_mode="perceived", perception={"vision": "ssl-2012", "randomize": {
+        "preset": ["ssl-2012", "realistic"], "ball_detection": (0.9, 0.9)}})
+    u, names = env.unwrapped, []
+    for seed in range(16):
+        env.reset(seed=seed)
+        v = u.pipelines[0].vision_spec
+        names.append(v.name)
+        assert v.ball_detection == 0.9
+        assert u._channels[0].delay_steps == round(v.actuation_latency / u.world.control_dt)
+        assert u._channels[0].loss == v.command_loss
+        assert v.frame_rate == {"ssl-2012": 25.0, "realistic": 60.0}[v.name]
+    assert 4 <= names.count("realistic") <= 12
+    again = gym.make(GK, obs_mode="perceived", perception={"vision": "ssl-2012", "randomize": {
+        "preset": ["ssl-2012", "realistic"], "ball_detection": (0.9, 0.9)}})
+    for seed in (3, 11):
+        again.reset(seed=seed)
+        assert again.unwrapped.pipelines[0].vision_spec.name == names[seed]
+    # Humanoid teams draw head-camera presets.
+    hum = gym.make(GK, robot="humanoid", obs_mode="perceived",
+                   perception={"randomize": {"preset": ["kidsize", "kidsize-2012"]}})
+    seen = set()
+    for seed in range(8):
+        hum.reset(seed=seed)
+        seen.add(hum.unwrapped.pipelines[0].camera.name)
+    assert seen == {"kidsize", "kidsize-2012"}
+
+
 def test_no_randomization_by_default():
-    assert PerceptionConfig.create("ssl-2012", "perceived").randomize == ()
+    assert not PerceptionConfig.create("ssl-2012", "perceived").randomize
 
 
 def test_bad_ranges():
@@ -93,7 +144,10 @@ def test_bad_ranges():
                        ({"latency": (0.1,)}, "latency"),
                        ({"warp": (0, 1)}, "unknown figure 'warp'"),
                        ({"ball_detection": (0.5, 1.5)}, "ball_detection"),
-                       ({"latency": (float("nan"), 0.1)}, "finite")]:
+                       ({"latency": (float("nan"), 0.1)}, "finite"),
+                       ({"preset": ["ssl-2012", "nowhere"]}, "unknown ssl sensor preset"),
+                       ({"preset": []}, "non-empty list"),
+                       ({"preset": ["harsh"], "command_loss": (0, 2)}, "command_loss")]:
         with pytest.raises(ValueError, match=match):
             gym.make(GK, obs_mode="perceived", perception={"vision": "ssl-2012",
                                                            "randomize": bad})
