@@ -145,8 +145,10 @@ class PerceptionConfig:
     Both:
 
     Attributes:
-        randomize: sensor figures drawn afresh every episode, ``{figure: (low, high)}``
-            (kept as sorted triples; see :mod:`soccer_env.perception.randomization`).
+        randomize: sensor figures drawn afresh every episode, ``{figure: (low, high)}``,
+            and ``"preset": [names]`` to draw a whole preset first (kept as a
+            :class:`~soccer_env.perception.randomization.Randomization`; see
+            :mod:`soccer_env.perception.randomization`).
     """
 
     vision: VisionSpec
