@@ -38,6 +38,10 @@ BASELINES: dict[str, tuple[str, str]] = {
         "PPO keeper correcting the scripted keeper's point on its guard line (guard-residual "
         "actions) 25 times a second, trained on perceived observations (ssl-2012 vision, EKF; "
         "2 M steps, 18 minutes on 2 cores)"),
+    "keeper-ppo-residual-realistic": (
+        "keeper_ppo_residual_realistic",
+        "the same residual keeper trained on perceived realistic observations (ER-Force's "
+        "realism preset, EKF; 2 M steps, 21 minutes on 2 cores)"),
     "keeper-ppo-truth": (
         "keeper_ppo_truth",
         "the same PPO keeper trained on true observations only (1 M steps, ssl-2012 actuation "

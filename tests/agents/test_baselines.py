@@ -26,7 +26,8 @@ def test_baseline_loads_with_one_call_and_acts_on_the_plain_env(name):
     assert keeper.action_map["kind"] in ACTION_MAPS
     assert keeper.normalize is not None
     kwargs = baseline_env_kwargs(name)
-    assert "shaping" not in kwargs and kwargs["perception"] == "ssl-2012"
+    assert "shaping" not in kwargs
+    assert kwargs["perception"] == ("realistic" if name.endswith("realistic") else "ssl-2012")
     env = make_baseline_env(name)
     obs, _ = env.reset(seed=0)
     action = keeper(obs)
