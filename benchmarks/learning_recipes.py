@@ -32,46 +32,43 @@ RANDOMIZE = {"frame_rate": [25, 60], "latency": [0.045, 0.08], "ball_sigma": [0.
 #: Whole presets drawn per episode (cameras, noise, latency and command link together).
 PRESETS = {"preset": ["ssl-2012", "realistic"]}
 
+
+def _randomized(randomize: dict) -> list[str]:
+    """The option that perceives through ``--preset``'s vision with ``randomize``."""
+    return ["--env-kwarg", "perception=" + json.dumps({"vision": "{preset}",
+                                                        "randomize": randomize})]
+
+
+_RESIDUAL = ["--actions", "guard-residual"]
+_BELIEF = ["--env-kwarg", "belief_features=true"]
+_PRIVILEGED = ["--critic", "privileged"]
+
 #: recipe -> (training options beyond the base, whether its observation has belief features,
 #: description).
 RECIPES: dict[str, tuple[list[str], bool, str]] = {
     "plain": ([], False, "PPO on the perceived observation"),
-    "belief": (["--env-kwarg", "belief_features=true"], True, "+ belief features"),
-    "privileged": (["--critic", "privileged"], False, "+ privileged critic"),
+    "belief": (_BELIEF, True, "+ belief features"),
+    "privileged": (_PRIVILEGED, False, "+ privileged critic"),
     "stack4": (["--frame-stack", "4"], False, "+ the last 4 observations"),
     "recurrent": (["--algo", "recurrent-ppo"], False, "RecurrentPPO (LSTM 64)"),
-    "randomized": (["--env-kwarg", "perception=" + json.dumps(
-        {"vision": "{preset}", "randomize": RANDOMIZE})], False,
-        "+ sensor randomisation (ssl-2012 to realistic)"),
-    "belief+privileged": (["--env-kwarg", "belief_features=true", "--critic", "privileged"],
-                          True, "+ belief features + privileged critic"),
-    "residual": (["--actions", "guard-residual"], False,
-                 "a correction to the scripted keeper's guard point"),
-    "residual+belief+privileged": (["--actions", "guard-residual", "--env-kwarg",
-                                    "belief_features=true", "--critic", "privileged"], True,
+    "randomized": (_randomized(RANDOMIZE), False,
+                   "+ sensor randomisation (ssl-2012 to realistic)"),
+    "belief+privileged": (_BELIEF + _PRIVILEGED, True, "+ belief features + privileged critic"),
+    "residual": (_RESIDUAL, False, "a correction to the scripted keeper's guard point"),
+    "residual+belief+privileged": (_RESIDUAL + _BELIEF + _PRIVILEGED, True,
                                    "residual + belief features + privileged critic"),
-    "residual+randomized": (["--actions", "guard-residual", "--env-kwarg",
-                             "perception=" + json.dumps({"vision": "{preset}",
-                                                         "randomize": RANDOMIZE})], False,
+    "residual+randomized": (_RESIDUAL + _randomized(RANDOMIZE), False,
                             "residual + sensor randomisation"),
-    "residual+presets": (["--actions", "guard-residual", "--env-kwarg",
-                          "perception=" + json.dumps({"vision": "{preset}",
-                                                      "randomize": PRESETS})], False,
+    "residual+presets": (_RESIDUAL + _randomized(PRESETS), False,
                          "residual, each episode under ssl-2012 or realistic"),
-    "residual+belief+presets": (["--actions", "guard-residual", "--env-kwarg",
-                                 "belief_features=true", "--env-kwarg",
-                                 "perception=" + json.dumps({"vision": "{preset}",
-                                                             "randomize": PRESETS})], True,
+    "residual+belief+presets": (_RESIDUAL + _BELIEF + _randomized(PRESETS), True,
                                 "residual + belief features, each episode under ssl-2012 or "
                                 "realistic"),
-    "ball-residual+belief": (["--actions", "ball-residual", "--env-kwarg",
-                             "belief_features=true"], True,
-                            "the scripted keeper acting on a learned correction of its "
-                            "believed ball velocity, + belief features"),
-    "belief+privileged+randomized": (
-        ["--env-kwarg", "belief_features=true", "--critic", "privileged", "--env-kwarg",
-         "perception=" + json.dumps({"vision": "{preset}", "randomize": RANDOMIZE})], True,
-        "+ belief features + privileged critic + randomisation"),
+    "ball-residual+belief": (["--actions", "ball-residual", *_BELIEF], True,
+                             "the scripted keeper acting on a learned correction of its "
+                             "believed ball velocity, + belief features"),
+    "belief+privileged+randomized": (_BELIEF + _PRIVILEGED + _randomized(RANDOMIZE), True,
+                                     "+ belief features + privileged critic + randomisation"),
 }
 
 BASE = ["--obs-mode", "perceived", "--actions", "guard", "--env-kwarg", "control_dt=0.04",

@@ -118,11 +118,9 @@ class SoccerCore(RenderingMixin):
         # Commands reach each team's robots with its actuation latency, in whole control
         # steps, and its command loss (none for humanoids, whose walk engine is on board).
         self._slices = [slice(0, n_blue), slice(n_blue, n_blue + n_yellow)]
-        self._kinds = [s.kind for s in team_specs]
-        self._channels = [
-            CommandChannel(n, d, 0.0 if kind == "humanoid" else loss)
-            for n, d, loss, kind in zip((n_blue, n_yellow), self._perception.delays,
-                                        self._perception.losses, self._kinds)]
+        self._channels = [CommandChannel(n, d, loss) for n, d, loss in
+                          zip((n_blue, n_yellow), self._perception.delays,
+                              self._perception.losses)]
         # The teams with robots, as (action model, their rows, command channel): with one,
         # a step maps and sends the whole command array at once.
         self._teams_in_play = [(m, sl, ch) for m, sl, ch, n in
@@ -202,8 +200,8 @@ class SoccerCore(RenderingMixin):
         # After the perception's reset: randomised sensors draw the episode's command latency
         # and loss there.
         p = self._perception
-        for channel, delay, loss, kind in zip(self._channels, p.delays, p.losses, self._kinds):
-            channel.reset(sensor_rng, delay, 0.0 if kind == "humanoid" else loss)
+        for channel, delay, loss in zip(self._channels, p.delays, p.losses):
+            channel.reset(sensor_rng, delay, loss)
         return state
 
     def _advance(self, actions: np.ndarray) -> tuple[WorldState, Any]:

@@ -75,8 +75,8 @@ class MatchPerception:
         self._humanoid: dict[int, Any] = {}
         #: Groups whose sensor figures are drawn every episode: group index -> (the
         #: preset's spec, the randomisation, what builds the group's pipeline from a drawn
-        #: spec, the robot kind).
-        self._randomized: dict[int, tuple[Any, Any, Any, str]] = {}
+        #: spec).
+        self._randomized: dict[int, tuple[Any, Any, Any]] = {}
         ssl_teams = [t for t in (0, 1) if kinds[t] == "ssl"]
         if ssl_teams:
             shared = len(ssl_teams) == 2 and configs[0] == configs[1]
@@ -97,8 +97,7 @@ class MatchPerception:
 
                 if cfg.randomize and obs_mode != "truth":
                     check_ranges(cfg.vision, cfg.randomize, "ssl")
-                    self._randomized[len(self._groups)] = (cfg.vision, cfg.randomize, build,
-                                                           "ssl")
+                    self._randomized[len(self._groups)] = (cfg.vision, cfg.randomize, build)
                 self._groups.append((group, build(cfg.vision), False))
         for t in (0, 1):
             if kinds[t] != "humanoid":
@@ -120,8 +119,7 @@ class MatchPerception:
 
             if cfg.randomize:
                 check_ranges(camera, cfg.randomize, "humanoid")
-                self._randomized[len(self._groups)] = (camera, cfg.randomize, build_team,
-                                                       "humanoid")
+                self._randomized[len(self._groups)] = (camera, cfg.randomize, build_team)
             self._groups.append((members[t], build_team(camera), True))
         self._index_humanoids()
         self._beliefs: dict[int, Any] = {}
@@ -180,8 +178,9 @@ class MatchPerception:
 
     def _draw(self, rng: np.random.Generator) -> None:
         """Draw the randomised groups' sensor figures and rebuild their pipelines."""
-        for g, (spec, ranges, build, kind) in sorted(self._randomized.items()):
+        for g, (spec, ranges, build) in sorted(self._randomized.items()):
             robots, _, humanoid = self._groups[g]
+            kind = "humanoid" if humanoid else "ssl"
             self._groups[g] = (robots, build(draw(spec, ranges, rng, kind)), humanoid)
         self._index_humanoids()
 

@@ -184,7 +184,6 @@ class CommandChannel:
         self.n = n_robots
         self.delay_steps = int(delay_steps)
         self.loss = float(loss)
-        self.passthrough = self.delay_steps == 0 and self.loss == 0.0
         self.reset(None)
 
     def reset(self, rng: np.random.Generator | None, delay_steps: int | None = None,
