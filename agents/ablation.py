@@ -38,14 +38,14 @@ import shlex
 import time
 from collections import Counter
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from agents import ablation_report
 from agents.ablation_report import write_outputs
-from agents.evaluation import GOALKEEPER_ID, EvalResult, evaluate, process_context, wilson
+from agents.evaluation import GOALKEEPER_ID, EvalResult, evaluate, process_pool, wilson
 from estimators.registry import Registry
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.perception.options import BALL_FILTERS
@@ -496,7 +496,7 @@ def _run_jobs(jobs: list[tuple], workers: int,
         return outs
     # The jobs carry their environment's keyword arguments, so configurations registered at
     # run time need not exist in the workers.
-    with ProcessPoolExecutor(min(workers, len(jobs)), mp_context=process_context()) as pool:
+    with process_pool(min(workers, len(jobs))) as pool:
         futures = {pool.submit(_run_job, job): i for i, job in enumerate(jobs)}
         for done, fut in enumerate(as_completed(futures), 1):
             outs[futures[fut]] = fut.result()

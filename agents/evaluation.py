@@ -18,8 +18,9 @@ import math
 import os
 import time
 from collections import Counter
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor
+from contextlib import contextmanager
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
@@ -30,7 +31,7 @@ import soccer_env  # noqa: F401  (registers the environments)
 from agents.policies import make_policy, reset_policy
 
 __all__ = ["wilson", "EvalResult", "evaluate", "record_video", "process_context",
-           "GOALKEEPER_ID"]
+           "process_pool", "ignore_interrupts", "GOALKEEPER_ID"]
 
 GOALKEEPER_ID = "soccer_env/Goalkeeper-v0"
 
@@ -189,7 +190,7 @@ def evaluate(policy: str | os.PathLike | Callable = "scripted",
     jobs = [(policy, env_id, env_kwargs, c, measure_estimator) for c in chunks]
     if workers > 1:
         # forkserver, not fork: a parent that has used torch deadlocks forked children.
-        with ProcessPoolExecutor(workers, mp_context=process_context()) as pool:
+        with process_pool(workers) as pool:
             parts = list(pool.map(_run_episodes, jobs))
     else:
         parts = [_run_episodes(jobs[0])]
@@ -223,6 +224,34 @@ def process_context() -> Any:
 
     return mp.get_context("forkserver" if "forkserver" in mp.get_all_start_methods()
                           else "spawn")
+
+
+def ignore_interrupts() -> None:
+    """Make this process ignore Ctrl-C (``SIGINT``): the initializer of worker processes,
+    whose parent handles the interrupt (a terminal sends it to the whole process group, and
+    every worker would otherwise print its own traceback)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+@contextmanager
+def process_pool(workers: int) -> Iterator[ProcessPoolExecutor]:
+    """A ``ProcessPoolExecutor`` of ``workers`` processes (:func:`process_context`) that
+    leave Ctrl-C to this process. When the block raises (Ctrl-C included), queued jobs are
+    cancelled and the workers terminated at once instead of running on to the end of every
+    submitted job (what leaving an executor's ``with`` block does)."""
+    pool = ProcessPoolExecutor(workers, mp_context=process_context(),
+                               initializer=ignore_interrupts)
+    try:
+        yield pool
+    except BaseException:
+        pool.shutdown(wait=False, cancel_futures=True)
+        # No public way to stop running jobs before Python 3.14's terminate_workers().
+        for proc in list((getattr(pool, "_processes", None) or {}).values()):
+            proc.terminate()
+        raise
+    pool.shutdown(wait=True)
 
 
 def _describe(policy: Any) -> str:

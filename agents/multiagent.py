@@ -64,8 +64,8 @@ OPPONENT_NAMES = ("scripted", "idle")
 _NO_MEMORY = ("opponent policies with memory (a recurrent model, a frame-stacked numpy policy) "
               "are not supported: the match does not reset an opponent's memory when a match "
               "ends")
-_OPPONENT_HELP = ("'scripted', 'idle', a callable batch policy obs (k, obs_dim) -> actions "
-                  "(k, 6), or a stable-baselines3 model")
+_OPPONENT_HELP = ("'scripted', 'idle', a numpy policy file (.npz), a callable batch policy "
+                  "obs (k, obs_dim) -> actions (k, 6), or a stable-baselines3 model")
 
 
 class _Opponent:
@@ -104,7 +104,8 @@ class MatchVecEnv(VecEnv):
             teams of equal size, so that an observation entry means the same for both).
         opponent: the other team's policy when ``learner`` is one team: ``"scripted"``
             (:class:`~agents.team.ScriptedTeam`, the default), ``"idle"`` (all-zero actions),
-            a stable-baselines3 model (copied into a frozen
+            the path of a numpy policy file (``.npz``, :meth:`NumpyPolicy.save`; loaded
+            without pickle), a stable-baselines3 model (copied into a frozen
             :class:`~agents.policies.NumpyPolicy` when possible), a
             :class:`~agents.policies.NumpyPolicy`, or any callable ``obs (k, obs_dim) ->
             actions (k, 6)``, called with one match's team at a time (rows in robot order).
@@ -202,8 +203,11 @@ class MatchVecEnv(VecEnv):
                 return _Opponent(team.act, False, "scripted")
             if opponent == "idle":
                 return _Opponent(IdlePolicy(6), True, "idle")
-            raise ValueError(f"opponent must be {_OPPONENT_HELP}; got the string "
-                             f"{opponent!r} (names: {list(OPPONENT_NAMES)})")
+            if opponent.endswith(".npz"):  # a numpy policy file: arrays only, no pickle
+                opponent = NumpyPolicy.load(opponent)
+            else:
+                raise ValueError(f"opponent must be {_OPPONENT_HELP}; got the string "
+                                 f"{opponent!r} (names: {list(OPPONENT_NAMES)})")
         if _is_sb3_model(opponent):
             if hasattr(opponent.policy, "lstm_actor"):
                 raise ValueError(_NO_MEMORY)

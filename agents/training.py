@@ -46,6 +46,7 @@ import inspect
 import json
 import os
 import platform
+import shutil
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -60,7 +61,43 @@ from soccer_env.validation import check_fields
 
 __all__ = ["TrainConfig", "train", "check_env_kwargs", "make_vec_env", "EVAL_SEED_START",
            "MATCH_ID", "DEFAULT_HYPERPARAMS", "rollout_timer", "goalkeeper_env_fn",
-           "checkpoint_steps", "CRITICS"]
+           "checkpoint_steps", "CRITICS", "TrainingStopped", "RunRefused", "RUN_FILES",
+           "run_files", "run_folder", "OPPONENTS"]
+
+#: What a training run writes into its folder: a folder holding any of these holds a run,
+#: which :func:`train` does not overwrite unless told to (and then deletes these, and only
+#: these, first).
+RUN_FILES = ("config.json", "summary.json", "evaluations.json", "final_model.zip",
+             "final_policy.npz", "final_vecnormalize.pkl", "best_model.zip", "best_policy.npz",
+             "best_vecnormalize.pkl", "checkpoints", "tb")
+
+#: The match opponents given by name (besides the path of a numpy policy file, ``.npz``).
+OPPONENTS = ("scripted", "idle", "self")
+
+
+class RunRefused(ValueError):
+    """:func:`train` refused the run before writing anything: its folder holds another run,
+    it has nothing to train, or the algorithm refused the hyperparameters."""
+
+
+class TrainingStopped(RuntimeError):
+    """Training ended early: interrupted (Ctrl-C) or a rollout worker failed. The model of
+    the last completed update is saved as a checkpoint to resume from.
+
+    Attributes:
+        reason: ``"interrupted"`` or ``"worker failed"``.
+        checkpoint: the saved checkpoint (None when nothing had been trained yet).
+        steps: the environment steps that checkpoint has trained.
+        resume_command: the command line that continues the run.
+    """
+
+    def __init__(self, message: str, reason: str, checkpoint: Path | None, steps: int,
+                 resume_command: str | None) -> None:
+        super().__init__(message)
+        self.reason = reason
+        self.checkpoint = checkpoint
+        self.steps = steps
+        self.resume_command = resume_command
 
 #: The critics of ``critic=``: ``"shared"`` (the actor's observation, stable-baselines3's
 #: default) or ``"privileged"`` (also the true state, :mod:`agents.privileged`).
@@ -201,6 +238,12 @@ class TrainConfig:
             raise ValueError(f"critic 'privileged' is for PPO and A2C on {GOALKEEPER_ID} "
                              f"without frame stacking, got {self.algorithm} on {self.env_id} "
                              f"with frame_stack {self.frame_stack}")
+        if self.opponent not in OPPONENTS and not (str(self.opponent).endswith(".npz")
+                                                   and Path(self.opponent).is_file()):
+            raise ValueError(f"opponent must be one of {list(OPPONENTS)} or the path of a "
+                             f"numpy policy file (.npz), got {self.opponent!r}"
+                             + ("" if not str(self.opponent).endswith(".npz") else
+                                " (no such file)"))
         if self.algorithm == "RECURRENTPPO" and self.env_id == MATCH_ID and \
                 self.opponent == "self":
             raise ValueError("opponent 'self' takes feed-forward learners only: a recurrent "
@@ -415,36 +458,86 @@ def _meta(cfg: TrainConfig, evaluation: dict[str, Any] | None = None) -> dict[st
 # Training
 # ------------------------------------------------------------------------------------------
 
+def run_folder(checkpoint: str | os.PathLike) -> Path:
+    """The run folder a saved model belongs to: its folder, or the one above for a model in
+    ``checkpoints/``."""
+    path = Path(checkpoint)
+    return path.parent.parent if path.parent.name == "checkpoints" else path.parent
+
+
+def run_files(folder: str | os.PathLike) -> list[str]:
+    """The names of :data:`RUN_FILES` present in ``folder`` (empty: it holds no run)."""
+    folder = Path(folder)
+    return [name for name in RUN_FILES if (folder / name).exists()]
+
+
 def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
-          command: list[str] | None = None) -> dict[str, Any]:
+          command: list[str] | None = None, overwrite: bool = False) -> dict[str, Any]:
     """Train as ``cfg`` says (continuing from the checkpoint ``resume`` if given) and write the
-    run folder. Returns the summary. Raises ``ValueError`` when ``resume`` has already
-    trained ``cfg.total_steps`` steps or more (``total_steps`` includes its steps)."""
+    run folder ``cfg.out``. Returns the summary.
+
+    Nothing is written until the configuration, the environments and the algorithm with its
+    hyperparameters have been built; before that :class:`RunRefused` is raised when
+    ``resume`` has already trained ``cfg.total_steps`` steps or more (``total_steps``
+    includes its steps), when ``cfg.out`` holds another run (:func:`run_files`) and
+    ``overwrite`` is false (with ``overwrite`` its run files are deleted first; continuing
+    a run in its own folder, ``resume`` inside ``cfg.out``, needs no ``overwrite``), or when
+    the algorithm refuses the hyperparameters.
+
+    Ctrl-C, or a rollout worker that dies or whose environment raises, ends training with
+    :class:`TrainingStopped` after saving the model of the last completed update in
+    ``cfg.out/checkpoints/`` (its message has the ``--resume`` command)."""
     import torch
 
+    out = Path(cfg.out)
+    continuing = resume is not None and run_folder(resume).resolve() == out.resolve()
+    existing = [] if continuing else run_files(out)
+    if existing and not overwrite:
+        raise RunRefused(f"out {os.fspath(out)} already holds a training run "
+                         f"({', '.join(existing)}); choose another folder, or overwrite "
+                         "it (--force; its run files are deleted first)")
     if resume is not None:
         done = checkpoint_steps(resume)
         if cfg.total_steps <= done:
-            raise ValueError(f"total_steps {cfg.total_steps:,} leaves nothing to train: the "
+            raise RunRefused(f"total_steps {cfg.total_steps:,} leaves nothing to train: the "
                              f"checkpoint {os.fspath(resume)} has trained {done:,} steps and "
                              "total_steps counts them too")
     check_env_kwargs(cfg)
-    out = Path(cfg.out)
-    out.mkdir(parents=True, exist_ok=True)
     torch.set_num_threads(cfg.torch_threads)
     action_map = _action_map(cfg)
+    venv, params = _training_env(cfg, resume)
+    try:
+        model, done_steps = _model(cfg, venv, params, resume, out)
+    except Exception as err:
+        venv.close()
+        raise RunRefused(f"{cfg.algorithm} could not be built with hyperparameters "
+                         f"{params}: {type(err).__name__}: {err}") from err
+    for name in existing:  # overwrite: this run's files only, nothing else in the folder
+        path = out / name
+        if path.is_dir():
+            shutil.rmtree(path)
+        else:
+            path.unlink()
+    out.mkdir(parents=True, exist_ok=True)
     (out / "config.json").write_text(json.dumps({
         **cfg.to_dict(), "action_map": action_map, "command": command,
         "resumed_from": None if resume is None else os.fspath(resume),
         "versions": _versions()}, indent=2))
-    venv, params = _training_env(cfg, resume)
-    model, done_steps = _model(cfg, venv, params, resume, out)
     callbacks, timer, evaluator = _callbacks(cfg, out, action_map)
+    last_update = _last_update()
     remaining = max(0, cfg.total_steps - done_steps)
     t0 = time.perf_counter()
     try:
-        model.learn(remaining, callback=callbacks, progress_bar=cfg.progress_bar,
-                    reset_num_timesteps=resume is None, tb_log_name=cfg.algorithm)
+        model.learn(remaining, callback=[*callbacks, last_update],
+                    progress_bar=cfg.progress_bar, reset_num_timesteps=resume is None,
+                    tb_log_name=cfg.algorithm)
+    except BaseException as err:
+        from agents.vec_env import WorkerError
+
+        if not isinstance(err, (KeyboardInterrupt, WorkerError)):
+            raise
+        stopped = _stop(cfg, model, out, last_update, done_steps, err)
+        raise stopped from err
     finally:
         venv.close()
     seconds = time.perf_counter() - t0
@@ -460,6 +553,71 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
     }
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
     return summary
+
+
+def _last_update() -> Any:
+    """A stable-baselines3 callback that keeps a copy of the model's parameters (networks and
+    optimisers) and observation statistics as they are when each rollout starts, i.e. after
+    the last completed update, so that an interrupted run saves a consistent model rather
+    than one caught in the middle of a gradient step."""
+    import copy
+
+    from stable_baselines3.common.callbacks import BaseCallback
+
+    class LastUpdate(BaseCallback):
+        def __init__(self) -> None:
+            super().__init__()
+            self.steps: int | None = None
+            self.params: dict[str, Any] | None = None
+            self.norm: tuple[Any, Any] | None = None
+
+        def _on_rollout_start(self) -> None:
+            self.steps = int(self.model.num_timesteps)
+            self.params = copy.deepcopy(self.model.get_parameters())
+            norm = self.model.get_vec_normalize_env()
+            self.norm = None if norm is None else copy.deepcopy((norm.obs_rms, norm.ret_rms))
+
+        def _on_step(self) -> bool:
+            return True
+
+        def restore(self) -> int | None:
+            """Put the copy back into the model; returns its step count (None: no rollout
+            had started)."""
+            if self.params is None:
+                return None
+            self.model.set_parameters(self.params, exact_match=True)
+            self.model.num_timesteps = self.steps
+            norm = self.model.get_vec_normalize_env()
+            if norm is not None and self.norm is not None:
+                norm.obs_rms, norm.ret_rms = self.norm
+            return self.steps
+
+    return LastUpdate()
+
+
+def _stop(cfg: TrainConfig, model: Any, out: Path, last_update: Any, done_steps: int,
+          err: BaseException) -> TrainingStopped:
+    """Save the model of the last completed update as a checkpoint of the run (where
+    ``--resume`` finds it) and describe how the run ended and how to continue it."""
+    from agents.policies import vecnormalize_path
+
+    reason = "interrupted" if isinstance(err, KeyboardInterrupt) else "worker failed"
+    what = "interrupted" if reason == "interrupted" else f"stopped: {err}"
+    steps = last_update.restore()
+    if steps is None or steps <= done_steps:
+        return TrainingStopped(f"training {what}\nnothing trained since the start, so no "
+                               "checkpoint was saved", reason, None, done_steps, None)
+    folder = out / "checkpoints"
+    folder.mkdir(parents=True, exist_ok=True)
+    checkpoint = folder / f"model_{steps}_steps.zip"
+    model.save(checkpoint)
+    norm = model.get_vec_normalize_env()
+    if norm is not None:
+        norm.save(vecnormalize_path(checkpoint))
+    command = (f"soccer-env train --resume {checkpoint} --steps {cfg.total_steps}")
+    return TrainingStopped(f"training {what}\nsaved the model of the last completed update "
+                           f"({steps:,} steps) to {checkpoint}\ncontinue with: {command}",
+                           reason, checkpoint, steps, command)
 
 
 def _training_env(cfg: TrainConfig, resume: str | os.PathLike | None

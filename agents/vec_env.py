@@ -15,12 +15,21 @@ large infos dominate. :class:`WorkerVecEnv` instead
 * follows stable-baselines3's VecEnv contract otherwise: automatic reset with
   ``infos[i]["terminal_observation"]`` and ``infos[i]["TimeLimit.truncated"]``, ``seed()``
   before ``reset()``, ``get_attr``, ``set_attr``, ``env_method``, ``env_is_wrapped``,
-  ``get_images``.
+  ``get_images``;
+* fails fast: a worker whose environment raises sends the traceback and stops, a worker that
+  dies (killed, out of memory) is noticed within :data:`POLL_SECONDS`, and either way the call
+  raises :class:`WorkerError` naming the worker, its environments and the traceback or the
+  signal, after stopping the other workers (stable-baselines3's ``SubprocVecEnv`` waits
+  forever on a dead worker's pipe). Workers ignore Ctrl-C (``SIGINT``): the parent handles the
+  interrupt and closes them, so that an interrupt to the process group prints one traceback,
+  not one per process.
 """
 
 from __future__ import annotations
 
 import multiprocessing as mp
+import signal
+import traceback
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -34,7 +43,35 @@ from stable_baselines3.common.vec_env.base_vec_env import (
     VecEnvStepReturn,
 )
 
-__all__ = ["WorkerVecEnv", "DEFAULT_INFO_KEYS"]
+__all__ = ["WorkerVecEnv", "WorkerError", "DEFAULT_INFO_KEYS", "POLL_SECONDS"]
+
+#: How often a waiting parent checks that the worker it waits on is still alive (seconds).
+POLL_SECONDS = 0.5
+#: How long ``close()`` waits for a worker to finish before terminating it (seconds).
+CLOSE_SECONDS = 5.0
+
+#: The tags of a worker's replies.
+_OK, _ERROR = "ok", "error"
+
+
+class WorkerError(RuntimeError):
+    """A rollout worker of :class:`WorkerVecEnv` died or its environment raised.
+
+    Attributes:
+        worker: the worker's index.
+        environments: the global indices of the environments it stepped.
+        exitcode: the process's exit code (negative: the signal that killed it), None while
+            it ran on.
+        remote_traceback: the environment's traceback, when one raised.
+    """
+
+    def __init__(self, message: str, worker: int, environments: range,
+                 exitcode: int | None = None, remote_traceback: str | None = None) -> None:
+        super().__init__(message)
+        self.worker = worker
+        self.environments = environments
+        self.exitcode = exitcode
+        self.remote_traceback = remote_traceback
 
 #: Info keys passed from the workers: Monitor's episode statistics, SB3's reset bookkeeping,
 #: and the Goalkeeper's episode result (``is_success`` feeds SB3's success-rate log).
@@ -59,11 +96,38 @@ def _concatenate(blocks: list) -> Any:
 
 def _worker(remote: Any, parent: Any, fns: CloudpickleWrapper, info_keys: tuple | None
             ) -> None:
-    """Serve commands for a block of environments until told to close."""
+    """Serve commands for a block of environments until told to close. Every reply is
+    ``(_OK, result)``, or ``(_ERROR, (local environment index or None, traceback))`` after
+    which the worker stops (its environments may be left in any state)."""
+    # Ctrl-C reaches the whole process group: the parent handles it and closes the workers.
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    parent.close()
+    current: list[int | None] = [None]  # the environment being built or stepped
+    try:
+        envs = []
+        for i, fn in enumerate(fns.var):
+            current[0] = i
+            envs.append(fn())
+        current[0] = None
+        _serve(remote, envs, info_keys, current)
+    except (EOFError, BrokenPipeError, ConnectionResetError):
+        pass  # the parent has gone: nothing to report to
+    except BaseException:
+        try:
+            remote.send((_ERROR, (current[0], traceback.format_exc())))
+        except (BrokenPipeError, ConnectionResetError, OSError):
+            pass
+    finally:
+        remote.close()
+
+
+def _serve(remote: Any, envs: list[gym.Env], info_keys: tuple | None,
+           current: list[int | None]) -> None:
+    """The command loop of :func:`_worker`; returns on ``close`` or when the parent's end of
+    the pipe closes, raises what an environment raises (with ``current[0]`` the index of the
+    environment it came from, None when not from one)."""
     from stable_baselines3.common.env_util import is_wrapped
 
-    parent.close()
-    envs = [fn() for fn in fns.var]
     keep = None if info_keys is None else frozenset(info_keys)
 
     def trim(info: dict) -> dict:
@@ -73,10 +137,11 @@ def _worker(remote: Any, parent: Any, fns: CloudpickleWrapper, info_keys: tuple 
         try:
             cmd, data = remote.recv()
         except EOFError:
-            break
+            return
         if cmd == "step":
             obs_out, rewards, dones, infos, reset_infos = [], [], [], [], []
-            for env, action in zip(envs, data):
+            for i, (env, action) in enumerate(zip(envs, data)):
+                current[0] = i
                 obs, reward, term, trunc, info = env.step(action)
                 done = term or trunc
                 info = trim(info)
@@ -91,47 +156,50 @@ def _worker(remote: Any, parent: Any, fns: CloudpickleWrapper, info_keys: tuple 
                 dones.append(done)
                 infos.append(info)
                 reset_infos.append(reset_info)
-            remote.send((_stack(obs_out), rewards, dones, infos, reset_infos))
+            current[0] = None
+            result: Any = (_stack(obs_out), rewards, dones, infos, reset_infos)
         elif cmd == "reset":
             obs_out, reset_infos = [], []
-            for env, (seed, options) in zip(envs, data):
+            for i, (env, (seed, options)) in enumerate(zip(envs, data)):
+                current[0] = i
                 obs, info = env.reset(seed=seed, **({"options": options} if options else {}))
                 obs_out.append(obs)
                 reset_infos.append(trim(info))
-            remote.send((_stack(obs_out), reset_infos))
+            current[0] = None
+            result = (_stack(obs_out), reset_infos)
         elif cmd == "render":
-            remote.send([env.render() for env in envs])
+            result = [env.render() for env in envs]
         elif cmd == "get_spaces":
-            remote.send((envs[0].observation_space, envs[0].action_space,
-                         envs[0].get_wrapper_attr("render_mode")))
+            result = (envs[0].observation_space, envs[0].action_space,
+                      envs[0].get_wrapper_attr("render_mode"))
         elif cmd == "env_method":
             idx, name, args, kwargs = data
-            remote.send([envs[i].get_wrapper_attr(name)(*args, **kwargs) for i in idx])
+            result = [envs[i].get_wrapper_attr(name)(*args, **kwargs) for i in idx]
         elif cmd == "get_attr":
             idx, name = data
-            remote.send([envs[i].get_wrapper_attr(name) for i in idx])
+            result = [envs[i].get_wrapper_attr(name) for i in idx]
         elif cmd == "has_attr":
             try:
                 for env in envs:
                     env.get_wrapper_attr(data)
-                remote.send(True)
+                result = True
             except AttributeError:
-                remote.send(False)
+                result = False
         elif cmd == "set_attr":
             idx, name, value = data
             for i in idx:
                 setattr(envs[i], name, value)
-            remote.send(None)
+            result = None
         elif cmd == "is_wrapped":
             idx, cls = data
-            remote.send([is_wrapped(envs[i], cls) for i in idx])
+            result = [is_wrapped(envs[i], cls) for i in idx]
         elif cmd == "close":
             for env in envs:
                 env.close()
-            remote.close()
-            break
+            return
         else:  # pragma: no cover - programming error
             raise ValueError(f"unknown command {cmd!r}")
+        remote.send((_OK, result))
 
 
 class WorkerVecEnv(VecEnv):
@@ -176,19 +244,89 @@ class WorkerVecEnv(VecEnv):
         self.waiting = False
         self.closed = False
         self.remotes[0].send(("get_spaces", None))
-        obs_space, act_space, render_mode = self.remotes[0].recv()
+        obs_space, act_space, render_mode = self._recv(0)
         super().__init__(n, obs_space, act_space)
         self.render_mode = render_mode
 
     # -- stepping ---------------------------------------------------------------------------
 
+    # -- talking to the workers ---------------------------------------------------------------
+
+    def _send(self, w: int, message: tuple) -> None:
+        """Send ``message`` to worker ``w``; a worker that has gone raises
+        :class:`WorkerError`."""
+        if self.closed:
+            raise RuntimeError("this WorkerVecEnv is closed")
+        try:
+            self.remotes[w].send(message)
+        except (BrokenPipeError, ConnectionResetError, OSError):
+            self._fail(w, None)
+
+    def _recv(self, w: int) -> Any:
+        """Worker ``w``'s reply, checking every :data:`POLL_SECONDS` that it is alive; a
+        worker that died or whose environment raised raises :class:`WorkerError`."""
+        remote, proc = self.remotes[w], self.processes[w]
+        while not remote.poll(POLL_SECONDS):
+            if not proc.is_alive() and not remote.poll(0):
+                self._fail(w, None)
+        try:
+            tag, payload = remote.recv()
+        except (EOFError, ConnectionResetError, OSError):
+            self._fail(w, None)
+        if tag == _ERROR:
+            self._fail(w, payload)
+        return payload
+
+    def _fail(self, w: int, error: tuple[int | None, str] | None) -> None:
+        """Stop every worker and raise :class:`WorkerError` for worker ``w`` (``error``: the
+        local index of the environment that raised, or None, and the traceback; None when
+        the worker died)."""
+        proc = self.processes[w]
+        proc.join(timeout=1.0)
+        code = proc.exitcode
+        self._terminate()
+        blk = self._blocks[w]
+        where = (f"rollout worker {w} (pid {proc.pid}, environments {blk.start}-"
+                 f"{blk.stop - 1})")
+        remote_traceback = None
+        if error is not None:
+            local, remote_traceback = error
+            env = "an environment" if local is None else f"environment {blk.start + local}"
+            message = f"{where}: {env} raised\n{remote_traceback.rstrip()}"
+        elif code is not None and code < 0:
+            try:
+                name = signal.Signals(-code).name
+            except ValueError:
+                name = f"signal {-code}"
+            message = f"{where} died: killed by {name}"
+        else:
+            message = f"{where} died (exit code {code})"
+        raise WorkerError(message, w, blk, code, remote_traceback)
+
+    def _terminate(self) -> None:
+        """End every worker now (after a failure): no replies are awaited."""
+        for proc in self.processes:
+            if proc.is_alive():
+                proc.terminate()
+        for proc in self.processes:
+            proc.join(timeout=1.0)
+            if proc.is_alive():
+                proc.kill()
+                proc.join()
+        for remote in self.remotes:
+            remote.close()
+        self.waiting = False
+        self.closed = True
+
+    # -- stepping ---------------------------------------------------------------------------
+
     def step_async(self, actions: np.ndarray) -> None:
-        for remote, blk in zip(self.remotes, self._blocks):
-            remote.send(("step", actions[blk.start:blk.stop]))
+        for w, blk in enumerate(self._blocks):
+            self._send(w, ("step", actions[blk.start:blk.stop]))
         self.waiting = True
 
     def step_wait(self) -> VecEnvStepReturn:
-        results = [remote.recv() for remote in self.remotes]
+        results = [self._recv(w) for w in range(len(self.remotes))]
         self.waiting = False
         obs = _concatenate([r[0] for r in results])
         rewards = np.array([x for r in results for x in r[1]], dtype=np.float32)
@@ -198,32 +336,35 @@ class WorkerVecEnv(VecEnv):
         return obs, rewards, dones, infos
 
     def reset(self) -> VecEnvObs:
-        for remote, blk in zip(self.remotes, self._blocks):
-            remote.send(("reset", [(self._seeds[i], self._options[i]) for i in blk]))
-        results = [remote.recv() for remote in self.remotes]
+        for w, blk in enumerate(self._blocks):
+            self._send(w, ("reset", [(self._seeds[i], self._options[i]) for i in blk]))
+        results = [self._recv(w) for w in range(len(self.remotes))]
         self.reset_infos = [x for r in results for x in r[1]]
         self._reset_seeds()
         self._reset_options()
         return _concatenate([r[0] for r in results])
 
     def close(self) -> None:
+        """Close the environments and end the workers: each gets :data:`CLOSE_SECONDS` to
+        finish a pending step and close, then is terminated. Never raises for a worker that
+        has died (the failure was raised where it was noticed)."""
         if self.closed:
             return
-        if self.waiting:
-            for remote in self.remotes:
-                remote.recv()
-        for remote in self.remotes:
-            remote.send(("close", None))
+        for remote, proc in zip(self.remotes, self.processes):
+            try:
+                if self.waiting and proc.is_alive() and remote.poll(CLOSE_SECONDS):
+                    remote.recv()
+                remote.send(("close", None))
+            except (EOFError, BrokenPipeError, ConnectionResetError, OSError):
+                pass
         for proc in self.processes:
-            proc.join()
-        for remote in self.remotes:
-            remote.close()
-        self.closed = True
+            proc.join(timeout=CLOSE_SECONDS)
+        self._terminate()
 
     def get_images(self) -> Sequence[np.ndarray | None]:
-        for remote in self.remotes:
-            remote.send(("render", None))
-        return [img for remote in self.remotes for img in remote.recv()]
+        for w in range(len(self.remotes)):
+            self._send(w, ("render", None))
+        return [img for w in range(len(self.remotes)) for img in self._recv(w)]
 
     # -- attributes and methods -------------------------------------------------------------
 
@@ -242,14 +383,14 @@ class WorkerVecEnv(VecEnv):
         ``indices``."""
         where, parts = self._by_worker(indices)
         for w, local in parts.items():
-            self.remotes[w].send((cmd, (local, *payload)))
-        answers = {w: dict(zip(local, self.remotes[w].recv())) for w, local in parts.items()}
+            self._send(w, (cmd, (local, *payload)))
+        answers = {w: dict(zip(local, self._recv(w))) for w, local in parts.items()}
         return [answers[w][local] for w, local in where]
 
     def has_attr(self, attr_name: str) -> bool:
-        for remote in self.remotes:
-            remote.send(("has_attr", attr_name))
-        return all([remote.recv() for remote in self.remotes])
+        for w in range(len(self.remotes)):
+            self._send(w, ("has_attr", attr_name))
+        return all([self._recv(w) for w in range(len(self.remotes))])
 
     def get_attr(self, attr_name: str, indices: VecEnvIndices = None) -> list[Any]:
         return self._ask("get_attr", indices, attr_name)
@@ -257,9 +398,9 @@ class WorkerVecEnv(VecEnv):
     def set_attr(self, attr_name: str, value: Any, indices: VecEnvIndices = None) -> None:
         _, parts = self._by_worker(indices)
         for w, local in parts.items():
-            self.remotes[w].send(("set_attr", (local, attr_name, value)))
+            self._send(w, ("set_attr", (local, attr_name, value)))
         for w in parts:
-            self.remotes[w].recv()
+            self._recv(w)
 
     def env_method(self, method_name: str, *method_args: Any, indices: VecEnvIndices = None,
                    **method_kwargs: Any) -> list[Any]:

@@ -126,7 +126,9 @@ def main(argv: list[str] | None = None) -> int:
             print(shlex.join(evaluate))
             continue
         if not (run / "summary.json").exists():
-            subprocess.run(_runnable(train), check=True)
+            # A run that did not finish (no summary) is started again from scratch.
+            again = ["--force"] if run.exists() else []
+            subprocess.run(_runnable(train + again), check=True)
         if not (run / "suite.json").exists():
             t0 = time.perf_counter()
             res = subprocess.run(_runnable(evaluate), check=True, capture_output=True, text=True)

@@ -23,3 +23,19 @@ from worlds import make_world, park  # noqa: E402
 @pytest.fixture
 def world():
     return park(make_world())
+
+
+@pytest.fixture
+def no_hang():
+    """Fail a test that runs over 120 s (with a TimeoutError where it is stuck) instead of
+    hanging the suite: for the tests of faults, whose failure mode is a hang."""
+    import signal
+
+    def expired(*_):
+        raise TimeoutError("the test hung for 120 s")
+
+    old = signal.signal(signal.SIGALRM, expired)
+    signal.alarm(120)
+    yield
+    signal.alarm(0)
+    signal.signal(signal.SIGALRM, old)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -19,9 +20,13 @@ from agents.policies import algorithm_name
 from agents.training import (
     CRITICS,
     MATCH_ID,
+    OPPONENTS,
+    RunRefused,
     TrainConfig,
+    TrainingStopped,
     check_env_kwargs,
     checkpoint_steps,
+    run_folder,
     train,
 )
 from agents.wrappers import ACTION_MAPS
@@ -87,7 +92,14 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--workers", type=int, default=None,
                    help="subprocesses stepping them (2; 0 runs them in this process)")
     p.add_argument("--seed", type=int, default=None)
-    p.add_argument("--out", default=None, help="run folder (default runs/keeper)")
+    p.add_argument("--out", default=None,
+                   help="run folder (default runs/keeper; with --resume, the folder of the "
+                        "run it resumes); one that holds another run is refused unless "
+                        "--force")
+    p.add_argument("--force", action="store_true",
+                   help="train into an --out that holds another run, deleting that run's "
+                        "files first (config, models, policies, statistics, checkpoints/, "
+                        "tb/; nothing else)")
     p.add_argument("--hp", action="append", default=[], metavar="KEY=VALUE",
                    help="algorithm hyperparameter (JSON value), repeatable, e.g. "
                         "--hp learning_rate=1e-4 --hp policy_kwargs='{\"net_arch\": [64, 64]}' "
@@ -110,7 +122,9 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--learner", choices=("blue", "yellow", "both"), default=None,
                    help="match: learning team")
     p.add_argument("--opponent", default=None,
-                   help="match: scripted (default), idle, self (frozen copy), or a model path")
+                   help=f"match: {', '.join(OPPONENTS)} (a frozen copy of the learner, "
+                        "refreshed as it trains) or the path of a numpy policy file (.npz, "
+                        "e.g. a run's final_policy.npz; default scripted)")
     p.add_argument("--resume", default=None, metavar="CHECKPOINT",
                    help="continue from a checkpoint .zip; the rest of the configuration comes "
                         "from its run's config.json unless given here")
@@ -124,13 +138,15 @@ def _resumed_fields(p: argparse.ArgumentParser, resume: str) -> dict[str, Any]:
     ckpt = Path(resume)
     if not ckpt.is_file():
         p.error(f"--resume: no checkpoint at {ckpt}")
-    run = ckpt.parent.parent if ckpt.parent.name == "checkpoints" else ckpt.parent
+    run = run_folder(ckpt)
     if not (run / "config.json").exists():
         p.error(f"--resume: no config.json in {run}")
     saved = json.loads((run / "config.json").read_text())
     base = {k: v for k, v in saved.items()
             if k not in ("command", "resumed_from", "versions", "action_map")}
-    base.setdefault("out", str(run))
+    # The run continues where it is, never where its config.json says: a run folder received
+    # from elsewhere must not choose where files are written.
+    base["out"] = str(run)
     return base
 
 
@@ -207,6 +223,15 @@ def main(argv: list[str] | None = None) -> int:
         p.error(str(err))
     if args.resume:
         _check_resume(p, args, cfg, base)
-    summary = train(cfg, resume=args.resume, command=["soccer-env", "train", *(argv or [])])
+    try:
+        summary = train(cfg, resume=args.resume, command=["soccer-env", "train", *(argv or [])],
+                        overwrite=args.force)
+    except RunRefused as err:
+        p.error(str(err))
+    except TrainingStopped as stopped:
+        # Ctrl-C or a failed rollout worker: the message says what happened, what was saved
+        # and how to continue; no traceback (the worker's, if any, is in the message).
+        print(f"soccer-env train: {stopped}", file=sys.stderr)
+        return 130 if stopped.reason == "interrupted" else 1
     _print_summary(summary, cfg.out)
     return 0

@@ -7,7 +7,6 @@ import csv
 import json
 import os
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
@@ -31,9 +30,9 @@ def map_jobs(fn: Callable[[Any], Any], jobs: Sequence[Any], workers: int | None)
     n = min(workers or os.cpu_count() or 1, len(jobs))
     if n <= 1:
         return [fn(j) for j in jobs]
-    from agents.evaluation import process_context
+    from agents.evaluation import process_pool
 
-    with ProcessPoolExecutor(n, mp_context=process_context()) as pool:
+    with process_pool(n) as pool:
         return list(pool.map(fn, jobs))
 
 

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 pytest.importorskip("stable_baselines3")
+from faulty_envs import FailingAfter  # noqa: E402
 from stable_baselines3 import PPO  # noqa: E402
 from stable_baselines3.common.monitor import Monitor  # noqa: E402
 from stable_baselines3.common.utils import check_for_correct_spaces  # noqa: E402
@@ -105,3 +106,63 @@ def test_bad_arguments():
         WorkerVecEnv([])
     with pytest.raises(ValueError, match="n_workers"):
         WorkerVecEnv([make_keeper], n_workers=0)
+
+
+# -- faults ---------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("victim", [0, 1])
+def test_a_killed_worker_ends_the_run_naming_it(victim, no_hang):
+    """SIGKILL of either worker: the next step raises WorkerError naming the worker, its
+    environments and the signal (not a bare EOFError, not a hang), and every process ends."""
+    import os
+    import signal
+
+    from agents.vec_env import WorkerError
+
+    venv = WorkerVecEnv([make_keeper] * 4, n_workers=2)
+    venv.reset()
+    os.kill(venv.processes[victim].pid, signal.SIGKILL)
+    with pytest.raises(WorkerError, match=rf"rollout worker {victim} .*environments "
+                                          rf"{2 * victim}-{2 * victim + 1}.* SIGKILL") as err:
+        for _ in range(5):
+            venv.step(np.zeros((4, 6), np.float32))
+    assert err.value.worker == victim and err.value.exitcode == -signal.SIGKILL
+    venv.close()  # after a failure: returns, does not wait on anyone
+    assert not any(p.is_alive() for p in venv.processes)
+
+
+def test_an_environment_error_in_a_later_worker_carries_its_traceback(no_hang):
+    """An exception inside an environment of worker 1 (not the first) ends the step with a
+    WorkerError holding the environment's traceback; close() does not hang on worker 0."""
+    from agents.vec_env import WorkerError
+
+    fns = [make_keeper, make_keeper, make_keeper, FailingAfter(make_keeper, after=3)]
+    venv = WorkerVecEnv(fns, n_workers=2)
+    venv.reset()
+    for _ in range(3):
+        venv.step(np.zeros((4, 6), np.float32))
+    with pytest.raises(WorkerError, match=r"(?s)rollout worker 1 .*environment 3 raised.*the "
+                                          "field's lights went out") as err:
+        venv.step(np.zeros((4, 6), np.float32))
+    assert "RuntimeError" in err.value.remote_traceback
+    venv.close()
+    assert not any(p.is_alive() for p in venv.processes)
+    with pytest.raises(RuntimeError, match="closed"):
+        venv.step(np.zeros((4, 6), np.float32))
+
+
+def test_workers_leave_ctrl_c_to_the_parent(no_hang):
+    """Ctrl-C reaches every process of the group: the workers ignore it (the parent handles
+    the interrupt and closes them), so they answer the next step."""
+    import os
+    import signal
+
+    venv = WorkerVecEnv([make_keeper] * 2, n_workers=2)
+    try:
+        venv.reset()
+        for proc in venv.processes:
+            os.kill(proc.pid, signal.SIGINT)
+        obs, *_ = venv.step(np.zeros((2, 6), np.float32))
+        assert obs.shape[0] == 2 and all(p.is_alive() for p in venv.processes)
+    finally:
+        venv.close()
