@@ -384,7 +384,8 @@ def _merge(parts: Sequence[EvalResult], policy: str) -> EvalResult:
         seconds=sum(p.seconds for p in parts), saved=saved)
 
 
-def _resolve_policy(policy: Any, env_id: str, env_kwargs: Mapping[str, Any]) -> Any:
+def _resolve_policy(policy: Any, env_id: str, env_kwargs: Mapping[str, Any],
+                    trust: bool = False) -> Any:
     """Resolve the policy once here, so that a bad reference fails before any work starts.
     Returns what the jobs get: the reference itself, or for a saved stable-baselines3 model
     (``.zip`` or run folder) the loaded policy (its numpy copy pickles cheaply, where loading
@@ -395,7 +396,7 @@ def _resolve_policy(policy: Any, env_id: str, env_kwargs: Mapping[str, Any]) -> 
 
     env = gym.make(env_id, **env_kwargs)
     try:
-        resolved = make_policy(policy, env)
+        resolved = make_policy(policy, env, trust=trust)
     finally:
         env.close()
     if isinstance(policy, (str, os.PathLike)) and (
@@ -410,7 +411,7 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
                  workers: int | None = None, chunk_size: int = DEFAULT_CHUNK_SIZE,
                  env_kwargs: Mapping[str, Any] | None = None, env_id: str = GOALKEEPER_ID,
                  progress: Callable[[int, int], None] | None = None,
-                 robot: str = "ssl") -> AblationResult:
+                 robot: str = "ssl", trust: bool = False) -> AblationResult:
     """Evaluate ``policy`` on the same seeded shots for every configuration and preset.
 
     Args:
@@ -431,6 +432,8 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
         env_id: the environment (Goalkeeper-v0).
         progress: called as ``progress(jobs_done, jobs_total)`` after each job.
         robot: ``"ssl"`` or ``"humanoid"`` (the keeper, its configurations and presets).
+        trust: load a stable-baselines3 file's pickled entries (see
+            :mod:`agents.model_files`; only for files from a source you trust).
 
     Raises:
         ValueError: unknown preset or configuration names, ``episodes``, ``workers`` or
@@ -448,7 +451,8 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
                          "preset")
     start_seed = int(start_seed)
     job_policy = _resolve_policy(policy, env_id,
-                                 specs[config_names[0]].make_env_kwargs(preset_names[0], base))
+                                 specs[config_names[0]].make_env_kwargs(preset_names[0], base),
+                                 trust)
 
     t0 = time.perf_counter()
     keys, jobs = [], []

@@ -156,7 +156,7 @@ def _run_episodes(args: tuple) -> dict[str, Any]:
 def evaluate(policy: str | os.PathLike | Callable = "scripted",
              env_kwargs: Mapping[str, Any] | None = None, episodes: int = 1000,
              start_seed: int = 0, workers: int = 1, measure_estimator: bool = False,
-             env_id: str = GOALKEEPER_ID) -> EvalResult:
+             env_id: str = GOALKEEPER_ID, trust: bool = False) -> EvalResult:
     """Run ``policy`` on ``episodes`` seeded episodes of ``env_id`` (Goalkeeper-v0 by default).
 
     Args:
@@ -170,6 +170,8 @@ def evaluate(policy: str | os.PathLike | Callable = "scripted",
         episodes: number of shots; seeds ``start_seed`` onwards.
         workers: processes to spread the episodes over (the result does not depend on it).
         measure_estimator: time the perception's filters (adds a little overhead).
+        trust: load a stable-baselines3 file's pickled entries (see
+            :mod:`agents.model_files`; only for files from a source you trust).
     """
     if int(episodes) < 1:
         raise ValueError(f"episodes must be >= 1, got {episodes!r}")
@@ -179,13 +181,15 @@ def evaluate(policy: str | os.PathLike | Callable = "scripted",
     seeds = list(range(int(start_seed), int(start_seed) + int(episodes)))
     workers = min(int(workers), len(seeds))
     name = _describe(policy)
-    if workers > 1 and isinstance(policy, (str, os.PathLike)) and (
+    if isinstance(policy, (str, os.PathLike)) and (
             os.fspath(policy).endswith(".zip") or Path(policy).is_dir()):
         # Load a saved model once here (its numpy copy pickles cheaply) rather than import
-        # torch and load it again in every worker.
+        # torch and load it again in every worker; the workers never open the file.
         probe = gym.make(env_id, **env_kwargs)
-        policy = make_policy(policy, probe)
-        probe.close()
+        try:
+            policy = make_policy(policy, probe, trust=trust)
+        finally:
+            probe.close()
     chunks = [seeds[i::workers] for i in range(workers)]
     jobs = [(policy, env_id, env_kwargs, c, measure_estimator) for c in chunks]
     if workers > 1:
@@ -262,14 +266,15 @@ def _describe(policy: Any) -> str:
 
 def record_video(policy: str | os.PathLike | Callable, path: str | os.PathLike,
                  env_kwargs: Mapping[str, Any] | None = None, seeds: Sequence[int] = (0, 1, 2),
-                 env_id: str = GOALKEEPER_ID, width: int = 640) -> Path:
+                 env_id: str = GOALKEEPER_ID, width: int = 640, trust: bool = False) -> Path:
     """Render the episodes ``seeds`` (rgb_array, the belief drawn over the truth) to ``path``
-    (``.mp4``; a ``.gif`` beside it if no ffmpeg is available). Returns the file written."""
+    (``.mp4``; a ``.gif`` beside it if no ffmpeg is available). Returns the file written.
+    ``trust``: as for :func:`evaluate`."""
     from soccer_env.render.video import write_video
 
     kwargs = {**dict(env_kwargs or {}), "render_mode": "rgb_array", "render_width": width}
     env = gym.make(env_id, **kwargs)
-    pol = make_policy(policy, env)
+    pol = make_policy(policy, env, trust=trust)
     frames = []
     for seed in seeds:
         obs, _ = env.reset(seed=int(seed))

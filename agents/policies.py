@@ -31,6 +31,7 @@ is one), as :func:`~agents.evaluation.evaluate` and
 from __future__ import annotations
 
 import json
+import math
 import os
 from collections.abc import Callable
 from pathlib import Path
@@ -39,7 +40,8 @@ from typing import Any, Protocol
 import numpy as np
 
 __all__ = ["Policy", "NumpyPolicy", "NumpyRecurrentPolicy", "SB3Policy", "IdlePolicy",
-           "make_policy", "load_sb3", "reset_policy", "vecnormalize_path", "algorithm_name",
+           "make_policy", "load_sb3", "reset_policy", "vecnormalize_path", "load_vecnormalize",
+           "learner_spaces", "algorithm_name",
            "algorithm_class", "SB3_ALGORITHMS", "POLICY_NAMES"]
 
 #: Algorithms that :func:`load_sb3` opens and training runs (canonical spellings, see
@@ -194,6 +196,10 @@ class NumpyPolicy:
         linear = [layer for layer in self.layers if layer[0] == "linear"]
         if not linear:
             raise ValueError("a NumpyPolicy needs at least one linear layer")
+        _check_layers(self.layers)
+        for name, value in (("low", self.low), ("high", self.high)):
+            if not np.all(np.isfinite(value)):
+                raise ValueError(f"{name} must be finite, got {value}")
         self.input_size = self._input_size(linear)
         if self.input_size % self.frame_stack:
             raise ValueError(f"the network's input size {self.input_size} is not a multiple of "
@@ -211,6 +217,10 @@ class NumpyPolicy:
             mean, var, clip, eps = self.normalize
             if mean.shape != (self.input_size,) or var.shape != (self.input_size,):
                 raise ValueError(f"normalize mean and var must have shape ({self.input_size},)")
+            if not (np.all(np.isfinite(mean)) and np.all(np.isfinite(var)) and np.all(var >= 0)
+                    and math.isfinite(clip) and clip > 0 and math.isfinite(eps) and eps >= 0):
+                raise ValueError("normalize needs a finite mean, a finite variance >= 0, a "
+                                 "finite clip > 0 and a finite epsilon >= 0")
             self._shift, self._scale = mean, 1.0 / np.sqrt(var + eps)
         # Transposed weights for row-vector products.
         self._ops = [(k, rest[0].T.copy(), rest[1]) if k == "linear" else (k, *rest)
@@ -380,7 +390,23 @@ class NumpyPolicy:
     @classmethod
     def load(cls, path: str | os.PathLike) -> NumpyPolicy:
         """Read a policy written by :meth:`save` (a :class:`NumpyRecurrentPolicy` for a
-        recurrent one)."""
+        recurrent one): arrays and JSON only, nothing unpickled, every array's size checked
+        from its header before it is read (:func:`agents.model_files.check_npz`). Raises
+        ``ValueError`` naming the file for a damaged, foreign or inconsistent one."""
+        from agents.model_files import UnsafeFileError, check_npz
+
+        check_npz(path)
+        try:
+            return cls._load(path)
+        except UnsafeFileError:
+            raise
+        except (KeyError, IndexError, TypeError, ValueError, AttributeError,
+                json.JSONDecodeError) as err:
+            raise ValueError(f"{os.fspath(path)} is not a policy written by NumpyPolicy.save "
+                             f"({type(err).__name__}: {err})") from None
+
+    @classmethod
+    def _load(cls, path: str | os.PathLike) -> NumpyPolicy:
         with np.load(path, allow_pickle=False) as data:
             header = json.loads(str(data["header"]))
             layers: list[tuple] = []
@@ -440,6 +466,8 @@ class NumpyRecurrentPolicy(NumpyPolicy):
             raise ValueError(f"a recurrent policy takes frame_stack 1 (its LSTM is the memory), "
                              f"got {frame_stack!r}")
         self.lstm = [tuple(np.array(a, dtype=np.float32) for a in cell) for cell in lstm]
+        if not all(np.all(np.isfinite(a)) for cell in self.lstm for a in cell):
+            raise ValueError("the LSTM holds non-finite numbers")
         hidden = self.lstm[0][1].shape[1]
         size = self.lstm[0][0].shape[1]
         for k, (w_ih, w_hh, b_ih, b_hh) in enumerate(self.lstm):
@@ -545,6 +573,33 @@ class NumpyRecurrentPolicy(NumpyPolicy):
                 arrays[f"lstm_{part}{k}"] = a
 
 
+#: The layer kinds of a :class:`NumpyPolicy` and the arguments each takes.
+_LAYER_KINDS = {"linear": 2, "tanh": 0, "relu": 0, "hardtanh": 2}
+
+
+def _check_layers(layers: list[tuple]) -> None:
+    """Refuse layers that would fail or give NaN only when called: unknown kinds, weights
+    that are not 2-D with a bias of their output size, consecutive linear layers whose sizes
+    do not chain, non-finite numbers."""
+    previous = None
+    for i, (kind, *args) in enumerate(layers):
+        if _LAYER_KINDS.get(kind) != len(args):
+            raise ValueError(f"layer {i}: unknown kind {kind!r} with {len(args)} argument(s); "
+                             f"known: {_LAYER_KINDS}")
+        if not all(np.all(np.isfinite(a)) for a in args):
+            raise ValueError(f"layer {i} ({kind}) holds non-finite numbers")
+        if kind != "linear":
+            continue
+        weight, bias = args
+        if weight.ndim != 2 or bias.shape != (weight.shape[0],):
+            raise ValueError(f"layer {i}: a linear layer needs a 2-D weight and a bias of its "
+                             f"output size, got {weight.shape} and {bias.shape}")
+        if previous is not None and weight.shape[1] != previous:
+            raise ValueError(f"layer {i}: takes {weight.shape[1]} inputs, the layer before "
+                             f"gives {previous}")
+        previous = weight.shape[0]
+
+
 def _numpy_layers(mods: list[Any], name: str) -> list[tuple]:
     """The :class:`NumpyPolicy` layers of the torch modules ``mods`` (of a ``name`` model)."""
     from torch import nn
@@ -610,38 +665,131 @@ class SB3Policy:
         return action
 
 
-def load_sb3(path: str | os.PathLike, algorithm: str | None = None, **kwargs: Any) -> Any:
-    """Load a stable-baselines3 (or sb3-contrib RecurrentPPO) model. ``algorithm`` (one of
-    :data:`SB3_ALGORITHMS`, any spelling :func:`algorithm_name` takes) is read from a
-    training run's ``config.json`` beside the file when not given, otherwise each is tried in
-    turn (RecurrentPPO only where sb3-contrib is installed)."""
+def load_sb3(path: str | os.PathLike, algorithm: str | None = None, *, trust: bool = False,
+             observation_space: Any = None, action_space: Any = None, policy_class: Any = None,
+             hyperparams: dict[str, Any] | None = None, **kwargs: Any) -> Any:
+    """Load a stable-baselines3 (or sb3-contrib RecurrentPPO) model.
+
+    By default nothing in the file is unpickled (:func:`agents.model_files.load_sb3_safely`):
+    the spaces are ``observation_space`` and ``action_space``, else those of ``kwargs["env"]``,
+    else those of the training run whose ``config.json`` lies beside the file (or above
+    ``checkpoints/``); the policy class is ``policy_class``, else the run's (a privileged
+    critic's), else the algorithm's ``MlpPolicy``; schedules come from ``hyperparams``, else
+    the run's, else the defaults. With ``trust=True`` the file is loaded as stable-baselines3
+    loads it, unpickling its serialized entries: only for files from a source you trust.
+
+    ``algorithm`` (one of :data:`SB3_ALGORITHMS`, any spelling :func:`algorithm_name` takes)
+    is read from the run's ``config.json`` when not given, otherwise each is tried in turn
+    (RecurrentPPO only where sb3-contrib is installed). Raises ``FileNotFoundError``,
+    :class:`~agents.model_files.UnsafeFileError` (the file needs unpickling, or is over the
+    size limits) or ``ValueError`` (not a model of any algorithm, or not one acting in the
+    given spaces)."""
+    from agents.model_files import UnsafeFileError, _model_data, load_sb3_safely
+
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"no model at {path}")
+    run = _run_config(path)
     if algorithm is None:
-        cfg = path.parent / "config.json"
-        if cfg.exists():
-            algorithm = json.loads(cfg.read_text()).get("algorithm")
-    if algorithm is not None:
-        return algorithm_class(algorithm).load(path, device="cpu", **kwargs)
+        algorithm = run.get("algorithm")
+    if not trust:
+        _model_data(path)  # size limits and format, before anything else
+        env = kwargs.get("env")
+        if observation_space is None and env is not None:
+            observation_space, action_space = env.observation_space, env.action_space
+        if observation_space is None:
+            if not run:
+                raise UnsafeFileError(
+                    f"{path}: without the training run's config.json beside it, loading "
+                    "without unpickling needs the spaces it acts in (observation_space and "
+                    "action_space, or env); or trust=True: unpickling runs whatever code the "
+                    "file names, so only for files from a source you trust")
+            observation_space, action_space = _run_spaces(run)
+        if policy_class is None and run.get("critic") == "privileged":
+            from agents.privileged import PrivilegedActorCriticPolicy
+
+            policy_class = PrivilegedActorCriticPolicy
+        if hyperparams is None:
+            hyperparams = _run_hyperparams(run)
+    device = kwargs.pop("device", "cpu")
     errors = []
-    for name in _LOAD_ORDER:
+    for name in ([algorithm] if algorithm is not None else _LOAD_ORDER):
         try:
             algo = algorithm_class(name)
         except ImportError:
+            if algorithm is not None:
+                raise
             continue
         try:
-            return algo.load(path, device="cpu", **kwargs)
+            if trust:
+                return algo.load(path, device=device, **kwargs)
+            return load_sb3_safely(path, name, observation_space, action_space, policy_class,
+                                   hyperparams, device=device, **kwargs)
+        except UnsafeFileError:
+            raise
         except Exception as exc:  # wrong algorithm for this file: try the next
+            if algorithm is not None:
+                raise ValueError(f"{path} could not be loaded as a {algorithm_name(name)} "
+                                 f"model: {exc}") from None
             errors.append(f"{name}: {type(exc).__name__}")
     raise ValueError(f"{path} is not a model of any of {list(SB3_ALGORITHMS)} ({errors})")
 
 
-def vecnormalize_path(model_path: str | os.PathLike) -> Path:
+def _run_spaces(run: dict[str, Any]) -> tuple[Any, Any]:
+    """The observation and action spaces a training run's learner had (from its
+    ``config.json``: environment, action map, frame stack, critic)."""
+    from agents.training import MATCH_ID, goalkeeper_env_fn
+
+    env_kwargs = dict(run.get("env_kwargs") or {})
+    if run.get("env_id") == MATCH_ID:
+        from agents.multiagent import MatchVecEnv
+
+        venv = MatchVecEnv(env_kwargs, 1, run.get("learner", "blue"),
+                           None if run.get("learner") == "both" else "idle")
+    else:
+        venv = goalkeeper_env_fn(env_kwargs, run.get("actions", "native"),
+                                 int(run.get("frame_stack", 1)), run.get("critic", "shared"))()
+    try:
+        return venv.observation_space, venv.action_space
+    finally:
+        venv.close()
+
+
+def _run_hyperparams(run: dict[str, Any]) -> dict[str, Any]:
+    """A training run's hyperparameters over the algorithm's defaults (``config.json``)."""
+    from agents.training import DEFAULT_HYPERPARAMS
+
+    algorithm = run.get("algorithm")
+    defaults = DEFAULT_HYPERPARAMS.get(algorithm_name(algorithm), {}) if algorithm else {}
+    given = dict(run.get("hyperparams") or {})
+    merged = {**defaults, **given}
+    if "policy_kwargs" in defaults and "policy_kwargs" in given:
+        merged["policy_kwargs"] = {**defaults["policy_kwargs"], **given["policy_kwargs"]}
+    return merged
+
+
+def learner_spaces(env: Any, run: dict[str, Any]) -> tuple[Any, Any]:
+    """The spaces of the learner of training run ``run`` (its ``config.json``) acting in
+    ``env`` (a Goalkeeper-v0): ``env``'s, behind the run's action map, frame stack and
+    critic."""
+    from agents.wrappers import stack_frames, wrap_actions
+
+    action_map = run.get("action_map")
+    learner = wrap_actions(env, action_map["kind"]) if action_map else env
+    learner = stack_frames(learner, int(run.get("frame_stack", 1)))
+    if run.get("critic") == "privileged":
+        from agents.privileged import PrivilegedObservation
+
+        learner = PrivilegedObservation(learner)
+    return learner.observation_space, learner.action_space
+
+
+def vecnormalize_path(model_path: str | os.PathLike, suffix: str = ".npz") -> Path:
     """Where a training run keeps the ``VecNormalize`` statistics of a saved model:
-    ``final_model.zip`` -> ``final_vecnormalize.pkl`` (also ``best_``), and
-    ``model_<N>_steps.zip`` -> ``model_vecnormalize_<N>_steps.pkl`` (checkpoints, as
-    stable-baselines3's ``CheckpointCallback`` names them)."""
+    ``final_model.zip`` -> ``final_vecnormalize.npz`` (also ``best_``), and
+    ``model_<N>_steps.zip`` -> ``model_vecnormalize_<N>_steps.npz`` (checkpoints, as
+    stable-baselines3's ``CheckpointCallback`` names them). ``suffix=".pkl"``: the name of
+    the pickle stable-baselines3 itself writes (read only when trusted)."""
     path = Path(model_path)
     stem = path.stem
     if stem.endswith("_model"):
@@ -650,18 +798,37 @@ def vecnormalize_path(model_path: str | os.PathLike) -> Path:
         name = "model_vecnormalize_" + stem[len("model_"):]
     else:
         name = stem + "_vecnormalize"
-    return path.with_name(name + ".pkl")
+    return path.with_name(name + suffix)
 
 
-def _load_vecnormalize(model_path: Path) -> Any:
-    """The ``VecNormalize`` saved beside a model, if any (without its environments)."""
-    import pickle
+def load_vecnormalize(model_path: str | os.PathLike, trust: bool = False) -> Any:
+    """The normalisation statistics saved beside a model, if any: the ``.npz``
+    (:func:`~agents.model_files.read_vecnormalize`, no pickle), else with ``trust=True``
+    stable-baselines3's pickled ``.pkl`` (a ``VecNormalize`` without its environments).
+    A ``.pkl`` alone without ``trust`` raises :class:`~agents.model_files.UnsafeFileError`;
+    None when there are none."""
+    from agents.model_files import TRUST_HELP, UnsafeFileError, read_vecnormalize
 
     stats = vecnormalize_path(model_path)
-    if not stats.exists():
+    if stats.exists():
+        return read_vecnormalize(stats)
+    pickled = vecnormalize_path(model_path, ".pkl")
+    if not pickled.exists():
         return None
-    with open(stats, "rb") as fh:
-        return pickle.load(fh)
+    if not trust:
+        raise UnsafeFileError(f"the normalisation statistics of {model_path} are only in "
+                              f"{pickled}, a pickle; {TRUST_HELP}")
+    import pickle
+
+    from agents.model_files import _check_size
+
+    _check_size(pickled)
+    try:
+        with open(pickled, "rb") as fh:
+            return pickle.load(fh)
+    except Exception as err:
+        raise ValueError(f"{pickled} could not be read ({type(err).__name__}: {err})"
+                         ) from None
 
 
 def _run_config(model_path: Path) -> dict[str, Any]:
@@ -670,14 +837,25 @@ def _run_config(model_path: Path) -> dict[str, Any]:
     for folder in (model_path.parent, model_path.parent.parent):
         config = folder / "config.json"
         if config.is_file():
-            return json.loads(config.read_text())
+            try:
+                data = json.loads(config.read_text())
+            except (ValueError, UnicodeDecodeError) as err:
+                raise ValueError(f"{config} is not valid JSON ({err})") from None
+            if not isinstance(data, dict):
+                raise ValueError(f"{config} is not a training run's configuration")
+            return data
     return {}
 
 
-def make_policy(ref: str | os.PathLike | Callable, env: Any) -> Policy:
+def make_policy(ref: str | os.PathLike | Callable, env: Any, trust: bool = False) -> Policy:
     """Resolve a policy reference (see the module docstring) for the environment ``env``
     (a Goalkeeper-v0, possibly wrapped). A callable is returned as it is. Policies with
-    memory need :func:`reset_policy` at each episode start."""
+    memory need :func:`reset_policy` at each episode start.
+
+    Nothing in a file is unpickled unless ``trust`` (see :mod:`agents.model_files`): a
+    ``.npz`` is arrays and JSON; a ``.zip`` is loaded by :func:`load_sb3` in the spaces of
+    ``env`` as its run's ``config.json`` describes the learner, with the ``.npz``
+    normalisation statistics beside it."""
     if callable(ref) and not isinstance(ref, (str, os.PathLike)):
         return ref
     ref = os.fspath(ref)
@@ -698,9 +876,11 @@ def make_policy(ref: str | os.PathLike | Callable, env: Any) -> Policy:
     if path.suffix == ".npz":
         policy: Any = NumpyPolicy.load(path)
     elif path.suffix == ".zip":
-        model = load_sb3(path)
-        norm = _load_vecnormalize(path)
         run = _run_config(path)
+        obs_space, act_space = learner_spaces(env, run)
+        model = load_sb3(path, trust=trust, observation_space=obs_space,
+                         action_space=act_space)
+        norm = load_vecnormalize(path, trust)
         action_map = run.get("action_map")
         frame_stack = int(run.get("frame_stack", 1))
         try:
@@ -710,8 +890,8 @@ def make_policy(ref: str | os.PathLike | Callable, env: Any) -> Policy:
             if norm is not None or action_map is not None or frame_stack > 1:
                 raise ValueError(f"{path} was trained behind VecNormalize, an action map or a "
                                  "frame stack and its network cannot be copied into numpy; "
-                                 "load it with stable-baselines3, VecNormalize.load and "
-                                 "agents.wrappers") from None
+                                 "load it with load_sb3, agents.model_files.vecnormalize_on "
+                                 "and agents.wrappers") from None
             policy = SB3Policy(model)
     else:
         raise ValueError(f"policy must be one of {list(POLICY_NAMES)}, 'baseline:NAME', a "

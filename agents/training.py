@@ -11,8 +11,9 @@ A run is described by a :class:`TrainConfig` and writes into its folder:
   best of them;
 * ``final_model.zip`` and ``final_policy.npz`` (the numpy copy of the actor, see
   :class:`~agents.policies.NumpyPolicy`), the ``VecNormalize`` statistics beside every model
-  (``*_vecnormalize.pkl``), and ``summary.json`` (steps, wall time, rollout and overall steps
-  per second, last and best evaluation).
+  (``*_vecnormalize.npz``: arrays and JSON, no pickle, see :mod:`agents.model_files`), and
+  ``summary.json`` (steps, wall time, rollout and overall steps per second, last and best
+  evaluation).
 
 ``resume`` continues from a checkpoint with this configuration's environment and
 hyperparameters (the network is the checkpoint's): the same run, or a fine-tuning, e.g. a
@@ -55,7 +56,14 @@ from typing import Any
 import numpy as np
 
 from agents.evaluation import GOALKEEPER_ID, evaluate
-from agents.policies import NumpyPolicy, algorithm_class, algorithm_name
+from agents.model_files import save_vecnormalize, vecnormalize_on
+from agents.policies import (
+    NumpyPolicy,
+    algorithm_class,
+    algorithm_name,
+    load_vecnormalize,
+    vecnormalize_path,
+)
 from agents.wrappers import ACTION_MAPS, stack_frames, wrap_actions
 from soccer_env.validation import check_fields
 
@@ -68,8 +76,10 @@ __all__ = ["TrainConfig", "train", "check_env_kwargs", "make_vec_env", "EVAL_SEE
 #: which :func:`train` does not overwrite unless told to (and then deletes these, and only
 #: these, first).
 RUN_FILES = ("config.json", "summary.json", "evaluations.json", "final_model.zip",
-             "final_policy.npz", "final_vecnormalize.pkl", "best_model.zip", "best_policy.npz",
-             "best_vecnormalize.pkl", "checkpoints", "tb")
+             "final_policy.npz", "final_vecnormalize.npz", "best_model.zip", "best_policy.npz",
+             "best_vecnormalize.npz", "checkpoints", "tb",
+             # written by earlier versions:
+             "final_vecnormalize.pkl", "best_vecnormalize.pkl")
 
 #: The match opponents given by name (besides the path of a numpy policy file, ``.npz``).
 OPPONENTS = ("scripted", "idle", "self")
@@ -381,7 +391,7 @@ def rollout_timer() -> Any:
 
 
 def _callbacks(cfg: TrainConfig, out: Path, action_map: dict[str, Any] | None):
-    from stable_baselines3.common.callbacks import BaseCallback, CheckpointCallback
+    from stable_baselines3.common.callbacks import BaseCallback
 
     class SaveRateEval(BaseCallback):
         """Every ``eval_every`` steps: the actor's save rate on ``eval_episodes`` shots, logged
@@ -422,17 +432,35 @@ def _callbacks(cfg: TrainConfig, out: Path, action_map: dict[str, Any] | None):
                 self.best = res.save_rate
                 self.model.save(out / "best_model.zip")
                 if norm is not None:
-                    norm.save(out / "best_vecnormalize.pkl")
+                    save_vecnormalize(norm, out / "best_vecnormalize.npz")
                 policy.meta.update(_meta(cfg, entry))
                 policy.save(out / "best_policy.npz")
             return entry
 
     timer = rollout_timer()
     callbacks: list[Any] = [timer]
+    class Checkpoints(BaseCallback):
+        """Every ``checkpoint_every`` steps: the model as ``checkpoints/model_<N>_steps.zip``
+        (stable-baselines3's ``CheckpointCallback`` names) and its normalisation statistics
+        beside it as ``.npz`` (no pickle)."""
+
+        def __init__(self) -> None:
+            super().__init__()
+            self.every = max(1, cfg.checkpoint_every // cfg.n_envs)
+
+        def _on_step(self) -> bool:
+            if self.n_calls % self.every == 0:
+                folder = out / "checkpoints"
+                folder.mkdir(parents=True, exist_ok=True)
+                path = folder / f"model_{self.num_timesteps}_steps.zip"
+                self.model.save(path)
+                norm = self.model.get_vec_normalize_env()
+                if norm is not None:
+                    save_vecnormalize(norm, vecnormalize_path(path))
+            return True
+
     if cfg.checkpoint_every:
-        callbacks.append(CheckpointCallback(max(1, cfg.checkpoint_every // cfg.n_envs),
-                                            str(out / "checkpoints"), name_prefix="model",
-                                            save_vecnormalize=True))
+        callbacks.append(Checkpoints())
     evaluator = None
     if cfg.eval_every and cfg.env_id == GOALKEEPER_ID:
         evaluator = SaveRateEval()
@@ -472,7 +500,8 @@ def run_files(folder: str | os.PathLike) -> list[str]:
 
 
 def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
-          command: list[str] | None = None, overwrite: bool = False) -> dict[str, Any]:
+          command: list[str] | None = None, overwrite: bool = False,
+          trust: bool = False) -> dict[str, Any]:
     """Train as ``cfg`` says (continuing from the checkpoint ``resume`` if given) and write the
     run folder ``cfg.out``. Returns the summary.
 
@@ -483,6 +512,11 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
     ``overwrite`` is false (with ``overwrite`` its run files are deleted first; continuing
     a run in its own folder, ``resume`` inside ``cfg.out``, needs no ``overwrite``), or when
     the algorithm refuses the hyperparameters.
+
+    A checkpoint is loaded without unpickling anything (see :mod:`agents.model_files`), with
+    the ``.npz`` normalisation statistics beside it; ``trust=True`` loads a
+    stable-baselines3 file as stable-baselines3 does (its pickled entries, a ``.pkl`` of
+    statistics): only for files from a source you trust.
 
     Ctrl-C, or a rollout worker that dies or whose environment raises, ends training with
     :class:`TrainingStopped` after saving the model of the last completed update in
@@ -505,11 +539,16 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
     check_env_kwargs(cfg)
     torch.set_num_threads(cfg.torch_threads)
     action_map = _action_map(cfg)
-    venv, params = _training_env(cfg, resume)
     try:
-        model, done_steps = _model(cfg, venv, params, resume, out)
+        venv, params = _training_env(cfg, resume, trust)
+    except ValueError as err:  # statistics that cannot be read safely, or do not fit
+        raise RunRefused(f"resume: {err}") from None
+    try:
+        model, done_steps = _model(cfg, venv, params, resume, out, trust)
     except Exception as err:
         venv.close()
+        if resume is not None:
+            raise RunRefused(f"resume: {err}") from None
         raise RunRefused(f"{cfg.algorithm} could not be built with hyperparameters "
                          f"{params}: {type(err).__name__}: {err}") from err
     for name in existing:  # overwrite: this run's files only, nothing else in the folder
@@ -599,8 +638,6 @@ def _stop(cfg: TrainConfig, model: Any, out: Path, last_update: Any, done_steps:
           err: BaseException) -> TrainingStopped:
     """Save the model of the last completed update as a checkpoint of the run (where
     ``--resume`` finds it) and describe how the run ended and how to continue it."""
-    from agents.policies import vecnormalize_path
-
     reason = "interrupted" if isinstance(err, KeyboardInterrupt) else "worker failed"
     what = "interrupted" if reason == "interrupted" else f"stopped: {err}"
     steps = last_update.restore()
@@ -613,21 +650,23 @@ def _stop(cfg: TrainConfig, model: Any, out: Path, last_update: Any, done_steps:
     model.save(checkpoint)
     norm = model.get_vec_normalize_env()
     if norm is not None:
-        norm.save(vecnormalize_path(checkpoint))
+        save_vecnormalize(norm, vecnormalize_path(checkpoint))
     command = (f"soccer-env train --resume {checkpoint} --steps {cfg.total_steps}")
     return TrainingStopped(f"training {what}\nsaved the model of the last completed update "
                            f"({steps:,} steps) to {checkpoint}\ncontinue with: {command}",
                            reason, checkpoint, steps, command)
 
 
-def _training_env(cfg: TrainConfig, resume: str | os.PathLike | None
+def _training_env(cfg: TrainConfig, resume: str | os.PathLike | None, trust: bool = False
                   ) -> tuple[Any, dict[str, Any]]:
     """The training VecEnv of ``cfg`` behind ``VecNormalize`` if asked (the statistics of
-    the checkpoint ``resume`` where it has them), and the algorithm's keyword arguments."""
+    the checkpoint ``resume`` where it has them: the ``.npz``, or with ``trust`` a
+    stable-baselines3 ``.pkl``), and the algorithm's keyword arguments."""
     from stable_baselines3.common.vec_env import VecNormalize
 
-    from agents.policies import vecnormalize_path
-
+    stats = None
+    if resume is not None and (cfg.normalize_obs or cfg.normalize_reward):
+        stats = load_vecnormalize(resume, trust)  # before any process starts
     venv = make_vec_env(cfg)
     defaults = DEFAULT_HYPERPARAMS.get(cfg.algorithm, {})
     params = {**defaults, **cfg.hyperparams}
@@ -638,9 +677,15 @@ def _training_env(cfg: TrainConfig, resume: str | os.PathLike | None
         # Keep one rollout at about n_steps * n_envs and a whole number of minibatches.
         params["batch_size"] = min(params["batch_size"], params["n_steps"] * venv.num_envs)
     if cfg.normalize_obs or cfg.normalize_reward:
-        stats = vecnormalize_path(resume) if resume is not None else None
-        if stats is not None and stats.exists():
-            venv = VecNormalize.load(str(stats), venv)
+        if isinstance(stats, VecNormalize):  # unpickled (trusted): as VecNormalize.load does
+            stats.set_venv(venv)
+            venv = stats
+        elif stats is not None:
+            try:
+                venv = vecnormalize_on(stats, venv)
+            except ValueError:
+                venv.close()
+                raise
         else:
             venv = VecNormalize(venv, norm_obs=cfg.normalize_obs,
                                 norm_reward=cfg.normalize_reward,
@@ -649,23 +694,32 @@ def _training_env(cfg: TrainConfig, resume: str | os.PathLike | None
 
 
 def _model(cfg: TrainConfig, venv: Any, params: dict[str, Any],
-           resume: str | os.PathLike | None, out: Path) -> tuple[Any, int]:
+           resume: str | os.PathLike | None, out: Path, trust: bool = False
+           ) -> tuple[Any, int]:
     """A new model of ``cfg.algorithm`` on ``venv``, or the checkpoint ``resume`` loaded onto
     it; and the steps it has already trained."""
     algo = algorithm_class(cfg.algorithm)
-    if resume is not None:
-        # The hyperparameters of this configuration replace the saved ones (so that a run
-        # can be fine-tuned, e.g. with another entropy bonus or learning rate); the network
-        # (policy_kwargs) is the saved model's.
-        params.pop("policy_kwargs", None)
-        model = algo.load(resume, env=venv, device=cfg.device,
-                          tensorboard_log=str(out / "tb"), **params)
-        return model, int(model.num_timesteps)
     policy: Any = "MlpLstmPolicy" if cfg.algorithm == "RECURRENTPPO" else "MlpPolicy"
     if cfg.critic == "privileged":
         from agents.privileged import PrivilegedActorCriticPolicy
 
         policy = PrivilegedActorCriticPolicy
+    if resume is not None:
+        # The hyperparameters of this configuration replace the saved ones (so that a run
+        # can be fine-tuned, e.g. with another entropy bonus or learning rate); the network
+        # (policy_kwargs) is the saved model's. Nothing is unpickled unless trusted: the
+        # spaces are the training environment's, the schedules this configuration's.
+        from agents.policies import load_sb3
+
+        saved_kwargs = params.pop("policy_kwargs", None)
+        model = load_sb3(resume, cfg.algorithm, trust=trust,
+                         observation_space=venv.observation_space,
+                         action_space=venv.action_space,
+                         policy_class=None if isinstance(policy, str) else policy,
+                         hyperparams={**params, "policy_kwargs": saved_kwargs},
+                         env=venv, device=cfg.device, tensorboard_log=str(out / "tb"),
+                         **params)
+        return model, int(model.num_timesteps)
     model = algo(policy, venv, seed=cfg.seed, device=cfg.device,
                  tensorboard_log=str(out / "tb"), verbose=0, **params)
     return model, 0
@@ -679,7 +733,7 @@ def _save_final(cfg: TrainConfig, model: Any, out: Path, evaluator: Any,
     model.save(out / "final_model.zip")
     norm = model.get_vec_normalize_env()
     if norm is not None:
-        norm.save(out / "final_vecnormalize.pkl")
+        save_vecnormalize(norm, out / "final_vecnormalize.npz")
     final_eval = None
     if evaluator is not None:
         if not evaluator.history or evaluator.history[-1]["steps"] != model.num_timesteps:

@@ -21,11 +21,31 @@ track last (re)started).
 
 from __future__ import annotations
 
+import math
 from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
-__all__ = ["Tracker", "TrackQuality"]
+__all__ = ["Tracker", "TrackQuality", "check_time", "MAX_TIME"]
+
+#: The largest time stamp a tracker takes, in absolute value [s]: 10^10 s (about 317 years)
+#: covers clocks counted from the episode's start and Unix time alike, while the motion
+#: models' squared time steps stay far from overflowing (a frame stamped 1e155 s turned a
+#: track into NaN).
+MAX_TIME = 1e10
+
+
+def check_time(t: Any, name: str = "t") -> float:
+    """``t`` as a float time stamp [s]; ``ValueError`` naming ``name`` unless it is a finite
+    number within ``[-MAX_TIME, MAX_TIME]``."""
+    try:
+        value = float(t)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a time in seconds, a number, got {t!r}") from None
+    if not (math.isfinite(value) and -MAX_TIME <= value <= MAX_TIME):
+        raise ValueError(f"{name} must be a finite time in [-{MAX_TIME:g}, {MAX_TIME:g}] s, "
+                         f"got {t!r}")
+    return value
 
 
 @runtime_checkable

@@ -93,6 +93,19 @@ def check_integer(name: str, value: Any, low: int, high: int, unit: str = "") ->
         raise ValueError(f"{name} must be an integer in [{low}, {high}]{unit}, got {value!r}")
 
 
+def check_pair(name: str, value: Any) -> tuple[float, float]:
+    """``value`` as ``(low, high)``: raise ``ValueError`` naming ``name`` unless it is a
+    sequence of exactly two finite real numbers (not bools), whatever else it must satisfy
+    (checked by the caller)."""
+    ok = (isinstance(value, (tuple, list, np.ndarray)) and len(value) == 2
+          and all(isinstance(v, (int, float, np.integer, np.floating))
+                  and not isinstance(v, (bool, np.bool_)) and math.isfinite(v)
+                  for v in value))
+    if not ok:
+        raise ValueError(f"{name} must be (low, high), two finite numbers, got {value!r}")
+    return float(value[0]), float(value[1])
+
+
 def check_flag(name: str, value: Any) -> None:
     """Raise ``ValueError`` unless ``value`` is True or False."""
     if not isinstance(value, bool):

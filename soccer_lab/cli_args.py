@@ -7,7 +7,17 @@ import json
 from collections.abc import Mapping
 from typing import Any
 
-__all__ = ["add_env_arguments", "env_kwargs_from_args", "key_values"]
+__all__ = ["add_env_arguments", "env_kwargs_from_args", "key_values", "add_trust_argument"]
+
+
+def add_trust_argument(p: argparse.ArgumentParser) -> None:
+    """``--trust``: load the pickled parts of stable-baselines3 files (see
+    :mod:`agents.model_files`)."""
+    p.add_argument("--trust", action="store_true",
+                   help="also load what only unpickling can read (a stable-baselines3 .zip's "
+                        "serialized entries, *_vecnormalize.pkl statistics): unpickling runs "
+                        "whatever code the file names, so only for files from a source you "
+                        "trust (default: arrays and JSON only; .npz policies never need it)")
 
 
 def key_values(items: list[str], what: str) -> dict[str, Any]:

@@ -2,7 +2,8 @@
 
 Each baseline is a :class:`~agents.policies.NumpyPolicy` (``NAME.npz``: the actor's weights
 and observation statistics, a few tens of kB, run with numpy alone) and the stable-baselines3
-model it was copied from (``NAME.zip``, with ``NAME_vecnormalize.pkl``, to fine-tune). The
+model it was copied from (``NAME.zip``, with ``NAME_vecnormalize.npz``, its normalisation
+statistics, to fine-tune; both load without unpickling, see :mod:`agents.model_files`). The
 ``.npz`` carries the training configuration, the command that trained it and its evaluation in
 ``policy.meta``; :func:`make_baseline_env` builds the environment it was trained for.
 
@@ -51,13 +52,14 @@ BASELINES: dict[str, tuple[str, str]] = {
 
 def baseline_path(name: str, kind: str = "npz") -> Path:
     """The file of baseline ``name``: ``kind="npz"`` (numpy policy), ``"zip"`` (the
-    stable-baselines3 model) or ``"pkl"`` (its ``VecNormalize`` statistics)."""
+    stable-baselines3 model) or ``"stats"`` (its ``VecNormalize`` statistics, an ``.npz``
+    for :func:`agents.model_files.read_vecnormalize`)."""
     if name not in BASELINES:
         raise ValueError(f"unknown baseline {name!r}; shipped: {sorted(BASELINES)}")
-    if kind not in ("npz", "zip", "pkl"):
-        raise ValueError(f"kind must be 'npz', 'zip' or 'pkl', got {kind!r}")
+    if kind not in ("npz", "zip", "stats"):
+        raise ValueError(f"kind must be 'npz', 'zip' or 'stats', got {kind!r}")
     stem = BASELINES[name][0]
-    return _HERE / (f"{stem}_vecnormalize.pkl" if kind == "pkl" else f"{stem}.{kind}")
+    return _HERE / (f"{stem}_vecnormalize.npz" if kind == "stats" else f"{stem}.{kind}")
 
 
 def load_baseline(name: str) -> NumpyPolicy:

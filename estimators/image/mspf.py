@@ -55,6 +55,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from ..checks import MAX_PARTICLES, check_count
 from ..particle.core import systematic_resample
 from .meanshift import MEAN_SHIFT_KERNELS, _count, _image, _number, _point, _window_size, _Windows
 
@@ -80,7 +81,7 @@ class _WindowParticleFilter:
         p = _point("position", position)
         v = _point("velocity", velocity)
         self.window_size = _window_size("window_size", window_size)
-        self.n = _count("n_particles", n_particles, 2)
+        self.n = check_count("n_particles", n_particles, 2, MAX_PARTICLES)
         self.process_sigma = _number("process_sigma", process_sigma, allow_low=True)
         self.likelihood_sigma = _number("likelihood_sigma", likelihood_sigma)
         self.init_sigma = _number("init_sigma", init_sigma, allow_low=True)

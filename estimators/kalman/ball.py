@@ -25,6 +25,7 @@ import numpy as np
 
 from ..models.measurement import PositionMeasurement
 from ..models.motion import FrictionBallMotion
+from ..protocol import check_time
 
 __all__ = ["BallFilterConfig", "BallTracker", "LeastSquaresBall", "CHI2_2DOF_999"]
 
@@ -320,10 +321,9 @@ class BallTracker:
         """Process one frame captured at ``t`` with ball detections ``(k, 2)`` (k may be 0)
         and robot positions seen in it (for eq. 19; ``(j, 2)``, or poses whose first two
         entries are the position)."""
+        t = check_time(t)
         dets = _points("detections", detections)
         obs = _points("obstacles", obstacles, exact=False) if obstacles is not None else []
-        if not math.isfinite(t):
-            raise ValueError(f"t must be finite, got {t!r}")
         if t >= self._track.t:
             self._track = self._process(self._track, t, dets, obs)
             self._log.append((t, dets, obs, self._track))
@@ -347,6 +347,7 @@ class BallTracker:
 
     def estimate(self, t: float) -> np.ndarray | None:
         """State ``(x, y, vx, vy)`` predicted to time ``t`` (None before the first frame)."""
+        t = check_time(t)
         tr = self._track
         if tr.x is None:
             return None
@@ -357,6 +358,7 @@ class BallTracker:
 
     def estimate_with_covariance(self, t: float) -> tuple[np.ndarray, np.ndarray] | None:
         """``(x, P)`` predicted to time ``t`` without changing the tracker."""
+        t = check_time(t)
         tr = self._track
         if tr.x is None:
             return None
@@ -541,6 +543,7 @@ class LeastSquaresBall:
         deviations of the ``n`` detection times. With one detection the velocity is unknown:
         its variance is that of a ball anywhere up to ``MAX_SPEED_CHANGE``. None before the
         first detection."""
+        t = check_time(t)
         if not self._t:
             return None
         s2 = self.sigma_xy**2
@@ -563,10 +566,11 @@ class LeastSquaresBall:
     def update(self, t: float, detections, obstacles=None) -> None:
         """Process one frame captured at ``t`` with ball detections ``(k, 2)`` (k may be 0);
         ``obstacles`` is accepted for the protocol's sake and not used."""
+        t = check_time(t)
         dets = np.asarray(detections, dtype=np.float64).reshape(-1, 2) if len(
             detections) else np.zeros((0, 2))
-        if not (math.isfinite(t) and np.isfinite(dets).all()):
-            raise ValueError("t and detections must be finite (NaN measurements are refused)")
+        if not np.isfinite(dets).all():
+            raise ValueError("detections must be finite (NaN measurements are refused)")
         if not len(dets):
             return
         z = dets[0]
@@ -582,6 +586,7 @@ class LeastSquaresBall:
     def estimate(self, t: float) -> np.ndarray | None:
         """State ``(x, y, vx, vy)`` extrapolated to time ``t`` (None before the first
         detection)."""
+        t = check_time(t)
         if not self._t:
             return None
         if len(self._t) == 1:

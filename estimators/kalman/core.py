@@ -53,6 +53,19 @@ def check_matrix(name: str, value, n: int, m: int | None = None) -> np.ndarray:
     return arr
 
 
+def _check_covariance(name: str, value, n: int) -> np.ndarray:
+    """``value`` as a finite symmetric positive semi-definite ``(n, n)`` array (a noise
+    covariance); ``ValueError`` naming ``name`` otherwise."""
+    arr = check_matrix(name, value, n)
+    scale = max(1.0, float(np.abs(arr).max()))
+    if not np.allclose(arr, arr.T, rtol=1e-9, atol=1e-12 * scale):
+        raise ValueError(f"{name} must be symmetric")
+    if np.linalg.eigvalsh(0.5 * (arr + arr.T)).min() < -1e-9 * scale:
+        raise ValueError(f"{name} must be positive semi-definite (a covariance: no negative "
+                         "variances)")
+    return arr
+
+
 class KalmanFilter:
     """A Kalman filter (linear, or extended when ``f(x)`` / ``h(x)`` are supplied).
 
@@ -86,8 +99,16 @@ class KalmanFilter:
         self.rejected = 0
 
     def predict(self, F: np.ndarray, Q: np.ndarray, x_pred: np.ndarray | None = None) -> None:
-        """Time update: ``x = F x`` (or ``x_pred = f(x)`` for the EKF), ``P = F P F^T + Q``."""
-        self.x = F @ self.x if x_pred is None else np.asarray(x_pred, dtype=np.float64)
+        """Time update: ``x = F x`` (or ``x_pred = f(x)`` for the EKF), ``P = F P F^T + Q``.
+        ``F`` ``(n, n)`` and ``Q`` ``(n, n)`` must be finite, ``Q`` symmetric positive
+        semi-definite, ``x_pred`` a finite ``(n,)``; otherwise ``ValueError`` naming the
+        argument, with the filter unchanged."""
+        n = self.dim
+        F = check_matrix("F", F, n)
+        Q = _check_covariance("Q", Q, n)
+        if x_pred is not None:
+            x_pred = check_vector("x_pred", x_pred, n)
+        self.x = F @ self.x if x_pred is None else x_pred
         P = F @ self.P @ F.T + Q
         self.P = 0.5 * (P + P.T)
 
@@ -96,6 +117,7 @@ class KalmanFilter:
                    residual: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
                    ) -> tuple[np.ndarray, np.ndarray, float]:
         """``(y, S, d2)`` of measurement ``z`` without changing the filter."""
+        z = check_vector("z", z, np.shape(H)[0])
         z_hat = H @ self.x if z_pred is None else z_pred
         y = z - z_hat if residual is None else residual(z, z_hat)
         S = H @ self.P @ H.T + R
@@ -116,11 +138,21 @@ class KalmanFilter:
             residual: ``r(z, z_pred)`` replacing the subtraction (e.g. to wrap angles).
             gate: reject the measurement if ``d^2`` exceeds this (chi-square quantile).
         """
+        H = np.asarray(H, dtype=np.float64)
+        if H.ndim != 2 or H.shape[1] != self.dim:
+            raise ValueError(f"H must have shape (m, {self.dim}), got {H.shape}")
+        m = H.shape[0]
+        H = check_matrix("H", H, m, self.dim)
+        R = _check_covariance("R", R, m)
+        if gate is not None and not (isinstance(gate, (int, float, np.floating, np.integer))
+                                     and gate >= 0 and np.isfinite(gate)):
+            raise ValueError(f"gate must be None or a finite number >= 0, got {gate!r}")
         if z is None:
             self.missed += 1
             return False
-        m = H.shape[0]
         z = check_vector("z", z, m)
+        if z_pred is not None:
+            z_pred = check_vector("z_pred", z_pred, m)
         y, S, d2 = self.innovation(z, H, R, z_pred, residual)
         self.y, self.S, self.d2 = y, S, d2
         if gate is not None and d2 > gate:

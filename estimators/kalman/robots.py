@@ -38,9 +38,14 @@ import math
 
 import numpy as np
 
+from ..checks import check_count
 from ..models.measurement import MIN_SIGMA_THETA, MIN_SIGMA_XY, PoseMeasurement
+from ..protocol import check_time
 
-__all__ = ["RobotTracker"]
+__all__ = ["RobotTracker", "MAX_ROBOTS"]
+
+#: The most robots one tracker follows (a whole league's worth).
+MAX_ROBOTS = 10_000
 
 _TWO_PI = 2.0 * math.pi
 
@@ -88,8 +93,7 @@ class RobotTracker:
     def __init__(self, n: int, q_xy: float = 4.0, q_theta: float = 20.0,
                  sigma_xy: float = 0.005, sigma_theta: float = 0.02,
                  sigma_v0: float = 2.0, measurement: PoseMeasurement | None = None) -> None:
-        if not isinstance(n, (int, np.integer)) or n < 0:
-            raise ValueError(f"n must be a non-negative integer, got {n!r}")
+        check_count("n", n, 0, MAX_ROBOTS)
         for name, v in (("q_xy", q_xy), ("q_theta", q_theta), ("sigma_xy", sigma_xy),
                         ("sigma_theta", sigma_theta), ("sigma_v0", sigma_v0)):
             if not (math.isfinite(v) and v >= 0.0):
@@ -126,9 +130,15 @@ class RobotTracker:
         k = len(index)
         if z.shape != (k, 3):
             raise ValueError(f"z must have shape ({k}, 3), got {z.shape}")
-        t = np.broadcast_to(np.asarray(t, dtype=np.float64), (k,))
-        if not (np.isfinite(z).all() and np.isfinite(t).all()):
-            raise ValueError("z and t must be finite (NaN measurements are refused)")
+        try:
+            t = np.broadcast_to(np.asarray(t, dtype=np.float64), (k,))
+        except (TypeError, ValueError):
+            raise ValueError(f"t must be a time in seconds or one per detection ({k},), got "
+                             f"{t!r}") from None
+        if not np.isfinite(z).all():
+            raise ValueError("z must be finite (NaN measurements are refused)")
+        for ti in np.unique(t).tolist():
+            check_time(ti)
         if k and (index.min() < 0 or index.max() >= self.n):
             raise ValueError(f"index must be in 0..{self.n - 1}, got {index.tolist()}")
         for i, ti, zi in zip(index.tolist(), t.tolist(), z.tolist()):
@@ -154,6 +164,7 @@ class RobotTracker:
     def estimate(self, t: float) -> np.ndarray:
         """``(n, 6)`` rows ``x, y, theta, vx, vy, omega`` predicted to time ``t`` (robots never
         seen read as zeros; see :attr:`seen`)."""
+        t = check_time(t)
         rows = []
         for axes, ti in zip(self._axes, self._t):
             if axes is None:

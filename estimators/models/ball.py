@@ -56,8 +56,15 @@ class FrictionBallModel:
         return speed / self.deceleration
 
     def stop_position(self, state: np.ndarray) -> np.ndarray:
-        """Where the ball comes to rest, shape ``(..., 2)`` (``inf`` without friction)."""
-        return self.predict(state, self.stop_time(state))[..., 0:2]
+        """Where the ball comes to rest, shape ``(..., 2)``: without friction a moving ball
+        never does, and each coordinate it moves along is ``+-inf`` (one it does not move
+        along stays where it is); a ball at rest stays where it is."""
+        state = np.asarray(state, dtype=np.float64)
+        if self.deceleration > 0.0:
+            return self.predict(state, self.stop_time(state))[..., 0:2]
+        p, v = state[..., 0:2], state[..., 2:4]
+        # Not p + v * inf: a zero velocity component would give 0 * inf = NaN.
+        return np.where(v != 0.0, np.copysign(np.inf, v), p)
 
     def time_to_line(self, state: np.ndarray, x_line: float) -> np.ndarray:
         """Seconds until the ball reaches the line ``x = x_line``, ``inf`` if it stops first

@@ -66,7 +66,9 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ..checks import MAX_PARTICLES, check_count
 from ..kalman.core import KalmanFilter
+from ..protocol import check_time
 from .core import PARTICLE_FILTERS, BootstrapPF
 
 __all__ = ["ParticleBallTracker", "CHI2_2DOF_9999"]
@@ -166,9 +168,7 @@ class ParticleBallTracker:
         if not isinstance(rng, np.random.Generator):
             raise TypeError("rng must be a numpy.random.Generator")
         PARTICLE_FILTERS.check(filter, "filter")
-        if isinstance(n_particles, bool) or not isinstance(n_particles, (int, np.integer)) \
-                or n_particles < 2:
-            raise ValueError(f"n_particles must be an integer >= 2, got {n_particles!r}")
+        check_count("n_particles", n_particles, 2, MAX_PARTICLES)
         if threshold is not None and not 0.0 < threshold <= 1.0:
             raise ValueError(f"threshold must be in (0, 1] or None, got {threshold!r}")
         fs = np.asarray(fission_sigma, dtype=np.float64)
@@ -302,6 +302,7 @@ class ParticleBallTracker:
         ``P' = A P A^T + s^2 B B^T`` (``A = [[I, dt I], [0, I]]``, ``B = [dt^2/2 I; dt I]``);
         the deceleration, which :meth:`estimate` applies to the mean, is left out of the
         spread. None before the first measurement."""
+        t = check_time(t)
         if self._pf is None:
             return None
         if self._kf is not None:
@@ -317,12 +318,7 @@ class ParticleBallTracker:
         return P
 
     def _check(self, t: float, z, sigma) -> tuple[float, np.ndarray, np.ndarray]:
-        try:
-            t = float(t)
-        except (TypeError, ValueError):
-            raise ValueError(f"t must be a number, got {t!r}") from None
-        if not math.isfinite(t):
-            raise ValueError(f"t must be finite, got {t!r}")
+        t = check_time(t)
         zz = np.asarray(z, dtype=np.float64)
         if zz.shape != (2,) or not np.all(np.isfinite(zz)):
             raise ValueError(f"z must be a finite (2,) position, got {z!r}")
@@ -401,8 +397,9 @@ class ParticleBallTracker:
     def predict_to(self, t: float) -> None:
         """Time update only, to ``t`` [s] (a cycle without a measurement); nothing happens
         before the first measurement or for ``t`` at or before the filter's time."""
+        t = check_time(t)
         if self._pf is not None and t > self._t:
-            self._advance(float(t))
+            self._advance(t)
             if self._kf is not None:
                 self._redraw()
 
@@ -411,9 +408,10 @@ class ParticleBallTracker:
         moved by the deterministic motion (constant velocity, or the deceleration) when ``t``
         is later than the filter's time, unchanged otherwise; the filter is not changed.
         None before the first measurement."""
+        t = check_time(t)
         if self._pf is None:
             return None
-        dt = float(t) - self._t
+        dt = t - self._t
         if not dt > 0.0:
             return self._x.copy()
         # _drift for one state, in plain floats (called every control step by a pipeline).

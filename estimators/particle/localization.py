@@ -52,6 +52,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..checks import MAX_PARTICLES, check_count, check_real
+
 __all__ = ["KLDConfig", "KLDLocalizer", "kld_sample_size", "normal_quantile"]
 
 
@@ -128,10 +130,22 @@ class KLDConfig:
     recovery_ratio: float = 0.5
 
     def __post_init__(self) -> None:
-        if not (isinstance(self.min_particles, int) and isinstance(self.max_particles, int)
-                and 1 <= self.min_particles <= self.max_particles):
-            raise ValueError("need integers 1 <= min_particles <= max_particles, got "
+        check_count("min_particles", self.min_particles, 1, MAX_PARTICLES)
+        check_count("max_particles", self.max_particles, 1, MAX_PARTICLES)
+        if not self.min_particles <= self.max_particles:
+            raise ValueError("need min_particles <= max_particles, got "
                              f"{self.min_particles}, {self.max_particles}")
+        for name in ("epsilon", "delta", "a_trans", "a_rot_xy", "a_rot", "a_trans_theta",
+                     "range_sigma", "range_sigma_rel", "range_sigma_quad", "alpha_slow",
+                     "alpha_fast", "recovery_ratio"):
+            check_real(name, getattr(self, name))
+        if self.bearing_sigma is not None:
+            check_real("bearing_sigma", self.bearing_sigma)
+        if not (isinstance(self.bin_size, (tuple, list)) and len(self.bin_size) == 3):
+            raise ValueError(f"bin_size must be three positive sizes (m, m, rad), got "
+                             f"{self.bin_size!r}")
+        for size in self.bin_size:
+            check_real("bin_size", size, 0.0, low_open=True)
         if not (0.0 < self.epsilon < 1.0 and 0.0 < self.delta < 1.0):
             raise ValueError(f"epsilon and delta must be in (0, 1), got {self.epsilon}, "
                              f"{self.delta}")

@@ -54,9 +54,13 @@ from soccer_env.sim.commands import (
 from soccer_env.sim.heads import HEAD_MODES, HeadControl, aim_heads
 from soccer_env.sim.world import World
 from soccer_env.state import Belief, WorldState, state_dict
-from soccer_env.validation import check_choice
+from soccer_env.validation import check_choice, check_integer
 
-__all__ = ["SoccerCore", "SingleAgentTask", "resolve_world", "action_cost"]
+__all__ = ["SoccerCore", "SingleAgentTask", "resolve_world", "action_cost", "RENDER_WIDTHS"]
+
+#: The frame widths a renderer draws, pixels (a 4K frame at most: a frame is width x 2/3
+#: width x 3 bytes).
+RENDER_WIDTHS = (64, 3840)
 
 
 class SoccerCore(RenderingMixin):
@@ -92,6 +96,7 @@ class SoccerCore(RenderingMixin):
         check_choice("render_mode", render_mode, [None, *RENDER_MODES])
         check_choice("out_of_range_actions", out_of_range_actions, OUT_OF_RANGE_MODES)
         check_choice("head", head, HEAD_MODES)
+        check_integer("render_width", render_width, *RENDER_WIDTHS, " pixels")
         self.team_specs = team_specs
         self.field, self.ball_spec = field, ball
         self.obs_mode = obs_mode
@@ -308,18 +313,23 @@ class SingleAgentTask(SoccerCore, gym.Env):
 
     # ------------------------------------------------------------------------------------
 
-    #: Whether an episode runs (set by :meth:`reset`).
+    #: Whether an episode runs (set by :meth:`reset`, cleared when it terminates).
     _running = False
+    #: How the last episode ended (its outcome), None while one runs or before the first.
+    _ended: str | None = None
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         super().reset(seed=seed)
         state = self._start(self.np_random)
-        self._running = True
+        self._running, self._ended = True, None
         obs = self._observe(self._seen)
         return obs, self._info(state, self._zero_terms(), None)
 
     def step(self, action):
         if not self._running:
+            if self._ended is not None:
+                raise RuntimeError(f"the episode has ended ({self._ended!r}): call reset() "
+                                   "before stepping again")
             raise RuntimeError("call reset() before step()")
         act = np.asarray(action, dtype=np.float64)
         if act.shape != (6,):
@@ -339,6 +349,8 @@ class SingleAgentTask(SoccerCore, gym.Env):
         reward = float(sum(terms.values()))
         obs = self._observe(self._seen)
         info = self._info(state, terms, outcome)
+        if outcome is not None:  # terminated: a further step would act on a finished shot
+            self._running, self._ended = False, outcome
         if self.render_mode == "human":
             self.render()
         return obs, reward, outcome is not None, False, info

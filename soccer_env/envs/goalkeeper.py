@@ -18,6 +18,8 @@ from soccer_env.state import WorldState
 from soccer_env.validation import (
     check_choice,
     check_int,
+    check_number,
+    check_pair,
     from_mapping,
     keyword_names,
     parse_scales,
@@ -75,23 +77,18 @@ class ShotDistribution:
 
     def __post_init__(self) -> None:
         for name in ("speed", "chip_speed", "delay"):
-            lo, hi = getattr(self, name)
+            lo, hi = check_pair(f"shots.{name}", getattr(self, name))
             top = 10.0 if name == "delay" else 20.0
             if not (0.0 <= lo <= hi <= top) or (name != "delay" and lo <= 0.0):
                 raise ValueError(f"shots.{name} must be (low, high) with 0 < low <= high <= "
                                  f"{top} (delay may start at 0), got {(lo, hi)}")
         for name in ("chip_probability", "wide_probability"):
-            p = getattr(self, name)
-            if not 0.0 <= p <= 1.0:
-                raise ValueError(f"shots.{name} must be in [0, 1], got {p!r}")
-        if not 0.0 <= self.wide_margin <= 2.0:
-            raise ValueError(f"shots.wide_margin must be in [0, 2] m, got {self.wide_margin!r}")
-        if not 0.0 <= self.edge_margin <= 2.0:
-            raise ValueError(f"shots.edge_margin must be in [0, 2] m, got {self.edge_margin!r}")
+            check_number(f"shots.{name}", getattr(self, name), 0.0, 1.0)
+        for name in ("wide_margin", "edge_margin"):
+            check_number(f"shots.{name}", getattr(self, name), 0.0, 2.0, unit=" m")
         for name in ("x_range", "y_range"):
             r = getattr(self, name)
-            if r is not None and not (len(r) == 2 and all(map(math.isfinite, r))
-                                      and r[0] <= r[1]):
+            if r is not None and check_pair(f"shots.{name}", r)[0] > r[1]:
                 raise ValueError(f"shots.{name} must be None or (low, high) with low <= high, "
                                  f"got {r!r}")
 

@@ -8,7 +8,8 @@ from typing import Any
 import gymnasium
 import numpy as np
 from pettingzoo import ParallelEnv
-from pettingzoo.utils import parallel_to_aec
+from pettingzoo.utils.conversions import parallel_to_aec_wrapper
+from pettingzoo.utils.wrappers import OrderEnforcingWrapper
 
 from soccer_env import presets
 from soccer_env.envs.base import SoccerCore, resolve_world
@@ -231,6 +232,9 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         return self._action_spaces[agent]
 
     def reset(self, seed: int | None = None, options: dict | None = None):
+        if seed is not None and not (isinstance(seed, (int, np.integer))
+                                     and not isinstance(seed, bool) and seed >= 0):
+            raise ValueError(f"seed must be None or an integer >= 0, got {seed!r}")
         if seed is not None or self._rng is None:
             self._rng = np.random.default_rng(seed)
         state = self._start(self._rng)
@@ -270,6 +274,25 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
 
     # ------------------------------------------------------------------------------------
 
+    def check_action(self, agent: str, action: Any) -> np.ndarray:
+        """``action`` of the live agent ``agent`` as the step will take it (a float array of
+        shape ``(6,)``, clipped under ``out_of_range_actions="clip"``); ``ValueError`` naming
+        the agent for an unknown or finished agent, a wrong shape, a non-finite value or
+        (``"raise"``) a value outside [-1, 1]. The AEC environment checks each agent's action
+        with it when the agent acts."""
+        if agent not in self.agents:
+            raise ValueError(f"action for unknown or finished agent {agent!r}; live agents: "
+                             f"{self.agents}")
+        try:
+            act = np.asarray(action, dtype=np.float64)
+        except (TypeError, ValueError):
+            act = None
+        if act is None or act.shape != (6,):
+            model = self._models[self._teams[self.possible_agents.index(agent)]]
+            raise ValueError(f"action for agent {agent!r} must have shape (6,) "
+                             f"({', '.join(model.action_names)}), got {np.shape(action)}")
+        return validate_actions(act[None], [agent], self.out_of_range_actions)[0]
+
     def _gather(self, actions: Mapping[str, Any]) -> np.ndarray:
         """Stack the live agents' actions into ``(N, 6)``; validate before touching the world."""
         if not isinstance(actions, Mapping):
@@ -277,7 +300,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
                             f"{type(actions).__name__}")
         agents = self.agents
         if len(actions) != len(agents) or not all(a in actions for a in agents):
-            unknown = sorted(set(actions) - set(agents))
+            unknown = sorted(set(actions) - set(agents), key=repr)
             if unknown:
                 raise ValueError(f"actions for unknown or finished agent(s) {unknown}; live "
                                  f"agents: {agents}")
@@ -364,8 +387,22 @@ def parallel_env(**kwargs: Any) -> SoccerParallelEnv:
     return SoccerParallelEnv(**kwargs)
 
 
+class _CheckedAEC(parallel_to_aec_wrapper):
+    """PettingZoo's conversion of the parallel match to AEC, checking each agent's action when
+    the agent acts: a bad action raises there, naming the agent, and leaves the cycle as it
+    was (the conversion alone stores it and fails at the cycle's last agent, after which
+    every step fails until a reset)."""
+
+    def step(self, action: Any) -> None:
+        agent = self.agent_selection
+        if action is not None and not (self.terminations.get(agent)
+                                       or self.truncations.get(agent)):
+            action = self.env.check_action(agent, action)
+        super().step(action)
+
+
 def env(**kwargs: Any):
     """The match as a PettingZoo AEC environment (agents act in turn; the physics steps
-    once every agent has acted)."""
-    return parallel_to_aec(SoccerParallelEnv(**kwargs))
+    once every agent has acted; each action is checked when its agent acts)."""
+    return OrderEnforcingWrapper(_CheckedAEC(SoccerParallelEnv(**kwargs)))
 

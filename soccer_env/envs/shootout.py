@@ -18,6 +18,8 @@ from soccer_env.sim.referee import classify_exit
 from soccer_env.state import WorldState
 from soccer_env.validation import (
     check_choice,
+    check_number,
+    check_pair,
     from_mapping,
     keyword_names,
     parse_scales,
@@ -64,17 +66,15 @@ class ShootoutStart:
             value = getattr(self, name)
             if value is None and name == "ball_distance":
                 continue
-            lo, hi = value
+            lo, hi = check_pair(f"start.{name}", value)
             if not (0.0 < lo <= hi <= top):
                 raise ValueError(f"start.{name} must be (low, high) with 0 < low <= high <= "
                                  f"{top} m, got {value!r}")
-        lo, hi = self.ball_angle
+        lo, hi = check_pair("start.ball_angle", self.ball_angle)
         if not (-0.5 * math.pi < lo <= hi < 0.5 * math.pi):
             raise ValueError(f"start.ball_angle must be (low, high) with -pi/2 < low <= high "
                              f"< pi/2 rad, got {(lo, hi)}")
-        if not 0.0 <= self.robot_angle <= 0.5 * math.pi:
-            raise ValueError(f"start.robot_angle must be in [0, pi/2] rad, got "
-                             f"{self.robot_angle!r}")
+        check_number("start.robot_angle", self.robot_angle, 0.0, 0.5 * math.pi, unit=" rad")
 
     def distances(self, fld: FieldSpec) -> tuple[float, float]:
         """The range of the ball's distance from the goal centre on ``fld`` [m]."""

@@ -20,7 +20,7 @@ from agents.ablation import (
     write_outputs,
 )
 from soccer_env.presets.sensors import HEAD_CAMERAS, VISION
-from soccer_lab.cli_args import key_values
+from soccer_lab.cli_args import add_trust_argument, key_values
 
 __all__ = ["parser", "main"]
 
@@ -60,6 +60,7 @@ def parser() -> argparse.ArgumentParser:
                         "JSON), repeatable, e.g. control_dt=0.04 or field=ssl-2012; obs_mode "
                         "and perception belong to the cells")
     p.add_argument("--quiet", action="store_true", help="no progress on stderr")
+    add_trust_argument(p)
     return p
 
 
@@ -89,7 +90,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         res = run_ablation(args.policy, args.episodes, presets, configs, args.start_seed,
                            args.workers, args.chunk_size, env_kwargs=env_kwargs,
-                           progress=progress, robot=args.robot)
+                           progress=progress, robot=args.robot, trust=args.trust)
     except (ValueError, TypeError, FileNotFoundError) as exc:
         p.error(str(exc))
     files = write_outputs(res, args.out)

@@ -11,7 +11,7 @@ from pathlib import Path
 
 from agents.evaluation import GOALKEEPER_ID, evaluate, record_video
 from agents.policies import make_policy
-from soccer_lab.cli_args import add_env_arguments, env_kwargs_from_args
+from soccer_lab.cli_args import add_env_arguments, add_trust_argument, env_kwargs_from_args
 
 __all__ = ["parser", "main"]
 
@@ -37,6 +37,7 @@ def parser() -> argparse.ArgumentParser:
                    help="episodes to render into the video (default 3; 0 for none)")
     p.add_argument("--out", default="eval_output", help="folder for eval.json and the video")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
+    add_trust_argument(p)
     return p
 
 
@@ -55,17 +56,21 @@ def main(argv: list[str] | None = None) -> int:
         env_kwargs = env_kwargs_from_args(args)
         # Resolve the policy once here so that a bad reference fails with its own message.
         probe = gym.make(GOALKEEPER_ID, **env_kwargs)
-        make_policy(args.policy, probe)
-        probe.close()
+        try:
+            make_policy(args.policy, probe, trust=args.trust)
+        finally:
+            probe.close()
     except (ValueError, TypeError, FileNotFoundError) as err:
         p.error(str(err))
-    res = evaluate(args.policy, env_kwargs, args.episodes, args.start_seed, args.workers)
+    res = evaluate(args.policy, env_kwargs, args.episodes, args.start_seed, args.workers,
+                   trust=args.trust)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     record = res.to_dict()
     if args.video:
         seeds = range(args.start_seed, args.start_seed + min(args.video, args.episodes))
-        record["video"] = str(record_video(args.policy, out / "eval.mp4", env_kwargs, seeds))
+        record["video"] = str(record_video(args.policy, out / "eval.mp4", env_kwargs, seeds,
+                                            trust=args.trust))
     (out / "eval.json").write_text(json.dumps(record, indent=1))
     if args.json:
         print(json.dumps({k: v for k, v in record.items() if k != "saved"}, indent=1))

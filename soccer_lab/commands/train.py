@@ -30,7 +30,12 @@ from agents.training import (
     train,
 )
 from agents.wrappers import ACTION_MAPS
-from soccer_lab.cli_args import add_env_arguments, env_kwargs_from_args, key_values
+from soccer_lab.cli_args import (
+    add_env_arguments,
+    add_trust_argument,
+    env_kwargs_from_args,
+    key_values,
+)
 
 __all__ = ["parser", "main"]
 
@@ -129,6 +134,7 @@ def parser() -> argparse.ArgumentParser:
                    help="continue from a checkpoint .zip; the rest of the configuration comes "
                         "from its run's config.json unless given here")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_trust_argument(p)
     return p
 
 
@@ -225,7 +231,7 @@ def main(argv: list[str] | None = None) -> int:
         _check_resume(p, args, cfg, base)
     try:
         summary = train(cfg, resume=args.resume, command=["soccer-env", "train", *(argv or [])],
-                        overwrite=args.force)
+                        overwrite=args.force, trust=args.trust)
     except RunRefused as err:
         p.error(str(err))
     except TrainingStopped as stopped:

@@ -403,7 +403,7 @@ def test_bad_arguments_raise_value_errors_naming_what_is_allowed():
     with pytest.raises(ValueError, match=r"learner must be one of \['blue', 'yellow', 'both'\], "
                                          r"got 'red'"):
         MatchVecEnv(SHORT, learner="red")
-    with pytest.raises(ValueError, match=r"opponent must be 'scripted', 'idle', a numpy policy file"):
+    with pytest.raises(ValueError, match=r"opponent must be 'scripted', 'idle', a numpy policy"):
         MatchVecEnv(SHORT, opponent="champion")
     with pytest.raises(ValueError, match=r"opponent must be 'scripted', 'idle'.*got int"):
         MatchVecEnv(SHORT, opponent=42)

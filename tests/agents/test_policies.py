@@ -210,11 +210,18 @@ def test_recurrent_model_loads_by_file_and_as_sb3_policy(env, recurrent_model, t
     """A RecurrentPPO .zip without a run's config.json is recognised as RecurrentPPO (not
     opened as PPO, which would drop the LSTM); make_policy gives its numpy copy; SB3Policy
     carries the state too."""
+    from agents.model_files import UnsafeFileError
     from agents.policies import NumpyRecurrentPolicy, load_sb3
 
     model, _ = recurrent_model
     model.save(tmp_path / "final_model.zip")
-    assert type(load_sb3(tmp_path / "final_model.zip")).__name__ == "RecurrentPPO"
+    spaces = {"observation_space": env.observation_space, "action_space": env.action_space}
+    assert type(load_sb3(tmp_path / "final_model.zip", **spaces)).__name__ == "RecurrentPPO"
+    # Without a run's config.json nor the spaces, only unpickling could tell them: refused
+    # unless trusted.
+    with pytest.raises(UnsafeFileError, match="trust"):
+        load_sb3(tmp_path / "final_model.zip")
+    assert type(load_sb3(tmp_path / "final_model.zip", trust=True)).__name__ == "RecurrentPPO"
     policy = make_policy(tmp_path / "final_model.zip", env)  # no VecNormalize file beside it
     assert isinstance(policy, NumpyRecurrentPolicy)
     worst, _ = _episode_against_sb3(model, policy, env, 2)

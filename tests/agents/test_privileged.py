@@ -114,9 +114,15 @@ def test_training_ships_an_actor_for_the_plain_environment(tmp_path):
     assert policy.obs_size == plain.observation_space.shape[0]
     from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
 
-    model = PPO.load(tmp_path / "run" / "final_model.zip")
-    stats = VecNormalize.load(str(tmp_path / "run" / "final_vecnormalize.pkl"),
-                              DummyVecEnv([lambda: PrivilegedObservation(gym.make(GK, **KW))]))
+    from agents.model_files import read_vecnormalize, vecnormalize_on
+    from agents.policies import load_sb3
+
+    # Loaded without unpickling: the spaces and the privileged policy class from the run.
+    model = load_sb3(tmp_path / "run" / "final_model.zip")
+    assert isinstance(model, PPO)
+    stats = vecnormalize_on(read_vecnormalize(tmp_path / "run" / "final_vecnormalize.npz"),
+                            DummyVecEnv([lambda: PrivilegedObservation(gym.make(GK, **KW))]))
+    assert isinstance(stats, VecNormalize)
     for _ in range(20):
         dict_obs = {"actor": obs[None], "critic": np.zeros((1, 2 * len(obs)), np.float32)}
         expected, _ = model.predict(stats.normalize_obs(dict_obs), deterministic=True)

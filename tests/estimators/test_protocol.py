@@ -100,3 +100,21 @@ def test_filter_cores_and_image_trackers_are_not_time_stamped_trackers():
     assert not isinstance(KLDLocalizer((-1.0, 1.0, -1.0, 1.0), np.random.default_rng(0)),
                           Tracker)
     assert not isinstance(PlainMeanShift((5.0, 5.0), (3, 3)), Tracker)
+
+
+@pytest.mark.parametrize("bad", [float("nan"), float("inf"), -float("inf"), 1.3e155, "soon"])
+@pytest.mark.parametrize("name", list(CASES))
+def test_trackers_refuse_impossible_time_stamps_and_stay_as_they_were(name, bad):
+    """A NaN, infinite, absurd (a frame stamped 1.3e155 s turned a track into NaN for the
+    next 30 frames) or non-numeric time stamp raises ValueError naming ``t``, in update and
+    in estimate, before changing anything."""
+    make, feed, ball = CASES[name]
+    tracker = make()
+    t = _roll(tracker, feed)
+    before = np.array(tracker.estimate(t + 0.1))
+    with pytest.raises(ValueError, match=r"\bt must be"):
+        feed(tracker, bad, P0 + t * V)
+    with pytest.raises(ValueError, match=r"\bt must be"):
+        tracker.estimate(bad)
+    np.testing.assert_array_equal(tracker.estimate(t + 0.1), before)
+    assert np.all(np.isfinite(before))

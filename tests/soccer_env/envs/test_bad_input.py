@@ -102,6 +102,9 @@ def test_unknown_keyword_lists_allowed():
     ({"control_dt": 0.0}, r"control_dt must be in \[0.001, 0.5\]"),
     ({"control_dt": "fast"}, r"control_dt must be a number in \[0.001, 0.5\]"),
     ({"physics_dt": 1.0}, r"physics_dt must be in"),
+    ({"render_width": 0}, r"render_width must be an integer in \[64, 3840\] pixels, got 0"),
+    ({"render_width": 10**6}, r"render_width must be an integer in \[64, 3840\]"),
+    ({"render_width": 640.5}, r"render_width must be an integer"),
 ])
 def test_goalkeeper_bad_arguments(kwargs, match):
     with pytest.raises((ValueError, TypeError), match=match):
@@ -156,6 +159,64 @@ def test_match_action_dict_errors_leave_world_intact():
     np.testing.assert_array_equal(before.robots, after.robots)
     assert before.time == after.time and env.cycles == 0
     env.step(good)
+
+
+def test_match_messages_name_the_argument():
+    env = soccer_env.parallel_env(blue=1, yellow=1)
+    with pytest.raises(ValueError, match=r"seed must be None or an integer >= 0, got -1"):
+        env.reset(seed=-1)
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match=r"unknown or finished agent\(s\) \['red_1', 0\]"):
+        env.step({"blue_0": np.zeros(6), 0: np.zeros(6), "red_1": np.zeros(6)})
+
+
+@pytest.mark.parametrize("shots,match", [
+    ({"speed": [1, 2, 3]}, r"shots.speed must be \(low, high\), two finite numbers, got "
+                           r"\(1, 2, 3\)"),
+    ({"speed": "fast"}, r"shots.speed must be \(low, high\)"),
+    ({"delay": (0.0, float("nan"))}, r"shots.delay must be \(low, high\)"),
+    ({"chip_probability": "often"}, r"shots.chip_probability must be in \[0.0, 1.0\]"),
+    ({"y_range": (1.0,)}, r"shots.y_range must be \(low, high\)"),
+])
+def test_shot_distribution_messages_name_the_entry(shots, match):
+    with pytest.raises(ValueError, match=match):
+        gym.make("soccer_env/Goalkeeper-v0", shots=shots)
+
+
+def test_step_after_the_shot_ended_raises():
+    """A finished Goalkeeper episode cannot be stepped on (it returned +1 for a save every
+    further step): the error says how it ended and to reset; reset starts anew."""
+    env = gym.make("soccer_env/Goalkeeper-v0").unwrapped
+    env.reset(seed=0)
+    while True:
+        _, _, term, _, info = env.step(np.zeros(6, np.float32))
+        if term:
+            break
+    with pytest.raises(RuntimeError, match=rf"ended \('{info['outcome']}'\).*reset"):
+        env.step(np.zeros(6, np.float32))
+    env.reset(seed=1)
+    env.step(np.zeros(6, np.float32))
+
+
+@pytest.mark.parametrize("bad,match", [
+    (np.array([np.nan, 0, 0, 0, 0, 0]), r"agent 'blue_0' contains a non-finite value"),
+    (np.zeros(5), r"agent 'blue_0' must have shape \(6,\)"),
+    ("fast", r"agent 'blue_0' must have shape \(6,\)"),
+])
+def test_aec_refuses_a_bad_action_at_the_agent_that_acts(bad, match):
+    """AEC: a bad action raises at its own agent's step, naming it, and leaves the cycle as
+    it was (the same agent still to act); the cycle then goes on normally."""
+    env = soccer_env.env(blue=1, yellow=1)
+    env.reset(seed=0)
+    assert env.agent_selection == "blue_0"
+    with pytest.raises(ValueError, match=match):
+        env.step(bad)
+    assert env.agent_selection == "blue_0"
+    env.step(np.zeros(6))
+    assert env.agent_selection == "yellow_0"
+    env.step(np.zeros(6))  # the physics steps: the cycle is complete
+    assert env.agent_selection == "blue_0"
+    env.step(np.zeros(6))
 
 
 def test_step_after_match_end():

@@ -33,12 +33,13 @@ def test_train_evaluate_checkpoint_and_resume(tmp_path, capsys):
     assert [e["steps"] for e in evaluations] == [1024, 2048]
     assert all(0.0 <= e["save_rate"] <= 1.0 for e in evaluations)
     for name in ("final_model.zip", "final_policy.npz", "best_model.zip", "best_policy.npz",
-                 "final_vecnormalize.pkl", "best_vecnormalize.pkl"):
+                 "final_vecnormalize.npz", "best_vecnormalize.npz"):
         assert (run / name).is_file(), name
     assert any((run / "tb").rglob("events.out.tfevents.*"))
     checkpoints = sorted((run / "checkpoints").glob("model_*_steps.zip"))
     assert [c.name for c in checkpoints] == ["model_1024_steps.zip", "model_2048_steps.zip"]
-    assert (run / "checkpoints" / "model_vecnormalize_1024_steps.pkl").is_file()
+    assert (run / "checkpoints" / "model_vecnormalize_1024_steps.npz").is_file()
+    assert not list(run.rglob("*.pkl"))  # nothing that loading would have to unpickle
     policy = NumpyPolicy.load(run / "final_policy.npz")
     assert policy.meta["env_kwargs"]["perception"] == "ssl-2012"
     assert policy.meta["evaluation"]["steps"] == 2048
@@ -210,13 +211,15 @@ def test_frame_stack_run_exports_a_policy_that_keeps_the_stack(tmp_path):
                                                 env, 1), actions, atol=1e-5)
     # Against the model itself on its training environment (stacked, behind the guard map
     # and VecNormalize): the same commands, step by step.
-    from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
+    from stable_baselines3.common.vec_env import DummyVecEnv
 
+    from agents.model_files import read_vecnormalize, vecnormalize_on
     from agents.training import goalkeeper_env_fn
     from agents.wrappers import action_to_command
 
     make = goalkeeper_env_fn({}, "guard", 3)
-    norm = VecNormalize.load(str(run / "final_vecnormalize.pkl"), DummyVecEnv([make]))
+    norm = vecnormalize_on(read_vecnormalize(run / "final_vecnormalize.npz"),
+                           DummyVecEnv([make]))
     stacked = make()
     policy.reset()
     obs, _ = stacked.reset(seed=2)

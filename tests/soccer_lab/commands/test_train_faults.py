@@ -127,7 +127,7 @@ def test_a_failing_worker_ends_training_with_a_checkpoint(tmp_path, monkeypatch,
     assert stopped.checkpoint == tmp_path / "run" / "checkpoints" / \
         f"model_{stopped.steps}_steps.zip"
     assert stopped.checkpoint.is_file()
-    assert (stopped.checkpoint.parent / f"model_vecnormalize_{stopped.steps}_steps.pkl"
+    assert (stopped.checkpoint.parent / f"model_vecnormalize_{stopped.steps}_steps.npz"
             ).is_file()
     assert f"--resume {stopped.checkpoint} --steps 10000" in text
     # The CLI says the same without a traceback, and exits with 1.
