@@ -93,6 +93,15 @@ def check_integer(name: str, value: Any, low: int, high: int, unit: str = "") ->
         raise ValueError(f"{name} must be an integer in [{low}, {high}]{unit}, got {value!r}")
 
 
+def check_seed(seed: Any) -> None:
+    """Raise ``ValueError`` unless ``seed`` is None or an integer >= 0 (not a bool): what
+    ``reset(seed=...)`` takes (Gymnasium's own check raises its ``Error``, numpy's a
+    ``TypeError`` without the argument's name)."""
+    if seed is not None and not (isinstance(seed, (int, np.integer))
+                                 and not isinstance(seed, (bool, np.bool_)) and seed >= 0):
+        raise ValueError(f"seed must be None or an integer >= 0, got {seed!r}")
+
+
 def check_pair(name: str, value: Any) -> tuple[float, float]:
     """``value`` as ``(low, high)``: raise ``ValueError`` naming ``name`` unless it is a
     sequence of exactly two finite real numbers (not bools), whatever else it must satisfy

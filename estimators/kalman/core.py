@@ -31,10 +31,17 @@ import numpy as np
 __all__ = ["KalmanFilter", "check_vector", "check_matrix"]
 
 
+def _floats(name: str, value) -> np.ndarray:
+    try:
+        return np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be an array of numbers, got {value!r}") from None
+
+
 def check_vector(name: str, value, n: int) -> np.ndarray:
     """``value`` as a finite float array of shape ``(n,)``; ``ValueError`` naming ``name``
     otherwise."""
-    arr = np.asarray(value, dtype=np.float64)
+    arr = _floats(name, value)
     if arr.shape != (n,):
         raise ValueError(f"{name} must have shape ({n},), got {arr.shape}")
     if not np.isfinite(arr).all():
@@ -45,7 +52,7 @@ def check_vector(name: str, value, n: int) -> np.ndarray:
 def check_matrix(name: str, value, n: int, m: int | None = None) -> np.ndarray:
     """``value`` as a finite float array of shape ``(n, m)`` (``m = n`` by default)."""
     m = n if m is None else m
-    arr = np.asarray(value, dtype=np.float64)
+    arr = _floats(name, value)
     if arr.shape != (n, m):
         raise ValueError(f"{name} must have shape ({n}, {m}), got {arr.shape}")
     if not np.isfinite(arr).all():
@@ -138,7 +145,7 @@ class KalmanFilter:
             residual: ``r(z, z_pred)`` replacing the subtraction (e.g. to wrap angles).
             gate: reject the measurement if ``d^2`` exceeds this (chi-square quantile).
         """
-        H = np.asarray(H, dtype=np.float64)
+        H = _floats("H", H)
         if H.ndim != 2 or H.shape[1] != self.dim:
             raise ValueError(f"H must have shape (m, {self.dim}), got {H.shape}")
         m = H.shape[0]

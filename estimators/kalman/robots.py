@@ -125,8 +125,18 @@ class RobotTracker:
         """Fuse pose detections ``z`` ``(k, 3)`` of robots ``index`` ``(k,)`` captured at
         times ``t`` (``(k,)`` or one time for all), in the given order (checked; see
         :meth:`update_robot` for one detection of validated data)."""
-        index = np.asarray(index, dtype=np.int64).reshape(-1)
-        z = np.asarray(z, dtype=np.float64)
+        try:
+            index = np.asarray(index).reshape(-1)
+        except (TypeError, ValueError):
+            raise ValueError(f"index must be robot indices, got {index!r}") from None
+        if index.dtype.kind not in "iu":
+            if index.size or index.dtype.kind not in "fb":
+                raise ValueError(f"index must be integer robot indices, got {index!r}")
+            index = index.astype(np.int64)
+        try:
+            z = np.asarray(z, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"z must be (k, 3) poses, got {z!r}") from None
         k = len(index)
         if z.shape != (k, 3):
             raise ValueError(f"z must have shape ({k}, 3), got {z.shape}")

@@ -5,7 +5,21 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..checks import check_real
+
 __all__ = ["FrictionBallModel"]
+
+
+def _states(state) -> np.ndarray:
+    """``state`` as a finite float array of shape ``(..., 4)``; ``ValueError`` otherwise."""
+    try:
+        arr = np.asarray(state, dtype=np.float64)
+    except (TypeError, ValueError):
+        arr = None
+    if arr is None or arr.ndim < 1 or arr.shape[-1] != 4 or not np.all(np.isfinite(arr)):
+        raise ValueError(f"state must be finite (px, py, vx, vy) rows of shape (..., 4), got "
+                         f"{state!r}")
+    return arr
 
 
 class FrictionBallModel:
@@ -28,16 +42,17 @@ class FrictionBallModel:
     """
 
     def __init__(self, deceleration: float) -> None:
-        if not (np.isfinite(deceleration) and deceleration >= 0.0):
-            raise ValueError(f"deceleration must be finite and >= 0 m/s^2, got {deceleration!r}")
-        self.deceleration = float(deceleration)
+        self.deceleration = check_real("deceleration", deceleration, 0.0, unit=" m/s^2")
 
     def predict(self, state: np.ndarray, dt: float | np.ndarray) -> np.ndarray:
         """State ``(..., 4)`` after ``dt`` seconds (``dt`` broadcasts against the batch)."""
-        state = np.asarray(state, dtype=np.float64)
-        dt = np.asarray(dt, dtype=np.float64)
-        if np.any(dt < 0):
-            raise ValueError("dt must be >= 0")
+        state = _states(state)
+        try:
+            dt = np.asarray(dt, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"dt must be a time in seconds, got {dt!r}") from None
+        if np.any(np.isnan(dt)) or np.any(dt < 0):
+            raise ValueError(f"dt must be >= 0 s (inf: until the ball stops), got {dt!r}")
         p, v = state[..., 0:2], state[..., 2:4]
         speed = np.linalg.norm(v, axis=-1, keepdims=True)
         a = self.deceleration
@@ -50,7 +65,7 @@ class FrictionBallModel:
 
     def stop_time(self, state: np.ndarray) -> np.ndarray:
         """Seconds until the ball stops (``inf`` without friction), shape ``(...)``."""
-        speed = np.linalg.norm(np.asarray(state, dtype=np.float64)[..., 2:4], axis=-1)
+        speed = np.linalg.norm(_states(state)[..., 2:4], axis=-1)
         if self.deceleration == 0.0:
             return np.where(speed > 0, np.inf, 0.0)
         return speed / self.deceleration
@@ -59,7 +74,7 @@ class FrictionBallModel:
         """Where the ball comes to rest, shape ``(..., 2)``: without friction a moving ball
         never does, and each coordinate it moves along is ``+-inf`` (one it does not move
         along stays where it is); a ball at rest stays where it is."""
-        state = np.asarray(state, dtype=np.float64)
+        state = _states(state)
         if self.deceleration > 0.0:
             return self.predict(state, self.stop_time(state))[..., 0:2]
         p, v = state[..., 0:2], state[..., 2:4]
@@ -73,7 +88,8 @@ class FrictionBallModel:
         Solves ``x + u_x (v t - a t^2 / 2) = x_line`` for the smallest ``t`` in
         ``[0, v / a]``.
         """
-        state = np.asarray(state, dtype=np.float64)
+        state = _states(state)
+        x_line = check_real("x_line", x_line, unit=" m")
         x, vx = state[..., 0], state[..., 2]
         speed = np.linalg.norm(state[..., 2:4], axis=-1)
         a = self.deceleration

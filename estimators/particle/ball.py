@@ -120,6 +120,14 @@ def _cv_matrices(dt: float) -> tuple[np.ndarray, np.ndarray]:
     return A, B
 
 
+def _floats(value) -> np.ndarray | None:
+    """``value`` as a float array, None when it is not numbers."""
+    try:
+        return np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        return None
+
+
 class ParticleBallTracker:
     """Ball tracker on paper 000's particle filters (see the module docstring).
 
@@ -319,10 +327,13 @@ class ParticleBallTracker:
 
     def _check(self, t: float, z, sigma) -> tuple[float, np.ndarray, np.ndarray]:
         t = check_time(t)
-        zz = np.asarray(z, dtype=np.float64)
-        if zz.shape != (2,) or not np.all(np.isfinite(zz)):
+        zz = _floats(z)
+        if zz is None or zz.shape != (2,) or not np.all(np.isfinite(zz)):
             raise ValueError(f"z must be a finite (2,) position, got {z!r}")
-        s = np.asarray(sigma, dtype=np.float64)
+        s = _floats(sigma)
+        if s is None:
+            raise ValueError(f"sigma must be a number > 0 or a 2 x 2 covariance, got "
+                             f"{sigma!r}")
         if s.ndim == 0:
             sv = float(s)
             if not (math.isfinite(sv) and sv > 0.0):

@@ -54,7 +54,7 @@ from soccer_env.sim.commands import (
 from soccer_env.sim.heads import HEAD_MODES, HeadControl, aim_heads
 from soccer_env.sim.world import World
 from soccer_env.state import Belief, WorldState, state_dict
-from soccer_env.validation import check_choice, check_integer
+from soccer_env.validation import check_choice, check_integer, check_seed
 
 __all__ = ["SoccerCore", "SingleAgentTask", "resolve_world", "action_cost", "RENDER_WIDTHS"]
 
@@ -319,6 +319,7 @@ class SingleAgentTask(SoccerCore, gym.Env):
     _ended: str | None = None
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        check_seed(seed)
         super().reset(seed=seed)
         state = self._start(self.np_random)
         self._running, self._ended = True, None
@@ -331,7 +332,10 @@ class SingleAgentTask(SoccerCore, gym.Env):
                 raise RuntimeError(f"the episode has ended ({self._ended!r}): call reset() "
                                    "before stepping again")
             raise RuntimeError("call reset() before step()")
-        act = np.asarray(action, dtype=np.float64)
+        try:
+            act = np.asarray(action, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"action must be 6 numbers, got {action!r}") from None
         if act.shape != (6,):
             names = ", ".join(self._models[0].action_names)
             raise ValueError(f"action must have shape (6,) ({names}), got {act.shape}")

@@ -25,6 +25,7 @@ from soccer_env.validation import (
     check_choice,
     check_int,
     check_range,
+    check_seed,
     keyword_names,
     parse_scales,
     reject_unknown,
@@ -232,9 +233,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         return self._action_spaces[agent]
 
     def reset(self, seed: int | None = None, options: dict | None = None):
-        if seed is not None and not (isinstance(seed, (int, np.integer))
-                                     and not isinstance(seed, bool) and seed >= 0):
-            raise ValueError(f"seed must be None or an integer >= 0, got {seed!r}")
+        check_seed(seed)
         if seed is not None or self._rng is None:
             self._rng = np.random.default_rng(seed)
         state = self._start(self._rng)

@@ -200,12 +200,13 @@ class PerceptionConfig:
             return value
         if kind == "humanoid" and isinstance(value, (str, HeadCameraSpec)):
             if isinstance(value, str) and value not in HEAD_CAMERAS:
-                raise ValueError(f"unknown head-camera preset {value!r} for humanoid "
-                                 f"perception; known: {sorted(HEAD_CAMERAS)}")
+                raise ValueError(f"perception: unknown head-camera preset {value!r} for "
+                                 f"humanoid perception; known: {sorted(HEAD_CAMERAS)}")
             return cls(vision(default_vision), camera=value)
         if isinstance(value, (str, VisionSpec)):
             if isinstance(value, str) and value not in VISION:
-                raise ValueError(f"unknown vision preset {value!r}; known: {sorted(VISION)}")
+                raise ValueError(f"perception: unknown vision preset {value!r}; known: "
+                                 f"{sorted(VISION)}")
             return cls(vision(value))
         if isinstance(value, Mapping):
             return from_mapping(cls, value, "perception", defaults={

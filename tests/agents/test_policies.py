@@ -25,8 +25,10 @@ def _observations(env, n=64):
     obs, _ = env.reset(seed=0)
     out = [obs]
     for _ in range(n - 1):
-        obs, *_ = env.step(rng.uniform(-1, 1, 6).astype(np.float32))
+        obs, _, term, trunc, _ = env.step(rng.uniform(-1, 1, 6).astype(np.float32))
         out.append(obs)
+        if term or trunc:
+            obs, _ = env.reset()
     # Also points far outside the visited region, where clipping and squashing matter.
     return np.concatenate([np.array(out), rng.normal(0, 5, (16, out[0].size))]).astype(
         np.float32)

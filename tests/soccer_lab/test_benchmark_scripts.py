@@ -60,8 +60,10 @@ def test_oracle_hides_the_kick_until_the_first_frame():
             assert np.all(ball_velocity == 0.0)
         else:
             np.testing.assert_allclose(obs, tobs, atol=1e-6)
-        obs, *_ = env.step(np.zeros(6, np.float32))
+        obs, _, term, *_ = env.step(np.zeros(6, np.float32))
         tobs, *_ = truth.step(np.zeros(6, np.float32))
+        if term:
+            break
 
 
 def test_true_velocity_keeps_the_belief_but_the_ball_velocity():
@@ -89,3 +91,19 @@ def test_true_velocity_keeps_the_belief_but_the_ball_velocity():
         if term or trunc:
             break
     assert fastest > 1.0  # the shot was checked in flight
+
+
+def test_soak_reports_memory_growth_per_million_steps(capsys):
+    """The soak benchmark at a tiny size: it samples RSS and the Python heap and reports
+    their slopes; a least-squares slope of a straight line is its gradient."""
+    soak = _script("soak")
+    assert soak.slope_per_million([0, 500_000, 1_000_000], [10.0, 12.0, 14.0]) == \
+        pytest.approx(4.0)
+    assert soak.main(["--env", "goalkeeper", "--steps", "300", "--every", "100",
+                      "--warmup", "0", "--tracemalloc", "--json"]) == 0
+    import json
+
+    result = json.loads(capsys.readouterr().out)
+    assert [s["steps"] for s in result["samples"]] == [100, 200, 300]
+    assert result["rss_final_mb"] > 0 and np.isfinite(result["rss_mb_per_million_steps"])
+    assert result["heap_mb_per_million_steps"] is not None

@@ -38,7 +38,7 @@ def test_time_to_line():
 
 
 def test_bad_arguments():
-    with pytest.raises(ValueError, match="deceleration must be finite and >= 0"):
+    with pytest.raises(ValueError, match=r"deceleration must be a finite number in \[0"):
         FrictionBallModel(-0.1)
     with pytest.raises(ValueError, match="dt must be >= 0"):
         FrictionBallModel(0.1).predict(np.zeros(4), -1.0)
