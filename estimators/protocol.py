@@ -26,13 +26,19 @@ from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
-__all__ = ["Tracker", "TrackQuality", "check_time", "MAX_TIME"]
+__all__ = ["Tracker", "TrackQuality", "check_time", "check_order", "MAX_TIME", "MAX_REWIND"]
 
 #: The largest time stamp a tracker takes, in absolute value [s]: 10^10 s (about 317 years)
 #: covers clocks counted from the episode's start and Unix time alike, while the motion
 #: models' squared time steps stay far from overflowing (a frame stamped 1e155 s turned a
 #: track into NaN).
 MAX_TIME = 1e10
+
+#: How far a measurement may lag the tracker's latest one [s]. Late frames within a
+#: tracker's own window are replayed or counted as late (network and camera latency: tens of
+#: milliseconds); one older by more than this is no late frame but a clock that went back,
+#: usually a new episode fed without ``reset()``, and is refused.
+MAX_REWIND = 10.0
 
 
 def check_time(t: Any, name: str = "t") -> float:
@@ -78,3 +84,12 @@ class TrackQuality(Protocol):
     def covariance(self, t: float) -> np.ndarray | None:
         """``4 x 4`` covariance of ``(x, y, vx, vy)`` at ``t``; None before the first
         measurement."""
+
+
+def check_order(t: float, latest: float, name: str = "t") -> None:
+    """Raise ``ValueError`` when the time stamp ``t`` lies more than :data:`MAX_REWIND`
+    before ``latest``, the tracker's latest measurement time (``-inf`` before the first)."""
+    if t < latest - MAX_REWIND:
+        raise ValueError(f"{name} = {t:g} s is {latest - t:g} s before the latest measurement "
+                         f"({latest:g} s): measurements may arrive out of order by at most "
+                         f"{MAX_REWIND:g} s; call reset() to start a new episode")

@@ -25,7 +25,7 @@ import numpy as np
 
 from ..models.measurement import PositionMeasurement
 from ..models.motion import FrictionBallMotion
-from ..protocol import check_time
+from ..protocol import check_order, check_time
 
 __all__ = ["BallFilterConfig", "BallTracker", "LeastSquaresBall", "CHI2_2DOF_999"]
 
@@ -322,6 +322,7 @@ class BallTracker:
         and robot positions seen in it (for eq. 19; ``(j, 2)``, or poses whose first two
         entries are the position)."""
         t = check_time(t)
+        check_order(t, self._track.t)
         dets = _points("detections", detections)
         obs = _points("obstacles", obstacles, exact=False) if obstacles is not None else []
         if t >= self._track.t:
@@ -567,6 +568,7 @@ class LeastSquaresBall:
         """Process one frame captured at ``t`` with ball detections ``(k, 2)`` (k may be 0);
         ``obstacles`` is accepted for the protocol's sake and not used."""
         t = check_time(t)
+        check_order(t, self._t[-1] if self._t else -math.inf)
         dets = np.asarray(detections, dtype=np.float64).reshape(-1, 2) if len(
             detections) else np.zeros((0, 2))
         if not np.isfinite(dets).all():

@@ -40,7 +40,7 @@ import numpy as np
 
 from ..checks import check_count
 from ..models.measurement import MIN_SIGMA_THETA, MIN_SIGMA_XY, PoseMeasurement
-from ..protocol import check_time
+from ..protocol import check_order, check_time
 
 __all__ = ["RobotTracker", "MAX_ROBOTS"]
 
@@ -147,8 +147,9 @@ class RobotTracker:
                              f"{t!r}") from None
         if not np.isfinite(z).all():
             raise ValueError("z must be finite (NaN measurements are refused)")
+        latest = max(self._t, default=-math.inf)
         for ti in np.unique(t).tolist():
-            check_time(ti)
+            check_order(check_time(ti), latest)
         if k and (index.min() < 0 or index.max() >= self.n):
             raise ValueError(f"index must be in 0..{self.n - 1}, got {index.tolist()}")
         for i, ti, zi in zip(index.tolist(), t.tolist(), z.tolist()):

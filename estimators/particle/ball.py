@@ -68,7 +68,7 @@ import numpy as np
 
 from ..checks import MAX_PARTICLES, check_count
 from ..kalman.core import KalmanFilter
-from ..protocol import check_time
+from ..protocol import check_order, check_time
 from .core import PARTICLE_FILTERS, BootstrapPF
 
 __all__ = ["ParticleBallTracker", "CHI2_2DOF_9999"]
@@ -358,6 +358,8 @@ class ParticleBallTracker:
         filter's own SFN and/or resampling (see the module docstring for the start,
         re-initialisation and late measurements)."""
         t, z, R = self._check(t, z, sigma)
+        if self._pf is not None:
+            check_order(t, self._t)
         prev, self._prev = self._prev, (t, z, R)
         if self._pf is None or (self.lost_after is not None
                                 and t - self._t_fused > self.lost_after):

@@ -267,3 +267,14 @@ def test_damaged_statistics_name_themselves(tmp_path, damage):
         np.savez(path, header=np.array(json.dumps({"format": "something else"})))
     with pytest.raises(ValueError, match="final_vecnormalize.npz"):
         read_vecnormalize(path)
+
+
+def test_a_damaged_trusted_pickle_names_itself(tmp_path, honest_model):
+    """Even trusted, a truncated statistics pickle gives an error naming the file, not an
+    UnpicklingError or EOFError from deep inside pickle."""
+    from agents.policies import load_vecnormalize
+
+    run = _run_folder(tmp_path, honest_model)
+    (run / "final_vecnormalize.pkl").write_bytes(pickle.dumps({"a": list(range(100))})[:40])
+    with pytest.raises(ValueError, match="final_vecnormalize.pkl could not be read"):
+        load_vecnormalize(run / "final_model.zip", trust=True)

@@ -118,3 +118,21 @@ def test_trackers_refuse_impossible_time_stamps_and_stay_as_they_were(name, bad)
         tracker.estimate(bad)
     np.testing.assert_array_equal(tracker.estimate(t + 0.1), before)
     assert np.all(np.isfinite(before))
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_a_clock_that_goes_back_is_refused_but_late_frames_are_not(name):
+    """A measurement older than the latest by more than MAX_REWIND is no late frame but a
+    clock that went back (a new episode fed without reset()): refused, naming reset().
+    Ordinary late frames (tens of milliseconds) are taken as the tracker's own rules say."""
+    from estimators.protocol import MAX_REWIND
+
+    make, feed, ball = CASES[name]
+    tracker = make()
+    t = _roll(tracker, feed, steps=300)  # 12 s of frames
+    assert t > MAX_REWIND
+    feed(tracker, t - 0.05, P0 + (t - 0.05) * V)
+    with pytest.raises(ValueError, match=r"before the latest measurement.*reset\(\)"):
+        feed(tracker, t - MAX_REWIND - 1.0, P0)
+    tracker.reset()
+    feed(tracker, 0.0, P0)  # after a reset the clock may start again
