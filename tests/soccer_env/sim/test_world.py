@@ -342,21 +342,3 @@ def test_direct_and_batch_state_reads_agree(n_blue, n_yellow):
     np.testing.assert_array_equal(direct.robots, batch.robots)
     np.testing.assert_array_equal(direct.ball, batch.ball)
 
-
-@pytest.mark.parametrize("robot", ["ssl", "humanoid"])
-def test_reset_frees_the_previous_space_at_once(robot):
-    """The previous episode's space (with Chipmunk's contact buffers) is freed by reference
-    counting when the world resets, not left for Python's rare full garbage collection
-    (which let a 6 vs 6 match grow by 3.5 MB per million steps)."""
-    import gc
-    import weakref
-
-    world = park(make_world(n_blue=2, n_yellow=1, robot=robot))
-    run(world, 30)
-    old = weakref.ref(world.space)
-    gc.disable()
-    try:
-        park(world)
-        assert old() is None
-    finally:
-        gc.enable()
