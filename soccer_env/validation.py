@@ -34,11 +34,14 @@ def keyword_names(func: Callable[..., Any]) -> list[str]:
 
 
 def reject_unknown(where: str, unknown: Mapping[str, Any], allowed: Iterable[str]) -> None:
-    """Raise ``TypeError`` if ``unknown`` holds any keyword, listing the allowed ones."""
+    """Raise ``TypeError`` if ``unknown`` holds any keyword, in Python's own wording (``f()
+    got an unexpected keyword argument 'name'``, which libraries such as TorchRL look for to
+    drop an optional keyword they tried) followed by the list of the allowed ones."""
     if unknown:
+        names = sorted(unknown)
         raise TypeError(
-            f"{where} got unknown keyword argument(s) {sorted(unknown)}; "
-            f"allowed: {sorted(allowed)}"
+            f"{where}() got an unexpected keyword argument {names[0]!r} (unknown keyword "
+            f"argument(s) {names}; allowed: {sorted(allowed)})"
         )
 
 

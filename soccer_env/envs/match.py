@@ -174,9 +174,11 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         self.builder = self._observation_builder(range(w.n_robots), game_low, game_high,
                                                  GAME_NAMES)
         self._teams = w.teams.tolist()
-        self._observation_spaces = {a: self.builder.space() for a in self.possible_agents}
-        self._action_spaces = {a: self._models[t].action_space()
-                               for a, t in zip(self.possible_agents, self._teams)}
+        #: Every possible agent's spaces (PettingZoo's ``observation_spaces`` and
+        #: ``action_spaces``; ``observation_space(agent)`` reads them).
+        self.observation_spaces = {a: self.builder.space() for a in self.possible_agents}
+        self.action_spaces = {a: self._models[t].action_space()
+                              for a, t in zip(self.possible_agents, self._teams)}
         # One observation builder per group of robots that share a belief.
         self._builders = [(g, self._observation_builder(g, game_low, game_high, GAME_NAMES))
                           for g in self._perception.groups]
@@ -227,10 +229,10 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     # ------------------------------------------------------------------------------------
 
     def observation_space(self, agent: str) -> gymnasium.spaces.Box:
-        return self._observation_spaces[agent]
+        return self.observation_spaces[agent]
 
     def action_space(self, agent: str) -> gymnasium.spaces.Box:
-        return self._action_spaces[agent]
+        return self.action_spaces[agent]
 
     def reset(self, seed: int | None = None, options: dict | None = None):
         check_seed(seed)

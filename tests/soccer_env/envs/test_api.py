@@ -97,9 +97,12 @@ def test_aec_api():
 
 def test_spaces_are_memoised():
     env = soccer_env.parallel_env(blue=2, yellow=1)
+    assert list(env.observation_spaces) == list(env.action_spaces) == env.possible_agents
     for a in env.possible_agents:
         assert env.observation_space(a) is env.observation_space(a)
         assert env.action_space(a) is env.action_space(a)
+        assert env.observation_spaces[a] is env.observation_space(a)
+        assert env.action_spaces[a] is env.action_space(a)
     obs, _ = env.reset(seed=0)
     for a in env.agents:
         assert env.observation_space(a).contains(obs[a])

@@ -70,6 +70,10 @@ def test_step_before_reset():
 def test_unknown_keyword_lists_allowed():
     with pytest.raises(TypeError, match=r"\['colour'\].*allowed: .*'field'"):
         gym.make("soccer_env/Goalkeeper-v0", colour="red")
+    # Python's own wording, which TorchRL's GymEnv looks for before dropping "frameskip".
+    with pytest.raises(TypeError, match=r"GoalkeeperEnv\(\) got an unexpected keyword "
+                                        r"argument 'frameskip'"):
+        gym.make("soccer_env/Goalkeeper-v0", frameskip=4)
     with pytest.raises(TypeError, match=r"\['team_size'\].*allowed: .*'blue'"):
         soccer_env.parallel_env(team_size=3)
 
