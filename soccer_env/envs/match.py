@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import Any
 
@@ -182,8 +183,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         # One observation builder per group of robots that share a belief.
         self._builders = [(g, self._observation_builder(g, game_low, game_high, GAME_NAMES))
                           for g in self._perception.groups]
-        self.state_space = gymnasium.spaces.Box(-np.inf, np.inf, (6 + 6 * w.n_robots,),
-                                                np.float32)
+        self.state_space = _state_space(self.field, w.n_robots)
         self.score = [0, 0]
         self.restart_team = -1
         self.cycles = 0
@@ -381,6 +381,26 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
                     ) -> dict[str, Any]:
         return {"truth": truth, "estimate": estimate, "reward_terms": terms,
                 "score": {"blue": self.score[0], "yellow": self.score[1]}, "event": event}
+
+
+#: Bounds of :meth:`SoccerParallelEnv.state` beyond the walls' and the robots' own limits:
+#: a metre past the walls for contact penetration, the ball's height up to 10 m (a chip at
+#: the kick cap rises under 2 m), speeds up to 100 m/s and turn rates up to 1,000 rad/s (an
+#: order of magnitude above the robots' and the kicker's caps).
+STATE_MARGIN, STATE_MAX_HEIGHT, STATE_MAX_SPEED, STATE_MAX_TURN = 1.0, 10.0, 100.0, 1000.0
+
+
+def _state_space(field: Any, n_robots: int) -> gymnasium.spaces.Box:
+    """The finite ``Box`` of the global state: ball ``x, y, z, vx, vy, vz``, then per robot
+    ``x, y, theta, vx, vy, omega`` [m, rad, m/s, rad/s]."""
+    x = field.half_length + field.boundary + STATE_MARGIN
+    y = field.half_width + field.boundary + STATE_MARGIN
+    v, w = STATE_MAX_SPEED, STATE_MAX_TURN
+    ball_low, ball_high = [-x, -y, 0.0, -v, -v, -v], [x, y, STATE_MAX_HEIGHT, v, v, v]
+    robot_low, robot_high = [-x, -y, -math.pi, -v, -v, -w], [x, y, math.pi, v, v, w]
+    return gymnasium.spaces.Box(np.array(ball_low + robot_low * n_robots, np.float32),
+                                np.array(ball_high + robot_high * n_robots, np.float32),
+                                dtype=np.float32)
 
 
 def parallel_env(**kwargs: Any) -> SoccerParallelEnv:

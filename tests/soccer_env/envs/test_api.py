@@ -120,10 +120,18 @@ def test_match_info_keys_stable_from_reset():
         assert step_infos[a]["reward_terms"]["ball_distance"] < 0
 
 
-def test_state_space():
-    env = soccer_env.parallel_env(blue=2, yellow=2)
+@pytest.mark.parametrize("robot", ["ssl", "humanoid"])
+def test_state_space_is_finite_and_holds_every_state(robot):
+    """The global state's Box has finite bounds (libraries size their networks' inputs from
+    it) and holds the state all through random play, kicks, chips and collisions."""
+    env = soccer_env.parallel_env(blue=3, yellow=3, robot=robot)
+    assert np.all(np.isfinite(env.state_space.low)) and np.all(np.isfinite(env.state_space.high))
+    rng = np.random.default_rng(0)
     env.reset(seed=0)
     assert env.state().shape == env.state_space.shape
+    for _ in range(600):
+        env.step({a: rng.uniform(-1, 1, 6) for a in env.agents})
+        assert env.state_space.contains(env.state())
 
 
 def rollout_goalkeeper(env, seed, steps=200):
