@@ -117,8 +117,9 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     :mod:`soccer_env.observations`).
     """
 
-    metadata = {"name": "soccer_v0", "render_modes": list(RENDER_MODES), "render_fps": 60,
-                "is_parallelizable": True}
+    #: ``name`` is the registered id (``pettingzoo.make``'s and ``soccer_env.PETTINGZOO``'s).
+    metadata = {"name": "soccer_env/Match-v0", "render_modes": list(RENDER_MODES),
+                "render_fps": 60, "is_parallelizable": True}
 
     def __init__(
         self,

@@ -246,6 +246,11 @@ def test_human_rendering_with_dummy_video_driver():
     env.close()
 
 
+def test_match_metadata_names_its_registered_id():
+    assert soccer_env.parallel_env().metadata["name"] == "soccer_env/Match-v0"
+    assert soccer_env.env().metadata["name"] == "soccer_env/Match-v0"
+
+
 def test_pettingzoo_registry():
     import pettingzoo
 
@@ -265,3 +270,21 @@ def test_readme_training_snippet_runs():
     obs, _ = env.reset(seed=0)
     action, _ = model.predict(obs, deterministic=True)
     assert env.action_space.contains(action)
+
+
+def test_gymnasium_record_video_writes_the_episode(tmp_path):
+    """Gymnasium's RecordVideo (moviepy, in the render extra) records a Goalkeeper episode."""
+    pytest.importorskip("moviepy")
+    from gymnasium.wrappers import RecordVideo
+
+    env = RecordVideo(gym.make("soccer_env/Goalkeeper-v0", render_mode="rgb_array",
+                               render_width=320), str(tmp_path), episode_trigger=lambda e: True,
+                      disable_logger=True)
+    env.reset(seed=0)
+    while True:
+        _, _, term, trunc, _ = env.step(np.zeros(6, np.float32))
+        if term or trunc:
+            break
+    env.close()
+    videos = list(tmp_path.glob("*.mp4"))
+    assert len(videos) == 1 and videos[0].stat().st_size > 1000
