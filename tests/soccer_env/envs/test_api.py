@@ -278,13 +278,13 @@ def test_gymnasium_record_video_writes_the_episode(tmp_path):
     from gymnasium.wrappers import RecordVideo
 
     env = RecordVideo(gym.make("soccer_env/Goalkeeper-v0", render_mode="rgb_array",
-                               render_width=320), str(tmp_path), episode_trigger=lambda e: True,
-                      disable_logger=True)
+                               render_width=320), str(tmp_path / "videos"),
+                      episode_trigger=lambda e: True, disable_logger=True)
     env.reset(seed=0)
     while True:
         _, _, term, trunc, _ = env.step(np.zeros(6, np.float32))
         if term or trunc:
             break
     env.close()
-    videos = list(tmp_path.glob("*.mp4"))
+    videos = list((tmp_path / "videos").glob("*.mp4"))
     assert len(videos) == 1 and videos[0].stat().st_size > 1000
