@@ -757,30 +757,22 @@ def _run_spaces(run: dict[str, Any]) -> tuple[Any, Any]:
 
 def _run_hyperparams(run: dict[str, Any]) -> dict[str, Any]:
     """A training run's hyperparameters over the algorithm's defaults (``config.json``)."""
-    from agents.training import DEFAULT_HYPERPARAMS
+    from agents.training import merged_hyperparams
 
-    algorithm = run.get("algorithm")
-    defaults = DEFAULT_HYPERPARAMS.get(algorithm_name(algorithm), {}) if algorithm else {}
     given = dict(run.get("hyperparams") or {})
-    merged = {**defaults, **given}
-    if "policy_kwargs" in defaults and "policy_kwargs" in given:
-        merged["policy_kwargs"] = {**defaults["policy_kwargs"], **given["policy_kwargs"]}
-    return merged
+    algorithm = run.get("algorithm")
+    return merged_hyperparams(algorithm, given) if algorithm else given
 
 
 def learner_spaces(env: Any, run: dict[str, Any]) -> tuple[Any, Any]:
     """The spaces of the learner of training run ``run`` (its ``config.json``) acting in
     ``env`` (a Goalkeeper-v0): ``env``'s, behind the run's action map, frame stack and
     critic."""
-    from agents.wrappers import stack_frames, wrap_actions
+    from agents.wrappers import wrap_learner
 
     action_map = run.get("action_map")
-    learner = wrap_actions(env, action_map["kind"]) if action_map else env
-    learner = stack_frames(learner, int(run.get("frame_stack", 1)))
-    if run.get("critic") == "privileged":
-        from agents.privileged import PrivilegedObservation
-
-        learner = PrivilegedObservation(learner)
+    learner = wrap_learner(env, action_map["kind"] if action_map else "native",
+                           int(run.get("frame_stack", 1)), run.get("critic", "shared"))
     return learner.observation_space, learner.action_space
 
 

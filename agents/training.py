@@ -64,13 +64,13 @@ from agents.policies import (
     load_vecnormalize,
     vecnormalize_path,
 )
-from agents.wrappers import ACTION_MAPS, stack_frames, wrap_actions
+from agents.wrappers import ACTION_MAPS, wrap_actions, wrap_learner
 from soccer_env.validation import check_fields
 
 __all__ = ["TrainConfig", "train", "check_env_kwargs", "make_vec_env", "EVAL_SEED_START",
            "MATCH_ID", "DEFAULT_HYPERPARAMS", "rollout_timer", "goalkeeper_env_fn",
            "checkpoint_steps", "CRITICS", "TrainingStopped", "RunRefused", "RUN_FILES",
-           "run_files", "run_folder", "OPPONENTS"]
+           "run_files", "run_folder", "OPPONENTS", "merged_hyperparams"]
 
 #: What a training run writes into its folder: a folder holding any of these holds a run,
 #: which :func:`train` does not overwrite unless told to (and then deletes these, and only
@@ -269,6 +269,17 @@ class TrainConfig:
         return dataclasses.asdict(self)
 
 
+def merged_hyperparams(algorithm: str, given: dict[str, Any]) -> dict[str, Any]:
+    """``given`` hyperparameters over :data:`DEFAULT_HYPERPARAMS` of ``algorithm`` (any
+    spelling :func:`~agents.policies.algorithm_name` takes), ``policy_kwargs`` merged key by
+    key."""
+    defaults = DEFAULT_HYPERPARAMS.get(algorithm_name(algorithm), {})
+    merged = {**defaults, **given}
+    if "policy_kwargs" in defaults and "policy_kwargs" in given:
+        merged["policy_kwargs"] = {**defaults["policy_kwargs"], **given["policy_kwargs"]}
+    return merged
+
+
 def _algorithm_parameters(name: str) -> set[str]:
     """The keyword arguments of algorithm ``name`` that a configuration may set."""
     sig = inspect.signature(algorithm_class(name).__init__)
@@ -293,13 +304,8 @@ def goalkeeper_env_fn(env_kwargs: dict[str, Any], actions: str = "native",
 
         import soccer_env  # noqa: F401
 
-        # The action maps read the pose from the plain observation: they go inside.
-        env = wrap_actions(gym.make(GOALKEEPER_ID, **env_kwargs), actions)
-        if critic == "privileged":
-            from agents.privileged import PrivilegedObservation
-
-            env = PrivilegedObservation(env)
-        return Monitor(stack_frames(env, frame_stack))
+        return Monitor(wrap_learner(gym.make(GOALKEEPER_ID, **env_kwargs), actions,
+                                    frame_stack, critic))
 
     return make
 
@@ -668,11 +674,7 @@ def _training_env(cfg: TrainConfig, resume: str | os.PathLike | None, trust: boo
     if resume is not None and (cfg.normalize_obs or cfg.normalize_reward):
         stats = load_vecnormalize(resume, trust)  # before any process starts
     venv = make_vec_env(cfg)
-    defaults = DEFAULT_HYPERPARAMS.get(cfg.algorithm, {})
-    params = {**defaults, **cfg.hyperparams}
-    if "policy_kwargs" in defaults and "policy_kwargs" in cfg.hyperparams:
-        params["policy_kwargs"] = {**defaults["policy_kwargs"],
-                                   **cfg.hyperparams["policy_kwargs"]}
+    params = merged_hyperparams(cfg.algorithm, cfg.hyperparams)
     if cfg.algorithm in ("PPO", "RECURRENTPPO"):
         # Keep one rollout at about n_steps * n_envs and a whole number of minibatches.
         params["batch_size"] = min(params["batch_size"], params["n_steps"] * venv.num_envs)

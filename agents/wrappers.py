@@ -61,7 +61,7 @@ from soccer_env.envs.keeper import TURN_GAIN, ScriptedGoalkeeper
 __all__ = ["ACTION_MAPS", "FieldVelocityActions", "TargetActions", "GuardActions",
            "GuardResidualActions", "BallResidualActions", "action_to_command",
            "target_params", "residual_params", "ball_residual_params", "scripted_guard_y",
-           "wrap_actions", "stack_frames"]
+           "wrap_actions", "stack_frames", "wrap_learner"]
 
 #: Action spaces of a learning keeper (see the module docstring) and their sizes.
 ACTION_MAPS = {"native": 6, "velocity": 3, "target": 2, "guard": 1,
@@ -433,3 +433,18 @@ def stack_frames(env: gym.Env, n: int) -> gym.Env:
     if not (isinstance(space, gym.spaces.Box) and len(space.shape) == 1):
         raise ValueError(f"stack_frames takes a flat Box observation, got {space}")
     return FlattenObservation(FrameStackObservation(env, int(n), padding_type="reset"))
+
+
+def wrap_learner(env: gym.Env, actions: str = "native", frame_stack: int = 1,
+                 critic: str = "shared") -> gym.Env:
+    """``env`` as a keeper learner of ``soccer-env train`` sees it: behind the action map
+    ``actions`` (:func:`wrap_actions`; inside, since the maps read the pose from the plain
+    observation), with the true state beside the observation for a ``"privileged"`` critic
+    (:class:`~agents.privileged.PrivilegedObservation`) and the last ``frame_stack``
+    observations stacked (:func:`stack_frames`)."""
+    env = wrap_actions(env, actions)
+    if critic == "privileged":
+        from agents.privileged import PrivilegedObservation
+
+        env = PrivilegedObservation(env)
+    return stack_frames(env, frame_stack)

@@ -293,7 +293,7 @@ class KalmanMeanShift(_MeanShiftTrack):
                                  self.camera_height, d)
         x_pred = self.F @ self.kf.x
         x_pred[:2] += shift
-        self.kf.predict(self.F, self.Q, x_pred)
+        self.kf._predict(self.F, self.Q, x_pred)
         if d is not None:
             self.distance = max(d - float(advance), 1e-3)
         self.prediction = self.kf.x[:2].copy()
@@ -319,10 +319,10 @@ class KalmanMeanShift(_MeanShiftTrack):
             # is forgotten (extrapolating it would carry the window away for good), while
             # the robot's own motion still moves it in the image.
             self.lost_frames += 1
-            self.kf.update(None, self.H, self.R)
+            self.kf._update(None, self.H, self.R)
             self.kf.x[2:] = 0.0
             return self.state
-        self.kf.update(z, self.H, self.R)
+        self.kf._update(z, self.H, self.R)
         if self.posterior == "replace":
             self.kf.x[:2] = z
         if self.target_height_m is not None:

@@ -111,11 +111,14 @@ class KalmanFilter:
         semi-definite, ``x_pred`` a finite ``(n,)``; otherwise ``ValueError`` naming the
         argument, with the filter unchanged."""
         n = self.dim
-        F = check_matrix("F", F, n)
-        Q = _check_covariance("Q", Q, n)
-        if x_pred is not None:
-            x_pred = check_vector("x_pred", x_pred, n)
-        self.x = F @ self.x if x_pred is None else x_pred
+        self._predict(check_matrix("F", F, n), _check_covariance("Q", Q, n),
+                      None if x_pred is None else check_vector("x_pred", x_pred, n))
+
+    def _predict(self, F: np.ndarray, Q: np.ndarray, x_pred: np.ndarray | None = None) -> None:
+        """:meth:`predict` without checking ``F``, ``Q`` and ``x_pred``: for this package's
+        trackers, whose matrices come from their own validated settings (the checks cost
+        eight times the prediction itself)."""
+        self.x = F @ self.x if x_pred is None else np.asarray(x_pred, dtype=np.float64)
         P = F @ self.P @ F.T + Q
         self.P = 0.5 * (P + P.T)
 
@@ -124,7 +127,12 @@ class KalmanFilter:
                    residual: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
                    ) -> tuple[np.ndarray, np.ndarray, float]:
         """``(y, S, d2)`` of measurement ``z`` without changing the filter."""
-        z = check_vector("z", z, np.shape(H)[0])
+        return self._innovation(check_vector("z", z, np.shape(H)[0]), H, R, z_pred, residual)
+
+    def _innovation(self, z: np.ndarray, H: np.ndarray, R: np.ndarray,
+                    z_pred: np.ndarray | None = None,
+                    residual: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
+                    ) -> tuple[np.ndarray, np.ndarray, float]:
         z_hat = H @ self.x if z_pred is None else z_pred
         y = z - z_hat if residual is None else residual(z, z_hat)
         S = H @ self.P @ H.T + R
@@ -140,10 +148,13 @@ class KalmanFilter:
         Args:
             z: the measurement ``(m,)``, or None for a missed detection.
             H: measurement Jacobian ``(m, n)``.
-            R: measurement noise covariance ``(m, m)``.
+            R: measurement noise covariance ``(m, m)``, symmetric positive semi-definite.
             z_pred: ``h(x)`` for a nonlinear measurement (default ``H x``).
             residual: ``r(z, z_pred)`` replacing the subtraction (e.g. to wrap angles).
             gate: reject the measurement if ``d^2`` exceeds this (chi-square quantile).
+
+        Non-finite or mis-shaped arguments raise ``ValueError`` naming them, with the filter
+        unchanged.
         """
         H = _floats("H", H)
         if H.ndim != 2 or H.shape[1] != self.dim:
@@ -154,13 +165,21 @@ class KalmanFilter:
         if gate is not None and not (isinstance(gate, (int, float, np.floating, np.integer))
                                      and gate >= 0 and np.isfinite(gate)):
             raise ValueError(f"gate must be None or a finite number >= 0, got {gate!r}")
+        if z_pred is not None:
+            z_pred = check_vector("z_pred", z_pred, m)
+        return self._update(z, H, R, z_pred, residual, gate)
+
+    def _update(self, z: np.ndarray | None, H: np.ndarray, R: np.ndarray,
+                z_pred: np.ndarray | None = None,
+                residual: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+                gate: float | None = None) -> bool:
+        """:meth:`update` checking only ``z``: for this package's trackers, whose ``H`` and
+        ``R`` come from their own validated settings."""
         if z is None:
             self.missed += 1
             return False
-        z = check_vector("z", z, m)
-        if z_pred is not None:
-            z_pred = check_vector("z_pred", z_pred, m)
-        y, S, d2 = self.innovation(z, H, R, z_pred, residual)
+        z = check_vector("z", z, H.shape[0])
+        y, S, d2 = self._innovation(z, H, R, z_pred, residual)
         self.y, self.S, self.d2 = y, S, d2
         if gate is not None and d2 > gate:
             self.rejected += 1

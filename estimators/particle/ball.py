@@ -392,7 +392,7 @@ class ParticleBallTracker:
                 return
         self._misses = 0
         if kf is not None:
-            kf.update(z, H, R)
+            kf._update(z, H, R)
             self._x = kf.x.copy()
         else:
             det = R[0, 0] * R[1, 1] - R[0, 1] * R[1, 0]
@@ -451,7 +451,7 @@ class ParticleBallTracker:
             else:
                 F, B = _cv_matrices(dt)
                 # x' = drift(x) (exactly A x without deceleration), P' = A P A^T + s^2 B B^T
-                kf.predict(F, self.accel_sigma**2 * (B @ B.T),
+                kf._predict(F, self.accel_sigma**2 * (B @ B.T),
                            _drift(kf.x[None, :], dt, self.deceleration)[0])
                 self._x = kf.x.copy()
             self._t = t
