@@ -128,9 +128,21 @@ class ColourTable:
         p = w / np.maximum(1.0, w.sum(axis=0))
         #: ``(C, n, n, n)`` float32 probabilities, indexed by class then R, G, B level.
         self.table = p.reshape(len(self.classes), n, n, n).astype(np.float32)
+        self._hists = self._histograms()
+
+    def _histograms(self) -> list:
         # cv2.Mat(..., wrap_channels=False): a 3-D histogram, not a 2-D image of 32 channels.
-        self._hists = [cv2.Mat(np.ascontiguousarray(t * 255.0), wrap_channels=False)
-                       for t in self.table]
+        return [cv2.Mat(np.ascontiguousarray(t * 255.0), wrap_channels=False)
+                for t in self.table]
+
+    def __getstate__(self) -> dict:
+        # A pickled cv2.Mat comes back as a plain 3-D array that OpenCV reads as an image of
+        # many channels: the histograms are rebuilt from the table instead.
+        return {k: v for k, v in self.__dict__.items() if k != "_hists"}
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state)
+        self._hists = self._histograms()
 
     def _index(self, cls: str) -> int:
         name = self.aliases.get(cls, cls)

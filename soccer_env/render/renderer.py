@@ -59,6 +59,7 @@ class Renderer:
             raise ValueError(f"render_mode must be one of {list(RENDER_MODES)} or None, "
                              f"got {mode!r}")
         self.pg = _import_pygame()
+        self._args = (field, robot, ball, mode, width_px, fps)
         self.field, self.robot, self.ball = field, robot, ball
         self.mode = mode
         self.fps = fps
@@ -67,13 +68,18 @@ class Renderer:
         self.scale = width_px / (2.0 * self.ox)
         self.size = (int(round(2 * self.ox * self.scale)), int(round(2 * self.oy * self.scale)))
         self._specs = list(robot) if isinstance(robot, (list, tuple)) else None
-        self._outlines: dict[int, np.ndarray] = {}
+        self._outlines: dict[RobotSpec, np.ndarray] = {}
         self._window = None
         self._clock = None
         self.pg.font.init()
         self._font = self.pg.font.Font(None, max(12, int(0.16 * self.scale)))
         self._hud = self.pg.font.Font(None, 22)
         self._background = self._draw_field()
+
+    def __reduce__(self):
+        # pygame's surfaces and fonts do not pickle; a copy draws its own (and opens its own
+        # window in "human" mode on its first frame).
+        return (type(self), self._args)
 
     def _px(self, x: float, y: float) -> tuple[int, int]:
         return (int(round((x + self.ox) * self.scale)), int(round((self.oy - y) * self.scale)))
@@ -107,7 +113,7 @@ class Renderer:
 
     def _outline(self, spec: RobotSpec) -> np.ndarray:
         """The footprint polygon of ``spec`` in its body frame."""
-        key = id(spec)
+        key = spec  # (frozen dataclasses: equal specs share one outline)
         if key not in self._outlines:
             if spec.kind == "ssl":
                 pts = robot_outline(spec, n_arc=12)

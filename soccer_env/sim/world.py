@@ -30,6 +30,7 @@ The control step (``control_dt``) is split into equal physics substeps no longer
 
 from __future__ import annotations
 
+import copy
 import functools
 import math
 from dataclasses import dataclass
@@ -73,6 +74,10 @@ COLLISION_SLOP = 5e-4
 DIRECT_READ_MAX_ROBOTS = 3
 #: Largest team size (SSL Division A plays 11 vs 11).
 MAX_TEAM_SIZE = 11
+#: Attributes of :class:`World` that are raw Chipmunk handles or hold them: never pickled,
+#: rebuilt from the space by :meth:`World._bind_handles`.
+_HANDLE_ATTRIBUTES = ("_buffer", "_space_step", "_ball_handle", "_control_handles",
+                      "_body_handles")
 
 
 #: Columns of the ``(N, 6)`` command array of :meth:`World.step`: body-frame velocity ``vx, vy``
@@ -230,11 +235,7 @@ class World(KickerDribbler, HumanoidBodies):
         # adds and removals, post-step callbacks) that this world never needs, because it
         # never adds or removes objects while stepping; Chipmunk's own step is equivalent
         # (the tests check that both give identical trajectories).
-        self._space_step = (functools.partial(_cp.cpSpaceStep, space._space)
-                            if self.direct_step else space.step)
-        self._ball_handle = self._ball._body
-        self._control_handles = [c._body for c in self._controls]
-        self._body_handles = [self._ball._body] + [b._body for b in self._bodies]
+        self._bind_handles()
 
         n = self.n_robots
         self.time = 0.0
@@ -256,6 +257,55 @@ class World(KickerDribbler, HumanoidBodies):
         self.last_touch = -1
         self.ball_exit: BallExit | None = None
         self.place_all(poses, ball_position)
+
+    def _bind_handles(self) -> None:
+        """Take the raw Chipmunk handles of the hot loop from the present space."""
+        space = self.space
+        self._space_step = (functools.partial(_cp.cpSpaceStep, space._space)
+                            if self.direct_step else space.step)
+        self._ball_handle = self._ball._body
+        self._control_handles = [c._body for c in self._controls]
+        self._body_handles = [self._ball._body] + [b._body for b in self._bodies]
+
+    # ------------------------------------------------------------------------------------
+    # Copying
+    # ------------------------------------------------------------------------------------
+
+    def __getstate__(self) -> dict:
+        """The world's state for :mod:`pickle` and :mod:`copy` (the raw Chipmunk handles
+        left out; pymunk pickles the space with its bodies, joints and cached contacts).
+
+        A space rebuilt from its pickled state is not bit for bit the space it came from:
+        Chipmunk's dynamic bounding-box tree (whose shape depends on the whole history of
+        motion, and sets the order in which the solver visits contacts) is rebuilt from
+        scratch, and the joints' accumulated impulses (the solver's warm start, which pymunk
+        cannot read) start at zero. Both change the next steps in the last bits, and contacts
+        amplify such differences. So that a copy's future is exactly the original's, the
+        original first replaces its own space with one rebuilt the same way: copying a world
+        perturbs its trajectory in the last bits (a world that is never copied is not
+        affected), and from then on the original and every copy taken at that moment step
+        identically under the same commands.
+        """
+        if self.space is not None:
+            self._rebuild_space()
+        return self._plain_state()
+
+    def _plain_state(self) -> dict:
+        return {k: v for k, v in self.__dict__.items() if k not in _HANDLE_ATTRIBUTES}
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state)
+        self._buffer = pbatch.Buffer()
+        if self.space is not None:
+            self._bind_handles()
+
+    def _rebuild_space(self) -> None:
+        """Replace the space (and every object in it) with a copy rebuilt from its state."""
+        # The memo maps this world to itself, so the collision handlers (bound methods of
+        # this world) stay bound to it instead of copying it.
+        fresh = copy.deepcopy(self._plain_state(), {id(self): self})
+        self.__dict__.update(fresh)
+        self._bind_handles()
 
     def _add_ball(self, space: pymunk.Space) -> None:
         """The ball and its carpet friction (a pivot joint to the static body)."""
