@@ -1,8 +1,10 @@
 """The PettingZoo match as a stable-baselines3 ``VecEnv`` with parameter sharing.
 
 :class:`MatchVecEnv` steps ``n_matches`` matches (:class:`~soccer_env.envs.match.SoccerParallelEnv`)
-in one process and exposes every learning agent of every match as one entry of the batch, so
-that one policy controls them all (parameter sharing). The other team is played by a frozen
+in one process (:class:`~agents.match_workers.MatchWorkerVecEnv` splits them over worker
+processes, with the same batches: ``make_match_vec_env(..., workers=N)``) and exposes every
+learning agent of every match as one entry of the batch, so that one policy controls them all
+(parameter sharing). The other team is played by a frozen
 ``opponent``, or, with ``learner="both"``, by the same policy: observations are in each team's
 own frame, so a policy that learned to play blue can play yellow.
 
@@ -111,6 +113,10 @@ class MatchVecEnv(VecEnv):
             actions (k, 6)``, called with one match's team at a time (rows in robot order).
             Must be None with ``learner="both"``. Policies with memory (recurrent models,
             frame-stacked numpy policies) are refused.
+        first_match: the global index of this VecEnv's first match, when the matches of one
+            batch are split over processes (:class:`~agents.match_workers.MatchWorkerVecEnv`):
+            match ``k`` here is seeded as match ``first_match + k`` would be, so results do
+            not depend on how the matches are split.
 
     Spaces: the match's per-agent ``Box`` observation (float32) and ``Box(-1, 1, (6,))``
     action. ``num_envs = n_matches * L`` with ``L`` the learning robots per match.
@@ -126,7 +132,8 @@ class MatchVecEnv(VecEnv):
     """
 
     def __init__(self, env_kwargs: Mapping[str, Any] | None = None, n_matches: int = 1,
-                 learner: str = "blue", opponent: Any = None) -> None:
+                 learner: str = "blue", opponent: Any = None, *, first_match: int = 0
+                 ) -> None:
         if learner not in LEARNERS:
             raise ValueError(f"learner must be one of {list(LEARNERS)}, got {learner!r}")
         if isinstance(n_matches, bool) or not isinstance(n_matches, (int, np.integer)) or (
@@ -135,6 +142,10 @@ class MatchVecEnv(VecEnv):
         if env_kwargs is not None and not isinstance(env_kwargs, Mapping):
             raise TypeError(f"env_kwargs must be a mapping of match keyword arguments, got "
                             f"{type(env_kwargs).__name__}")
+        if isinstance(first_match, bool) or not isinstance(first_match, (int, np.integer)) or (
+                first_match < 0):
+            raise ValueError(f"first_match must be an integer >= 0, got {first_match!r}")
+        self.first_match = int(first_match)
         self.env_kwargs = dict(env_kwargs or {})
         self.matches = [soccer_env.parallel_env(**self.env_kwargs) for _ in range(n_matches)]
         m0 = self.matches[0]
@@ -177,7 +188,9 @@ class MatchVecEnv(VecEnv):
         self.metadata = {**m0.metadata, **self.metadata}
 
         self._pool: list[_Opponent] = []
-        self._pool_rng = np.random.default_rng()
+        # One stream of opponent draws per match (seeded by ``seed`` and the match's global
+        # index), so that the draws do not depend on how matches are split over processes.
+        self._pool_rngs = [np.random.default_rng() for _ in range(self.n_matches)]
         self._pool_seed: int | None = None
         self._match_opponents: list[_Opponent | None] = [None] * self.n_matches
         if self.opponent_agents:
@@ -273,7 +286,8 @@ class MatchVecEnv(VecEnv):
 
     def _draw_opponent(self, k: int) -> None:
         if self._pool:
-            self._match_opponents[k] = self._pool[int(self._pool_rng.integers(len(self._pool)))]
+            draw = self._pool_rngs[k].integers(len(self._pool))
+            self._match_opponents[k] = self._pool[int(draw)]
 
     def _opponent_actions(self) -> list[np.ndarray] | None:
         """Actions ``(K, 6)`` of every match's opponent team from its last observations."""
@@ -311,12 +325,15 @@ class MatchVecEnv(VecEnv):
     # ------------------------------------------------------------------------------------
 
     def seed(self, seed: int | None = None) -> Sequence[int | None]:
-        """Seed the next :meth:`reset`: match ``k`` is reset with ``seed + k`` and the
-        opponent-pool draws with ``seed``. Returns each entry's match seed."""
+        """Seed the next :meth:`reset`: match ``k`` is reset with ``seed + first_match + k``
+        and its opponent-pool draws with ``(seed, first_match + k)``. Returns each entry's
+        match seed."""
         if seed is None:
             seed = int(np.random.default_rng().integers(np.iinfo(np.uint32).max))  # OS entropy
         seed = int(seed)
-        self._seeds = [seed + k for k, _ in self.entry_agents]
+        if seed < 0:
+            raise ValueError(f"seed must be an integer >= 0 or None, got {seed}")
+        self._seeds = [seed + self.first_match + k for k, _ in self.entry_agents]
         self._pool_seed = seed
         return list(self._seeds)
 
@@ -325,7 +342,8 @@ class MatchVecEnv(VecEnv):
         return the stacked observations ``(num_envs, obs_dim)`` float32."""
         L = self.agents_per_match
         if self._pool_seed is not None:
-            self._pool_rng = np.random.default_rng(self._pool_seed)
+            self._pool_rngs = [np.random.default_rng([self._pool_seed, self.first_match + k])
+                               for k in range(self.n_matches)]
             self._pool_seed = None
         out = np.empty((self.num_envs, self._obs_size), dtype=np.float32)
         opp = np.empty((self.n_matches, len(self.opponent_agents), self._obs_size),
@@ -462,17 +480,29 @@ class MatchVecEnv(VecEnv):
 
 
 def make_match_vec_env(env_kwargs: Mapping[str, Any] | None = None, n_matches: int = 1,
-                       learner: str = "blue", opponent: Any = None, seed: int | None = None
-                       ) -> MatchVecEnv:
-    """A :class:`MatchVecEnv`, seeded so that its first ``reset()`` is reproducible (match
-    ``k`` gets ``seed + k``)."""
+                       learner: str = "blue", opponent: Any = None, seed: int | None = None,
+                       workers: int = 0) -> VecEnv:
+    """A :class:`MatchVecEnv` (``workers=0``: every match in this process) or a
+    :class:`~agents.match_workers.MatchWorkerVecEnv` (its matches split over ``workers``
+    processes), seeded so that its first ``reset()`` is reproducible (match ``k`` gets
+    ``seed + k``, whatever the number of workers)."""
+    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 0:
+        raise ValueError(f"workers must be an integer >= 0, got {workers!r}")
+    if workers:
+        from agents.match_workers import MatchWorkerVecEnv
+
+        venv: VecEnv = MatchWorkerVecEnv(env_kwargs, n_matches=n_matches, learner=learner,
+                                         opponent=opponent, workers=int(workers))
+        if seed is not None:
+            venv.seed(seed)
+        return venv
     venv = MatchVecEnv(env_kwargs, n_matches=n_matches, learner=learner, opponent=opponent)
     if seed is not None:
         venv.seed(seed)
     return venv
 
 
-def _find_match_vec_env(env: VecEnv) -> tuple[MatchVecEnv, VecNormalize | None]:
+def _find_match_vec_env(env: VecEnv) -> tuple[Any, VecNormalize | None]:
     """The :class:`MatchVecEnv` under ``env``'s wrappers, and the outermost ``VecNormalize``
     that normalises observations, if any."""
     norm = None
@@ -480,7 +510,9 @@ def _find_match_vec_env(env: VecEnv) -> tuple[MatchVecEnv, VecNormalize | None]:
         if norm is None and isinstance(env, VecNormalize) and env.norm_obs:
             norm = env
         env = env.venv
-    if not isinstance(env, MatchVecEnv):
+    from agents.match_workers import MatchWorkerVecEnv
+
+    if not isinstance(env, (MatchVecEnv, MatchWorkerVecEnv)):
         raise ValueError(f"SelfPlayCallback needs a model trained on a MatchVecEnv (possibly "
                          f"wrapped), got {type(env).__name__}")
     return env, norm

@@ -32,7 +32,10 @@ the plain environment and need ``reset()`` at each episode start, which the eval
 Goalkeeper-v0 runs in :class:`~agents.vec_env.WorkerVecEnv` (``n_envs`` environments over
 ``n_workers`` processes) or, with ``n_workers=0``, in-process. The match
 (``soccer_env/Match-v0``) runs through :class:`~agents.multiagent.MatchVecEnv`: each learning
-robot is a batch entry of one shared policy, against the ``opponent`` team.
+robot is a batch entry of one shared policy, against the ``opponent`` team; its ``n_envs``
+matches are split over ``n_workers`` processes
+(:class:`~agents.match_workers.MatchWorkerVecEnv`, the same batches whatever the number of
+workers) or, with ``n_workers=0``, stepped in-process.
 
 The periodic evaluation runs the current actor deterministically on ``eval_episodes`` shots
 drawn from seeds ``EVAL_SEED_START`` onwards, apart from the fixed test suite (seeds 0 onwards)
@@ -317,7 +320,8 @@ def make_vec_env(cfg: TrainConfig):
 
         opponent = cfg.opponent
         return make_match_vec_env(cfg.env_kwargs, cfg.n_envs, cfg.learner,
-                                  "idle" if opponent == "self" else opponent, cfg.seed)
+                                  "idle" if opponent == "self" else opponent, cfg.seed,
+                                  workers=cfg.n_workers)
     fns = [goalkeeper_env_fn(cfg.env_kwargs, cfg.actions, cfg.frame_stack, cfg.critic)
            for _ in range(cfg.n_envs)]
     if cfg.n_workers == 0:

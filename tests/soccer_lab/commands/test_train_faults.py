@@ -99,6 +99,19 @@ def test_a_numpy_policy_file_plays_the_match_opponent(tmp_path):
     assert json.loads((second / "config.json").read_text())["opponent"].endswith(".npz")
 
 
+def test_match_self_play_runs_its_matches_in_worker_processes(tmp_path):
+    """--env soccer_env/Match-v0 --workers 2: the matches are stepped by two worker
+    processes, the self-play opponent (a frozen copy of the learner) is sent to them."""
+    run = tmp_path / "selfplay"
+    assert main(["train", "--env", "soccer_env/Match-v0", "--env-kwarg", "blue=1",
+                 "--env-kwarg", "yellow=1", "--n-envs", "2", "--workers", "2", "--opponent",
+                 "self", "--hp", "n_steps=64", "--steps", "256", "--eval-every", "0",
+                 "--checkpoint-every", "0", "--out", str(run), "--no-progress"]) == 0
+    config = json.loads((run / "config.json").read_text())
+    assert config["n_workers"] == 2 and config["opponent"] == "self"
+    assert json.loads((run / "summary.json").read_text())["steps"] >= 256
+
+
 def test_a_failing_worker_ends_training_with_a_checkpoint(tmp_path, monkeypatch, capsys,
                                                           no_hang):
     """An environment that raises in the second rollout worker: training ends within

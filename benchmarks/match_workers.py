@@ -1,0 +1,85 @@
+"""Match collection over processes: env-steps/s of the match VecEnv with its matches in this
+process (:class:`agents.multiagent.MatchVecEnv`) and in worker processes
+(:class:`agents.match_workers.MatchWorkerVecEnv`).
+
+Usage: ``python benchmarks/match_workers.py [--matches 64] [--steps 300] [--rounds 3]
+[--sizes 2 6] [--workers 0 2] [--opponent scripted] [--json FILE]``.
+
+For each team size (``N`` vs ``N`` SSL robots, truth observations, the blue team learning,
+the yellow team the scripted opponent) and each worker count, one timed run steps
+``--matches`` matches ``--steps`` times with uniform random learner actions (made before the
+clock starts; no policy network, so the figure is the environment's own rate). Runs alternate
+between the worker counts within each round, so that the machine's drift cancels in the
+ratios; the ratio of each round is taken between runs of that round, and the median is
+printed. An env-step is one match advancing by one control step (all its robots).
+``workers 0`` is the in-process VecEnv, the baseline of the ratios.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import sys
+import time
+
+import numpy as np
+
+
+def _rate(size: int, workers: int, matches: int, steps: int, opponent: str) -> float:
+    from agents.multiagent import make_match_vec_env
+
+    venv = make_match_vec_env({"blue": size, "yellow": size}, n_matches=matches,
+                              learner="blue", opponent=opponent, seed=0, workers=workers)
+    try:
+        venv.reset()
+        rng = np.random.default_rng(0)
+        actions = rng.uniform(-1.0, 1.0, (steps, venv.num_envs, 6)).astype(np.float32)
+        for a in actions[:5]:  # warm-up: first contacts, caches
+            venv.step(a)
+        t0 = time.perf_counter()
+        for a in actions:
+            venv.step(a)
+        return matches * steps / (time.perf_counter() - t0)
+    finally:
+        venv.close()
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--matches", type=int, default=64, help="matches per run (64)")
+    p.add_argument("--steps", type=int, default=300, help="timed steps per run (300)")
+    p.add_argument("--rounds", type=int, default=3, help="rounds of alternation (3)")
+    p.add_argument("--sizes", type=int, nargs="+", default=[2, 6], help="team sizes (2 6)")
+    p.add_argument("--workers", type=int, nargs="+", default=[0, 2],
+                   help="worker counts, the first is the baseline (0 2)")
+    p.add_argument("--opponent", default="scripted", help="the yellow team (scripted)")
+    p.add_argument("--json", default=None, help="also write the figures to this file")
+    args = p.parse_args(argv)
+    results: dict[str, dict] = {}
+    for size in args.sizes:
+        rates: dict[int, list[float]] = {w: [] for w in args.workers}
+        for r in range(args.rounds):
+            order = args.workers if r % 2 == 0 else list(reversed(args.workers))
+            for w in order:
+                rates[w].append(_rate(size, w, args.matches, args.steps, args.opponent))
+        base = args.workers[0]
+        case = f"{size}v{size}"
+        results[case] = {}
+        print(f"{case}, {args.matches} matches, {args.opponent} opponent:")
+        for w in args.workers:
+            ratios = [a / b for a, b in zip(rates[w], rates[base])]
+            med = statistics.median(rates[w])
+            results[case][str(w)] = {"env_steps_per_s": rates[w], "median": med,
+                                     "ratio_to_baseline": statistics.median(ratios)}
+            label = "in-process" if w == 0 else f"{w} worker{'s' * (w > 1)}"
+            print(f"  {label:>12}: {med:9,.0f} env-steps/s   x{statistics.median(ratios):.2f} "
+                  f"(rounds: {', '.join(f'{x:,.0f}' for x in rates[w])})")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(results, f, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
