@@ -3,7 +3,7 @@ process (:class:`agents.multiagent.MatchVecEnv`) and in worker processes
 (:class:`agents.match_workers.MatchWorkerVecEnv`).
 
 Usage: ``python benchmarks/match_workers.py [--matches 64] [--steps 300] [--rounds 3]
-[--sizes 2 6] [--workers 0 2] [--opponent scripted] [--json FILE]``.
+[--sizes 2 6] [--workers 0 2] [--opponent scripted] [--vmas-python PATH] [--json FILE]``.
 
 For each team size (``N`` vs ``N`` SSL robots, truth observations, the blue team learning,
 the yellow team the scripted opponent) and each worker count, one timed run steps
@@ -13,6 +13,11 @@ between the worker counts within each round, so that the machine's drift cancels
 ratios; the ratio of each round is taken between runs of that round, and the median is
 printed. An env-step is one match advancing by one control step (all its robots).
 ``workers 0`` is the in-process VecEnv, the baseline of the ratios.
+
+With ``--vmas-python`` (a Python with ``vmas`` and torch installed), each round also times
+VMAS's football at the same team size, 512 environments batched on the CPU with torch's two
+threads (``benchmarks/vmas_football.py``, run as a subprocess in the same alternation), and
+prints the ratio of our best configuration to it.
 """
 
 from __future__ import annotations
@@ -20,8 +25,10 @@ from __future__ import annotations
 import argparse
 import json
 import statistics
+import subprocess
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -45,6 +52,13 @@ def _rate(size: int, workers: int, matches: int, steps: int, opponent: str) -> f
         venv.close()
 
 
+def _vmas_rate(python: str, size: int) -> float:
+    script = Path(__file__).with_name("vmas_football.py")
+    out = subprocess.run([python, str(script), "--agents", str(size)], check=True,
+                         capture_output=True, text=True).stdout
+    return float(json.loads(out.strip().splitlines()[-1])["env_steps_per_s"])
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--matches", type=int, default=64, help="matches per run (64)")
@@ -54,15 +68,20 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--workers", type=int, nargs="+", default=[0, 2],
                    help="worker counts, the first is the baseline (0 2)")
     p.add_argument("--opponent", default="scripted", help="the yellow team (scripted)")
+    p.add_argument("--vmas-python", default=None,
+                   help="a Python with vmas installed: also time VMAS football")
     p.add_argument("--json", default=None, help="also write the figures to this file")
     args = p.parse_args(argv)
     results: dict[str, dict] = {}
     for size in args.sizes:
         rates: dict[int, list[float]] = {w: [] for w in args.workers}
+        vmas: list[float] = []
         for r in range(args.rounds):
             order = args.workers if r % 2 == 0 else list(reversed(args.workers))
             for w in order:
                 rates[w].append(_rate(size, w, args.matches, args.steps, args.opponent))
+            if args.vmas_python:
+                vmas.append(_vmas_rate(args.vmas_python, size))
         base = args.workers[0]
         case = f"{size}v{size}"
         results[case] = {}
@@ -75,6 +94,14 @@ def main(argv: list[str] | None = None) -> int:
             label = "in-process" if w == 0 else f"{w} worker{'s' * (w > 1)}"
             print(f"  {label:>12}: {med:9,.0f} env-steps/s   x{statistics.median(ratios):.2f} "
                   f"(rounds: {', '.join(f'{x:,.0f}' for x in rates[w])})")
+        if vmas:
+            best = max(args.workers, key=lambda w: statistics.median(rates[w]))
+            ratios = [a / b for a, b in zip(rates[best], vmas)]
+            results[case]["vmas_512"] = {"env_steps_per_s": vmas,
+                                         "median": statistics.median(vmas),
+                                         "ours_best_over_vmas": statistics.median(ratios)}
+            print(f"  {'VMAS 512':>12}: {statistics.median(vmas):9,.0f} env-steps/s   ours "
+                  f"(workers {best}) / VMAS x{statistics.median(ratios):.2f}")
     if args.json:
         with open(args.json, "w") as f:
             json.dump(results, f, indent=1)
