@@ -107,3 +107,18 @@ def test_soak_reports_memory_growth_per_million_steps(capsys):
     assert [s["steps"] for s in result["samples"]] == [100, 200, 300]
     assert result["rss_final_mb"] > 0 and np.isfinite(result["rss_mb_per_million_steps"])
     assert result["heap_mb_per_million_steps"] is not None
+
+
+def test_match_workers_benchmark_reports_each_worker_count(tmp_path, capsys):
+    pytest.importorskip("stable_baselines3")
+    bench = _script("match_workers")
+    out = tmp_path / "figures.json"
+    assert bench.main(["--matches", "2", "--steps", "5", "--rounds", "2", "--sizes", "1",
+                       "--workers", "0", "2", "--json", str(out)]) == 0
+    import json
+
+    figures = json.loads(out.read_text())["1v1"]
+    assert set(figures) == {"0", "2"}
+    assert figures["0"]["ratio_to_baseline"] == 1.0
+    assert all(len(f["env_steps_per_s"]) == 2 and f["median"] > 0 for f in figures.values())
+    assert "2 workers" in capsys.readouterr().out
