@@ -50,6 +50,7 @@ from stable_baselines3.common.vec_env import VecEnv, VecEnvWrapper, VecNormalize
 from stable_baselines3.common.vec_env.base_vec_env import VecEnvIndices, VecEnvStepReturn
 
 import soccer_env
+from agents.evaluation import check_full_infos
 from agents.policies import IdlePolicy, NumpyPolicy, SB3Policy
 from agents.team import TEAMS, ScriptedTeam
 
@@ -136,6 +137,7 @@ class MatchVecEnv(VecEnv):
             raise TypeError(f"env_kwargs must be a mapping of match keyword arguments, got "
                             f"{type(env_kwargs).__name__}")
         self.env_kwargs = dict(env_kwargs or {})
+        check_full_infos(self.env_kwargs, "MatchVecEnv")
         self.matches = [soccer_env.parallel_env(**self.env_kwargs) for _ in range(n_matches)]
         m0 = self.matches[0]
         self.n_matches = int(n_matches)
