@@ -15,11 +15,12 @@ $(VENV)/.demo-installed: pyproject.toml | $(BIN)/python
 	$(PIP) install --quiet -e ".[render]"
 	touch $@
 
-# Tests need everything. torch==2.13.0 goes first so that stable-baselines3 takes the CPU
-# build that is on disk instead of downloading a CUDA build of several GB.
+# Tests need everything, the RL client libraries of examples/ included. torch==2.13.0 goes
+# first so that stable-baselines3 and torchrl take the CPU build that is on disk instead of
+# downloading a CUDA build of several GB.
 $(VENV)/.dev-installed: pyproject.toml | $(BIN)/python
 	$(PIP) install --quiet torch==2.13.0
-	$(PIP) install --quiet -e ".[dev,render,train,pixels]"
+	$(PIP) install --quiet -e ".[dev,render,train,pixels,clients]"
 	touch $@ $(VENV)/.demo-installed
 
 demo: $(VENV)/.demo-installed
@@ -32,7 +33,7 @@ bench: $(VENV)/.demo-installed
 	$(BIN)/soccer-env bench
 
 lint: $(VENV)/.dev-installed
-	$(BIN)/ruff check soccer_env estimators agents soccer_lab tests benchmarks
+	$(BIN)/ruff check soccer_env estimators agents soccer_lab tests benchmarks examples
 
 clean:
 	rm -rf $(VENV) demo_output bench_output .pytest_cache

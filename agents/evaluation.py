@@ -31,9 +31,19 @@ import soccer_env  # noqa: F401  (registers the environments)
 from agents.policies import make_policy, reset_policy
 
 __all__ = ["wilson", "EvalResult", "evaluate", "record_video", "process_context",
-           "process_pool", "ignore_interrupts", "GOALKEEPER_ID"]
+           "process_pool", "ignore_interrupts", "GOALKEEPER_ID", "check_full_infos"]
 
 GOALKEEPER_ID = "soccer_env/Goalkeeper-v0"
+
+
+def check_full_infos(env_kwargs: Mapping[str, Any] | None, where: str) -> None:
+    """Raise ``ValueError`` if ``env_kwargs`` ask for flat infos: the package's evaluation,
+    training and match adapter read the full infos (truth, estimate, outcome names)."""
+    mode = (env_kwargs or {}).get("info_mode", "full")
+    if mode != "full":
+        raise ValueError(f"{where} reads the environments' full infos: info_mode must be "
+                         f"'full' (the default) there, got {mode!r} (info_mode='flat' is for "
+                         "other RL libraries)")
 
 
 def wilson(successes: int, n: int, z: float = 1.96) -> tuple[float, float]:
@@ -178,6 +188,7 @@ def evaluate(policy: str | os.PathLike | Callable = "scripted",
     if int(workers) < 1:
         raise ValueError(f"workers must be >= 1, got {workers!r}")
     env_kwargs = dict(env_kwargs or {})
+    check_full_infos(env_kwargs, "evaluate")
     seeds = list(range(int(start_seed), int(start_seed) + int(episodes)))
     workers = min(int(workers), len(seeds))
     name = _describe(policy)

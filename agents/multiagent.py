@@ -52,6 +52,7 @@ from stable_baselines3.common.vec_env import VecEnv, VecEnvWrapper, VecNormalize
 from stable_baselines3.common.vec_env.base_vec_env import VecEnvIndices, VecEnvStepReturn
 
 import soccer_env
+from agents.evaluation import check_full_infos
 from agents.policies import IdlePolicy, NumpyPolicy, SB3Policy
 from agents.team import TEAMS, ScriptedTeam
 
@@ -147,6 +148,7 @@ class MatchVecEnv(VecEnv):
             raise ValueError(f"first_match must be an integer >= 0, got {first_match!r}")
         self.first_match = int(first_match)
         self.env_kwargs = dict(env_kwargs or {})
+        check_full_infos(self.env_kwargs, "MatchVecEnv")
         self.matches = [soccer_env.parallel_env(**self.env_kwargs) for _ in range(n_matches)]
         m0 = self.matches[0]
         self.n_matches = int(n_matches)

@@ -58,7 +58,7 @@ from typing import Any
 
 import numpy as np
 
-from agents.evaluation import GOALKEEPER_ID, evaluate
+from agents.evaluation import GOALKEEPER_ID, check_full_infos, evaluate
 from agents.model_files import save_vecnormalize, vecnormalize_on
 from agents.policies import (
     NumpyPolicy,
@@ -352,6 +352,9 @@ def check_env_kwargs(cfg: TrainConfig) -> None:
     """Build one environment of ``cfg`` (and its evaluation environment) here, so that bad
     keyword arguments fail before any process starts, with the environment's own message
     (``TypeError`` or ``ValueError``)."""
+    check_full_infos(cfg.env_kwargs, "training")
+    if cfg.eval_env_kwargs is not None:
+        check_full_infos(cfg.eval_env_kwargs, "training's evaluation")
     if cfg.env_id == MATCH_ID:
         import soccer_env
 

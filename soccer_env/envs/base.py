@@ -38,6 +38,13 @@ import gymnasium as gym
 import numpy as np
 
 from soccer_env import presets
+from soccer_env.envs.flat_info import (
+    INFO_MODES,
+    OUTCOME_CODES,
+    as_float64,
+    flat_common,
+    flat_keys,
+)
 from soccer_env.observations import ObservationBuilder
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.perception.match import MatchPerception
@@ -70,7 +77,9 @@ class SoccerCore(RenderingMixin):
     Attributes set by :meth:`_build`: ``field``, ``ball_spec``, ``team_specs`` (blue's and
     yellow's robot model), ``robot_spec`` (the first robot's), ``world``, ``obs_mode``,
     ``perceptions`` (both teams' :class:`~soccer_env.perception.base.PerceptionConfig`),
-    ``perception`` (blue's), ``render_mode``, ``out_of_range_actions``, ``head``.
+    ``perception`` (blue's), ``render_mode``, ``out_of_range_actions``, ``head``,
+    ``info_mode`` (``"full"``: nested dicts; ``"flat"``: numbers under fixed keys, see
+    :mod:`soccer_env.envs.flat_info`).
     """
 
     metadata: dict[str, Any] = {"render_modes": list(RENDER_MODES), "render_fps": 60}
@@ -84,15 +93,17 @@ class SoccerCore(RenderingMixin):
                perceptions: tuple[PerceptionConfig, PerceptionConfig], control_dt: float,
                physics_dt: float, out_of_range_actions: str, render_mode: str | None,
                render_width: int, head: str, policy_heads: Sequence[int],
-               belief_features: bool = False) -> None:
+               belief_features: bool = False, info_mode: str = "full") -> None:
         """Build the world and everything around it.
 
         ``policy_heads``: the humanoids whose head the policy aims with its action entries 4
         and 5 (with ``head="action"``); every other humanoid's head is aimed by the head
         control. ``belief_features``: the observations end with the belief features (see
         :mod:`soccer_env.observations`; builders made by :meth:`_observation_builder`).
+        ``info_mode``: ``"full"`` or ``"flat"`` (:mod:`soccer_env.envs.flat_info`).
         """
         check_choice("obs_mode", obs_mode, OBS_MODES)
+        check_choice("info_mode", info_mode, INFO_MODES)
         check_choice("render_mode", render_mode, [None, *RENDER_MODES])
         check_choice("out_of_range_actions", out_of_range_actions, OUT_OF_RANGE_MODES)
         check_choice("head", head, HEAD_MODES)
@@ -103,6 +114,8 @@ class SoccerCore(RenderingMixin):
         self.render_mode = render_mode
         self.out_of_range_actions = out_of_range_actions
         self.head = head
+        self.info_mode = info_mode
+        self._flat = info_mode == "flat"
         if not isinstance(belief_features, (bool, np.bool_)):
             raise TypeError(f"belief_features must be True or False, got {belief_features!r}")
         self.belief_features = bool(belief_features)
@@ -251,6 +264,13 @@ class SoccerCore(RenderingMixin):
             return truth
         return state_dict(belief.time, belief.ball, belief.robots, state.names)
 
+    def _fallen(self, robot: int) -> bool:
+        """Whether robot ``robot`` is a humanoid that lies or gets up."""
+        walk = self.world.walk
+        if walk is None or robot not in walk.indices:
+            return False
+        return bool(walk.fallen[walk.indices.index(robot)])
+
     def _scene(self) -> tuple[WorldState, Belief | None, dict[int, tuple]]:
         """What :meth:`render` draws: the truth, the shown belief (None when it is the truth)
         and every humanoid's camera view (see :meth:`~soccer_env.render.Renderer.draw`)."""
@@ -279,7 +299,14 @@ class SingleAgentTask(SoccerCore, gym.Env):
     The episode ends (terminated) when :meth:`_outcome` names an outcome; ``info["outcome"]``
     names it and ``info["is_success"]`` says whether it is a success (:meth:`_success`).
     Truncation is left to the registration's ``max_episode_steps``.
+
+    With ``info_mode="flat"`` the info is :func:`~soccer_env.envs.flat_info.flat_common`'s
+    entries for robot 0, then ``outcome`` and ``is_success`` as numbers and the task's own
+    numbers (:attr:`FLAT_TASK_KEYS`, filled by :meth:`_flat_task_info`).
     """
+
+    #: The task's own flat info keys, after ``outcome`` and ``is_success``.
+    FLAT_TASK_KEYS: tuple[str, ...] = ()
 
     def _observe(self, belief: Any) -> np.ndarray:
         """The learner's observation from its ``belief`` (default: the task's
@@ -305,6 +332,16 @@ class SingleAgentTask(SoccerCore, gym.Env):
 
     def _task_info(self, info: dict[str, Any]) -> None:
         """Add the task's own entries to ``info`` (in place)."""
+
+    def _flat_task_info(self, info: dict[str, float]) -> None:
+        """Add the task's own flat entries, :attr:`FLAT_TASK_KEYS`, to ``info`` (in place;
+        floats)."""
+
+    @property
+    def flat_info_keys(self) -> tuple[str, ...]:
+        """The keys of this environment's flat infos (``info_mode="flat"``), in order: the
+        same at every reset and step."""
+        return flat_keys(self._zero_terms(), ("outcome", "is_success", *self.FLAT_TASK_KEYS))
 
     def _zero_terms(self) -> dict[str, float]:
         """The reward terms of the first observation, all zero (default: ``"outcome"`` and
@@ -361,6 +398,12 @@ class SingleAgentTask(SoccerCore, gym.Env):
 
     def _info(self, state: WorldState, terms: dict[str, float], outcome: str | None
               ) -> dict[str, Any]:
+        if self._flat:
+            flat = flat_common(state, self._shown_belief, 0, self._fallen(0), terms)
+            flat["outcome"] = float(OUTCOME_CODES[outcome])
+            flat["is_success"] = 1.0 if outcome is not None and self._success(outcome) else 0.0
+            self._flat_task_info(flat)
+            return as_float64(flat)
         truth = state.truth_dict()
         info = {"truth": truth,
                 "estimate": self._estimate(state, self._shown_belief, truth),

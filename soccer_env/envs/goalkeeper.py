@@ -201,6 +201,9 @@ class GoalkeeperEnv(SingleAgentTask):
     (the perception's belief at the present time, same keys; the truth itself in truth mode),
     ``reward_terms``, ``outcome`` (None until the end), ``shot`` (the drawn shot),
     ``shot_fired``, ``keeper_touched`` (the keeper has touched the ball this episode).
+    With ``info_mode="flat"``: numbers only under fixed keys, the outcome as a code, and the
+    task's ``shot_fired``, ``keeper_touched``, ``shot_speed``, ``shot_chip``
+    (:mod:`soccer_env.envs.flat_info`).
 
     ## Arguments
     ``robot`` ("ssl", "ssl-2012", "humanoid", "humanoid-2012" or a robot spec), ``field``
@@ -216,7 +219,9 @@ class GoalkeeperEnv(SingleAgentTask):
     them), ``render_width`` (pixels); humanoids only: ``mates`` (0..3), ``head`` ("auto":
     the head follows the believed ball and scans when needed; "scan"; "action": the policy's
     entries 4 and 5); ``belief_features`` (append how sure the belief is: 11 entries, 13 for
-    humanoids; see :mod:`soccer_env.observations`). Unknown arguments raise ``TypeError``.
+    humanoids; see :mod:`soccer_env.observations`); ``info_mode`` ("full", the default, or
+    "flat": numbers only, see :mod:`soccer_env.envs.flat_info`). Unknown arguments raise
+    ``TypeError``.
 
     ## Version history
     * v0: first release.
@@ -239,6 +244,7 @@ class GoalkeeperEnv(SingleAgentTask):
         mates: int | None = None,
         head: str = "auto",
         belief_features: bool = False,
+        info_mode: str = "full",
         **unknown: Any,
     ) -> None:
         reject_unknown("GoalkeeperEnv", unknown, keyword_names(GoalkeeperEnv.__init__))
@@ -262,7 +268,7 @@ class GoalkeeperEnv(SingleAgentTask):
                     control_dt=control_dt, physics_dt=physics_dt,
                     out_of_range_actions=out_of_range_actions, render_mode=render_mode,
                     render_width=render_width, head=head, policy_heads=[0],
-                    belief_features=belief_features)
+                    belief_features=belief_features, info_mode=info_mode)
         self.robot_model = self._models[0]
         self.action_space = self.robot_model.action_space()
         self.builder = self._observation_builder([0], teams=[0])
@@ -309,6 +315,14 @@ class GoalkeeperEnv(SingleAgentTask):
         info["shot"] = dict(self._shot)
         info["shot_fired"] = self._fired
         info["keeper_touched"] = self._touched
+
+    FLAT_TASK_KEYS = ("shot_fired", "keeper_touched", "shot_speed", "shot_chip")
+
+    def _flat_task_info(self, info: dict[str, float]) -> None:
+        info["shot_fired"] = 1.0 if self._fired else 0.0
+        info["keeper_touched"] = 1.0 if self._touched else 0.0
+        info["shot_speed"] = float(self._shot["speed"])
+        info["shot_chip"] = 1.0 if self._shot["chip"] else 0.0
 
     # ------------------------------------------------------------------------------------
 

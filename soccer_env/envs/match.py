@@ -14,6 +14,7 @@ from pettingzoo.utils.wrappers import OrderEnforcingWrapper
 
 from soccer_env import presets
 from soccer_env.envs.base import SoccerCore, resolve_world
+from soccer_env.envs.flat_info import EVENT_CODES, as_float64, flat_common, flat_keys
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.render.renderer import RENDER_MODES
@@ -95,7 +96,9 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     humanoid its own, same keys), ``reward_terms``, ``score`` ``{"blue": int, "yellow":
     int}`` and ``event`` (None, ``"goal"``, ``"touch"``, ``"goal_line"`` or ``"over_bar"``);
     with humanoids in the match, ``robot_state`` (every humanoid's walk engine state, see
-    :meth:`~soccer_env.sim.world.World.humanoid_state`).
+    :meth:`~soccer_env.sim.world.World.humanoid_state`). With ``info_mode="flat"``: numbers
+    only under fixed keys (:attr:`flat_info_keys`), the agent's own robot's truth and belief,
+    ``event`` as a code, ``score_blue`` and ``score_yellow`` (:mod:`soccer_env.envs.flat_info`).
 
     ## Perception
     Each team perceives with its own pipeline (``perception`` for both, or
@@ -114,7 +117,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     uniform jitter of the kick-off formation); ``render_width``; ``head`` (humanoid agents:
     "auto", "scan" or "action"); ``belief_features`` (every agent's observation ends with
     how sure its belief is: 11 entries, 13 with humanoids in the match; see
-    :mod:`soccer_env.observations`).
+    :mod:`soccer_env.observations`); ``info_mode`` ("full", the default, or "flat").
     """
 
     #: ``name`` is the registered id (``pettingzoo.make``'s and ``soccer_env.PETTINGZOO``'s).
@@ -141,6 +144,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         render_width: int = 960,
         head: str = "auto",
         belief_features: bool = False,
+        info_mode: str = "full",
         **unknown: Any,
     ) -> None:
         reject_unknown("parallel_env", unknown, keyword_names(SoccerParallelEnv.__init__))
@@ -166,7 +170,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
                     physics_dt=physics_dt, out_of_range_actions=out_of_range_actions,
                     render_mode=render_mode, render_width=render_width, head=head,
                     policy_heads=range(blue + yellow),
-                    belief_features=belief_features)
+                    belief_features=belief_features, info_mode=info_mode)
         w = self.world
         #: The first robot's action mapping.
         self.robot_model = self._models[0] if blue else self._models[1]
@@ -361,8 +365,16 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
             terms[a] = {"goal": g, "ball_progress": p, "ball_distance": d}
         return rewards, terms
 
+    @property
+    def flat_info_keys(self) -> tuple[str, ...]:
+        """The keys of every agent's flat info (``info_mode="flat"``), in order: the same for
+        every agent at every reset and step."""
+        return flat_keys(("goal", *MATCH_SHAPING), ("event", "score_blue", "score_yellow"))
+
     def _infos(self, state, terms: dict, event: str | None) -> dict[str, dict]:
         """Every live agent's info: the truth, its team's or its own present belief."""
+        if self._flat:
+            return self._flat_infos(state, terms, event)
         truth = state.truth_dict()
         robot_state = self.world.humanoid_state() if self.world.walk is not None else None
         estimates: dict[int, dict] = {}
@@ -376,6 +388,19 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
             infos[a] = self._agent_info(truth, estimates[key], terms[a], event)
             if robot_state is not None:
                 infos[a]["robot_state"] = robot_state
+        return infos
+
+    def _flat_infos(self, state, terms: dict, event: str | None) -> dict[str, dict]:
+        """Every live agent's flat info (:mod:`soccer_env.envs.flat_info`)."""
+        game = {"event": float(EVENT_CODES[event]), "score_blue": float(self.score[0]),
+                "score_yellow": float(self.score[1])}
+        names = self.world.names
+        infos = {}
+        for a in self.agents:
+            i = names.index(a)
+            info = flat_common(state, self._perception.current(i), i, self._fallen(i), terms[a])
+            info.update(game)
+            infos[a] = as_float64(info)
         return infos
 
     def _agent_info(self, truth: dict, estimate: dict, terms: dict, event: str | None

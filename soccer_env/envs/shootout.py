@@ -170,6 +170,8 @@ class ShootoutEnv(SingleAgentTask):
     Every step: ``truth``, ``estimate`` (the attacker's belief at the present time, same
     keys), ``reward_terms``, ``outcome`` (None until the end), ``start`` (the drawn start),
     ``keeper_touched`` (since the attacker's last touch); with humanoids ``robot_state``.
+    With ``info_mode="flat"``: numbers only under fixed keys, the outcome as a code, and
+    ``keeper_touched`` (:mod:`soccer_env.envs.flat_info`).
 
     ## Arguments
     ``robot`` (a preset name or spec, for both robots), ``field`` (default: Division B for
@@ -179,8 +181,8 @@ class ShootoutEnv(SingleAgentTask):
     ``shaping`` ({term: scale}), ``control_dt``, ``physics_dt``, ``out_of_range_actions``,
     ``render_width``, ``head`` (humanoids: ``"auto"``, ``"scan"`` or ``"action"``, the
     attacker's head only; the keeper's is always controlled), ``belief_features`` (as in
-    :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`). Unknown arguments raise
-    ``TypeError``.
+    :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`), ``info_mode`` ("full" or "flat").
+    Unknown arguments raise ``TypeError``.
 
     ## Version history
     * v0: first release.
@@ -202,6 +204,7 @@ class ShootoutEnv(SingleAgentTask):
         render_width: int = 960,
         head: str = "auto",
         belief_features: bool = False,
+        info_mode: str = "full",
         **unknown: Any,
     ) -> None:
         reject_unknown("ShootoutEnv", unknown, keyword_names(ShootoutEnv.__init__))
@@ -216,7 +219,7 @@ class ShootoutEnv(SingleAgentTask):
                     physics_dt=physics_dt, out_of_range_actions=out_of_range_actions,
                     render_mode=render_mode, render_width=render_width, head=head,
                     policy_heads=[0],
-                    belief_features=belief_features)
+                    belief_features=belief_features, info_mode=info_mode)
         self.robot_model = self._models[0]
         self.action_space = self.robot_model.action_space()
         teams = self.world.teams
@@ -281,6 +284,11 @@ class ShootoutEnv(SingleAgentTask):
     def _task_info(self, info: dict[str, Any]) -> None:
         info["start"] = dict(self._start_draw)
         info["keeper_touched"] = self._keeper_touched
+
+    FLAT_TASK_KEYS = ("keeper_touched",)
+
+    def _flat_task_info(self, info: dict[str, float]) -> None:
+        info["keeper_touched"] = 1.0 if self._keeper_touched else 0.0
 
     def _hud(self) -> list[str]:
         return [f"t = {self.world.time:5.2f} s", "shootout"]

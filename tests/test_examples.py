@@ -1,0 +1,123 @@
+"""The examples of examples/ run at their tiny size (``--tiny``), each in its own process; an
+example whose client library is not installed is skipped. The RL Zoo's run must train with
+the shipped hyperparameters of hyperparams/ppo.yml."""
+
+import importlib.util
+import json
+import os
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLES = ROOT / "examples"
+ZOO_HYPERPARAMS = ROOT / "hyperparams" / "ppo.yml"
+
+
+def _needs(*modules: str) -> None:
+    """Skip unless every one of ``modules`` is installed (without importing them here)."""
+    missing = [m for m in modules if importlib.util.find_spec(m) is None]
+    if missing:
+        pytest.skip(f"not installed: {', '.join(missing)} (pip install -e '.[clients]')")
+
+
+def _run(script: str, *args: str, timeout: float = 300) -> str:
+    env = {**os.environ, "SOCCER_EXAMPLES_TINY": "1", "OMP_NUM_THREADS": "1",
+           "RL_WARNINGS": "0"}
+    # The examples import the package as an installed user would; from a checkout that is
+    # not installed, the repository root stands in.
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(ROOT), env.get("PYTHONPATH")]))
+    proc = subprocess.run([sys.executable, str(EXAMPLES / script), "--tiny", *args],
+                          cwd=ROOT, env=env, capture_output=True, text=True, timeout=timeout)
+    assert proc.returncode == 0, f"{script} failed:\n{proc.stdout[-3000:]}\n{proc.stderr[-5000:]}"
+    return proc.stdout
+
+
+def test_every_example_is_tested():
+    tested = {"torchrl_envs.py", "supersuit_match_ppo.py", "recurrent_ppo_keeper.py",
+              "rl_zoo3_keeper.py"}
+    assert {p.name for p in EXAMPLES.glob("*.py")} == tested
+
+
+def test_torchrl_example():
+    _needs("torchrl", "tensordict")
+    out = _run("torchrl_envs.py")
+    assert "keeper episode 0:" in out and "outcome" in out
+    assert "groups: {'blue': ['blue_0', 'blue_1'], 'yellow': ['yellow_0', 'yellow_1']}" in out
+    assert "match: 20 steps" in out
+
+
+def test_supersuit_example():
+    _needs("supersuit", "stable_baselines3")
+    out = _run("supersuit_match_ppo.py")
+    assert "8 learners (agents x matches)" in out
+    assert "trained 256 agent steps" in out and "score:" in out
+
+
+def test_recurrent_ppo_example():
+    _needs("sb3_contrib")
+    out = _run("recurrent_ppo_keeper.py")
+    assert "RecurrentPPO keeper, 128 steps:" in out
+
+
+def _model_data(path: Path) -> dict:
+    """The JSON part of a stable-baselines3 model file (nothing unpickled)."""
+    with zipfile.ZipFile(path) as archive:
+        return json.loads(archive.read("data"))
+
+
+@pytest.mark.slow
+def test_rl_zoo3_example_trains_with_the_shipped_hyperparameters(tmp_path):
+    _needs("rl_zoo3", "yaml")
+    import yaml
+
+    _run("rl_zoo3_keeper.py", "--log-folder", str(tmp_path))
+    shipped = yaml.safe_load(ZOO_HYPERPARAMS.read_text())["soccer_env/Goalkeeper-v0"]
+    name = "soccer_env-Goalkeeper-v0"
+    for stage, ent_coef, obs_mode in (("truth", 0.0, "truth"), ("perceived", 0.005, "perceived")):
+        run = tmp_path / stage / "ppo" / f"{name}_1"
+        # The hyperparameters the Zoo saved are the file's (a new -params entry replaces one).
+        saved = yaml.load((run / name / "config.yml").read_text(), Loader=yaml.UnsafeLoader)
+        expected = {**shipped, "ent_coef": ent_coef} if stage == "perceived" else shipped
+        assert {k: v for k, v in saved.items() if k != "env_kwargs"} == \
+            {k: v for k, v in expected.items() if k != "env_kwargs"}
+        assert saved["env_kwargs"]["obs_mode"] == obs_mode
+        assert (run / name / "vecnormalize.pkl").is_file()  # normalize: norm_obs
+        # ... and the model trained with them: the file's values, not the Zoo's defaults.
+        data = _model_data(run / f"{name}.zip")
+        for key in ("n_steps", "batch_size", "n_epochs", "gamma", "gae_lambda"):
+            assert data[key] == shipped[key], key
+        assert data["n_envs"] == shipped["n_envs"] == 16
+        assert data["ent_coef"] == ent_coef
+        assert data["policy_kwargs"] == {"log_std_init": -0.5}
+        assert data["learning_rate"]["val"] == shipped["learning_rate"]
+        assert data["action_space"]["_shape"] == [1]  # agents.wrappers.GuardActions
+
+
+def test_zoo_hyperparameters_are_the_shipped_keepers():
+    """hyperparams/ppo.yml holds the recipe the shipped keeper's first stage was trained with
+    (soccer-env train's PPO defaults and the baseline's recorded arguments)."""
+    _needs("yaml")
+    import yaml
+
+    from agents.baselines import load_baseline
+    from agents.training import DEFAULT_HYPERPARAMS, TrainConfig
+
+    zoo = yaml.safe_load(ZOO_HYPERPARAMS.read_text())["soccer_env/Goalkeeper-v0"]
+    meta = load_baseline("keeper-ppo-ssl2012").meta
+    cfg = TrainConfig()
+    for key, value in DEFAULT_HYPERPARAMS["PPO"].items():
+        assert zoo[key] == value, key
+    assert zoo["n_envs"] == cfg.n_envs
+    assert zoo["normalize"] == f"{{'norm_obs': {cfg.normalize_obs}, " \
+                               f"'norm_reward': {cfg.normalize_reward}}}"
+    assert meta["actions"] == "guard" and zoo["env_wrapper"] == "agents.wrappers.GuardActions"
+    assert zoo["policy_kwargs"] == "dict(log_std_init={})".format(
+        meta["hyperparams"]["policy_kwargs"]["log_std_init"])
+    stage1 = {k: v for k, v in meta["env_kwargs"].items()}
+    stage1["obs_mode"] = "truth"  # the first stage's; the second continues on perceived ones
+    assert zoo["env_kwargs"] == stage1
+    assert "--steps 1000000" in meta["commands"][0] and zoo["n_timesteps"] == 1e6
