@@ -483,18 +483,18 @@ class MatchVecEnv(VecEnv):
 
 def make_match_vec_env(env_kwargs: Mapping[str, Any] | None = None, n_matches: int = 1,
                        learner: str = "blue", opponent: Any = None, seed: int | None = None,
-                       workers: int = 0) -> VecEnv:
+                       workers: int = 0, pin: bool | None = None) -> VecEnv:
     """A :class:`MatchVecEnv` (``workers=0``: every match in this process) or a
     :class:`~agents.match_workers.MatchWorkerVecEnv` (its matches split over ``workers``
-    processes), seeded so that its first ``reset()`` is reproducible (match ``k`` gets
-    ``seed + k``, whatever the number of workers)."""
+    processes; ``pin`` as that class takes it), seeded so that its first ``reset()`` is
+    reproducible (match ``k`` gets ``seed + k``, whatever the number of workers)."""
     if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 0:
         raise ValueError(f"workers must be an integer >= 0, got {workers!r}")
     if workers:
         from agents.match_workers import MatchWorkerVecEnv
 
         venv: VecEnv = MatchWorkerVecEnv(env_kwargs, n_matches=n_matches, learner=learner,
-                                         opponent=opponent, workers=int(workers))
+                                         opponent=opponent, workers=int(workers), pin=pin)
         if seed is not None:
             venv.seed(seed)
         return venv

@@ -12,7 +12,9 @@ clock starts; no policy network, so the figure is the environment's own rate). R
 between the worker counts within each round, so that the machine's drift cancels in the
 ratios; the ratio of each round is taken between runs of that round, and the median is
 printed. An env-step is one match advancing by one control step (all its robots).
-``workers 0`` is the in-process VecEnv, the baseline of the ratios.
+``workers 0`` is the in-process VecEnv, the baseline of the ratios; ``2:nopin`` is two
+workers left to the scheduler (``pin=False``; the default pins workers to CPUs when they take
+every CPU).
 
 With ``--vmas-python`` (a Python with ``vmas`` and torch installed), each round also times
 VMAS's football at the same team size, 512 environments batched on the CPU with torch's two
@@ -33,11 +35,13 @@ from pathlib import Path
 import numpy as np
 
 
-def _rate(size: int, workers: int, matches: int, steps: int, opponent: str) -> float:
+def _rate(size: int, workers: str, matches: int, steps: int, opponent: str) -> float:
     from agents.multiagent import make_match_vec_env
 
+    count, _, option = workers.partition(":")
     venv = make_match_vec_env({"blue": size, "yellow": size}, n_matches=matches,
-                              learner="blue", opponent=opponent, seed=0, workers=workers)
+                              learner="blue", opponent=opponent, seed=0, workers=int(count),
+                              pin=False if option == "nopin" else None)
     try:
         venv.reset()
         rng = np.random.default_rng(0)
@@ -65,8 +69,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--steps", type=int, default=300, help="timed steps per run (300)")
     p.add_argument("--rounds", type=int, default=3, help="rounds of alternation (3)")
     p.add_argument("--sizes", type=int, nargs="+", default=[2, 6], help="team sizes (2 6)")
-    p.add_argument("--workers", type=int, nargs="+", default=[0, 2],
-                   help="worker counts, the first is the baseline (0 2)")
+    p.add_argument("--workers", nargs="+", default=["0", "2"],
+                   help="worker counts, the first is the baseline; N:nopin leaves the N "
+                        "workers unpinned (0 2)")
     p.add_argument("--opponent", default="scripted", help="the yellow team (scripted)")
     p.add_argument("--vmas-python", default=None,
                    help="a Python with vmas installed: also time VMAS football")
@@ -74,7 +79,7 @@ def main(argv: list[str] | None = None) -> int:
     args = p.parse_args(argv)
     results: dict[str, dict] = {}
     for size in args.sizes:
-        rates: dict[int, list[float]] = {w: [] for w in args.workers}
+        rates: dict[str, list[float]] = {w: [] for w in args.workers}
         vmas: list[float] = []
         for r in range(args.rounds):
             order = args.workers if r % 2 == 0 else list(reversed(args.workers))
@@ -89,10 +94,12 @@ def main(argv: list[str] | None = None) -> int:
         for w in args.workers:
             ratios = [a / b for a, b in zip(rates[w], rates[base])]
             med = statistics.median(rates[w])
-            results[case][str(w)] = {"env_steps_per_s": rates[w], "median": med,
-                                     "ratio_to_baseline": statistics.median(ratios)}
-            label = "in-process" if w == 0 else f"{w} worker{'s' * (w > 1)}"
-            print(f"  {label:>12}: {med:9,.0f} env-steps/s   x{statistics.median(ratios):.2f} "
+            results[case][w] = {"env_steps_per_s": rates[w], "median": med,
+                                "ratio_to_baseline": statistics.median(ratios)}
+            count, _, option = w.partition(":")
+            label = ("in-process" if count == "0" else
+                     f"{count} worker{'s' * (int(count) > 1)}{', unpinned' * bool(option)}")
+            print(f"  {label:>20}: {med:9,.0f} env-steps/s   x{statistics.median(ratios):.2f} "
                   f"(rounds: {', '.join(f'{x:,.0f}' for x in rates[w])})")
         if vmas:
             best = max(args.workers, key=lambda w: statistics.median(rates[w]))
@@ -100,7 +107,8 @@ def main(argv: list[str] | None = None) -> int:
             results[case]["vmas_512"] = {"env_steps_per_s": vmas,
                                          "median": statistics.median(vmas),
                                          "ours_best_over_vmas": statistics.median(ratios)}
-            print(f"  {'VMAS 512':>12}: {statistics.median(vmas):9,.0f} env-steps/s   ours "
+            label = "VMAS, 512 batched"
+            print(f"  {label:>20}: {statistics.median(vmas):9,.0f} env-steps/s   ours "
                   f"(workers {best}) / VMAS x{statistics.median(ratios):.2f}")
     if args.json:
         with open(args.json, "w") as f:

@@ -197,3 +197,26 @@ def test_a_match_that_raises_or_a_worker_that_dies_is_reported(no_hang):
     with pytest.raises(WorkerError, match="rollout worker 0 .* died: killed by SIGKILL"):
         venv.step(np.zeros((venv.num_envs, 6), np.float32))
     venv.close()
+
+
+@pytest.mark.skipif(not hasattr(os, "sched_getaffinity"), reason="no CPU affinity here")
+def test_workers_are_pinned_to_cpus_when_they_take_the_machine():
+    usable = sorted(os.sched_getaffinity(0))
+    venv = make_match_vec_env(SHORT, n_matches=2, workers=2, pin=True)
+    try:
+        assert venv.cpus == [usable[0], usable[1 % len(usable)]]
+        for proc, cpu in zip(venv.processes, venv.cpus):
+            assert os.sched_getaffinity(proc.pid) == {cpu}
+    finally:
+        venv.close()
+    venv = make_match_vec_env(SHORT, n_matches=2, workers=2, pin=False)
+    try:
+        assert venv.cpus == [None, None]
+        assert all(os.sched_getaffinity(p.pid) == set(usable) for p in venv.processes)
+    finally:
+        venv.close()
+    venv = make_match_vec_env(SHORT, n_matches=2, workers=1)  # fewer workers than CPUs
+    try:
+        assert venv.cpus == [None] if len(usable) > 1 else [usable[0]]
+    finally:
+        venv.close()
