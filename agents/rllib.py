@@ -284,15 +284,16 @@ def match_policies(env_config: Mapping[str, Any] | None = None, mapping: str = "
         teams = {t: [a for a in env.possible_agents if a.split("_")[0] == t] for t in TEAMS}
         if mapping != "per-team" and teams["blue"] and teams["yellow"]:
             blue, yellow = teams["blue"][0], teams["yellow"][0]
-            same = (len(teams["blue"]) == len(teams["yellow"])
+            kinds = [type(spec).__name__ for spec in env.team_specs]
+            same = (len(teams["blue"]) == len(teams["yellow"]) and kinds[0] == kinds[1]
                     and env.observation_space(blue) == env.observation_space(yellow)
                     and env.action_space(blue) == env.action_space(yellow))
             if not same:
                 raise ValueError(
                     f"policy mapping {mapping!r} has one network play both teams, which needs "
-                    f"teams of equal size and robots, got blue={len(teams['blue'])}, "
-                    f"yellow={len(teams['yellow'])} with observations of "
-                    f"{env.observation_space(blue).shape} and "
+                    f"teams of equal size and robots, got blue={len(teams['blue'])} "
+                    f"({kinds[0]}), yellow={len(teams['yellow'])} ({kinds[1]}) with "
+                    f"observations of {env.observation_space(blue).shape} and "
                     f"{env.observation_space(yellow).shape}; use 'per-team'")
     finally:
         env.close()
@@ -303,13 +304,31 @@ def match_policies(env_config: Mapping[str, Any] | None = None, mapping: str = "
 # Callbacks
 # ------------------------------------------------------------------------------------------
 
+def _module_state(algorithm: Any, module_id: str, inference_only: bool = False) -> Any:
+    state = algorithm.learner_group.get_state(components=f"learner/rl_module/{module_id}",
+                                              inference_only=inference_only)
+    return state["learner"]["rl_module"][module_id]
+
+
 def copy_module_weights(algorithm: Any, source: str, target: str) -> None:
     """Copy module ``source``'s weights into module ``target`` in the learners and on every
-    env runner (as RLlib's self-play example does: through ``Algorithm.set_state``, which
-    syncs the env runners)."""
-    state = algorithm.learner_group.get_state(components=f"learner/rl_module/{source}")
-    weights = state["learner"]["rl_module"][source]
-    algorithm.set_state({"learner_group": {"learner": {"rl_module": {target: weights}}}})
+    env runner, before this returns.
+
+    RLlib's self-play example copies with ``Algorithm.set_state``, whose weight sync the env
+    runners ignore here (Ray 2.60): an env runner takes weights only with a newer
+    ``weights_seq_no`` than its own, and a copy does not advance the learner's, so the runners
+    would play the old opponent until the next training step's sync. The copy is therefore
+    set on every env runner directly (their inference-only part)."""
+    weights = _module_state(algorithm, source)
+    algorithm.learner_group.set_state({"learner": {"rl_module": {target: weights}}})
+    inference = _module_state(algorithm, target, inference_only=True)
+
+    def put(runner: Any) -> None:
+        runner.module[target].set_state(inference)
+
+    for group in (algorithm.env_runner_group, getattr(algorithm, "eval_env_runner_group", None)):
+        if group is not None:
+            group.foreach_env_runner(put, local_env_runner=True)
 
 
 class SelfPlayCallback(RLlibCallback):

@@ -155,7 +155,10 @@ def _config_fields(p: argparse.ArgumentParser, args: argparse.Namespace,
 def main(p: argparse.ArgumentParser, args: argparse.Namespace, argv: list[str] | None
          ) -> int:
     """``soccer-env train --backend rllib`` with the parsed ``args`` of ``p``."""
+    # Every check of the options comes before Ray is imported, so that it holds without it.
     _refuse_options(p, args)
+    base = _resumed_fields(p, args.resume) if args.resume else {}
+    fields = _config_fields(p, args, base)
     try:
         import ray.rllib  # noqa: F401
 
@@ -165,8 +168,6 @@ def main(p: argparse.ArgumentParser, args: argparse.Namespace, argv: list[str] |
               f"here ({type(err).__name__}: {err}); install it with: {INSTALL_HINT}",
               file=sys.stderr)
         return 1
-    base = _resumed_fields(p, args.resume) if args.resume else {}
-    fields = _config_fields(p, args, base)
     try:
         cfg = rllib_runs.RllibTrainConfig.from_dict(fields)
     except (ValueError, TypeError) as err:
