@@ -41,6 +41,7 @@ import os
 import platform
 import secrets
 import shutil
+import socket
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -323,13 +324,24 @@ def load_checkpoint(folder: str | os.PathLike, trust: bool = False) -> Any:
 def connect(address: str | None = None) -> bool:
     """Start Ray on this machine (``address`` None) or join the running cluster at
     ``address`` (``"HOST:PORT"`` or ``"auto"``), unless this process is already connected.
-    Returns whether it connected (and so should disconnect, ``ray.shutdown()``)."""
+    Returns whether it connected (and so should disconnect, ``ray.shutdown()``).
+
+    A ``HOST:PORT`` where nothing answers raises ``ConnectionError`` at once (Ray itself
+    would retry for minutes)."""
     import logging
 
     import ray
 
     if ray.is_initialized():
         return False
+    if address is not None and address not in ("auto", "local") and "://" not in address:
+        host, _, port = address.rpartition(":")
+        try:
+            socket.create_connection((host, int(port)), timeout=10).close()
+        except (OSError, ValueError) as err:
+            raise ConnectionError(
+                f"no Ray cluster answers at {address} ({err}); start its head with `ray "
+                "start --head --port=6379` and give --address HEAD_HOST:6379") from None
     ray.init(address=address, logging_level=logging.WARNING)
     return True
 
@@ -448,7 +460,10 @@ def train(cfg: RllibTrainConfig, resume: str | os.PathLike | None = None,
     import torch
 
     torch.set_num_threads(cfg.torch_threads)
-    started = connect(address)
+    try:
+        started = connect(address)
+    except ConnectionError as err:
+        raise RunRefused(str(err)) from None
     algo = None
     try:
         try:

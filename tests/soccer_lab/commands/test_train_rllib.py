@@ -57,3 +57,12 @@ def test_train_resume_and_refuse_others_checkpoints(tmp_path, monkeypatch, capsy
         main(["train", "--resume", str(final), "--steps", "400"])
     err = capsys.readouterr().err
     assert "not a checkpoint of your own runs" in err and "--trust" in err
+
+
+def test_an_address_where_no_cluster_answers(tmp_path, capsys):
+    # Port 1 of the loopback interface: refused at once (Ray would retry for minutes).
+    with pytest.raises(SystemExit):
+        main(["train", *TINY, "--address", "127.0.0.1:1", "--out", str(tmp_path / "run")])
+    err = capsys.readouterr().err
+    assert "no Ray cluster answers at 127.0.0.1:1" in err and "ray start --head" in err
+    assert not (tmp_path / "run").exists()
