@@ -26,8 +26,9 @@ The match's agents map to RLlib modules (networks) in one of :data:`POLICY_MAPPI
 * ``"self-play"``: module ``"main"`` learns and plays the ``learner`` team; the other team is
   played by ``"opponent"``, a frozen copy of ``"main"`` (not trained) whose weights
   :class:`SelfPlayCallback` copies from the learner when training starts and every
-  ``self_play_every`` environment steps, as RLlib's own self-play example does
-  (``rllib/examples/multi_agent/self_play_*``).
+  ``self_play_every`` environment steps, after RLlib's own self-play example
+  (``rllib/examples/multi_agent/self_play_*``; :func:`copy_module_weights` says where it
+  differs).
 
 :func:`ppo_config` puts it together (RLlib's new API stack)::
 
@@ -59,6 +60,7 @@ from ray.rllib.callbacks.callbacks import RLlibCallback
 from ray.rllib.env.wrappers.pettingzoo_env import ParallelPettingZooEnv
 
 from agents.evaluation import GOALKEEPER_ID
+from agents.team import TEAMS
 from agents.training import MATCH_ID
 from agents.wrappers import ACTION_MAPS, wrap_learner
 from estimators.registry import Registry
@@ -66,7 +68,7 @@ from estimators.registry import Registry
 __all__ = ["MATCH_ID", "GOALKEEPER_ID", "ENV_IDS", "TEAMS", "KEEPER_INFOS", "MATCH_INFOS",
            "POLICY_MAPPINGS", "DEFAULT_HYPERPARAMS", "register_envs", "keeper_env", "match_env",
            "MatchMultiAgentEnv", "MatchPolicies", "match_policies", "ppo_config",
-           "apply_hyperparams", "hyperparameter_names", "SelfPlayCallback",
+           "apply_hyperparams", "hyperparameter_names", "SelfPlayCallback", "self_play_callback",
            "NodeStepsCallback", "SoccerMetricsCallback", "copy_module_weights"]
 
 #: The environments :func:`register_envs` registers with RLlib.
@@ -75,8 +77,6 @@ ENV_IDS = (GOALKEEPER_ID, MATCH_ID)
 KEEPER_INFOS = ("outcome", "reward_terms", "shot_fired", "keeper_touched")
 #: What of every match agent's info RLlib gets.
 MATCH_INFOS = ("score", "event", "reward_terms")
-#: The match's teams, in the order of its agents.
-TEAMS = ("blue", "yellow")
 
 #: PPO settings over RLlib's defaults, chosen as stable-baselines3's PPO defaults that
 #: :mod:`agents.training` uses (16 environments x 256 steps per update, minibatches of 512,

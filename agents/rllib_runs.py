@@ -206,7 +206,10 @@ def _key(create: bool) -> bytes | None:
     path.parent.mkdir(parents=True, exist_ok=True)
     key = secrets.token_bytes(32)
     # Created readable and writable by the user only; never replaced once there.
-    fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+    try:
+        fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+    except FileExistsError:  # another process made it meanwhile
+        return path.read_bytes()
     with os.fdopen(fd, "wb") as fh:
         fh.write(key)
     return key
