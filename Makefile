@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 PIP := $(BIN)/python -m pip
 
-.PHONY: demo test bench lint clean
+.PHONY: demo test test-rllib bench lint clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -29,6 +29,25 @@ demo: $(VENV)/.demo-installed
 test: $(VENV)/.dev-installed
 	$(BIN)/python -m pytest -n auto
 
+# RLlib (the rllib extra) pins an older gymnasium than the other extras take, so its tests
+# (the files named test_*rllib*.py; the main suite skips them) run in an environment of their
+# own, one test at a time: each starts Ray, which is slow to start and uses both cores.
+RLLIB_VENV := .venv-rllib
+RLLIB_BIN := $(RLLIB_VENV)/bin
+RLLIB_TESTS = $(shell find tests -name 'test_*rllib*.py' | sort)
+
+$(RLLIB_BIN)/python:
+	$(PYTHON) -m venv $(RLLIB_VENV)
+	$(RLLIB_BIN)/python -m pip install --quiet --upgrade pip
+
+$(RLLIB_VENV)/.installed: pyproject.toml | $(RLLIB_BIN)/python
+	$(RLLIB_BIN)/python -m pip install --quiet torch==2.13.0
+	$(RLLIB_BIN)/python -m pip install --quiet -e ".[rllib,dev]"
+	touch $@
+
+test-rllib: $(RLLIB_VENV)/.installed
+	$(RLLIB_BIN)/python -m pytest $(RLLIB_TESTS)
+
 bench: $(VENV)/.demo-installed
 	$(BIN)/soccer-env bench
 
@@ -36,4 +55,4 @@ lint: $(VENV)/.dev-installed
 	$(BIN)/ruff check soccer_env estimators agents soccer_lab tests benchmarks examples
 
 clean:
-	rm -rf $(VENV) demo_output bench_output .pytest_cache
+	rm -rf $(VENV) $(RLLIB_VENV) demo_output bench_output .pytest_cache

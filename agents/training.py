@@ -81,6 +81,8 @@ __all__ = ["TrainConfig", "train", "check_env_kwargs", "make_vec_env", "EVAL_SEE
 RUN_FILES = ("config.json", "summary.json", "evaluations.json", "final_model.zip",
              "final_policy.npz", "final_vecnormalize.npz", "best_model.zip", "best_policy.npz",
              "best_vecnormalize.npz", "checkpoints", "tb",
+             # written by the RLlib backend (agents.rllib_runs):
+             "results.jsonl", "final_checkpoint",
              # written by earlier versions:
              "final_vecnormalize.pkl", "best_vecnormalize.pkl")
 

@@ -162,7 +162,7 @@ _COMMANDS = {
     "demo": (_cmd_demo, "run the goalkeeper demo and write its video and figures"),
     "bench": (_cmd_bench, "measure environment step rates against bare pymunk"),
     "paper": (_cmd_paper, "reproduce a source paper's claims (tables and plots)"),
-    "train": (_cmd_train, "train a policy with stable-baselines3"),
+    "train": (_cmd_train, "train a policy with stable-baselines3, or RLlib on a Ray cluster"),
     "eval": (_cmd_eval, "evaluate a keeper policy on the fixed shot suite"),
     "ablation": (_cmd_ablation, "compare estimators in closed loop, per sensor preset"),
     "list": (_cmd_list, "list environments and presets"),

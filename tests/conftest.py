@@ -6,6 +6,9 @@ import os
 for _var in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
+# Ray (the RLlib tests) takes the loopback address for its nodes instead of the machine's
+# network address, so that every connection of a test cluster stays on this machine.
+os.environ.setdefault("RAY_ENABLE_WINDOWS_OR_OSX_CLUSTER", "0")
 os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
 
 import pytest  # noqa: E402

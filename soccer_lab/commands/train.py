@@ -1,9 +1,11 @@
-"""``soccer-env train``: train a policy with stable-baselines3 (:func:`agents.training.train`).
+"""``soccer-env train``: train a policy with stable-baselines3 (:func:`agents.training.train`)
+or, with ``--backend rllib``, with RLlib on this machine or a Ray cluster
+(:mod:`soccer_lab.commands.train_rllib`).
 
 The options become a :class:`~agents.training.TrainConfig`; with ``--resume`` the rest of the
 configuration comes from the checkpoint's run folder (its ``config.json``) unless given here,
 and ``--steps`` (the total, the checkpoint's steps included) must exceed the checkpoint's
-step count.
+step count. ``--resume`` of an RLlib checkpoint folder picks the rllib backend by itself.
 """
 
 from __future__ import annotations
@@ -65,11 +67,26 @@ def _algorithm(text: str) -> str:
 def parser() -> argparse.ArgumentParser:
     """The options of ``soccer-env train``."""
     p = argparse.ArgumentParser(
-        prog="soccer-env train", description="Train a policy with stable-baselines3.",
+        prog="soccer-env train",
+        description="Train a policy with stable-baselines3 (default) or with RLlib on this "
+                    "machine or a Ray cluster (--backend rllib).",
         epilog="examples: soccer-env train --obs-mode perceived --perception ssl-2012 "
                "--steps 2000000 --out runs/keeper; with memory: add --algo recurrent-ppo "
                "(an LSTM policy) or --frame-stack 4 (the last 4 observations); to continue: "
-               "soccer-env train --resume runs/keeper/final_model.zip --steps 3000000")
+               "soccer-env train --resume runs/keeper/final_model.zip --steps 3000000; "
+               "on a Ray cluster: soccer-env train --backend rllib --num-env-runners 8 "
+               "--address HEAD:6379")
+    p.add_argument("--backend", choices=("sb3", "rllib"), default=None,
+                   help="sb3 (default: stable-baselines3 in this process and its "
+                        "subprocesses) or rllib (RLlib's PPO, sampling on env runners that "
+                        "Ray spreads over the machines of a cluster; needs the rllib extra)")
+    p.add_argument("--num-env-runners", type=int, default=None, metavar="N",
+                   help="rllib: env runners (Ray actors of one CPU each, placed on any node "
+                        "of the cluster; default 2; 0 samples in this process)")
+    p.add_argument("--address", default=None,
+                   help="rllib: join the running Ray cluster at ADDRESS (HEAD:6379 of `ray "
+                        "start --head --port=6379`, or auto) instead of starting Ray on this "
+                        "machine")
     p.add_argument("--env", default=None, help=f"environment id: {GOALKEEPER_ID} "
                    f"(default) or {MATCH_ID}")
     add_env_arguments(p)
@@ -82,7 +99,8 @@ def parser() -> argparse.ArgumentParser:
                    help="total environment steps (default 1,000,000); with --resume the "
                         "total including the steps the checkpoint already trained, so it must "
                         "exceed them (e.g. --resume model_1000000_steps.zip --steps 1500000 "
-                        "trains 500,000 more)")
+                        "trains 500,000 more); rllib counts environment steps (match steps "
+                        "for the match), sb3 agent steps")
     p.add_argument("--critic", choices=CRITICS, default=None,
                    help="PPO and A2C on Goalkeeper-v0: 'shared' (default: the critic reads the "
                         "actor's observation) or 'privileged' (the critic also reads the true "
@@ -93,7 +111,8 @@ def parser() -> argparse.ArgumentParser:
                         "observations concatenated, oldest first, the episode's first "
                         "repeated to fill (default 1: the observation alone); the saved numpy "
                         "policy keeps the history and acts on single observations")
-    p.add_argument("--n-envs", type=int, default=None, help="parallel environments (16)")
+    p.add_argument("--n-envs", type=int, default=None,
+                   help="parallel environments (16); rllib: per env runner (8)")
     p.add_argument("--workers", type=int, default=None,
                    help="subprocesses stepping them (2; 0 runs them in this process)")
     p.add_argument("--seed", type=int, default=None)
@@ -109,7 +128,9 @@ def parser() -> argparse.ArgumentParser:
                    help="algorithm hyperparameter (JSON value), repeatable, e.g. "
                         "--hp learning_rate=1e-4 --hp policy_kwargs='{\"net_arch\": [64, 64]}' "
                         "(policy_kwargs merge over the algorithm's defaults, e.g. "
-                        "recurrent-ppo's lstm_hidden_size 64)")
+                        "recurrent-ppo's lstm_hidden_size 64); rllib: PPOConfig settings, "
+                        "e.g. --hp lr=1e-4 --hp train_batch_size_per_learner=8192 --hp "
+                        "model_config='{\"fcnet_hiddens\": [128, 128]}'")
     p.add_argument("--checkpoint-every", type=int, default=None)
     p.add_argument("--eval-every", type=int, default=None)
     p.add_argument("--eval-episodes", type=int, default=None)
@@ -125,14 +146,21 @@ def parser() -> argparse.ArgumentParser:
                         "the ball velocity the scripted keeper believes; SSL and humanoid "
                         "keepers); see agents.wrappers")
     p.add_argument("--learner", choices=("blue", "yellow", "both"), default=None,
-                   help="match: learning team")
+                   help="match: learning team; rllib: both (default) has one shared module "
+                        "play every robot, blue or yellow a module of that team against "
+                        "--opponent")
     p.add_argument("--opponent", default=None,
                    help=f"match: {', '.join(OPPONENTS)} (a frozen copy of the learner, "
                         "refreshed as it trains) or the path of a numpy policy file (.npz, "
-                        "e.g. a run's final_policy.npz; default scripted)")
+                        "e.g. a run's final_policy.npz; default scripted); rllib: self "
+                        "(default: a frozen copy of the learning module, refreshed every "
+                        "100,000 steps) or learning (the other team learns a module of its "
+                        "own)")
     p.add_argument("--resume", default=None, metavar="CHECKPOINT",
-                   help="continue from a checkpoint .zip; the rest of the configuration comes "
-                        "from its run's config.json unless given here")
+                   help="continue from a checkpoint .zip, or a run's RLlib checkpoint folder "
+                        "(its final_checkpoint or checkpoints/checkpoint_<steps>_steps; "
+                        "selects --backend rllib); the rest of the configuration comes from "
+                        "its run's config.json unless given here")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     add_trust_argument(p)
     return p
@@ -222,6 +250,17 @@ def main(argv: list[str] | None = None) -> int:
     """``soccer-env train``: check the configuration, train, print the summary."""
     p = parser()
     args = p.parse_args(argv)
+    from soccer_lab.commands import train_rllib
+
+    rllib_checkpoint = train_rllib.is_rllib_checkpoint(args.resume)
+    if args.backend == "rllib" or (args.backend is None and rllib_checkpoint):
+        return train_rllib.main(p, args, argv)
+    if rllib_checkpoint:
+        p.error(f"--resume {args.resume} is an RLlib checkpoint: resume it with --backend rllib")
+    for option, value in (("--num-env-runners", args.num_env_runners),
+                          ("--address", args.address)):
+        if value is not None:
+            p.error(f"{option} is for --backend rllib")
     base = _resumed_fields(p, args.resume) if args.resume else {}
     try:
         cfg = _config(args, base)

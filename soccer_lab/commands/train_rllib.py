@@ -1,0 +1,194 @@
+"""``soccer-env train --backend rllib``: train with RLlib on this machine or a Ray cluster
+(:func:`agents.rllib_runs.train`).
+
+The options of ``soccer-env train`` keep their meaning where RLlib has one: ``--env``, the
+environment options, ``--steps`` (environment steps; for the match, match steps however many
+robots play), ``--n-envs`` (environments per env runner), ``--seed``, ``--out``, ``--force``,
+``--hp`` (RLlib ``PPOConfig`` settings), ``--checkpoint-every``, ``--actions`` and
+``--frame-stack`` (the keeper), ``--resume`` (an RLlib checkpoint folder of a run), ``--trust``
+and ``--no-progress``. The match's ``--learner`` and ``--opponent`` choose the policy mapping
+(:data:`agents.rllib.POLICY_MAPPINGS`):
+
+=================================================  ===========  =============================
+options                                            mapping      modules
+=================================================  ===========  =============================
+``--learner both`` (the default)                   shared       ``shared`` plays every robot
+``--learner blue --opponent self`` (or no          self-play    ``main`` learns and plays
+``--opponent``)                                                 blue, ``opponent`` (a frozen
+                                                                copy of ``main``) yellow
+``--learner blue --opponent learning``             per-team     ``blue`` and ``yellow``, both
+                                                                learning
+=================================================  ===========  =============================
+
+The options that have no meaning with RLlib are refused, naming the option: ``--algo``
+other than ppo, ``--workers`` (use ``--num-env-runners``), ``--critic privileged``, the
+periodic evaluation (``--eval-every``, ``--eval-episodes``, ``--eval-obs-mode``,
+``--eval-perception``) and the stable-baselines3 opponents (scripted, idle, a numpy policy).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+from typing import Any
+
+from agents.evaluation import GOALKEEPER_ID
+from agents.training import MATCH_ID, RunRefused, TrainingStopped, run_folder
+from soccer_lab.cli_args import env_kwargs_from_args, key_values
+
+__all__ = ["main", "INSTALL_HINT", "is_rllib_checkpoint", "REFUSED"]
+
+#: How to install what the backend needs.
+INSTALL_HINT = ("pip install 'soccer-env[rllib]' (install torch==2.13.0 first, as for the "
+                "train extra; `make test-rllib` builds such an environment in .venv-rllib)")
+
+#: The options of ``soccer-env train`` that the RLlib backend refuses: (attribute, the
+#: option as given, why).
+REFUSED = (
+    ("workers", "--workers", "sets stable-baselines3's subprocesses; with --backend rllib "
+                             "use --num-env-runners"),
+    ("eval_every", "--eval-every", "is stable-baselines3's periodic evaluation, which the "
+                                   "rllib backend does not run (evaluate a policy with "
+                                   "soccer-env eval)"),
+    ("eval_episodes", "--eval-episodes", "is for the periodic evaluation of the sb3 backend"),
+    ("eval_obs_mode", "--eval-obs-mode", "is for the periodic evaluation of the sb3 backend"),
+    ("eval_perception", "--eval-perception", "is for the periodic evaluation of the sb3 "
+                                             "backend"),
+)
+
+#: ``--opponent`` values of the RLlib backend.
+OPPONENTS = ("self", "learning")
+
+#: The configuration fields set by an option of the same meaning: (field, attribute).
+_FIELD_OPTIONS = (("env_id", "env"), ("total_steps", "steps"),
+                  ("num_env_runners", "num_env_runners"), ("n_envs", "n_envs"),
+                  ("seed", "seed"), ("out", "out"), ("checkpoint_every", "checkpoint_every"),
+                  ("actions", "actions"), ("frame_stack", "frame_stack"))
+
+
+def is_rllib_checkpoint(path: str | None) -> bool:
+    """Whether ``path`` is an RLlib checkpoint folder (without importing Ray)."""
+    return path is not None and (Path(path) / "rllib_checkpoint.json").is_file()
+
+
+def _refuse_options(p: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """``p.error`` naming the first option that makes no sense with RLlib."""
+    if args.algo not in (None, "PPO"):
+        p.error(f"--algo {args.algo.lower()}: the rllib backend trains PPO only")
+    if args.critic == "privileged":
+        p.error("--critic privileged is stable-baselines3's asymmetric actor-critic; the rllib "
+                "backend trains RLlib's PPO module (a shared critic)")
+    for attr, option, why in REFUSED:
+        if getattr(args, attr) is not None:
+            p.error(f"{option} {why}")
+
+
+def _policy_mapping(p: argparse.ArgumentParser, args: argparse.Namespace, env_id: str,
+                    base: dict[str, Any]) -> dict[str, Any]:
+    """The ``policy_mapping`` and ``learner`` fields of ``--learner`` and ``--opponent`` (see
+    the module docstring), over a resumed run's."""
+    learner, opponent = args.learner, args.opponent
+    if learner is None and opponent is None:
+        return {}
+    if env_id != MATCH_ID:
+        given = "--learner" if learner is not None else "--opponent"
+        p.error(f"{given} is for {MATCH_ID}")
+    if opponent is not None and opponent not in OPPONENTS:
+        p.error(f"--opponent {opponent}: with --backend rllib the opponent is 'self' (a "
+                "frozen copy of the learning module, refreshed as it trains) or 'learning' "
+                "(the other team learns a module of its own); scripted, idle and numpy "
+                "policy opponents are for the sb3 backend")
+    if learner == "both":
+        if opponent is not None:
+            p.error(f"--opponent {opponent} with --learner both: both teams play the one "
+                    "shared learning module")
+        return {"policy_mapping": "shared"}
+    team = learner or base.get("learner", "blue")
+    mapping = "per-team" if opponent == "learning" else "self-play"
+    return {"policy_mapping": mapping, "learner": team}
+
+
+def _resumed_fields(p: argparse.ArgumentParser, resume: str) -> dict[str, Any]:
+    """The configuration of the run that RLlib checkpoint ``resume`` belongs to."""
+    ckpt = Path(resume)
+    if not is_rllib_checkpoint(resume):
+        p.error(f"--resume: no RLlib checkpoint at {ckpt} (a run's final_checkpoint or "
+                "checkpoints/checkpoint_<steps>_steps folder)")
+    run = run_folder(ckpt)
+    try:
+        saved = json.loads((run / "config.json").read_text())
+    except (OSError, ValueError) as err:
+        p.error(f"--resume: no readable config.json in {run} ({err})")
+    if saved.get("backend") != "rllib":
+        p.error(f"--resume: {run} is not a run of --backend rllib")
+    base = {k: v for k, v in saved.items()
+            if k not in ("backend", "command", "resumed_from", "versions")}
+    # The run continues where it is, never where its config.json says.
+    base["out"] = str(run)
+    return base
+
+
+def _config_fields(p: argparse.ArgumentParser, args: argparse.Namespace,
+                   base: dict[str, Any]) -> dict[str, Any]:
+    try:
+        hyper = {**base.get("hyperparams", {}), **key_values(args.hp, "--hp")}
+        env_kwargs = env_kwargs_from_args(args, base.get("env_kwargs"))
+    except ValueError as err:
+        p.error(str(err))
+    fields = {**base, "env_kwargs": env_kwargs, "hyperparams": hyper,
+              "progress": not args.no_progress}
+    for name, option in _FIELD_OPTIONS:
+        value = getattr(args, option)
+        if value is not None:
+            fields[name] = value
+    env_id = fields.get("env_id", GOALKEEPER_ID)
+    mapping = _policy_mapping(p, args, env_id, base)
+    if base and mapping.get("policy_mapping", base.get("policy_mapping")) != base.get(
+            "policy_mapping"):
+        p.error(f"--learner/--opponent: the checkpoint's modules are those of policy mapping "
+                f"{base.get('policy_mapping')!r}, not {mapping['policy_mapping']!r}")
+    return {**fields, **mapping}
+
+
+def main(p: argparse.ArgumentParser, args: argparse.Namespace, argv: list[str] | None
+         ) -> int:
+    """``soccer-env train --backend rllib`` with the parsed ``args`` of ``p``."""
+    # Every check of the options comes before Ray is imported, so that it holds without it.
+    _refuse_options(p, args)
+    base = _resumed_fields(p, args.resume) if args.resume else {}
+    fields = _config_fields(p, args, base)
+    try:
+        import ray.rllib  # noqa: F401
+
+        from agents import rllib_runs
+    except ImportError as err:
+        print(f"soccer-env train: --backend rllib needs Ray's RLlib, which cannot be imported "
+              f"here ({type(err).__name__}: {err}); install it with: {INSTALL_HINT}",
+              file=sys.stderr)
+        return 1
+    try:
+        cfg = rllib_runs.RllibTrainConfig.from_dict(fields)
+    except (ValueError, TypeError) as err:
+        p.error(str(err))
+    try:
+        summary = rllib_runs.train(cfg, resume=args.resume,
+                                   command=["soccer-env", "train", *(argv or [])],
+                                   overwrite=args.force, trust=args.trust,
+                                   address=args.address)
+    except RunRefused as err:
+        p.error(str(err))
+    except TrainingStopped as stopped:
+        print(f"soccer-env train: {stopped}", file=sys.stderr)
+        return 130
+    address = f" --address {args.address}" if args.address else ""
+    rate = summary["steps_per_s"] or 0.0
+    print(f"trained {summary['trained_steps']:,} steps in {summary['seconds'] / 60:.1f} min "
+          f"({rate:,.0f} steps/s) in {summary['iterations']} iterations; "
+          f"{len(summary['steps_by_node'])} of the cluster's "
+          f"{len(summary['cluster_nodes'])} node(s) sampled")
+    print(f"final checkpoint: {summary['final_checkpoint']}")
+    print(f"continue with: {summary['resume_command']}{address}")
+    print(f"run folder: {cfg.out}")
+    return 0

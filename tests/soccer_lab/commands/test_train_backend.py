@@ -1,0 +1,61 @@
+"""``soccer-env train --backend``: the options each backend refuses, and the message for a
+missing Ray. None of this needs Ray (or starts it)."""
+
+from __future__ import annotations
+
+import sys
+
+import pytest
+
+from soccer_lab.cli import main
+
+MATCH = ["--env", "soccer_env/Match-v0"]
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--workers", "4"], "--workers sets stable-baselines3's subprocesses; with --backend "
+                         "rllib use --num-env-runners"),
+    (["--eval-every", "1000"], "--eval-every is stable-baselines3's periodic evaluation"),
+    (["--eval-episodes", "10"], "--eval-episodes is for the periodic evaluation"),
+    (["--eval-obs-mode", "raw"], "--eval-obs-mode is for the periodic evaluation"),
+    (["--eval-perception", "harsh"], "--eval-perception is for the periodic evaluation"),
+    (["--algo", "sac"], "--algo sac: the rllib backend trains PPO only"),
+    (["--critic", "privileged"], "--critic privileged is stable-baselines3's"),
+    ([*MATCH, "--opponent", "scripted"], "--opponent scripted: with --backend rllib the "
+                                         "opponent is 'self'"),
+    ([*MATCH, "--opponent", "runs/x/final_policy.npz"], "--opponent runs/x/final_policy.npz"),
+    ([*MATCH, "--learner", "both", "--opponent", "self"], "--opponent self with --learner "
+                                                          "both"),
+    (["--learner", "yellow"], "--learner is for soccer_env/Match-v0"),
+    (["--resume", "runs/none"], "--resume: no RLlib checkpoint at runs/none"),
+])
+def test_rllib_refuses_options_it_has_no_use_for(args, message, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["train", "--backend", "rllib", *args])
+    assert exc.value.code == 2
+    assert message in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("args", [["--num-env-runners", "2"], ["--address", "auto"]])
+def test_sb3_refuses_the_rllib_options(args, capsys):
+    with pytest.raises(SystemExit):
+        main(["train", *args])
+    assert f"{args[0]} is for --backend rllib" in capsys.readouterr().err
+
+
+def test_an_rllib_checkpoint_is_not_resumed_by_sb3(tmp_path, capsys):
+    ckpt = tmp_path / "final_checkpoint"
+    ckpt.mkdir()
+    (ckpt / "rllib_checkpoint.json").write_text("{}")
+    with pytest.raises(SystemExit):
+        main(["train", "--backend", "sb3", "--resume", str(ckpt)])
+    assert "is an RLlib checkpoint: resume it with --backend rllib" in capsys.readouterr().err
+
+
+def test_missing_ray_names_the_extra(monkeypatch, capsys):
+    monkeypatch.setitem(sys.modules, "ray", None)  # as if Ray were not installed
+    assert main(["train", "--backend", "rllib", "--steps", "100"]) == 1
+    err = capsys.readouterr().err
+    assert "--backend rllib needs Ray's RLlib" in err
+    assert "pip install 'soccer-env[rllib]'" in err
+    assert "Traceback" not in err
