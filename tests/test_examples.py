@@ -38,7 +38,8 @@ def _run(script: str, *args: str, timeout: float = 300) -> str:
 
 def test_every_example_is_tested():
     tested = {"torchrl_envs.py", "supersuit_match_ppo.py", "recurrent_ppo_keeper.py",
-              "rl_zoo3_keeper.py"}
+              "rl_zoo3_keeper.py",
+              "rllib_match.py"}  # tests/examples/test_rllib_example.py, in make test-rllib
     assert {p.name for p in EXAMPLES.glob("*.py")} == tested
 
 
