@@ -122,3 +122,16 @@ def test_match_workers_benchmark_reports_each_worker_count(tmp_path, capsys):
     assert figures["0"]["ratio_to_baseline"] == 1.0
     assert all(len(f["env_steps_per_s"]) == 2 and f["median"] > 0 for f in figures.values())
     assert "2 workers" in capsys.readouterr().out
+
+
+def test_batched_physics_layouts_agree_until_the_patches_round_differently(capsys):
+    """The design measurement of the batched simulation: both layouts step the same worlds;
+    the shared space differs from separate spaces only in rounding (coordinates offset by
+    each environment's patch), not in behaviour."""
+    bench = _script("batched_physics")
+    t_sep, s_sep = bench.measure(bench.Spaces, 4, 1, 20)
+    t_sh, s_sh = bench.measure(bench.Shared, 4, 1, 20)
+    assert t_sep > 0 and t_sh > 0 and s_sep.shape == s_sh.shape == (8, 6)
+    np.testing.assert_allclose(s_sh, s_sep, atol=1e-9)
+    assert bench.main(["--sizes", "1", "2", "--steps", "3"]) == 0
+    assert "shared" in capsys.readouterr().out
