@@ -21,10 +21,13 @@ MIN_GOAL_WALL = 0.05
 BOUNDARY_WALL = 1.0
 
 
-def add_walls(space: pymunk.Space, field: FieldSpec, ball_radius: float) -> None:
+def add_walls(space: pymunk.Space, field: FieldSpec, ball_radius: float,
+              body: pymunk.Body | None = None) -> None:
     """Add the static arena to ``space``: boundary walls ``field.boundary`` beyond the lines,
     the goals (side and back walls, at least :data:`MIN_GOAL_WALL` thick, grown outward) and
-    the out-of-play sensors just past the goal and touch lines."""
+    the out-of-play sensors just past the goal and touch lines, on ``body`` (default the
+    space's static body; a static body placed elsewhere carries the arena there)."""
+    body = space.static_body if body is None else body
     f = field
     hx, hy = f.half_length, f.half_width
     wx, wy = hx + f.boundary, hy + f.boundary
@@ -45,7 +48,7 @@ def add_walls(space: pymunk.Space, field: FieldSpec, ball_radius: float) -> None
         boxes.append((min(x0, x2), gw, max(x0, x2), gw + side))  # left side wall
         boxes.append((min(x0, x2), -gw - side, max(x0, x2), -gw))  # right side wall
     for x0, y0, x1, y1 in boxes:
-        shape = pymunk.Poly(space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+        shape = pymunk.Poly(body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
         shape.elasticity = f.wall_restitution
         shape.friction = 1.0
         shape.collision_type = WALL
@@ -56,7 +59,7 @@ def add_walls(space: pymunk.Space, field: FieldSpec, ball_radius: float) -> None
     d = 2.0 * ball_radius
     for x0, y0, x1, y1 in [(hx + d, -wy, wx, wy), (-wx, -wy, -hx - d, wy),
                            (-wx, hy + d, wx, wy), (-wx, -wy, wx, -hy - d)]:
-        sensor = pymunk.Poly(space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+        sensor = pymunk.Poly(body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
         sensor.sensor = True
         sensor.collision_type = OUT
         space.add(sensor)

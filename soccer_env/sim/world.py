@@ -195,6 +195,9 @@ class World(KickerDribbler, HumanoidBodies):
         self._buffer = pbatch.Buffer()
         self._state = np.zeros((1 + self.n_robots, 6))
         self.space: pymunk.Space | None = None
+        #: Where the field's centre lies in the space [m] (non-zero when several worlds
+        #: share one space, each on its own patch).
+        self.origin = (0.0, 0.0)
         self.time = 0.0
 
     # ------------------------------------------------------------------------------------
@@ -217,26 +220,48 @@ class World(KickerDribbler, HumanoidBodies):
         space = pymunk.Space()
         space.collision_slop = COLLISION_SLOP
         space.iterations = 10
-        self.space = space
-        add_walls(space, self.field, self.ball_spec.radius)
-        self._add_ball(space)
-        self._add_robots(space)
+        self._populate(space, space.static_body, (0.0, 0.0))
         space.on_collision(BALL, ROBOT, pre_solve=self._ball_robot_contact)
         space.on_collision(BALL, OUT, begin=self._ball_out)
         if self.walk is not None:
             space.on_collision(BALL, HUMANOID, pre_solve=self._ball_touch)
             for other in (ROBOT, HUMANOID, WALL):
                 space.on_collision(HUMANOID, other, begin=self._humanoid_impact)
-            self.walk.reset(rng if rng is not None else np.random.default_rng(0))
-        self._impacts: dict[int, float] = {}
-        self._lying: dict[int, pymunk.Shape] = {}
-        self._grounded: set[int] = set()
+        self.restart(poses, ball_position, rng)
+
+    def _populate(self, space: pymunk.Space, static: pymunk.Body,
+                  origin: tuple[float, float]) -> None:
+        """Build this world's arena, ball and robots in ``space``: the arena on ``static``
+        (the space's static body, or a static body of this world's own at ``origin`` when
+        several worlds share the space), every position offset by ``origin``. The collision
+        handlers are the space owner's to register."""
+        self.space = space
+        self.origin = (float(origin[0]), float(origin[1]))
+        self._static = static
+        add_walls(space, self.field, self.ball_spec.radius, static)
+        self._add_ball(space)
+        self._add_robots(space)
         # ``Space.step`` spends about 3 microseconds per call on Python housekeeping (deferred
         # adds and removals, post-step callbacks) that this world never needs, because it
         # never adds or removes objects while stepping; Chipmunk's own step is equivalent
         # (the tests check that both give identical trajectories).
         self._bind_handles()
 
+    def restart(self, robot_poses: np.ndarray,
+                ball_position: tuple[float, float] = (0.0, 0.0),
+                rng: np.random.Generator | None = None) -> None:
+        """Start a new episode in the present space: the clock at zero, kickers disarmed,
+        every robot and the ball placed at rest. :meth:`reset` builds a fresh space first
+        (so that no cached contact carries over); a world sharing a space with others
+        (:class:`~soccer_env.sim.batch.WorldBatch`) restarts in place."""
+        self._require_space()
+        poses = self._validated_poses(robot_poses)
+        self._check_inside("ball", *ball_position, self.ball_spec.radius)
+        if self.walk is not None:
+            self.walk.reset(rng if rng is not None else np.random.default_rng(0))
+        self._impacts: dict[int, float] = {}
+        self._lying: dict[int, pymunk.Shape] = {}
+        self._grounded: set[int] = set()
         n = self.n_robots
         self.time = 0.0
         self._z = 0.0
@@ -316,7 +341,7 @@ class World(KickerDribbler, HumanoidBodies):
         ball_shape.friction = bs.surface_friction
         ball_shape.collision_type = BALL
         space.add(ball, ball_shape)
-        friction = pymunk.PivotJoint(space.static_body, ball, (0.0, 0.0), (0.0, 0.0))
+        friction = pymunk.PivotJoint(self._static, ball, (0.0, 0.0), (0.0, 0.0))
         friction.max_bias = 0.0
         friction.max_force = self._roll_force
         space.add(friction)
@@ -391,7 +416,8 @@ class World(KickerDribbler, HumanoidBodies):
         if not all(math.isfinite(v) for v in vals):
             raise ValueError(f"robot {self.names[i]} state must be finite, got {vals}")
         body = self._bodies[i]
-        body.position = (float(x), float(y))
+        ox, oy = self.origin
+        body.position = (float(x) + ox, float(y) + oy)
         body.angle = float(theta)
         body.velocity = (float(vx), float(vy))
         body.angular_velocity = float(omega)
@@ -418,7 +444,8 @@ class World(KickerDribbler, HumanoidBodies):
             raise ValueError(f"ball velocity and height must be finite with z >= 0, got "
                              f"{(vx, vy, z, vz)}")
         ball = self._ball
-        ball.position = (float(x), float(y))
+        ox, oy = self.origin
+        ball.position = (float(x) + ox, float(y) + oy)
         ball.velocity = (float(vx), float(vy))
         self.space.reindex_shapes_for_body(ball)
         self._z, self._vz, self._hops = float(z), float(vz), 0
@@ -570,6 +597,9 @@ class World(KickerDribbler, HumanoidBodies):
             pbatch.get_space_bodies(self.space, _BODY_FIELDS, self._buffer)
             state[:] = np.frombuffer(self._buffer.float_buf(), dtype=np.float64).reshape(
                 -1, 6)[: 1 + self.n_robots]
+        if self.origin != (0.0, 0.0):
+            state[:, 0] -= self.origin[0]
+            state[:, 1] -= self.origin[1]
         # pymunk's angle is unbounded: keep bodies (and so the reported headings) in
         # [-pi, pi] by turning a body a full turn back when it leaves that range.
         for i, th in enumerate(state[1:, 2].tolist()):
@@ -582,6 +612,7 @@ class World(KickerDribbler, HumanoidBodies):
         """``begin`` of the ball with a sensor beyond a line: record the first exit."""
         if self.ball_exit is None:
             x, y = self._ball.position
+            x, y = x - self.origin[0], y - self.origin[1]
             # The callback runs inside the substep, before ``time`` is advanced past it.
             self.ball_exit = BallExit(x, y, self._z, self.time + self.substep_dt)
 

@@ -1,0 +1,261 @@
+"""Many worlds in one pymunk space: :class:`WorldBatch`, the physics of the batched
+environments.
+
+Each world is a :class:`~soccer_env.sim.world.World` on its own patch of a grid in one shared
+space (its arena on its own static body, so no shape of one world can touch another's), and
+one Chipmunk step per substep advances all of them. ``benchmarks/batched_physics.py`` measured
+this against a loop over separate spaces: about half the physics cost per environment from 16
+to a few hundred worlds (the README's "Batched simulation: the physics layout").
+
+The hot path is vectorised over the batch: the commands of every robot (clipping, the
+body-to-field rotation at the mid-step heading) become the control bodies' velocities in one
+:mod:`pymunk.batch` write, and the state of every body comes back in one batch read into one
+array, of which each world's state is a view. What happens rarely stays with the world it
+happens in, through the world's own methods: contacts (routed by shape to their world: touches,
+kicker, dribbler restitution), kicks, the ball's flight after a chip, the switch from sliding to
+rolling, dribbling, ball exits.
+
+The worlds are the same physics as separate worlds, but not bit for bit: a world's coordinates
+in the shared space are offset by its patch's origin, which rounds differently (differences of
+1e-14 m to 1e-11 m after a few hundred steps without contacts; contacts amplify them).
+
+SSL robots only for now: humanoids (their walk engine, falls and lying bodies) are refused.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pymunk
+import pymunk.batch as pbatch
+from pymunk._chipmunk import lib as _cp
+
+from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
+from soccer_env.sim.arena import BALL, OUT, ROBOT
+from soccer_env.sim.world import COLLISION_SLOP, World
+from soccer_env.validation import check_int
+
+__all__ = ["WorldBatch", "MAX_WORLDS"]
+
+#: Largest batch: memory and the broadphase grow with it, and past a few hundred worlds per
+#: space the caches no longer hold them (see the physics-layout benchmark).
+MAX_WORLDS = 65536
+#: Margin between two worlds' patches [m], beyond their walls.
+PATCH_MARGIN = 2.0
+
+_FIELDS = (pbatch.BodyFields.POSITION | pbatch.BodyFields.ANGLE | pbatch.BodyFields.VELOCITY
+           | pbatch.BodyFields.ANGULAR_VELOCITY)
+
+
+class WorldBatch:
+    """``n_worlds`` worlds of one configuration in one space.
+
+    Args:
+        n_worlds: the number of worlds (1..:data:`MAX_WORLDS`).
+        field, ball, robot, n_blue, n_yellow, control_dt, physics_dt: as
+            :class:`~soccer_env.sim.world.World` takes them (SSL robots only).
+
+    Attributes:
+        worlds: the worlds, each usable as a :class:`World` for reading (``snapshot``,
+            ``robot_array``, ``ball_exit``, ``touched``, ``kicked``...) and for teleports.
+        state: ``(n_worlds, 1 + N, 6)`` view of every world's ball and robots
+            (``x, y, theta, vx, vy, omega``, field frame of each world), filled at the end of
+            each :meth:`step`; ``worlds[k].robot_array()`` is a view of ``state[k, 1:]``.
+    """
+
+    def __init__(self, n_worlds: int, field: FieldSpec, ball: BallSpec,
+                 robot: RobotSpec | list[RobotSpec] | tuple[RobotSpec, ...], n_blue: int,
+                 n_yellow: int, control_dt: float = 1.0 / 60.0,
+                 physics_dt: float = 1.0 / 240.0) -> None:
+        n_worlds = check_int("n_worlds", n_worlds, 1, MAX_WORLDS)
+        self.worlds = [World(field, ball, robot, n_blue, n_yellow, control_dt, physics_dt)
+                       for _ in range(n_worlds)]
+        w0 = self.worlds[0]
+        if w0.humanoid_indices:
+            raise ValueError("WorldBatch steps SSL robots only; humanoids (robot "
+                             f"{[w0.robot_specs[i].name for i in w0.humanoid_indices]!r}) "
+                             "run in separate worlds")
+        self.n_worlds = n_worlds
+        self.n_robots = w0.n_robots
+        self.field = field
+        self.control_dt, self.substep_dt, self.n_substeps = (w0.control_dt, w0.substep_dt,
+                                                             w0.n_substeps)
+        cols = max(1, math.ceil(math.sqrt(n_worlds)))
+        pitch_x = 2.0 * (field.half_length + field.boundary + PATCH_MARGIN) + 2.0
+        pitch_y = 2.0 * (field.half_width + field.boundary + PATCH_MARGIN) + 2.0
+        #: Each world's origin in the shared space [m].
+        self.origins = np.array([((k % cols) * pitch_x, (k // cols) * pitch_y)
+                                 for k in range(n_worlds)], dtype=np.float64)
+        limits = np.array([w0._limits[i] for i in range(self.n_robots)], dtype=np.float64)
+        self._vmax, self._wmax, self._cap = limits[:, 0], limits[:, 1], limits[:, 2]
+        self.state = np.zeros((n_worlds, 1 + self.n_robots, 6))
+        for k, w in enumerate(self.worlds):
+            w._state = self.state[k]
+        self.space: pymunk.Space | None = None
+        self._buffer = pbatch.Buffer()
+
+    # ------------------------------------------------------------------------------------
+    # Construction and episodes
+    # ------------------------------------------------------------------------------------
+
+    def reset(self, robot_poses: np.ndarray, ball_positions: np.ndarray) -> None:
+        """Build the shared space with every world at rest.
+
+        Args:
+            robot_poses: ``(n_worlds, N, 3)`` initial ``x, y, theta`` of every robot of every
+                world, each in its world's field frame.
+            ball_positions: ``(n_worlds, 2)`` initial ball positions.
+        """
+        poses = np.asarray(robot_poses, dtype=np.float64)
+        balls = np.asarray(ball_positions, dtype=np.float64)
+        if poses.shape != (self.n_worlds, self.n_robots, 3):
+            raise ValueError(f"robot_poses must have shape ({self.n_worlds}, {self.n_robots}, "
+                             f"3), got {poses.shape}")
+        if balls.shape != (self.n_worlds, 2):
+            raise ValueError(f"ball_positions must have shape ({self.n_worlds}, 2), got "
+                             f"{balls.shape}")
+        space = pymunk.Space()
+        space.collision_slop = COLLISION_SLOP
+        space.iterations = 10
+        self._owner: dict[pymunk.Shape, World] = {}
+        for w, origin in zip(self.worlds, self.origins.tolist()):
+            static = pymunk.Body(body_type=pymunk.Body.STATIC)
+            static.position = tuple(origin)
+            space.add(static)
+            w._populate(space, static, tuple(origin))
+            self._owner[next(iter(w._ball.shapes))] = w
+            for shape in w._shape_index:
+                self._owner[shape] = w
+        for w, p, b in zip(self.worlds, poses, balls.tolist()):
+            w.restart(p, tuple(b))
+        space.on_collision(BALL, ROBOT, pre_solve=self._contact)
+        space.on_collision(BALL, OUT, begin=self._out)
+        self.space = space
+        self._step_space = _cp.cpSpaceStep
+        self._handle = space._space
+        self._rows()
+        self.read_state()
+
+    def _rows(self) -> None:
+        """Where each body lies in :mod:`pymunk.batch`'s reads: the ball and robots of each
+        world (the state rows) and the control bodies."""
+        self._buffer.clear()
+        pbatch.get_space_bodies(self.space, pbatch.BodyFields.BODY_ID, self._buffer)
+        ids = np.frombuffer(self._buffer.int_buf(), dtype=np.intp)
+        row_of = {int(i): r for r, i in enumerate(ids.tolist())}
+        self._state_rows = np.array([[row_of[w._ball.id]] + [row_of[b.id] for b in w._bodies]
+                                     for w in self.worlds], dtype=np.intp)
+        self._control_rows = np.array([[row_of[c.id] for c in w._controls]
+                                       for w in self.worlds], dtype=np.intp)
+        self._n_bodies = len(ids)
+        # The commands go through a second buffer over an array of our own: pymunk's
+        # ``set_float_buf`` makes the buffer point at that memory, which a later read into
+        # the same buffer would try to reallocate.
+        self._commands = np.zeros((self._n_bodies, 6))
+        self._write = pbatch.Buffer()
+        self._write.set_float_buf(self._commands)
+
+    def restart(self, k: int, robot_poses: np.ndarray,
+                ball_position: tuple[float, float] = (0.0, 0.0)) -> None:
+        """Start a new episode in world ``k`` (the others go on)."""
+        self.worlds[k].restart(robot_poses, ball_position)
+
+    # ------------------------------------------------------------------------------------
+    # Stepping
+    # ------------------------------------------------------------------------------------
+
+    def _contact(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
+        self._owner[arbiter.shapes[0]]._ball_robot_contact(arbiter, space, data)
+
+    def _out(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
+        self._owner[arbiter.shapes[0]]._ball_out(arbiter, space, data)
+
+    def _read(self) -> np.ndarray:
+        self._buffer.clear()
+        pbatch.get_space_bodies(self.space, _FIELDS, self._buffer)
+        return np.frombuffer(self._buffer.float_buf(), dtype=np.float64).reshape(-1, 6)
+
+    def step(self, commands: np.ndarray) -> None:
+        """Advance every world by one control step.
+
+        Args:
+            commands: ``(n_worlds, N, 6)``: each world's command rows as
+                :meth:`World.step <soccer_env.sim.world.World.step>` takes them (``vx, vy``
+                body frame, ``omega``, ``kick_speed``, ``chip``, ``dribble``).
+        """
+        if self.space is None:
+            raise RuntimeError("call WorldBatch.reset() before stepping")
+        c = np.asarray(commands, dtype=np.float64)
+        if c.shape != (self.n_worlds, self.n_robots, 6):
+            raise ValueError(f"commands must have shape ({self.n_worlds}, {self.n_robots}, 6), "
+                             f"got {c.shape}")
+        vx, vy, w = c[..., 0], c[..., 1], c[..., 2]
+        speed = np.hypot(vx, vy)
+        fast = speed > self._vmax
+        if fast.any():  # as World.step rounds it: v * vmax / speed
+            safe = np.where(fast, speed, 1.0)
+            vx = np.where(fast, vx * self._vmax / safe, vx)
+            vy = np.where(fast, vy * self._vmax / safe, vy)
+        w = np.clip(w, -self._wmax, self._wmax)
+        heading = self.state[:, 1:, 2] + 0.5 * self.control_dt * w
+        cos, sin = np.cos(heading), np.sin(heading)
+        kick = c[..., 3]
+        armed = np.where(kick > 0.0, np.minimum(kick, self._cap), 0.0)
+        bodies = self._commands
+        bodies[:] = self._read()
+        rows = self._control_rows
+        bodies[rows, 3] = cos * vx - sin * vy
+        bodies[rows, 4] = sin * vx + cos * vy
+        bodies[rows, 5] = w
+        pbatch.set_space_bodies(self.space, _FIELDS, self._write)
+        chip, dribble = (c[..., 4] > 0.0).tolist(), (c[..., 5] > 0.0).tolist()
+        n = self.n_robots
+        dribbling: list[tuple[World, list[int]]] = []
+        for world, a, ch, dr in zip(self.worlds, armed.tolist(), chip, dribble):
+            world._armed, world._chip, world._dribble = a, ch, dr
+            world.touched = [False] * n
+            world.kicked = [False] * n
+            if any(a):
+                world._kick_resting_ball()
+            if any(dr):
+                candidates = world._dribble_candidates()
+                if candidates:
+                    dribbling.append((world, candidates))
+
+        h = self.substep_dt
+        step, handle, worlds = self._step_space, self._handle, self.worlds
+        get_velocity = _cp.cpBodyGetVelocity
+        for _ in range(self.n_substeps):
+            for world, candidates in dribbling:
+                for i in candidates:
+                    world._apply_dribbler(i)
+            step(handle, h)
+            for world in worlds:
+                world.time += h
+                if world._pending_kick >= 0:
+                    world._fire(world._pending_kick)
+                    world._pending_kick = -1
+                if world._airborne:
+                    world._fly(h)
+                elif world._sliding:
+                    v = get_velocity(world._ball_handle)
+                    if v.x * v.x + v.y * v.y <= world._v_switch * world._v_switch:
+                        world._set_sliding(False, 0.0)
+        self.read_state()
+
+    def read_state(self) -> None:
+        """Fill :attr:`state` (and so every world's state) from the space in one batch read,
+        headings kept in ``[-pi, pi]`` as :meth:`World.read_state` keeps them."""
+        bodies = self._read()
+        state = self.state
+        state[:] = bodies[self._state_rows]
+        state[:, :, 0] -= self.origins[:, None, 0]
+        state[:, :, 1] -= self.origins[:, None, 1]
+        th = state[:, 1:, 2]
+        out = np.abs(th) > math.pi
+        if out.any():
+            for k, i in zip(*np.nonzero(out)):
+                wrapped = math.remainder(float(th[k, i]), 2.0 * math.pi)
+                self.worlds[k]._bodies[i].angle = wrapped
+                th[k, i] = wrapped
