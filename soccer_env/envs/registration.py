@@ -15,15 +15,19 @@ __all__ = ["GymTask", "GYMNASIUM", "PETTINGZOO", "register_all"]
 
 
 class GymTask(NamedTuple):
-    """A Gymnasium task: its ``entry_point`` (``module:Class``) and ``max_episode_steps``."""
+    """A Gymnasium task: its ``entry_point`` (``module:Class``), ``max_episode_steps`` and,
+    for tasks with a batched implementation, its ``vector_entry_point``
+    (``gymnasium.make_vec(id, num_envs=N, vectorization_mode="vector_entry_point")``)."""
 
     entry_point: str
     max_episode_steps: int
+    vector_entry_point: str | None = None
 
 
 #: The Gymnasium tasks (``gymnasium.make(id)``).
 GYMNASIUM: Registry[GymTask] = Registry("Gymnasium environment", [
-    ("soccer_env/Goalkeeper-v0", GymTask("soccer_env.envs.goalkeeper:GoalkeeperEnv", 480),
+    ("soccer_env/Goalkeeper-v0", GymTask("soccer_env.envs.goalkeeper:GoalkeeperEnv", 480,
+                                         "soccer_env.envs.batched:GoalkeeperVectorEnv"),
      "a keeper robot (SSL or humanoid) defends its goal against one seeded shot"),
     ("soccer_env/Shootout-v0", GymTask("soccer_env.envs.shootout:ShootoutEnv", 600),
      "an attacker (SSL or humanoid) must score past the scripted keeper from a seeded start"),
@@ -44,7 +48,8 @@ def register_all() -> None:
     for env_id, task in GYMNASIUM.items():
         if env_id not in registry:
             register(id=env_id, entry_point=task.entry_point,
-                     max_episode_steps=task.max_episode_steps)
+                     max_episode_steps=task.max_episode_steps,
+                     vector_entry_point=task.vector_entry_point)
     try:  # PettingZoo >= 1.27 has a registry like Gymnasium's.
         import pettingzoo as pz
     except ImportError:  # pragma: no cover - PettingZoo is a dependency

@@ -1,0 +1,280 @@
+"""Batched Goalkeeper-v0: :class:`GoalkeeperVectorEnv`, ``num_envs`` keeper episodes stepped as
+one batch in one process.
+
+``gymnasium.make_vec("soccer_env/Goalkeeper-v0", num_envs=N,
+vectorization_mode="vector_entry_point")`` returns it. The physics is a
+:class:`~soccer_env.sim.batch.WorldBatch` (every world in one pymunk space, one Chipmunk step
+per substep), and everything else runs in numpy over the batch: actions to commands, the
+invisible attacker's shots, the outcome (goal, out, stopped, cleared), rewards and shaping,
+observations (:meth:`~soccer_env.observations.ObservationBuilder.build_batch`) and the time
+limit. What is left per environment is what happens rarely: a shot fired, a ball leaving the
+field, an episode starting.
+
+Episodes are those of ``gymnasium.make("soccer_env/Goalkeeper-v0", ...)``: environment ``k``
+reset with seed ``s + k`` draws the same keeper position and shot, and steps through the same
+states up to the rounding of the shared space (each world's coordinates are offset by its
+patch of the space: differences of about 1e-12 m, which contacts can amplify; tested). Finished
+environments reset at the next step (Gymnasium's ``NEXT_STEP`` autoreset: that step's action
+is ignored and it returns the new episode's first observation with reward 0), drawing their
+next episode from their own generator as a single environment's ``reset()`` does.
+
+Scope: SSL keepers with ``obs_mode="truth"`` (raw and perceived observations need the
+estimators batched across environments; humanoid keepers their walk engine); no rendering.
+Other arguments are :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`'s.
+
+Infos: at an episode's end, ``info["outcome"]`` (``"goal"``, ``"out"``, ``"stopped"``,
+``"cleared"``; ``"truncated"`` at the time limit) and ``info["is_success"]``, with Gymnasium's
+``_outcome`` / ``_is_success`` masks; ``info["episode_steps"]`` every step.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from gymnasium.utils import seeding
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from soccer_env.envs.goalkeeper import (
+    CLEAR_SPEED,
+    INTERCEPT_MIN_SPEED,
+    STOP_SPEED,
+    GoalkeeperEnv,
+)
+from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
+from soccer_env.sim.commands import validate_actions
+from soccer_env.sim.referee import classify_exit
+from soccer_env.validation import check_int, check_seed
+
+__all__ = ["GoalkeeperVectorEnv"]
+
+#: Goalkeeper-v0's time limit (its registration's ``max_episode_steps``).
+DEFAULT_MAX_STEPS = 480
+
+
+class GoalkeeperVectorEnv(VectorEnv):
+    """``num_envs`` Goalkeeper-v0 episodes stepped as one batch (see the module docstring).
+
+    Args:
+        num_envs: environments (1..65536).
+        max_episode_steps: the time limit (truncation), as the registration's.
+        **kwargs: :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`'s arguments (SSL
+            robots, ``obs_mode="truth"``, no ``render_mode``).
+    """
+
+    metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
+
+    def __init__(self, num_envs: int = 16, max_episode_steps: int | None = DEFAULT_MAX_STEPS,
+                 **kwargs: Any) -> None:
+        self.num_envs = check_int("num_envs", num_envs, 1, MAX_WORLDS)
+        self.max_episode_steps = (None if max_episode_steps is None else
+                                  check_int("max_episode_steps", max_episode_steps, 1, 10**9))
+        # A single environment checks every argument with its own messages and gives the
+        # task's pieces (shots, shaping, spaces, observation layout).
+        probe = GoalkeeperEnv(**kwargs)
+        if probe.obs_mode != "truth":
+            raise ValueError(f"the batched Goalkeeper runs obs_mode='truth' only (got "
+                             f"{probe.obs_mode!r}): raw and perceived observations need the "
+                             "estimators batched across environments; use "
+                             "vectorization_mode='sync' or 'async' for them")
+        if probe.robot_spec.kind != "ssl":
+            raise ValueError("the batched Goalkeeper runs SSL keepers only (humanoid keepers "
+                             "need their walk engine batched); use vectorization_mode='sync'")
+        if probe.render_mode is not None:
+            raise ValueError("the batched Goalkeeper does not render; use "
+                             "vectorization_mode='sync' for videos")
+        self._probe = probe
+        self.field, self.ball_spec, self.shots = probe.field, probe.ball_spec, probe.shots
+        self.shaping, self._shaping_on = probe.shaping, probe._shaping_on
+        self.builder = probe.builder
+        self._model = probe.robot_model
+        self._names = [f"{probe._learner[0]} of environment {k}" for k in range(self.num_envs)]
+        self._out_of_range = probe.out_of_range_actions
+        self._mouth = probe._mouth
+        w0 = probe.world
+        self.batch = WorldBatch(self.num_envs, self.field, self.ball_spec, probe.robot_spec,
+                                1, 0, w0.control_dt, w0.control_dt / w0.n_substeps)
+        self.control_dt = w0.control_dt
+        self.single_observation_space = probe.observation_space
+        self.single_action_space = probe.action_space
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        self.metadata = {**GoalkeeperEnv.metadata, **type(self).metadata}
+        self.render_mode = None
+        self.spec = None
+        n = self.num_envs
+        self._rngs: list[np.random.Generator] = [np.random.default_rng(k) for k in range(n)]
+        self._shots: list[dict[str, Any]] = [{}] * n
+        self._delay = np.zeros(n)
+        self._fired = np.zeros(n, dtype=bool)
+        self._touched = np.zeros(n, dtype=bool)
+        self._steps = np.zeros(n, dtype=np.int64)
+        self._needs_reset = np.zeros(n, dtype=bool)
+        self._started = False
+
+    # ------------------------------------------------------------------------------------
+    # Episodes
+    # ------------------------------------------------------------------------------------
+
+    def _place(self, k: int) -> tuple[np.ndarray, tuple[float, float], dict[str, Any]]:
+        """Environment ``k``'s next episode (robot poses, ball, shot) from its generator,
+        drawn as :meth:`GoalkeeperEnv._place` and ``_streams`` draw it, so that the
+        generator moves on exactly as a single environment's does."""
+        rng = self._rngs[k]
+        poses, ball = self._probe._place(rng)
+        rng.integers(2**63)  # the sensors' stream (no sensors in truth mode)
+        rng.integers(2**63)  # the world's stream (SSL robots draw nothing)
+        return poses, ball, self._probe._shot
+
+    def _begin(self, k: int, shot: dict[str, Any]) -> None:
+        self._shots[k] = shot
+        self._delay[k] = shot["delay"]
+        self._fired[k] = False
+        self._touched[k] = False
+        self._steps[k] = 0
+        if shot["delay"] <= 0.0:
+            self._fire(k)
+
+    def reset(self, *, seed: int | list[int] | None = None,
+              options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict[str, Any]]:
+        """Reset every environment: with ``seed`` an int, environment ``k`` is seeded with
+        ``seed + k`` (a list gives each its own; None keeps the generators going, or seeds
+        them from the OS's entropy before the first reset)."""
+        n = self.num_envs
+        if isinstance(seed, (list, tuple)):
+            if len(seed) != n:
+                raise ValueError(f"seed must be an int, None or a list of {n} seeds, got a "
+                                 f"list of {len(seed)}")
+            for s in seed:
+                check_seed(s)
+            seeds = list(seed)
+        else:
+            check_seed(seed)
+            seeds = [None if seed is None else seed + k for k in range(n)]
+        for k, s in enumerate(seeds):
+            if s is not None or not self._started:
+                self._rngs[k] = seeding.np_random(s)[0]
+        placed = [self._place(k) for k in range(n)]
+        self.batch.reset(np.stack([p for p, _, _ in placed]),
+                         np.array([b for _, b, _ in placed], dtype=np.float64))
+        for k, (_, _, shot) in enumerate(placed):
+            self._begin(k, shot)
+        self._needs_reset[:] = False
+        self._started = True
+        return self._observe(), {"episode_steps": self._steps.copy()}
+
+    # ------------------------------------------------------------------------------------
+    # Stepping
+    # ------------------------------------------------------------------------------------
+
+    def _fire(self, k: int) -> None:
+        """The invisible attacker's kick in environment ``k`` (as GoalkeeperEnv._fire)."""
+        probe = self._probe
+        probe.world, probe._shot = self.batch.worlds[k], self._shots[k]
+        probe._fire()
+        self._fired[k] = True
+
+    def step(self, actions: np.ndarray):
+        if not self._started:
+            raise RuntimeError("call reset() before step()")
+        n = self.num_envs
+        try:
+            act = np.asarray(actions, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"actions must be ({n}, 6) numbers, got {actions!r}") from None
+        if act.shape != (n, 6):
+            names = ", ".join(self._model.action_names)
+            raise ValueError(f"actions must have shape ({n}, 6) ({names}), got {act.shape}")
+        restarting = self._needs_reset.copy()
+        live = ~restarting
+        act = act.copy()
+        act[restarting] = 0.0  # a finished environment's action is ignored
+        act = validate_actions(act, self._names, self._out_of_range)
+        batch = self.batch
+        batch.step(self._model.commands(act)[:, None, :])
+
+        # The attacker's shots due this step, and the keeper's touches.
+        time = np.array([w.time for w in batch.worlds])
+        due = live & ~self._fired & (time >= self._delay - 1e-9)
+        for k in np.nonzero(due)[0].tolist():
+            self._fire(k)
+        self._touched |= np.array([w.touched[0] for w in batch.worlds])
+        self._steps += 1
+
+        state = batch.state
+        ball = state[:, 0]
+        outcome = np.full(n, None, dtype=object)
+        exits = [(k, w.ball_exit) for k, w in enumerate(batch.worlds)
+                 if w.ball_exit is not None]
+        for k, ex in exits:
+            kind = classify_exit(ex, self.field, self.ball_spec)
+            outcome[k] = "goal" if kind.kind == "goal" and kind.end < 0 else "out"
+        vx, vy = ball[:, 3], ball[:, 4]
+        airborne = np.array([w.ball_airborne for w in batch.worlds])
+        open_ = live & self._fired & (outcome == None)  # noqa: E711 (element-wise)
+        stopped = open_ & ~airborne & (vx * vx + vy * vy < STOP_SPEED * STOP_SPEED)
+        outcome[stopped] = "stopped"
+        cleared = open_ & ~stopped & (vx > CLEAR_SPEED)
+        outcome[cleared] = "cleared"
+        outcome[restarting] = None
+        terminated = outcome != None  # noqa: E711
+        rewards = np.where(outcome == "goal", -1.0, np.where(terminated, 1.0, 0.0))
+        if self._shaping_on:
+            rewards = rewards + self._shaping(state, act)
+        truncated = np.zeros(n, dtype=bool)
+        if self.max_episode_steps is not None:
+            truncated = live & ~terminated & (self._steps >= self.max_episode_steps)
+
+        infos: dict[str, Any] = {"episode_steps": self._steps.copy()}
+        ended = terminated | truncated
+        if ended.any():
+            out = np.where(truncated, "truncated", outcome).astype(object)
+            out[~ended] = None
+            infos["outcome"], infos["_outcome"] = out, ended.copy()
+            infos["is_success"] = terminated & (outcome != "goal")
+            infos["_is_success"] = terminated.copy()
+
+        # The environments that finished at the previous step start their next episode now.
+        for k in np.nonzero(restarting)[0].tolist():
+            poses, ball_xy, shot = self._place(k)
+            batch.restart(k, poses, ball_xy)
+            self._begin(k, shot)
+        if restarting.any():
+            batch.read_state()
+            rewards[restarting] = 0.0
+            infos["episode_steps"] = self._steps.copy()
+        self._needs_reset = ended
+        return (self._observe(), rewards.astype(np.float64), terminated, truncated, infos)
+
+    def _shaping(self, state: np.ndarray, act: np.ndarray) -> np.ndarray:
+        """The shaping terms of every environment (GoalkeeperEnv._reward_terms over the
+        batch)."""
+        sc, f, dt = self.shaping, self.field, self.control_dt
+        kx, ky = state[:, 1, 0], state[:, 1, 1]
+        bx, by, vx, vy = state[:, 0, 0], state[:, 0, 1], state[:, 0, 3], state[:, 0, 4]
+        total = np.zeros(self.num_envs)
+        if sc["intercept"]:
+            towards = vx < -INTERCEPT_MIN_SPEED
+            safe_vx = np.where(towards, vx, -1.0)
+            y_cross = np.clip(by + vy * (-f.half_length - bx) / safe_vx, -self._mouth,
+                              self._mouth)
+            err = np.where(towards, np.abs(ky - y_cross) / f.goal_width, 0.0)
+            total += -sc["intercept"] * err * dt
+        if sc["ball_distance"]:
+            total += -sc["ball_distance"] * np.hypot(bx - kx, by - ky) * dt
+        if sc["action_cost"]:
+            total += -sc["action_cost"] * np.sum(act[:, 0:3] ** 2, axis=1) / 3.0 * dt
+        if sc["outside_area"]:
+            inside = (kx <= -f.half_length + f.defense_depth) & (
+                np.abs(ky) <= 0.5 * f.defense_width)
+            total += np.where(inside, 0.0, -sc["outside_area"] * dt)
+        return total
+
+    def _observe(self) -> np.ndarray:
+        state = self.batch.state
+        return self.builder.build_batch(state[:, 1:], state[:, 0])[:, 0]
+
+    def close(self, **kwargs: Any) -> None:
+        self.batch.space = None
+        self.closed = True

@@ -1,0 +1,111 @@
+"""The batched Goalkeeper (``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")``):
+the same episodes as single environments seeded ``seed + k``, through episode ends and
+autoresets; Gymnasium's vector API; bad input."""
+
+from __future__ import annotations
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import soccer_env  # noqa: F401
+from soccer_env.envs.batched import GoalkeeperVectorEnv
+
+GK = "soccer_env/Goalkeeper-v0"
+
+
+def _compare(kwargs: dict, n: int, steps: int, seed: int, keeper_actions: str
+             ) -> tuple[int, float]:
+    """Step a batch and ``n`` single environments with the same actions; return how many
+    episodes ended and the share of observations equal bit for bit. Terminations,
+    truncations and outcomes must agree exactly, observations and rewards to 1e-3: the
+    batch's worlds lie on patches of one space, whose offset coordinates round differently
+    (about 1e-12 m), and a contact between keeper and ball can amplify that within an
+    episode."""
+    vec = gym.make_vec(GK, num_envs=n, vectorization_mode="vector_entry_point", **kwargs)
+    singles = [gym.make(GK, **kwargs) for _ in range(n)]
+    obs, _ = vec.reset(seed=seed)
+    expected = np.stack([e.reset(seed=seed + k)[0] for k, e in enumerate(singles)])
+    np.testing.assert_array_equal(obs, expected)
+    rng = np.random.default_rng(seed)
+    pending, ends, exact = [False] * n, 0, 0
+    for t in range(steps):
+        if keeper_actions == "random":
+            a = rng.uniform(-1, 1, (n, 6)).astype(np.float32)
+        else:  # drive about, no kicker or dribbler
+            a = np.zeros((n, 6), np.float32)
+            a[:, :3] = rng.uniform(-1, 1, (n, 3))
+        obs, rewards, terminated, truncated, info = vec.step(a)
+        for k, e in enumerate(singles):
+            if pending[k]:  # Gymnasium's next-step autoreset: the new episode's first obs
+                o, (r, te, tr) = e.reset()[0], (0.0, False, False)
+                i = {}
+            else:
+                o, r, te, tr, i = e.step(a[k])
+            pending[k] = te or tr
+            np.testing.assert_allclose(obs[k], o, atol=1e-3, err_msg=f"step {t}, env {k}")
+            exact += bool(np.array_equal(obs[k], o))
+            assert (terminated[k], truncated[k]) == (te, tr), (t, k)
+            assert rewards[k] == pytest.approx(r, abs=1e-3), (t, k)
+            if te or tr:
+                ends += 1
+                assert info["_outcome"][k]
+                assert info["outcome"][k] == (i["outcome"] if te else "truncated")
+                if te:
+                    assert info["is_success"][k] == i["is_success"]
+    vec.close()
+    return ends, exact / (steps * n)
+
+
+@pytest.mark.parametrize("kwargs,actions", [
+    ({}, "random"),
+    ({"shaping": {"intercept": 2.0, "ball_distance": 0.5, "action_cost": 0.1,
+                  "outside_area": 1.0}}, "drive"),
+    ({"control_dt": 0.04, "field": "ssl-2012", "max_episode_steps": 120}, "random"),
+])
+def test_the_batch_plays_the_single_environments_episodes(kwargs, actions):
+    ends, exact = _compare(kwargs, n=6, steps=500, seed=21, keeper_actions=actions)
+    assert ends >= 20  # saves, goals, outs and time limits, each followed by an autoreset
+    assert exact >= 0.9  # bit for bit as a rule; contacts amplify the patches' rounding
+
+
+def test_vector_api_and_seeding():
+    env = GoalkeeperVectorEnv(num_envs=3)
+    assert env.observation_space.shape == (3, 19) and env.action_space.shape == (3, 6)
+    assert env.metadata["autoreset_mode"] == gym.vector.AutoresetMode.NEXT_STEP
+    first, _ = env.reset(seed=5)
+    again, _ = env.reset(seed=5)
+    np.testing.assert_array_equal(first, again)
+    listed, _ = env.reset(seed=[5, 6, 7])
+    np.testing.assert_array_equal(listed, first)
+    other, _ = env.reset(seed=[7, 6, 5])
+    np.testing.assert_array_equal(other[0], first[2])
+    assert env.observation_space.contains(first)
+    obs, rewards, terminated, truncated, info = env.step(env.action_space.sample())
+    assert obs.dtype == np.float32 and rewards.shape == (3,) and terminated.dtype == bool
+    assert info["episode_steps"].tolist() == [1, 1, 1]
+
+
+def test_bad_input_names_the_argument():
+    with pytest.raises(ValueError, match="obs_mode='truth' only"):
+        GoalkeeperVectorEnv(2, obs_mode="perceived")
+    with pytest.raises(ValueError, match="SSL keepers only"):
+        GoalkeeperVectorEnv(2, robot="humanoid")
+    with pytest.raises(ValueError, match="does not render"):
+        GoalkeeperVectorEnv(2, render_mode="rgb_array")
+    with pytest.raises(ValueError, match="num_envs must be an integer in 1..65536, got 0"):
+        GoalkeeperVectorEnv(0)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'frameskip'"):
+        GoalkeeperVectorEnv(2, frameskip=4)
+    env = GoalkeeperVectorEnv(2, out_of_range_actions="raise")
+    with pytest.raises(RuntimeError, match="reset"):
+        env.step(np.zeros((2, 6)))
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match=r"actions must have shape \(2, 6\)"):
+        env.step(np.zeros(6))
+    bad = np.zeros((2, 6))
+    bad[1, 2] = np.nan
+    with pytest.raises(ValueError, match="environment 1"):
+        env.step(bad)
+    with pytest.raises(ValueError, match="seed must be an int, None or a list of 2 seeds"):
+        env.reset(seed=[1, 2, 3])
