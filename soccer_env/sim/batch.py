@@ -33,6 +33,7 @@ from pymunk._chipmunk import lib as _cp
 
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.sim.arena import BALL, OUT, ROBOT
+from soccer_env.sim.ssl import MOUTH_TOLERANCE
 from soccer_env.sim.world import COLLISION_SLOP, World
 from soccer_env.validation import check_int
 
@@ -89,6 +90,11 @@ class WorldBatch:
                                  for k in range(n_worlds)], dtype=np.float64)
         limits = np.array([w0._limits[i] for i in range(self.n_robots)], dtype=np.float64)
         self._vmax, self._wmax, self._cap = limits[:, 0], limits[:, 1], limits[:, 2]
+        # The kicker's and the dribbler's reach (see World._kick_resting_ball and
+        # _dribble_candidates).
+        self._reach2 = np.array([(s.radius + ball.radius + MOUTH_TOLERANCE) ** 2
+                                 for s in w0.robot_specs])
+        self._front_reach = np.array([s.front_distance + ball.radius for s in w0.robot_specs])
         self.state = np.zeros((n_worlds, 1 + self.n_robots, 6))
         for k, w in enumerate(self.worlds):
             w._state = self.state[k]
@@ -118,17 +124,25 @@ class WorldBatch:
         space = pymunk.Space()
         space.collision_slop = COLLISION_SLOP
         space.iterations = 10
-        self._owner: dict[pymunk.Shape, World] = {}
-        for w, origin in zip(self.worlds, self.origins.tolist()):
+        self._owner: dict[pymunk.Shape, int] = {}
+        for k, (w, origin) in enumerate(zip(self.worlds, self.origins.tolist())):
             static = pymunk.Body(body_type=pymunk.Body.STATIC)
             static.position = tuple(origin)
             space.add(static)
             w._populate(space, static, tuple(origin))
-            self._owner[next(iter(w._ball.shapes))] = w
+            self._owner[next(iter(w._ball.shapes))] = k
             for shape in w._shape_index:
-                self._owner[shape] = w
+                self._owner[shape] = k
         for w, p, b in zip(self.worlds, poses, balls.tolist()):
             w.restart(p, tuple(b))
+        self._times = np.zeros(self.n_worlds)
+        self._dirty: set[int] = set()
+        n = self.n_robots
+        self._rows_of_step: tuple[list, list, list] = (
+            [[0.0] * n for _ in self.worlds], [[False] * n for _ in self.worlds],
+            [[False] * n for _ in self.worlds])
+        self._t = self._times.tolist()
+        self._pending: list[int] = []
         space.on_collision(BALL, ROBOT, pre_solve=self._contact)
         space.on_collision(BALL, OUT, begin=self._out)
         self.space = space
@@ -160,16 +174,37 @@ class WorldBatch:
                 ball_position: tuple[float, float] = (0.0, 0.0)) -> None:
         """Start a new episode in world ``k`` (the others go on)."""
         self.worlds[k].restart(robot_poses, ball_position)
+        self._times[k] = 0.0
 
     # ------------------------------------------------------------------------------------
     # Stepping
     # ------------------------------------------------------------------------------------
 
+    def _enter(self, k: int) -> World:
+        """World ``k`` brought up to date for its own methods: the clock of the present
+        substep and this step's kicker and dribbler commands (kept in the batch's arrays and
+        handed to a world only when something happens in it), its touch flags cleared at
+        its first event of the step."""
+        world = self.worlds[k]
+        world.time = self._t[k]
+        armed, chip, dribble = self._rows_of_step
+        world._armed, world._chip, world._dribble = armed[k], chip[k], dribble[k]
+        if k not in self._dirty:
+            self._dirty.add(k)
+            n = self.n_robots
+            world.touched = [False] * n
+            world.kicked = [False] * n
+        return world
+
     def _contact(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
-        self._owner[arbiter.shapes[0]]._ball_robot_contact(arbiter, space, data)
+        k = self._owner[arbiter.shapes[0]]
+        world = self._enter(k)
+        world._ball_robot_contact(arbiter, space, data)
+        if world._pending_kick >= 0:
+            self._pending.append(k)
 
     def _out(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
-        self._owner[arbiter.shapes[0]]._ball_out(arbiter, space, data)
+        self._enter(self._owner[arbiter.shapes[0]])._ball_out(arbiter, space, data)
 
     def _read(self) -> np.ndarray:
         self._buffer.clear()
@@ -209,39 +244,71 @@ class WorldBatch:
         bodies[rows, 4] = sin * vx + cos * vy
         bodies[rows, 5] = w
         pbatch.set_space_bodies(self.space, _FIELDS, self._write)
-        chip, dribble = (c[..., 4] > 0.0).tolist(), (c[..., 5] > 0.0).tolist()
         n = self.n_robots
+        # Touch flags of the worlds that had events in the last step go back to False (the
+        # others' are False already).
+        for k in self._dirty:
+            self.worlds[k].touched = [False] * n
+            self.worlds[k].kicked = [False] * n
+        self._dirty = set()
+        chip_on, dribble_on = c[..., 4] > 0.0, c[..., 5] > 0.0
+        self._rows_of_step = (armed.tolist(), chip_on.tolist(), dribble_on.tolist())
+        self._t = self._times.tolist()
+        self._pending: list[int] = []
+        # Which worlds may fire a kicker at a ball already in its mouth, or dribble: the
+        # worlds' own first tests (the ball within reach of an armed kicker; of a running
+        # dribbler within this step), on the whole batch at once, with the same arithmetic,
+        # so that only those worlds run their full checks.
+        state = self.state
+        dx = state[:, :1, 0] - state[:, 1:, 0]
+        dy = state[:, :1, 1] - state[:, 1:, 1]
+        d2 = dx * dx + dy * dy
+        resting = np.nonzero(((armed > 0.0) & (d2 < self._reach2)).any(axis=1))[0].tolist()
         dribbling: list[tuple[World, list[int]]] = []
-        for world, a, ch, dr in zip(self.worlds, armed.tolist(), chip, dribble):
-            world._armed, world._chip, world._dribble = a, ch, dr
-            world.touched = [False] * n
-            world.kicked = [False] * n
-            if any(a):
-                world._kick_resting_ball()
-            if any(dr):
+        if dribble_on.any():
+            ball_speed = np.hypot(state[:, 0, 3], state[:, 0, 4])[:, None]
+            near = 0.05 + (ball_speed + 2.0 * self._vmax) * self.control_dt
+            close = dribble_on & ~(d2 > (near + self._front_reach) ** 2)
+            for k in np.nonzero(close.any(axis=1))[0].tolist():
+                world = self._enter(k)
                 candidates = world._dribble_candidates()
                 if candidates:
                     dribbling.append((world, candidates))
+        for k in resting:
+            self._enter(k)._kick_resting_ball()
 
         h = self.substep_dt
         step, handle, worlds = self._step_space, self._handle, self.worlds
+        # Worlds whose ball flies or slides: their per-substep updates (the others' have
+        # none).
+        moving = [k for k, world in enumerate(worlds) if world._airborne or world._sliding]
+        times = self._times
         get_velocity = _cp.cpBodyGetVelocity
         for _ in range(self.n_substeps):
             for world, candidates in dribbling:
                 for i in candidates:
                     world._apply_dribbler(i)
             step(handle, h)
-            for world in worlds:
-                world.time += h
-                if world._pending_kick >= 0:
+            times += h
+            self._t = times.tolist()
+            if self._pending:
+                for k in self._pending:
+                    world = self._enter(k)
                     world._fire(world._pending_kick)
                     world._pending_kick = -1
+                    if k not in moving:
+                        moving.append(k)
+                self._pending = []
+            for k in moving:
+                world = worlds[k]
                 if world._airborne:
                     world._fly(h)
                 elif world._sliding:
                     v = get_velocity(world._ball_handle)
                     if v.x * v.x + v.y * v.y <= world._v_switch * world._v_switch:
                         world._set_sliding(False, 0.0)
+        for world, t in zip(worlds, self._t):
+            world.time = t
         self.read_state()
 
     def read_state(self) -> None:
