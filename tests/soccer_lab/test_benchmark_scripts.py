@@ -135,3 +135,16 @@ def test_batched_physics_layouts_agree_until_the_patches_round_differently(capsy
     np.testing.assert_allclose(s_sh, s_sep, atol=1e-9)
     assert bench.main(["--sizes", "1", "2", "--steps", "3"]) == 0
     assert "shared" in capsys.readouterr().out
+
+
+def test_batched_keeper_benchmark_reports_rates_and_memory(tmp_path, capsys):
+    bench = _script("batched_keeper")
+    out = tmp_path / "figures.json"
+    assert bench.main(["--sizes", "2", "--steps", "3", "--rounds", "1", "--memory", "3",
+                       "--json", str(out)]) == 0
+    import json
+
+    figures = json.loads(out.read_text())
+    assert figures["single"]["median"] > 0 and figures["batch 2"]["ratio_to_single"] > 0
+    assert np.isfinite(figures["bytes_per_env"])  # (a few worlds may fit in freed memory)
+    assert "bytes per environment" in capsys.readouterr().out

@@ -1,0 +1,116 @@
+"""The batched Goalkeeper-v0 against single environments: env-steps per second in one process,
+and memory per environment.
+
+Usage: ``python benchmarks/batched_keeper.py [--sizes 1 16 128 512 1024] [--steps 200]
+[--rounds 3] [--memory 1000] [--json FILE]``.
+
+Every run steps uniform random actions (made before the clock starts) through truth-mode
+Goalkeeper-v0 episodes, autoresets included: ``single`` is ``gymnasium.make`` stepped in a loop
+(resetting at episode ends), ``batch N`` the vector entry point
+(``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")``) with ``N``
+environments. The runs alternate within each round; ratios are to the single environment of the
+same round, and the median over rounds is printed. Memory: the growth of the process's resident
+set when ``--memory`` environments are built and reset in a fresh process, divided by their
+number.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+GK = "soccer_env/Goalkeeper-v0"
+
+
+def _single(steps: int) -> float:
+    import gymnasium as gym
+
+    import soccer_env  # noqa: F401
+
+    env = gym.make(GK)
+    env.reset(seed=0)
+    actions = np.random.default_rng(0).uniform(-1, 1, (steps, 6)).astype(np.float32)
+    t0 = time.perf_counter()
+    for a in actions:
+        _, _, terminated, truncated, _ = env.step(a)
+        if terminated or truncated:
+            env.reset()
+    return steps / (time.perf_counter() - t0)
+
+
+def _batch(n: int, steps: int) -> float:
+    import gymnasium as gym
+
+    import soccer_env  # noqa: F401
+
+    env = gym.make_vec(GK, num_envs=n, vectorization_mode="vector_entry_point")
+    env.reset(seed=0)
+    actions = np.random.default_rng(0).uniform(-1, 1, (steps, n, 6)).astype(np.float32)
+    env.step(actions[0])
+    t0 = time.perf_counter()
+    for a in actions:
+        env.step(a)
+    return steps * n / (time.perf_counter() - t0)
+
+
+def _memory(n: int) -> float:
+    """Bytes per environment of ``n`` batched environments, measured in a fresh process."""
+    code = (
+        "import gymnasium as gym, numpy as np, soccer_env, resource\n"
+        "def rss():\n"
+        "    return int(open('/proc/self/statm').read().split()[1]) * 4096\n"
+        "gym.make_vec('soccer_env/Goalkeeper-v0', num_envs=2, "
+        "vectorization_mode='vector_entry_point').reset(seed=0)\n"
+        "before = rss()\n"
+        f"env = gym.make_vec('soccer_env/Goalkeeper-v0', num_envs={n}, "
+        "vectorization_mode='vector_entry_point')\n"
+        "env.reset(seed=0)\n"
+        f"for _ in range(20): env.step(np.zeros(({n}, 6), np.float32))\n"
+        f"print((rss() - before) / {n})\n")
+    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True,
+                         text=True).stdout
+    return float(out.strip().splitlines()[-1])
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--sizes", type=int, nargs="+", default=[1, 16, 128, 512, 1024])
+    p.add_argument("--steps", type=int, default=200, help="timed steps per batched run (200)")
+    p.add_argument("--rounds", type=int, default=3)
+    p.add_argument("--memory", type=int, default=1000,
+                   help="environments for the memory figure (0: skip)")
+    p.add_argument("--json", default=None)
+    args = p.parse_args(argv)
+    single: list[float] = []
+    rates: dict[int, list[float]] = {n: [] for n in args.sizes}
+    for r in range(args.rounds):
+        order = args.sizes if r % 2 == 0 else list(reversed(args.sizes))
+        single.append(_single(max(2000, args.steps * 10)))
+        for n in order:
+            rates[n].append(_batch(n, args.steps))
+    results = {"single": {"env_steps_per_s": single, "median": statistics.median(single)}}
+    print(f"{'single':>10}: {statistics.median(single):9,.0f} env-steps/s")
+    for n in args.sizes:
+        ratios = [a / b for a, b in zip(rates[n], single)]
+        results[f"batch {n}"] = {"env_steps_per_s": rates[n], "median": statistics.median(rates[n]),
+                                 "ratio_to_single": statistics.median(ratios)}
+        print(f"{'batch ' + str(n):>10}: {statistics.median(rates[n]):9,.0f} env-steps/s   "
+              f"x{statistics.median(ratios):.2f}")
+    if args.memory:
+        per_env = _memory(args.memory)
+        results["bytes_per_env"] = per_env
+        print(f"memory: {per_env:,.0f} bytes per environment ({args.memory} environments)")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(results, f, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
