@@ -22,6 +22,10 @@ Scope: SSL keepers with ``obs_mode="truth"`` (raw and perceived observations nee
 estimators batched across environments; humanoid keepers their walk engine); no rendering.
 Other arguments are :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`'s.
 
+With ``autoreset_mode=AutoresetMode.SAME_STEP`` (``"SameStep"``) finished environments reset
+within the step that ends them, as stable-baselines3 expects
+(:class:`agents.batched.BatchedVecEnv` adapts it).
+
 Infos: at an episode's end, ``info["outcome"]`` (``"goal"``, ``"out"``, ``"stopped"``,
 ``"cleared"``; ``"truncated"`` at the time limit) and ``info["is_success"]``, with Gymnasium's
 ``_outcome`` / ``_is_success`` masks; ``info["episode_steps"]`` every step.
@@ -59,6 +63,11 @@ class GoalkeeperVectorEnv(VectorEnv):
     Args:
         num_envs: environments (1..65536).
         max_episode_steps: the time limit (truncation), as the registration's.
+        autoreset_mode: Gymnasium's ``NEXT_STEP`` (the default: a finished environment
+            resets at the next step, whose action it ignores) or ``SAME_STEP`` (it resets in
+            the step that ends its episode, which returns the new episode's first observation,
+            the last one in ``info["final_obs"]`` and the episode's infos in
+            ``info["final_info"]``; what stable-baselines3 expects).
         **kwargs: :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`'s arguments (SSL
             robots, ``obs_mode="truth"``, no ``render_mode``).
     """
@@ -66,8 +75,14 @@ class GoalkeeperVectorEnv(VectorEnv):
     metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
 
     def __init__(self, num_envs: int = 16, max_episode_steps: int | None = DEFAULT_MAX_STEPS,
+                 autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
                  **kwargs: Any) -> None:
         self.num_envs = check_int("num_envs", num_envs, 1, MAX_WORLDS)
+        modes = (AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP)
+        if autoreset_mode not in modes and autoreset_mode not in [m.value for m in modes]:
+            raise ValueError(f"autoreset_mode must be one of {[m.value for m in modes]}, got "
+                             f"{autoreset_mode!r}")
+        self._same_step = AutoresetMode(autoreset_mode) == AutoresetMode.SAME_STEP
         self.max_episode_steps = (None if max_episode_steps is None else
                                   check_int("max_episode_steps", max_episode_steps, 1, 10**9))
         # A single environment checks every argument with its own messages and gives the
@@ -100,7 +115,8 @@ class GoalkeeperVectorEnv(VectorEnv):
         self.single_action_space = probe.action_space
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
-        self.metadata = {**GoalkeeperEnv.metadata, **type(self).metadata}
+        self.metadata = {**GoalkeeperEnv.metadata, **type(self).metadata,
+                         "autoreset_mode": AutoresetMode(autoreset_mode)}
         self.render_mode = None
         self.spec = None
         n = self.num_envs
@@ -235,14 +251,28 @@ class GoalkeeperVectorEnv(VectorEnv):
             infos["is_success"] = terminated & (outcome != "goal")
             infos["_is_success"] = terminated.copy()
 
-        # The environments that finished at the previous step start their next episode now.
+        if self._same_step and ended.any():
+            # The finished environments start their next episode in this very step.
+            last = self._observe()
+            final_obs = np.full(n, None, dtype=object)
+            for k in np.nonzero(ended)[0].tolist():
+                final_obs[k] = last[k]
+            infos = {"episode_steps": self._steps.copy(), "final_obs": final_obs,
+                     "_final_obs": ended.copy(),
+                     "final_info": {k: v for k, v in infos.items() if k != "episode_steps"},
+                     "_final_info": ended.copy()}
+            restarting = ended
+            ended = np.zeros(n, dtype=bool)
+        # The environments that finished at the previous step (at this one, with SAME_STEP)
+        # start their next episode now.
         for k in np.nonzero(restarting)[0].tolist():
             poses, ball_xy, shot = self._place(k)
             batch.restart(k, poses, ball_xy)
             self._begin(k, shot)
         if restarting.any():
             batch.read_state()
-            rewards[restarting] = 0.0
+            if not self._same_step:
+                rewards[restarting] = 0.0
             infos["episode_steps"] = self._steps.copy()
         self._needs_reset = ended
         return (self._observe(), rewards.astype(np.float64), terminated, truncated, infos)

@@ -95,6 +95,9 @@ def test_bad_input_names_the_argument():
         GoalkeeperVectorEnv(2, render_mode="rgb_array")
     with pytest.raises(ValueError, match="num_envs must be an integer in 1..65536, got 0"):
         GoalkeeperVectorEnv(0)
+    with pytest.raises(ValueError, match=r"autoreset_mode must be one of \['NextStep', "
+                                         r"'SameStep'\], got 'Disabled'"):
+        GoalkeeperVectorEnv(2, autoreset_mode="Disabled")
     with pytest.raises(TypeError, match="unexpected keyword argument 'frameskip'"):
         GoalkeeperVectorEnv(2, frameskip=4)
     env = GoalkeeperVectorEnv(2, out_of_range_actions="raise")
