@@ -186,6 +186,10 @@ class TrainConfig:
             state, the actor only the observation); privileged for PPO and A2C on
             Goalkeeper-v0 without frame stacking. The saved numpy policy is the actor alone,
             acting on the plain environment.
+        batched: step Goalkeeper-v0's ``n_envs`` environments as one batch in the learner's
+            process (:class:`~agents.batched.BatchedVecEnv`, the
+            ``vector_entry_point``): SSL keepers on truth observations with native actions,
+            no frame stack, the shared critic and ``n_workers=0``.
         torch_threads: torch's intra-op threads in the learner process.
         device: torch device.
         progress_bar: show SB3's progress bar.
@@ -212,6 +216,7 @@ class TrainConfig:
     actions: str = "native"
     frame_stack: int = 1
     critic: str = "shared"
+    batched: bool = False
     torch_threads: int = 1
     device: str = "cpu"
     progress_bar: bool = True
@@ -264,6 +269,18 @@ class TrainConfig:
             raise ValueError("opponent 'self' takes feed-forward learners only: a recurrent "
                              "copy cannot play the opponent team (the match does not reset "
                              "an opponent's memory)")
+
+        if self.batched:
+            wrong = [(name, value) for name, value, ok in (
+                ("env_id", self.env_id, self.env_id == GOALKEEPER_ID),
+                ("actions", self.actions, self.actions == "native"),
+                ("frame_stack", self.frame_stack, self.frame_stack == 1),
+                ("critic", self.critic, self.critic == "shared"),
+                ("n_workers", self.n_workers, self.n_workers == 0)) if not ok]
+            if wrong:
+                raise ValueError(f"batched runs {GOALKEEPER_ID} with native actions, no frame "
+                                 "stack, the shared critic and n_workers=0 (the batch is one "
+                                 f"process), got {', '.join(f'{n}={v!r}' for n, v in wrong)}")
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> TrainConfig:
@@ -324,6 +341,12 @@ def make_vec_env(cfg: TrainConfig):
         return make_match_vec_env(cfg.env_kwargs, cfg.n_envs, cfg.learner,
                                   "idle" if opponent == "self" else opponent, cfg.seed,
                                   workers=cfg.n_workers)
+    if cfg.batched:
+        from agents.batched import BatchedVecEnv
+
+        venv = BatchedVecEnv(cfg.n_envs, cfg.env_kwargs)
+        venv.seed(cfg.seed)
+        return venv
     fns = [goalkeeper_env_fn(cfg.env_kwargs, cfg.actions, cfg.frame_stack, cfg.critic)
            for _ in range(cfg.n_envs)]
     if cfg.n_workers == 0:
@@ -367,6 +390,10 @@ def check_env_kwargs(cfg: TrainConfig) -> None:
         import soccer_env  # noqa: F401
 
         gym.make(GOALKEEPER_ID, **cfg.env_kwargs).close()
+        if cfg.batched:  # what the batch supports (truth, SSL, no rendering)
+            from soccer_env.envs.batched import GoalkeeperVectorEnv
+
+            GoalkeeperVectorEnv(1, **cfg.env_kwargs).close()
         if cfg.eval_env_kwargs is not None:
             gym.make(GOALKEEPER_ID, **cfg.eval_env_kwargs).close()
 

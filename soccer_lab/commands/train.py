@@ -48,7 +48,7 @@ _FIELD_OPTIONS = (("env_id", "env"), ("algorithm", "algo"), ("total_steps", "ste
                   ("out", "out"), ("checkpoint_every", "checkpoint_every"),
                   ("eval_every", "eval_every"), ("eval_episodes", "eval_episodes"),
                   ("learner", "learner"), ("actions", "actions"), ("opponent", "opponent"),
-                  ("frame_stack", "frame_stack"), ("critic", "critic"))
+                  ("frame_stack", "frame_stack"), ("critic", "critic"), ("batched", "batched"))
 
 #: The algorithms as the command line spells them.
 ALGORITHMS = ("ppo", "a2c", "sac", "td3", "ddpg", "recurrent-ppo")
@@ -115,6 +115,10 @@ def parser() -> argparse.ArgumentParser:
                    help="parallel environments (16); rllib: per env runner (8)")
     p.add_argument("--workers", type=int, default=None,
                    help="subprocesses stepping them (2; 0 runs them in this process)")
+    p.add_argument("--batched", action="store_true", default=None,
+                   help="Goalkeeper-v0: step the --n-envs environments as one batch in this "
+                        "process (one pymunk space; SSL keepers, truth observations, native "
+                        "actions; --workers is 0)")
     p.add_argument("--seed", type=int, default=None)
     p.add_argument("--out", default=None,
                    help="run folder (default runs/keeper; with --resume, the folder of the "
@@ -202,6 +206,8 @@ def _config(args: argparse.Namespace, base: dict[str, Any]) -> TrainConfig:
         value = getattr(args, option)
         if value is not None:
             fields[name] = value
+    if fields.get("batched") and args.workers is None and "n_workers" not in base:
+        fields["n_workers"] = 0  # the batch is one process
     cfg = TrainConfig.from_dict(fields)
     check_env_kwargs(cfg)
     return cfg

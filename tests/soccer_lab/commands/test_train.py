@@ -234,3 +234,23 @@ def test_frame_stack_run_exports_a_policy_that_keeps_the_stack(tmp_path):
         plain, *_ = env.step(command)
         steps, done = steps + 1, term or trunc
     assert steps > 20 and len(actions) > 20
+
+
+def test_batched_training_steps_the_keepers_as_one_batch(tmp_path, capsys):
+    """--batched: the Goalkeeper's environments in one batch (BatchedVecEnv), evaluated and
+    exported as any run; what the batch cannot run is refused, naming the option."""
+    run = tmp_path / "batched"
+    assert main(["train", "--batched", "--n-envs", "32", "--steps", "2048", "--hp",
+                 "n_steps=64", "--eval-every", "2048", "--eval-episodes", "2",
+                 "--checkpoint-every", "0", "--out", str(run), "--no-progress"]) == 0
+    config = json.loads((run / "config.json").read_text())
+    assert config["batched"] is True and config["n_workers"] == 0
+    assert json.loads((run / "summary.json").read_text())["steps"] >= 2048
+    assert (run / "final_policy.npz").is_file()
+    for extra, message in ((["--actions", "guard"], "actions='guard'"),
+                           (["--workers", "2"], "n_workers=2"),
+                           (["--obs-mode", "perceived"], "obs_mode='truth' only")):
+        with pytest.raises(SystemExit):
+            main(["train", "--batched", *extra, "--steps", "64", "--out",
+                  str(tmp_path / "no"), "--no-progress"])
+        assert message in capsys.readouterr().err
