@@ -1,8 +1,9 @@
 """Batched Goalkeeper-v0: :class:`GoalkeeperVectorEnv`, ``num_envs`` keeper episodes stepped as
 one batch in one process.
 
-``gymnasium.make_vec("soccer_env/Goalkeeper-v0", num_envs=N,
-vectorization_mode="vector_entry_point")`` returns it. The physics is a
+``gymnasium.make_vec("soccer_env/Goalkeeper-v0", num_envs=N)`` returns it (the task's
+``vector_entry_point``, :func:`make_vector`; for arguments the batch does not run yet, a
+``SyncVectorEnv`` of single environments, with a warning). The physics is a
 :class:`~soccer_env.sim.batch.WorldBatch` (every world in one pymunk space, one Chipmunk step
 per substep), and everything else runs in numpy over the batch: actions to commands, the
 invisible attacker's shots, the outcome (goal, out, stopped, cleared), rewards and shaping,
@@ -35,6 +36,7 @@ from __future__ import annotations
 
 from typing import Any
 
+import gymnasium as gym
 import numpy as np
 from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
@@ -51,10 +53,33 @@ from soccer_env.sim.commands import validate_actions
 from soccer_env.sim.referee import classify_exit
 from soccer_env.validation import check_int, check_seed
 
-__all__ = ["GoalkeeperVectorEnv"]
+__all__ = ["GoalkeeperVectorEnv", "NotBatchable", "make_vector"]
 
 #: Goalkeeper-v0's time limit (its registration's ``max_episode_steps``).
 DEFAULT_MAX_STEPS = 480
+
+
+class NotBatchable(ValueError):
+    """Goalkeeper-v0's arguments ask for what the batch does not run yet."""
+
+
+def make_vector(num_envs: int = 16, max_episode_steps: int | None = DEFAULT_MAX_STEPS,
+                **kwargs: Any) -> VectorEnv:
+    """Goalkeeper-v0's ``vector_entry_point``: a :class:`GoalkeeperVectorEnv`, or, for
+    arguments the batch does not run yet (perceived or raw observations, humanoid keepers,
+    rendering), Gymnasium's ``SyncVectorEnv`` of single environments with a warning saying
+    why, so that ``gymnasium.make_vec(id, num_envs=N)`` works for every configuration."""
+    try:
+        return GoalkeeperVectorEnv(num_envs, max_episode_steps=max_episode_steps, **kwargs)
+    except NotBatchable as why:
+        gym.logger.warn(f"Goalkeeper-v0 runs {num_envs} single environments in a "
+                        f"SyncVectorEnv: {why}")
+
+    def make() -> gym.Env:
+        return gym.make("soccer_env/Goalkeeper-v0", max_episode_steps=max_episode_steps,
+                        **kwargs)
+
+    return gym.vector.SyncVectorEnv([make for _ in range(num_envs)])
 
 
 class GoalkeeperVectorEnv(VectorEnv):
@@ -89,15 +114,15 @@ class GoalkeeperVectorEnv(VectorEnv):
         # task's pieces (shots, shaping, spaces, observation layout).
         probe = GoalkeeperEnv(**kwargs)
         if probe.obs_mode != "truth":
-            raise ValueError(f"the batched Goalkeeper runs obs_mode='truth' only (got "
+            raise NotBatchable(f"the batched Goalkeeper runs obs_mode='truth' only (got "
                              f"{probe.obs_mode!r}): raw and perceived observations need the "
                              "estimators batched across environments; use "
                              "vectorization_mode='sync' or 'async' for them")
         if probe.robot_spec.kind != "ssl":
-            raise ValueError("the batched Goalkeeper runs SSL keepers only (humanoid keepers "
+            raise NotBatchable("the batched Goalkeeper runs SSL keepers only (humanoid keepers "
                              "need their walk engine batched); use vectorization_mode='sync'")
         if probe.render_mode is not None:
-            raise ValueError("the batched Goalkeeper does not render; use "
+            raise NotBatchable("the batched Goalkeeper does not render; use "
                              "vectorization_mode='sync' for videos")
         self._probe = probe
         self.field, self.ball_spec, self.shots = probe.field, probe.ball_spec, probe.shots

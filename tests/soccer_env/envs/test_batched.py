@@ -86,6 +86,18 @@ def test_vector_api_and_seeding():
     assert info["episode_steps"].tolist() == [1, 1, 1]
 
 
+def test_make_vec_batches_what_it_can_and_falls_back_to_single_environments():
+    batched = gym.make_vec(GK, num_envs=3)
+    assert isinstance(batched, GoalkeeperVectorEnv)
+    with pytest.warns(UserWarning, match="SyncVectorEnv: the batched Goalkeeper runs "
+                                         "obs_mode='truth' only"):
+        sync = gym.make_vec(GK, num_envs=2, obs_mode="perceived")
+    assert isinstance(sync, gym.vector.SyncVectorEnv)
+    obs, _ = sync.reset(seed=0)
+    assert obs.shape == (2, 19)
+    sync.close()
+
+
 def test_bad_input_names_the_argument():
     with pytest.raises(ValueError, match="obs_mode='truth' only"):
         GoalkeeperVectorEnv(2, obs_mode="perceived")
