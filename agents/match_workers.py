@@ -24,10 +24,7 @@ others; workers ignore Ctrl-C.
 
 from __future__ import annotations
 
-import multiprocessing as mp
 import os
-import signal
-import traceback
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -40,9 +37,9 @@ from stable_baselines3.common.vec_env.base_vec_env import (
 )
 
 import soccer_env
-from agents.multiagent import MatchVecEnv, _is_sb3_model
+from agents.multiagent import MatchVecEnv, _is_sb3_model, base_seed
 from agents.policies import NumpyPolicy, SB3Policy
-from agents.vec_env import _ERROR, _OK, WorkerVecEnv
+from agents.vec_env import _OK, WorkerVecEnv, mp_context, start_worker, worker_frame
 
 __all__ = ["MatchWorkerVecEnv"]
 
@@ -84,11 +81,9 @@ def _match_worker(remote: Any, parent: Any, spec: CloudpickleWrapper, buffer: An
     """Run a :class:`MatchVecEnv` over one block of matches and serve the parent's commands
     (replies as :mod:`agents.vec_env`'s workers give them) until told to close; with ``cpu``,
     on that CPU only."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C
-    parent.close()
-    if cpu is not None:
-        os.sched_setaffinity(0, {cpu})
-    try:
+    def body(current: list[int | None]) -> None:
+        if cpu is not None:
+            os.sched_setaffinity(0, {cpu})
         venv = MatchVecEnv(**spec.var)
         views = layout.views(buffer, rows)
         actions, obs, rewards, dones = (views["actions"], views["obs"], views["rewards"],
@@ -124,15 +119,8 @@ def _match_worker(remote: Any, parent: Any, spec: CloudpickleWrapper, buffer: An
             else:  # pragma: no cover - programming error
                 raise ValueError(f"unknown command {cmd!r}")
             remote.send((_OK, result))
-    except (EOFError, BrokenPipeError, ConnectionResetError):
-        pass  # the parent has gone: nothing to report to
-    except BaseException:
-        try:
-            remote.send((_ERROR, (None, traceback.format_exc())))
-        except (BrokenPipeError, ConnectionResetError, OSError):
-            pass
-    finally:
-        remote.close()
+
+    worker_frame(remote, parent, body)
 
 
 class MatchWorkerVecEnv(WorkerVecEnv):
@@ -191,10 +179,7 @@ class MatchWorkerVecEnv(WorkerVecEnv):
         opponent = self._portable(opponent)
 
         workers = min(int(workers), self.n_matches)
-        if start_method is None:
-            start_method = ("forkserver" if "forkserver" in mp.get_all_start_methods()
-                            else "spawn")
-        ctx = mp.get_context(start_method)
+        ctx = mp_context(start_method)
         n = self.n_matches * L
         self._layout = _Layout(n, obs_space.shape[0])
         self._buffer = ctx.RawArray("b", self._layout.nbytes)
@@ -217,13 +202,8 @@ class MatchWorkerVecEnv(WorkerVecEnv):
         for mblk, rows, cpu in zip(self._match_blocks, self._blocks, self.cpus):
             spec = dict(env_kwargs=self.env_kwargs, n_matches=len(mblk), learner=learner,
                         opponent=opponent, first_match=mblk.start)
-            remote, work_remote = ctx.Pipe()
-            proc = ctx.Process(target=_match_worker,
-                               args=(work_remote, remote, CloudpickleWrapper(spec),
-                                     self._buffer, self._layout,
-                                     rows, cpu), daemon=True)
-            proc.start()
-            work_remote.close()
+            remote, proc = start_worker(ctx, _match_worker, CloudpickleWrapper(spec),
+                                        self._buffer, self._layout, rows, cpu)
             self.remotes.append(remote)
             self.processes.append(proc)
         for w in range(workers):
@@ -257,12 +237,7 @@ class MatchWorkerVecEnv(WorkerVecEnv):
     def seed(self, seed: int | None = None) -> Sequence[int | None]:
         """Seed the next :meth:`reset` as :meth:`MatchVecEnv.seed` does (match ``k``:
         ``seed + k``)."""
-        if seed is None:
-            seed = int(np.random.default_rng().integers(np.iinfo(np.uint32).max))  # OS entropy
-        seed = int(seed)
-        if seed < 0:
-            raise ValueError(f"seed must be an integer >= 0 or None, got {seed}")
-        self._seed = seed
+        seed = self._seed = base_seed(seed)
         return [seed + k for k, _ in self.entry_agents]
 
     def reset(self) -> np.ndarray:

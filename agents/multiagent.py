@@ -71,6 +71,17 @@ _OPPONENT_HELP = ("'scripted', 'idle', a numpy policy file (.npz), a callable ba
                   "obs (k, obs_dim) -> actions (k, 6), or a stable-baselines3 model")
 
 
+def base_seed(seed: int | None) -> int:
+    """The seed a match VecEnv's ``seed(seed)`` counts its matches from: ``seed`` (an
+    integer >= 0), or one drawn from the OS's entropy for None."""
+    if seed is None:
+        return int(np.random.default_rng().integers(np.iinfo(np.uint32).max))
+    seed = int(seed)
+    if seed < 0:
+        raise ValueError(f"seed must be an integer >= 0 or None, got {seed}")
+    return seed
+
+
 class _Opponent:
     """A frozen policy for the non-learning team.
 
@@ -330,11 +341,7 @@ class MatchVecEnv(VecEnv):
         """Seed the next :meth:`reset`: match ``k`` is reset with ``seed + first_match + k``
         and its opponent-pool draws with ``(seed, first_match + k)``. Returns each entry's
         match seed."""
-        if seed is None:
-            seed = int(np.random.default_rng().integers(np.iinfo(np.uint32).max))  # OS entropy
-        seed = int(seed)
-        if seed < 0:
-            raise ValueError(f"seed must be an integer >= 0 or None, got {seed}")
+        seed = base_seed(seed)
         self._seeds = [seed + self.first_match + k for k, _ in self.entry_agents]
         self._pool_seed = seed
         return list(self._seeds)

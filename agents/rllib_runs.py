@@ -60,7 +60,7 @@ from agents.rllib import (
     match_policies,
     ppo_config,
 )
-from agents.training import RunRefused, TrainingStopped, run_files, run_folder
+from agents.training import RunRefused, TrainingStopped, check_counts, run_files, run_folder
 from agents.wrappers import ACTION_MAPS
 from soccer_env.validation import check_fields
 
@@ -129,14 +129,9 @@ class RllibTrainConfig:
     def __post_init__(self) -> None:
         if self.env_id not in ENV_IDS:
             raise ValueError(f"env_id must be one of {list(ENV_IDS)}, got {self.env_id!r}")
-        for name, low in (("total_steps", 1), ("num_env_runners", 0), ("n_envs", 1),
-                          ("checkpoint_every", 0), ("self_play_every", 1),
-                          ("frame_stack", 1), ("torch_threads", 1)):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, int) or value < low:
-                raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
-        if isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0:
-            raise ValueError(f"seed must be an integer >= 0, got {self.seed!r}")
+        check_counts(self, (("total_steps", 1), ("num_env_runners", 0), ("n_envs", 1),
+                            ("checkpoint_every", 0), ("self_play_every", 1),
+                            ("frame_stack", 1), ("torch_threads", 1), ("seed", 0)))
         POLICY_MAPPINGS.check(self.policy_mapping)
         if self.learner not in TEAMS:
             raise ValueError(f"learner must be 'blue' or 'yellow', got {self.learner!r}")

@@ -70,7 +70,8 @@ from agents.policies import (
 from agents.wrappers import ACTION_MAPS, wrap_actions, wrap_learner
 from soccer_env.validation import check_fields
 
-__all__ = ["TrainConfig", "train", "check_env_kwargs", "make_vec_env", "EVAL_SEED_START",
+__all__ = ["TrainConfig", "train", "check_env_kwargs", "check_counts", "make_vec_env",
+           "EVAL_SEED_START",
            "MATCH_ID", "DEFAULT_HYPERPARAMS", "rollout_timer", "goalkeeper_env_fn",
            "checkpoint_steps", "CRITICS", "TrainingStopped", "RunRefused", "RUN_FILES",
            "run_files", "run_folder", "OPPONENTS", "merged_hyperparams"]
@@ -140,6 +141,15 @@ DEFAULT_HYPERPARAMS: dict[str, dict[str, Any]] = {
     "TD3": {"learning_starts": 5000, "batch_size": 256, "train_freq": 1, "gradient_steps": 1},
     "DDPG": {"learning_starts": 5000, "batch_size": 256},
 }
+
+
+def check_counts(config: Any, fields: tuple[tuple[str, int], ...]) -> None:
+    """Raise ``ValueError`` naming the field unless each ``(name, low)`` of ``fields`` is an
+    integer (not a bool) >= ``low`` on ``config``: the counts of a training configuration."""
+    for name, low in fields:
+        value = getattr(config, name)
+        if not isinstance(value, (int, np.integer)) or isinstance(value, bool) or value < low:
+            raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
 
 
 @dataclass
@@ -226,12 +236,9 @@ class TrainConfig:
         if self.env_id not in (GOALKEEPER_ID, MATCH_ID):
             raise ValueError(f"env_id must be {GOALKEEPER_ID!r} or {MATCH_ID!r}, got "
                              f"{self.env_id!r}")
-        for name, lo in (("total_steps", 1), ("n_envs", 1), ("n_workers", 0),
-                         ("checkpoint_every", 0), ("eval_every", 0), ("eval_episodes", 1),
-                         ("self_play_every", 1), ("torch_threads", 1), ("frame_stack", 1)):
-            value = getattr(self, name)
-            if not isinstance(value, (int, np.integer)) or isinstance(value, bool) or value < lo:
-                raise ValueError(f"{name} must be an integer >= {lo}, got {value!r}")
+        check_counts(self, (("total_steps", 1), ("n_envs", 1), ("n_workers", 0),
+                            ("checkpoint_every", 0), ("eval_every", 0), ("eval_episodes", 1),
+                            ("self_play_every", 1), ("torch_threads", 1), ("frame_stack", 1)))
         known = _algorithm_parameters(self.algorithm)
         unknown = sorted(set(self.hyperparams) - known)
         if unknown:

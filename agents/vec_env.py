@@ -94,22 +94,17 @@ def _concatenate(blocks: list) -> Any:
     return np.concatenate(blocks)
 
 
-def _worker(remote: Any, parent: Any, fns: CloudpickleWrapper, info_keys: tuple | None
-            ) -> None:
-    """Serve commands for a block of environments until told to close. Every reply is
-    ``(_OK, result)``, or ``(_ERROR, (local environment index or None, traceback))`` after
-    which the worker stops (its environments may be left in any state)."""
+def worker_frame(remote: Any, parent: Any, body: Callable[[list[int | None]], None]) -> None:
+    """The frame of every rollout worker process: ignore Ctrl-C (the parent handles it and
+    closes the workers), run ``body(current)``, and if it raises, reply ``(_ERROR, (local
+    environment index or None, traceback))`` (``current[0]``: the environment being built or
+    stepped, set by ``body``) and stop; a parent that has gone gets no reply."""
     # Ctrl-C reaches the whole process group: the parent handles it and closes the workers.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     parent.close()
-    current: list[int | None] = [None]  # the environment being built or stepped
+    current: list[int | None] = [None]
     try:
-        envs = []
-        for i, fn in enumerate(fns.var):
-            current[0] = i
-            envs.append(fn())
-        current[0] = None
-        _serve(remote, envs, info_keys, current)
+        body(current)
     except (EOFError, BrokenPipeError, ConnectionResetError):
         pass  # the parent has gone: nothing to report to
     except BaseException:
@@ -119,6 +114,40 @@ def _worker(remote: Any, parent: Any, fns: CloudpickleWrapper, info_keys: tuple 
             pass
     finally:
         remote.close()
+
+
+def start_worker(ctx: Any, target: Callable[..., None], *args: Any) -> tuple[Any, Any]:
+    """Start a daemon process running ``target(work_remote, remote, *args)``; returns this
+    end of the pipe and the process."""
+    remote, work_remote = ctx.Pipe()
+    proc = ctx.Process(target=target, args=(work_remote, remote, *args), daemon=True)
+    proc.start()
+    work_remote.close()
+    return remote, proc
+
+
+def mp_context(start_method: str | None) -> Any:
+    """The multiprocessing context of ``start_method`` (default ``"forkserver"`` where
+    available, as stable-baselines3 does, else ``"spawn"``)."""
+    if start_method is None:
+        start_method = "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
+    return mp.get_context(start_method)
+
+
+def _worker(remote: Any, parent: Any, fns: CloudpickleWrapper, info_keys: tuple | None
+            ) -> None:
+    """Serve commands for a block of environments until told to close. Every reply is
+    ``(_OK, result)``, or ``(_ERROR, (local environment index or None, traceback))`` after
+    which the worker stops (its environments may be left in any state)."""
+    def body(current: list[int | None]) -> None:
+        envs = []
+        for i, fn in enumerate(fns.var):
+            current[0] = i
+            envs.append(fn())
+        current[0] = None
+        _serve(remote, envs, info_keys, current)
+
+    worker_frame(remote, parent, body)
 
 
 def _serve(remote: Any, envs: list[gym.Env], info_keys: tuple | None,
@@ -223,22 +252,15 @@ class WorkerVecEnv(VecEnv):
         if not isinstance(n_workers, int) or n_workers < 1:
             raise ValueError(f"n_workers must be an integer >= 1, got {n_workers!r}")
         n_workers = min(n_workers, n)
-        if start_method is None:
-            start_method = ("forkserver" if "forkserver" in mp.get_all_start_methods()
-                            else "spawn")
-        ctx = mp.get_context(start_method)
+        ctx = mp_context(start_method)
         bounds = [w * n // n_workers for w in range(n_workers + 1)]
         self._blocks = [range(bounds[w], bounds[w + 1]) for w in range(n_workers)]
         self._owner = [(w, i - blk.start) for w, blk in enumerate(self._blocks) for i in blk]
         self.remotes, self.processes = [], []
         keys = None if info_keys is None else tuple(info_keys)
         for blk in self._blocks:
-            remote, work_remote = ctx.Pipe()
             fns = CloudpickleWrapper([env_fns[i] for i in blk])
-            proc = ctx.Process(target=_worker, args=(work_remote, remote, fns, keys),
-                               daemon=True)
-            proc.start()
-            work_remote.close()
+            remote, proc = start_worker(ctx, _worker, fns, keys)
             self.remotes.append(remote)
             self.processes.append(proc)
         self.waiting = False

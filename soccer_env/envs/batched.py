@@ -47,6 +47,8 @@ from soccer_env.envs.goalkeeper import (
     INTERCEPT_MIN_SPEED,
     STOP_SPEED,
     GoalkeeperEnv,
+    fire_shot,
+    place_episode,
 )
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
 from soccer_env.sim.commands import validate_actions
@@ -124,8 +126,8 @@ class GoalkeeperVectorEnv(VectorEnv):
         if probe.render_mode is not None:
             raise NotBatchable("the batched Goalkeeper does not render; use "
                              "vectorization_mode='sync' for videos")
-        self._probe = probe
         self.field, self.ball_spec, self.shots = probe.field, probe.ball_spec, probe.shots
+        self._robot = probe.robot_spec
         self.shaping, self._shaping_on = probe.shaping, probe._shaping_on
         self.builder = probe.builder
         self._model = probe.robot_model
@@ -163,10 +165,10 @@ class GoalkeeperVectorEnv(VectorEnv):
         drawn as :meth:`GoalkeeperEnv._place` and ``_streams`` draw it, so that the
         generator moves on exactly as a single environment's does."""
         rng = self._rngs[k]
-        poses, ball = self._probe._place(rng)
+        placed = place_episode(rng, self.field, self._robot, self.ball_spec, self.shots, 0)
         rng.integers(2**63)  # the sensors' stream (no sensors in truth mode)
         rng.integers(2**63)  # the world's stream (SSL robots draw nothing)
-        return poses, ball, self._probe._shot
+        return placed
 
     def _begin(self, k: int, shot: dict[str, Any]) -> None:
         self._shots[k] = shot
@@ -211,9 +213,7 @@ class GoalkeeperVectorEnv(VectorEnv):
 
     def _fire(self, k: int) -> None:
         """The invisible attacker's kick in environment ``k`` (as GoalkeeperEnv._fire)."""
-        probe = self._probe
-        probe.world, probe._shot = self.batch.worlds[k], self._shots[k]
-        probe._fire()
+        fire_shot(self.batch.worlds[k], self._shots[k], self._robot)
         self._fired[k] = True
 
     def step(self, actions: np.ndarray):
@@ -236,11 +236,10 @@ class GoalkeeperVectorEnv(VectorEnv):
         batch.step(self._model.commands(act)[:, None, :])
 
         # The attacker's shots due this step, and the keeper's touches.
-        time = np.array([w.time for w in batch.worlds])
-        due = live & ~self._fired & (time >= self._delay - 1e-9)
+        due = live & ~self._fired & (batch.times >= self._delay - 1e-9)
         for k in np.nonzero(due)[0].tolist():
             self._fire(k)
-        self._touched |= np.array([w.touched[0] for w in batch.worlds])
+        self._touched |= batch.touched()[:, 0]
         self._steps += 1
 
         state = batch.state

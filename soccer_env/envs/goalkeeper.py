@@ -26,7 +26,8 @@ from soccer_env.validation import (
     reject_unknown,
 )
 
-__all__ = ["GoalkeeperEnv", "ShotDistribution", "GOALKEEPER_SHAPING", "STOP_SPEED",
+__all__ = ["GoalkeeperEnv", "ShotDistribution", "place_episode", "fire_shot",
+           "GOALKEEPER_SHAPING", "STOP_SPEED",
            "CLEAR_SPEED", "HUMANOID_SHOTS", "MAX_MATES", "mate_poses"]
 
 #: The ball counts as stopped below this speed [m/s].
@@ -146,6 +147,36 @@ def mate_poses(field: FieldSpec, n: int, radius: float) -> np.ndarray:
              (-0.5 * hx, -(hy - 0.15 - radius), 0.5 * math.pi),
              (0.5 + radius, 0.0, math.pi)]
     return np.array(slots[:n], dtype=np.float64).reshape(n, 3)
+
+
+def place_episode(rng: np.random.Generator, field: FieldSpec, robot: RobotSpec,
+                  ball: BallSpec, shots: ShotDistribution, n_mates: int
+                  ) -> tuple[np.ndarray, tuple[float, float], dict[str, Any]]:
+    """A Goalkeeper-v0 episode's start drawn from ``rng``: the robots' poses ``(N, 3)`` (the
+    keeper on its goal line within a quarter of the goal's width of the centre, then the
+    team-mates), the ball's position and the shot (:meth:`ShotDistribution.sample`)."""
+    keeper = (-field.half_length + robot.radius + 0.05,
+              rng.uniform(-0.25 * field.goal_width, 0.25 * field.goal_width), 0.0)
+    shot = shots.sample(rng, field, ball)
+    poses = np.concatenate([[keeper], mate_poses(field, n_mates, robot.radius)])
+    return poses, shot["position"], shot
+
+
+def fire_shot(world: Any, shot: dict[str, Any], robot: RobotSpec) -> None:
+    """The invisible attacker's ``shot`` in ``world``: the ball kicked from where it lies
+    towards the shot's target, flat (sliding) or chipped like an SSL robot at its chip angle
+    (humanoids do not chip)."""
+    bx, by = world.ball_array()[0:2]
+    tx, ty = shot["target"]
+    d = math.hypot(tx - bx, ty - by)
+    ux, uy = (tx - bx) / d, (ty - by) / d
+    v = shot["speed"]
+    if shot["chip"]:
+        a = getattr(robot, "chip_angle", presets.ROBOTS["ssl"].chip_angle)
+        world.set_ball(bx, by, v * math.cos(a) * ux, v * math.cos(a) * uy, 0.0,
+                       v * math.sin(a))
+    else:
+        world.set_ball(bx, by, v * ux, v * uy, sliding=True)
 
 
 class GoalkeeperEnv(SingleAgentTask):
@@ -282,12 +313,9 @@ class GoalkeeperEnv(SingleAgentTask):
     # ------------------------------------------------------------------------------------
 
     def _place(self, rng: np.random.Generator) -> tuple[np.ndarray, tuple[float, float]]:
-        f, r = self.field, self.robot_spec
-        keeper = (-f.half_length + r.radius + 0.05,
-                  rng.uniform(-0.25 * f.goal_width, 0.25 * f.goal_width), 0.0)
-        self._shot = self.shots.sample(rng, f, self.ball_spec)
-        poses = np.concatenate([[keeper], mate_poses(f, self.n_mates, r.radius)])
-        return poses, self._shot["position"]
+        poses, ball, self._shot = place_episode(rng, self.field, self.robot_spec,
+                                                self.ball_spec, self.shots, self.n_mates)
+        return poses, ball
 
     def _streams(self, rng: np.random.Generator
                  ) -> tuple[np.random.Generator, np.random.Generator]:
@@ -328,19 +356,7 @@ class GoalkeeperEnv(SingleAgentTask):
 
     def _fire(self) -> None:
         """The invisible attacker kicks the ball from where it lies towards the target."""
-        shot, world = self._shot, self.world
-        bx, by = world.ball_array()[0:2]
-        tx, ty = shot["target"]
-        d = math.hypot(tx - bx, ty - by)
-        ux, uy = (tx - bx) / d, (ty - by) / d
-        v = shot["speed"]
-        if shot["chip"]:
-            # The attacker chips like an SSL robot (humanoids do not chip).
-            a = getattr(self.robot_spec, "chip_angle", presets.ROBOTS["ssl"].chip_angle)
-            world.set_ball(bx, by, v * math.cos(a) * ux, v * math.cos(a) * uy, 0.0,
-                           v * math.sin(a))
-        else:
-            world.set_ball(bx, by, v * ux, v * uy, sliding=True)
+        fire_shot(self.world, self._shot, self.robot_spec)
         self._fired = True
 
     def _outcome(self, state: WorldState, event: Any = None) -> str | None:

@@ -311,6 +311,21 @@ class WorldBatch:
             world.time = t
         self.read_state()
 
+    @property
+    def times(self) -> np.ndarray:
+        """``(n_worlds,)`` every world's clock [s] (read only)."""
+        view = self._times.view()
+        view.flags.writeable = False
+        return view
+
+    def touched(self) -> np.ndarray:
+        """``(n_worlds, N)`` bool: the robots that touched their ball during the last step
+        (each world's ``touched``, read from the worlds that had events only)."""
+        out = np.zeros((self.n_worlds, self.n_robots), dtype=bool)
+        for k in self._dirty:
+            out[k] = self.worlds[k].touched
+        return out
+
     def read_state(self) -> None:
         """Fill :attr:`state` (and so every world's state) from the space in one batch read,
         headings kept in ``[-pi, pi]`` as :meth:`World.read_state` keeps them."""

@@ -198,6 +198,7 @@ class World(KickerDribbler, HumanoidBodies):
         #: Where the field's centre lies in the space [m] (non-zero when several worlds
         #: share one space, each on its own patch).
         self.origin = (0.0, 0.0)
+        self._shifted = False
         self.time = 0.0
 
     # ------------------------------------------------------------------------------------
@@ -227,7 +228,7 @@ class World(KickerDribbler, HumanoidBodies):
             space.on_collision(BALL, HUMANOID, pre_solve=self._ball_touch)
             for other in (ROBOT, HUMANOID, WALL):
                 space.on_collision(HUMANOID, other, begin=self._humanoid_impact)
-        self.restart(poses, ball_position, rng)
+        self._restart(poses, ball_position, rng)
 
     def _populate(self, space: pymunk.Space, static: pymunk.Body,
                   origin: tuple[float, float]) -> None:
@@ -237,6 +238,7 @@ class World(KickerDribbler, HumanoidBodies):
         handlers are the space owner's to register."""
         self.space = space
         self.origin = (float(origin[0]), float(origin[1]))
+        self._shifted = self.origin != (0.0, 0.0)
         self._static = static
         add_walls(space, self.field, self.ball_spec.radius, static)
         self._add_ball(space)
@@ -257,6 +259,11 @@ class World(KickerDribbler, HumanoidBodies):
         self._require_space()
         poses = self._validated_poses(robot_poses)
         self._check_inside("ball", *ball_position, self.ball_spec.radius)
+        self._restart(poses, ball_position, rng)
+
+    def _restart(self, poses: np.ndarray, ball_position: tuple[float, float],
+                 rng: np.random.Generator | None) -> None:
+        """:meth:`restart` with ``poses`` and ``ball_position`` already checked."""
         if self.walk is not None:
             self.walk.reset(rng if rng is not None else np.random.default_rng(0))
         self._impacts: dict[int, float] = {}
@@ -597,7 +604,7 @@ class World(KickerDribbler, HumanoidBodies):
             pbatch.get_space_bodies(self.space, _BODY_FIELDS, self._buffer)
             state[:] = np.frombuffer(self._buffer.float_buf(), dtype=np.float64).reshape(
                 -1, 6)[: 1 + self.n_robots]
-        if self.origin != (0.0, 0.0):
+        if self._shifted:
             state[:, 0] -= self.origin[0]
             state[:, 1] -= self.origin[1]
         # pymunk's angle is unbounded: keep bodies (and so the reported headings) in

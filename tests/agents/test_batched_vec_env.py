@@ -9,7 +9,6 @@ import pytest
 pytest.importorskip("stable_baselines3")
 
 import gymnasium as gym  # noqa: E402
-import torch  # noqa: E402
 from stable_baselines3 import PPO  # noqa: E402
 from stable_baselines3.common.monitor import Monitor  # noqa: E402
 from stable_baselines3.common.vec_env import DummyVecEnv  # noqa: E402
@@ -49,8 +48,8 @@ def test_same_batches_as_dummy_vec_env_of_single_environments():
     assert ends >= 10
 
 
+@pytest.mark.usefixtures("one_torch_thread")
 def test_ppo_trains_on_the_batch():
-    torch.set_num_threads(1)
     venv = BatchedVecEnv(32, env_kwargs={"shaping": {"intercept": 2.0}})
     model = PPO("MlpPolicy", venv, n_steps=32, batch_size=256, n_epochs=1, seed=0)
     model.learn(2048)

@@ -12,7 +12,6 @@ import pytest
 
 pytest.importorskip("stable_baselines3")
 
-import torch  # noqa: E402
 from stable_baselines3 import PPO  # noqa: E402
 
 from agents.match_workers import MatchWorkerVecEnv  # noqa: E402
@@ -24,12 +23,7 @@ from agents.vec_env import WorkerError  # noqa: E402
 SHORT = {"blue": 2, "yellow": 2, "match_duration": 0.4}
 
 
-@pytest.fixture(autouse=True, scope="module")
-def one_torch_thread():
-    before = torch.get_num_threads()
-    torch.set_num_threads(1)
-    yield
-    torch.set_num_threads(before)
+pytestmark = pytest.mark.usefixtures("one_torch_thread")
 
 
 def _run(venv, steps: int, seed: int = 0) -> list:

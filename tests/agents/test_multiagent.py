@@ -26,13 +26,7 @@ from agents.team import ScriptedTeam  # noqa: E402
 SHORT = {"blue": 1, "yellow": 1, "match_duration": 0.5}
 
 
-@pytest.fixture(autouse=True, scope="module")
-def one_torch_thread():
-    """Tiny networks on a shared 2-core machine: threads only add contention."""
-    before = torch.get_num_threads()
-    torch.set_num_threads(1)
-    yield
-    torch.set_num_threads(before)
+pytestmark = pytest.mark.usefixtures("one_torch_thread")
 
 
 def zeros(venv):

@@ -59,6 +59,7 @@ def test_a_batch_steps_as_the_same_worlds_apart(n_blue, n_yellow):
         for k in range(n):
             b, a = batch.worlds[k], apart[k]
             assert b.kicked == a.kicked and b.touched == a.touched, (t, k)
+            assert batch.touched()[k].tolist() == a.touched and batch.times[k] == a.time
             assert (b.ball_airborne, b.ball_sliding) == (a.ball_airborne, a.ball_sliding), (t, k)
             assert (b.ball_exit is None) == (a.ball_exit is None), (t, k)
             np.testing.assert_allclose(b.robot_array(), a.robot_array(), atol=1e-9)
