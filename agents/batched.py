@@ -1,4 +1,5 @@
-"""The batched Goalkeeper as a stable-baselines3 ``VecEnv``: :class:`BatchedVecEnv`.
+"""Batched environments as stable-baselines3 ``VecEnv``s: the Goalkeeper's
+:class:`BatchedVecEnv` and the match's :class:`BatchedMatchVecEnv`.
 
 :class:`~soccer_env.envs.batched.GoalkeeperVectorEnv` steps its episodes in one batch with
 Gymnasium's vector API; stable-baselines3 expects its own ``VecEnv`` contract: automatic reset
@@ -11,6 +12,7 @@ within the step that ends an episode, the last observation in
 
 from __future__ import annotations
 
+import functools
 import time
 from collections.abc import Sequence
 from typing import Any
@@ -24,9 +26,12 @@ from stable_baselines3.common.vec_env.base_vec_env import (
     VecEnvStepReturn,
 )
 
+from agents.multiagent import MatchVecEnv
+from agents.team import TEAMS
 from soccer_env.envs.batched import GoalkeeperVectorEnv
+from soccer_env.envs.batched_match import MatchBatch
 
-__all__ = ["BatchedVecEnv"]
+__all__ = ["BatchedVecEnv", "BatchedMatchVecEnv"]
 
 
 class BatchedVecEnv(VecEnv):
@@ -112,3 +117,176 @@ class BatchedVecEnv(VecEnv):
     def env_is_wrapped(self, wrapper_class: type[gym.Wrapper], indices: VecEnvIndices = None
                        ) -> list[bool]:
         return [False for _ in self._get_indices(indices)]
+
+
+class BatchedMatchVecEnv(MatchVecEnv):
+    """:class:`~agents.multiagent.MatchVecEnv` with its matches stepped as one batch
+    (:class:`~soccer_env.envs.batched_match.MatchBatch`): the same batch layout (entry
+    ``k * L + j`` is learning agent ``j`` of match ``k``), opponents, self-play, seeds and
+    info dicts, with the per-match Python work of a step reduced to what happens rarely.
+
+    Args:
+        env_kwargs, n_matches, learner, opponent, first_match: as :class:`MatchVecEnv` takes
+            them; the matches must be ones the batch runs (SSL robots, ``obs_mode="truth"``,
+            no actuation latency, no rendering; otherwise
+            :class:`~soccer_env.envs.batched.NotBatchable` says what is refused).
+
+    Opponents run over the whole batch at once: a network (a numpy copy of a model) on every
+    opponent row in one call, the scripted team through
+    :meth:`~agents.team.ScriptedTeam.act_batch`; any other callable is called once per
+    match, as :class:`MatchVecEnv` calls it.
+
+    The matches are those of :class:`MatchVecEnv` with the same seeds up to the rounding of
+    the shared physics space and of the observations' arithmetic (float64 here, single
+    precision in a match's own observation builder): tested to agree on every event, score
+    and end, with observations within 1e-4, over a few hundred steps.
+
+    ``get_attr`` reads each entry's match's ``score``, ``restart_team`` and ``cycles`` from
+    the batch and any other attribute from a match of the same configuration (the matches
+    share it); ``set_attr`` and ``env_method`` are refused (the batch has no match objects
+    to change or call).
+    """
+
+    #: Attributes that differ between matches, read from the batch's arrays.
+    PER_MATCH = ("score", "restart_team", "cycles")
+
+    def _make_matches(self) -> Any:
+        self.batch = MatchBatch(self.n_matches, **self.env_kwargs)
+        self.matches = []
+        return self.batch.probe
+
+    def reset(self) -> np.ndarray:
+        """Reset every match (seeded if :meth:`seed` was called since the last reset) and
+        return the stacked observations ``(num_envs, obs_dim)`` float32."""
+        L = self.agents_per_match
+        self._seed_pools()
+        seeds = [self._seeds[k * L] for k in range(self.n_matches)]
+        obs = self.batch.reset(seeds)
+        for k in range(self.n_matches):
+            self._draw_opponent(k)
+        self._split(obs)
+        self._ep_lengths = [0] * self.n_matches
+        self._ep_returns[:] = 0.0
+        self.reset_infos = [{} for _ in range(self.num_envs)]
+        self._reset_seeds()
+        self._reset_options()
+        self._started = True
+        return self._learner_obs
+
+    def _split(self, obs: np.ndarray) -> None:
+        """Keep the learners' rows ``(num_envs, obs_dim)`` and the opponents' ``(M, n_opp,
+        obs_dim)`` of the batch's observations ``(M, N, obs_dim)``."""
+        self._learner_obs = obs[:, self._learner_rows].reshape(self.num_envs, self._obs_size)
+        self._opp_obs = obs[:, self._opp_rows]
+
+    @functools.cached_property
+    def _learner_rows(self) -> list[int]:
+        """The learners' rows in a match's robot order."""
+        agents = self.batch.possible_agents
+        return [agents.index(a) for a in self.learner_agents]
+
+    @functools.cached_property
+    def _opp_rows(self) -> list[int]:
+        """The opponents' rows in a match's robot order."""
+        agents = self.batch.possible_agents
+        return [agents.index(a) for a in self.opponent_agents]
+
+    def _opponent_batch(self) -> np.ndarray:
+        """Every match's opponent actions ``(M, n_opp, 6)`` from their last observations."""
+        obs = self._opp_obs
+        n, n_opp = self.n_matches, len(self.opponent_agents)
+        out = np.empty((n, n_opp, 6), dtype=np.float32)
+        groups: dict[int, list[int]] = {}
+        for k, opp in enumerate(self._match_opponents):
+            groups.setdefault(id(opp), []).append(k)
+        for ks in groups.values():
+            opp = self._match_opponents[ks[0]]
+            sel: Any = slice(None) if len(ks) == n else ks
+            part = obs[sel]
+            if opp.per_agent:
+                rows = part.reshape(-1, self._obs_size)
+                out[sel] = self._checked(opp, rows).reshape(-1, n_opp, 6)
+            elif opp.batch is not None:
+                acts = np.asarray(opp.batch(part), dtype=np.float32)
+                if acts.shape != part.shape[:2] + (6,):
+                    raise ValueError(f"opponent {opp.label} returned actions of shape "
+                                     f"{acts.shape} for observations of shape {part.shape}")
+                out[sel] = acts
+            else:
+                out[sel] = np.stack([self._checked(opp, o) for o in part])
+        return out
+
+    def step_wait(self) -> VecEnvStepReturn:
+        """Step every match once; finished matches are reset (see :class:`MatchVecEnv`)."""
+        if not self._started:
+            raise RuntimeError("call reset() before stepping a MatchVecEnv")
+        if self._actions is None:
+            raise RuntimeError("call step_async(actions) before step_wait()")
+        actions, self._actions = self._actions, None
+        n, L = self.n_matches, self.agents_per_match
+        full = np.empty((n, self.batch.n_robots, 6), dtype=np.float32)
+        full[:, self._learner_rows] = actions.reshape(n, L, 6)
+        if self.opponent_agents:
+            full[:, self._opp_rows] = self._opponent_batch()
+        result = self.batch.step(full)
+        rewards = result.rewards[:, self._learner_rows].reshape(-1).astype(np.float32)
+        term, trunc = result.terminated, result.truncated
+        ended = term | trunc
+        dones = np.repeat(ended, L)
+        self._split(result.obs)
+        obs_out = self._learner_obs
+        ep_returns = self._ep_returns
+        ep_returns += rewards
+        events, scores = result.events.tolist(), result.scores.tolist()
+        truncs = (trunc & ~term).tolist()
+        infos: list[dict[str, Any]] = []
+        for k in range(n):
+            b, y = scores[k]
+            score, event, tl = {"blue": b, "yellow": y}, events[k], truncs[k]
+            for _ in range(L):
+                infos.append({"score": score, "event": event, "TimeLimit.truncated": tl})
+        if ended.any():
+            elapsed = round(time.time() - self._t_start, 6)
+            own = [TEAMS.index(t) for t in self._teams_of_entries]
+            for k in np.nonzero(ended)[0].tolist():
+                base = k * L
+                last = result.final_obs[k][self._learner_rows]
+                score = scores[k]
+                for j in range(L):
+                    i = base + j
+                    gf, ga = score[own[j]], score[1 - own[j]]
+                    infos[i].update({
+                        "terminal_observation": last[j].copy(),
+                        "episode": {"r": float(ep_returns[i]), "l": int(result.lengths[k]),
+                                    "t": elapsed},
+                        "is_success": gf > ga, "goals_for": gf, "goals_against": ga})
+                ep_returns[base:base + L] = 0.0
+                self._draw_opponent(k)
+        return obs_out.copy(), rewards, dones, infos
+
+    def close(self) -> None:
+        self.batch.close()
+
+    def get_attr(self, attr_name: str, indices: VecEnvIndices = None) -> list[Any]:
+        """``attr_name`` of the match of each entry: from the batch for
+        :attr:`PER_MATCH`, else the configuration the matches share."""
+        ks = self._matches_of(indices)
+        if attr_name in self.PER_MATCH:
+            values = getattr(self.batch, attr_name)
+            return [values[k].tolist() for k in ks]
+        value = getattr(self._probe, attr_name)
+        return [value for _ in ks]
+
+    def set_attr(self, attr_name: str, value: Any, indices: VecEnvIndices = None) -> None:
+        raise ValueError("the batched matches share one configuration and keep their state in "
+                         "arrays: set the match's arguments when making the VecEnv "
+                         f"(set_attr({attr_name!r}) is not supported)")
+
+    def env_method(self, method_name: str, *method_args: Any, indices: VecEnvIndices = None,
+                   **method_kwargs: Any) -> list[Any]:
+        raise ValueError(f"the batched matches are not match objects: env_method("
+                         f"{method_name!r}) is not supported; use MatchVecEnv for per-match "
+                         "calls")
+
+    def get_images(self) -> Sequence[np.ndarray | None]:
+        raise ValueError("the batched matches do not render; use MatchVecEnv for videos")

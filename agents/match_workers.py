@@ -78,13 +78,20 @@ class _Layout:
 
 def _match_worker(remote: Any, parent: Any, spec: CloudpickleWrapper, buffer: Any,
                   layout: _Layout, rows: range, cpu: int | None) -> None:
-    """Run a :class:`MatchVecEnv` over one block of matches and serve the parent's commands
-    (replies as :mod:`agents.vec_env`'s workers give them) until told to close; with ``cpu``,
-    on that CPU only."""
+    """Run a :class:`MatchVecEnv` (or, batched, a
+    :class:`~agents.batched.BatchedMatchVecEnv`) over one block of matches and serve the
+    parent's commands (replies as :mod:`agents.vec_env`'s workers give them) until told to
+    close; with ``cpu``, on that CPU only."""
     def body(current: list[int | None]) -> None:
         if cpu is not None:
             os.sched_setaffinity(0, {cpu})
-        venv = MatchVecEnv(**spec.var)
+        kwargs = dict(spec.var)
+        if kwargs.pop("batched"):
+            from agents.batched import BatchedMatchVecEnv
+
+            venv: MatchVecEnv = BatchedMatchVecEnv(**kwargs)
+        else:
+            venv = MatchVecEnv(**kwargs)
         views = layout.views(buffer, rows)
         actions, obs, rewards, dones = (views["actions"], views["obs"], views["rewards"],
                                         views["dones"])
@@ -143,6 +150,9 @@ class MatchWorkerVecEnv(WorkerVecEnv):
             False to let the scheduler place them.
         start_method: multiprocessing start method (default ``"forkserver"`` where available,
             else ``"spawn"``).
+        batched: each worker steps its block of matches as one batch
+            (:class:`~agents.batched.BatchedMatchVecEnv`, for the matches it runs) instead of
+            one after the other.
 
     The batch layout, spaces, infos and methods are :class:`MatchVecEnv`'s:
     ``set_opponent``, ``set_opponent_pool``, ``opponents``, ``opponent_pool`` act on every
@@ -152,13 +162,22 @@ class MatchWorkerVecEnv(WorkerVecEnv):
 
     def __init__(self, env_kwargs: Mapping[str, Any] | None = None, n_matches: int = 2,
                  learner: str = "blue", opponent: Any = None, workers: int = 2,
-                 start_method: str | None = None, pin: bool | None = None) -> None:
+                 start_method: str | None = None, pin: bool | None = None,
+                 batched: bool = False) -> None:
         if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or (
                 workers < 1):
             raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
         # A probe in this process checks every argument (and gives the spaces) before any
         # worker starts, so that bad input fails here with the constructor's own message.
-        probe = MatchVecEnv(env_kwargs, n_matches=1, learner=learner, opponent=opponent)
+        if batched:
+            from agents.batched import BatchedMatchVecEnv
+
+            probe: MatchVecEnv = BatchedMatchVecEnv(env_kwargs, n_matches=1, learner=learner,
+                                                    opponent=opponent)
+        else:
+            probe = MatchVecEnv(env_kwargs, n_matches=1, learner=learner, opponent=opponent)
+        #: Whether each worker steps its matches as one batch.
+        self.batched = bool(batched)
         if isinstance(n_matches, bool) or not isinstance(n_matches, (int, np.integer)) or (
                 n_matches < 1):
             raise ValueError(f"n_matches must be an integer >= 1, got {n_matches!r}")
@@ -172,7 +191,7 @@ class MatchWorkerVecEnv(WorkerVecEnv):
         self.entry_agents = [(k, a) for k in range(self.n_matches) for a in self.learner_agents]
         self._entry_names = [f"{a} of match {k} (batch entry {i})"
                              for i, (k, a) in enumerate(self.entry_agents)]
-        self._out_of_range = probe.matches[0].out_of_range_actions
+        self._out_of_range = probe._out_of_range
         obs_space, act_space = probe.observation_space, probe.action_space
         metadata, render_mode = probe.metadata, probe.render_mode
         probe.close()
@@ -201,7 +220,7 @@ class MatchWorkerVecEnv(WorkerVecEnv):
         self.cpus = [cpus[w % len(cpus)] if pin else None for w in range(workers)]
         for mblk, rows, cpu in zip(self._match_blocks, self._blocks, self.cpus):
             spec = dict(env_kwargs=self.env_kwargs, n_matches=len(mblk), learner=learner,
-                        opponent=opponent, first_match=mblk.start)
+                        opponent=opponent, first_match=mblk.start, batched=self.batched)
             remote, proc = start_worker(ctx, _match_worker, CloudpickleWrapper(spec),
                                         self._buffer, self._layout, rows, cpu)
             self.remotes.append(remote)

@@ -90,11 +90,14 @@ class _Opponent:
     match's team at a time.
     """
 
-    __slots__ = ("fn", "per_agent", "label")
+    __slots__ = ("fn", "per_agent", "label", "batch")
 
-    def __init__(self, fn: Callable[[np.ndarray], np.ndarray], per_agent: bool, label: str
-                 ) -> None:
+    def __init__(self, fn: Callable[[np.ndarray], np.ndarray], per_agent: bool, label: str,
+                 batch: Callable[[np.ndarray], np.ndarray] | None = None) -> None:
         self.fn, self.per_agent, self.label = fn, per_agent, label
+        #: The policy over many matches at once, ``(M, n, obs_dim) -> (M, n, 6)``, for
+        #: those that are not ``per_agent`` but have such a path (the scripted team).
+        self.batch = batch
 
     def __repr__(self) -> str:
         return f"<opponent {self.label}>"
@@ -160,9 +163,8 @@ class MatchVecEnv(VecEnv):
         self.first_match = int(first_match)
         self.env_kwargs = dict(env_kwargs or {})
         check_full_infos(self.env_kwargs, "MatchVecEnv")
-        self.matches = [soccer_env.parallel_env(**self.env_kwargs) for _ in range(n_matches)]
-        m0 = self.matches[0]
         self.n_matches = int(n_matches)
+        m0 = self._probe = self._make_matches()
         self.learner = learner
         sizes = {"blue": m0.world.n_blue, "yellow": m0.world.n_yellow}
         if learner == "both":
@@ -215,6 +217,13 @@ class MatchVecEnv(VecEnv):
         self._t_start = time.time()
         self._started = False
 
+    def _make_matches(self) -> Any:
+        """Build the matches (:attr:`matches`); return one of them, whose spaces, specs and
+        observation layout every match shares."""
+        self.matches = [soccer_env.parallel_env(**self.env_kwargs)
+                        for _ in range(self.n_matches)]
+        return self.matches[0]
+
     # ------------------------------------------------------------------------------------
     # Opponents
     # ------------------------------------------------------------------------------------
@@ -225,8 +234,8 @@ class MatchVecEnv(VecEnv):
             return opponent
         if isinstance(opponent, str):
             if opponent == "scripted":
-                team = ScriptedTeam.for_env(self.matches[0], self.opponent_team)
-                return _Opponent(team.act, False, "scripted")
+                team = ScriptedTeam.for_env(self._probe, self.opponent_team)
+                return _Opponent(team.act, False, "scripted", getattr(team, "act_batch", None))
             if opponent == "idle":
                 return _Opponent(IdlePolicy(6), True, "idle")
             if opponent.endswith(".npz"):  # a numpy policy file: arrays only, no pickle
@@ -244,7 +253,8 @@ class MatchVecEnv(VecEnv):
             self._check_policy_size(policy)
             return _Opponent(policy, True, f"{type(opponent).__name__} copy")
         if isinstance(opponent, ScriptedTeam):
-            return _Opponent(opponent.act, False, "ScriptedTeam")
+            return _Opponent(opponent.act, False, "ScriptedTeam",
+                             getattr(opponent, "act_batch", None))
         if isinstance(opponent, NumpyPolicy):
             if opponent.stateful:
                 raise ValueError(_NO_MEMORY)
@@ -350,10 +360,7 @@ class MatchVecEnv(VecEnv):
         """Reset every match (seeded if :meth:`seed` was called since the last reset) and
         return the stacked observations ``(num_envs, obs_dim)`` float32."""
         L = self.agents_per_match
-        if self._pool_seed is not None:
-            self._pool_rngs = [np.random.default_rng([self._pool_seed, self.first_match + k])
-                               for k in range(self.n_matches)]
-            self._pool_seed = None
+        self._seed_pools()
         out = np.empty((self.num_envs, self._obs_size), dtype=np.float32)
         opp = np.empty((self.n_matches, len(self.opponent_agents), self._obs_size),
                        dtype=np.float32)
@@ -373,6 +380,13 @@ class MatchVecEnv(VecEnv):
         self._reset_options()
         self._started = True
         return out
+
+    def _seed_pools(self) -> None:
+        """Seed every match's stream of opponent draws, if :meth:`seed` asked for it."""
+        if self._pool_seed is not None:
+            self._pool_rngs = [np.random.default_rng([self._pool_seed, self.first_match + k])
+                               for k in range(self.n_matches)]
+            self._pool_seed = None
 
     def step_async(self, actions: np.ndarray) -> None:
         """Store the actions ``(num_envs, 6)`` (one row per batch entry, in ``[-1, 1]``;
@@ -490,22 +504,35 @@ class MatchVecEnv(VecEnv):
 
 def make_match_vec_env(env_kwargs: Mapping[str, Any] | None = None, n_matches: int = 1,
                        learner: str = "blue", opponent: Any = None, seed: int | None = None,
-                       workers: int = 0, pin: bool | None = None) -> VecEnv:
+                       workers: int = 0, pin: bool | None = None, batched: bool = False
+                       ) -> VecEnv:
     """A :class:`MatchVecEnv` (``workers=0``: every match in this process) or a
     :class:`~agents.match_workers.MatchWorkerVecEnv` (its matches split over ``workers``
     processes; ``pin`` as that class takes it), seeded so that its first ``reset()`` is
-    reproducible (match ``k`` gets ``seed + k``, whatever the number of workers)."""
+    reproducible (match ``k`` gets ``seed + k``, whatever the number of workers). With
+    ``batched``, the matches of each process are stepped as one batch
+    (:class:`~agents.batched.BatchedMatchVecEnv`: SSL robots, truth observations)."""
     if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 0:
         raise ValueError(f"workers must be an integer >= 0, got {workers!r}")
+    if not isinstance(batched, (bool, np.bool_)):
+        raise TypeError(f"batched must be True or False, got {batched!r}")
     if workers:
         from agents.match_workers import MatchWorkerVecEnv
 
         venv: VecEnv = MatchWorkerVecEnv(env_kwargs, n_matches=n_matches, learner=learner,
-                                         opponent=opponent, workers=int(workers), pin=pin)
+                                         opponent=opponent, workers=int(workers), pin=pin,
+                                         batched=bool(batched))
         if seed is not None:
             venv.seed(seed)
         return venv
-    venv = MatchVecEnv(env_kwargs, n_matches=n_matches, learner=learner, opponent=opponent)
+    if batched:
+        from agents.batched import BatchedMatchVecEnv
+
+        venv = BatchedMatchVecEnv(env_kwargs, n_matches=n_matches, learner=learner,
+                                  opponent=opponent)
+    else:
+        venv = MatchVecEnv(env_kwargs, n_matches=n_matches, learner=learner,
+                           opponent=opponent)
     if seed is not None:
         venv.seed(seed)
     return venv

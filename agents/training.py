@@ -199,7 +199,10 @@ class TrainConfig:
         batched: step Goalkeeper-v0's ``n_envs`` environments as one batch in the learner's
             process (:class:`~agents.batched.BatchedVecEnv`, the
             ``vector_entry_point``): SSL keepers on truth observations with native actions,
-            no frame stack, the shared critic and ``n_workers=0``.
+            no frame stack, the shared critic and ``n_workers=0``. For the match: each
+            process's matches as one batch (:class:`~agents.batched.BatchedMatchVecEnv`, in
+            the learner's process or in each of ``n_workers`` workers): SSL robots on truth
+            observations.
         torch_threads: torch's intra-op threads in the learner process.
         device: torch device.
         progress_bar: show SB3's progress bar.
@@ -277,9 +280,8 @@ class TrainConfig:
                              "copy cannot play the opponent team (the match does not reset "
                              "an opponent's memory)")
 
-        if self.batched:
+        if self.batched and self.env_id == GOALKEEPER_ID:
             wrong = [(name, value) for name, value, ok in (
-                ("env_id", self.env_id, self.env_id == GOALKEEPER_ID),
                 ("actions", self.actions, self.actions == "native"),
                 ("frame_stack", self.frame_stack, self.frame_stack == 1),
                 ("critic", self.critic, self.critic == "shared"),
@@ -347,7 +349,7 @@ def make_vec_env(cfg: TrainConfig):
         opponent = cfg.opponent
         return make_match_vec_env(cfg.env_kwargs, cfg.n_envs, cfg.learner,
                                   "idle" if opponent == "self" else opponent, cfg.seed,
-                                  workers=cfg.n_workers)
+                                  workers=cfg.n_workers, batched=cfg.batched)
     if cfg.batched:
         from agents.batched import BatchedVecEnv
 
@@ -391,6 +393,10 @@ def check_env_kwargs(cfg: TrainConfig) -> None:
         import soccer_env
 
         soccer_env.parallel_env(**cfg.env_kwargs).close()
+        if cfg.batched:  # what the batch supports (truth, SSL, no latency, no rendering)
+            from soccer_env.envs.batched_match import MatchBatch
+
+            MatchBatch(1, **cfg.env_kwargs).close()
     else:
         import gymnasium as gym
 

@@ -20,7 +20,9 @@ is ignored and it returns the new episode's first observation with reward 0), dr
 next episode from their own generator as a single environment's ``reset()`` does.
 
 Scope: SSL keepers with ``obs_mode="truth"`` (raw and perceived observations need the
-estimators batched across environments; humanoid keepers their walk engine); no rendering.
+estimators batched across environments; humanoid keepers their walk engine), without
+actuation latency or command loss (a ``perception`` preset's latency applies in truth mode
+too); no rendering.
 Other arguments are :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`'s.
 
 With ``autoreset_mode=AutoresetMode.SAME_STEP`` (``"SameStep"``) finished environments reset
@@ -126,6 +128,12 @@ class GoalkeeperVectorEnv(VectorEnv):
         if probe.render_mode is not None:
             raise NotBatchable("the batched Goalkeeper does not render; use "
                              "vectorization_mode='sync' for videos")
+        delays, losses = probe._perception.delays, probe._perception.losses
+        if any(delays) or any(losses):
+            raise NotBatchable(f"the batched Goalkeeper has no actuation latency or command "
+                               f"loss (the perception gives latencies {delays} steps and "
+                               f"losses {losses}, which apply with obs_mode='truth' too); "
+                               "use vectorization_mode='sync' for them")
         self.field, self.ball_spec, self.shots = probe.field, probe.ball_spec, probe.shots
         self._robot = probe.robot_spec
         self.shaping, self._shaping_on = probe.shaping, probe._shaping_on

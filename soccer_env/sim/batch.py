@@ -34,7 +34,7 @@ from pymunk._chipmunk import lib as _cp
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.sim.arena import BALL, OUT, ROBOT
 from soccer_env.sim.ssl import MOUTH_TOLERANCE
-from soccer_env.sim.world import COLLISION_SLOP, World
+from soccer_env.sim.world import COLLISION_SLOP, BallExit, World
 from soccer_env.validation import check_int
 
 __all__ = ["WorldBatch", "MAX_WORLDS"]
@@ -149,7 +149,8 @@ class WorldBatch:
         self._step_space = _cp.cpSpaceStep
         self._handle = space._space
         self._rows()
-        self.read_state()
+        # ``state`` already holds every world's start exactly (the worlds' restarts write it
+        # through their views); a read from the space would round it through the offsets.
 
     def _rows(self) -> None:
         """Where each body lies in :mod:`pymunk.batch`'s reads: the ball and robots of each
@@ -172,8 +173,11 @@ class WorldBatch:
 
     def restart(self, k: int, robot_poses: np.ndarray,
                 ball_position: tuple[float, float] = (0.0, 0.0)) -> None:
-        """Start a new episode in world ``k`` (the others go on)."""
-        self.worlds[k].restart(robot_poses, ball_position)
+        """Start a new episode in world ``k`` (the others go on), with nothing remembered of
+        its last one (cached contacts, joint impulses), as in a fresh world."""
+        world = self.worlds[k]
+        world._forget_contacts()
+        world.restart(robot_poses, ball_position)
         self._times[k] = 0.0
 
     # ------------------------------------------------------------------------------------
@@ -325,6 +329,15 @@ class WorldBatch:
         for k in self._dirty:
             out[k] = self.worlds[k].touched
         return out
+
+    def exits(self) -> list[tuple[int, BallExit]]:
+        """``(k, exit)`` of every world whose ball left the field during the last step (its
+        :attr:`World.ball_exit <soccer_env.sim.world.World.ball_exit>`; only worlds that had
+        events are looked at, so an exit left uncleared from an earlier step is not
+        repeated)."""
+        worlds = self.worlds
+        return [(k, worlds[k].ball_exit) for k in sorted(self._dirty)
+                if worlds[k].ball_exit is not None]
 
     def read_state(self) -> None:
         """Fill :attr:`state` (and so every world's state) from the space in one batch read,

@@ -261,6 +261,42 @@ class World(KickerDribbler, HumanoidBodies):
         self._check_inside("ball", *ball_position, self.ball_spec.radius)
         self._restart(poses, ball_position, rng)
 
+    def _forget_contacts(self) -> None:
+        """Drop what the space remembers of this world's past, as a fresh space would not
+        have it: the bodies' bias velocities, the cached contacts of its ball and robots
+        (Chipmunk's arbiters, whose accumulated impulses warm-start the next solve) and the
+        accumulated impulses of its joints (the ball's carpet friction, the drives). Shapes
+        are taken out and put back (which drops their arbiters); joints, whose impulses
+        pymunk cannot reset, are replaced by fresh ones with the same parameters, in the
+        order they were made.
+        :class:`~soccer_env.sim.batch.WorldBatch` calls it when a world restarts in a shared
+        space; a world on its own builds a fresh space instead (:meth:`reset`)."""
+        space = self.space
+        # Chipmunk moves a body at the start of a step by its velocity plus the bias
+        # velocity the last contact solve left (position correction), which pymunk cannot
+        # set; integrating the position over zero seconds clears it and moves nothing.
+        for body in (self._ball, *self._bodies):
+            pymunk.Body.update_position(body, 0.0)
+        shapes = [*self._ball.shapes, *self._shape_index]
+        space.remove(*shapes)
+        space.add(*shapes)
+
+        def fresh(joint: pymunk.Constraint) -> pymunk.Constraint:
+            if isinstance(joint, pymunk.PivotJoint):
+                new: pymunk.Constraint = pymunk.PivotJoint(joint.a, joint.b, joint.anchor_a,
+                                                           joint.anchor_b)
+            else:
+                new = pymunk.GearJoint(joint.a, joint.b, joint.phase, joint.ratio)
+            new.max_force, new.max_bias = joint.max_force, joint.max_bias
+            new.error_bias, new.collide_bodies = joint.error_bias, joint.collide_bodies
+            return new
+
+        old = [self._friction, *(j for pair in self._drives for j in pair)]
+        space.remove(*old)
+        self._friction = fresh(self._friction)
+        self._drives = [(fresh(d), fresh(t)) for d, t in self._drives]
+        space.add(self._friction, *(j for pair in self._drives for j in pair))
+
     def _restart(self, poses: np.ndarray, ball_position: tuple[float, float],
                  rng: np.random.Generator | None) -> None:
         """:meth:`restart` with ``poses`` and ``ball_position`` already checked."""

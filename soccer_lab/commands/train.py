@@ -116,9 +116,11 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--workers", type=int, default=None,
                    help="subprocesses stepping them (2; 0 runs them in this process)")
     p.add_argument("--batched", action="store_true", default=None,
-                   help="Goalkeeper-v0: step the --n-envs environments as one batch in this "
-                        "process (one pymunk space; SSL keepers, truth observations, native "
-                        "actions; --workers is 0)")
+                   help="step the environments as one batch (one pymunk space; SSL "
+                        "robots, truth observations). Goalkeeper-v0: the --n-envs "
+                        "environments in this process (native actions; --workers is 0). "
+                        "Match-v0: each process's matches, in this process or in each of "
+                        "--workers workers")
     p.add_argument("--seed", type=int, default=None)
     p.add_argument("--out", default=None,
                    help="run folder (default runs/keeper; with --resume, the folder of the "
@@ -206,8 +208,9 @@ def _config(args: argparse.Namespace, base: dict[str, Any]) -> TrainConfig:
         value = getattr(args, option)
         if value is not None:
             fields[name] = value
-    if fields.get("batched") and args.workers is None and "n_workers" not in base:
-        fields["n_workers"] = 0  # the batch is one process
+    if fields.get("batched") and args.workers is None and "n_workers" not in base and \
+            fields.get("env_id", GOALKEEPER_ID) == GOALKEEPER_ID:
+        fields["n_workers"] = 0  # the keeper's batch is one process
     cfg = TrainConfig.from_dict(fields)
     check_env_kwargs(cfg)
     return cfg

@@ -1,5 +1,7 @@
 """BatchedVecEnv: the batched Goalkeeper under stable-baselines3's VecEnv contract, equal to
-single environments behind SB3's own DummyVecEnv and Monitor, and PPO trains on it."""
+single environments behind SB3's own DummyVecEnv and Monitor, and PPO trains on it.
+BatchedMatchVecEnv: the batched match, equal to MatchVecEnv's batches (in this process and
+over worker processes), and PPO self-play on it."""
 
 from __future__ import annotations
 
@@ -14,7 +16,9 @@ from stable_baselines3.common.monitor import Monitor  # noqa: E402
 from stable_baselines3.common.vec_env import DummyVecEnv  # noqa: E402
 
 import soccer_env  # noqa: E402,F401
-from agents.batched import BatchedVecEnv  # noqa: E402
+from agents.batched import BatchedMatchVecEnv, BatchedVecEnv  # noqa: E402
+from agents.multiagent import MatchVecEnv, SelfPlayCallback, make_match_vec_env  # noqa: E402
+from soccer_env.envs.batched import NotBatchable  # noqa: E402
 
 
 def test_same_batches_as_dummy_vec_env_of_single_environments():
@@ -54,3 +58,88 @@ def test_ppo_trains_on_the_batch():
     model = PPO("MlpPolicy", venv, n_steps=32, batch_size=256, n_epochs=1, seed=0)
     model.learn(2048)
     assert model.num_timesteps >= 2048 and len(model.ep_info_buffer) > 0
+
+
+# ----------------------------------------------------------------------------------------
+# The batched match
+# ----------------------------------------------------------------------------------------
+
+def _same_as_match_vec_env(kwargs: dict, n: int, learner: str, opponent, steps: int,
+                           workers: int = 0) -> int:
+    """Step the batched match VecEnv and MatchVecEnv with the same actions; dones, events,
+    scores and episode infos must agree exactly, observations to 1e-4 and rewards to 1e-6
+    (the shared space's rounding; single precision in a match's own observations). Returns
+    the number of finished matches."""
+    ours = make_match_vec_env(kwargs, n, learner, opponent, seed=4, workers=workers,
+                              batched=True)
+    theirs = MatchVecEnv(kwargs, n, learner, opponent)
+    theirs.seed(4)
+    np.testing.assert_allclose(ours.reset(), theirs.reset(), atol=1e-4)
+    rng = np.random.default_rng(1)
+    ends = 0
+    for t in range(steps):
+        a = rng.uniform(-1, 1, (ours.num_envs, 6)).astype(np.float32)
+        a[:, 3] = np.where(rng.random(ours.num_envs) < 0.05, 1.0, -1.0)
+        o1, r1, d1, i1 = ours.step(a)
+        o2, r2, d2, i2 = theirs.step(a)
+        np.testing.assert_allclose(o1, o2, atol=1e-4, err_msg=f"step {t}")
+        np.testing.assert_allclose(r1, r2, atol=1e-6)
+        np.testing.assert_array_equal(d1, d2)
+        for x, y in zip(i1, i2):
+            assert (x["event"], x["score"], x["TimeLimit.truncated"]) == (
+                y["event"], y["score"], y["TimeLimit.truncated"]), t
+            assert set(x) == set(y)
+            if "episode" in x:
+                ends += 1
+                assert x["episode"]["l"] == y["episode"]["l"]
+                assert x["episode"]["r"] == pytest.approx(y["episode"]["r"], abs=1e-5)
+                for key in ("is_success", "goals_for", "goals_against"):
+                    assert x[key] == y[key]
+                np.testing.assert_allclose(x["terminal_observation"],
+                                           y["terminal_observation"], atol=1e-4)
+    ours.close()
+    return ends
+
+
+@pytest.mark.parametrize("kwargs,learner,opponent", [
+    ({"blue": 2, "yellow": 2, "match_duration": 1.5}, "blue", "idle"),
+    ({"blue": 2, "yellow": 2, "max_cycles": 50, "shaping": {"ball_progress": 1.0}}, "both",
+     None),
+    ({"blue": 1, "yellow": 3, "match_duration": 1.0, "shaping": {"ball_distance": 0.5}},
+     "yellow", "scripted"),
+])
+def test_batched_match_vec_env_plays_match_vec_env_batches(kwargs, learner, opponent):
+    assert _same_as_match_vec_env(kwargs, 3, learner, opponent, steps=200) >= 6
+
+
+def test_batched_match_workers_play_the_same_matches():
+    kwargs = {"blue": 2, "yellow": 2, "match_duration": 1.0}
+    assert _same_as_match_vec_env(kwargs, 4, "blue", "idle", steps=130, workers=2) >= 8
+
+
+def test_batched_match_vec_env_attributes_and_refusals():
+    venv = BatchedMatchVecEnv({"blue": 2, "yellow": 1}, 3, "blue", "idle")
+    venv.seed(0)
+    venv.reset()
+    assert venv.num_envs == 6
+    assert venv.get_attr("score") == [[0, 0]] * 6
+    assert venv.get_attr("match_duration", [0, 5]) == [300.0, 300.0]
+    with pytest.raises(ValueError, match="set_attr"):
+        venv.set_attr("match_duration", 10.0)
+    with pytest.raises(ValueError, match="env_method"):
+        venv.env_method("render")
+    with pytest.raises(ValueError, match=r"shape \(6, 6\)"):
+        venv.step(np.zeros((3, 6)))
+    with pytest.raises(NotBatchable, match="obs_mode"):
+        BatchedMatchVecEnv({"obs_mode": "raw"}, 2)
+
+
+@pytest.mark.usefixtures("one_torch_thread")
+def test_ppo_self_play_on_the_batched_match():
+    venv = make_match_vec_env({"blue": 2, "yellow": 2, "match_duration": 0.5}, 16, "blue",
+                              "scripted", seed=0, batched=True)
+    model = PPO("MlpPolicy", venv, n_steps=32, batch_size=256, n_epochs=1, seed=0)
+    callback = SelfPlayCallback(update_every=512, pool_size=2)
+    model.learn(2048, callback=callback)
+    assert model.num_timesteps >= 2048 and callback.n_updates >= 2
+    assert len(model.ep_info_buffer) > 0

@@ -254,3 +254,22 @@ def test_batched_training_steps_the_keepers_as_one_batch(tmp_path, capsys):
             main(["train", "--batched", *extra, "--steps", "64", "--out",
                   str(tmp_path / "no"), "--no-progress"])
         assert message in capsys.readouterr().err
+
+
+def test_batched_match_training_with_workers(tmp_path, capsys):
+    """--batched on Match-v0: each worker steps its matches as one batch; self-play and the
+    saved policy work as in any match run; what the batch cannot run is refused."""
+    run = tmp_path / "batched_match"
+    assert main(["train", "--env", "soccer_env/Match-v0", "--batched", "--workers", "2",
+                 "--n-envs", "8", "--steps", "1024", "--hp", "n_steps=64",
+                 "--env-kwarg", "blue=2", "--env-kwarg", "yellow=2",
+                 "--env-kwarg", "match_duration=0.5", "--opponent", "self",
+                 "--hp", "learning_rate=0.001", "--eval-every", "0", "--checkpoint-every", "0",
+                 "--out", str(run), "--no-progress"]) == 0
+    config = json.loads((run / "config.json").read_text())
+    assert config["batched"] is True and config["n_workers"] == 2
+    assert (run / "final_policy.npz").is_file()
+    with pytest.raises(SystemExit):
+        main(["train", "--env", "soccer_env/Match-v0", "--batched", "--obs-mode", "raw",
+              "--steps", "64", "--out", str(tmp_path / "no"), "--no-progress"])
+    assert "obs_mode='truth' only" in capsys.readouterr().err

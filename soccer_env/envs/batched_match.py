@@ -1,0 +1,292 @@
+"""Batched matches: :class:`MatchBatch`, ``n_matches`` SSL matches stepped as one batch in one
+process.
+
+The matches are those of :class:`~soccer_env.envs.match.SoccerParallelEnv` with the same
+arguments: match ``k`` reset with seed ``s`` draws the kick-off and the formation a single
+match reset with ``s`` draws, and steps through the same states up to the rounding of the
+shared space (:mod:`soccer_env.sim.batch`; contacts amplify differences of 1e-12 m, so long
+matches drift apart: tested over a few hundred steps). The physics is a
+:class:`~soccer_env.sim.batch.WorldBatch`; actions to commands, rewards and shaping, the game
+state, observations (:meth:`~soccer_env.observations.ObservationBuilder.build_batch`) and the
+clocks run in numpy over the batch. What is left per match is what happens rarely: the ball
+leaving the field (the referee's goal, free kick or kick-off, :mod:`soccer_env.sim.referee`)
+and a match starting.
+
+A finished match (its clock at ``match_duration``, or ``max_cycles`` steps) starts its next
+match within the step that ends it, from its own generator as a single match's ``reset()``
+does: :meth:`MatchBatch.step` returns the new match's first observation and the finished
+match's last one in ``final_obs`` (stable-baselines3's convention; Gymnasium's
+``SAME_STEP`` autoreset).
+
+Scope: SSL robots, ``obs_mode="truth"``, no actuation latency or command loss (a
+``perception`` preset's latency applies in truth mode too, and needs a command channel per
+match), no rendering. :class:`NotBatchable` names what is refused.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from soccer_env.envs.batched import NotBatchable
+from soccer_env.envs.match import SoccerParallelEnv
+from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
+from soccer_env.sim.commands import validate_actions
+from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff
+from soccer_env.validation import check_int, check_seed
+
+__all__ = ["MatchBatch", "MatchStep"]
+
+
+class MatchStep:
+    """What :meth:`MatchBatch.step` returns (arrays over the batch, robots in the match's
+    agent order: blue, then yellow).
+
+    Attributes:
+        obs: ``(M, N, obs_dim)`` float32 observations (of the new match, where one ended).
+        rewards: ``(M, N)`` float64 rewards (the goal reward plus the shaping terms).
+        terminated: ``(M,)`` bool: the match clock reached ``match_duration``.
+        truncated: ``(M,)`` bool: ``max_cycles`` reached (and not terminated).
+        events: ``(M,)`` object: the step's event of each match (None, ``"goal"``,
+            ``"touch"``, ``"goal_line"``, ``"over_bar"``).
+        scores: ``(M, 2)`` int goals of blue and yellow (of the finished match where one
+            ended).
+        lengths: ``(M,)`` int steps of each match so far (of the finished match where one
+            ended).
+        final_obs: ``{k: (N, obs_dim)}`` the last observation of each match that ended.
+    """
+
+    __slots__ = ("obs", "rewards", "terminated", "truncated", "events", "scores", "lengths",
+                 "final_obs")
+
+    def __init__(self, obs: np.ndarray, rewards: np.ndarray, terminated: np.ndarray,
+                 truncated: np.ndarray, events: np.ndarray, scores: np.ndarray,
+                 lengths: np.ndarray, final_obs: dict[int, np.ndarray]) -> None:
+        self.obs, self.rewards = obs, rewards
+        self.terminated, self.truncated = terminated, truncated
+        self.events, self.scores, self.lengths = events, scores, lengths
+        self.final_obs = final_obs
+
+
+class MatchBatch:
+    """``n_matches`` matches of one configuration stepped as one batch (see the module
+    docstring).
+
+    Args:
+        n_matches: matches (1..65536).
+        **kwargs: :class:`~soccer_env.envs.match.SoccerParallelEnv`'s arguments (SSL robots,
+            ``obs_mode="truth"``, no actuation latency, no ``render_mode``).
+
+    Attributes:
+        probe: a single match of the same configuration, for its spaces, specs and
+            observation layout (it is never stepped).
+        batch: the :class:`~soccer_env.sim.batch.WorldBatch`.
+        score: ``(M, 2)`` goals of blue and yellow in each running match.
+        restart_team: ``(M,)`` the team whose restart waits for its first touch (-1: none).
+        cycles: ``(M,)`` steps of each running match.
+    """
+
+    def __init__(self, n_matches: int = 16, **kwargs: Any) -> None:
+        self.n_matches = check_int("n_matches", n_matches, 1, MAX_WORLDS)
+        # A single match checks every argument with its own messages and gives the task's
+        # pieces (spaces, observation layout, shaping).
+        probe = SoccerParallelEnv(**kwargs)
+        w0 = probe.world
+        if probe.obs_mode != "truth":
+            raise NotBatchable(f"the batched match runs obs_mode='truth' only (got "
+                               f"{probe.obs_mode!r}): raw and perceived observations need the "
+                               "estimators batched across matches")
+        if w0.humanoid_indices:
+            raise NotBatchable("the batched match runs SSL robots only (humanoids need their "
+                               "walk engine batched)")
+        if probe.render_mode is not None:
+            raise NotBatchable("the batched match does not render")
+        if any(probe._perception.delays) or any(probe._perception.losses):
+            raise NotBatchable(f"the batched match has no actuation latency or command loss "
+                               f"(the perception gives latencies {probe._perception.delays} "
+                               f"steps and losses {probe._perception.losses}); use "
+                               "perception=None with obs_mode='truth'")
+        self.probe = probe
+        self.field, self.ball_spec = probe.field, probe.ball_spec
+        self.match_duration, self.max_cycles = probe.match_duration, probe.max_cycles
+        self.formation_jitter = probe.formation_jitter
+        self.shaping = probe.shaping
+        self.possible_agents = list(probe.possible_agents)
+        self.n_robots = w0.n_robots
+        self._teams = np.array(probe._teams)
+        self._out_of_range = probe.out_of_range_actions
+        self._slices = [(model, sl) for model, sl, _ in probe._teams_in_play]
+        self.builder = probe.builder
+        self.control_dt = w0.control_dt
+        self.batch = WorldBatch(self.n_matches, self.field, self.ball_spec, w0.robot_specs,
+                                w0.n_blue, w0.n_yellow, w0.control_dt,
+                                w0.control_dt / w0.n_substeps)
+        n = self.n_matches
+        self._names = [f"{a} of match {k}" for k in range(n) for a in self.possible_agents]
+        self._rngs: list[np.random.Generator] = [np.random.default_rng(k) for k in range(n)]
+        self.score = np.zeros((n, 2), dtype=np.int64)
+        self.restart_team = np.full(n, -1, dtype=np.int64)
+        self.cycles = np.zeros(n, dtype=np.int64)
+        self._started = False
+
+    # ------------------------------------------------------------------------------------
+    # Matches
+    # ------------------------------------------------------------------------------------
+
+    def _place(self, k: int) -> tuple[np.ndarray, int]:
+        """Match ``k``'s kick-off formation and kick-off team, drawn from its generator as
+        :meth:`SoccerParallelEnv._place` and ``_streams`` draw them, so that the generator
+        moves on exactly as a single match's does."""
+        rng = self._rngs[k]
+        kickoff = int(rng.integers(2))
+        poses = place_kickoff(self.batch.worlds[k], kickoff, rng, self.formation_jitter)
+        rng.integers(2**63)  # the world's stream (SSL robots draw nothing)
+        rng.integers(2**63)  # the sensors' stream (no sensors in truth mode)
+        return poses, kickoff
+
+    def _begin(self, k: int, kickoff: int) -> None:
+        self.score[k] = 0
+        self.restart_team[k] = kickoff
+        self.cycles[k] = 0
+
+    def reset(self, seed: int | Sequence[int | None] | None = None) -> np.ndarray:
+        """Start every match; returns the observations ``(M, N, obs_dim)``.
+
+        ``seed``: an int seeds match ``k`` with ``seed + k``; a sequence gives each match its
+        own (None keeps that match's generator going); None keeps every generator going (or
+        seeds them from the OS's entropy before the first reset).
+        """
+        n = self.n_matches
+        if isinstance(seed, (list, tuple)):
+            if len(seed) != n:
+                raise ValueError(f"seed must be an int, None or a sequence of {n} seeds, got "
+                                 f"{len(seed)}")
+            for s in seed:
+                check_seed(s)
+            seeds = list(seed)
+        else:
+            check_seed(seed)
+            seeds = [None if seed is None else seed + k for k in range(n)]
+        for k, s in enumerate(seeds):
+            if s is not None or not self._started:
+                self._rngs[k] = np.random.default_rng(s)
+        placed = [self._place(k) for k in range(n)]
+        self.batch.reset(np.stack([p for p, _ in placed]), np.zeros((n, 2)))
+        for k, (_, kickoff) in enumerate(placed):
+            self._begin(k, kickoff)
+        self._started = True
+        return self._observe()
+
+    # ------------------------------------------------------------------------------------
+    # Stepping
+    # ------------------------------------------------------------------------------------
+
+    def step(self, actions: np.ndarray) -> MatchStep:
+        """Step every match with ``actions`` ``(M, N, 6)`` (every robot's action in
+        ``[-1, 1]``; outside values clipped or refused as ``out_of_range_actions`` says,
+        non-finite ones refused, naming the robot and the match, before any match moves).
+        Matches that end start their next match in this step (see the module docstring)."""
+        if not self._started:
+            raise RuntimeError("call MatchBatch.reset() before step()")
+        n, N = self.n_matches, self.n_robots
+        try:
+            act = np.asarray(actions, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"actions must be ({n}, {N}, 6) numbers, got {actions!r}") from None
+        if act.shape != (n, N, 6):
+            raise ValueError(f"actions must have shape ({n}, {N}, 6) (every robot of every "
+                             f"match: vx, vy, omega, kick, chip, dribble), got {act.shape}")
+        act = validate_actions(act.reshape(n * N, 6), self._names,
+                               self._out_of_range).reshape(n, N, 6)
+        batch = self.batch
+        state = batch.state
+        progress_on = bool(self.shaping["ball_progress"])
+        ball_x_before = state[:, 0, 0].copy() if progress_on else None
+        if len(self._slices) == 1:
+            commands = self._slices[0][0].commands(act.reshape(n * N, 6)).reshape(n, N, 6)
+        else:
+            commands = np.concatenate(
+                [m.commands(act[:, sl].reshape(-1, 6)).reshape(n, -1, 6)
+                 for m, sl in self._slices], axis=1)
+        batch.step(commands)
+
+        # The referee.
+        self.cycles += 1
+        self.restart_team[batch.touched().any(axis=1)] = -1
+        events = np.full(n, None, dtype=object)
+        scorer = np.full(n, -1, dtype=np.int64)
+        for k, exit_ in batch.exits():
+            world = batch.worlds[k]
+            kind = classify_exit(exit_, self.field, self.ball_spec)
+            events[k] = kind.kind
+            if kind.kind == "goal":
+                scorer[k] = kind.scorer
+                self.score[k, kind.scorer] += 1
+                self.restart_team[k] = 1 - kind.scorer
+                world.place_all(place_kickoff(world, 1 - kind.scorer, self._rngs[k],
+                                              self.formation_jitter))
+            else:
+                self.restart_team[k] = place_free_kick(world, exit_, kind)
+            world.clear_exit()
+
+        rewards = self._rewards(scorer, events, ball_x_before)
+        obs = self._observe()
+        terminated = batch.times >= self.match_duration - 1e-9
+        truncated = np.zeros(n, dtype=bool)
+        if self.max_cycles is not None:
+            truncated = ~terminated & (self.cycles >= self.max_cycles)
+        scores, lengths = self.score.copy(), self.cycles.copy()
+        final_obs: dict[int, np.ndarray] = {}
+        ended = np.nonzero(terminated | truncated)[0].tolist()
+        if ended:
+            for k in ended:
+                final_obs[k] = obs[k].copy()
+                poses, kickoff = self._place(k)
+                batch.restart(k, poses, (0.0, 0.0))
+                self._begin(k, kickoff)
+            obs = self._observe()
+        return MatchStep(obs, rewards, terminated, truncated, events, scores, lengths, final_obs)
+
+    def _rewards(self, scorer: np.ndarray, events: np.ndarray,
+                 ball_x_before: np.ndarray | None) -> np.ndarray:
+        """``(M, N)`` rewards: :meth:`SoccerParallelEnv._rewards` over the batch."""
+        sc = self.shaping
+        teams = self._teams
+        state = self.batch.state
+        goal = np.where(scorer[:, None] < 0, 0.0, np.where(teams[None, :] == scorer[:, None],
+                                                            1.0, -1.0))
+        total = goal
+        if sc["ball_progress"]:
+            dx = sc["ball_progress"] * (state[:, 0, 0] - ball_x_before)
+            dx = np.where(events == None, dx, 0.0)  # noqa: E711 (element-wise)
+            total = total + np.where(teams[None, :] == 0, dx[:, None], -dx[:, None])
+        if sc["ball_distance"]:
+            d = np.hypot(state[:, 1:, 0] - state[:, :1, 0], state[:, 1:, 1] - state[:, :1, 1])
+            total = total + -sc["ball_distance"] * self.control_dt * d
+        return total
+
+    def _observe(self) -> np.ndarray:
+        """``(M, N, obs_dim)`` observations with each team's game block
+        (:data:`~soccer_env.envs.match.GAME_NAMES`)."""
+        state = self.batch.state
+        n = self.n_matches
+        time_left = np.maximum(0.0, 1.0 - self.batch.times / self.match_duration)
+        restart = self.restart_team
+        flag = np.where(restart < 0, 0.0, np.where(restart == 0, 1.0, -1.0))
+        blue, yellow = self.score[:, 0].astype(np.float64), self.score[:, 1].astype(np.float64)
+        per_team = np.empty((n, 2, 4))
+        per_team[:, 0] = np.stack([time_left, blue, yellow, flag], axis=1)
+        per_team[:, 1] = np.stack([time_left, yellow, blue, -flag], axis=1)
+        game = per_team[:, self._teams]
+        return self.builder.build_batch(state[:, 1:], state[:, 0], game)
+
+    @property
+    def times(self) -> np.ndarray:
+        """``(M,)`` every running match's clock [s]."""
+        return self.batch.times
+
+    def close(self) -> None:
+        self.batch.space = None
+
