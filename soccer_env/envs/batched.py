@@ -338,5 +338,5 @@ class GoalkeeperVectorEnv(VectorEnv):
         return self.builder.build_batch(state[:, 1:], state[:, 0])[:, 0]
 
     def close(self, **kwargs: Any) -> None:
-        self.batch.space = None
+        self.batch.close()
         self.closed = True

@@ -288,5 +288,5 @@ class MatchBatch:
         return self.batch.times
 
     def close(self) -> None:
-        self.batch.space = None
+        self.batch.close()
 

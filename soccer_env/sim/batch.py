@@ -1,19 +1,22 @@
-"""Many worlds in one pymunk space: :class:`WorldBatch`, the physics of the batched
+"""Many worlds in a few pymunk spaces: :class:`WorldBatch`, the physics of the batched
 environments.
 
-Each world is a :class:`~soccer_env.sim.world.World` on its own patch of a grid in one shared
+Each world is a :class:`~soccer_env.sim.world.World` on its own patch of a grid in a shared
 space (its arena on its own static body, so no shape of one world can touch another's), and
-one Chipmunk step per substep advances all of them. ``benchmarks/batched_physics.py`` measured
-this against a loop over separate spaces: about half the physics cost per environment from 16
-to a few hundred worlds (the README's "Batched simulation: the physics layout").
+one Chipmunk step per substep advances all the worlds of a space. ``benchmarks/
+batched_physics.py`` measured this against a loop over separate spaces: about half the physics
+cost per environment from 16 to a few hundred worlds (the README's "Batched simulation: the
+physics layout"). Past about a hundred worlds a space no longer stays in the processor's
+caches over its substeps, so the batch spreads its worlds over spaces of ``shard_size``
+worlds and runs each space's substeps in turn.
 
 The hot path is vectorised over the batch: the commands of every robot (clipping, the
 body-to-field rotation at the mid-step heading) become the control bodies' velocities in one
-:mod:`pymunk.batch` write, and the state of every body comes back in one batch read into one
-array, of which each world's state is a view. What happens rarely stays with the world it
-happens in, through the world's own methods: contacts (routed by shape to their world: touches,
-kicker, dribbler restitution), kicks, the ball's flight after a chip, the switch from sliding to
-rolling, dribbling, ball exits.
+:mod:`pymunk.batch` write per space, and the state of every body comes back in one batch read
+per space into one array, of which each world's state is a view. What happens rarely stays
+with the world it happens in, through the world's own methods: contacts (routed by shape to
+their world: touches, kicker, dribbler restitution), kicks, the ball's flight after a chip,
+the switch from sliding to rolling, dribbling, ball exits.
 
 The worlds are the same physics as separate worlds, but not bit for bit: a world's coordinates
 in the shared space are offset by its patch's origin, which rounds differently (differences of
@@ -37,25 +40,68 @@ from soccer_env.sim.ssl import MOUTH_TOLERANCE
 from soccer_env.sim.world import COLLISION_SLOP, BallExit, World
 from soccer_env.validation import check_int
 
-__all__ = ["WorldBatch", "MAX_WORLDS"]
+__all__ = ["WorldBatch", "MAX_WORLDS", "SHARD_SIZE"]
 
 #: Largest batch: memory and the broadphase grow with it, and past a few hundred worlds per
 #: space the caches no longer hold them (see the physics-layout benchmark).
 MAX_WORLDS = 65536
 #: Margin between two worlds' patches [m], beyond their walls.
 PATCH_MARGIN = 2.0
+#: Worlds per space by default (see :class:`WorldBatch`'s ``shard_size``).
+SHARD_SIZE = 128
 
 _FIELDS = (pbatch.BodyFields.POSITION | pbatch.BodyFields.ANGLE | pbatch.BodyFields.VELOCITY
            | pbatch.BodyFields.ANGULAR_VELOCITY)
 
 
+class _Shard:
+    """One space of a :class:`WorldBatch` and its worlds ``start .. stop - 1``: the space's
+    Chipmunk handle, the rows of the worlds' bodies in :mod:`pymunk.batch`'s reads and the
+    buffers of its reads and writes."""
+
+    __slots__ = ("start", "stop", "space", "handle", "read_buffer", "commands", "write",
+                 "state_rows", "control_rows")
+
+    def __init__(self, start: int, stop: int, space: pymunk.Space, worlds: list[World]
+                 ) -> None:
+        self.start, self.stop = start, stop
+        self.space, self.handle = space, space._space
+        self.read_buffer = pbatch.Buffer()
+        pbatch.get_space_bodies(space, pbatch.BodyFields.BODY_ID, self.read_buffer)
+        ids = np.frombuffer(self.read_buffer.int_buf(), dtype=np.intp)
+        row_of = {int(i): r for r, i in enumerate(ids.tolist())}
+        #: ``(worlds, 1 + N)`` rows of each world's ball and robots.
+        self.state_rows = np.array([[row_of[w._ball.id]] + [row_of[b.id] for b in w._bodies]
+                                    for w in worlds], dtype=np.intp)
+        #: ``(worlds, N)`` rows of each world's control bodies.
+        self.control_rows = np.array([[row_of[c.id] for c in w._controls] for w in worlds],
+                                     dtype=np.intp)
+        # The commands go through a second buffer over an array of our own: pymunk's
+        # ``set_float_buf`` makes the buffer point at that memory, which a later read into
+        # the same buffer would try to reallocate.
+        self.commands = np.zeros((len(ids), 6))
+        self.write = pbatch.Buffer()
+        self.write.set_float_buf(self.commands)
+
+    def read(self) -> np.ndarray:
+        """Every body's ``x, y, angle, vx, vy, omega`` in the space, ``(bodies, 6)``."""
+        self.read_buffer.clear()
+        pbatch.get_space_bodies(self.space, _FIELDS, self.read_buffer)
+        return np.frombuffer(self.read_buffer.float_buf(), dtype=np.float64).reshape(-1, 6)
+
+
 class WorldBatch:
-    """``n_worlds`` worlds of one configuration in one space.
+    """``n_worlds`` worlds of one configuration in shared spaces.
 
     Args:
         n_worlds: the number of worlds (1..:data:`MAX_WORLDS`).
         field, ball, robot, n_blue, n_yellow, control_dt, physics_dt: as
             :class:`~soccer_env.sim.world.World` takes them (SSL robots only).
+        shard_size: worlds per space (1..:data:`MAX_WORLDS`; default
+            :data:`SHARD_SIZE`). Each space runs all its substeps before the next one
+            starts, so that its bodies, shapes and contacts stay in the processor's caches:
+            with 2 vs 2 worlds, one space of 512 stepped at half the rate per world of one
+            space of 128 (``benchmarks/batched_physics.py``).
 
     Attributes:
         worlds: the worlds, each usable as a :class:`World` for reading (``snapshot``,
@@ -63,13 +109,17 @@ class WorldBatch:
         state: ``(n_worlds, 1 + N, 6)`` view of every world's ball and robots
             (``x, y, theta, vx, vy, omega``, field frame of each world), filled at the end of
             each :meth:`step`; ``worlds[k].robot_array()`` is a view of ``state[k, 1:]``.
+        origins: ``(n_worlds, 2)`` each world's origin in its space [m].
+        spaces: the spaces (after :meth:`reset`), world ``k`` in ``spaces[k // shard_size]``.
     """
 
     def __init__(self, n_worlds: int, field: FieldSpec, ball: BallSpec,
                  robot: RobotSpec | list[RobotSpec] | tuple[RobotSpec, ...], n_blue: int,
                  n_yellow: int, control_dt: float = 1.0 / 60.0,
-                 physics_dt: float = 1.0 / 240.0) -> None:
+                 physics_dt: float = 1.0 / 240.0, shard_size: int | None = None) -> None:
         n_worlds = check_int("n_worlds", n_worlds, 1, MAX_WORLDS)
+        self.shard_size = check_int("shard_size", SHARD_SIZE if shard_size is None
+                                    else shard_size, 1, MAX_WORLDS)
         self.worlds = [World(field, ball, robot, n_blue, n_yellow, control_dt, physics_dt)
                        for _ in range(n_worlds)]
         w0 = self.worlds[0]
@@ -82,12 +132,14 @@ class WorldBatch:
         self.field = field
         self.control_dt, self.substep_dt, self.n_substeps = (w0.control_dt, w0.substep_dt,
                                                              w0.n_substeps)
-        cols = max(1, math.ceil(math.sqrt(n_worlds)))
+        per = min(self.shard_size, n_worlds)
+        cols = max(1, math.ceil(math.sqrt(per)))
         pitch_x = 2.0 * (field.half_length + field.boundary + PATCH_MARGIN) + 2.0
         pitch_y = 2.0 * (field.half_width + field.boundary + PATCH_MARGIN) + 2.0
-        #: Each world's origin in the shared space [m].
-        self.origins = np.array([((k % cols) * pitch_x, (k // cols) * pitch_y)
-                                 for k in range(n_worlds)], dtype=np.float64)
+        # A grid of patches in each space, the same in every space.
+        self.origins = np.array([((j % cols) * pitch_x, (j // cols) * pitch_y)
+                                 for j in (k % per for k in range(n_worlds))],
+                                dtype=np.float64)
         limits = np.array([w0._limits[i] for i in range(self.n_robots)], dtype=np.float64)
         self._vmax, self._wmax, self._cap = limits[:, 0], limits[:, 1], limits[:, 2]
         # The kicker's and the dribbler's reach (see World._kick_resting_ball and
@@ -98,15 +150,19 @@ class WorldBatch:
         self.state = np.zeros((n_worlds, 1 + self.n_robots, 6))
         for k, w in enumerate(self.worlds):
             w._state = self.state[k]
-        self.space: pymunk.Space | None = None
-        self._buffer = pbatch.Buffer()
+        self._shards: list[_Shard] = []
+
+    @property
+    def spaces(self) -> list[pymunk.Space]:
+        """The spaces, in world order (empty before :meth:`reset` and after :meth:`close`)."""
+        return [shard.space for shard in self._shards]
 
     # ------------------------------------------------------------------------------------
     # Construction and episodes
     # ------------------------------------------------------------------------------------
 
     def reset(self, robot_poses: np.ndarray, ball_positions: np.ndarray) -> None:
-        """Build the shared space with every world at rest.
+        """Build the shared spaces with every world at rest.
 
         Args:
             robot_poses: ``(n_worlds, N, 3)`` initial ``x, y, theta`` of every robot of every
@@ -121,18 +177,26 @@ class WorldBatch:
         if balls.shape != (self.n_worlds, 2):
             raise ValueError(f"ball_positions must have shape ({self.n_worlds}, 2), got "
                              f"{balls.shape}")
-        space = pymunk.Space()
-        space.collision_slop = COLLISION_SLOP
-        space.iterations = 10
         self._owner: dict[pymunk.Shape, int] = {}
-        for k, (w, origin) in enumerate(zip(self.worlds, self.origins.tolist())):
-            static = pymunk.Body(body_type=pymunk.Body.STATIC)
-            static.position = tuple(origin)
-            space.add(static)
-            w._populate(space, static, tuple(origin))
-            self._owner[next(iter(w._ball.shapes))] = k
-            for shape in w._shape_index:
-                self._owner[shape] = k
+        shards = []
+        for start in range(0, self.n_worlds, self.shard_size):
+            stop = min(start + self.shard_size, self.n_worlds)
+            space = pymunk.Space()
+            space.collision_slop = COLLISION_SLOP
+            space.iterations = 10
+            for k in range(start, stop):
+                w = self.worlds[k]
+                origin = tuple(self.origins[k].tolist())
+                static = pymunk.Body(body_type=pymunk.Body.STATIC)
+                static.position = origin
+                space.add(static)
+                w._populate(space, static, origin)
+                self._owner[next(iter(w._ball.shapes))] = k
+                for shape in w._shape_index:
+                    self._owner[shape] = k
+            space.on_collision(BALL, ROBOT, pre_solve=self._contact)
+            space.on_collision(BALL, OUT, begin=self._out)
+            shards.append(_Shard(start, stop, space, self.worlds[start:stop]))
         for w, p, b in zip(self.worlds, poses, balls.tolist()):
             w.restart(p, tuple(b))
         self._times = np.zeros(self.n_worlds)
@@ -141,35 +205,11 @@ class WorldBatch:
         self._rows_of_step: tuple[list, list, list] = (
             [[0.0] * n for _ in self.worlds], [[False] * n for _ in self.worlds],
             [[False] * n for _ in self.worlds])
-        self._t = self._times.tolist()
         self._pending: list[int] = []
-        space.on_collision(BALL, ROBOT, pre_solve=self._contact)
-        space.on_collision(BALL, OUT, begin=self._out)
-        self.space = space
         self._step_space = _cp.cpSpaceStep
-        self._handle = space._space
-        self._rows()
+        self._shards = shards
         # ``state`` already holds every world's start exactly (the worlds' restarts write it
         # through their views); a read from the space would round it through the offsets.
-
-    def _rows(self) -> None:
-        """Where each body lies in :mod:`pymunk.batch`'s reads: the ball and robots of each
-        world (the state rows) and the control bodies."""
-        self._buffer.clear()
-        pbatch.get_space_bodies(self.space, pbatch.BodyFields.BODY_ID, self._buffer)
-        ids = np.frombuffer(self._buffer.int_buf(), dtype=np.intp)
-        row_of = {int(i): r for r, i in enumerate(ids.tolist())}
-        self._state_rows = np.array([[row_of[w._ball.id]] + [row_of[b.id] for b in w._bodies]
-                                     for w in self.worlds], dtype=np.intp)
-        self._control_rows = np.array([[row_of[c.id] for c in w._controls]
-                                       for w in self.worlds], dtype=np.intp)
-        self._n_bodies = len(ids)
-        # The commands go through a second buffer over an array of our own: pymunk's
-        # ``set_float_buf`` makes the buffer point at that memory, which a later read into
-        # the same buffer would try to reallocate.
-        self._commands = np.zeros((self._n_bodies, 6))
-        self._write = pbatch.Buffer()
-        self._write.set_float_buf(self._commands)
 
     def restart(self, k: int, robot_poses: np.ndarray,
                 ball_position: tuple[float, float] = (0.0, 0.0)) -> None:
@@ -179,6 +219,10 @@ class WorldBatch:
         world._forget_contacts()
         world.restart(robot_poses, ball_position)
         self._times[k] = 0.0
+
+    def close(self) -> None:
+        """Free the spaces (the batch needs a :meth:`reset` to step again)."""
+        self._shards = []
 
     # ------------------------------------------------------------------------------------
     # Stepping
@@ -190,7 +234,7 @@ class WorldBatch:
         handed to a world only when something happens in it), its touch flags cleared at
         its first event of the step."""
         world = self.worlds[k]
-        world.time = self._t[k]
+        world.time = float(self._times[k])
         armed, chip, dribble = self._rows_of_step
         world._armed, world._chip, world._dribble = armed[k], chip[k], dribble[k]
         if k not in self._dirty:
@@ -210,11 +254,6 @@ class WorldBatch:
     def _out(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
         self._enter(self._owner[arbiter.shapes[0]])._ball_out(arbiter, space, data)
 
-    def _read(self) -> np.ndarray:
-        self._buffer.clear()
-        pbatch.get_space_bodies(self.space, _FIELDS, self._buffer)
-        return np.frombuffer(self._buffer.float_buf(), dtype=np.float64).reshape(-1, 6)
-
     def step(self, commands: np.ndarray) -> None:
         """Advance every world by one control step.
 
@@ -223,7 +262,7 @@ class WorldBatch:
                 :meth:`World.step <soccer_env.sim.world.World.step>` takes them (``vx, vy``
                 body frame, ``omega``, ``kick_speed``, ``chip``, ``dribble``).
         """
-        if self.space is None:
+        if not self._shards:
             raise RuntimeError("call WorldBatch.reset() before stepping")
         c = np.asarray(commands, dtype=np.float64)
         if c.shape != (self.n_worlds, self.n_robots, 6):
@@ -239,15 +278,17 @@ class WorldBatch:
         w = np.clip(w, -self._wmax, self._wmax)
         heading = self.state[:, 1:, 2] + 0.5 * self.control_dt * w
         cos, sin = np.cos(heading), np.sin(heading)
+        field_vx, field_vy = cos * vx - sin * vy, sin * vx + cos * vy
         kick = c[..., 3]
         armed = np.where(kick > 0.0, np.minimum(kick, self._cap), 0.0)
-        bodies = self._commands
-        bodies[:] = self._read()
-        rows = self._control_rows
-        bodies[rows, 3] = cos * vx - sin * vy
-        bodies[rows, 4] = sin * vx + cos * vy
-        bodies[rows, 5] = w
-        pbatch.set_space_bodies(self.space, _FIELDS, self._write)
+        for shard in self._shards:
+            bodies = shard.commands
+            bodies[:] = shard.read()
+            rows, sl = shard.control_rows, slice(shard.start, shard.stop)
+            bodies[rows, 3] = field_vx[sl]
+            bodies[rows, 4] = field_vy[sl]
+            bodies[rows, 5] = w[sl]
+            pbatch.set_space_bodies(shard.space, _FIELDS, shard.write)
         n = self.n_robots
         # Touch flags of the worlds that had events in the last step go back to False (the
         # others' are False already).
@@ -257,8 +298,7 @@ class WorldBatch:
         self._dirty = set()
         chip_on, dribble_on = c[..., 4] > 0.0, c[..., 5] > 0.0
         self._rows_of_step = (armed.tolist(), chip_on.tolist(), dribble_on.tolist())
-        self._t = self._times.tolist()
-        self._pending: list[int] = []
+        self._pending = []
         # Which worlds may fire a kicker at a ball already in its mouth, or dribble: the
         # worlds' own first tests (the ball within reach of an armed kicker; of a running
         # dribbler within this step), on the whole batch at once, with the same arithmetic,
@@ -268,7 +308,7 @@ class WorldBatch:
         dy = state[:, :1, 1] - state[:, 1:, 1]
         d2 = dx * dx + dy * dy
         resting = np.nonzero(((armed > 0.0) & (d2 < self._reach2)).any(axis=1))[0].tolist()
-        dribbling: list[tuple[World, list[int]]] = []
+        dribbling: dict[int, list[tuple[World, list[int]]]] = {}
         if dribble_on.any():
             ball_speed = np.hypot(state[:, 0, 3], state[:, 0, 4])[:, None]
             near = 0.05 + (ball_speed + 2.0 * self._vmax) * self.control_dt
@@ -277,41 +317,44 @@ class WorldBatch:
                 world = self._enter(k)
                 candidates = world._dribble_candidates()
                 if candidates:
-                    dribbling.append((world, candidates))
+                    dribbling.setdefault(k // self.shard_size, []).append((world, candidates))
         for k in resting:
             self._enter(k)._kick_resting_ball()
 
         h = self.substep_dt
-        step, handle, worlds = self._step_space, self._handle, self.worlds
-        # Worlds whose ball flies or slides: their per-substep updates (the others' have
-        # none).
-        moving = [k for k, world in enumerate(worlds) if world._airborne or world._sliding]
-        times = self._times
+        step, worlds, times = self._step_space, self.worlds, self._times
         get_velocity = _cp.cpBodyGetVelocity
-        for _ in range(self.n_substeps):
-            for world, candidates in dribbling:
-                for i in candidates:
-                    world._apply_dribbler(i)
-            step(handle, h)
-            times += h
-            self._t = times.tolist()
-            if self._pending:
-                for k in self._pending:
-                    world = self._enter(k)
-                    world._fire(world._pending_kick)
-                    world._pending_kick = -1
-                    if k not in moving:
-                        moving.append(k)
-                self._pending = []
-            for k in moving:
-                world = worlds[k]
-                if world._airborne:
-                    world._fly(h)
-                elif world._sliding:
-                    v = get_velocity(world._ball_handle)
-                    if v.x * v.x + v.y * v.y <= world._v_switch * world._v_switch:
-                        world._set_sliding(False, 0.0)
-        for world, t in zip(worlds, self._t):
+        for index, shard in enumerate(self._shards):
+            handle, sl = shard.handle, slice(shard.start, shard.stop)
+            shard_times = times[sl]
+            drib = dribbling.get(index, ())
+            # Worlds whose ball flies or slides: their per-substep updates (the others' have
+            # none).
+            moving = [k for k in range(shard.start, shard.stop)
+                      if worlds[k]._airborne or worlds[k]._sliding]
+            for _ in range(self.n_substeps):
+                for world, candidates in drib:
+                    for i in candidates:
+                        world._apply_dribbler(i)
+                step(handle, h)
+                shard_times += h
+                if self._pending:
+                    for k in self._pending:
+                        world = self._enter(k)
+                        world._fire(world._pending_kick)
+                        world._pending_kick = -1
+                        if k not in moving:
+                            moving.append(k)
+                    self._pending = []
+                for k in moving:
+                    world = worlds[k]
+                    if world._airborne:
+                        world._fly(h)
+                    elif world._sliding:
+                        v = get_velocity(world._ball_handle)
+                        if v.x * v.x + v.y * v.y <= world._v_switch * world._v_switch:
+                            world._set_sliding(False, 0.0)
+        for world, t in zip(worlds, times.tolist()):
             world.time = t
         self.read_state()
 
@@ -340,11 +383,11 @@ class WorldBatch:
                 if worlds[k].ball_exit is not None]
 
     def read_state(self) -> None:
-        """Fill :attr:`state` (and so every world's state) from the space in one batch read,
-        headings kept in ``[-pi, pi]`` as :meth:`World.read_state` keeps them."""
-        bodies = self._read()
+        """Fill :attr:`state` (and so every world's state) from the spaces in one batch read
+        per space, headings kept in ``[-pi, pi]`` as :meth:`World.read_state` keeps them."""
         state = self.state
-        state[:] = bodies[self._state_rows]
+        for shard in self._shards:
+            state[shard.start:shard.stop] = shard.read()[shard.state_rows]
         state[:, :, 0] -= self.origins[:, None, 0]
         state[:, :, 1] -= self.origins[:, None, 1]
         th = state[:, 1:, 2]

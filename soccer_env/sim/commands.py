@@ -140,6 +140,11 @@ def robot_model(spec: RobotSpec) -> SSLRobot | HumanoidRobot:
     return HumanoidRobot(spec) if spec.kind == "humanoid" else SSLRobot(spec)
 
 
+#: Up to this many entries :func:`validate_actions` checks in plain Python; above, numpy's
+#: reductions are cheaper (batches of environments).
+_PYTHON_CHECK_SIZE = 256
+
+
 def validate_actions(actions: np.ndarray, names: list[str] | tuple[str, ...], mode: str
                      ) -> np.ndarray:
     """Check a ``(N, A)`` float array of actions for agents ``names`` and apply ``mode``.
@@ -148,10 +153,13 @@ def validate_actions(actions: np.ndarray, names: list[str] | tuple[str, ...], mo
     ``[-1, 1]`` are clipped (``mode="clip"``) or raise ``ValueError`` (``mode="raise"``).
     Returns the (possibly clipped) array; the input is never modified.
     """
-    flat = actions.ravel().tolist()
-    # Fast path in plain Python (cheaper than numpy reductions at these sizes): a NaN or an
-    # infinity makes the sum non-finite; finite values in [-1, 1] cannot overflow it.
-    if math.isfinite(sum(flat)) and min(flat) >= -1.0 and max(flat) <= 1.0:
+    if actions.size <= _PYTHON_CHECK_SIZE:
+        flat = actions.ravel().tolist()
+        # Fast path in plain Python (cheaper than numpy reductions at these sizes): a NaN or
+        # an infinity makes the sum non-finite; finite values in [-1, 1] cannot overflow it.
+        if math.isfinite(sum(flat)) and min(flat) >= -1.0 and max(flat) <= 1.0:
+            return actions
+    elif np.abs(actions).max() <= 1.0:  # NaN compares False: NaN, inf and |a| > 1 go on
         return actions
     finite = np.isfinite(actions)
     if not finite.all():

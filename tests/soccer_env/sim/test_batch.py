@@ -21,9 +21,10 @@ def _poses(n: int, robots: int) -> np.ndarray:
                                       np.linspace(0.0, np.pi, robots)]) for k in range(n)])
 
 
-def _pair(n: int, n_blue: int, n_yellow: int) -> tuple[WorldBatch, list[World]]:
+def _pair(n: int, n_blue: int, n_yellow: int, shard_size: int | None = None
+          ) -> tuple[WorldBatch, list[World]]:
     poses, balls = _poses(n, n_blue + n_yellow), np.array([[0.1 * k, 0.05] for k in range(n)])
-    batch = WorldBatch(n, FIELD, BALL, ROBOT, n_blue, n_yellow)
+    batch = WorldBatch(n, FIELD, BALL, ROBOT, n_blue, n_yellow, shard_size=shard_size)
     batch.reset(poses, balls)
     apart = [World(FIELD, BALL, ROBOT, n_blue, n_yellow) for _ in range(n)]
     for w, p, b in zip(apart, poses, balls):
@@ -39,12 +40,15 @@ def _commands(rng: np.random.Generator, steps: int, n: int, robots: int) -> np.n
     return c
 
 
-@pytest.mark.parametrize("n_blue,n_yellow", [(1, 0), (1, 1)])
-def test_a_batch_steps_as_the_same_worlds_apart(n_blue, n_yellow):
+@pytest.mark.parametrize("n_blue,n_yellow,shard_size", [(1, 0, None), (1, 1, None),
+                                                         (1, 1, 3)])
+def test_a_batch_steps_as_the_same_worlds_apart(n_blue, n_yellow, shard_size):
     """Kicks, chips (flight and bounces), dribbling, the sliding-to-rolling switch and ball
-    exits happen at the same steps; positions and velocities agree to rounding."""
+    exits happen at the same steps; positions and velocities agree to rounding. With a
+    shard size of 3, the four worlds lie in two spaces."""
     n, robots = 4, n_blue + n_yellow
-    batch, apart = _pair(n, n_blue, n_yellow)
+    batch, apart = _pair(n, n_blue, n_yellow, shard_size)
+    assert len(batch.spaces) == (1 if shard_size is None else 2)
     for k in range(n):  # robot 0 just behind the ball, facing it
         for w in (batch.worlds[k], apart[k]):
             w.set_robot(0, 0.1 * k - 0.12, 0.05, 0.0)
