@@ -41,7 +41,15 @@ import numpy as np
 
 from estimators import FrictionBallModel
 from soccer_env import MAX_TEAM_SIZE
-from soccer_env.envs.keeper import ScriptedGoalkeeper, drive_command, turn_command
+from soccer_env.envs.keeper import (
+    ScriptedGoalkeeper,
+    drive_command,
+    drive_commands,
+    hypots,
+    turn_command,
+    turn_commands,
+    wrap_angles,
+)
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
 
 __all__ = ["ScriptedTeam", "TEAMS"]
@@ -69,7 +77,9 @@ class ScriptedTeam:
       ``{agent: action}`` for this team's agents in it;
     * ``team.act(obs_batch)``: ``(n, obs_dim)`` observations of robots ``0..n-1`` of the team
       (``n = team_size``) to ``(n, 6)`` float32 actions; what
-      :class:`~agents.multiagent.MatchVecEnv` uses for an opponent.
+      :class:`~agents.multiagent.MatchVecEnv` uses for an opponent;
+    * ``team.act_batch(obs)``: the same for ``M`` matches at once, ``(M, n, obs_dim)`` to
+      ``(M, n, 6)``, computed on whole arrays.
     """
 
     def __init__(self, field: FieldSpec, ball: BallSpec, robot: SSLRobotSpec,
@@ -163,6 +173,28 @@ class ScriptedTeam:
                              f"{obs_batch.shape}")
         return np.array([self.act_one(o, i) for i, o in enumerate(obs_batch.tolist())],
                         dtype=np.float32)
+
+    def act_batch(self, obs: np.ndarray) -> np.ndarray:
+        """Actions ``(M, team_size, 6)`` float32 for the observations ``(M, team_size,
+        obs_dim)`` (float32 or float64) of the team's robots ``0 .. team_size - 1`` in ``M``
+        matches: ``np.stack([self.act(o) for o in obs])``, computed on all ``M * team_size``
+        rows at once (``M = 0`` gives an empty array).
+
+        Each row goes through the same arithmetic in the same order as :meth:`act_one`
+        (:func:`~soccer_env.envs.keeper.hypots` computes ``math.hypot``'s bits,
+        :func:`~soccer_env.envs.keeper.wrap_angles` ``math.remainder``'s, ``np.float_power``
+        the C library's ``pow``), except that ``np.arctan2`` stands for ``math.atan2``: it can
+        differ in the last bit of a float64 heading, which the float32 actions absorb except
+        in very rare cases (a last-bit difference in a turn rate or velocity).
+        """
+        obs = np.asarray(obs)
+        if obs.ndim != 3 or obs.shape[1:] != (self.team_size, self.obs_size):
+            raise ValueError(f"obs must have shape (M, {self.team_size}, {self.obs_size}) (M "
+                             f"matches, one row per robot of the team, in order), got "
+                             f"{obs.shape}")
+        rows = obs.reshape(-1, self.obs_size)
+        index = np.tile(np.arange(self.team_size), obs.shape[0])
+        return self._act_rows(rows, index).reshape(obs.shape[:2] + (6,))
 
     def act_one(self, obs: np.ndarray | Sequence[float], index: int) -> list[float]:
         """Action ``[vx, vy, omega, kick, chip, dribble]`` of robot ``index`` of the team from
@@ -426,3 +458,295 @@ class ScriptedTeam:
         if to_front <= to_side or x < ox:
             return self._def_front, y
         return x, math.copysign(self._def_side, y if y != 0.0 else 1.0)
+
+    # ------------------------------------------------------------------------------------
+    # The same on arrays: one element per robot row (see act_batch).
+
+    def _act_rows(self, obs: np.ndarray, index: np.ndarray) -> np.ndarray:
+        """Actions ``(n, 6)`` float32 for ``n`` observation rows ``(n, obs_dim)`` of robots
+        ``index`` (``(n,)`` ints): :meth:`act_one` row by row."""
+        o = np.asarray(obs, dtype=np.float64).T  # one entry per row
+        px, py, c, neg_s, dx, dy, bvx_b, bvy_b = o[self._idx]
+        s = -neg_s  # self.ay is -sin(heading)
+        # Ball in the team frame.
+        bx, by = px + c * dx - s * dy, py + s * dx + c * dy
+        bvx, bvy = c * bvx_b - s * bvy_b, s * bvx_b + c * bvy_b
+        # Opponents in the team frame, (n_opps, n).
+        mx, my = o[[i for i, _ in self._opp_idx]], o[[j for _, j in self._opp_idx]]
+        opps = (px + c * mx - s * my, py + s * mx + c * my)
+        frame = (px, py, c, s, bx, by, bvx, bvy, dx, dy)
+        out = np.empty((len(index), 6), dtype=np.float32)
+        attack = np.zeros(len(index), dtype=bool)
+        clear = np.zeros(len(index), dtype=bool)
+        field = np.ones(len(index), dtype=bool)
+        if self.has_keeper:
+            keeper = index == 0
+            clear = keeper & self._keeper_should_clear_rows(bx, by, bvx, bvy)
+            guard = keeper & ~clear
+            out[guard] = self.keeper.act_batch(obs[guard])
+            attack |= clear
+            field = ~keeper
+        if field.any():
+            # Team-mates in the team frame, indexed by robot (self included), (team_size, n).
+            xs = np.empty((self.team_size, len(index)))
+            ys = np.empty_like(xs)
+            for k in range(self.team_size):
+                # Robot k is mate k of the robots after it and mate k - 1 of those before.
+                xs[k], ys[k] = px, py
+                for j, rows in ((k, index > k), (k - 1, index < k)):
+                    if 0 <= j < len(self._mate_idx) and rows.any():
+                        ix, iy = self._mate_idx[j]
+                        xs[k, rows] = (px + c * o[ix] - s * o[iy])[rows]
+                        ys[k, rows] = (py + s * o[ix] + c * o[iy])[rows]
+            sub = (index[field], xs[:, field], ys[:, field], bx[field], by[field])
+            is_attacker, rank = self._role_rows(*sub)
+            attack[field] = is_attacker
+            defend = np.flatnonzero(field)[~is_attacker]
+            if len(defend):
+                out[defend] = self._defend_rows(*(v[defend] for v in frame[:6]),
+                                                *(v[defend] for v in frame[8:]),
+                                                rank[~is_attacker])
+        if attack.any():
+            out[attack] = self._attack_rows(*(v[attack] for v in frame),
+                                            tuple(v[:, attack] for v in opps),
+                                            clear[attack])
+        return out
+
+    def _role_rows(self, index: np.ndarray, xs: np.ndarray, ys: np.ndarray, bx: np.ndarray,
+                   by: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`_role` for field-player rows: ``(attacker, rank)``, whether each row's robot
+        is the attacker, and else its rank among the defenders. ``xs``, ``ys``: the team's
+        robots in the team frame as each row sees them, ``(team_size, n)`` [m]."""
+        first = 1 if self.has_keeper else 0
+        ex, ey = self._goal_x - bx, -by
+        d = hypots(ex, ey)
+        d = np.where(d == 0.0, 1.0, d)
+        ex, ey = ex / d, ey / d
+        back = self._contact + 0.12
+        qx, qy = bx - back * ex, by - back * ey
+        # The first field player of least cost (act_one's strict "<" keeps the first).
+        ahead = (xs[first:] - bx) * ex + (ys[first:] - by) * ey > self._contact
+        cost = hypots(xs[first:] - qx, ys[first:] - qy) + np.where(ahead, 0.5, 0.0)
+        attacker = first + np.argmin(cost, axis=0)
+        is_attacker = index == attacker
+        # Defenders: the field players but the attacker, by index; lines of up to three
+        # (position // per), within a line slots by (lateral position, index).
+        per = self._per_line
+        position = index - first - (attacker < index)
+        ox = -self._goal_x
+        fx, fy = bx - ox, by
+        norm = hypots(fx, fy)
+        norm = np.where(norm == 0.0, 1.0, norm)
+        nx, ny = -fy / norm, fx / norm
+        cols = np.arange(len(index))
+        mine = (xs[index, cols] - ox) * nx + ys[index, cols] * ny
+        rank = position // per * per
+        for p in range(self.team_size - first - 1):
+            k = first + p + (first + p >= attacker)
+            lateral = (xs[k, cols] - ox) * nx + ys[k, cols] * ny
+            before = (lateral < mine) | ((lateral == mine) & (k < index))
+            rank = rank + (before & (p // per == position // per))
+        return is_attacker, rank
+
+    def _keeper_should_clear_rows(self, bx: np.ndarray, by: np.ndarray, bvx: np.ndarray,
+                                  bvy: np.ndarray) -> np.ndarray:
+        """:meth:`_keeper_should_clear` on arrays."""
+        f = self.field
+        inside = (bx < -self._goal_x + f.defense_depth) & (np.abs(by) < 0.5 * f.defense_width)
+        return inside & (bx > -self._goal_x) & (hypots(bvx, bvy) < 0.5)
+
+    def _attack_rows(self, px: np.ndarray, py: np.ndarray, c: np.ndarray, s: np.ndarray,
+                     bx: np.ndarray, by: np.ndarray, bvx: np.ndarray, bvy: np.ndarray,
+                     dx: np.ndarray, dy: np.ndarray, opps: tuple[np.ndarray, np.ndarray],
+                     keeper: np.ndarray) -> np.ndarray:
+        """:meth:`_attack` on arrays: actions ``(n, 6)``; ``opps``: opponents' ``(x, y)`` in
+        the team frame, each ``(n_opps, n)`` [m]; ``keeper``: rows that may enter the own
+        defense area."""
+        r = self.robot
+        reach = np.minimum(hypots(bx - px, by - py) / r.max_speed, 1.0)
+        moving = bvx * bvx + bvy * bvy > 1e-4
+        if moving.any():
+            ahead = self.model.predict(np.stack([bx, by, bvx, bvy], axis=-1)[moving],
+                                       reach[moving])
+            bx, by = bx.copy(), by.copy()
+            bx[moving], by[moving] = ahead[:, 0], ahead[:, 1]
+        ax, ay, shoot = self._aim_rows(px, py, bx, by, opps)
+        ex, ey = ax - bx, ay - by
+        d_aim = hypots(ex, ey)
+        d_aim = np.where(d_aim == 0.0, 1.0, d_aim)
+        ex, ey = ex / d_aim, ey / d_aim  # ball -> aim point
+        nx, ny = -ey, ex
+        along = (px - bx) * ex + (py - by) * ey  # < 0: behind the ball
+        lateral = (px - bx) * nx + (py - by) * ny
+        face = np.arctan2(ey, ex)
+        heading_err = np.abs(wrap_angles(face - np.arctan2(s, c)))
+        contact = self._contact
+        beside = (along > -contact) & (np.abs(lateral) < contact + r.radius + 0.05)
+        # In front of or beside the ball: step round it on the near side first.
+        side = np.where(lateral >= 0.0, 1.0, -1.0)
+        clear = r.radius + self.ball.radius + 0.12
+        tx_round = bx + side * clear * nx - 0.1 * ex
+        ty_round = by + side * clear * ny - 0.1 * ey
+        # Behind the ball: the better lined up, the further forward the target. Python's
+        # ``** 2`` is the C library's pow, which np.float_power calls (x * x can differ).
+        align = np.float_power(np.maximum(0.0, 1.0 - np.abs(lateral) / self._lateral_scale)
+                               * np.maximum(0.0, 1.0 - heading_err / 0.5), 2.0)
+        back = contact + 0.12 - (contact + 0.12 + self._through) * align
+        tx = np.where(beside, tx_round, bx - back * ex)
+        ty = np.where(beside, ty_round, by - back * ey)
+        cap = np.where(~beside & (align > 0.25), self.attack_speed, r.max_speed)
+        outside_x, outside_y = self._outside_defense_area_rows(tx, ty)
+        tx, ty = np.where(keeper, tx, outside_x), np.where(keeper, ty, outside_y)
+        tx = np.clip(tx, -self._lim_x, self._lim_x)
+        ty = np.clip(ty, -self._lim_y, self._lim_y)
+        vx, vy = drive_commands(px, py, c, s, tx, ty, r.max_speed, r.max_acceleration, cap)
+        out = np.empty((len(px), 6))
+        out[:, 0], out[:, 1] = vx / r.max_speed, vy / r.max_speed
+        out[:, 2] = turn_commands(c, s, face, r.max_angular_speed)
+        out[:, 3] = shoot & (dx > 0.0) & self._on_target_rows(px, py, c, s, opps)
+        out[:, 4:] = -1.0
+        return out
+
+    def _aim_rows(self, px: np.ndarray, py: np.ndarray, bx: np.ndarray, by: np.ndarray,
+                  opps: tuple[np.ndarray, np.ndarray]
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`_aim` on arrays: ``(x, y, shoot)`` [m]."""
+        rbx, rby = bx - px, by - py  # robot -> ball, the current approach direction
+        norm = hypots(rbx, rby)
+        norm = np.where(norm == 0.0, 1.0, norm)
+        rbx, rby = rbx / norm, rby / norm
+        # All aim points at once, (5, n); the first open one of least cost.
+        aim_ys = np.array(self._aim_ys)[:, None]
+        ex, ey = np.broadcast_arrays(self._goal_x - bx, aim_ys - by)
+        d = hypots(ex, ey)  # also the length of the shooting lines, for _clearance
+        clearance = self._clearance_rows(bx, by, self._goal_x, aim_ys, opps, d)
+        d = np.where(d == 0.0, 1.0, d)
+        cost = 1.0 - (rbx * ex + rby * ey) / d - 0.5 * np.minimum(clearance, 0.5)
+        open_ = clearance > 0.0
+        shoot = open_.any(axis=0)
+        ax = np.full(len(px), self._goal_x)
+        ay = aim_ys[np.argmin(np.where(open_, cost, math.inf), axis=0), 0]
+        blocked = np.flatnonzero(~shoot)
+        if len(blocked) == 0:
+            return ax, ay, shoot
+        # Blocked: towards the goal centre while the blockers are far, else the escape side.
+        bx, by, rbx, rby = bx[blocked], by[blocked], rbx[blocked], rby[blocked]
+        opps = (opps[0][:, blocked], opps[1][:, blocked])
+        gx, gy = self._goal_x - bx, -by
+        d = hypots(gx, gy)
+        d = np.where(d == 0.0, 1.0, d)
+        gx, gy = gx / d, gy / d
+        # Both sides at once, (2, n): sign +1 first.
+        cos_a, sin_a = self._escape_cos, np.array([[1.0], [-1.0]]) * self._escape_sin
+        ux, uy = gx * cos_a - gy * sin_a, gx * sin_a + gy * cos_a
+        tx, ty = bx + ux, by + uy
+        room = np.minimum(self._clearance_rows(bx, by, tx, ty, opps), 0.3)
+        inside = np.abs(ty) < self.field.half_width - 0.3
+        behind = rbx * ux + rby * uy  # > 0: the robot is behind the ball for u
+        score = room + np.where(inside, 0.0, -1.0) + 0.5 * behind
+        # max() of (score, (x, y)) tuples: the second side only if strictly greater.
+        (s0, s1), (x0, x1), (y0, y1) = score, tx, ty
+        second = (s1 > s0) | ((s1 == s0) & ((x1 > x0) | ((x1 == x0) & (y1 > y0))))
+        far = self._nearest_ahead_rows(bx, by, opps) > 1.0
+        ax[blocked] = np.where(far, self._goal_x, np.where(second, x1, x0))
+        ay[blocked] = np.where(far, 0.0, np.where(second, y1, y0))
+        return ax, ay, shoot
+
+    def _nearest_ahead_rows(self, bx: np.ndarray, by: np.ndarray,
+                            opps: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+        """:meth:`_nearest_ahead` on arrays [m]."""
+        ox, oy = opps
+        d = np.where(ox > bx - 0.1, hypots(ox - bx, oy - by), math.inf)
+        return np.min(d, axis=0, initial=math.inf)
+
+    def _clearance_rows(self, bx: np.ndarray, by: np.ndarray, tx: np.ndarray | float,
+                        ty: np.ndarray | float, opps: tuple[np.ndarray, np.ndarray],
+                        length: np.ndarray | None = None) -> np.ndarray:
+        """:meth:`_clearance` on arrays [m], for ``k`` targets per row at once: ``tx``, ``ty``
+        broadcast to ``(k, n)`` against the balls ``(n,)``; returns ``(k, n)``. ``length``:
+        ``hypots(tx - bx, ty - by)`` if the caller has it."""
+        ex, ey = np.broadcast_arrays(tx - bx, ty - by)
+        length = hypots(ex, ey) if length is None else length
+        length = np.where(length == 0.0, 1e-9, length)
+        ex, ey = (ex / length)[:, None], (ey / length)[:, None]  # (k, 1, n)
+        rx, ry = opps[0] - bx, opps[1] - by  # ball -> opponents, (n_opps, n)
+        reach = self.robot.radius + self.ball.radius
+        t = rx * ex + ry * ey  # (k, n_opps, n)
+        perp = np.abs(rx * ey - ry * ex)
+        near = (t >= -reach) & (t <= length[:, None] + reach)
+        gap = perp - reach - 0.02 - 0.03 * np.maximum(t, 0.0)
+        return np.min(np.where(near, gap, math.inf), axis=1, initial=math.inf)
+
+    def _on_target_rows(self, px: np.ndarray, py: np.ndarray, c: np.ndarray, s: np.ndarray,
+                        opps: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+        """:meth:`_on_target` on arrays."""
+        facing = c >= 0.2
+        y_goal = py + s / np.where(facing, c, 1.0) * (self._goal_x - px)
+        inside = np.abs(y_goal) < self._half_goal - self.ball.radius - 0.03
+        open_ = self._clearance_rows(px, py, self._goal_x, y_goal[None], opps)[0] > 0.0
+        return facing & inside & open_
+
+    def _defend_rows(self, px: np.ndarray, py: np.ndarray, c: np.ndarray, s: np.ndarray,
+                     bx: np.ndarray, by: np.ndarray, dx: np.ndarray, dy: np.ndarray,
+                     rank: np.ndarray) -> np.ndarray:
+        """:meth:`_defend` on arrays: actions ``(n, 6)`` for the defenders of ranks
+        ``rank``."""
+        r = self.robot
+        n_def = self.team_size - (2 if self.has_keeper else 1)
+        ox = -self._goal_x
+        fx, fy = bx - ox, by
+        d_ball = hypots(fx, fy)
+        d_ball = np.where(d_ball == 0.0, 1e-3, d_ball)
+        fx, fy = fx / d_ball, fy / d_ball  # own goal -> ball
+        nx, ny = -fy, fx
+        per_line = self._per_line
+        line, slot = rank // per_line, rank % per_line
+        in_line = np.minimum(per_line, n_def - line * per_line)
+        base = np.maximum(self.field.defense_depth + r.radius + 0.4, 0.45 * d_ball)
+        dist = np.minimum(base + 0.9 * line,
+                          np.maximum(d_ball - 0.6, self.field.defense_depth + 0.3))
+        offset = (slot - 0.5 * (in_line - 1)) * self.defender_spacing * (1 + line)
+        tx = ox + dist * fx + offset * nx
+        ty = dist * fy + offset * ny
+        tx, ty = self._around_ball_rows(px, py, tx, ty, bx, by)
+        tx, ty = self._outside_defense_area_rows(tx, ty)
+        tx = np.clip(tx, -self._lim_x, self._lim_x)
+        ty = np.clip(ty, -self._lim_y, self._lim_y)
+        vx, vy = drive_commands(px, py, c, s, tx, ty, r.max_speed, r.max_acceleration)
+        out = np.empty((len(px), 6))
+        out[:, 0], out[:, 1] = vx / r.max_speed, vy / r.max_speed
+        out[:, 2] = turn_commands(c, s, np.arctan2(by - py, bx - px), r.max_angular_speed)
+        in_front = (0.0 < dx) & (dx < r.front_distance + 0.1) & (np.abs(dy)
+                                                                  < 0.5 * r.kicker_width)
+        out[:, 3] = in_front & (c > 0.3)
+        out[:, 4:] = -1.0
+        return out
+
+    def _around_ball_rows(self, px: np.ndarray, py: np.ndarray, tx: np.ndarray,
+                          ty: np.ndarray, bx: np.ndarray, by: np.ndarray
+                          ) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`_around_ball` on arrays [m]."""
+        ux, uy = tx - px, ty - py
+        length = hypots(ux, uy)
+        short = length < 1e-6
+        safe = np.where(short, 1.0, length)
+        ux, uy = ux / safe, uy / safe
+        clear = self.robot.radius + self.ball.radius + 0.15
+        along = (bx - px) * ux + (by - py) * uy
+        side = (px - bx) * -uy + (py - by) * ux  # the robot's side of the ball, along n
+        detour = ~short & (0.0 < along) & (along < length) & (np.abs(side) < clear)
+        sign = np.where(side >= 0.0, 1.0, -1.0)
+        return (np.where(detour, bx - sign * clear * uy, tx),
+                np.where(detour, by + sign * clear * ux, ty))
+
+    def _outside_defense_area_rows(self, x: np.ndarray, y: np.ndarray
+                                   ) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`_outside_defense_area` on arrays [m]."""
+        ox = -self._goal_x
+        inside = (x < self._def_front) & (np.abs(y) < self._def_side)
+        to_front = self._def_front - x
+        to_side = self._def_side - np.abs(y)
+        front = (to_front <= to_side) | (x < ox)
+        return (np.where(inside & front, self._def_front, x),
+                np.where(inside & ~front,
+                         np.copysign(self._def_side, np.where(y != 0.0, y, 1.0)), y))

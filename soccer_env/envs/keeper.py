@@ -10,10 +10,83 @@ import numpy as np
 from estimators import FrictionBallModel
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 
-__all__ = ["ScriptedGoalkeeper", "drive_command", "turn_command", "TURN_GAIN"]
+__all__ = ["ScriptedGoalkeeper", "drive_command", "drive_commands", "turn_command",
+           "turn_commands", "hypots", "wrap_angles", "TURN_GAIN"]
 
 #: Proportional gain of :func:`turn_command` [1/s].
 TURN_GAIN = 8.0
+
+#: The full turn that :func:`turn_command` wraps angles by [rad].
+_TWO_PI = 2.0 * math.pi
+#: Veltkamp's splitting constant ``2**27 + 1``: splits a double into two 26-bit halves whose
+#: products are exact (Dekker).
+_SPLIT = 134217729.0
+#: The smallest normal double, 2**-1022.
+_DBL_MIN = float(np.finfo(np.float64).tiny)
+
+
+def _square(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(x * x, error)``: the rounded square and its exact rounding error (Dekker's product),
+    elementwise."""
+    t = x * _SPLIT
+    hi = t - (t - x)
+    lo = x - hi
+    sq = x * x
+    return sq, ((hi * hi - sq) + 2.0 * hi * lo) + lo * lo
+
+
+def hypots(x: np.ndarray | float, y: np.ndarray | float) -> np.ndarray:
+    """Elementwise ``math.hypot(x, y)``: the length ``sqrt(x^2 + y^2)`` of the vectors
+    ``(x, y)`` (broadcast), float64.
+
+    It computes what CPython's ``math.hypot`` computes (its ``vector_norm``: scaling by a power
+    of two, exact squares, compensated summation and a differential correction of the square
+    root), so the results equal it bit for bit on CPython 3.11 and later; ``np.hypot`` (the C
+    library's) differs from it in the last bit for about one pair in 160.
+    """
+    x, y = np.broadcast_arrays(np.abs(np.asarray(x, dtype=np.float64)),
+                               np.abs(np.asarray(y, dtype=np.float64)))
+    big = np.maximum(x, y)
+    with np.errstate(all="ignore"):  # zeros, infinities and NaN are set at the end
+        exponent = np.frexp(big)[1]
+        tiny = exponent < -1023
+        if tiny.any():  # subnormal: make it normal first, as CPython does
+            x, y = x / np.where(tiny, _DBL_MIN, 1.0), y / np.where(tiny, _DBL_MIN, 1.0)
+            exponent = np.frexp(np.maximum(x, y))[1]
+        scale = np.ldexp(1.0, -exponent)  # lossless scaling of the larger one into [0.5, 1)
+        x2, x2_err = _square(x * scale)
+        y2, y2_err = _square(y * scale)
+        # Compensated sum 1 + x^2 + y^2 (CPython's csum, frac1, frac2).
+        csum = 1.0 + x2
+        frac2 = (1.0 - csum) + x2
+        total = csum + y2
+        frac2 += (csum - total) + y2
+        csum = total
+        frac1 = x2_err + y2_err
+        h = np.sqrt((csum - 1.0) + (frac1 + frac2))
+        # Differential correction: h += (x^2 + y^2 - h^2) / (2 h).
+        h2, h2_err = _square(h)
+        total = csum - h2
+        frac1 -= h2_err
+        frac2 += (csum - total) - h2
+        h += ((total - 1.0) + (frac1 + frac2)) / (2.0 * h)
+        h /= scale
+        if tiny.any():
+            h *= np.where(tiny, _DBL_MIN, 1.0)
+    h = np.where(big == 0.0, 0.0, h)
+    return np.where(np.isinf(x) | np.isinf(y), np.inf, h)
+
+
+def wrap_angles(angle: np.ndarray | float) -> np.ndarray:
+    """Elementwise ``math.remainder(angle, 2 pi)``: ``angle`` [rad] wrapped into
+    ``[-pi, pi]``, float64, bit for bit.
+
+    ``angle - n 2 pi`` with ``n`` the quotient rounded half to even, as the IEEE remainder
+    takes it; exact for ``|angle| < 16 pi`` (``n 2 pi`` is then exact, and so is the
+    difference), beyond which the quotient may round differently.
+    """
+    angle = np.asarray(angle, dtype=np.float64)
+    return angle - _TWO_PI * np.round(angle / _TWO_PI)
 
 
 def drive_command(px: float, py: float, c: float, s: float, tx: float, ty: float,
@@ -44,6 +117,42 @@ def turn_command(c: float, s: float, target: float, max_angular_speed: float,
     error with ``gain`` [1/s]."""
     err = math.remainder(target - math.atan2(s, c), 2.0 * math.pi)
     return max(-1.0, min(1.0, gain * err / max_angular_speed))
+
+
+def drive_commands(px: np.ndarray, py: np.ndarray, c: np.ndarray, s: np.ndarray,
+                   tx: np.ndarray | float, ty: np.ndarray | float, max_speed: float,
+                   max_acceleration: float, speed_cap: np.ndarray | float | None = None
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`drive_command` on arrays (broadcast): the body-frame velocities ``(vx, vy)``
+    [m/s] that drive robots at ``(px, py)`` with headings ``(c, s)`` to ``(tx, ty)`` [m] and can
+    still stop there; ``speed_cap`` [m/s] per robot (or one for all, or None: ``max_speed``).
+
+    The same arithmetic in the same order as :func:`drive_command`, with :func:`hypots` for
+    ``math.hypot``: the results equal it bit for bit.
+    """
+    ex, ey = tx - np.asarray(px, dtype=np.float64), ty - np.asarray(py, dtype=np.float64)
+    dist = hypots(ex, ey)
+    stop = dist <= 1e-6
+    cap = max_speed if speed_cap is None else np.minimum(speed_cap, max_speed)
+    speed = np.minimum(cap, np.sqrt(2.0 * max_acceleration * dist))
+    dist = np.where(stop, 1.0, dist)
+    wx, wy = ex / dist * speed, ey / dist * speed
+    # Frame -> body frame: rotate by -heading.
+    return (np.where(stop, 0.0, c * wx + s * wy), np.where(stop, 0.0, -s * wx + c * wy))
+
+
+def turn_commands(c: np.ndarray, s: np.ndarray, target: np.ndarray | float,
+                  max_angular_speed: float, gain: float = TURN_GAIN) -> np.ndarray:
+    """:func:`turn_command` on arrays (broadcast): normalised turn rates in ``[-1, 1]`` that
+    turn robots with headings ``(c, s)`` towards the headings ``target`` [rad].
+
+    The same arithmetic as :func:`turn_command`, with ``np.arctan2`` for ``math.atan2``:
+    numpy's (vectorised) arctangent can differ from the C library's in the last bit, so a
+    result can differ from :func:`turn_command`'s by about 1e-16 (and, after rounding to
+    float32, in its last bit in very rare cases).
+    """
+    err = wrap_angles(target - np.arctan2(s, c))
+    return np.clip(gain * err / max_angular_speed, -1.0, 1.0)
 
 
 class ScriptedGoalkeeper:
@@ -88,6 +197,7 @@ class ScriptedGoalkeeper:
         self._idx = [index[n] for n in ("self.x", "self.y", "self.ax", "self.ay", "ball.dx",
                                         "ball.dy", "ball.vx", "ball.vy")]
         self.guard_x = -field.half_length + robot.radius + guard_offset
+        self.obs_size = len(names)
 
     @classmethod
     def for_env(cls, env, **kwargs) -> ScriptedGoalkeeper:
@@ -125,6 +235,21 @@ class ScriptedGoalkeeper:
             ty = by * min(frac, 1.0)
         return max(-half_goal, min(half_goal, ty))
 
+    def _guard_ys(self, bx: np.ndarray, by: np.ndarray, vx: np.ndarray, vy: np.ndarray
+                  ) -> np.ndarray:
+        """:meth:`_guard_y` for arrays of balls: the guard-line targets ``y`` [m, team
+        frame], the same arithmetic row by row."""
+        f = self.field
+        half_goal = 0.5 * f.goal_width + self.ball.radius
+        goal_x = -f.half_length
+        state = np.stack([bx, by, vx, vy], axis=-1)
+        t = self.model.time_to_line(state, self.guard_x)
+        hit = (vx < -0.05) & np.isfinite(t)
+        crossing = self.model.predict(state, np.where(hit, t, 0.0))[..., 1]
+        frac = (self.guard_x - goal_x) / np.maximum(bx - goal_x, 1e-3)
+        ty = np.where(hit, crossing, by * np.minimum(frac, 1.0))
+        return np.clip(ty, -half_goal, half_goal)
+
     def __call__(self, obs: np.ndarray) -> np.ndarray:
         r = self.robot
         px, py, c, s, bx, by, vx, vy, dx, dy = self._read(obs)
@@ -143,6 +268,40 @@ class ScriptedGoalkeeper:
         kick = 1.0 if in_front else 0.0
         return np.array([cmd_x / r.max_speed, cmd_y / r.max_speed, omega, kick, -1.0, -1.0],
                         dtype=np.float32)
+
+    def act_batch(self, obs: np.ndarray) -> np.ndarray:
+        """Actions ``(n, 6)`` float32 of ``n`` SSL keepers from their observations
+        ``(n, obs_dim)`` (float32 or float64): ``np.stack([self(o) for o in obs])``, computed
+        on whole arrays.
+
+        The same arithmetic in the same order as :meth:`__call__`; ``np.arctan2`` stands for
+        ``math.atan2`` (see :func:`turn_commands`), so a turn rate can differ in its last
+        float32 bit in very rare cases. Humanoid keepers are not batched (``ValueError``).
+        """
+        if self.humanoid:
+            raise ValueError("act_batch plays SSL keepers; call the policy on each "
+                             "observation for a humanoid keeper")
+        obs = np.asarray(obs)
+        if obs.ndim != 2 or obs.shape[1] != self.obs_size:
+            raise ValueError(f"obs must have shape (n, {self.obs_size}) (one observation per "
+                             f"row), got {obs.shape}")
+        r = self.robot
+        px, py, ax, ay, dx, dy, bvx, bvy = np.asarray(obs[:, self._idx], np.float64).T
+        c, s = ax, -ay  # cos and sin of the heading in the team frame
+        bx, by = px + c * dx - s * dy, py + s * dx + c * dy
+        vx, vy = c * bvx - s * bvy, s * bvx + c * bvy
+        ty = self._guard_ys(bx, by, vx, vy)
+        cmd_x, cmd_y = drive_commands(px, py, c, s, self.guard_x, ty, r.max_speed,
+                                      r.max_acceleration)
+        face = np.clip(np.arctan2(by - py, bx - px), -0.5 * math.pi, 0.5 * math.pi)
+        out = np.empty((len(obs), 6), dtype=np.float32)
+        out[:, 0] = cmd_x / r.max_speed
+        out[:, 1] = cmd_y / r.max_speed
+        out[:, 2] = turn_commands(c, s, face, r.max_angular_speed)
+        out[:, 3] = (0.0 < dx) & (dx < r.front_distance + 0.1) & (np.abs(dy)
+                                                                    < 0.5 * r.kicker_width)
+        out[:, 4:] = -1.0
+        return out
 
     def _humanoid(self, px: float, py: float, c: float, s: float, bx: float, by: float,
                   vx: float, vy: float, dx: float, dy: float, ty: float) -> np.ndarray:

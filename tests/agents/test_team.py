@@ -1,15 +1,25 @@
-"""The scripted team: it wins, plays both colours and every observation mode, keeps its roles."""
+"""The scripted team: it wins, plays both colours and every observation mode, keeps its roles;
+its batched actions are its actions."""
 
 from __future__ import annotations
 
 import math
+import sys
 
 import numpy as np
 import pytest
 
 import soccer_env
 from agents.team import ScriptedTeam
-from soccer_env.envs.keeper import ScriptedGoalkeeper
+from soccer_env.envs.keeper import (
+    ScriptedGoalkeeper,
+    drive_command,
+    drive_commands,
+    hypots,
+    turn_command,
+    turn_commands,
+    wrap_angles,
+)
 
 FIELD = soccer_env.presets.field("ssl-div-b")
 HX = FIELD.half_length
@@ -283,3 +293,258 @@ def test_bad_input_raises_clear_errors():
         team.act(obs["blue_0"][None])
     with pytest.raises(ValueError, match="team_size must be 1..11"):
         ScriptedTeam(env.field, env.ball_spec, env.robot_spec, env.builder.names, 0)
+
+
+# ----------------------------------------------------------------------------------------
+# Batched actions: act_batch is act, match by match
+# ----------------------------------------------------------------------------------------
+#
+# act_batch runs act_one's arithmetic in the same order on arrays, with math.hypot's and
+# math.remainder's bits (hypots, wrap_angles) and the C library's pow (np.float_power). Only
+# math.atan2 has no bit-exact numpy counterpart: np.arctan2 differs from it in the last bit of
+# a float64 heading for a few percent of inputs, which the float32 actions absorb unless the
+# float64 value sits within about 1e-16 of a float32 rounding boundary (or of a threshold):
+# about one action in 1e8. These tests see none, so they ask for exact equality.
+
+
+def match_observations(n, seed, steps=600):
+    """Observations ``(steps, n, obs_dim)`` of both teams of an n-a-side match played by two
+    scripted teams, with bursts of random actions (so that the ball is kicked, roles change and
+    robots stand anywhere), and the actions ``act`` gave: ``{colour: (obs, actions)}``."""
+    env = soccer_env.parallel_env(blue=n, yellow=n, match_duration=60.0)
+    obs, _ = env.reset(seed=seed)
+    teams = {c: ScriptedTeam.for_env(env, c) for c in ("blue", "yellow")}
+    rng = np.random.default_rng(seed)
+    seen = {c: ([], []) for c in teams}
+    for step in range(steps):
+        actions = {}
+        for c, team in teams.items():
+            rows = np.stack([obs[f"{c}_{i}"] for i in range(n)])
+            act = team.act(rows)
+            seen[c][0].append(rows)
+            seen[c][1].append(act)
+            actions.update({f"{c}_{i}": act[i] for i in range(n)})
+        if step % 60 >= 50:
+            actions = {a: rng.uniform(-1.0, 1.0, 6).astype(np.float32) for a in env.agents}
+        obs, *_ = env.step(actions)
+    return env, {c: (np.array(o), np.array(a)) for c, (o, a) in seen.items()}
+
+
+def world_rows(names, robots, headings, ball, ball_velocity, opponents, base):
+    """Each robot's observation of a staged world (team frame, [m], [rad], [m/s]): ``base``
+    (``(n, obs_dim)``) with the entries the team reads overwritten."""
+    ix = {name: i for i, name in enumerate(names)}
+    out = np.array(base, dtype=np.float64)
+    for i, (pos, h) in enumerate(zip(robots, headings)):
+        c, s = math.cos(h), math.sin(h)
+
+        def body(v, c=c, s=s):
+            return c * v[0] + s * v[1], -s * v[0] + c * v[1]
+
+        row = out[i]
+        row[ix["self.x"]], row[ix["self.y"]] = pos
+        row[ix["self.ax"]], row[ix["self.ay"]] = c, -s
+        row[ix["ball.dx"]], row[ix["ball.dy"]] = body(np.subtract(ball, pos))
+        row[ix["ball.vx"]], row[ix["ball.vy"]] = body(ball_velocity)
+        for j, k in enumerate(k for k in range(len(robots)) if k != i):
+            row[ix[f"mate{j}.dx"]], row[ix[f"mate{j}.dy"]] = body(np.subtract(robots[k], pos))
+        for j, opp in enumerate(opponents):
+            row[ix[f"opp{j}.dx"]], row[ix[f"opp{j}.dy"]] = body(np.subtract(opp, pos))
+    return out
+
+
+def random_observations(env, colour, rng, count):
+    """``(count, n, obs_dim)`` float32 observations within the observation space: a quarter
+    drawn uniformly from it (any heading vector, ball, robots), the rest staged worlds with
+    the ball in or at the edge of the own defense area, rolling slowly or fast, a robot just
+    behind or in front of it, opponents on the lines from the ball to the goal mouth or close
+    to the ball."""
+    t = ("blue", "yellow").index(colour)
+    names = env.builder.names_for(t)
+    n, m = (env.world.n_blue, env.world.n_yellow)[::1 if t == 0 else -1]
+    space = env.observation_space(f"{colour}_0")
+    lo, hi = space.low.astype(np.float64), space.high.astype(np.float64)
+    f = env.field
+    hx, hy = f.half_length, f.half_width
+    out = rng.uniform(lo, hi, (count, n, len(names)))
+    for g in range(count // 4, count):
+        if g % 3 == 0:
+            ball = (-hx + rng.uniform(0.0, f.defense_depth + 0.1),
+                    rng.uniform(-0.6, 0.6) * f.defense_width)
+        else:
+            ball = (rng.uniform(-hx, hx), rng.uniform(-hy, hy))
+        speed = (0.0, rng.uniform(0.0, 0.4), rng.uniform(0.0, 6.0))[g % 3]
+        a = rng.uniform(-math.pi, math.pi)
+        robots = np.column_stack([rng.uniform(-hx, hx, n), rng.uniform(-hy, hy, n)])
+        if n >= 2:
+            robots[0] = (-hx + 0.14, rng.uniform(-0.5, 0.5))
+        headings = rng.uniform(-math.pi, math.pi, n)
+        if g % 2:  # one robot just behind (or in front of) the ball, about facing the goal
+            k = rng.integers(n)
+            u = np.array([hx, rng.uniform(-0.4, 0.4)]) - ball
+            u /= np.linalg.norm(u)
+            robots[k] = ball - rng.uniform(-0.3, 0.3) * u + rng.normal(0.0, 0.03, 2)
+            headings[k] = math.atan2(u[1], u[0]) + rng.normal(0.0, 0.3)
+        opponents = np.column_stack([rng.uniform(-hx, hx, m), rng.uniform(-hy, hy, m)])
+        for j in range(m):
+            r = rng.random()
+            if r < 0.4:  # on the line from the ball to a point of the goal mouth
+                goal = np.array([hx, rng.uniform(-0.5, 0.5)])
+                opponents[j] = ball + rng.uniform(0.1, 1.0) * (goal - ball) \
+                    + rng.normal(0.0, 0.05, 2)
+            elif r < 0.6:
+                opponents[j] = ball + rng.normal(0.0, 0.4, 2)
+        out[g] = world_rows(names, robots, headings, ball,
+                            (speed * math.cos(a), speed * math.sin(a)), opponents, out[g])
+    return np.clip(out, lo, hi).astype(np.float32)
+
+
+def assert_batch_is_act(team, obs, expected=None):
+    """``team.act_batch(obs)`` (float32 and float64 input) is ``act`` match by match."""
+    if expected is None:
+        expected = np.stack([team.act(o) for o in obs])
+    batch = team.act_batch(obs)
+    assert batch.dtype == np.float32 and batch.shape == obs.shape[:2] + (6,)
+    np.testing.assert_array_equal(batch, expected)
+    np.testing.assert_array_equal(team.act_batch(obs.astype(np.float64)), expected)
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 6])
+def test_act_batch_is_act_on_match_observations(n):
+    """Both teams' observations of a played match (every role, kicks, restarts, random
+    bursts): act_batch over all steps at once gives act's actions, bit for bit; so does the
+    keeper's act_batch on robot 0's rows."""
+    env, seen = match_observations(n, seed=10 + n)
+    for colour, (obs, actions) in seen.items():
+        team = ScriptedTeam.for_env(env, colour)
+        assert_batch_is_act(team, obs, actions)
+        keeper = team.keeper
+        np.testing.assert_array_equal(keeper.act_batch(obs[:, 0]),
+                                      np.stack([keeper(o) for o in obs[:, 0]]))
+    # The ball was played: kicked or pushed faster than 1 m/s.
+    names = env.builder.names_for(0)
+    obs = seen["blue"][0]
+    speed = np.hypot(obs[..., names.index("ball.vx")], obs[..., names.index("ball.vy")])
+    assert speed.max() > 1.0
+
+
+@pytest.mark.parametrize("blue,yellow", [(1, 1), (2, 3), (3, 2), (6, 6)])
+def test_act_batch_is_act_on_random_and_staged_observations(blue, yellow):
+    """Observations drawn from the observation space and staged worlds (balls in the defense
+    area, blocked shooting lines, balls behind robots), for both colours."""
+    env = soccer_env.parallel_env(blue=blue, yellow=yellow)
+    rng = np.random.default_rng(100 * blue + yellow)
+    for colour in ("blue", "yellow"):
+        team = ScriptedTeam.for_env(env, colour)
+        assert_batch_is_act(team, random_observations(env, colour, rng, 600 // blue + 100))
+
+
+def test_act_batch_breaks_ties_like_act():
+    """Symmetric worlds, where act's strict comparisons and max() of tuples pick a side: two
+    field players equally placed for the ball, equally good aim points, both escape sides
+    equally good when a blocker stands right in front of the ball."""
+    env = soccer_env.parallel_env(blue=3, yellow=2)
+    names = env.builder.names_for(0)
+    team = ScriptedTeam.for_env(env, "blue")
+    base = np.zeros((3, len(names)))
+    worlds = [
+        # Mirrored field players behind the ball on its line to the goal.
+        ([(-4.3, 0.0), (-1.0, 0.5), (-1.0, -0.5)], [0.0, 0.0, 0.0], (0.0, 0.0),
+         [(3.0, 2.0), (3.0, -2.0)]),
+        # A field player straight behind the ball, nobody in the way.
+        ([(-4.3, 0.0), (-0.5, 0.0), (-2.0, 2.0)], [0.0, 0.0, 1.0], (0.0, 0.0),
+         [(3.0, 2.5), (3.0, -2.5)]),
+        # The same with a blocker straight ahead, close and far.
+        ([(-4.3, 0.0), (-0.5, 0.0), (-2.0, 2.0)], [0.0, 0.0, 1.0], (0.0, 0.0),
+         [(0.4, 0.0), (3.0, -2.5)]),
+        ([(-4.3, 0.0), (-0.5, 0.0), (-2.0, 2.0)], [0.0, 0.0, 1.0], (0.0, 0.0),
+         [(2.0, 0.0), (2.5, 0.0)]),
+        # Beyond the goal line, blocked on the way back: equal escape sides, decided by y.
+        ([(-4.3, 0.0), (4.78, 0.0), (-2.0, 2.0)], [0.0, 0.0, 1.0], (4.7, 0.0),
+         [(4.65, 0.0), (3.0, -2.5)]),
+        # Two defenders lined up behind the attacker.
+        ([(-4.3, 0.0), (1.0, 0.0), (-2.0, 0.0)], [0.0, 0.5, -0.5], (0.5, 0.0),
+         [(3.0, 0.0), (2.0, 1.0)]),
+    ]
+    obs = np.stack([world_rows(names, r, h, b, (0.0, 0.0), o, base)
+                    for r, h, b, o in worlds]).astype(np.float32)
+    assert_batch_is_act(team, obs)
+
+
+def test_act_batch_rows_do_not_depend_on_the_batch():
+    """A match's actions are the same alone (M = 1), in any slice of the batch, and for no
+    match at all (M = 0) the answer is empty."""
+    env = soccer_env.parallel_env(blue=3, yellow=3)
+    team = ScriptedTeam.for_env(env, "yellow")
+    obs = random_observations(env, "yellow", np.random.default_rng(7), 40)
+    whole = team.act_batch(obs)
+    for i in (0, 17, 39):
+        np.testing.assert_array_equal(team.act_batch(obs[i:i + 1])[0], whole[i])
+    np.testing.assert_array_equal(np.concatenate([team.act_batch(obs[a:b]) for a, b in
+                                                  ((0, 5), (5, 23), (23, 40))]), whole)
+    np.testing.assert_array_equal(team.act_batch(obs[::-1]), whole[::-1])
+    empty = team.act_batch(obs[:0])
+    assert empty.shape == (0, 3, 6) and empty.dtype == np.float32
+
+
+def test_act_batch_rejects_bad_shapes():
+    env = soccer_env.parallel_env(blue=2, yellow=1)
+    team = ScriptedTeam.for_env(env, "blue")
+    obs, _ = env.reset(seed=0)
+    rows = np.stack([obs["blue_0"], obs["blue_1"]])
+    assert rows.shape == (2, 35)
+    for bad in (rows, rows[None, :1], rows[None, :, :-1], rows[None, None]):
+        with pytest.raises(ValueError, match=r"obs must have shape \(M, 2, 35\) \(M matches"):
+            team.act_batch(bad)
+    with pytest.raises(ValueError, match=r"obs must have shape \(n, 35\)"):
+        team.keeper.act_batch(rows[0])
+    humanoid = ScriptedGoalkeeper(env.field, env.ball_spec, soccer_env.presets.robot("humanoid"),
+                                  env.builder.names_for(0))
+    with pytest.raises(ValueError, match="act_batch plays SSL keepers"):
+        humanoid.act_batch(rows)
+
+
+@pytest.mark.skipif(sys.version_info < (3, 11), reason="math.hypot's algorithm since 3.11")
+def test_hypots_and_wrap_angles_are_math_hypot_and_remainder_bit_for_bit():
+    rng = np.random.default_rng(3)
+    scale = 10.0 ** rng.uniform(-6.0, 2.0, 200_000)
+    x = rng.normal(size=scale.size) * scale
+    y = rng.normal(size=scale.size) * scale * 10.0 ** rng.uniform(-8.0, 0.0, scale.size)
+    special = [0.0, -0.0, 3.0, 1e-310, 5e-324, 1e300, math.inf, -math.inf]
+    x = np.concatenate([x, np.repeat(special, len(special))])
+    y = np.concatenate([y, np.tile(special, len(special))])
+    np.testing.assert_array_equal(hypots(x, y), [math.hypot(a, b) for a, b in zip(x, y)])
+    np.testing.assert_array_equal(hypots(y, x), [math.hypot(b, a) for a, b in zip(x, y)])
+    # Angles up to a few turns, and every double next to the half-turn ties.
+    angles = [rng.uniform(-4.0 * math.pi, 4.0 * math.pi, 100_000)]
+    for tie in (math.pi, 3.0 * math.pi, 2.0 * math.pi):
+        for sign in (1.0, -1.0):
+            a = np.full(41, sign * tie)
+            steps = np.arange(-20, 21)
+            angles.append(np.array([math.nextafter(v, math.inf) if k > 0 else v
+                                    for v, k in zip(a, steps)]))
+            angles.append(a + steps * math.ulp(tie))
+    angles = np.concatenate(angles)
+    np.testing.assert_array_equal(wrap_angles(angles),
+                                  [math.remainder(a, 2.0 * math.pi) for a in angles])
+
+
+def test_drive_and_turn_commands_are_the_scalar_commands():
+    """drive_commands is drive_command bit for bit (with and without a speed cap, at the
+    target); turn_commands is turn_command up to np.arctan2's last bit."""
+    rng = np.random.default_rng(4)
+    n = 2000
+    px, py, tx, ty = rng.uniform(-4.0, 4.0, (4, n))
+    tx[:10], ty[:10] = px[:10], py[:10]  # already there
+    h = rng.uniform(-math.pi, math.pi, n)
+    c, s = np.cos(h), np.sin(h)
+    cap = np.where(rng.random(n) < 0.5, 2.0, 3.0)
+    for caps in (None, cap):
+        vx, vy = drive_commands(px, py, c, s, tx, ty, 3.0, 3.0, caps)
+        expected = [drive_command(*v, 3.0, 3.0, None if caps is None else k)
+                    for *v, k in zip(px, py, c, s, tx, ty, cap)]
+        np.testing.assert_array_equal(np.column_stack([vx, vy]), expected)
+    target = rng.uniform(-math.pi, math.pi, n)
+    np.testing.assert_allclose(turn_commands(c, s, target, 10.0),
+                               [turn_command(*v, 10.0) for v in zip(c, s, target)],
+                               rtol=0.0, atol=1e-15)
