@@ -119,6 +119,14 @@ class BatchedVecEnv(VecEnv):
         return [False for _ in self._get_indices(indices)]
 
 
+def _rows(agents: list[str], some: list[str]) -> slice | list[int]:
+    """The rows of ``some`` of ``agents``: a slice if they are contiguous and in order."""
+    rows = [agents.index(a) for a in some]
+    if rows and rows == list(range(rows[0], rows[0] + len(rows))):
+        return slice(rows[0], rows[0] + len(rows))
+    return rows
+
+
 class BatchedMatchVecEnv(MatchVecEnv):
     """:class:`~agents.multiagent.MatchVecEnv` with its matches stepped as one batch
     (:class:`~soccer_env.envs.batched_match.MatchBatch`): the same batch layout (entry
@@ -133,8 +141,8 @@ class BatchedMatchVecEnv(MatchVecEnv):
 
     Opponents run over the whole batch at once: a network (a numpy copy of a model) on every
     opponent row in one call, the scripted team through
-    :meth:`~agents.team.ScriptedTeam.act_batch`; any other callable is called once per
-    match, as :class:`MatchVecEnv` calls it.
+    :meth:`~agents.team.ScriptedTeam.act_batch` (with ``exact=False``); any other callable is
+    called once per match, as :class:`MatchVecEnv` calls it.
 
     The matches are those of :class:`MatchVecEnv` with the same seeds up to the rounding of
     the shared physics space and of the observations' arithmetic (float64 here, single
@@ -149,6 +157,10 @@ class BatchedMatchVecEnv(MatchVecEnv):
 
     #: Attributes that differ between matches, read from the batch's arrays.
     PER_MATCH = ("score", "restart_team", "cycles")
+    # The scripted opponent with numpy's hypot (about 40 % faster; its float32 actions almost
+    # always equal the exact ones, and the batch is equal to separate matches only up to
+    # rounding anyway).
+    _exact_scripted = False
 
     def _make_matches(self) -> Any:
         self.batch = MatchBatch(self.n_matches, **self.env_kwargs)
@@ -180,16 +192,15 @@ class BatchedMatchVecEnv(MatchVecEnv):
         self._opp_obs = obs[:, self._opp_rows]
 
     @functools.cached_property
-    def _learner_rows(self) -> list[int]:
-        """The learners' rows in a match's robot order."""
-        agents = self.batch.possible_agents
-        return [agents.index(a) for a in self.learner_agents]
+    def _learner_rows(self) -> slice | list[int]:
+        """The learners' rows in a match's robot order (a slice when they are contiguous,
+        which numpy indexes without copying the index)."""
+        return _rows(self.batch.possible_agents, self.learner_agents)
 
     @functools.cached_property
-    def _opp_rows(self) -> list[int]:
+    def _opp_rows(self) -> slice | list[int]:
         """The opponents' rows in a match's robot order."""
-        agents = self.batch.possible_agents
-        return [agents.index(a) for a in self.opponent_agents]
+        return _rows(self.batch.possible_agents, self.opponent_agents)
 
     def _opponent_batch(self) -> np.ndarray:
         """Every match's opponent actions ``(M, n_opp, 6)`` from their last observations."""
@@ -218,6 +229,12 @@ class BatchedMatchVecEnv(MatchVecEnv):
 
     def step_wait(self) -> VecEnvStepReturn:
         """Step every match once; finished matches are reset (see :class:`MatchVecEnv`)."""
+        obs, rewards, dones, compact = self._step_arrays()
+        return obs, rewards, dones, self.expand_infos(compact, self.agents_per_match)
+
+    def _step_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple]:
+        """:meth:`step_wait` with the infos in the compact form :meth:`expand_infos` reads
+        (what a worker process sends: a few lists instead of a dict per entry)."""
         if not self._started:
             raise RuntimeError("call reset() before stepping a MatchVecEnv")
         if self._actions is None:
@@ -234,17 +251,10 @@ class BatchedMatchVecEnv(MatchVecEnv):
         ended = term | trunc
         dones = np.repeat(ended, L)
         self._split(result.obs)
-        obs_out = self._learner_obs
         ep_returns = self._ep_returns
         ep_returns += rewards
-        events, scores = result.events.tolist(), result.scores.tolist()
-        truncs = (trunc & ~term).tolist()
-        infos: list[dict[str, Any]] = []
-        for k in range(n):
-            b, y = scores[k]
-            score, event, tl = {"blue": b, "yellow": y}, events[k], truncs[k]
-            for _ in range(L):
-                infos.append({"score": score, "event": event, "TimeLimit.truncated": tl})
+        scores = result.scores.tolist()
+        finished: dict[int, dict[str, Any]] = {}
         if ended.any():
             elapsed = round(time.time() - self._t_start, 6)
             own = [TEAMS.index(t) for t in self._teams_of_entries]
@@ -255,14 +265,31 @@ class BatchedMatchVecEnv(MatchVecEnv):
                 for j in range(L):
                     i = base + j
                     gf, ga = score[own[j]], score[1 - own[j]]
-                    infos[i].update({
+                    finished[i] = {
                         "terminal_observation": last[j].copy(),
                         "episode": {"r": float(ep_returns[i]), "l": int(result.lengths[k]),
                                     "t": elapsed},
-                        "is_success": gf > ga, "goals_for": gf, "goals_against": ga})
+                        "is_success": gf > ga, "goals_for": gf, "goals_against": ga}
                 ep_returns[base:base + L] = 0.0
                 self._draw_opponent(k)
-        return obs_out.copy(), rewards, dones, infos
+        compact = (result.events.tolist(), scores, (trunc & ~term).tolist(), finished)
+        return self._learner_obs.copy(), rewards, dones, compact
+
+    @staticmethod
+    def expand_infos(compact: tuple, agents_per_match: int) -> list[dict[str, Any]]:
+        """One info dict per entry (:class:`MatchVecEnv`'s) from :meth:`_step_arrays`'s
+        compact infos: each match's event, score and truncation flag, and the finished
+        entries' extras by entry index."""
+        events, scores, truncs, finished = compact
+        infos: list[dict[str, Any]] = []
+        append = infos.append
+        for event, (b, y), tl in zip(events, scores, truncs):
+            score = {"blue": b, "yellow": y}
+            for _ in range(agents_per_match):
+                append({"score": score, "event": event, "TimeLimit.truncated": tl})
+        for i, extra in finished.items():
+            infos[i].update(extra)
+        return infos
 
     def close(self) -> None:
         self.batch.close()

@@ -86,10 +86,11 @@ def _match_worker(remote: Any, parent: Any, spec: CloudpickleWrapper, buffer: An
         if cpu is not None:
             os.sched_setaffinity(0, {cpu})
         kwargs = dict(spec.var)
-        if kwargs.pop("batched"):
+        batched = kwargs.pop("batched")
+        if batched:
             from agents.batched import BatchedMatchVecEnv
 
-            venv: MatchVecEnv = BatchedMatchVecEnv(**kwargs)
+            venv: Any = BatchedMatchVecEnv(**kwargs)
         else:
             venv = MatchVecEnv(**kwargs)
         views = layout.views(buffer, rows)
@@ -103,7 +104,8 @@ def _match_worker(remote: Any, parent: Any, spec: CloudpickleWrapper, buffer: An
                 return
             if cmd == "step":
                 venv.step_async(actions)
-                o, r, d, infos = venv.step_wait()
+                # A batch sends its infos compactly; the parent expands them.
+                o, r, d, infos = venv._step_arrays() if batched else venv.step_wait()
                 obs[:] = o
                 rewards[:] = r
                 dones[:] = d
@@ -287,7 +289,14 @@ class MatchWorkerVecEnv(WorkerVecEnv):
     def step_wait(self) -> VecEnvStepReturn:
         if not self.waiting:
             raise RuntimeError("call step_async(actions) before step_wait()")
-        infos = [x for w in range(len(self.remotes)) for x in self._recv(w)]
+        if self.batched:
+            from agents.batched import BatchedMatchVecEnv
+
+            infos = []
+            for w in range(len(self.remotes)):  # finished entries by their worker's index
+                infos += BatchedMatchVecEnv.expand_infos(self._recv(w), self.agents_per_match)
+        else:
+            infos = [x for w in range(len(self.remotes)) for x in self._recv(w)]
         self.waiting = False
         shared = self._shared
         return (shared["obs"].copy(), shared["rewards"].copy(),

@@ -217,6 +217,10 @@ class MatchVecEnv(VecEnv):
         self._t_start = time.time()
         self._started = False
 
+    #: Whether the scripted opponent's batched actions equal its per-match ones bit for bit
+    #: (:class:`~agents.team.ScriptedTeam`'s ``exact``).
+    _exact_scripted = True
+
     def _make_matches(self) -> Any:
         """Build the matches (:attr:`matches`); return one of them, whose spaces, specs and
         observation layout every match shares."""
@@ -234,8 +238,9 @@ class MatchVecEnv(VecEnv):
             return opponent
         if isinstance(opponent, str):
             if opponent == "scripted":
-                team = ScriptedTeam.for_env(self._probe, self.opponent_team)
-                return _Opponent(team.act, False, "scripted", getattr(team, "act_batch", None))
+                team = ScriptedTeam.for_env(self._probe, self.opponent_team,
+                                            exact=self._exact_scripted)
+                return _Opponent(team.act, False, "scripted", team.act_batch)
             if opponent == "idle":
                 return _Opponent(IdlePolicy(6), True, "idle")
             if opponent.endswith(".npz"):  # a numpy policy file: arrays only, no pickle
@@ -253,8 +258,7 @@ class MatchVecEnv(VecEnv):
             self._check_policy_size(policy)
             return _Opponent(policy, True, f"{type(opponent).__name__} copy")
         if isinstance(opponent, ScriptedTeam):
-            return _Opponent(opponent.act, False, "ScriptedTeam",
-                             getattr(opponent, "act_batch", None))
+            return _Opponent(opponent.act, False, "ScriptedTeam", opponent.act_batch)
         if isinstance(opponent, NumpyPolicy):
             if opponent.stateful:
                 raise ValueError(_NO_MEMORY)
@@ -330,6 +334,11 @@ class MatchVecEnv(VecEnv):
                 acts = self._checked(opp, rows)
                 for i, k in enumerate(ks):
                     out[k] = acts[i * n_opp:(i + 1) * n_opp]
+            elif opp.batch is not None and len(ks) > 1:  # the scripted team, all at once
+                acts = np.asarray(opp.batch(obs if len(ks) == self.n_matches else obs[ks]),
+                                  dtype=np.float32)
+                for i, k in enumerate(ks):
+                    out[k] = acts[i]
             else:
                 for k in ks:
                     out[k] = self._checked(opp, obs[k])

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
@@ -121,17 +121,19 @@ def turn_command(c: float, s: float, target: float, max_angular_speed: float,
 
 def drive_commands(px: np.ndarray, py: np.ndarray, c: np.ndarray, s: np.ndarray,
                    tx: np.ndarray | float, ty: np.ndarray | float, max_speed: float,
-                   max_acceleration: float, speed_cap: np.ndarray | float | None = None
+                   max_acceleration: float, speed_cap: np.ndarray | float | None = None,
+                   hypot: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
                    ) -> tuple[np.ndarray, np.ndarray]:
     """:func:`drive_command` on arrays (broadcast): the body-frame velocities ``(vx, vy)``
     [m/s] that drive robots at ``(px, py)`` with headings ``(c, s)`` to ``(tx, ty)`` [m] and can
     still stop there; ``speed_cap`` [m/s] per robot (or one for all, or None: ``max_speed``).
 
     The same arithmetic in the same order as :func:`drive_command`, with :func:`hypots` for
-    ``math.hypot``: the results equal it bit for bit.
+    ``math.hypot``: the results equal it bit for bit (``hypot``: another length function,
+    e.g. ``np.hypot``, faster, whose last bit differs now and then).
     """
     ex, ey = tx - np.asarray(px, dtype=np.float64), ty - np.asarray(py, dtype=np.float64)
-    dist = hypots(ex, ey)
+    dist = (hypots if hypot is None else hypot)(ex, ey)
     stop = dist <= 1e-6
     cap = max_speed if speed_cap is None else np.minimum(speed_cap, max_speed)
     speed = np.minimum(cap, np.sqrt(2.0 * max_acceleration * dist))
@@ -198,6 +200,9 @@ class ScriptedGoalkeeper:
                                         "ball.dy", "ball.vx", "ball.vy")]
         self.guard_x = -field.half_length + robot.radius + guard_offset
         self.obs_size = len(names)
+        #: The length function of :meth:`act_batch` (None: :func:`hypots`, ``math.hypot``'s
+        #: bits).
+        self.hypot: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
 
     @classmethod
     def for_env(cls, env, **kwargs) -> ScriptedGoalkeeper:
@@ -292,7 +297,7 @@ class ScriptedGoalkeeper:
         vx, vy = c * bvx - s * bvy, s * bvx + c * bvy
         ty = self._guard_ys(bx, by, vx, vy)
         cmd_x, cmd_y = drive_commands(px, py, c, s, self.guard_x, ty, r.max_speed,
-                                      r.max_acceleration)
+                                      r.max_acceleration, hypot=self.hypot)
         face = np.clip(np.arctan2(by - py, bx - px), -0.5 * math.pi, 0.5 * math.pi)
         out = np.empty((len(obs), 6), dtype=np.float32)
         out[:, 0] = cmd_x / r.max_speed

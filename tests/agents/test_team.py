@@ -548,3 +548,20 @@ def test_drive_and_turn_commands_are_the_scalar_commands():
     np.testing.assert_allclose(turn_commands(c, s, target, 10.0),
                                [turn_command(*v, 10.0) for v in zip(c, s, target)],
                                rtol=0.0, atol=1e-15)
+
+
+def test_inexact_act_batch_uses_numpys_hypot_and_agrees_to_float32():
+    """``exact=False``: act_batch with np.hypot, the same actions as the exact team on real
+    match observations up to the last float32 bit in rare rows."""
+    env = soccer_env.parallel_env(blue=2, yellow=2)
+    exact = ScriptedTeam.for_env(env, "yellow")
+    fast = ScriptedTeam.for_env(env, "yellow", exact=False)
+    assert fast._hypot is np.hypot and fast.keeper.hypot is np.hypot
+    rng = np.random.default_rng(5)
+    obs, _ = env.reset(seed=5)
+    rows = []
+    for _ in range(300):
+        rows.append(np.stack([obs["yellow_0"], obs["yellow_1"]]))
+        obs, *_ = env.step({a: rng.uniform(-1, 1, 6) for a in env.possible_agents})
+    batch = np.stack(rows)
+    np.testing.assert_allclose(fast.act_batch(batch), exact.act_batch(batch), atol=1e-6)
