@@ -99,9 +99,9 @@ class WorldBatch:
             :class:`~soccer_env.sim.world.World` takes them (SSL robots only).
         shard_size: worlds per space (1..:data:`MAX_WORLDS`; default
             :data:`SHARD_SIZE`). Each space runs all its substeps before the next one
-            starts, so that its bodies, shapes and contacts stay in the processor's caches:
-            with 2 vs 2 worlds, one space of 512 stepped at half the rate per world of one
-            space of 128 (``benchmarks/batched_physics.py``).
+            starts, so that its bodies, shapes and contacts stay in the processor's caches
+            (``benchmarks/batched_physics.py``: a space of 1,024 worlds costs twice as much
+            per world as one of 128).
 
     Attributes:
         worlds: the worlds, each usable as a :class:`World` for reading (``snapshot``,
