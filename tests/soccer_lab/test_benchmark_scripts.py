@@ -148,3 +148,21 @@ def test_batched_keeper_benchmark_reports_rates_and_memory(tmp_path, capsys):
     assert figures["single"]["median"] > 0 and figures["batch 2"]["ratio_to_single"] > 0
     assert np.isfinite(figures["bytes_per_env"])  # (a few worlds may fit in freed memory)
     assert "bytes per environment" in capsys.readouterr().out
+
+
+def test_batched_match_benchmark_reports_the_table_and_memory(tmp_path, capsys):
+    """One round of the batched-match benchmark at tiny sizes (no VMAS): both process counts
+    for every batch size, the unbatched rate and the memory per match."""
+    pytest.importorskip("stable_baselines3")
+    bench = _script("batched_match")
+    out = tmp_path / "figures.json"
+    assert bench.main(["--batches", "1", "3", "--rounds", "1", "--target", "40",
+                       "--memory", "3", "--json", str(out)]) == 0
+    import json
+
+    figures = json.loads(out.read_text())
+    assert set(figures["rates"]) == {"ours:1:1", "ours:1:3", "ours:2:1", "ours:2:3"}
+    assert all(v[0] > 0 for v in figures["rates"].values()) and figures["unbatched_1"][0] > 0
+    assert np.isfinite(figures["bytes_per_match"])
+    text = capsys.readouterr().out
+    assert "ours 2 proc" in text and "bytes per match" in text
