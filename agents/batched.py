@@ -28,27 +28,46 @@ from stable_baselines3.common.vec_env.base_vec_env import (
 
 from agents.multiagent import MatchVecEnv
 from agents.team import TEAMS
-from soccer_env.envs.batched import GoalkeeperVectorEnv
+from soccer_env.envs.batched import (
+    DEFAULT_MAX_STEPS,
+    SHOOTOUT_MAX_STEPS,
+    GoalkeeperVectorEnv,
+    ShootoutVectorEnv,
+)
 from soccer_env.envs.batched_match import MatchBatch
 
-__all__ = ["BatchedVecEnv", "BatchedMatchVecEnv"]
+__all__ = ["BatchedVecEnv", "BatchedMatchVecEnv", "BATCHED_TASKS"]
+
+
+#: The batched single-agent tasks by id.
+BATCHED_TASKS = {"soccer_env/Goalkeeper-v0": GoalkeeperVectorEnv,
+                 "soccer_env/Shootout-v0": ShootoutVectorEnv}
 
 
 class BatchedVecEnv(VecEnv):
-    """``num_envs`` batched Goalkeeper-v0 episodes as a stable-baselines3 ``VecEnv``.
+    """``num_envs`` batched Goalkeeper-v0 (or Shootout-v0) episodes as a stable-baselines3
+    ``VecEnv``.
 
     Args:
         num_envs: environments.
-        env_kwargs: Goalkeeper-v0's keyword arguments (what the batch supports: SSL keepers,
-            truth observations).
-        max_episode_steps: the time limit (Goalkeeper-v0's 480 by default).
+        env_kwargs: the task's keyword arguments (what the batch supports: SSL robots, truth
+            observations).
+        max_episode_steps: the time limit (None: the registration's, 480 steps for the
+            Goalkeeper, 600 for the Shootout).
+        env_id: ``"soccer_env/Goalkeeper-v0"`` or ``"soccer_env/Shootout-v0"``.
     """
 
     def __init__(self, num_envs: int = 16, env_kwargs: dict[str, Any] | None = None,
-                 max_episode_steps: int | None = 480) -> None:
-        self.venv = GoalkeeperVectorEnv(num_envs, max_episode_steps=max_episode_steps,
-                                        autoreset_mode=AutoresetMode.SAME_STEP,
-                                        **(env_kwargs or {}))
+                 max_episode_steps: int | None = None,
+                 env_id: str = "soccer_env/Goalkeeper-v0") -> None:
+        if env_id not in BATCHED_TASKS:
+            raise ValueError(f"env_id must be one of {list(BATCHED_TASKS)}, got {env_id!r}")
+        cls = BATCHED_TASKS[env_id]
+        if max_episode_steps is None:
+            max_episode_steps = (DEFAULT_MAX_STEPS if cls is GoalkeeperVectorEnv
+                                 else SHOOTOUT_MAX_STEPS)
+        self.venv = cls(num_envs, max_episode_steps=max_episode_steps,
+                        autoreset_mode=AutoresetMode.SAME_STEP, **(env_kwargs or {}))
         super().__init__(num_envs, self.venv.single_observation_space,
                          self.venv.single_action_space)
         self._seed: int | None = None

@@ -1,41 +1,45 @@
-"""Batched Goalkeeper-v0: :class:`GoalkeeperVectorEnv`, ``num_envs`` keeper episodes stepped as
-one batch in one process.
+"""Batched single-agent tasks: :class:`GoalkeeperVectorEnv` and :class:`ShootoutVectorEnv`,
+``num_envs`` episodes stepped as one batch in one process (:class:`BatchedTask` holds what
+they share).
 
-``gymnasium.make_vec("soccer_env/Goalkeeper-v0", num_envs=N)`` returns it (the task's
-``vector_entry_point``, :func:`make_vector`; for arguments the batch does not run yet, a
-``SyncVectorEnv`` of single environments, with a warning). The physics is a
-:class:`~soccer_env.sim.batch.WorldBatch` (every world in one pymunk space, one Chipmunk step
-per substep), and everything else runs in numpy over the batch: actions to commands, the
-invisible attacker's shots, the outcome (goal, out, stopped, cleared), rewards and shaping,
-observations (:meth:`~soccer_env.observations.ObservationBuilder.build_batch`) and the time
-limit. What is left per environment is what happens rarely: a shot fired, a ball leaving the
-field, an episode starting.
+``gymnasium.make_vec("soccer_env/Goalkeeper-v0", num_envs=N)`` and
+``gymnasium.make_vec("soccer_env/Shootout-v0", num_envs=N)`` return them (the tasks'
+``vector_entry_point``, :func:`make_vector` and :func:`make_shootout_vector`; for arguments the
+batch does not run yet, a ``SyncVectorEnv`` of single environments, with a warning). The
+physics is a :class:`~soccer_env.sim.batch.WorldBatch` (the worlds in a few shared pymunk
+spaces, one Chipmunk step per space and substep), and everything else runs in numpy over the
+batch: actions to commands, the Goalkeeper's invisible attacker and the Shootout's scripted
+keeper, the outcome, rewards and shaping, observations
+(:meth:`~soccer_env.observations.ObservationBuilder.build_batch`) and the time limit. What is
+left per environment is what happens rarely: a shot fired, a ball leaving the field, an
+episode starting.
 
-Episodes are those of ``gymnasium.make("soccer_env/Goalkeeper-v0", ...)``: environment ``k``
-reset with seed ``s + k`` draws the same keeper position and shot, and steps through the same
-states up to the rounding of the shared space (each world's coordinates are offset by its
-patch of the space: differences of about 1e-12 m, which contacts can amplify; tested). Finished
-environments reset at the next step (Gymnasium's ``NEXT_STEP`` autoreset: that step's action
-is ignored and it returns the new episode's first observation with reward 0), drawing their
-next episode from their own generator as a single environment's ``reset()`` does.
+Episodes are those of ``gymnasium.make(id, ...)``: environment ``k`` reset with seed ``s + k``
+draws the same start, and steps through the same states up to the rounding of the shared space
+(each world's coordinates are offset by its patch of the space: differences of about 1e-12 m,
+which contacts can amplify; tested). Finished environments reset at the next step
+(Gymnasium's ``NEXT_STEP`` autoreset: that step's action is ignored and it returns the new
+episode's first observation with reward 0), drawing their next episode from their own
+generator as a single environment's ``reset()`` does.
 
-Scope: SSL keepers with ``obs_mode="truth"`` (raw and perceived observations need the
-estimators batched across environments; humanoid keepers their walk engine), without
-actuation latency or command loss (a ``perception`` preset's latency applies in truth mode
-too); no rendering.
-Other arguments are :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`'s.
+Scope: SSL robots with ``obs_mode="truth"`` (raw and perceived observations need the
+estimators batched across environments; humanoids their walk engine), without actuation
+latency or command loss (a ``perception`` preset's latency applies in truth mode too); no
+rendering. Other arguments are the tasks'.
 
 With ``autoreset_mode=AutoresetMode.SAME_STEP`` (``"SameStep"``) finished environments reset
 within the step that ends them, as stable-baselines3 expects
 (:class:`agents.batched.BatchedVecEnv` adapts it).
 
-Infos: at an episode's end, ``info["outcome"]`` (``"goal"``, ``"out"``, ``"stopped"``,
-``"cleared"``; ``"truncated"`` at the time limit) and ``info["is_success"]``, with Gymnasium's
+Infos: at an episode's end, ``info["outcome"]`` (the task's outcome: the Goalkeeper's
+``"goal"``, ``"out"``, ``"stopped"``, ``"cleared"``, the Shootout's ``"goal"``, ``"saved"``,
+``"out"``; ``"truncated"`` at the time limit) and ``info["is_success"]``, with Gymnasium's
 ``_outcome`` / ``_is_success`` masks; ``info["episode_steps"]`` every step.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import gymnasium as gym
@@ -52,15 +56,20 @@ from soccer_env.envs.goalkeeper import (
     fire_shot,
     place_episode,
 )
+from soccer_env.envs.shootout import CLEAR_SPEED as SHOOTOUT_CLEAR_SPEED
+from soccer_env.envs.shootout import STOP_SPEED as SHOOTOUT_STOP_SPEED
+from soccer_env.envs.shootout import ShootoutEnv
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
 from soccer_env.sim.commands import validate_actions
 from soccer_env.sim.referee import classify_exit
 from soccer_env.validation import check_int, check_seed
 
-__all__ = ["GoalkeeperVectorEnv", "NotBatchable", "make_vector"]
+__all__ = ["BatchedTask", "GoalkeeperVectorEnv", "ShootoutVectorEnv", "NotBatchable",
+           "make_vector", "make_shootout_vector"]
 
-#: Goalkeeper-v0's time limit (its registration's ``max_episode_steps``).
+#: Goalkeeper-v0's and Shootout-v0's time limits (their registrations' ``max_episode_steps``).
 DEFAULT_MAX_STEPS = 480
+SHOOTOUT_MAX_STEPS = 600
 
 
 class NotBatchable(ValueError):
@@ -71,23 +80,34 @@ def make_vector(num_envs: int = 16, max_episode_steps: int | None = DEFAULT_MAX_
                 **kwargs: Any) -> VectorEnv:
     """Goalkeeper-v0's ``vector_entry_point``: a :class:`GoalkeeperVectorEnv`, or, for
     arguments the batch does not run yet (perceived or raw observations, humanoid keepers,
-    rendering), Gymnasium's ``SyncVectorEnv`` of single environments with a warning saying
-    why, so that ``gymnasium.make_vec(id, num_envs=N)`` works for every configuration."""
+    rendering, actuation latency), Gymnasium's ``SyncVectorEnv`` of single environments with a
+    warning saying why, so that ``gymnasium.make_vec(id, num_envs=N)`` works for every
+    configuration."""
+    return _vector_or_sync(GoalkeeperVectorEnv, "soccer_env/Goalkeeper-v0", num_envs,
+                           max_episode_steps, kwargs)
+
+
+def _vector_or_sync(cls: type, env_id: str, num_envs: int, max_episode_steps: int | None,
+                    kwargs: dict[str, Any]) -> VectorEnv:
+    """``cls(num_envs, ...)``, or a ``SyncVectorEnv`` of ``gymnasium.make(env_id, ...)`` with a
+    warning when the batch refuses the arguments (:class:`NotBatchable`)."""
     try:
-        return GoalkeeperVectorEnv(num_envs, max_episode_steps=max_episode_steps, **kwargs)
+        return cls(num_envs, max_episode_steps=max_episode_steps, **kwargs)
     except NotBatchable as why:
-        gym.logger.warn(f"Goalkeeper-v0 runs {num_envs} single environments in a "
+        gym.logger.warn(f"{env_id.split('/')[-1]} runs {num_envs} single environments in a "
                         f"SyncVectorEnv: {why}")
 
     def make() -> gym.Env:
-        return gym.make("soccer_env/Goalkeeper-v0", max_episode_steps=max_episode_steps,
-                        **kwargs)
+        return gym.make(env_id, max_episode_steps=max_episode_steps, **kwargs)
 
     return gym.vector.SyncVectorEnv([make for _ in range(num_envs)])
 
 
-class GoalkeeperVectorEnv(VectorEnv):
-    """``num_envs`` Goalkeeper-v0 episodes stepped as one batch (see the module docstring).
+class BatchedTask(VectorEnv):
+    """``num_envs`` episodes of a single-agent task stepped as one batch: what the batched
+    tasks share (checks, seeding, the step's skeleton, autoreset, infos). A task implements
+    :meth:`_setup`, :meth:`_place`, :meth:`_begin`, :meth:`_commands`, :meth:`_judge` and
+    :meth:`_success`.
 
     Args:
         num_envs: environments (1..65536).
@@ -97,11 +117,14 @@ class GoalkeeperVectorEnv(VectorEnv):
             the step that ends its episode, which returns the new episode's first observation,
             the last one in ``info["final_obs"]`` and the episode's infos in
             ``info["final_info"]``; what stable-baselines3 expects).
-        **kwargs: :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`'s arguments (SSL
-            robots, ``obs_mode="truth"``, no ``render_mode``).
+        **kwargs: the task's arguments (SSL robots, ``obs_mode="truth"``, no actuation
+            latency or command loss, no ``render_mode``).
     """
 
     metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
+    #: The single environment the batch plays and its registered id.
+    TASK: type = GoalkeeperEnv
+    TASK_ID = "soccer_env/Goalkeeper-v0"
 
     def __init__(self, num_envs: int = 16, max_episode_steps: int | None = DEFAULT_MAX_STEPS,
                  autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
@@ -115,77 +138,79 @@ class GoalkeeperVectorEnv(VectorEnv):
         self.max_episode_steps = (None if max_episode_steps is None else
                                   check_int("max_episode_steps", max_episode_steps, 1, 10**9))
         # A single environment checks every argument with its own messages and gives the
-        # task's pieces (shots, shaping, spaces, observation layout).
-        probe = GoalkeeperEnv(**kwargs)
-        if probe.obs_mode != "truth":
-            raise NotBatchable(f"the batched Goalkeeper runs obs_mode='truth' only (got "
-                             f"{probe.obs_mode!r}): raw and perceived observations need the "
-                             "estimators batched across environments; use "
-                             "vectorization_mode='sync' or 'async' for them")
-        if probe.robot_spec.kind != "ssl":
-            raise NotBatchable("the batched Goalkeeper runs SSL keepers only (humanoid keepers "
-                             "need their walk engine batched); use vectorization_mode='sync'")
-        if probe.render_mode is not None:
-            raise NotBatchable("the batched Goalkeeper does not render; use "
-                             "vectorization_mode='sync' for videos")
-        delays, losses = probe._perception.delays, probe._perception.losses
-        if any(delays) or any(losses):
-            raise NotBatchable(f"the batched Goalkeeper has no actuation latency or command "
-                               f"loss (the perception gives latencies {delays} steps and "
-                               f"losses {losses}, which apply with obs_mode='truth' too); "
-                               "use vectorization_mode='sync' for them")
-        self.field, self.ball_spec, self.shots = probe.field, probe.ball_spec, probe.shots
+        # task's pieces (shaping, spaces, observation layout).
+        probe = self.TASK(**kwargs)
+        _check_batchable(probe, self.TASK_ID)
+        self.probe = probe
+        self.field, self.ball_spec = probe.field, probe.ball_spec
         self._robot = probe.robot_spec
-        self.shaping, self._shaping_on = probe.shaping, probe._shaping_on
+        self.shaping = probe.shaping
         self.builder = probe.builder
         self._model = probe.robot_model
         self._names = [f"{probe._learner[0]} of environment {k}" for k in range(self.num_envs)]
         self._out_of_range = probe.out_of_range_actions
-        self._mouth = probe._mouth
         w0 = probe.world
-        self.batch = WorldBatch(self.num_envs, self.field, self.ball_spec, probe.robot_spec,
-                                1, 0, w0.control_dt, w0.control_dt / w0.n_substeps)
+        self.batch = WorldBatch(self.num_envs, self.field, self.ball_spec, w0.robot_specs,
+                                w0.n_blue, w0.n_yellow, w0.control_dt,
+                                w0.control_dt / w0.n_substeps)
         self.control_dt = w0.control_dt
         self.single_observation_space = probe.observation_space
         self.single_action_space = probe.action_space
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
-        self.metadata = {**GoalkeeperEnv.metadata, **type(self).metadata,
+        self.metadata = {**self.TASK.metadata, **type(self).metadata,
                          "autoreset_mode": AutoresetMode(autoreset_mode)}
         self.render_mode = None
         self.spec = None
         n = self.num_envs
         self._rngs: list[np.random.Generator] = [np.random.default_rng(k) for k in range(n)]
-        self._shots: list[dict[str, Any]] = [{}] * n
-        self._delay = np.zeros(n)
-        self._fired = np.zeros(n, dtype=bool)
-        self._touched = np.zeros(n, dtype=bool)
         self._steps = np.zeros(n, dtype=np.int64)
         self._needs_reset = np.zeros(n, dtype=bool)
         self._started = False
+        self._setup()
+
+    # ------------------------------------------------------------------------------------
+    # The task's hooks
+    # ------------------------------------------------------------------------------------
+
+    def _setup(self) -> None:
+        """The task's own arrays over the batch (after the common attributes)."""
+        raise NotImplementedError
+
+    def _place(self, k: int) -> tuple[np.ndarray, tuple[float, float], Any]:
+        """Environment ``k``'s next episode from its generator: robot poses, ball position and
+        the task's own draw, drawn as the single environment's ``_place`` and ``_streams``
+        draw them, so that the generator moves on exactly as a single environment's does."""
+        raise NotImplementedError
+
+    def _begin(self, k: int, drawn: Any) -> None:
+        """Environment ``k``'s task state at the start of an episode (its world placed)."""
+        raise NotImplementedError
+
+    def _commands(self, act: np.ndarray) -> np.ndarray:
+        """Every robot's commands ``(n, N, 6)`` from the learners' validated actions
+        ``(n, 6)`` (the task adds its other robots' actions)."""
+        raise NotImplementedError
+
+    def _judge(self, act: np.ndarray, live: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """After the physics: every environment's outcome (an object array, None while the
+        episode goes on) and reward; ``live`` marks the environments that played this step
+        (the others restart)."""
+        raise NotImplementedError
+
+    def _success(self, outcome: np.ndarray) -> np.ndarray:
+        """Whether each (terminal) outcome is a success."""
+        raise NotImplementedError
 
     # ------------------------------------------------------------------------------------
     # Episodes
     # ------------------------------------------------------------------------------------
 
-    def _place(self, k: int) -> tuple[np.ndarray, tuple[float, float], dict[str, Any]]:
-        """Environment ``k``'s next episode (robot poses, ball, shot) from its generator,
-        drawn as :meth:`GoalkeeperEnv._place` and ``_streams`` draw it, so that the
-        generator moves on exactly as a single environment's does."""
-        rng = self._rngs[k]
-        placed = place_episode(rng, self.field, self._robot, self.ball_spec, self.shots, 0)
-        rng.integers(2**63)  # the sensors' stream (no sensors in truth mode)
-        rng.integers(2**63)  # the world's stream (SSL robots draw nothing)
-        return placed
-
-    def _begin(self, k: int, shot: dict[str, Any]) -> None:
-        self._shots[k] = shot
-        self._delay[k] = shot["delay"]
-        self._fired[k] = False
-        self._touched[k] = False
+    def _restart(self, k: int) -> None:
+        poses, ball_xy, drawn = self._place(k)
+        self.batch.restart(k, poses, ball_xy)
         self._steps[k] = 0
-        if shot["delay"] <= 0.0:
-            self._fire(k)
+        self._begin(k, drawn)
 
     def reset(self, *, seed: int | list[int] | None = None,
               options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict[str, Any]]:
@@ -209,8 +234,9 @@ class GoalkeeperVectorEnv(VectorEnv):
         placed = [self._place(k) for k in range(n)]
         self.batch.reset(np.stack([p for p, _, _ in placed]),
                          np.array([b for _, b, _ in placed], dtype=np.float64))
-        for k, (_, _, shot) in enumerate(placed):
-            self._begin(k, shot)
+        self._steps[:] = 0
+        for k, (_, _, drawn) in enumerate(placed):
+            self._begin(k, drawn)
         self._needs_reset[:] = False
         self._started = True
         return self._observe(), {"episode_steps": self._steps.copy()}
@@ -218,11 +244,6 @@ class GoalkeeperVectorEnv(VectorEnv):
     # ------------------------------------------------------------------------------------
     # Stepping
     # ------------------------------------------------------------------------------------
-
-    def _fire(self, k: int) -> None:
-        """The invisible attacker's kick in environment ``k`` (as GoalkeeperEnv._fire)."""
-        fire_shot(self.batch.worlds[k], self._shots[k], self._robot)
-        self._fired[k] = True
 
     def step(self, actions: np.ndarray):
         if not self._started:
@@ -240,36 +261,11 @@ class GoalkeeperVectorEnv(VectorEnv):
         act = act.copy()
         act[restarting] = 0.0  # a finished environment's action is ignored
         act = validate_actions(act, self._names, self._out_of_range)
-        batch = self.batch
-        batch.step(self._model.commands(act)[:, None, :])
-
-        # The attacker's shots due this step, and the keeper's touches.
-        due = live & ~self._fired & (batch.times >= self._delay - 1e-9)
-        for k in np.nonzero(due)[0].tolist():
-            self._fire(k)
-        self._touched |= batch.touched()[:, 0]
+        self.batch.step(self._commands(act))
         self._steps += 1
-
-        state = batch.state
-        ball = state[:, 0]
-        outcome = np.full(n, None, dtype=object)
-        exits = [(k, w.ball_exit) for k, w in enumerate(batch.worlds)
-                 if w.ball_exit is not None]
-        for k, ex in exits:
-            kind = classify_exit(ex, self.field, self.ball_spec)
-            outcome[k] = "goal" if kind.kind == "goal" and kind.end < 0 else "out"
-        vx, vy = ball[:, 3], ball[:, 4]
-        airborne = np.array([w.ball_airborne for w in batch.worlds])
-        open_ = live & self._fired & (outcome == None)  # noqa: E711 (element-wise)
-        stopped = open_ & ~airborne & (vx * vx + vy * vy < STOP_SPEED * STOP_SPEED)
-        outcome[stopped] = "stopped"
-        cleared = open_ & ~stopped & (vx > CLEAR_SPEED)
-        outcome[cleared] = "cleared"
+        outcome, rewards = self._judge(act, live)
         outcome[restarting] = None
-        terminated = outcome != None  # noqa: E711
-        rewards = np.where(outcome == "goal", -1.0, np.where(terminated, 1.0, 0.0))
-        if self._shaping_on:
-            rewards = rewards + self._shaping(state, act)
+        terminated = outcome != None  # noqa: E711 (element-wise)
         truncated = np.zeros(n, dtype=bool)
         if self.max_episode_steps is not None:
             truncated = live & ~terminated & (self._steps >= self.max_episode_steps)
@@ -280,7 +276,7 @@ class GoalkeeperVectorEnv(VectorEnv):
             out = np.where(truncated, "truncated", outcome).astype(object)
             out[~ended] = None
             infos["outcome"], infos["_outcome"] = out, ended.copy()
-            infos["is_success"] = terminated & (outcome != "goal")
+            infos["is_success"] = terminated & self._success(outcome)
             infos["_is_success"] = terminated.copy()
 
         if self._same_step and ended.any():
@@ -298,16 +294,122 @@ class GoalkeeperVectorEnv(VectorEnv):
         # The environments that finished at the previous step (at this one, with SAME_STEP)
         # start their next episode now.
         for k in np.nonzero(restarting)[0].tolist():
-            poses, ball_xy, shot = self._place(k)
-            batch.restart(k, poses, ball_xy)
-            self._begin(k, shot)
+            self._restart(k)
         if restarting.any():
-            batch.read_state()
             if not self._same_step:
                 rewards[restarting] = 0.0
             infos["episode_steps"] = self._steps.copy()
         self._needs_reset = ended
         return (self._observe(), rewards.astype(np.float64), terminated, truncated, infos)
+
+    def _exits(self, scored: int) -> np.ndarray:
+        """``(n,)`` object: ``"goal"`` where the ball went into the goal at the end ``scored``
+        (+1: ``x > 0``) during the last step, ``"out"`` where it left the field otherwise,
+        None elsewhere."""
+        outcome = np.full(self.num_envs, None, dtype=object)
+        for k, ex in self.batch.exits():
+            kind = classify_exit(ex, self.field, self.ball_spec)
+            outcome[k] = "goal" if kind.kind == "goal" and kind.end == scored else "out"
+        return outcome
+
+
+    def _observe(self) -> np.ndarray:
+        state = self.batch.state
+        return self.builder.build_batch(state[:, 1:], state[:, 0])[:, 0]
+
+    def close(self, **kwargs: Any) -> None:
+        self.batch.close()
+        self.closed = True
+
+
+def _check_batchable(probe: Any, task_id: str) -> None:
+    """Raise :class:`NotBatchable` for what the batched tasks do not run yet."""
+    name = task_id.split("/")[-1].rsplit("-", 1)[0]  # "Goalkeeper"
+    if probe.obs_mode != "truth":
+        raise NotBatchable(f"the batched {name} runs obs_mode='truth' only (got "
+                           f"{probe.obs_mode!r}): raw and perceived observations need the "
+                           "estimators batched across environments; use "
+                           "vectorization_mode='sync' or 'async' for them")
+    if probe.robot_spec.kind != "ssl":
+        raise NotBatchable(f"the batched {name} runs SSL robots only (humanoids need their "
+                           "walk engine batched); use vectorization_mode='sync'")
+    if probe.render_mode is not None:
+        raise NotBatchable(f"the batched {name} does not render; use "
+                           "vectorization_mode='sync' for videos")
+    delays, losses = probe._perception.delays, probe._perception.losses
+    if any(delays) or any(losses):
+        raise NotBatchable(f"the batched {name} has no actuation latency or command loss (the "
+                           f"perception gives latencies {delays} steps and losses {losses}, "
+                           "which apply with obs_mode='truth' too); use "
+                           "vectorization_mode='sync' for them")
+
+
+class GoalkeeperVectorEnv(BatchedTask):
+    """``num_envs`` Goalkeeper-v0 episodes stepped as one batch (see the module docstring and
+    :class:`BatchedTask` for the arguments; ``**kwargs`` are
+    :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`'s)."""
+
+    TASK = GoalkeeperEnv
+    TASK_ID = "soccer_env/Goalkeeper-v0"
+
+    def _setup(self) -> None:
+        probe = self.probe
+        self.shots, self._shaping_on, self._mouth = probe.shots, probe._shaping_on, probe._mouth
+        n = self.num_envs
+        self._shots: list[dict[str, Any]] = [{}] * n
+        self._delay = np.zeros(n)
+        self._fired = np.zeros(n, dtype=bool)
+        self._touched = np.zeros(n, dtype=bool)
+
+    def _place(self, k: int) -> tuple[np.ndarray, tuple[float, float], dict[str, Any]]:
+        rng = self._rngs[k]
+        placed = place_episode(rng, self.field, self._robot, self.ball_spec, self.shots, 0)
+        rng.integers(2**63)  # the sensors' stream (no sensors in truth mode)
+        rng.integers(2**63)  # the world's stream (SSL robots draw nothing)
+        return placed
+
+    def _begin(self, k: int, shot: dict[str, Any]) -> None:
+        self._shots[k] = shot
+        self._delay[k] = shot["delay"]
+        self._fired[k] = False
+        self._touched[k] = False
+        if shot["delay"] <= 0.0:
+            self._fire(k)
+
+    def _fire(self, k: int) -> None:
+        """The invisible attacker's kick in environment ``k`` (as GoalkeeperEnv._fire)."""
+        fire_shot(self.batch.worlds[k], self._shots[k], self._robot)
+        self._fired[k] = True
+
+    def _commands(self, act: np.ndarray) -> np.ndarray:
+        return self._model.commands(act)[:, None, :]
+
+    def _judge(self, act: np.ndarray, live: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        batch = self.batch
+        # The attacker's shots due this step, and the keeper's touches.
+        due = live & ~self._fired & (batch.times >= self._delay - 1e-9)
+        for k in np.nonzero(due)[0].tolist():
+            self._fire(k)
+        self._touched |= batch.touched()[:, 0]
+        state = batch.state
+        ball = state[:, 0]
+        outcome = self._exits(-1)
+        vx, vy = ball[:, 3], ball[:, 4]
+        airborne = np.array([w.ball_airborne for w in batch.worlds])
+        open_ = live & self._fired & (outcome == None)  # noqa: E711 (element-wise)
+        stopped = open_ & ~airborne & (vx * vx + vy * vy < STOP_SPEED * STOP_SPEED)
+        outcome[stopped] = "stopped"
+        cleared = open_ & ~stopped & (vx > CLEAR_SPEED)
+        outcome[cleared] = "cleared"
+        outcome[~live] = None
+        ended = outcome != None  # noqa: E711
+        rewards = np.where(outcome == "goal", -1.0, np.where(ended, 1.0, 0.0))
+        if self._shaping_on:
+            rewards = rewards + self._shaping(state, act)
+        return outcome, rewards
+
+    def _success(self, outcome: np.ndarray) -> np.ndarray:
+        return outcome != "goal"
 
     def _shaping(self, state: np.ndarray, act: np.ndarray) -> np.ndarray:
         """The shaping terms of every environment (GoalkeeperEnv._reward_terms over the
@@ -333,10 +435,87 @@ class GoalkeeperVectorEnv(VectorEnv):
             total += np.where(inside, 0.0, -sc["outside_area"] * dt)
         return total
 
-    def _observe(self) -> np.ndarray:
-        state = self.batch.state
-        return self.builder.build_batch(state[:, 1:], state[:, 0])[:, 0]
 
-    def close(self, **kwargs: Any) -> None:
-        self.batch.close()
-        self.closed = True
+class ShootoutVectorEnv(BatchedTask):
+    """``num_envs`` Shootout-v0 episodes stepped as one batch: the attacker's start
+    (:class:`~soccer_env.envs.shootout.ShootoutStart`), the scripted keeper over the batch
+    (:meth:`~soccer_env.envs.keeper.ScriptedGoalkeeper.act_batch`), the outcome (goal, saved,
+    out), the reward terms and the time limit. Arguments as :class:`BatchedTask`'s;
+    ``**kwargs`` are :class:`~soccer_env.envs.shootout.ShootoutEnv`'s.
+
+    The keeper's batched actions equal its per-environment ones except that ``np.arctan2``
+    stands for ``math.atan2``, whose last bits differ now and then (rarely visible in the
+    float32 action); the episodes agree with single environments as the Goalkeeper's do.
+    """
+
+    TASK = ShootoutEnv
+    TASK_ID = "soccer_env/Shootout-v0"
+
+    def _setup(self) -> None:
+        probe = self.probe
+        self.start = probe.start
+        self.keeper = probe.keeper
+        self._keeper_view = probe._keeper_view
+        self._goal_x = float(self.field.half_length)
+        n = self.num_envs
+        self._keeper_touched = np.zeros(n, dtype=bool)
+        self._ball_to_goal = np.zeros(n)
+
+    def _place(self, k: int) -> tuple[np.ndarray, tuple[float, float], dict[str, Any]]:
+        rng = self._rngs[k]
+        drawn = self.start.sample(rng, self.field, self._robot.radius)
+        rng.integers(2**63)  # the world's stream (SSL robots draw nothing)
+        rng.integers(2**63)  # the sensors' stream (no sensors in truth mode)
+        return np.array([drawn["attacker"], drawn["keeper"]]), drawn["ball"], drawn
+
+    def _begin(self, k: int, drawn: dict[str, Any]) -> None:
+        self._keeper_touched[k] = False
+        bx, by = drawn["ball"]
+        self._ball_to_goal[k] = math.hypot(bx - self._goal_x, by - 0.0)
+
+    def _commands(self, act: np.ndarray) -> np.ndarray:
+        state = self.batch.state
+        view = self._keeper_view.build_batch(state[:, 1:], state[:, 0])[:, 0]
+        both = np.stack([act, np.clip(self.keeper.act_batch(view), -1.0, 1.0)], axis=1)
+        return self._model.commands(both.reshape(-1, 6)).reshape(self.num_envs, 2, 6)
+
+    def _judge(self, act: np.ndarray, live: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        batch = self.batch
+        touched = batch.touched()
+        self._keeper_touched = np.where(touched[:, 1], True,
+                                        np.where(touched[:, 0], False, self._keeper_touched))
+        state = batch.state
+        ball = state[:, 0]
+        outcome = self._exits(+1)
+        vx, vy = ball[:, 3], ball[:, 4]
+        airborne = np.array([w.ball_airborne for w in batch.worlds])
+        open_ = self._keeper_touched & ~airborne & (outcome == None)  # noqa: E711
+        saved = open_ & ((vx < -SHOOTOUT_CLEAR_SPEED)
+                         | (vx * vx + vy * vy < SHOOTOUT_STOP_SPEED * SHOOTOUT_STOP_SPEED))
+        outcome[saved] = "saved"
+        outcome[~live] = None
+        ended = outcome != None  # noqa: E711
+        # The reward terms in ShootoutEnv._reward_terms's order.
+        sc, dt = self.shaping, self.control_dt
+        total = np.where(outcome == "goal", 1.0, np.where(ended, -1.0, 0.0))
+        d = np.hypot(ball[:, 0] - self._goal_x, ball[:, 1] - 0.0)
+        total = total + sc["ball_progress"] * (self._ball_to_goal - d)
+        self._ball_to_goal = d
+        a = state[:, 1]
+        total = total + -sc["ball_distance"] * np.hypot(ball[:, 0] - a[:, 0],
+                                                        ball[:, 1] - a[:, 1]) * dt
+        total = total + -sc["action_cost"] * np.sum(act[:, 0:3] ** 2, axis=1) / 3.0 * dt
+        return outcome, total
+
+    def _success(self, outcome: np.ndarray) -> np.ndarray:
+        return outcome == "goal"
+
+
+def make_shootout_vector(num_envs: int = 16,
+                         max_episode_steps: int | None = SHOOTOUT_MAX_STEPS,
+                         **kwargs: Any) -> VectorEnv:
+    """Shootout-v0's ``vector_entry_point``: a :class:`ShootoutVectorEnv`, or Gymnasium's
+    ``SyncVectorEnv`` of single environments (with a warning saying why) for arguments the
+    batch does not run yet."""
+    return _vector_or_sync(ShootoutVectorEnv, "soccer_env/Shootout-v0", num_envs,
+                           max_episode_steps, kwargs)

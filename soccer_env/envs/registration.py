@@ -29,7 +29,8 @@ GYMNASIUM: Registry[GymTask] = Registry("Gymnasium environment", [
     ("soccer_env/Goalkeeper-v0", GymTask("soccer_env.envs.goalkeeper:GoalkeeperEnv", 480,
                                          "soccer_env.envs.batched:make_vector"),
      "a keeper robot (SSL or humanoid) defends its goal against one seeded shot"),
-    ("soccer_env/Shootout-v0", GymTask("soccer_env.envs.shootout:ShootoutEnv", 600),
+    ("soccer_env/Shootout-v0", GymTask("soccer_env.envs.shootout:ShootoutEnv", 600,
+                                       "soccer_env.envs.batched:make_shootout_vector"),
      "an attacker (SSL or humanoid) must score past the scripted keeper from a seeded start"),
 ])
 

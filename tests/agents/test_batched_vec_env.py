@@ -143,3 +143,33 @@ def test_ppo_self_play_on_the_batched_match():
     model.learn(2048, callback=callback)
     assert model.num_timesteps >= 2048 and callback.n_updates >= 2
     assert len(model.ep_info_buffer) > 0
+
+
+def test_the_batched_shootout_as_a_vec_env():
+    """Shootout-v0 through BatchedVecEnv: the same batches as DummyVecEnv of single
+    environments (Monitor's episode statistics and is_success included)."""
+    n = 3
+    ours = BatchedVecEnv(n, env_id="soccer_env/Shootout-v0", max_episode_steps=100)
+    theirs = DummyVecEnv([lambda: Monitor(gym.make("soccer_env/Shootout-v0",
+                                                   max_episode_steps=100))
+                          for _ in range(n)])
+    ours.seed(1)
+    theirs.seed(1)
+    np.testing.assert_array_equal(ours.reset(), theirs.reset())
+    rng = np.random.default_rng(2)
+    ends = 0
+    for _ in range(250):
+        a = rng.uniform(-0.05, 0.05, (n, 6)).astype(np.float32)
+        a[:, 0] = 0.8
+        a[:, 3] = rng.random(n) < 0.3
+        o1, r1, d1, i1 = ours.step(a)
+        o2, r2, d2, i2 = theirs.step(a)
+        np.testing.assert_allclose(o1, o2, atol=1e-3)
+        np.testing.assert_array_equal(d1, d2)
+        for k in np.nonzero(d1)[0]:
+            ends += 1
+            assert i1[k]["episode"]["l"] == i2[k]["episode"]["l"]
+            assert i1[k].get("is_success") == i2[k].get("is_success")
+    assert ends >= 5
+    with pytest.raises(ValueError, match="env_id"):
+        BatchedVecEnv(2, env_id="soccer_env/Match-v0")

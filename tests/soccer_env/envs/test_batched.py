@@ -14,16 +14,16 @@ from soccer_env.envs.batched import GoalkeeperVectorEnv
 GK = "soccer_env/Goalkeeper-v0"
 
 
-def _compare(kwargs: dict, n: int, steps: int, seed: int, keeper_actions: str
-             ) -> tuple[int, float]:
+def _compare(kwargs: dict, n: int, steps: int, seed: int, keeper_actions: str,
+             env_id: str = GK) -> tuple[int, float]:
     """Step a batch and ``n`` single environments with the same actions; return how many
     episodes ended and the share of observations equal bit for bit. Terminations,
     truncations and outcomes must agree exactly, observations and rewards to 1e-3: the
     batch's worlds lie on patches of one space, whose offset coordinates round differently
     (about 1e-12 m), and a contact between keeper and ball can amplify that within an
     episode."""
-    vec = gym.make_vec(GK, num_envs=n, vectorization_mode="vector_entry_point", **kwargs)
-    singles = [gym.make(GK, **kwargs) for _ in range(n)]
+    vec = gym.make_vec(env_id, num_envs=n, vectorization_mode="vector_entry_point", **kwargs)
+    singles = [gym.make(env_id, **kwargs) for _ in range(n)]
     obs, _ = vec.reset(seed=seed)
     expected = np.stack([e.reset(seed=seed + k)[0] for k, e in enumerate(singles)])
     np.testing.assert_array_equal(obs, expected)
@@ -32,6 +32,10 @@ def _compare(kwargs: dict, n: int, steps: int, seed: int, keeper_actions: str
     for t in range(steps):
         if keeper_actions == "random":
             a = rng.uniform(-1, 1, (n, 6)).astype(np.float32)
+        elif keeper_actions == "attack":  # forward at the ball, kicking now and then
+            a = rng.uniform(-0.05, 0.05, (n, 6)).astype(np.float32)
+            a[:, 0] = rng.uniform(0.3, 1.0, n)
+            a[:, 3] = rng.random(n) < 0.3
         else:  # drive about, no kicker or dribbler
             a = np.zeros((n, 6), np.float32)
             a[:, :3] = rng.uniform(-1, 1, (n, 3))
@@ -69,6 +73,20 @@ def test_the_batch_plays_the_single_environments_episodes(kwargs, actions):
     assert exact >= 0.9  # bit for bit as a rule; contacts amplify the patches' rounding
 
 
+@pytest.mark.parametrize("kwargs", [
+    {},
+    {"shaping": {"ball_progress": 1.0, "ball_distance": 0.5, "action_cost": 0.1},
+     "max_episode_steps": 150},
+])
+def test_the_batched_shootout_plays_the_single_environments_episodes(kwargs):
+    """Shootout-v0's vector entry point: the scripted keeper over the batch, goals, saves and
+    outs, the reward terms and the time limit as in single environments."""
+    ends, exact = _compare(kwargs, n=6, steps=300, seed=8, keeper_actions="attack",
+                           env_id="soccer_env/Shootout-v0")
+    assert ends >= 12  # saves, outs, goals (and time limits), each followed by an autoreset
+    assert exact >= 0.9
+
+
 def test_vector_api_and_seeding():
     env = GoalkeeperVectorEnv(num_envs=3)
     assert env.observation_space.shape == (3, 19) and env.action_space.shape == (3, 6)
@@ -101,7 +119,7 @@ def test_make_vec_batches_what_it_can_and_falls_back_to_single_environments():
 def test_bad_input_names_the_argument():
     with pytest.raises(ValueError, match="obs_mode='truth' only"):
         GoalkeeperVectorEnv(2, obs_mode="perceived")
-    with pytest.raises(ValueError, match="SSL keepers only"):
+    with pytest.raises(ValueError, match="SSL robots only"):
         GoalkeeperVectorEnv(2, robot="humanoid")
     with pytest.raises(ValueError, match="does not render"):
         GoalkeeperVectorEnv(2, render_mode="rgb_array")
