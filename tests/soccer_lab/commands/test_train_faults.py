@@ -161,8 +161,11 @@ def test_ctrl_c_saves_a_checkpoint_and_prints_the_resume_command(tmp_path, no_ha
     cmd = [sys.executable, "-m", "soccer_lab.cli", "train", "--steps", "1000000", "--n-envs",
            "4", "--workers", "2", "--hp", "n_steps=64", "--eval-every", "0",
            "--checkpoint-every", "0", "--no-progress", "--out", str(run)]
+    # A suite started in the background of a non-interactive shell inherits SIGINT ignored
+    # (POSIX), which the training would inherit too: give it the terminal's default.
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            start_new_session=True)
+                            start_new_session=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         # Training has begun once TensorBoard's log exists; let a few updates happen.
         while not any((run / "tb").rglob("events.out.tfevents.*")):
@@ -170,7 +173,16 @@ def test_ctrl_c_saves_a_checkpoint_and_prints_the_resume_command(tmp_path, no_ha
             time.sleep(0.2)
         time.sleep(3.0)
         os.killpg(proc.pid, signal.SIGINT)
-        out, err = proc.communicate(timeout=60)
+        try:
+            out, err = proc.communicate(timeout=60)
+        except subprocess.TimeoutExpired:
+            status = Path(f"/proc/{proc.pid}/status")
+            masks = ([line for line in status.read_text().splitlines()
+                      if line.startswith(("SigBlk", "SigIgn", "SigCgt", "State"))]
+                     if status.exists() else [])
+            os.killpg(proc.pid, signal.SIGKILL)
+            out, err = proc.communicate()
+            pytest.fail(f"training did not stop within 60 s of Ctrl-C ({masks}); stderr:\n{err}")
     finally:
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGKILL)
