@@ -2,12 +2,13 @@
 and memory per environment.
 
 Usage: ``python benchmarks/batched_keeper.py [--sizes 1 16 128 512 1024] [--steps 200]
-[--rounds 3] [--memory 1000] [--json FILE]``.
+[--rounds 3] [--memory 1000] [--obs-mode truth] [--perception P] [--json FILE]``.
 
-Every run steps uniform random actions (made before the clock starts) through truth-mode
-Goalkeeper-v0 episodes, autoresets included: ``single`` is ``gymnasium.make`` stepped in a loop
-(resetting at episode ends), ``batch N`` the vector entry point
-(``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")``) with ``N``
+Every run steps uniform random actions (made before the clock starts) through
+Goalkeeper-v0 episodes (truth observations unless ``--obs-mode`` and ``--perception`` say
+otherwise, for the single environment and the batch alike), autoresets included: ``single``
+is ``gymnasium.make`` stepped in a loop (resetting at episode ends), ``batch N`` the vector
+entry point (``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")``) with ``N``
 environments. The runs alternate within each round; ratios are to the single environment of the
 same round, and the median over rounds is printed. Memory: the growth of the process's resident
 set when ``--memory`` environments are built and reset in a fresh process, divided by their
@@ -28,12 +29,12 @@ import numpy as np
 GK = "soccer_env/Goalkeeper-v0"
 
 
-def _single(steps: int) -> float:
+def _single(steps: int, kwargs: dict) -> float:
     import gymnasium as gym
 
     import soccer_env  # noqa: F401
 
-    env = gym.make(GK)
+    env = gym.make(GK, **kwargs)
     env.reset(seed=0)
     actions = np.random.default_rng(0).uniform(-1, 1, (steps, 6)).astype(np.float32)
     t0 = time.perf_counter()
@@ -44,12 +45,12 @@ def _single(steps: int) -> float:
     return steps / (time.perf_counter() - t0)
 
 
-def _batch(n: int, steps: int) -> float:
+def _batch(n: int, steps: int, kwargs: dict) -> float:
     import gymnasium as gym
 
     import soccer_env  # noqa: F401
 
-    env = gym.make_vec(GK, num_envs=n, vectorization_mode="vector_entry_point")
+    env = gym.make_vec(GK, num_envs=n, vectorization_mode="vector_entry_point", **kwargs)
     env.reset(seed=0)
     actions = np.random.default_rng(0).uniform(-1, 1, (steps, n, 6)).astype(np.float32)
     env.step(actions[0])
@@ -59,17 +60,18 @@ def _batch(n: int, steps: int) -> float:
     return steps * n / (time.perf_counter() - t0)
 
 
-def _memory(n: int) -> float:
+def _memory(n: int, kwargs: dict) -> float:
     """Bytes per environment of ``n`` batched environments, measured in a fresh process."""
     code = (
         "import gymnasium as gym, numpy as np, soccer_env, resource\n"
         "def rss():\n"
         "    return int(open('/proc/self/statm').read().split()[1]) * 4096\n"
+        f"kwargs = {kwargs!r}\n"
         "gym.make_vec('soccer_env/Goalkeeper-v0', num_envs=2, "
-        "vectorization_mode='vector_entry_point').reset(seed=0)\n"
+        "vectorization_mode='vector_entry_point', **kwargs).reset(seed=0)\n"
         "before = rss()\n"
         f"env = gym.make_vec('soccer_env/Goalkeeper-v0', num_envs={n}, "
-        "vectorization_mode='vector_entry_point')\n"
+        "vectorization_mode='vector_entry_point', **kwargs)\n"
         "env.reset(seed=0)\n"
         f"for _ in range(20): env.step(np.zeros(({n}, 6), np.float32))\n"
         f"print((rss() - before) / {n})\n")
@@ -85,16 +87,22 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--rounds", type=int, default=3)
     p.add_argument("--memory", type=int, default=1000,
                    help="environments for the memory figure (0: skip)")
+    p.add_argument("--obs-mode", default="truth", help="observation mode (truth)")
+    p.add_argument("--perception", default=None, help="perception preset (the default)")
     p.add_argument("--json", default=None)
     args = p.parse_args(argv)
+    kwargs: dict = {"obs_mode": args.obs_mode}
+    if args.perception:
+        kwargs["perception"] = args.perception
     single: list[float] = []
     rates: dict[int, list[float]] = {n: [] for n in args.sizes}
     for r in range(args.rounds):
         order = args.sizes if r % 2 == 0 else list(reversed(args.sizes))
-        single.append(_single(max(2000, args.steps * 10)))
+        single.append(_single(max(2000, args.steps * 10), kwargs))
         for n in order:
-            rates[n].append(_batch(n, args.steps))
-    results = {"single": {"env_steps_per_s": single, "median": statistics.median(single)}}
+            rates[n].append(_batch(n, args.steps, kwargs))
+    results: dict = {"kwargs": kwargs,
+                     "single": {"env_steps_per_s": single, "median": statistics.median(single)}}
     print(f"{'single':>10}: {statistics.median(single):9,.0f} env-steps/s")
     for n in args.sizes:
         ratios = [a / b for a, b in zip(rates[n], single)]
@@ -103,7 +111,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{'batch ' + str(n):>10}: {statistics.median(rates[n]):9,.0f} env-steps/s   "
               f"x{statistics.median(ratios):.2f}")
     if args.memory:
-        per_env = _memory(args.memory)
+        per_env = _memory(args.memory, kwargs)
         results["bytes_per_env"] = per_env
         print(f"memory: {per_env:,.0f} bytes per environment ({args.memory} environments)")
     if args.json:

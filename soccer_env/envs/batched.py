@@ -22,10 +22,15 @@ which contacts can amplify; tested). Finished environments reset at the next ste
 episode's first observation with reward 0), drawing their next episode from their own
 generator as a single environment's ``reset()`` does.
 
-Scope: SSL robots with ``obs_mode="truth"`` (raw and perceived observations need the
-estimators batched across environments; humanoids their walk engine), without actuation
-latency or command loss (a ``perception`` preset's latency applies in truth mode too); no
-rendering. Other arguments are the tasks'.
+Raw and perceived observations, actuation latency and command loss: each environment keeps
+the single environment's own perception (sensors, filters) and command channels, fed with its
+world's state after every batched physics step, so its sensor draws and beliefs are the single
+environment's (tested). That runs every observation mode in one process, but the perception
+costs what it costs in a single environment: a perceived batch steps at about the single
+environment's rate until the estimators are batched across environments.
+
+Scope: SSL robots (humanoids need their walk engine batched), the geometric detector (not
+``pixels``), no rendering. Other arguments are the tasks'.
 
 With ``autoreset_mode=AutoresetMode.SAME_STEP`` (``"SameStep"``) finished environments reset
 within the step that ends them, as stable-baselines3 expects
@@ -59,8 +64,9 @@ from soccer_env.envs.goalkeeper import (
 from soccer_env.envs.shootout import CLEAR_SPEED as SHOOTOUT_CLEAR_SPEED
 from soccer_env.envs.shootout import STOP_SPEED as SHOOTOUT_STOP_SPEED
 from soccer_env.envs.shootout import ShootoutEnv
+from soccer_env.perception.match import MatchPerception
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
-from soccer_env.sim.commands import validate_actions
+from soccer_env.sim.commands import CommandChannel, validate_actions
 from soccer_env.sim.referee import classify_exit
 from soccer_env.validation import check_int, check_seed
 
@@ -117,8 +123,8 @@ class BatchedTask(VectorEnv):
             the step that ends its episode, which returns the new episode's first observation,
             the last one in ``info["final_obs"]`` and the episode's infos in
             ``info["final_info"]``; what stable-baselines3 expects).
-        **kwargs: the task's arguments (SSL robots, ``obs_mode="truth"``, no actuation
-            latency or command loss, no ``render_mode``).
+        **kwargs: the task's arguments (SSL robots, the geometric detector, no
+            ``render_mode``).
     """
 
     metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
@@ -167,7 +173,49 @@ class BatchedTask(VectorEnv):
         self._steps = np.zeros(n, dtype=np.int64)
         self._needs_reset = np.zeros(n, dtype=bool)
         self._started = False
+        # Raw and perceived observations, and actuation latency or command loss (which apply
+        # in truth mode too): each environment keeps the single environment's own perception
+        # and command channels, fed from the batch.
+        self._truth = probe.obs_mode == "truth"
+        base = probe._perception
+        self._plain = self._truth and not any(base.delays) and not any(base.losses)
+        if not self._plain:
+            self._perceptions = [self._new_perception() for _ in range(n)]
+            self._channels = [[CommandChannel(c.n, c.delay_steps, c.loss)
+                               for c in probe._channels] for _ in range(n)]
+            self._in_play = [(sl, t) for t, (sl, count) in
+                             enumerate(zip(probe._slices, (w0.n_blue, w0.n_yellow))) if count]
+            self._sensor_rngs: list[np.random.Generator | None] = [None] * n
+            self._seen: list[Any] = [None] * n
         self._setup()
+
+    def _new_perception(self) -> MatchPerception:
+        """A perception of both teams as the single environment builds it."""
+        p, w = self.probe, self.probe.world
+        return MatchPerception(p.obs_mode, p.perceptions, self.field, self.ball_spec,
+                               w.robot_specs, w.teams.tolist(), w.names, w.control_dt,
+                               p.belief_features)
+
+    def _streams(self, k: int, sensors_first: bool) -> None:
+        """Draw environment ``k``'s two stream seeds (the world's and the sensors', in the
+        task's order) from its generator, as the single environment's ``_streams`` does; keep
+        the sensors' generator when the environment perceives."""
+        rng = self._rngs[k]
+        first, second = rng.integers(2**63), rng.integers(2**63)
+        if not self._plain:
+            self._sensor_rngs[k] = np.random.default_rng(first if sensors_first else second)
+
+    def _perceive_start(self, k: int) -> None:
+        """Environment ``k``'s perception and command channels at the start of an episode
+        (after its world is placed and its task has begun), as ``SoccerCore._start``."""
+        if self._plain:
+            return
+        rng = self._sensor_rngs[k]
+        perception = self._perceptions[k]
+        self._seen[k] = perception.reset(self.batch.worlds[k].snapshot(), rng, None)[0]
+        for channel, delay, loss in zip(self._channels[k], perception.delays,
+                                        perception.losses):
+            channel.reset(rng, delay, loss)
 
     # ------------------------------------------------------------------------------------
     # The task's hooks
@@ -211,6 +259,7 @@ class BatchedTask(VectorEnv):
         self.batch.restart(k, poses, ball_xy)
         self._steps[k] = 0
         self._begin(k, drawn)
+        self._perceive_start(k)
 
     def reset(self, *, seed: int | list[int] | None = None,
               options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict[str, Any]]:
@@ -237,6 +286,7 @@ class BatchedTask(VectorEnv):
         self._steps[:] = 0
         for k, (_, _, drawn) in enumerate(placed):
             self._begin(k, drawn)
+            self._perceive_start(k)
         self._needs_reset[:] = False
         self._started = True
         return self._observe(), {"episode_steps": self._steps.copy()}
@@ -261,9 +311,18 @@ class BatchedTask(VectorEnv):
         act = act.copy()
         act[restarting] = 0.0  # a finished environment's action is ignored
         act = validate_actions(act, self._names, self._out_of_range)
-        self.batch.step(self._commands(act))
+        commands = self._commands(act)
+        if not self._plain:  # each environment's commands through its channels
+            commands = np.stack([
+                np.concatenate([ch[t].send(c[sl]) for sl, t in self._in_play])
+                for ch, c in zip(self._channels, commands)])
+        self.batch.step(commands)
         self._steps += 1
         outcome, rewards = self._judge(act, live)
+        if not self._truth:
+            worlds = self.batch.worlds
+            for k in np.nonzero(live)[0].tolist():
+                self._seen[k] = self._perceptions[k].update(worlds[k].snapshot(), None)[0]
         outcome[restarting] = None
         terminated = outcome != None  # noqa: E711 (element-wise)
         truncated = np.zeros(n, dtype=bool)
@@ -314,8 +373,11 @@ class BatchedTask(VectorEnv):
 
 
     def _observe(self) -> np.ndarray:
-        state = self.batch.state
-        return self.builder.build_batch(state[:, 1:], state[:, 0])[:, 0]
+        if self._truth:
+            state = self.batch.state
+            return self.builder.build_batch(state[:, 1:], state[:, 0])[:, 0]
+        build = self.builder.build
+        return np.stack([build(seen)[0] for seen in self._seen])
 
     def close(self, **kwargs: Any) -> None:
         self.batch.close()
@@ -325,23 +387,15 @@ class BatchedTask(VectorEnv):
 def _check_batchable(probe: Any, task_id: str) -> None:
     """Raise :class:`NotBatchable` for what the batched tasks do not run yet."""
     name = task_id.split("/")[-1].rsplit("-", 1)[0]  # "Goalkeeper"
-    if probe.obs_mode != "truth":
-        raise NotBatchable(f"the batched {name} runs obs_mode='truth' only (got "
-                           f"{probe.obs_mode!r}): raw and perceived observations need the "
-                           "estimators batched across environments; use "
-                           "vectorization_mode='sync' or 'async' for them")
+    if probe.perception.detector == "pixels":
+        raise NotBatchable(f"the batched {name} does not run the pixels detector (it renders "
+                           "every world's frames); use vectorization_mode='sync'")
     if probe.robot_spec.kind != "ssl":
         raise NotBatchable(f"the batched {name} runs SSL robots only (humanoids need their "
                            "walk engine batched); use vectorization_mode='sync'")
     if probe.render_mode is not None:
         raise NotBatchable(f"the batched {name} does not render; use "
                            "vectorization_mode='sync' for videos")
-    delays, losses = probe._perception.delays, probe._perception.losses
-    if any(delays) or any(losses):
-        raise NotBatchable(f"the batched {name} has no actuation latency or command loss (the "
-                           f"perception gives latencies {delays} steps and losses {losses}, "
-                           "which apply with obs_mode='truth' too); use "
-                           "vectorization_mode='sync' for them")
 
 
 class GoalkeeperVectorEnv(BatchedTask):
@@ -364,8 +418,7 @@ class GoalkeeperVectorEnv(BatchedTask):
     def _place(self, k: int) -> tuple[np.ndarray, tuple[float, float], dict[str, Any]]:
         rng = self._rngs[k]
         placed = place_episode(rng, self.field, self._robot, self.ball_spec, self.shots, 0)
-        rng.integers(2**63)  # the sensors' stream (no sensors in truth mode)
-        rng.integers(2**63)  # the world's stream (SSL robots draw nothing)
+        self._streams(k, sensors_first=True)  # (GoalkeeperEnv._streams' order)
         return placed
 
     def _begin(self, k: int, shot: dict[str, Any]) -> None:
@@ -464,8 +517,7 @@ class ShootoutVectorEnv(BatchedTask):
     def _place(self, k: int) -> tuple[np.ndarray, tuple[float, float], dict[str, Any]]:
         rng = self._rngs[k]
         drawn = self.start.sample(rng, self.field, self._robot.radius)
-        rng.integers(2**63)  # the world's stream (SSL robots draw nothing)
-        rng.integers(2**63)  # the sensors' stream (no sensors in truth mode)
+        self._streams(k, sensors_first=False)
         return np.array([drawn["attacker"], drawn["keeper"]]), drawn["ball"], drawn
 
     def _begin(self, k: int, drawn: dict[str, Any]) -> None:
@@ -474,8 +526,12 @@ class ShootoutVectorEnv(BatchedTask):
         self._ball_to_goal[k] = math.hypot(bx - self._goal_x, by - 0.0)
 
     def _commands(self, act: np.ndarray) -> np.ndarray:
-        state = self.batch.state
-        view = self._keeper_view.build_batch(state[:, 1:], state[:, 0])[:, 0]
+        if self._truth:
+            state = self.batch.state
+            view = self._keeper_view.build_batch(state[:, 1:], state[:, 0])[:, 0]
+        else:  # the keeper plays from its own team's belief
+            build = self._keeper_view.build
+            view = np.stack([build(p.belief(1))[0] for p in self._perceptions])
         both = np.stack([act, np.clip(self.keeper.act_batch(view), -1.0, 1.0)], axis=1)
         return self._model.commands(both.reshape(-1, 6)).reshape(self.num_envs, 2, 6)
 

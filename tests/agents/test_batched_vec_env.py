@@ -21,11 +21,12 @@ from agents.multiagent import MatchVecEnv, SelfPlayCallback, make_match_vec_env 
 from soccer_env.envs.batched import NotBatchable  # noqa: E402
 
 
-def test_same_batches_as_dummy_vec_env_of_single_environments():
+@pytest.mark.parametrize("kwargs", [{}, {"obs_mode": "perceived", "perception": "ssl-2012"}])
+def test_same_batches_as_dummy_vec_env_of_single_environments(kwargs):
     n = 4
-    ours = BatchedVecEnv(n, max_episode_steps=120)
+    ours = BatchedVecEnv(n, kwargs, max_episode_steps=120)
     theirs = DummyVecEnv([lambda: Monitor(gym.make("soccer_env/Goalkeeper-v0",
-                                                   max_episode_steps=120))
+                                                   max_episode_steps=120, **kwargs))
                           for _ in range(n)])
     ours.seed(3)
     theirs.seed(3)

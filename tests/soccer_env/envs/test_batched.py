@@ -87,6 +87,27 @@ def test_the_batched_shootout_plays_the_single_environments_episodes(kwargs):
     assert exact >= 0.9
 
 
+@pytest.mark.parametrize("env_id,kwargs,actions", [
+    (GK, {"obs_mode": "perceived", "perception": "ssl-2012"}, "random"),
+    (GK, {"obs_mode": "raw", "perception": "realistic", "belief_features": True}, "random"),
+    (GK, {"obs_mode": "truth", "perception": "ssl-2012"}, "drive"),  # latency, no sensors
+    (GK, {"obs_mode": "perceived",
+          "perception": {"vision": "realistic", "randomize": {"latency": (0.02, 0.1),
+                                                              "actuation_latency": (0.0, 0.06)}}},
+     "random"),
+    ("soccer_env/Shootout-v0", {"obs_mode": "perceived", "perception": "realistic"},
+     "attack"),
+])
+def test_the_batch_perceives_as_the_single_environments(env_id, kwargs, actions):
+    """Raw and perceived observations and actuation latency in the batch: each environment
+    keeps the single environment's perception and command channels (the same sensor draws
+    from its own stream), fed from the batch's worlds."""
+    ends, exact = _compare(kwargs, n=4, steps=300, seed=5, keeper_actions=actions,
+                           env_id=env_id)
+    assert ends >= 6
+    assert exact >= 0.9
+
+
 def test_vector_api_and_seeding():
     env = GoalkeeperVectorEnv(num_envs=3)
     assert env.observation_space.shape == (3, 19) and env.action_space.shape == (3, 6)
@@ -108,8 +129,8 @@ def test_make_vec_batches_what_it_can_and_falls_back_to_single_environments():
     batched = gym.make_vec(GK, num_envs=3)
     assert isinstance(batched, GoalkeeperVectorEnv)
     with pytest.warns(UserWarning, match="SyncVectorEnv: the batched Goalkeeper runs "
-                                         "obs_mode='truth' only"):
-        sync = gym.make_vec(GK, num_envs=2, obs_mode="perceived")
+                                         "SSL robots only"):
+        sync = gym.make_vec(GK, num_envs=2, robot="humanoid")
     assert isinstance(sync, gym.vector.SyncVectorEnv)
     obs, _ = sync.reset(seed=0)
     assert obs.shape == (2, 19)
@@ -117,8 +138,9 @@ def test_make_vec_batches_what_it_can_and_falls_back_to_single_environments():
 
 
 def test_bad_input_names_the_argument():
-    with pytest.raises(ValueError, match="obs_mode='truth' only"):
-        GoalkeeperVectorEnv(2, obs_mode="perceived")
+    with pytest.raises(ValueError, match="pixels detector"):
+        GoalkeeperVectorEnv(2, obs_mode="perceived", field="ssl-2012",
+                            perception={"vision": "ssl-2012", "detector": "pixels"})
     with pytest.raises(ValueError, match="SSL robots only"):
         GoalkeeperVectorEnv(2, robot="humanoid")
     with pytest.raises(ValueError, match="does not render"):
