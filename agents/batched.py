@@ -50,8 +50,8 @@ class BatchedVecEnv(VecEnv):
 
     Args:
         num_envs: environments.
-        env_kwargs: the task's keyword arguments (what the batch supports: SSL robots, truth
-            observations).
+        env_kwargs: the task's keyword arguments (what the batch supports: SSL robots, the
+            geometric detector).
         max_episode_steps: the time limit (None: the registration's, 480 steps for the
             Goalkeeper, 600 for the Shootout).
         env_id: ``"soccer_env/Goalkeeper-v0"`` or ``"soccer_env/Shootout-v0"``.
@@ -154,9 +154,10 @@ class BatchedMatchVecEnv(MatchVecEnv):
 
     Args:
         env_kwargs, n_matches, learner, opponent, first_match: as :class:`MatchVecEnv` takes
-            them; the matches must be ones the batch runs (SSL robots, ``obs_mode="truth"``,
-            no actuation latency, no rendering; otherwise
-            :class:`~soccer_env.envs.batched.NotBatchable` says what is refused).
+            them; the matches must be ones the batch runs (SSL robots, the geometric
+            detector, no rendering; otherwise :class:`~soccer_env.envs.batched.NotBatchable`
+            says what is refused). Raw and perceived observations run each match's own
+            perception (as a single match's), so they gain little from the batch.
 
     Opponents run over the whole batch at once: a network (a numpy copy of a model) on every
     opponent row in one call, the scripted team through

@@ -200,10 +200,9 @@ class TrainConfig:
             process (:class:`~agents.batched.BatchedVecEnv`, the
             ``vector_entry_point``): SSL keepers (any observation mode but the pixels
             detector) with native actions, no frame stack, the shared critic and
-            ``n_workers=0``. For the match: each
-            process's matches as one batch (:class:`~agents.batched.BatchedMatchVecEnv`, in
-            the learner's process or in each of ``n_workers`` workers): SSL robots on truth
-            observations.
+            ``n_workers=0``. For the match: each process's matches as one batch
+            (:class:`~agents.batched.BatchedMatchVecEnv`, in the learner's process or in each
+            of ``n_workers`` workers): SSL robots.
         torch_threads: torch's intra-op threads in the learner process.
         device: torch device.
         progress_bar: show SB3's progress bar.
@@ -394,7 +393,7 @@ def check_env_kwargs(cfg: TrainConfig) -> None:
         import soccer_env
 
         soccer_env.parallel_env(**cfg.env_kwargs).close()
-        if cfg.batched:  # what the batch supports (truth, SSL, no latency, no rendering)
+        if cfg.batched:  # what the batch supports (SSL, the geometric detector, no rendering)
             from soccer_env.envs.batched_match import MatchBatch
 
             MatchBatch(1, **cfg.env_kwargs).close()

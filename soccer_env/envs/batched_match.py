@@ -18,9 +18,13 @@ does: :meth:`MatchBatch.step` returns the new match's first observation and the 
 match's last one in ``final_obs`` (stable-baselines3's convention; Gymnasium's
 ``SAME_STEP`` autoreset).
 
-Scope: SSL robots, ``obs_mode="truth"``, no actuation latency or command loss (a
-``perception`` preset's latency applies in truth mode too, and needs a command channel per
-match), no rendering. :class:`NotBatchable` names what is refused.
+Raw and perceived observations, actuation latency and command loss: each match keeps a single
+match's own perception (its teams' sensors and filters) and command channels, fed with its
+world's state after every batched physics step, so its sensor draws and beliefs are the
+single match's (tested); the perception then costs what it costs in a single match.
+
+Scope: SSL robots, the geometric detector (not ``pixels``), no rendering.
+:class:`NotBatchable` names what is refused.
 """
 
 from __future__ import annotations
@@ -32,8 +36,9 @@ import numpy as np
 
 from soccer_env.envs.batched import NotBatchable
 from soccer_env.envs.match import SoccerParallelEnv
+from soccer_env.perception.match import MatchPerception
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
-from soccer_env.sim.commands import validate_actions
+from soccer_env.sim.commands import CommandChannel, validate_actions
 from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff
 from soccer_env.validation import check_int, check_seed
 
@@ -77,7 +82,7 @@ class MatchBatch:
     Args:
         n_matches: matches (1..65536).
         **kwargs: :class:`~soccer_env.envs.match.SoccerParallelEnv`'s arguments (SSL robots,
-            ``obs_mode="truth"``, no actuation latency, no ``render_mode``).
+            the geometric detector, no ``render_mode``).
 
     Attributes:
         probe: a single match of the same configuration, for its spaces, specs and
@@ -94,20 +99,14 @@ class MatchBatch:
         # pieces (spaces, observation layout, shaping).
         probe = SoccerParallelEnv(**kwargs)
         w0 = probe.world
-        if probe.obs_mode != "truth":
-            raise NotBatchable(f"the batched match runs obs_mode='truth' only (got "
-                               f"{probe.obs_mode!r}): raw and perceived observations need the "
-                               "estimators batched across matches")
+        if any(c.detector == "pixels" for c in probe.perceptions):
+            raise NotBatchable("the batched match does not run the pixels detector (it renders "
+                               "every world's frames)")
         if w0.humanoid_indices:
             raise NotBatchable("the batched match runs SSL robots only (humanoids need their "
                                "walk engine batched)")
         if probe.render_mode is not None:
             raise NotBatchable("the batched match does not render")
-        if any(probe._perception.delays) or any(probe._perception.losses):
-            raise NotBatchable(f"the batched match has no actuation latency or command loss "
-                               f"(the perception gives latencies {probe._perception.delays} "
-                               f"steps and losses {probe._perception.losses}); use "
-                               "perception=None with obs_mode='truth'")
         self.probe = probe
         self.field, self.ball_spec = probe.field, probe.ball_spec
         self.match_duration, self.max_cycles = probe.match_duration, probe.max_cycles
@@ -130,6 +129,23 @@ class MatchBatch:
         self.restart_team = np.full(n, -1, dtype=np.int64)
         self.cycles = np.zeros(n, dtype=np.int64)
         self._started = False
+        # Raw and perceived observations, actuation latency and command loss (which apply in
+        # truth mode too): each match keeps a single match's own perception and command
+        # channels, fed from the batch.
+        self._truth = probe.obs_mode == "truth"
+        base = probe._perception
+        self._plain = self._truth and not any(base.delays) and not any(base.losses)
+        if not self._plain:
+            self._perceptions = [
+                MatchPerception(probe.obs_mode, probe.perceptions, self.field, self.ball_spec,
+                                w0.robot_specs, w0.teams.tolist(), w0.names, w0.control_dt,
+                                probe.belief_features) for _ in range(n)]
+            self._channels = [[CommandChannel(c.n, c.delay_steps, c.loss)
+                               for c in probe._channels] for _ in range(n)]
+            self._in_play = [(sl, t) for t, (sl, count) in
+                             enumerate(zip(probe._slices, (w0.n_blue, w0.n_yellow))) if count]
+            self._sensor_rngs: list[np.random.Generator | None] = [None] * n
+        self._builders = probe._builders
 
     # ------------------------------------------------------------------------------------
     # Matches
@@ -143,13 +159,24 @@ class MatchBatch:
         kickoff = int(rng.integers(2))
         poses = place_kickoff(self.batch.worlds[k], kickoff, rng, self.formation_jitter)
         rng.integers(2**63)  # the world's stream (SSL robots draw nothing)
-        rng.integers(2**63)  # the sensors' stream (no sensors in truth mode)
+        sensors = rng.integers(2**63)  # the sensors' stream
+        if not self._plain:
+            self._sensor_rngs[k] = np.random.default_rng(sensors)
         return poses, kickoff
 
     def _begin(self, k: int, kickoff: int) -> None:
+        """Match ``k``'s start after its world is placed: the game state, then (as
+        ``SoccerCore._start``) its perception and command channels."""
         self.score[k] = 0
         self.restart_team[k] = kickoff
         self.cycles[k] = 0
+        if self._plain:
+            return
+        rng, perception = self._sensor_rngs[k], self._perceptions[k]
+        perception.reset(self.batch.worlds[k].snapshot(), rng, None)
+        for channel, delay, loss in zip(self._channels[k], perception.delays,
+                                        perception.losses):
+            channel.reset(rng, delay, loss)
 
     def reset(self, seed: int | Sequence[int | None] | None = None) -> np.ndarray:
         """Start every match; returns the observations ``(M, N, obs_dim)``.
@@ -210,6 +237,10 @@ class MatchBatch:
             commands = np.concatenate(
                 [m.commands(act[:, sl].reshape(-1, 6)).reshape(n, -1, 6)
                  for m, sl in self._slices], axis=1)
+        if not self._plain:  # each match's commands through its channels
+            commands = np.stack([
+                np.concatenate([ch[t].send(c[sl]) for sl, t in self._in_play])
+                for ch, c in zip(self._channels, commands)])
         batch.step(commands)
 
         # The referee.
@@ -231,6 +262,9 @@ class MatchBatch:
                 self.restart_team[k] = place_free_kick(world, exit_, kind)
             world.clear_exit()
 
+        if not self._truth:
+            for perception, world in zip(self._perceptions, batch.worlds):
+                perception.update(world.snapshot(), None)
         rewards = self._rewards(scorer, events, ball_x_before)
         obs = self._observe()
         terminated = batch.times >= self.match_duration - 1e-9
@@ -280,7 +314,14 @@ class MatchBatch:
         per_team[:, 0] = np.stack([time_left, blue, yellow, flag], axis=1)
         per_team[:, 1] = np.stack([time_left, yellow, blue, -flag], axis=1)
         game = per_team[:, self._teams]
-        return self.builder.build_batch(state[:, 1:], state[:, 0], game)
+        if self._truth:
+            return self.builder.build_batch(state[:, 1:], state[:, 0], game)
+        # Each match's beliefs, through the builders a single match uses.
+        out = np.empty((n, self.n_robots, self.builder.space().shape[0]), dtype=np.float32)
+        for k, perception in enumerate(self._perceptions):
+            for group, builder in self._builders:
+                out[k, group] = builder.build(perception.belief(group[0]), game[k, group])
+        return out
 
     @property
     def times(self) -> np.ndarray:

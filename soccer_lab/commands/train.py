@@ -120,8 +120,7 @@ def parser() -> argparse.ArgumentParser:
                         "robots). Goalkeeper-v0: the --n-envs environments in this process "
                         "(native actions; --workers is 0; every observation mode, each "
                         "environment perceiving on its own). Match-v0: each process's "
-                        "matches (truth observations), in this process or in each of "
-                        "--workers workers")
+                        "matches, in this process or in each of --workers workers")
     p.add_argument("--seed", type=int, default=None)
     p.add_argument("--out", default=None,
                    help="run folder (default runs/keeper; with --resume, the folder of the "

@@ -108,6 +108,8 @@ def _same_as_match_vec_env(kwargs: dict, n: int, learner: str, opponent, steps: 
      None),
     ({"blue": 1, "yellow": 3, "match_duration": 1.0, "shaping": {"ball_distance": 0.5}},
      "yellow", "scripted"),
+    ({"blue": 2, "yellow": 2, "match_duration": 1.5, "obs_mode": "perceived",
+      "perception": "ssl-2012"}, "blue", "scripted"),
 ])
 def test_batched_match_vec_env_plays_match_vec_env_batches(kwargs, learner, opponent):
     assert _same_as_match_vec_env(kwargs, 3, learner, opponent, steps=200) >= 6
@@ -131,8 +133,8 @@ def test_batched_match_vec_env_attributes_and_refusals():
         venv.env_method("render")
     with pytest.raises(ValueError, match=r"shape \(6, 6\)"):
         venv.step(np.zeros((3, 6)))
-    with pytest.raises(NotBatchable, match="obs_mode"):
-        BatchedMatchVecEnv({"obs_mode": "raw"}, 2)
+    with pytest.raises(NotBatchable, match="SSL robots"):
+        BatchedMatchVecEnv({"robot": "humanoid", "blue": 1, "yellow": 1}, 2)
 
 
 @pytest.mark.usefixtures("one_torch_thread")

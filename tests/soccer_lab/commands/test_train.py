@@ -270,6 +270,7 @@ def test_batched_match_training_with_workers(tmp_path, capsys):
     assert config["batched"] is True and config["n_workers"] == 2
     assert (run / "final_policy.npz").is_file()
     with pytest.raises(SystemExit):
-        main(["train", "--env", "soccer_env/Match-v0", "--batched", "--obs-mode", "raw",
-              "--steps", "64", "--out", str(tmp_path / "no"), "--no-progress"])
-    assert "obs_mode='truth' only" in capsys.readouterr().err
+        main(["train", "--env", "soccer_env/Match-v0", "--batched", "--env-kwarg",
+              "robot=humanoid", "--steps", "64", "--out", str(tmp_path / "no"),
+              "--no-progress"])
+    assert "SSL robots only" in capsys.readouterr().err
