@@ -6,7 +6,9 @@ collection rate of training.
 ``repeats`` timed runs, each of ``steps`` steps with actions drawn beforehand from a seeded
 generator (sampling is not timed); Goalkeeper-v0 runs through ``gymnasium.make`` with its
 default wrappers and includes its resets, as a training loop would. The cost of perceived
-observations is the median ratio of truth and perceived runs timed in alternation.
+observations is the median ratio of truth and perceived runs timed in alternation. With
+``--batch N`` it also times the batched Goalkeeper-v0 and the batched 2 vs 2 match VecEnv
+against single environments (:func:`bench_batched`).
 
 Humanoids (paper 000's ``humanoid-2012`` with its ``kidsize-2012`` head camera): the keeper
 with its three watching team-mates (four robots, each with its camera, localization, radio,
@@ -38,9 +40,10 @@ import pymunk
 
 import soccer_env  # noqa: F401  (registers the environments)
 
-__all__ = ["run_benchmarks", "bench_frames", "format_table", "REFERENCE", "PERCEIVED_PRESETS",
-           "main", "keeper_save_rates", "format_save_rates", "save_rate_main", "ROLLOUT_CONFIGS",
-           "rollout_rate", "rollout_rates", "format_rollout_rates", "rollout_main"]
+__all__ = ["run_benchmarks", "bench_batched", "bench_frames", "format_table", "REFERENCE",
+           "PERCEIVED_PRESETS", "main", "keeper_save_rates", "format_save_rates",
+           "save_rate_main", "ROLLOUT_CONFIGS", "rollout_rate", "rollout_rates",
+           "format_rollout_rates", "rollout_main"]
 
 #: Sensor presets timed with ``obs_mode="perceived"`` (default EKF), against truth.
 PERCEIVED_PRESETS = ("realistic", "ssl-2012")
@@ -210,9 +213,62 @@ def bench_frames(repeats: int = 200) -> dict[str, float]:
     return out
 
 
-def run_benchmarks(steps: int = 20000, match_steps: int = 5000, repeats: int = 3
-                   ) -> dict[str, Any]:
-    """All figures of ``soccer-env bench`` as a dict."""
+def bench_batched(batch: int, steps: int, repeats: int, seed: int = 0) -> dict[str, Any]:
+    """Env-steps per second of the batched environments with ``batch`` environments in this
+    process against their single counterparts, timed in alternation (the ratio is the median
+    of the ratios within each repeat): Goalkeeper-v0 on truth
+    (``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")`` against
+    ``gymnasium.make``), and the 2 vs 2 match VecEnv with the scripted yellow team
+    (``make_match_vec_env(..., batched=True)`` against one unbatched match). Random actions
+    drawn beforehand; ``steps`` env-steps per timed run (at least 20 batched steps)."""
+    from agents.multiagent import make_match_vec_env
+
+    rng = np.random.default_rng(seed)
+    vec = gym.make_vec("soccer_env/Goalkeeper-v0", num_envs=batch,
+                       vectorization_mode="vector_entry_point")
+    vec.reset(seed=seed)
+    n_steps = max(20, steps // batch)
+    keeper_actions = rng.uniform(-1, 1, (n_steps, batch, 6)).astype(np.float32)
+    single, _ = _goalkeeper_runner(steps, seed)
+
+    def keeper_batch() -> None:
+        for a in keeper_actions:
+            vec.step(a)
+
+    def match(n: int, batched: bool) -> tuple[Callable[[], None], int]:
+        venv = make_match_vec_env({"blue": 2, "yellow": 2}, n, "blue", "scripted", seed=seed,
+                                  batched=batched)
+        venv.reset()
+        k = max(20, steps // n) if batched else steps
+        acts = rng.uniform(-1, 1, (k, venv.num_envs, 6)).astype(np.float32)
+
+        def run() -> None:
+            for a in acts:
+                venv.step(a)
+
+        return run, k * n
+
+    match_single, match_single_steps = match(1, False)
+    match_batch, match_batch_steps = match(batch, True)
+    out: dict[str, Any] = {"batch": batch}
+    for name, (one, one_steps), (many, many_steps) in (
+            ("goalkeeper", (single, steps), (keeper_batch, n_steps * batch)),
+            ("match_2v2_scripted", (match_single, match_single_steps),
+             (match_batch, match_batch_steps))):
+        ones, manys = [], []
+        for _ in range(repeats):
+            ones.append(_rate(one, one_steps))
+            manys.append(_rate(many, many_steps))
+        out[name] = {"single_env_steps_per_s": statistics.median(ones),
+                     "batched_env_steps_per_s": statistics.median(manys),
+                     "ratio": statistics.median(m / o for m, o in zip(manys, ones))}
+    return out
+
+
+def run_benchmarks(steps: int = 20000, match_steps: int = 5000, repeats: int = 3,
+                   batch: int = 0) -> dict[str, Any]:
+    """All figures of ``soccer-env bench`` as a dict (``batch > 0``: also
+    :func:`bench_batched` with that many environments)."""
     gk = bench_goalkeeper(steps, repeats)
     match = bench_match(match_steps, repeats)
     for name, res in (("goalkeeper", gk), ("match", match)):
@@ -239,7 +295,9 @@ def run_benchmarks(steps: int = 20000, match_steps: int = 5000, repeats: int = 3
         humanoid[name] = {"truth_steps_per_s": _median_rate(truth, n, repeats),
                           "perceived_steps_per_s": r["steps_per_s"],
                           "cost_vs_truth": r["cost_vs_truth"]}
+    batched = bench_batched(batch, steps, repeats) if batch else None
     return {
+        **({"batched": batched} if batched else {}),
         "goalkeeper": gk,
         "match_6v6_div_b": match,
         "perceived": perceived,
@@ -280,6 +338,16 @@ def format_table(res: dict[str, Any]) -> str:
             rows.append((label, f"{r['truth_steps_per_s']:,.0f}",
                          f"{r['perceived_steps_per_s']:,.0f}", f"{r['cost_vs_truth']:.2f}"))
         text += "\n\n" + _table(rows)
+    if res.get("batched"):
+        b = res["batched"]
+        rows = [(f"batched ({b['batch']} environments, one process)", "single env-steps/s",
+                 "batched env-steps/s", "ratio")]
+        for key, label in (("goalkeeper", "Goalkeeper-v0, truth"),
+                           ("match_2v2_scripted", "match 2 vs 2 VecEnv, scripted yellow")):
+            r = b[key]
+            rows.append((label, f"{r['single_env_steps_per_s']:,.0f}",
+                         f"{r['batched_env_steps_per_s']:,.0f}", f"{r['ratio']:.2f}"))
+        text += "\n\n" + _table(rows)
     return text
 
 
@@ -302,18 +370,23 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--steps", type=int, default=20000, help="Goalkeeper steps per run")
     p.add_argument("--match-steps", type=int, default=5000, help="match steps per run")
     p.add_argument("--repeats", type=int, default=3, help="timed runs per figure (median)")
+    p.add_argument("--batch", type=int, default=0, metavar="N",
+                   help="also time the batched Goalkeeper-v0 and 2 vs 2 match VecEnv with N "
+                        "environments in this process against single ones (0: skip)")
     p.add_argument("--frames", action="store_true",
                    help="time the camera-image renderers instead (needs the pixels extra)")
     args = p.parse_args(argv)
     for name in ("steps", "match_steps", "repeats"):
         if getattr(args, name) < 1:
             p.error(f"--{name.replace('_', '-')} must be >= 1")
+    if not 0 <= args.batch <= 65536:
+        p.error(f"--batch must be in 0..65536, got {args.batch}")
     if args.frames:
         ms = bench_frames()
         print(json.dumps(ms, indent=2) if args.json else
               "\n".join(f"{key}: {v:.2f} ms" for key, v in ms.items()))
         return 0
-    res = run_benchmarks(args.steps, args.match_steps, args.repeats)
+    res = run_benchmarks(args.steps, args.match_steps, args.repeats, args.batch)
     print(json.dumps(res, indent=2) if args.json else format_table(res))
     return 0
 

@@ -3,6 +3,8 @@ report."""
 
 from __future__ import annotations
 
+import pytest
+
 from soccer_lab import bench
 
 
@@ -41,3 +43,25 @@ def test_the_bench_command_runs_in_a_fresh_interpreter():
     out = json.loads(res.stdout)
     assert out["goalkeeper"]["steps_per_s"] > 0 and out["match_6v6_div_b"]["steps_per_s"] > 0
     assert set(out["perceived"]) == set(bench.PERCEIVED_PRESETS)
+
+
+def test_bench_times_the_batched_environments_against_single_ones(capsys):
+    """``soccer-env bench --batch N``: the batched Goalkeeper and 2 vs 2 match VecEnv beside
+    their single counterparts, in the table and the JSON; a bad --batch is refused."""
+    import json
+
+    from soccer_lab.cli import main
+
+    assert main(["bench", "--batch", "4", "--steps", "100", "--match-steps", "40",
+                 "--repeats", "1", "--json"]) == 0
+    res = json.loads(capsys.readouterr().out)
+    batched = res["batched"]
+    assert batched["batch"] == 4
+    for key in ("goalkeeper", "match_2v2_scripted"):
+        r = batched[key]
+        assert r["single_env_steps_per_s"] > 0 and r["batched_env_steps_per_s"] > 0
+        assert r["ratio"] > 0
+    assert "batched (4 environments" in bench.format_table(res)
+    with pytest.raises(SystemExit):
+        main(["bench", "--batch", "-1"])
+    assert "--batch must be in 0..65536" in capsys.readouterr().err
