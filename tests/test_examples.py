@@ -38,7 +38,7 @@ def _run(script: str, *args: str, timeout: float = 300) -> str:
 
 def test_every_example_is_tested():
     tested = {"torchrl_envs.py", "supersuit_match_ppo.py", "recurrent_ppo_keeper.py",
-              "rl_zoo3_keeper.py",
+              "rl_zoo3_keeper.py", "batched_self_play.py",
               "rllib_match.py"}  # tests/examples/test_rllib_example.py, in make test-rllib
     assert {p.name for p in EXAMPLES.glob("*.py")} == tested
 
@@ -122,3 +122,10 @@ def test_zoo_hyperparameters_are_the_shipped_keepers():
     stage1["obs_mode"] = "truth"  # the first stage's; the second continues on perceived ones
     assert zoo["env_kwargs"] == stage1
     assert "--steps 1000000" in meta["commands"][0] and zoo["n_timesteps"] == 1e6
+
+
+def test_batched_self_play_example():
+    _needs("stable_baselines3")
+    out = _run("batched_self_play.py")
+    assert "16 learners (8 matches x 2 blue robots)" in out
+    assert "trained 512 agent steps" in out and "score:" in out
