@@ -50,6 +50,7 @@ PATCH_MARGIN = 2.0
 #: Worlds per space by default (see :class:`WorldBatch`'s ``shard_size``).
 SHARD_SIZE = 128
 
+_VELOCITIES = pbatch.BodyFields.VELOCITY | pbatch.BodyFields.ANGULAR_VELOCITY
 _FIELDS = (pbatch.BodyFields.POSITION | pbatch.BodyFields.ANGLE | pbatch.BodyFields.VELOCITY
            | pbatch.BodyFields.ANGULAR_VELOCITY)
 
@@ -76,10 +77,12 @@ class _Shard:
         #: ``(worlds, N)`` rows of each world's control bodies.
         self.control_rows = np.array([[row_of[c.id] for c in w._controls] for w in worlds],
                                      dtype=np.intp)
-        # The commands go through a second buffer over an array of our own: pymunk's
-        # ``set_float_buf`` makes the buffer point at that memory, which a later read into
-        # the same buffer would try to reallocate.
-        self.commands = np.zeros((len(ids), 6))
+        # The velocities written each step (``vx, vy, omega`` of every body: the control
+        # bodies' commands, the others' present velocities, zeros for the static bodies) go
+        # through a second buffer over an array of our own: pymunk's ``set_float_buf`` makes
+        # the buffer point at that memory, which a later read into the same buffer would try
+        # to reallocate.
+        self.commands = np.zeros((len(ids), 3))
         self.write = pbatch.Buffer()
         self.write.set_float_buf(self.commands)
 
@@ -202,9 +205,9 @@ class WorldBatch:
         self._times = np.zeros(self.n_worlds)
         self._dirty: set[int] = set()
         n = self.n_robots
-        self._rows_of_step: tuple[list, list, list] = (
-            [[0.0] * n for _ in self.worlds], [[False] * n for _ in self.worlds],
-            [[False] * n for _ in self.worlds])
+        self._rows_of_step: tuple[np.ndarray, np.ndarray, np.ndarray] = (
+            np.zeros((self.n_worlds, n)), np.zeros((self.n_worlds, n), dtype=bool),
+            np.zeros((self.n_worlds, n), dtype=bool))
         self._pending: list[int] = []
         self._step_space = _cp.cpSpaceStep
         self._shards = shards
@@ -235,10 +238,11 @@ class WorldBatch:
         its first event of the step."""
         world = self.worlds[k]
         world.time = float(self._times[k])
-        armed, chip, dribble = self._rows_of_step
-        world._armed, world._chip, world._dribble = armed[k], chip[k], dribble[k]
-        if k not in self._dirty:
-            self._dirty.add(k)
+        if k not in self._dirty:  # its first event this step (the rows it changes, e.g. a
+            self._dirty.add(k)    # kicker disarmed when it fires, stay its own till the end)
+            armed, chip, dribble = self._rows_of_step
+            world._armed, world._chip = armed[k].tolist(), chip[k].tolist()
+            world._dribble = dribble[k].tolist()
             n = self.n_robots
             world.touched = [False] * n
             world.kicked = [False] * n
@@ -281,14 +285,20 @@ class WorldBatch:
         field_vx, field_vy = cos * vx - sin * vy, sin * vx + cos * vy
         kick = c[..., 3]
         armed = np.where(kick > 0.0, np.minimum(kick, self._cap), 0.0)
+        # Velocities only: the balls' and robots' are those of :attr:`state` (read at the end
+        # of the last step; every change between steps, a teleport or a shot, goes through
+        # the worlds' ``set_robot`` and ``set_ball``, which write it there too), so the step
+        # needs no read of the space before its write, and positions are left alone.
+        state = self.state
         for shard in self._shards:
             bodies = shard.commands
-            bodies[:] = shard.read()
-            rows, sl = shard.control_rows, slice(shard.start, shard.stop)
-            bodies[rows, 3] = field_vx[sl]
-            bodies[rows, 4] = field_vy[sl]
-            bodies[rows, 5] = w[sl]
-            pbatch.set_space_bodies(shard.space, _FIELDS, shard.write)
+            sl = slice(shard.start, shard.stop)
+            bodies[shard.state_rows] = state[sl, :, 3:6]
+            rows = shard.control_rows
+            bodies[rows, 0] = field_vx[sl]
+            bodies[rows, 1] = field_vy[sl]
+            bodies[rows, 2] = w[sl]
+            pbatch.set_space_bodies(shard.space, _VELOCITIES, shard.write)
         n = self.n_robots
         # Touch flags of the worlds that had events in the last step go back to False (the
         # others' are False already).
@@ -297,7 +307,7 @@ class WorldBatch:
             self.worlds[k].kicked = [False] * n
         self._dirty = set()
         chip_on, dribble_on = c[..., 4] > 0.0, c[..., 5] > 0.0
-        self._rows_of_step = (armed.tolist(), chip_on.tolist(), dribble_on.tolist())
+        self._rows_of_step = (armed, chip_on, dribble_on)
         self._pending = []
         # Which worlds may fire a kicker at a ball already in its mouth, or dribble: the
         # worlds' own first tests (the ball within reach of an armed kicker; of a running
