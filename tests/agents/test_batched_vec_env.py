@@ -120,6 +120,23 @@ def test_batched_match_workers_play_the_same_matches():
     assert _same_as_match_vec_env(kwargs, 4, "blue", "idle", steps=130, workers=2) >= 8
 
 
+def test_batched_match_workers_are_reproducible():
+    """The same seed and number of workers give the same batches, bit for bit."""
+    def run() -> list[np.ndarray]:
+        venv = make_match_vec_env({"blue": 2, "yellow": 2, "match_duration": 0.5}, 4, "blue",
+                                  "scripted", seed=9, workers=2, batched=True)
+        out = [venv.reset()]
+        rng = np.random.default_rng(3)
+        for _ in range(60):
+            obs, rewards, _, _ = venv.step(rng.uniform(-1, 1, (8, 6)).astype(np.float32))
+            out += [obs, rewards]
+        venv.close()
+        return out
+
+    for a, b in zip(run(), run()):
+        np.testing.assert_array_equal(a, b)
+
+
 def test_batched_match_vec_env_attributes_and_refusals():
     venv = BatchedMatchVecEnv({"blue": 2, "yellow": 1}, 3, "blue", "idle")
     venv.seed(0)
