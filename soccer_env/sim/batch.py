@@ -22,7 +22,11 @@ The worlds are the same physics as separate worlds, but not bit for bit: a world
 in the shared space are offset by its patch's origin, which rounds differently (differences of
 1e-14 m to 1e-11 m after a few hundred steps without contacts; contacts amplify them).
 
-SSL robots only for now: humanoids (their walk engine, falls and lying bodies) are refused.
+Humanoids step in the batch too, but their walk engines, falls, lying bodies and foot strikes
+run world by world in Python (as :meth:`World.step <soccer_env.sim.world.World.step>` runs
+them), so a batch of humanoid worlds saves only the physics; their contacts are routed to
+their world by body, since a lying humanoid's shape changes. The batched environments do not
+take humanoids yet (their head control and perception would run world by world as well).
 """
 
 from __future__ import annotations
@@ -35,7 +39,7 @@ import pymunk.batch as pbatch
 from pymunk._chipmunk import lib as _cp
 
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
-from soccer_env.sim.arena import BALL, OUT, ROBOT
+from soccer_env.sim.arena import BALL, HUMANOID, OUT, ROBOT, WALL
 from soccer_env.sim.ssl import MOUTH_TOLERANCE
 from soccer_env.sim.world import COLLISION_SLOP, BallExit, World
 from soccer_env.validation import check_int
@@ -99,7 +103,7 @@ class WorldBatch:
     Args:
         n_worlds: the number of worlds (1..:data:`MAX_WORLDS`).
         field, ball, robot, n_blue, n_yellow, control_dt, physics_dt: as
-            :class:`~soccer_env.sim.world.World` takes them (SSL robots only).
+            :class:`~soccer_env.sim.world.World` takes them.
         shard_size: worlds per space (1..:data:`MAX_WORLDS`; default
             :data:`SHARD_SIZE`). Each space runs all its substeps before the next one
             starts, so that its bodies, shapes and contacts stay in the processor's caches
@@ -126,10 +130,10 @@ class WorldBatch:
         self.worlds = [World(field, ball, robot, n_blue, n_yellow, control_dt, physics_dt)
                        for _ in range(n_worlds)]
         w0 = self.worlds[0]
-        if w0.humanoid_indices:
-            raise ValueError("WorldBatch steps SSL robots only; humanoids (robot "
-                             f"{[w0.robot_specs[i].name for i in w0.humanoid_indices]!r}) "
-                             "run in separate worlds")
+        #: The humanoids' indices (their walk engines, falls and lying bodies run world by
+        #: world, in Python: a batch with humanoids saves the physics, not their walk).
+        self.humanoid_indices = list(w0.humanoid_indices)
+        self._ssl_mask = np.array([s.kind == "ssl" for s in w0.robot_specs])
         self.n_worlds = n_worlds
         self.n_robots = w0.n_robots
         self.field = field
@@ -146,10 +150,11 @@ class WorldBatch:
         limits = np.array([w0._limits[i] for i in range(self.n_robots)], dtype=np.float64)
         self._vmax, self._wmax, self._cap = limits[:, 0], limits[:, 1], limits[:, 2]
         # The kicker's and the dribbler's reach (see World._kick_resting_ball and
-        # _dribble_candidates).
+        # _dribble_candidates; humanoids have neither, their columns are masked).
         self._reach2 = np.array([(s.radius + ball.radius + MOUTH_TOLERANCE) ** 2
                                  for s in w0.robot_specs])
-        self._front_reach = np.array([s.front_distance + ball.radius for s in w0.robot_specs])
+        self._front_reach = np.array([getattr(s, "front_distance", s.radius) + ball.radius
+                                      for s in w0.robot_specs])
         self.state = np.zeros((n_worlds, 1 + self.n_robots, 6))
         for k, w in enumerate(self.worlds):
             w._state = self.state[k]
@@ -164,13 +169,17 @@ class WorldBatch:
     # Construction and episodes
     # ------------------------------------------------------------------------------------
 
-    def reset(self, robot_poses: np.ndarray, ball_positions: np.ndarray) -> None:
+    def reset(self, robot_poses: np.ndarray, ball_positions: np.ndarray,
+              rngs: list[np.random.Generator] | None = None) -> None:
         """Build the shared spaces with every world at rest.
 
         Args:
             robot_poses: ``(n_worlds, N, 3)`` initial ``x, y, theta`` of every robot of every
                 world, each in its world's field frame.
             ball_positions: ``(n_worlds, 2)`` initial ball positions.
+            rngs: each world's generator of the humanoids' random events (as
+                :meth:`World.reset <soccer_env.sim.world.World.reset>` takes it; None:
+                ``default_rng(0)`` for every world).
         """
         poses = np.asarray(robot_poses, dtype=np.float64)
         balls = np.asarray(ball_positions, dtype=np.float64)
@@ -180,7 +189,11 @@ class WorldBatch:
         if balls.shape != (self.n_worlds, 2):
             raise ValueError(f"ball_positions must have shape ({self.n_worlds}, 2), got "
                              f"{balls.shape}")
+        if rngs is not None and len(rngs) != self.n_worlds:
+            raise ValueError(f"rngs must hold {self.n_worlds} generators, got {len(rngs)}")
         self._owner: dict[pymunk.Shape, int] = {}
+        # A humanoid's shapes change (its lying body): its contacts are routed by body.
+        self._body_owner: dict[pymunk.Body, int] = {}
         shards = []
         for start in range(0, self.n_worlds, self.shard_size):
             stop = min(start + self.shard_size, self.n_worlds)
@@ -197,11 +210,17 @@ class WorldBatch:
                 self._owner[next(iter(w._ball.shapes))] = k
                 for shape in w._shape_index:
                     self._owner[shape] = k
+                for body in w._bodies:
+                    self._body_owner[body] = k
             space.on_collision(BALL, ROBOT, pre_solve=self._contact)
             space.on_collision(BALL, OUT, begin=self._out)
+            if self.humanoid_indices:  # as World.reset registers them
+                space.on_collision(BALL, HUMANOID, pre_solve=self._touch)
+                for other in (ROBOT, HUMANOID, WALL):
+                    space.on_collision(HUMANOID, other, begin=self._impact)
             shards.append(_Shard(start, stop, space, self.worlds[start:stop]))
-        for w, p, b in zip(self.worlds, poses, balls.tolist()):
-            w.restart(p, tuple(b))
+        for k, (w, p, b) in enumerate(zip(self.worlds, poses, balls.tolist())):
+            w.restart(p, tuple(b), None if rngs is None else rngs[k])
         self._times = np.zeros(self.n_worlds)
         self._dirty: set[int] = set()
         n = self.n_robots
@@ -215,12 +234,15 @@ class WorldBatch:
         # through their views); a read from the space would round it through the offsets.
 
     def restart(self, k: int, robot_poses: np.ndarray,
-                ball_position: tuple[float, float] = (0.0, 0.0)) -> None:
+                ball_position: tuple[float, float] = (0.0, 0.0),
+                rng: np.random.Generator | None = None) -> None:
         """Start a new episode in world ``k`` (the others go on), with nothing remembered of
-        its last one (cached contacts, joint impulses), as in a fresh world."""
+        its last one (a humanoid's lying body and grounded drives, cached contacts, joint
+        impulses), as in a fresh world; ``rng``: its humanoids' generator."""
         world = self.worlds[k]
+        world._stand_all()
         world._forget_contacts()
-        world.restart(robot_poses, ball_position)
+        world.restart(robot_poses, ball_position, rng)
         self._times[k] = 0.0
 
     def close(self) -> None:
@@ -255,6 +277,13 @@ class WorldBatch:
         if world._pending_kick >= 0:
             self._pending.append(k)
 
+    def _touch(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
+        self._enter(self._owner[arbiter.shapes[0]])._ball_touch(arbiter, space, data)
+
+    def _impact(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
+        world = self._enter(self._body_owner[arbiter.shapes[0].body])
+        world._humanoid_impact(arbiter, space, data)
+
     def _out(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
         self._enter(self._owner[arbiter.shapes[0]])._ball_out(arbiter, space, data)
 
@@ -284,7 +313,31 @@ class WorldBatch:
         cos, sin = np.cos(heading), np.sin(heading)
         field_vx, field_vy = cos * vx - sin * vy, sin * vx + cos * vy
         kick = c[..., 3]
-        armed = np.where(kick > 0.0, np.minimum(kick, self._cap), 0.0)
+        ssl = self._ssl_mask
+        armed = np.where(ssl & (kick > 0.0), np.minimum(kick, self._cap), 0.0)
+        n = self.n_robots
+        # Touch flags of the worlds that had events in the last step go back to False (the
+        # others' are False already).
+        for k in self._dirty:
+            self.worlds[k].touched = [False] * n
+            self.worlds[k].kicked = [False] * n
+        self._dirty = set()
+        chip_on, dribble_on = ssl & (c[..., 4] > 0.0), ssl & (c[..., 5] > 0.0)
+        self._rows_of_step = (armed, chip_on, dribble_on)
+        self._pending = []
+        t0s = self._times.tolist()
+        if self.humanoid_indices:
+            # The humanoids' walk engines, world by world (as World.step drives them), and
+            # every world entered for its humanoids' events.
+            hum = self.humanoid_indices
+            rows, headings = c.tolist(), self.state[:, 1:, 2].tolist()
+            field_vx, field_vy, w = field_vx.copy(), field_vy.copy(), w.copy()
+            for k, world in enumerate(self.worlds):
+                self._enter(k)
+                moves = world.walk.command([rows[k][i] for i in hum],
+                                           [headings[k][i] for i in hum], t0s[k])
+                for i, (mx, my, mw) in zip(hum, moves):
+                    field_vx[k, i], field_vy[k, i], w[k, i] = mx, my, mw
         # Velocities only: the balls' and robots' are those of :attr:`state` (read at the end
         # of the last step; every change between steps, a teleport or a shot, goes through
         # the worlds' ``set_robot`` and ``set_ball``, which write it there too), so the step
@@ -299,16 +352,6 @@ class WorldBatch:
             bodies[rows, 1] = field_vy[sl]
             bodies[rows, 2] = w[sl]
             pbatch.set_space_bodies(shard.space, _VELOCITIES, shard.write)
-        n = self.n_robots
-        # Touch flags of the worlds that had events in the last step go back to False (the
-        # others' are False already).
-        for k in self._dirty:
-            self.worlds[k].touched = [False] * n
-            self.worlds[k].kicked = [False] * n
-        self._dirty = set()
-        chip_on, dribble_on = c[..., 4] > 0.0, c[..., 5] > 0.0
-        self._rows_of_step = (armed, chip_on, dribble_on)
-        self._pending = []
         # Which worlds may fire a kicker at a ball already in its mouth, or dribble: the
         # worlds' own first tests (the ball within reach of an armed kicker; of a running
         # dribbler within this step), on the whole batch at once, with the same arithmetic,
@@ -366,6 +409,9 @@ class WorldBatch:
                             world._set_sliding(False, 0.0)
         for world, t in zip(worlds, times.tolist()):
             world.time = t
+        if self.humanoid_indices:
+            for world, t0 in zip(worlds, t0s):
+                world._humanoid_events(t0)
         self.read_state()
 
     @property

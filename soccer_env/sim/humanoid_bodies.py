@@ -108,6 +108,21 @@ class HumanoidBodies:
                 self.touched[i] = True
                 self.last_touch = i
 
+    def _stand_all(self) -> None:
+        """Take every lying body out of the space and give every grounded humanoid's drives
+        their standing limits back: what a world restarting in a shared space must undo (a
+        fresh world has neither)."""
+        for shape in self._lying.values():
+            self.space.remove(shape)
+            del self._shape_index[shape]
+        self._lying = {}
+        for i in self._grounded:
+            spec = self.robot_specs[i]
+            drive, turn = self._drives[i]
+            drive.max_force = spec.mass * spec.max_acceleration
+            turn.max_force = spec.moment_of_inertia * spec.max_angular_acceleration
+        self._grounded = set()
+
     def humanoid_state(self) -> dict[str, dict[str, object]]:
         """Per humanoid (by name): ``fallen``, ``kicking``, head ``pan`` and ``tilt`` [rad],
         ``sway`` ``(pan, tilt)`` [rad], ``odometry`` (the last step's ``dx, dy, dtheta`` in

@@ -112,8 +112,9 @@ def test_restart_starts_one_world_and_leaves_the_others():
 def test_bad_input_names_the_argument():
     with pytest.raises(ValueError, match=r"n_worlds must be an integer in 1..65536, got 0"):
         WorldBatch(0, FIELD, BALL, ROBOT, 1, 0)
-    with pytest.raises(ValueError, match="SSL robots only"):
-        WorldBatch(2, FIELD, BALL, presets.robot("humanoid"), 1, 0)
+    with pytest.raises(ValueError, match="rngs must hold 2 generators"):
+        WorldBatch(2, FIELD, BALL, ROBOT, 1, 0).reset(np.zeros((2, 1, 3)), np.zeros((2, 2)),
+                                                      [np.random.default_rng(0)])
     batch = WorldBatch(2, FIELD, BALL, ROBOT, 1, 0)
     with pytest.raises(RuntimeError, match="reset"):
         batch.step(np.zeros((2, 1, 6)))
@@ -126,3 +127,57 @@ def test_bad_input_names_the_argument():
     batch.reset(np.zeros((2, 1, 3)) + [[[1.0, 0.0, 0.0]]], np.zeros((2, 2)))
     with pytest.raises(ValueError, match=r"commands must have shape \(2, 1, 6\)"):
         batch.step(np.zeros((2, 6)))
+
+
+@pytest.mark.parametrize("robots", [("humanoid", "humanoid"), ("ssl", "humanoid")])
+def test_humanoids_step_in_the_batch_as_in_worlds_apart(robots):
+    """Humanoids' walks and kicks (foot strikes; two humanoids, the ball at the blue one's
+    feet), falls after an SSL robot's impacts with their lying bodies and getting up (the
+    ball far away), and the restart of a world whose robot lies: the same events at the same
+    steps as separate worlds, positions to rounding. (A ball squeezed between two robots
+    can come out differently: the shared space may order the contacts differently.)"""
+    field = presets.field("humanoid-kid")
+    ball = presets.ball(field.ball)
+    specs = [presets.robot(r) for r in robots]
+    ramming = robots[0] == "ssl"
+    n = 3
+    poses = np.array([[[-0.3 - 0.1 * k, 0.0, 0.0], [0.3, 0.05 * k, np.pi]] for k in range(n)])
+    balls = np.array([[2.0, 2.0 - 0.1 * k] if ramming else [-0.12 - 0.1 * k, 0.0]
+                      for k in range(n)])
+    batch = WorldBatch(n, field, ball, specs, 1, 1)
+    batch.reset(poses, balls, [np.random.default_rng(k) for k in range(n)])
+    apart = [World(field, ball, specs, 1, 1) for _ in range(n)]
+    for k, (w, p, b) in enumerate(zip(apart, poses, balls)):
+        w.reset(p, tuple(b), np.random.default_rng(k))
+    rng = np.random.default_rng(4)
+    falls = kicks = lying = 0
+    for t in range(400):
+        c = np.zeros((n, 2, 6))
+        for k in range(n):
+            for i, spec in enumerate(specs):
+                if spec.kind == "humanoid":  # walk at the other robot, kick now and then
+                    c[k, i, :3] = (0.3, rng.uniform(-0.1, 0.1), rng.uniform(-0.5, 0.5))
+                    c[k, i, 3] = 3.0 if rng.random() < 0.05 else 0.0
+                else:  # ram the humanoid
+                    c[k, i, :3] = (1.5, 0.0, rng.uniform(-2, 2))
+        if t == 250:  # restart world 1 (ramming: its humanoid lies, grounded)
+            p1 = np.array([[-0.5, 0.2, 0.0], [0.5, -0.2, np.pi]])
+            batch.restart(1, p1, (0.0, 0.0), np.random.default_rng(9))
+            apart[1].reset(p1, (0.0, 0.0), np.random.default_rng(9))
+        batch.step(c)
+        for w, ck in zip(apart, c):
+            w.step(ck)
+        for k in range(n):
+            b, a = batch.worlds[k], apart[k]
+            assert b.walk.fallen == a.walk.fallen and b.kicked == a.kicked, (t, k)
+            assert b.touched == a.touched and batch.times[k] == a.time, (t, k)
+            assert len(b._lying) == len(a._lying), (t, k)
+            np.testing.assert_allclose(b.robot_array(), a.robot_array(), atol=1e-9)
+            np.testing.assert_allclose(b.ball_array(), a.ball_array(), atol=1e-9)
+            falls += sum(b.walk.fallen)
+            kicks += sum(b.kicked)
+            lying += len(b._lying)
+    if ramming:
+        assert falls > 0 and lying > 0  # robots fell, lay and got up
+    else:
+        assert kicks > 0
