@@ -50,8 +50,8 @@ class BatchedVecEnv(VecEnv):
 
     Args:
         num_envs: environments.
-        env_kwargs: the task's keyword arguments (what the batch supports: SSL robots, the
-            geometric detector).
+        env_kwargs: the task's keyword arguments (what the batch supports: the geometric
+            detector, no rendering).
         max_episode_steps: the time limit (None: the registration's, 480 steps for the
             Goalkeeper, 600 for the Shootout).
         env_id: ``"soccer_env/Goalkeeper-v0"`` or ``"soccer_env/Shootout-v0"``.

@@ -198,8 +198,8 @@ class TrainConfig:
             acting on the plain environment.
         batched: step Goalkeeper-v0's ``n_envs`` environments as one batch in the learner's
             process (:class:`~agents.batched.BatchedVecEnv`, the
-            ``vector_entry_point``): SSL keepers (any observation mode but the pixels
-            detector) with native actions, no frame stack, the shared critic and
+            ``vector_entry_point``): any keeper and observation mode but the pixels
+            detector, with native actions, no frame stack, the shared critic and
             ``n_workers=0``. For the match: each process's matches as one batch
             (:class:`~agents.batched.BatchedMatchVecEnv`, in the learner's process or in each
             of ``n_workers`` workers): SSL robots.
@@ -403,7 +403,7 @@ def check_env_kwargs(cfg: TrainConfig) -> None:
         import soccer_env  # noqa: F401
 
         gym.make(GOALKEEPER_ID, **cfg.env_kwargs).close()
-        if cfg.batched:  # what the batch supports (SSL keepers, no rendering)
+        if cfg.batched:  # what the batch supports (no pixels detector, no rendering)
             from soccer_env.envs.batched import GoalkeeperVectorEnv
 
             GoalkeeperVectorEnv(1, **cfg.env_kwargs).close()

@@ -29,8 +29,10 @@ environment's (tested). That runs every observation mode in one process, but the
 costs what it costs in a single environment: a perceived batch steps at about the single
 environment's rate until the estimators are batched across environments.
 
-Scope: SSL robots (humanoids need their walk engine batched), the geometric detector (not
-``pixels``), no rendering. Other arguments are the tasks'.
+Humanoid keepers (with their team-mates) and attackers run in the batch too: their walk
+engines, heads and perception world by world, so a humanoid batch saves only the physics.
+
+Scope: the geometric detector (not ``pixels``), no rendering. Other arguments are the tasks'.
 
 With ``autoreset_mode=AutoresetMode.SAME_STEP`` (``"SameStep"``) finished environments reset
 within the step that ends them, as stable-baselines3 expects
@@ -67,6 +69,7 @@ from soccer_env.envs.shootout import ShootoutEnv
 from soccer_env.perception.match import MatchPerception
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
 from soccer_env.sim.commands import CommandChannel, validate_actions
+from soccer_env.sim.heads import HeadControl, aim_heads
 from soccer_env.sim.referee import classify_exit
 from soccer_env.validation import check_int, check_seed
 
@@ -85,10 +88,9 @@ class NotBatchable(ValueError):
 def make_vector(num_envs: int = 16, max_episode_steps: int | None = DEFAULT_MAX_STEPS,
                 **kwargs: Any) -> VectorEnv:
     """Goalkeeper-v0's ``vector_entry_point``: a :class:`GoalkeeperVectorEnv`, or, for
-    arguments the batch does not run yet (perceived or raw observations, humanoid keepers,
-    rendering, actuation latency), Gymnasium's ``SyncVectorEnv`` of single environments with a
-    warning saying why, so that ``gymnasium.make_vec(id, num_envs=N)`` works for every
-    configuration."""
+    arguments the batch does not run yet (the pixels detector, rendering), Gymnasium's
+    ``SyncVectorEnv`` of single environments with a warning saying why, so that
+    ``gymnasium.make_vec(id, num_envs=N)`` works for every configuration."""
     return _vector_or_sync(GoalkeeperVectorEnv, "soccer_env/Goalkeeper-v0", num_envs,
                            max_episode_steps, kwargs)
 
@@ -123,8 +125,7 @@ class BatchedTask(VectorEnv):
             the step that ends its episode, which returns the new episode's first observation,
             the last one in ``info["final_obs"]`` and the episode's infos in
             ``info["final_info"]``; what stable-baselines3 expects).
-        **kwargs: the task's arguments (SSL robots, the geometric detector, no
-            ``render_mode``).
+        **kwargs: the task's arguments (the geometric detector, no ``render_mode``).
     """
 
     metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
@@ -178,7 +179,13 @@ class BatchedTask(VectorEnv):
         # and command channels, fed from the batch.
         self._truth = probe.obs_mode == "truth"
         base = probe._perception
-        self._plain = self._truth and not any(base.delays) and not any(base.losses)
+        humanoids = bool(w0.humanoid_indices)
+        # Humanoids' heads follow their robots' attention, which the perception gives.
+        self._plain = (self._truth and not any(base.delays) and not any(base.losses)
+                       and not humanoids)
+        self._reads_bodies = probe._reads_bodies
+        self._world_rngs: list[np.random.Generator | None] = [None] * n
+        self._heads: list[Any] = [None] * n
         if not self._plain:
             self._perceptions = [self._new_perception() for _ in range(n)]
             self._channels = [[CommandChannel(c.n, c.delay_steps, c.loss)
@@ -187,6 +194,11 @@ class BatchedTask(VectorEnv):
                              enumerate(zip(probe._slices, (w0.n_blue, w0.n_yellow))) if count]
             self._sensor_rngs: list[np.random.Generator | None] = [None] * n
             self._seen: list[Any] = [None] * n
+            if probe._heads is not None:  # each environment's head control, as the probe's
+                auto = probe._heads.robots
+                self._heads = [HeadControl(w0.robot_specs, auto,
+                                           [p.cameras[i].height for i in auto], probe.head)
+                               for p in self._perceptions]
         self._setup()
 
     def _new_perception(self) -> MatchPerception:
@@ -202,8 +214,15 @@ class BatchedTask(VectorEnv):
         the sensors' generator when the environment perceives."""
         rng = self._rngs[k]
         first, second = rng.integers(2**63), rng.integers(2**63)
+        sensors, world = (first, second) if sensors_first else (second, first)
+        if self.batch.humanoid_indices:  # their falls, kick directions and odometry
+            self._world_rngs[k] = np.random.default_rng(world)
         if not self._plain:
-            self._sensor_rngs[k] = np.random.default_rng(first if sensors_first else second)
+            self._sensor_rngs[k] = np.random.default_rng(sensors)
+
+    def _body(self, k: int) -> Any:
+        """Environment ``k``'s robots' bodies, if its perception reads them (humanoids)."""
+        return self.batch.worlds[k].body_state() if self._reads_bodies else None
 
     def _perceive_start(self, k: int) -> None:
         """Environment ``k``'s perception and command channels at the start of an episode
@@ -212,7 +231,8 @@ class BatchedTask(VectorEnv):
             return
         rng = self._sensor_rngs[k]
         perception = self._perceptions[k]
-        self._seen[k] = perception.reset(self.batch.worlds[k].snapshot(), rng, None)[0]
+        world = self.batch.worlds[k]
+        self._seen[k] = perception.reset(world.snapshot(), rng, self._body(k))[0]
         for channel, delay, loss in zip(self._channels[k], perception.delays,
                                         perception.losses):
             channel.reset(rng, delay, loss)
@@ -256,10 +276,19 @@ class BatchedTask(VectorEnv):
 
     def _restart(self, k: int) -> None:
         poses, ball_xy, drawn = self._place(k)
-        self.batch.restart(k, poses, ball_xy)
+        self.batch.restart(k, poses, ball_xy, self._world_rngs[k])
+        self._aim(k)
         self._steps[k] = 0
         self._begin(k, drawn)
         self._perceive_start(k)
+
+    def _aim(self, k: int) -> None:
+        """Environment ``k``'s humanoids' heads at the start of an episode (as
+        ``SoccerCore._start``: turned to the ball, no glance under way)."""
+        if self.batch.humanoid_indices:
+            aim_heads(self.batch.worlds[k])
+            if self._heads[k] is not None:
+                self._heads[k].reset()
 
     def reset(self, *, seed: int | list[int] | None = None,
               options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict[str, Any]]:
@@ -282,9 +311,11 @@ class BatchedTask(VectorEnv):
                 self._rngs[k] = seeding.np_random(s)[0]
         placed = [self._place(k) for k in range(n)]
         self.batch.reset(np.stack([p for p, _, _ in placed]),
-                         np.array([b for _, b, _ in placed], dtype=np.float64))
+                         np.array([b for _, b, _ in placed], dtype=np.float64),
+                         self._world_rngs if self.batch.humanoid_indices else None)
         self._steps[:] = 0
         for k, (_, _, drawn) in enumerate(placed):
+            self._aim(k)
             self._begin(k, drawn)
             self._perceive_start(k)
         self._needs_reset[:] = False
@@ -312,6 +343,10 @@ class BatchedTask(VectorEnv):
         act[restarting] = 0.0  # a finished environment's action is ignored
         act = validate_actions(act, self._names, self._out_of_range)
         commands = self._commands(act)
+        if self._heads[0] is not None:  # each environment's heads, from its attention
+            times = self.batch.times.tolist()
+            for heads, p, c, now in zip(self._heads, self._perceptions, commands, times):
+                heads.apply(c, now, p.attention)
         if not self._plain:  # each environment's commands through its channels
             commands = np.stack([
                 np.concatenate([ch[t].send(c[sl]) for sl, t in self._in_play])
@@ -322,7 +357,8 @@ class BatchedTask(VectorEnv):
         if not self._truth:
             worlds = self.batch.worlds
             for k in np.nonzero(live)[0].tolist():
-                self._seen[k] = self._perceptions[k].update(worlds[k].snapshot(), None)[0]
+                self._seen[k] = self._perceptions[k].update(worlds[k].snapshot(),
+                                                            self._body(k))[0]
         outcome[restarting] = None
         terminated = outcome != None  # noqa: E711 (element-wise)
         truncated = np.zeros(n, dtype=bool)
@@ -373,9 +409,10 @@ class BatchedTask(VectorEnv):
 
 
     def _observe(self) -> np.ndarray:
-        if self._truth:
+        if self._truth:  # (the builder lays out the robots it was made for: the first ones)
             state = self.batch.state
-            return self.builder.build_batch(state[:, 1:], state[:, 0])[:, 0]
+            robots = state[:, 1:1 + self.builder.n_robots]
+            return self.builder.build_batch(robots, state[:, 0])[:, 0]
         build = self.builder.build
         return np.stack([build(seen)[0] for seen in self._seen])
 
@@ -390,9 +427,6 @@ def _check_batchable(probe: Any, task_id: str) -> None:
     if probe.perception.detector == "pixels":
         raise NotBatchable(f"the batched {name} does not run the pixels detector (it renders "
                            "every world's frames); use vectorization_mode='sync'")
-    if probe.robot_spec.kind != "ssl":
-        raise NotBatchable(f"the batched {name} runs SSL robots only (humanoids need their "
-                           "walk engine batched); use vectorization_mode='sync'")
     if probe.render_mode is not None:
         raise NotBatchable(f"the batched {name} does not render; use "
                            "vectorization_mode='sync' for videos")
@@ -417,7 +451,8 @@ class GoalkeeperVectorEnv(BatchedTask):
 
     def _place(self, k: int) -> tuple[np.ndarray, tuple[float, float], dict[str, Any]]:
         rng = self._rngs[k]
-        placed = place_episode(rng, self.field, self._robot, self.ball_spec, self.shots, 0)
+        placed = place_episode(rng, self.field, self._robot, self.ball_spec, self.shots,
+                               self.probe.n_mates)
         self._streams(k, sensors_first=True)  # (GoalkeeperEnv._streams' order)
         return placed
 
@@ -435,7 +470,12 @@ class GoalkeeperVectorEnv(BatchedTask):
         self._fired[k] = True
 
     def _commands(self, act: np.ndarray) -> np.ndarray:
-        return self._model.commands(act)[:, None, :]
+        n, N = self.num_envs, self.batch.n_robots
+        if N == 1:
+            return self._model.commands(act)[:, None, :]
+        full = np.zeros((n, N, 6))  # the team-mates stand and watch (zero actions)
+        full[:, 0] = act
+        return self._model.commands(full.reshape(-1, 6)).reshape(n, N, 6)
 
     def _judge(self, act: np.ndarray, live: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         batch = self.batch
@@ -526,13 +566,21 @@ class ShootoutVectorEnv(BatchedTask):
         self._ball_to_goal[k] = math.hypot(bx - self._goal_x, by - 0.0)
 
     def _commands(self, act: np.ndarray) -> np.ndarray:
-        if self._truth:
-            state = self.batch.state
-            view = self._keeper_view.build_batch(state[:, 1:], state[:, 0])[:, 0]
-        else:  # the keeper plays from its own team's belief
-            build = self._keeper_view.build
-            view = np.stack([build(p.belief(1))[0] for p in self._perceptions])
-        both = np.stack([act, np.clip(self.keeper.act_batch(view), -1.0, 1.0)], axis=1)
+        build = self._keeper_view.build
+        if self.keeper.humanoid:
+            # A humanoid keeper decides in plain Python, one environment at a time, from the
+            # view a single environment builds (its dives turn on thresholds).
+            views = ([build(w.snapshot())[0] for w in self.batch.worlds] if self._truth
+                     else [build(p.belief(1))[0] for p in self._perceptions])
+            keeper = np.stack([self.keeper(view) for view in views])
+        else:
+            if self._truth:
+                state = self.batch.state
+                view = self._keeper_view.build_batch(state[:, 1:], state[:, 0])[:, 0]
+            else:  # the keeper plays from its own team's belief
+                view = np.stack([build(p.belief(1))[0] for p in self._perceptions])
+            keeper = self.keeper.act_batch(view)
+        both = np.stack([act, np.clip(keeper, -1.0, 1.0)], axis=1)
         return self._model.commands(both.reshape(-1, 6)).reshape(self.num_envs, 2, 6)
 
     def _judge(self, act: np.ndarray, live: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

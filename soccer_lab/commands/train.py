@@ -116,11 +116,11 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--workers", type=int, default=None,
                    help="subprocesses stepping them (2; 0 runs them in this process)")
     p.add_argument("--batched", action="store_true", default=None,
-                   help="step the environments as one batch (shared pymunk spaces; SSL "
-                        "robots). Goalkeeper-v0: the --n-envs environments in this process "
-                        "(native actions; --workers is 0; every observation mode, each "
-                        "environment perceiving on its own). Match-v0: each process's "
-                        "matches, in this process or in each of --workers workers")
+                   help="step the environments as one batch (shared pymunk spaces). "
+                        "Goalkeeper-v0: the --n-envs environments in this process (native "
+                        "actions; --workers is 0; every keeper and observation mode, each "
+                        "environment perceiving on its own). Match-v0 (SSL robots): each "
+                        "process's matches, in this process or in each of --workers workers")
     p.add_argument("--seed", type=int, default=None)
     p.add_argument("--out", default=None,
                    help="run folder (default runs/keeper; with --resume, the folder of the "

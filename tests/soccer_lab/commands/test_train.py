@@ -249,7 +249,7 @@ def test_batched_training_steps_the_keepers_as_one_batch(tmp_path, capsys):
     assert (run / "final_policy.npz").is_file()
     for extra, message in ((["--actions", "guard"], "actions='guard'"),
                            (["--workers", "2"], "n_workers=2"),
-                           (["--env-kwarg", "robot=humanoid"], "SSL robots only")):
+                           (["--env-kwarg", "render_mode=rgb_array"], "does not render")):
         with pytest.raises(SystemExit):
             main(["train", "--batched", *extra, "--steps", "64", "--out",
                   str(tmp_path / "no"), "--no-progress"])
