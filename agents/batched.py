@@ -154,10 +154,11 @@ class BatchedMatchVecEnv(MatchVecEnv):
 
     Args:
         env_kwargs, n_matches, learner, opponent, first_match: as :class:`MatchVecEnv` takes
-            them; the matches must be ones the batch runs (SSL robots, the geometric
-            detector, no rendering; otherwise :class:`~soccer_env.envs.batched.NotBatchable`
-            says what is refused). Raw and perceived observations run each match's own
-            perception (as a single match's), so they gain little from the batch.
+            them; the matches must be ones the batch runs (the geometric detector, no
+            rendering; otherwise :class:`~soccer_env.envs.batched.NotBatchable` says what is
+            refused). Raw and perceived observations and humanoids run each match's own
+            perception, walk engines and heads (as a single match's), so they gain little
+            from the batch.
 
     Opponents run over the whole batch at once: a network (a numpy copy of a model) on every
     opponent row in one call, the scripted team through

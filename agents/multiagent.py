@@ -520,7 +520,7 @@ def make_match_vec_env(env_kwargs: Mapping[str, Any] | None = None, n_matches: i
     processes; ``pin`` as that class takes it), seeded so that its first ``reset()`` is
     reproducible (match ``k`` gets ``seed + k``, whatever the number of workers). With
     ``batched``, the matches of each process are stepped as one batch
-    (:class:`~agents.batched.BatchedMatchVecEnv`: SSL robots)."""
+    (:class:`~agents.batched.BatchedMatchVecEnv`)."""
     if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 0:
         raise ValueError(f"workers must be an integer >= 0, got {workers!r}")
     if not isinstance(batched, (bool, np.bool_)):

@@ -202,7 +202,7 @@ class TrainConfig:
             detector, with native actions, no frame stack, the shared critic and
             ``n_workers=0``. For the match: each process's matches as one batch
             (:class:`~agents.batched.BatchedMatchVecEnv`, in the learner's process or in each
-            of ``n_workers`` workers): SSL robots.
+            of ``n_workers`` workers).
         torch_threads: torch's intra-op threads in the learner process.
         device: torch device.
         progress_bar: show SB3's progress bar.

@@ -23,7 +23,10 @@ match's own perception (its teams' sensors and filters) and command channels, fe
 world's state after every batched physics step, so its sensor draws and beliefs are the
 single match's (tested); the perception then costs what it costs in a single match.
 
-Scope: SSL robots, the geometric detector (not ``pixels``), no rendering.
+Humanoid and mixed matches run too: the humanoids' walk engines, heads and perception match by
+match, so the batch saves their physics only.
+
+Scope: the geometric detector (not ``pixels``), no rendering.
 :class:`NotBatchable` names what is refused.
 """
 
@@ -39,6 +42,7 @@ from soccer_env.envs.match import SoccerParallelEnv
 from soccer_env.perception.match import MatchPerception
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
 from soccer_env.sim.commands import CommandChannel, validate_actions
+from soccer_env.sim.heads import HeadControl, aim_heads
 from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff
 from soccer_env.validation import check_int, check_seed
 
@@ -81,8 +85,8 @@ class MatchBatch:
 
     Args:
         n_matches: matches (1..65536).
-        **kwargs: :class:`~soccer_env.envs.match.SoccerParallelEnv`'s arguments (SSL robots,
-            the geometric detector, no ``render_mode``).
+        **kwargs: :class:`~soccer_env.envs.match.SoccerParallelEnv`'s arguments (the
+            geometric detector, no ``render_mode``).
 
     Attributes:
         probe: a single match of the same configuration, for its spaces, specs and
@@ -102,9 +106,6 @@ class MatchBatch:
         if any(c.detector == "pixels" for c in probe.perceptions):
             raise NotBatchable("the batched match does not run the pixels detector (it renders "
                                "every world's frames)")
-        if w0.humanoid_indices:
-            raise NotBatchable("the batched match runs SSL robots only (humanoids need their "
-                               "walk engine batched)")
         if probe.render_mode is not None:
             raise NotBatchable("the batched match does not render")
         self.probe = probe
@@ -134,7 +135,13 @@ class MatchBatch:
         # channels, fed from the batch.
         self._truth = probe.obs_mode == "truth"
         base = probe._perception
-        self._plain = self._truth and not any(base.delays) and not any(base.losses)
+        humanoids = bool(w0.humanoid_indices)
+        # Humanoids' heads follow their robots' attention, which the perception gives.
+        self._plain = (self._truth and not any(base.delays) and not any(base.losses)
+                       and not humanoids)
+        self._reads_bodies = probe._reads_bodies
+        self._world_rngs: list[np.random.Generator | None] = [None] * n
+        self._heads: list[Any] = [None] * n
         if not self._plain:
             self._perceptions = [
                 MatchPerception(probe.obs_mode, probe.perceptions, self.field, self.ball_spec,
@@ -145,6 +152,11 @@ class MatchBatch:
             self._in_play = [(sl, t) for t, (sl, count) in
                              enumerate(zip(probe._slices, (w0.n_blue, w0.n_yellow))) if count]
             self._sensor_rngs: list[np.random.Generator | None] = [None] * n
+            if probe._heads is not None:  # each match's head control, as the probe's
+                auto = probe._heads.robots
+                self._heads = [HeadControl(w0.robot_specs, auto,
+                                           [p.cameras[i].height for i in auto], probe.head)
+                               for p in self._perceptions]
         self._builders = probe._builders
 
     # ------------------------------------------------------------------------------------
@@ -158,8 +170,10 @@ class MatchBatch:
         rng = self._rngs[k]
         kickoff = int(rng.integers(2))
         poses = place_kickoff(self.batch.worlds[k], kickoff, rng, self.formation_jitter)
-        rng.integers(2**63)  # the world's stream (SSL robots draw nothing)
+        world = rng.integers(2**63)  # the world's stream (the humanoids' random events)
         sensors = rng.integers(2**63)  # the sensors' stream
+        if self.batch.humanoid_indices:
+            self._world_rngs[k] = np.random.default_rng(world)
         if not self._plain:
             self._sensor_rngs[k] = np.random.default_rng(sensors)
         return poses, kickoff
@@ -167,16 +181,25 @@ class MatchBatch:
     def _begin(self, k: int, kickoff: int) -> None:
         """Match ``k``'s start after its world is placed: the game state, then (as
         ``SoccerCore._start``) its perception and command channels."""
+        world = self.batch.worlds[k]
+        if self.batch.humanoid_indices:  # heads turned to the ball, no glance under way
+            aim_heads(world)
+            if self._heads[k] is not None:
+                self._heads[k].reset()
         self.score[k] = 0
         self.restart_team[k] = kickoff
         self.cycles[k] = 0
         if self._plain:
             return
         rng, perception = self._sensor_rngs[k], self._perceptions[k]
-        perception.reset(self.batch.worlds[k].snapshot(), rng, None)
+        perception.reset(world.snapshot(), rng, self._body(k))
         for channel, delay, loss in zip(self._channels[k], perception.delays,
                                         perception.losses):
             channel.reset(rng, delay, loss)
+
+    def _body(self, k: int) -> Any:
+        """Match ``k``'s robots' bodies, if its perception reads them (humanoids)."""
+        return self.batch.worlds[k].body_state() if self._reads_bodies else None
 
     def reset(self, seed: int | Sequence[int | None] | None = None) -> np.ndarray:
         """Start every match; returns the observations ``(M, N, obs_dim)``.
@@ -200,7 +223,8 @@ class MatchBatch:
             if s is not None or not self._started:
                 self._rngs[k] = np.random.default_rng(s)
         placed = [self._place(k) for k in range(n)]
-        self.batch.reset(np.stack([p for p, _ in placed]), np.zeros((n, 2)))
+        self.batch.reset(np.stack([p for p, _ in placed]), np.zeros((n, 2)),
+                         self._world_rngs if self.batch.humanoid_indices else None)
         for k, (_, kickoff) in enumerate(placed):
             self._begin(k, kickoff)
         self._started = True
@@ -237,6 +261,10 @@ class MatchBatch:
             commands = np.concatenate(
                 [m.commands(act[:, sl].reshape(-1, 6)).reshape(n, -1, 6)
                  for m, sl in self._slices], axis=1)
+        if self._heads[0] is not None:  # each match's heads, from its robots' attention
+            for heads, p, c, now in zip(self._heads, self._perceptions, commands,
+                                        batch.times.tolist()):
+                heads.apply(c, now, p.attention)
         if not self._plain:  # each match's commands through its channels
             commands = np.stack([
                 np.concatenate([ch[t].send(c[sl]) for sl, t in self._in_play])
@@ -263,8 +291,8 @@ class MatchBatch:
             world.clear_exit()
 
         if not self._truth:
-            for perception, world in zip(self._perceptions, batch.worlds):
-                perception.update(world.snapshot(), None)
+            for k, (perception, world) in enumerate(zip(self._perceptions, batch.worlds)):
+                perception.update(world.snapshot(), self._body(k))
         rewards = self._rewards(scorer, events, ball_x_before)
         obs = self._observe()
         terminated = batch.times >= self.match_duration - 1e-9
@@ -278,7 +306,7 @@ class MatchBatch:
             for k in ended:
                 final_obs[k] = obs[k].copy()
                 poses, kickoff = self._place(k)
-                batch.restart(k, poses, (0.0, 0.0))
+                batch.restart(k, poses, (0.0, 0.0), self._world_rngs[k])
                 self._begin(k, kickoff)
             obs = self._observe()
         return MatchStep(obs, rewards, terminated, truncated, events, scores, lengths, final_obs)

@@ -119,7 +119,7 @@ def parser() -> argparse.ArgumentParser:
                    help="step the environments as one batch (shared pymunk spaces). "
                         "Goalkeeper-v0: the --n-envs environments in this process (native "
                         "actions; --workers is 0; every keeper and observation mode, each "
-                        "environment perceiving on its own). Match-v0 (SSL robots): each "
+                        "environment perceiving on its own). Match-v0: each "
                         "process's matches, in this process or in each of --workers workers")
     p.add_argument("--seed", type=int, default=None)
     p.add_argument("--out", default=None,

@@ -150,8 +150,8 @@ def test_batched_match_vec_env_attributes_and_refusals():
         venv.env_method("render")
     with pytest.raises(ValueError, match=r"shape \(6, 6\)"):
         venv.step(np.zeros((3, 6)))
-    with pytest.raises(NotBatchable, match="SSL robots"):
-        BatchedMatchVecEnv({"robot": "humanoid", "blue": 1, "yellow": 1}, 2)
+    with pytest.raises(NotBatchable, match="render"):
+        BatchedMatchVecEnv({"render_mode": "rgb_array", "blue": 1, "yellow": 1}, 2)
 
 
 @pytest.mark.usefixtures("one_torch_thread")

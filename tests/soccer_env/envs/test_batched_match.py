@@ -86,6 +86,45 @@ def test_the_batch_plays_the_single_matches(kwargs):
         assert counts["goal"] >= 1 and counts["touch"] + counts["goal_line"] >= 1, counts
 
 
+@pytest.mark.parametrize("kwargs", [
+    {"blue": 2, "yellow": 2, "robot": "humanoid", "match_duration": 2.0},
+    {"blue": 2, "yellow": 1, "robot": {"blue": "ssl", "yellow": "humanoid"},
+     "field": "ssl-2012", "max_cycles": 100},
+    {"blue": 1, "yellow": 1, "robot": "humanoid-2012", "obs_mode": "perceived",
+     "match_duration": 2.0},
+])
+def test_humanoid_matches_in_the_batch(kwargs):
+    """Humanoid and mixed matches: each match's walk engines, heads (turned by the head
+    control from the robots' attention) and perception beside the batched physics; random
+    actions (walks, kicks, dives), through match ends."""
+    n = 3
+    batch = MatchBatch(n, **kwargs)
+    singles = [soccer_env.parallel_env(**kwargs) for _ in range(n)]
+    agents = singles[0].possible_agents
+    obs = batch.reset(seed=2)
+    single_obs = [e.reset(seed=2 + k)[0] for k, e in enumerate(singles)]
+    rng = np.random.default_rng(2)
+    ends = 0
+    for t in range(250):
+        for k, o in enumerate(single_obs):
+            np.testing.assert_allclose(obs[k], np.stack([o[a] for a in agents]), atol=1e-4,
+                                       err_msg=f"step {t}, match {k}")
+        act = rng.uniform(-1, 1, (n, len(agents), 6)).astype(np.float32)
+        result = batch.step(act)
+        obs = result.obs
+        for k, e in enumerate(singles):
+            o, r, te, tr, info = e.step(dict(zip(agents, act[k])))
+            a0 = agents[0]
+            assert result.events[k] == info[a0]["event"], (t, k)
+            assert (result.terminated[k], result.truncated[k]) == (te[a0], tr[a0]), (t, k)
+            np.testing.assert_allclose(result.rewards[k], [r[a] for a in agents], atol=1e-9)
+            if te[a0] or tr[a0]:
+                ends += 1
+                o, _ = e.reset()
+            single_obs[k] = o
+    assert ends >= 3
+
+
 def test_same_seed_same_matches_and_seed_lists():
     def run(seed):
         b = MatchBatch(3, blue=2, yellow=2, match_duration=1.0)
@@ -124,7 +163,6 @@ def test_bad_input_names_the_argument():
 @pytest.mark.parametrize("kwargs,why", [
     ({"obs_mode": "perceived", "field": "ssl-2012",
       "perception": {"vision": "ssl-2012", "detector": "pixels"}}, "pixels"),
-    ({"robot": "humanoid"}, "SSL robots"),
     ({"render_mode": "rgb_array"}, "render"),
 ])
 def test_what_the_batch_does_not_run_is_refused(kwargs, why):
