@@ -2,11 +2,13 @@
 and memory per environment.
 
 Usage: ``python benchmarks/batched_keeper.py [--sizes 1 16 128 512 1024] [--steps 200]
-[--rounds 3] [--memory 1000] [--obs-mode truth] [--perception P] [--json FILE]``.
+[--rounds 3] [--memory 1000] [--obs-mode truth] [--perception P] [--robot R]
+[--json FILE]``.
 
 Every run steps uniform random actions (made before the clock starts) through
-Goalkeeper-v0 episodes (truth observations unless ``--obs-mode`` and ``--perception`` say
-otherwise, for the single environment and the batch alike), autoresets included: ``single``
+Goalkeeper-v0 episodes (an SSL keeper on truth observations unless ``--robot``,
+``--obs-mode`` and ``--perception`` say otherwise, for the single environment and the batch
+alike), autoresets included: ``single``
 is ``gymnasium.make`` stepped in a loop (resetting at episode ends), ``batch N`` the vector
 entry point (``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")``) with ``N``
 environments. The runs alternate within each round; ratios are to the single environment of the
@@ -89,11 +91,14 @@ def main(argv: list[str] | None = None) -> int:
                    help="environments for the memory figure (0: skip)")
     p.add_argument("--obs-mode", default="truth", help="observation mode (truth)")
     p.add_argument("--perception", default=None, help="perception preset (the default)")
+    p.add_argument("--robot", default=None, help="robot preset (ssl)")
     p.add_argument("--json", default=None)
     args = p.parse_args(argv)
     kwargs: dict = {"obs_mode": args.obs_mode}
     if args.perception:
         kwargs["perception"] = args.perception
+    if args.robot:
+        kwargs["robot"] = args.robot
     single: list[float] = []
     rates: dict[int, list[float]] = {n: [] for n in args.sizes}
     for r in range(args.rounds):
