@@ -12,7 +12,9 @@ alike), autoresets included: ``single``
 is ``gymnasium.make`` stepped in a loop (resetting at episode ends), ``batch N`` the vector
 entry point (``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")``) with ``N``
 environments. The runs alternate within each round; ratios are to the single environment of the
-same round, and the median over rounds is printed. Memory: the growth of the process's resident
+same round, and the median over rounds is printed. "Physics alone" is the rate the batch would
+reach if nothing but Chipmunk's steps (``cpSpaceStep``, timed call by call within the same run)
+cost anything: the ceiling of any batching on top of these physics. Memory: the growth of the process's resident
 set when ``--memory`` environments are built and reset in a fresh process, divided by their
 number.
 """
@@ -47,7 +49,10 @@ def _single(steps: int, kwargs: dict) -> float:
     return steps / (time.perf_counter() - t0)
 
 
-def _batch(n: int, steps: int, kwargs: dict) -> float:
+def _batch(n: int, steps: int, kwargs: dict) -> tuple[float, float]:
+    """``(env-steps/s, physics ceiling)``: the batch's rate, and the rate it would reach if
+    everything but Chipmunk's own steps (``cpSpaceStep``, timed call by call in the same run)
+    cost nothing."""
     import gymnasium as gym
 
     import soccer_env  # noqa: F401
@@ -56,10 +61,20 @@ def _batch(n: int, steps: int, kwargs: dict) -> float:
     env.reset(seed=0)
     actions = np.random.default_rng(0).uniform(-1, 1, (steps, n, 6)).astype(np.float32)
     env.step(actions[0])
+    batch, clock = env.batch, time.perf_counter
+    space_step, physics = batch._step_space, [0.0]
+
+    def timed(handle, dt):
+        t = clock()
+        space_step(handle, dt)
+        physics[0] += clock() - t
+
+    batch._step_space = timed
     t0 = time.perf_counter()
     for a in actions:
         env.step(a)
-    return steps * n / (time.perf_counter() - t0)
+    wall = time.perf_counter() - t0
+    return steps * n / wall, steps * n / physics[0]
 
 
 def _memory(n: int, kwargs: dict) -> float:
@@ -101,20 +116,27 @@ def main(argv: list[str] | None = None) -> int:
         kwargs["robot"] = args.robot
     single: list[float] = []
     rates: dict[int, list[float]] = {n: [] for n in args.sizes}
+    ceilings: dict[int, list[float]] = {n: [] for n in args.sizes}
     for r in range(args.rounds):
         order = args.sizes if r % 2 == 0 else list(reversed(args.sizes))
         single.append(_single(max(2000, args.steps * 10), kwargs))
         for n in order:
-            rates[n].append(_batch(n, args.steps, kwargs))
+            rate, ceiling = _batch(n, args.steps, kwargs)
+            rates[n].append(rate)
+            ceilings[n].append(ceiling)
     results: dict = {"kwargs": kwargs,
                      "single": {"env_steps_per_s": single, "median": statistics.median(single)}}
     print(f"{'single':>10}: {statistics.median(single):9,.0f} env-steps/s")
     for n in args.sizes:
         ratios = [a / b for a, b in zip(rates[n], single)]
+        top = [a / b for a, b in zip(ceilings[n], single)]
         results[f"batch {n}"] = {"env_steps_per_s": rates[n], "median": statistics.median(rates[n]),
-                                 "ratio_to_single": statistics.median(ratios)}
+                                 "ratio_to_single": statistics.median(ratios),
+                                 "physics_ceiling": statistics.median(ceilings[n]),
+                                 "ceiling_to_single": statistics.median(top)}
         print(f"{'batch ' + str(n):>10}: {statistics.median(rates[n]):9,.0f} env-steps/s   "
-              f"x{statistics.median(ratios):.2f}")
+              f"x{statistics.median(ratios):.2f}   physics alone "
+              f"{statistics.median(ceilings[n]):9,.0f} (x{statistics.median(top):.2f})")
     if args.memory:
         per_env = _memory(args.memory, kwargs)
         results["bytes_per_env"] = per_env
