@@ -36,6 +36,10 @@ the state to any time ``t`` without changing the tracker (None before the first 
   fast path), ``estimate(t)`` -> ``(n, 6)`` rows ``x, y, theta, vx, vy, omega`` for all robots,
   never None (robots never seen read as zeros, see ``seen``).
 
+:class:`BallTrackerBatch` and :class:`RobotTrackerBatch` are ``m`` such trackers as arrays
+(the filters of ``m`` environments), updated with one array operation per batch of frames and
+equal to the single trackers bit for bit.
+
 The three ball trackers also follow :class:`TrackQuality`: ``covariance(t)``, ``last_fused``
 and ``since_start`` say how sure they are (the environments' belief features); the robot
 tracker's ``pose_sigma(i, t)`` and the localization's ``pose_sigma()`` give the pose's spread.
@@ -84,9 +88,11 @@ from .kalman import (
     CHI2_2DOF_999,
     BallFilterConfig,
     BallTracker,
+    BallTrackerBatch,
     KalmanFilter,
     LeastSquaresBall,
     RobotTracker,
+    RobotTrackerBatch,
 )
 from .models import (
     MIN_SIGMA_XY,
@@ -128,9 +134,11 @@ __all__ = [
     "MIN_SIGMA_XY",
     "BallFilterConfig",
     "BallTracker",
+    "BallTrackerBatch",
     "LeastSquaresBall",
     "ParticleBallTracker",
     "RobotTracker",
+    "RobotTrackerBatch",
     "CHI2_2DOF_999",
     "hough_fuse",
     "fuse_sightings",

@@ -7,11 +7,15 @@
   its least-squares baseline (:class:`LeastSquaresBall`);
 * :mod:`~estimators.kalman.robots`: decoupled constant-velocity pose trackers for many robots
   (:class:`RobotTracker`).
+
+The ball and robot trackers have batched twins (:class:`BallTrackerBatch`,
+:class:`RobotTrackerBatch`): many independent trackers as arrays, updated by one array
+operation per batch of frames, equal to the single trackers bit for bit.
 """
 
-from .ball import CHI2_2DOF_999, BallFilterConfig, BallTracker, LeastSquaresBall
+from .ball import CHI2_2DOF_999, BallFilterConfig, BallTracker, BallTrackerBatch, LeastSquaresBall
 from .core import KalmanFilter, check_matrix, check_vector
-from .robots import RobotTracker
+from .robots import RobotTracker, RobotTrackerBatch
 
 __all__ = [
     "KalmanFilter",
@@ -19,7 +23,9 @@ __all__ = [
     "check_matrix",
     "BallFilterConfig",
     "BallTracker",
+    "BallTrackerBatch",
     "LeastSquaresBall",
     "CHI2_2DOF_999",
     "RobotTracker",
+    "RobotTrackerBatch",
 ]

@@ -23,11 +23,13 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..exact import hypots
 from ..models.measurement import PositionMeasurement
-from ..models.motion import FrictionBallMotion
+from ..models.motion import PAPER_CYCLE, FrictionBallMotion
 from ..protocol import check_order, check_time
 
-__all__ = ["BallFilterConfig", "BallTracker", "LeastSquaresBall", "CHI2_2DOF_999"]
+__all__ = ["BallFilterConfig", "BallTracker", "BallTrackerBatch", "LeastSquaresBall",
+           "CHI2_2DOF_999"]
 
 #: Largest change of the ball's velocity a kick or a bounce can make [m/s] (a 6.5 m/s ball
 #: reversing off a robot moving towards it).
@@ -601,3 +603,347 @@ class LeastSquaresBall:
         p0, v = coef
         dt = t - self._t[-1]
         return np.array([p0[0] + v[0] * dt, p0[1] + v[1] * dt, v[0], v[1]])
+
+
+# --------------------------------------------------------------------------------------------
+# The same filter for many balls at once.
+#
+# Column-array transliterations of _predict, _innovation and _update above: the same
+# operations in the same order, on arrays whose rows are independent filters, so that each row
+# rounds exactly as the plain-float version does. ``P`` is ``(d, 12)``: the blocks P11, P12 and
+# P22 row-major in columns 0-3, 4-7 and 8-11; ``A``, ``B`` are ``(d, 4)`` row-major 2 x 2.
+# --------------------------------------------------------------------------------------------
+
+
+def _predict_rows(P: np.ndarray, A: np.ndarray, B: np.ndarray, q: np.ndarray) -> np.ndarray:
+    p0, p1, p3 = P[:, 0], P[:, 1], P[:, 3]
+    m0, m1, m2, m3 = P[:, 4], P[:, 5], P[:, 6], P[:, 7]
+    n0, n1, n3 = P[:, 8], P[:, 9], P[:, 11]
+    a0, a1, a2, a3 = A.T
+    b0, b1, b2, b3 = B.T
+    t0, t1 = a0 * n0 + a1 * n1, a0 * n1 + a1 * n3
+    t2, t3 = a2 * n0 + a3 * n1, a2 * n1 + a3 * n3
+    s0, s1 = a0 * m0 + a1 * m1, a0 * m2 + a1 * m3
+    s2, s3 = a2 * m0 + a3 * m1, a2 * m2 + a3 * m3
+    out = np.empty_like(P)
+    out[:, 0] = p0 + 2.0 * s0 + t0 * a0 + t1 * a1
+    out[:, 1] = out[:, 2] = p1 + s1 + s2 + 0.5 * (t0 * a2 + t1 * a3 + t2 * a0 + t3 * a1)
+    out[:, 3] = p3 + 2.0 * s3 + t2 * a2 + t3 * a3
+    w0, w1, w2, w3 = m0 + t0, m1 + t1, m2 + t2, m3 + t3
+    out[:, 4], out[:, 5] = w0 * b0 + w1 * b1, w0 * b2 + w1 * b3
+    out[:, 6], out[:, 7] = w2 * b0 + w3 * b1, w2 * b2 + w3 * b3
+    u0, u1 = b0 * n0 + b1 * n1, b0 * n1 + b1 * n3
+    u2, u3 = b2 * n0 + b3 * n1, b2 * n1 + b3 * n3
+    out[:, 8] = u0 * b0 + u1 * b1 + q
+    out[:, 9] = out[:, 10] = 0.5 * (u0 * b2 + u1 * b3 + u2 * b0 + u3 * b1)
+    out[:, 11] = u2 * b2 + u3 * b3 + q
+    return out
+
+
+def _innovation_rows(x: np.ndarray, P: np.ndarray, z: np.ndarray, r: float):
+    """``(y0, y1, Si (4 columns), d2)`` of detections ``z`` ``(d, k, 2)`` against ``d``
+    filters (broadcast over the ``k`` detections)."""
+    s0, s1, s3 = P[:, 0] + r, P[:, 1], P[:, 3] + r
+    det = s0 * s3 - s1 * s1
+    i0, i1, i3 = s3 / det, -s1 / det, s0 / det
+    i0, i1, i3 = i0[:, None], i1[:, None], i3[:, None]
+    y0, y1 = z[..., 0] - x[:, 0:1], z[..., 1] - x[:, 1:2]
+    d2 = y0 * (i0 * y0 + i1 * y1) + y1 * (i1 * y0 + i3 * y1)
+    return y0, y1, (i0, i1, i3), d2
+
+
+def _update_rows(x: np.ndarray, P: np.ndarray, y0: np.ndarray, y1: np.ndarray, Si,
+                 r: float) -> tuple[np.ndarray, np.ndarray]:
+    p0, p1, p3 = P[:, 0], P[:, 1], P[:, 3]
+    m0, m1, m2, m3 = P[:, 4], P[:, 5], P[:, 6], P[:, 7]
+    n0, n1, n3 = P[:, 8], P[:, 9], P[:, 11]
+    i0, i1, i3 = Si
+    a0, a1, a2, a3 = p0 * i0 + p1 * i1, p0 * i1 + p1 * i3, p1 * i0 + p3 * i1, p1 * i1 + p3 * i3
+    b0, b1, b2, b3 = m0 * i0 + m2 * i1, m0 * i1 + m2 * i3, m1 * i0 + m3 * i1, m1 * i1 + m3 * i3
+    xn = np.empty_like(x)
+    xn[:, 0] = x[:, 0] + a0 * y0 + a1 * y1
+    xn[:, 1] = x[:, 1] + a2 * y0 + a3 * y1
+    xn[:, 2] = x[:, 2] + b0 * y0 + b1 * y1
+    xn[:, 3] = x[:, 3] + b2 * y0 + b3 * y1
+    c0, c1, c2, c3 = 1.0 - a0, -a1, -a2, 1.0 - a3
+    e0, e1 = c0 * p0 + c1 * p1, c0 * p1 + c1 * p3
+    e2, e3 = c2 * p0 + c3 * p1, c2 * p1 + c3 * p3
+    out = np.empty_like(P)
+    out[:, 0] = e0 * c0 + e1 * c1 + r * (a0 * a0 + a1 * a1)
+    out[:, 1] = out[:, 2] = (0.5 * (e0 * c2 + e1 * c3 + e2 * c0 + e3 * c1)
+                             + r * (a0 * a2 + a1 * a3))
+    out[:, 3] = e2 * c2 + e3 * c3 + r * (a2 * a2 + a3 * a3)
+    out[:, 4] = -(e0 * b0 + e1 * b1) + c0 * m0 + c1 * m2 + r * (a0 * b0 + a1 * b1)
+    out[:, 5] = -(e0 * b2 + e1 * b3) + c0 * m1 + c1 * m3 + r * (a0 * b2 + a1 * b3)
+    out[:, 6] = -(e2 * b0 + e3 * b1) + c2 * m0 + c3 * m2 + r * (a2 * b0 + a3 * b1)
+    out[:, 7] = -(e2 * b2 + e3 * b3) + c2 * m1 + c3 * m3 + r * (a2 * b2 + a3 * b3)
+    g0, g1 = -(b0 * p0 + b1 * p1) + m0, -(b0 * p1 + b1 * p3) + m2
+    g2, g3 = -(b2 * p0 + b3 * p1) + m1, -(b2 * p1 + b3 * p3) + m3
+    out[:, 8] = -(g0 * b0 + g1 * b1) - (b0 * m0 + b1 * m2) + n0 + r * (b0 * b0 + b1 * b1)
+    out[:, 9] = out[:, 10] = (0.5 * (-(g0 * b2 + g1 * b3) - (b0 * m1 + b1 * m3)
+                                     - (g2 * b0 + g3 * b1) - (b2 * m0 + b3 * m2))
+                              + n1 + r * (b0 * b2 + b1 * b3))
+    out[:, 11] = -(g2 * b2 + g3 * b3) - (b2 * m1 + b3 * m3) + n3 + r * (b2 * b2 + b3 * b3)
+    return xn, out
+
+
+class BallTrackerBatch:
+    """``m`` independent :class:`BallTracker` with one configuration, as arrays: the ball
+    filters of ``m`` environments updated by one array operation per batch of frames.
+
+    Tracker ``k`` gives what a :class:`BallTracker` fed the same frames gives, bit for bit
+    (``tests/estimators/kalman/test_ball.py``): the prediction, the choice of the detection
+    and its fusion are the plain-float arithmetic transliterated onto columns (``math.hypot``
+    by :func:`~estimators.exact.hypots`), and what happens rarely (a detection outside the
+    gate: a maneuver, an outlier, a track restart; the Runge-Kutta propagation of
+    ``propagation="rk"``) runs row by row through :class:`BallTracker`'s own code.
+
+    Frames must come in capture-time order per tracker (``update`` raises ``ValueError``
+    otherwise): the single tracker's replay of out-of-order frames is not batched, so a sensor
+    whose latency jitters needs :class:`BallTracker`.
+
+    Args:
+        m: trackers (environments).
+        config, measurement: as :class:`BallTracker`'s.
+
+    Attributes:
+        fused, rejected, resets, maneuvers: ``(m,)`` counters, as :class:`BallTracker`'s.
+    """
+
+    def __init__(self, m: int, config: BallFilterConfig | None = None,
+                 measurement: PositionMeasurement | None = None) -> None:
+        if not isinstance(m, (int, np.integer)) or m < 1:
+            raise ValueError(f"m must be a positive integer, got {m!r}")
+        self._one = BallTracker(config, measurement)
+        self.config, self.motion, self._r = self._one.config, self._one.motion, self._one._r
+        self.m = int(m)
+        self.reset()
+
+    def reset(self, rows=None) -> None:
+        """Forget trackers ``rows`` (all by default)."""
+        if rows is None:
+            m = self.m
+            self._t = np.full(m, -math.inf)
+            self._x = np.zeros((m, 4))
+            self._P = np.zeros((m, 12))
+            self.initialized = np.zeros(m, dtype=bool)
+            self._v_switch = np.zeros(m)
+            self.last_fused = np.full(m, -math.inf)
+            self.since_start = np.zeros(m, dtype=np.int64)
+            self._candidates: list[tuple] = [()] * m
+            self._pending = np.zeros(m, dtype=bool)  # rows with candidates
+            self.fused = np.zeros(m, dtype=np.int64)
+            self.rejected = np.zeros(m, dtype=np.int64)
+            self.resets = np.zeros(m, dtype=np.int64)
+            self.maneuvers = np.zeros(m, dtype=np.int64)
+            return
+        rows = np.asarray(rows, dtype=np.int64)
+        self._t[rows] = -math.inf
+        self._x[rows] = 0.0
+        self._P[rows] = 0.0
+        self.initialized[rows] = False
+        self._v_switch[rows] = 0.0
+        self.last_fused[rows] = -math.inf
+        self.since_start[rows] = 0
+        for k in rows.tolist():
+            self._candidates[k] = ()
+        self._pending[rows] = False
+        for counter in (self.fused, self.rejected, self.resets, self.maneuvers):
+            counter[rows] = 0
+
+    # ------------------------------------------------------------------------------------
+
+    def _decelerations(self, x: np.ndarray, v_switch: np.ndarray) -> np.ndarray:
+        """Each row's deceleration for its next prediction (``_step``'s choice)."""
+        c = self.config
+        a = np.full(len(x), self.motion.deceleration)
+        if c.two_phase is not None:
+            a[hypots(x[:, 2], x[:, 3]) > v_switch] = c.two_phase[0]
+        return a
+
+    def _motion(self, x: np.ndarray, T: np.ndarray, a: np.ndarray):
+        """:meth:`FrictionBallMotion.step` of every row: ``(x', A, B)``."""
+        d = len(x)
+        A = np.zeros((d, 4))
+        B = np.zeros((d, 4))
+        out = np.empty_like(x)
+        if self.motion.propagation == "rk":  # rare in practice: row by row
+            for j, (row, Tj, aj) in enumerate(zip(x.tolist(), T.tolist(), a.tolist())):
+                mean, Aj, Bj = self.motion.step(*row, Tj, aj)
+                out[j], A[j], B[j] = mean, Aj, Bj
+            return out, A, B
+        px, py, vx, vy = x.T
+        speed = hypots(vx, vy)
+        plain = (a == 0.0) | (speed == 0.0)
+        rolls = ~plain & (speed > a * T)
+        stops = ~plain & ~rolls
+        if plain.any():
+            Tp = T[plain]
+            out[plain] = np.stack([px[plain] + vx[plain] * Tp, py[plain] + vy[plain] * Tp,
+                                   vx[plain], vy[plain]], axis=1)
+            A[plain, 0] = A[plain, 3] = Tp
+            B[plain, 0] = B[plain, 3] = 1.0
+        if rolls.any():
+            s, Tr, ar = speed[rolls], T[rolls], a[rolls]
+            X, Y, VX, VY = px[rolls], py[rolls], vx[rolls], vy[rolls]
+            ux, uy = VX / s, VY / s
+            half = 0.5 * ar * Tr * Tr
+            out[rolls] = np.stack([X + VX * Tr - half * ux, Y + VY * Tr - half * uy,
+                                   VX - ar * Tr * ux, VY - ar * Tr * uy], axis=1)
+            g00, g01, g11 = (1.0 - ux * ux) / s, -ux * uy / s, (1.0 - uy * uy) / s
+            A[rolls] = np.stack([Tr - half * g00, -half * g01, -half * g01, Tr - half * g11],
+                                axis=1)
+            B[rolls] = np.stack([1.0 - ar * Tr * g00, -ar * Tr * g01, -ar * Tr * g01,
+                                 1.0 - ar * Tr * g11], axis=1)
+        if stops.any():
+            Ts = T[stops]
+            out[stops] = np.stack([px[stops] + 0.5 * vx[stops] * Ts,
+                                   py[stops] + 0.5 * vy[stops] * Ts,
+                                   np.zeros(len(Ts)), np.zeros(len(Ts))], axis=1)
+            A[stops, 0] = A[stops, 3] = 0.5 * Ts
+        return out, A, B
+
+    def _sigma_v(self, x: np.ndarray, obstacles: np.ndarray, seen: np.ndarray) -> np.ndarray:
+        """Eq. 19 for every row (``BallTracker._sigma_v``)."""
+        c = self.config
+        sigma = np.full(len(x), c.sigma_r)
+        near = seen.any(axis=1) if c.collision_noise else np.zeros(len(x), dtype=bool)
+        if near.any():
+            o, xs = obstacles[near], x[near]
+            d = hypots(o[..., 0] - xs[:, 0:1], o[..., 1] - xs[:, 1:2])
+            d = np.where(seen[near], d, np.inf).min(axis=1)
+            gain = c.gain_k * (c.robot_radius + c.ball_radius)
+            sigma[near] = np.maximum(gain / np.maximum(d, 1e-6) * c.sigma_r, c.sigma_r)
+        return sigma
+
+    def update(self, rows, t, detections, detected, obstacles=None, obstacle_seen=None
+               ) -> None:
+        """Process one frame of each tracker in ``rows`` ``(d,)`` (distinct), captured at
+        ``t`` ``(d,)`` [s]: ball detections ``detections`` ``(d, k, 2)`` [m] of which
+        ``detected`` ``(d, k)`` are real (in their frame's order), and the robots seen in the
+        frame ``obstacles`` ``(d, j, 2+)`` of which ``obstacle_seen`` ``(d, j)`` are real.
+        Unchecked values (the batch's fast path), but times before a tracker's latest frame
+        raise ``ValueError``."""
+        rows = np.asarray(rows, dtype=np.int64)
+        t = np.asarray(t, dtype=np.float64)
+        z = np.asarray(detections, dtype=np.float64)
+        has = np.asarray(detected, dtype=bool)
+        if obstacles is None:
+            obstacles, obstacle_seen = np.zeros((len(rows), 0, 2)), np.zeros((len(rows), 0),
+                                                                              dtype=bool)
+        obstacles = np.asarray(obstacles, dtype=np.float64)[..., 0:2]
+        obstacle_seen = np.asarray(obstacle_seen, dtype=bool)
+        if not len(rows):
+            return
+        if (t < self._t[rows]).any():
+            raise ValueError("frames must come in capture-time order per tracker "
+                             "(BallTracker replays late frames; BallTrackerBatch does not)")
+        any_det = has.any(axis=1)
+        init = self.initialized[rows]
+        start = ~init & any_det
+        if start.any():
+            k, ts = rows[start], t[start]
+            first = z[start, has[start].argmax(axis=1)]
+            var = self.config.tau ** 2
+            self._t[k] = ts
+            self._x[k] = 0.0
+            self._x[k, 0:2] = first
+            self._P[k] = 0.0
+            self._P[k, 0] = self._P[k, 3] = self._P[k, 8] = self._P[k, 11] = var
+            self._v_switch[k] = 0.0
+            self.last_fused[k] = ts
+            self.since_start[k] = 1
+            self.initialized[k] = True
+        if not init.any():
+            return
+        rows, t, z, has, any_det = rows[init], t[init], z[init], has[init], any_det[init]
+        obstacles, obstacle_seen = obstacles[init], obstacle_seen[init]
+        x0, P0, t0 = self._x[rows], self._P[rows], self._t[rows]
+        dt = t - t0
+        x, P = x0.copy(), P0.copy()
+        moved = dt > 0.0
+        if moved.any():
+            sigma_v = self._sigma_v(x0[moved], obstacles[moved], obstacle_seen[moved])
+            a = self._decelerations(x0[moved], self._v_switch[rows[moved]])
+            xm, A, B = self._motion(x0[moved], dt[moved], a)
+            q = sigma_v * sigma_v * dt[moved] / PAPER_CYCLE
+            x[moved], P[moved] = xm, _predict_rows(P0[moved], A, B, q)
+        # No detection: the prediction is the track.
+        self._t[rows] = t
+        quiet = ~any_det
+        if quiet.any():
+            self._x[rows[quiet]], self._P[rows[quiet]] = x[quiet], P[quiet]
+        if not any_det.any():
+            return
+        # The detection nearest the prediction (Mahalanobis; the first of equals).
+        seen_rows = np.nonzero(any_det)[0]
+        xs, Ps = x[seen_rows], P[seen_rows]
+        y0, y1, Si, d2 = _innovation_rows(xs, Ps, z[seen_rows], self._r)
+        d2 = np.where(has[seen_rows], d2, np.inf)
+        best = d2.argmin(axis=1)
+        pick = np.arange(len(seen_rows))
+        d2b = d2[pick, best]
+        gate = self.config.gate
+        inside = np.ones(len(seen_rows), dtype=bool) if gate is None else d2b <= gate
+        if inside.any():
+            j = seen_rows[inside]
+            k = rows[j]
+            b = best[inside]
+            Sj = tuple(s[inside, 0] for s in Si)
+            xn, Pn = _update_rows(xs[inside], Ps[inside], y0[inside, b], y1[inside, b], Sj,
+                                  self._r)
+            self._x[k], self._P[k] = xn, Pn
+            self.fused[k] += 1
+            self.last_fused[k] = t[j]
+            self.since_start[k] += 1
+            clear = self._pending[k]
+            if clear.any():
+                for kk in k[clear].tolist():
+                    self._candidates[kk] = ()
+                self._pending[k] = False
+        if not inside.all():  # gated out: BallTracker's own code, row by row
+            one = self._one
+            for j in seen_rows[~inside].tolist():
+                k = int(rows[j])
+                before = _Track(float(t0[j]),
+                                tuple(x0[j].tolist()), _blocks(P0[j]), self._candidates[k],
+                                float(self._v_switch[k]), float(self.last_fused[k]),
+                                int(self.since_start[k]))
+                dets = z[j][has[j]].tolist()
+                obs = obstacles[j][obstacle_seen[j]].tolist()
+                counts = (one.fused, one.rejected, one.resets, one.maneuvers)
+                tr = one._process(before, float(t[j]), dets, obs)
+                self.fused[k] += one.fused - counts[0]
+                self.rejected[k] += one.rejected - counts[1]
+                self.resets[k] += one.resets - counts[2]
+                self.maneuvers[k] += one.maneuvers - counts[3]
+                self._t[k] = tr.t
+                self._x[k] = tr.x
+                self._P[k] = np.concatenate(tr.P)
+                self._candidates[k] = tr.candidates
+                self._pending[k] = bool(tr.candidates)
+                self._v_switch[k] = tr.v_switch
+                self.last_fused[k] = tr.fused_at
+                self.since_start[k] = tr.since_start
+
+    def estimate(self, t) -> tuple[np.ndarray, np.ndarray]:
+        """``(x, known)``: ``(m, 4)`` states ``(x, y, vx, vy)`` of every tracker predicted to
+        its time ``t`` (``(m,)`` [s], or one time for all; zeros where ``known`` is False,
+        before a tracker's first frame)."""
+        t = np.broadcast_to(np.asarray(t, dtype=np.float64), (self.m,))
+        out = np.zeros((self.m, 4))
+        known = self.initialized.copy()
+        dt = np.where(known, t - np.where(known, self._t, 0.0), 0.0)
+        ahead = known & (dt > 0.0)
+        out[known & ~ahead] = self._x[known & ~ahead]
+        if ahead.any():
+            x = self._x[ahead]
+            a = self._decelerations(x, self._v_switch[ahead])
+            out[ahead] = self._motion(x, dt[ahead], a)[0]
+        return out, known
+
+
+def _blocks(P: np.ndarray) -> tuple:
+    """A ``(12,)`` covariance row as :class:`_Track`'s three 4-tuples."""
+    v = P.tolist()
+    return (tuple(v[0:4]), tuple(v[4:8]), tuple(v[8:12]))

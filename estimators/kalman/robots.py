@@ -39,10 +39,11 @@ import math
 import numpy as np
 
 from ..checks import check_count
+from ..exact import wrap_angles
 from ..models.measurement import MIN_SIGMA_THETA, MIN_SIGMA_XY, PoseMeasurement
 from ..protocol import check_order, check_time
 
-__all__ = ["RobotTracker", "MAX_ROBOTS"]
+__all__ = ["RobotTracker", "RobotTrackerBatch", "MAX_ROBOTS"]
 
 #: The most robots one tracker follows (a whole league's worth).
 MAX_ROBOTS = 10_000
@@ -219,3 +220,117 @@ class RobotTracker:
             P[ax, ax + 3] = P[ax + 3, ax] = P01
             P[ax + 3, ax + 3] = P11
         return P
+
+
+class RobotTrackerBatch:
+    """``m`` independent :class:`RobotTracker` of ``n`` robots each, as arrays: the pose
+    filters of ``m`` environments updated in one array operation per batch of detections.
+
+    The arithmetic is :class:`RobotTracker`'s, operation for operation (the heading's
+    ``math.remainder`` by :func:`~estimators.exact.wrap_angles`), so that tracker ``k`` of the
+    batch gives what a :class:`RobotTracker` fed the same detections gives, bit for bit
+    (``tests/estimators/kalman/test_robots.py``).
+
+    Args:
+        m: trackers (environments).
+        n: robots per tracker.
+        q_xy, q_theta, sigma_xy, sigma_theta, sigma_v0, measurement: as
+            :class:`RobotTracker`'s.
+
+    Attributes:
+        seen: ``(m, n)`` whether each robot has been detected.
+        dropped: ``(m,)`` detections older than their robot's latest update.
+    """
+
+    def __init__(self, m: int, n: int, q_xy: float = 4.0, q_theta: float = 20.0,
+                 sigma_xy: float = 0.005, sigma_theta: float = 0.02, sigma_v0: float = 2.0,
+                 measurement: PoseMeasurement | None = None) -> None:
+        check_count("m", m, 1, 1 << 20)
+        one = RobotTracker(n, q_xy, q_theta, sigma_xy, sigma_theta, sigma_v0, measurement)
+        self.m, self.n = int(m), one.n
+        self.q = np.array(one.q)
+        self.r = np.array(one.r)
+        self.var_v0 = one.var_v0
+        self._state = np.zeros((self.m, self.n, 5, 3))  # p, v, P00, P01, P11 of x, y, theta
+        self._t = np.full((self.m, self.n), -math.inf)
+        self.seen = np.zeros((self.m, self.n), dtype=bool)
+        self.dropped = np.zeros(self.m, dtype=np.int64)
+
+    def reset(self, rows=None) -> None:
+        """Forget every robot of trackers ``rows`` (all by default)."""
+        rows = slice(None) if rows is None else np.asarray(rows, dtype=np.int64)
+        self._state[rows] = 0.0
+        self._t[rows] = -math.inf
+        self.seen[rows] = False
+        self.dropped[rows] = 0
+
+    def update(self, k, i, t, z) -> None:
+        """Fuse pose detections ``z`` ``(d, 3)`` of robots ``i`` ``(d,)`` of trackers ``k``
+        ``(d,)``, captured at ``t`` ``(d,)`` [s]. The pairs ``(k, i)`` must be distinct (each
+        is one :meth:`RobotTracker.update_robot` call; a robot's successive detections go in
+        successive calls). Unchecked, like ``update_robot``."""
+        k = np.asarray(k, dtype=np.int64)
+        i = np.asarray(i, dtype=np.int64)
+        t = np.asarray(t, dtype=np.float64)
+        z = np.asarray(z, dtype=np.float64)
+        if not len(k):
+            return
+        seen = self.seen[k, i]
+        new = ~seen
+        if new.any():
+            kn, in_ = k[new], i[new]
+            rows = np.zeros((len(kn), 5, 3))
+            rows[:, 0] = z[new]
+            rows[:, 2] = self.r
+            rows[:, 4] = self.var_v0
+            self._state[kn, in_] = rows
+            self._t[kn, in_] = t[new]
+            self.seen[kn, in_] = True
+        if not seen.any():
+            return
+        k, i, t, z = k[seen], i[seen], t[seen], z[seen]
+        T = t - self._t[k, i]
+        late = T < 0.0
+        if late.any():
+            np.add.at(self.dropped, k[late], 1)
+            keep = ~late
+            k, i, t, z, T = k[keep], i[keep], t[keep], z[keep], T[keep]
+        self._t[k, i] = t
+        s = self._state[k, i]  # (d, 5, 3)
+        p, v, P00, P01, P11 = s[:, 0], s[:, 1], s[:, 2], s[:, 3], s[:, 4]
+        T = T[:, None]
+        q, r = self.q, self.r
+        # RobotTracker's _predict_update, axis by axis in columns.
+        qT = q * T
+        P00 = P00 + T * (2.0 * P01 + T * (P11 + qT / 3.0))
+        P01 = P01 + T * (P11 + 0.5 * qT)
+        P11 = P11 + qT
+        p = p + v * T
+        y = z - p
+        y[:, 2] = wrap_angles(y[:, 2])
+        S = P00 + r
+        K0, K1 = P00 / S, P01 / S
+        p = p + K0 * y
+        p[:, 2] = wrap_angles(p[:, 2])
+        c = 1.0 - K0
+        out = np.empty_like(s)
+        out[:, 0] = p
+        out[:, 1] = v + K1 * y
+        out[:, 2] = c * c * P00 + K0 * K0 * r
+        out[:, 3] = c * (P01 - K1 * P00) + K0 * K1 * r
+        out[:, 4] = P11 - 2.0 * K1 * P01 + K1 * K1 * S
+        self._state[k, i] = out
+
+    def estimate(self, t) -> np.ndarray:
+        """``(m, n, 6)`` rows ``x, y, theta, vx, vy, omega`` of every tracker predicted to its
+        time ``t`` (``(m,)`` [s], or one time for all); robots never seen read as zeros."""
+        t = np.broadcast_to(np.asarray(t, dtype=np.float64), (self.m,))
+        later = self.seen & (t[:, None] > self._t)
+        dt = np.where(later, t[:, None] - np.where(later, self._t, 0.0), 0.0)[..., None]
+        p, v = self._state[:, :, 0], self._state[:, :, 1]
+        out = np.empty((self.m, self.n, 6))
+        out[..., 0:3] = p + v * dt
+        out[..., 2] = wrap_angles(out[..., 2])
+        out[..., 3:6] = v
+        out[~self.seen] = 0.0
+        return out

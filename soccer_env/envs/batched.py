@@ -66,9 +66,10 @@ from soccer_env.envs.goalkeeper import (
 from soccer_env.envs.shootout import CLEAR_SPEED as SHOOTOUT_CLEAR_SPEED
 from soccer_env.envs.shootout import STOP_SPEED as SHOOTOUT_STOP_SPEED
 from soccer_env.envs.shootout import ShootoutEnv
+from soccer_env.perception.batched import FilteredPerceptionBatch, batch_refusal
 from soccer_env.perception.match import MatchPerception
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
-from soccer_env.sim.commands import CommandChannel, validate_actions
+from soccer_env.sim.commands import CommandChannel, CommandChannelBatch, validate_actions
 from soccer_env.sim.heads import HeadControl, aim_heads
 from soccer_env.sim.referee import classify_exit
 from soccer_env.validation import check_int, check_seed
@@ -186,12 +187,28 @@ class BatchedTask(VectorEnv):
         self._reads_bodies = probe._reads_bodies
         self._world_rngs: list[np.random.Generator | None] = [None] * n
         self._heads: list[Any] = [None] * n
+        #: The perceived beliefs of every environment as one batch, where the configuration
+        #: allows (:func:`~soccer_env.perception.batched.batch_refusal`); else None, and
+        #: each environment keeps its own perception.
+        self._vision: FilteredPerceptionBatch | None = None
+        self._starting: list[int] = []
+        if not self._truth and batch_refusal(base) is None:
+            self._vision = FilteredPerceptionBatch(base, n)
         if not self._plain:
-            self._perceptions = [self._new_perception() for _ in range(n)]
-            self._channels = [[CommandChannel(c.n, c.delay_steps, c.loss)
-                               for c in probe._channels] for _ in range(n)]
+            self._perceptions = ([base] * n if self._vision is not None
+                                 else [self._new_perception() for _ in range(n)])
             self._in_play = [(sl, t) for t, (sl, count) in
                              enumerate(zip(probe._slices, (w0.n_blue, w0.n_yellow))) if count]
+            # Every environment's command channels of a team as one batch, unless the
+            # latency and loss are drawn per episode.
+            self._team_channels = None
+            if not base._randomized:
+                self._team_channels = [
+                    (sl, t, CommandChannelBatch(n, probe._channels[t].n, base.delays[t],
+                                                base.losses[t])) for sl, t in self._in_play]
+            else:
+                self._channels = [[CommandChannel(c.n, c.delay_steps, c.loss)
+                                   for c in probe._channels] for _ in range(n)]
             self._sensor_rngs: list[np.random.Generator | None] = [None] * n
             self._seen: list[Any] = [None] * n
             if probe._heads is not None:  # each environment's head control, as the probe's
@@ -231,11 +248,40 @@ class BatchedTask(VectorEnv):
             return
         rng = self._sensor_rngs[k]
         perception = self._perceptions[k]
-        world = self.batch.worlds[k]
-        self._seen[k] = perception.reset(world.snapshot(), rng, self._body(k))[0]
+        if self._vision is not None:  # (started with the others: _start_vision)
+            self._starting.append(k)
+        else:
+            world = self.batch.worlds[k]
+            self._seen[k] = perception.reset(world.snapshot(), rng, self._body(k))[0]
+        # (A channel draws nothing when it starts, so that it may start before the batched
+        # perception.)
+        if self._team_channels is not None:
+            for _, _, channel in self._team_channels:
+                channel.reset(k, rng)
+            return
         for channel, delay, loss in zip(self._channels[k], perception.delays,
                                         perception.losses):
             channel.reset(rng, delay, loss)
+
+    def _start_vision(self) -> None:
+        """Start the batched perception of the environments whose episodes began since the
+        last call (:meth:`_perceive_start`)."""
+        if self._vision is None or not self._starting:
+            return
+        rows = np.array(self._starting, dtype=np.int64)
+        self._starting = []
+        times, balls, robots = self._truth_arrays(rows)
+        self._vision.reset(rows, times, balls, robots, [self._sensor_rngs[k] for k in rows])
+
+    def _truth_arrays(self, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(times, balls (d, 3) x y z, robot poses (d, N, 3))`` of environments ``rows``,
+        what the overhead cameras see."""
+        batch = self.batch
+        state = batch.state[rows]
+        balls = state[:, 0, 0:3].copy()
+        worlds = batch.worlds
+        balls[:, 2] = [worlds[k]._z for k in rows.tolist()]
+        return batch.times[rows], balls, state[:, 1:, 0:3]
 
     # ------------------------------------------------------------------------------------
     # The task's hooks
@@ -318,6 +364,7 @@ class BatchedTask(VectorEnv):
             self._aim(k)
             self._begin(k, drawn)
             self._perceive_start(k)
+        self._start_vision()
         self._needs_reset[:] = False
         self._started = True
         return self._observe(), {"episode_steps": self._steps.copy()}
@@ -347,14 +394,23 @@ class BatchedTask(VectorEnv):
             times = self.batch.times.tolist()
             for heads, p, c, now in zip(self._heads, self._perceptions, commands, times):
                 heads.apply(c, now, p.attention)
-        if not self._plain:  # each environment's commands through its channels
+        if self._plain:
+            pass
+        elif self._team_channels is not None:  # every team's commands through its channels
+            commands = np.array(commands, dtype=np.float64)
+            for sl, _, channel in self._team_channels:
+                commands[:, sl] = channel.send(commands[:, sl])
+        else:  # each environment's commands through its channels
             commands = np.stack([
                 np.concatenate([ch[t].send(c[sl]) for sl, t in self._in_play])
                 for ch, c in zip(self._channels, commands)])
         self.batch.step(commands)
         self._steps += 1
         outcome, rewards = self._judge(act, live)
-        if not self._truth:
+        if self._vision is not None:
+            rows = np.nonzero(live)[0]
+            self._vision.update(rows, *self._truth_arrays(rows))
+        elif not self._truth:
             worlds = self.batch.worlds
             for k in np.nonzero(live)[0].tolist():
                 self._seen[k] = self._perceptions[k].update(worlds[k].snapshot(),
@@ -390,6 +446,7 @@ class BatchedTask(VectorEnv):
         # start their next episode now.
         for k in np.nonzero(restarting)[0].tolist():
             self._restart(k)
+        self._start_vision()
         if restarting.any():
             if not self._same_step:
                 rewards[restarting] = 0.0
@@ -413,6 +470,9 @@ class BatchedTask(VectorEnv):
             state = self.batch.state
             robots = state[:, 1:1 + self.builder.n_robots]
             return self.builder.build_batch(robots, state[:, 0])[:, 0]
+        if self._vision is not None:
+            ball, robots = self._vision.beliefs()
+            return self.builder.build_batch(robots[:, :self.builder.n_robots], ball)[:, 0]
         build = self.builder.build
         return np.stack([build(seen)[0] for seen in self._seen])
 
@@ -577,7 +637,10 @@ class ShootoutVectorEnv(BatchedTask):
             if self._truth:
                 state = self.batch.state
                 view = self._keeper_view.build_batch(state[:, 1:], state[:, 0])[:, 0]
-            else:  # the keeper plays from its own team's belief
+            elif self._vision is not None:  # the keeper plays from its team's belief
+                ball, robots = self._vision.beliefs()
+                view = self._keeper_view.build_batch(robots, ball)[:, 0]
+            else:
                 view = np.stack([build(p.belief(1))[0] for p in self._perceptions])
             keeper = self.keeper.act_batch(view)
         both = np.stack([act, np.clip(keeper, -1.0, 1.0)], axis=1)

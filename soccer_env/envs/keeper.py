@@ -8,6 +8,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from estimators import FrictionBallModel
+from estimators.exact import hypots, wrap_angles
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 
 __all__ = ["ScriptedGoalkeeper", "drive_command", "drive_commands", "turn_command",
@@ -18,77 +19,6 @@ TURN_GAIN = 8.0
 
 #: The full turn that :func:`turn_command` wraps angles by [rad].
 _TWO_PI = 2.0 * math.pi
-#: Veltkamp's splitting constant ``2**27 + 1``: splits a double into two 26-bit halves whose
-#: products are exact (Dekker).
-_SPLIT = 134217729.0
-#: The smallest normal double, 2**-1022.
-_DBL_MIN = float(np.finfo(np.float64).tiny)
-
-
-def _square(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``(x * x, error)``: the rounded square and its exact rounding error (Dekker's product),
-    elementwise."""
-    t = x * _SPLIT
-    hi = t - (t - x)
-    lo = x - hi
-    sq = x * x
-    return sq, ((hi * hi - sq) + 2.0 * hi * lo) + lo * lo
-
-
-def hypots(x: np.ndarray | float, y: np.ndarray | float) -> np.ndarray:
-    """Elementwise ``math.hypot(x, y)``: the length ``sqrt(x^2 + y^2)`` of the vectors
-    ``(x, y)`` (broadcast), float64.
-
-    It computes what CPython's ``math.hypot`` computes (its ``vector_norm``: scaling by a power
-    of two, exact squares, compensated summation and a differential correction of the square
-    root), so the results equal it bit for bit on CPython 3.11 and later; ``np.hypot`` (the C
-    library's) differs from it in the last bit for about one pair in 160.
-    """
-    x, y = np.broadcast_arrays(np.abs(np.asarray(x, dtype=np.float64)),
-                               np.abs(np.asarray(y, dtype=np.float64)))
-    big = np.maximum(x, y)
-    with np.errstate(all="ignore"):  # zeros, infinities and NaN are set at the end
-        exponent = np.frexp(big)[1]
-        tiny = exponent < -1023
-        if tiny.any():  # subnormal: make it normal first, as CPython does
-            x, y = x / np.where(tiny, _DBL_MIN, 1.0), y / np.where(tiny, _DBL_MIN, 1.0)
-            exponent = np.frexp(np.maximum(x, y))[1]
-        scale = np.ldexp(1.0, -exponent)  # lossless scaling of the larger one into [0.5, 1)
-        x2, x2_err = _square(x * scale)
-        y2, y2_err = _square(y * scale)
-        # Compensated sum 1 + x^2 + y^2 (CPython's csum, frac1, frac2).
-        csum = 1.0 + x2
-        frac2 = (1.0 - csum) + x2
-        total = csum + y2
-        frac2 += (csum - total) + y2
-        csum = total
-        frac1 = x2_err + y2_err
-        h = np.sqrt((csum - 1.0) + (frac1 + frac2))
-        # Differential correction: h += (x^2 + y^2 - h^2) / (2 h).
-        h2, h2_err = _square(h)
-        total = csum - h2
-        frac1 -= h2_err
-        frac2 += (csum - total) - h2
-        h += ((total - 1.0) + (frac1 + frac2)) / (2.0 * h)
-        h /= scale
-        if tiny.any():
-            h *= np.where(tiny, _DBL_MIN, 1.0)
-    h = np.where(big == 0.0, 0.0, h)
-    return np.where(np.isinf(x) | np.isinf(y), np.inf, h)
-
-
-def wrap_angles(angle: np.ndarray | float) -> np.ndarray:
-    """Elementwise ``math.remainder(angle, 2 pi)``: ``angle`` [rad] wrapped into
-    ``[-pi, pi]``, float64, bit for bit.
-
-    ``angle - n 2 pi`` with ``n`` the quotient rounded half to even, as the IEEE remainder
-    takes it; exact for ``|angle| < 16 pi`` (``n 2 pi`` is then exact, and so is the
-    difference), beyond which the quotient may round differently.
-    """
-    angle = np.asarray(angle, dtype=np.float64)
-    return angle - _TWO_PI * np.round(angle / _TWO_PI)
-
-
 def drive_command(px: float, py: float, c: float, s: float, tx: float, ty: float,
                   max_speed: float, max_acceleration: float, speed_cap: float | None = None
                   ) -> tuple[float, float]:

@@ -29,11 +29,13 @@ from typing import NamedTuple
 import numpy as np
 
 from estimators import PoseMeasurement, PositionMeasurement
+from estimators.exact import wrap_angles
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
 from soccer_env.presets.sensors import VisionSpec
 from soccer_env.state import WorldState
 
-__all__ = ["Camera", "DetectionFrame", "OverheadVision", "default_cameras"]
+__all__ = ["Camera", "DetectionFrame", "FrameBatch", "OverheadVision", "OverheadVisionBatch",
+           "default_cameras"]
 
 
 class Camera(NamedTuple):
@@ -326,3 +328,330 @@ class _Draws:
             self._u = 0
         self._u += k
         return self._uniform[self._u - k:self._u]
+
+
+class FrameBatch(NamedTuple):
+    """Detection frames of many fields (:class:`OverheadVisionBatch`) as arrays, one row per
+    frame, the rows of each field in delivery order and the fields in ascending order.
+
+    Attributes:
+        env: ``(F,)`` the field (environment) of each frame.
+        camera, t_capture, t_delivered: ``(F,)`` as :class:`DetectionFrame`'s.
+        balls: ``(F, N + 2, 2)`` ball detections [m] in fixed slots: the ball, the spurious
+            balls at robots ``0 .. N-1``'s dribblers, the spurious ball anywhere in view (the
+            order of :class:`DetectionFrame`'s ``balls`` once the empty slots are dropped).
+        ball_seen: ``(F, N + 2)`` which slots hold a detection.
+        robots: ``(F, N, 3)`` detected poses ``(x, y, theta)`` by robot index.
+        robot_seen: ``(F, N)`` which robots were detected.
+    """
+
+    env: np.ndarray
+    camera: np.ndarray
+    t_capture: np.ndarray
+    t_delivered: np.ndarray
+    balls: np.ndarray
+    ball_seen: np.ndarray
+    robots: np.ndarray
+    robot_seen: np.ndarray
+
+    @property
+    def count(self) -> int:
+        """The number of frames."""
+        return len(self.env)
+
+    def take(self, index: np.ndarray) -> FrameBatch:
+        """The frames at ``index`` (an index array or a boolean mask)."""
+        return FrameBatch(*(a[index] for a in self))
+
+    def frames(self, k: int) -> list[DetectionFrame]:
+        """Field ``k``'s frames as :class:`DetectionFrame` (for tests and inspection)."""
+        out = []
+        for f in np.nonzero(self.env == k)[0].tolist():
+            ids = np.nonzero(self.robot_seen[f])[0].tolist()
+            out.append(DetectionFrame(
+                int(self.camera[f]), float(self.t_capture[f]), float(self.t_delivered[f]),
+                tuple(tuple(b) for b in self.balls[f][self.ball_seen[f]].tolist()), tuple(ids),
+                tuple(tuple(p) for p in self.robots[f][ids].tolist())))
+        return out
+
+    @staticmethod
+    def join(parts: list[FrameBatch]) -> FrameBatch:
+        """The frames of ``parts`` one after another."""
+        return FrameBatch(*(np.concatenate(column) for column in zip(*parts)))
+
+
+class OverheadVisionBatch:
+    """The overhead cameras of ``m`` fields alike (one :class:`OverheadVision` each), every
+    field's frames captured in one array pass per step.
+
+    Field ``k`` fed field ``k``'s truth gives the frames a single :class:`OverheadVision` on
+    that field gives, bit for bit, from the same generator: the same capture schedule, the
+    random numbers drawn in the same blocks and handed out in the same order
+    (``_Draws``), the same arithmetic (``math.remainder`` by
+    :func:`~estimators.exact.wrap_angles`). What happens rarely runs frame by frame in the
+    single sensor's code: the occlusion test of a ball near a robot, the spurious balls at
+    dribblers (their sine and cosine from the C library, as the single sensor's).
+    ``tests/soccer_env/sensors/test_overhead.py`` compares them.
+
+    Args:
+        spec, field, robot, ball, n_robots, cameras: as :class:`OverheadVision`'s.
+        m: fields.
+    """
+
+    def __init__(self, spec: VisionSpec, field: FieldSpec, robot: SSLRobotSpec, ball: BallSpec,
+                 n_robots: int, m: int, cameras: list[Camera] | None = None) -> None:
+        self._one = OverheadVision(spec, field, robot, ball, n_robots, cameras)
+        self.spec, self.cameras = spec, self._one.cameras
+        self.ball_model, self.robot_model = self._one.ball_model, self._one.robot_model
+        self.n_robots, self.m = n_robots, int(m)
+        c = len(self.cameras)
+        self._cams = np.array(self.cameras, dtype=np.float64).reshape(c, 7)
+        self._next = np.full((self.m, c), math.inf)
+        self._prev_t = np.zeros(self.m)
+        self._prev_ball = np.zeros((self.m, 3))
+        self._prev_robots = np.zeros((self.m, n_robots, 3))
+        self._rngs: list[np.random.Generator | None] = [None] * self.m
+        self._normals = _BatchDraws(self.m, "normal")
+        self._uniforms = _BatchDraws(self.m, "uniform")
+        N = n_robots
+        self._queue = FrameBatch(np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64),
+                                 np.zeros(0), np.zeros(0), np.zeros((0, N + 2, 2)),
+                                 np.zeros((0, N + 2), dtype=bool), np.zeros((0, N, 3)),
+                                 np.zeros((0, N), dtype=bool))
+
+    def _period(self) -> float | None:
+        return self._one._period()
+
+    def reset(self, rows, times, balls, robots, rngs: list[np.random.Generator]
+              ) -> FrameBatch:
+        """Start an episode on fields ``rows`` ``(d,)`` at times ``times`` ``(d,)`` with the
+        ball at ``balls`` ``(d, 3)`` (``x, y, z``) and the robots at ``robots`` ``(d, N, 3)``
+        (poses), each drawing from its generator in ``rngs``; returns their warm-up frames
+        (:meth:`OverheadVision.reset`)."""
+        rows = np.asarray(rows, dtype=np.int64)
+        times = np.asarray(times, dtype=np.float64)
+        balls = np.asarray(balls, dtype=np.float64)
+        robots = np.asarray(robots, dtype=np.float64)
+        period = self._period()
+        c = len(self.cameras)
+        keep = ~np.isin(self._queue.env, rows)
+        self._queue = self._queue.take(keep)
+        for j, k in enumerate(rows.tolist()):
+            rng = rngs[j]
+            self._rngs[k] = rng
+            self._normals.clear(k, rng)
+            self._uniforms.clear(k, rng)
+            self._next[k] = (rng.uniform(0.0, period, c) + times[j] if period is not None
+                             else math.inf)
+        self._prev_t[rows], self._prev_ball[rows], self._prev_robots[rows] = times, balls, robots
+        d = len(rows)
+        env = np.repeat(rows, c)
+        cams = np.tile(np.arange(c), d)
+        t = np.repeat(times, c)
+        frames = self._capture(env, cams, t, np.repeat(np.full(d, c), c), emit_empty=True)
+        latency = self.spec.latency
+        return frames._replace(t_capture=frames.t_capture - latency,
+                               t_delivered=frames.t_capture.copy())
+
+    def step(self, rows, times, balls, robots) -> FrameBatch:
+        """Advance fields ``rows`` ``(d,)`` to times ``times`` with their truth (as
+        :meth:`reset`): capture the frames due since their last step and return the frames
+        delivered by now (:meth:`OverheadVision.step`)."""
+        rows = np.asarray(rows, dtype=np.int64)
+        now = np.asarray(times, dtype=np.float64)
+        balls = np.asarray(balls, dtype=np.float64)
+        robots = np.asarray(robots, dtype=np.float64)
+        c = len(self.cameras)
+        period = self._period()
+        prev_t, prev_ball = self._prev_t[rows], self._prev_ball[rows]
+        prev_robots = self._prev_robots[rows]
+        self._cur = (now, balls, robots)
+        if period is None:
+            env = np.repeat(rows, c)
+            cam = np.tile(np.arange(c), len(rows))
+            t = np.repeat(now, c)
+        else:
+            nxt = self._next[rows]
+            limit = (now + 1e-12)[:, None]
+            found = []
+            rounds = 0
+            while True:
+                due = nxt <= limit
+                if not due.any():
+                    break
+                r, cam = np.nonzero(due)
+                found.append((r, cam, nxt[r, cam], np.full(len(r), rounds)))
+                nxt[due] += period
+                rounds += 1
+            self._next[rows] = nxt
+            if found:
+                r, cam, t, it = (np.concatenate(col) for col in zip(*found))
+                order = np.lexsort((it, cam, r))  # field, then camera, then time
+                r, cam, t = r[order], cam[order], t[order]
+                env = rows[r]
+            else:
+                env = cam = np.zeros(0, dtype=np.int64)
+                t = np.zeros(0)
+        if len(env):
+            # Where each field's step starts (its prev state) and ends.
+            slot = np.empty(self.m, dtype=np.int64)
+            slot[rows] = np.arange(len(rows))
+            counts = np.bincount(env, minlength=self.m)[env]
+            self._span = (prev_t, prev_ball, prev_robots, slot)
+            new = self._capture(env, cam, t, counts, emit_empty=False)
+            queue = FrameBatch.join([self._queue, new])
+        else:
+            queue = self._queue
+        self._prev_t[rows], self._prev_ball[rows], self._prev_robots[rows] = now, balls, robots
+        limit = np.full(self.m, -math.inf)
+        limit[rows] = now + 1e-12
+        out = queue.t_delivered <= limit[queue.env]
+        self._queue = queue.take(~out)
+        delivered = queue.take(out)
+        order = np.lexsort((delivered.camera, delivered.t_capture, delivered.t_delivered,
+                            delivered.env))
+        return delivered.take(order)
+
+    # ------------------------------------------------------------------------------------
+
+    def _capture(self, env: np.ndarray, cams: np.ndarray, times: np.ndarray,
+                 counts: np.ndarray, emit_empty: bool) -> FrameBatch:
+        """The frames of cameras ``cams`` of fields ``env`` captured at ``times`` (each
+        field's frames consecutive, camera-major as :meth:`OverheadVision.step` lists them;
+        ``counts``: each frame's field's number of frames): :meth:`OverheadVision._capture`
+        on arrays."""
+        spec, rs = self.spec, self._one.robot_spec
+        F, N = len(env), self.n_robots
+        r = self._one.ball_spec.radius
+        if emit_empty:  # reset: the truth stands still
+            k = np.searchsorted(np.unique(env), env)
+            t0 = times
+            pb = cb = self._prev_ball[env]
+            pr = cr = self._prev_robots[env]
+            span = np.zeros(F)
+        else:
+            prev_t, prev_ball, prev_robots, slot = self._span
+            now, balls, robots = self._cur
+            k = slot[env]
+            t0, pb, pr = prev_t[k], prev_ball[k], prev_robots[k]
+            cb, cr = balls[k], robots[k]
+            span = now[k] - t0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            w = np.where(span > 0, (times - t0) / np.where(span > 0, span, 1.0), 1.0)
+        # Robot poses at the capture times: positions on the line, headings on the short arc
+        # (math.remainder for few frames of few robots, numpy's remainder otherwise, as the
+        # single sensor picks them).
+        delta = cr - pr
+        small = counts * N <= 16
+        turn = np.where(small[:, None], wrap_angles(delta[..., 2]),
+                        np.remainder(delta[..., 2] + math.pi, 2.0 * math.pi) - math.pi)
+        wc = w[:, None]
+        X = pr[..., 0] + wc * delta[..., 0]
+        Y = pr[..., 1] + wc * delta[..., 1]
+        TH = pr[..., 2] + wc * turn
+        # Each field's random numbers for all its frames of this step, in one block.
+        nn, nu = 3 * (N + 2), 2 * N + 5
+        first = np.ones(F, dtype=bool)
+        first[1:] = env[1:] != env[:-1]
+        starts = np.nonzero(first)[0]
+        fields = env[starts]
+        per_field = np.diff(np.append(starts, F))
+        local = np.arange(F) - np.repeat(starts, per_field)
+        nf = self._normals.take(fields, per_field * nn, self._rngs, local, nn, env)
+        uf = self._uniforms.take(fields, per_field * nu, self._rngs, local, nu, env)
+        cam = self._cams[cams]
+        cx, cy, h, x0, x1, y0, y1 = (cam[:, j] for j in range(7))
+        inside = ((x0[:, None] <= X) & (X <= x1[:, None]) & (y0[:, None] <= Y)
+                  & (Y <= y1[:, None]))
+        robot_seen = inside & (uf[:, :N] < spec.robot_detection)
+        s, st = self.robot_model.sigma_xy, self.robot_model.sigma_theta
+        poses = np.stack([X + s * nf[:, 0:3 * N:3], Y + s * nf[:, 1:3 * N:3],
+                          wrap_angles(TH + st * nf[:, 2:3 * N:3])], axis=-1)
+        poses[~robot_seen] = 0.0
+        balls = np.zeros((F, N + 2, 2))
+        ball_seen = np.zeros((F, N + 2), dtype=bool)
+        sigma = self.ball_model.sigma
+        period = self._period() or 0.0
+        p_dribbler = 1.0 - math.exp(-spec.dribbler_false_rate * period)
+        p_random = 1.0 - math.exp(-spec.random_false_rate * period)
+        if p_dribbler > 0.0:  # rare: frame by frame, with the C library's cos and sin
+            front = rs.front_distance + r
+            for f, i in zip(*(a.tolist() for a in np.nonzero(inside & (uf[:, N:2 * N]
+                                                                      < p_dribbler)))):
+                x, y, th = float(X[f, i]), float(Y[f, i]), float(TH[f, i])
+                balls[f, 1 + i] = self.ball_model.perturb(
+                    x + front * math.cos(th), y + front * math.sin(th), nf[f, 3 * N],
+                    nf[f, 3 * N + 1])
+                ball_seen[f, 1 + i] = True
+        # The ball, where the camera's ray through it meets the resting-ball plane.
+        bx = pb[:, 0] + w * (cb[:, 0] - pb[:, 0])
+        by = pb[:, 1] + w * (cb[:, 1] - pb[:, 1])
+        zc = r + pb[:, 2] + w * (cb[:, 2] - pb[:, 2])
+        kk = (h - r) / (h - zc)
+        sx, sy = cx + (bx - cx) * kk, cy + (by - cy) * kk
+        visible = ((x0 <= sx) & (sx <= x1) & (y0 <= sy) & (sy <= y1)
+                   & (uf[:, 2 * N] < spec.ball_detection))
+        if spec.occlusion_threshold <= 1.0 and visible.any():
+            # The single sensor's test, for the frames where a robot may cover the ball (a
+            # looser bound than its own first test, so that no such frame is skipped).
+            H, R = rs.height, rs.radius
+            low = zc < H
+            with np.errstate(divide="ignore", invalid="ignore"):
+                kh = (h - zc) / (h - H)
+            near = (R * kh + r + 10.0 * (kh - 1.0) + 0.01) ** 2 * (1.0 + 1e-9) + 1e-12
+            d2 = (X - sx[:, None]) ** 2 + (Y - sy[:, None]) ** 2
+            for f in np.nonzero(visible & low & (d2 <= near[:, None]).any(axis=1))[0].tolist():
+                robots = list(zip(X[f].tolist(), Y[f].tolist(), TH[f].tolist()))
+                hidden = self._one._hidden(float(sx[f]), float(sy[f]), float(zc[f]), robots,
+                                           float(cx[f]), float(cy[f]), float(h[f]))
+                visible[f] = hidden < spec.occlusion_threshold
+        balls[:, 0, 0] = sx + sigma * nf[:, 3 * N + 3]
+        balls[:, 0, 1] = sy + sigma * nf[:, 3 * N + 4]
+        ball_seen[:, 0] = visible
+        spurious = uf[:, 2 * N + 1] < p_random
+        balls[:, N + 1, 0] = x0 + (x1 - x0) * uf[:, 2 * N + 2]
+        balls[:, N + 1, 1] = y0 + (y1 - y0) * uf[:, 2 * N + 3]
+        ball_seen[:, N + 1] = spurious
+        balls[~ball_seen] = 0.0
+        delivered = times + (spec.latency + spec.latency_jitter * uf[:, 2 * N + 4])
+        frames = FrameBatch(env.astype(np.int64), cams.astype(np.int64), times.copy(),
+                            delivered, balls, ball_seen, poses, robot_seen)
+        if emit_empty:
+            return frames
+        return frames.take(ball_seen.any(axis=1) | robot_seen.any(axis=1))
+
+
+class _BatchDraws:
+    """``_Draws`` of many generators: each field's numbers drawn in the same blocks as a
+    single sensor's ``_Draws`` and handed out in the same order, kept in one array."""
+
+    def __init__(self, m: int, kind: str) -> None:
+        self._kind = kind
+        self._buf = np.zeros((m, _Draws.BLOCK))
+        self._len = np.zeros(m, dtype=np.int64)
+        self._pos = np.zeros(m, dtype=np.int64)
+
+    def clear(self, k: int, rng: np.random.Generator) -> None:
+        self._len[k] = self._pos[k] = 0
+
+    def take(self, fields: np.ndarray, need: np.ndarray, rngs: list, local: np.ndarray,
+             width: int, env: np.ndarray) -> np.ndarray:
+        """Hand each of ``fields`` its ``need`` numbers; returns ``(F, width)``: frame ``f``
+        (of field ``env[f]``, its ``local[f]``-th frame) gets its field's numbers
+        ``local * width .. + width`` of this request."""
+        short = self._pos[fields] + need > self._len[fields]
+        for k, n in zip(fields[short].tolist(), need[short].tolist()):
+            rng, pos, length = rngs[k], int(self._pos[k]), int(self._len[k])
+            fresh = (rng.standard_normal(max(n, _Draws.BLOCK)) if self._kind == "normal"
+                     else rng.random(max(n, _Draws.BLOCK)))
+            kept = length - pos
+            size = kept + len(fresh)
+            if size > self._buf.shape[1]:
+                self._buf = np.pad(self._buf, ((0, 0), (0, size - self._buf.shape[1])))
+            self._buf[k, :kept] = self._buf[k, pos:length]
+            self._buf[k, kept:size] = fresh
+            self._pos[k], self._len[k] = 0, size
+        base = self._pos[env] + local * width
+        out = self._buf[env[:, None], base[:, None] + np.arange(width)]
+        self._pos[fields] += need
+        return out

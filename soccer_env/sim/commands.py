@@ -17,8 +17,8 @@ from gymnasium import spaces
 from soccer_env.presets import HumanoidRobotSpec, RobotSpec, SSLRobotSpec
 from soccer_env.sim.walk import DIVE
 
-__all__ = ["SSLRobot", "HumanoidRobot", "robot_model", "CommandChannel", "validate_actions",
-           "OUT_OF_RANGE_MODES"]
+__all__ = ["SSLRobot", "HumanoidRobot", "robot_model", "CommandChannel", "CommandChannelBatch",
+           "validate_actions", "OUT_OF_RANGE_MODES"]
 
 #: Allowed values of the ``out_of_range_actions`` argument of the environments.
 OUT_OF_RANGE_MODES = ("clip", "raise")
@@ -223,6 +223,64 @@ class CommandChannel:
             lost = self._losses.pop()
             if lost:
                 out = out.copy()
+                out[lost] = self._last[lost]
+        self._last = out
+        return out
+
+
+class CommandChannelBatch:
+    """The :class:`CommandChannel` of one team in ``m`` environments, as arrays: every
+    environment's commands queued and delivered in one operation per step.
+
+    Environment ``k``'s commands come out as a :class:`CommandChannel` with the same generator
+    delivers them, bit for bit: the same queue, and the losses drawn from the same generator
+    in the same blocks of 256 steps (used from the block's last row, as the single channel
+    pops them).
+
+    Args:
+        m: environments.
+        n_robots: the team's robots.
+        delay_steps, loss: as :class:`CommandChannel`'s (the same in every environment).
+    """
+
+    BLOCK = 256
+
+    def __init__(self, m: int, n_robots: int, delay_steps: int, loss: float) -> None:
+        self.m, self.n = int(m), int(n_robots)
+        self.delay_steps, self.loss = int(delay_steps), float(loss)
+        self.passthrough = self.delay_steps == 0 and self.loss == 0.0
+        self._queue = np.zeros((max(self.delay_steps, 1), self.m, self.n, 6))
+        self._head = 0
+        self._last = np.zeros((self.m, self.n, 6))
+        self._blocks = np.zeros((self.m, self.BLOCK, self.n), dtype=bool)
+        self._left = np.zeros(self.m, dtype=np.int64)
+        self._rngs: list[np.random.Generator | None] = [None] * self.m
+
+    def reset(self, k: int, rng: np.random.Generator | None) -> None:
+        """Empty environment ``k``'s pipe (:meth:`CommandChannel.reset`)."""
+        self._rngs[k] = rng
+        self._queue[:, k] = 0.0
+        self._last[k] = 0.0
+        self._left[k] = 0
+
+    def send(self, commands: np.ndarray) -> np.ndarray:
+        """Queue every environment's commands ``(m, N, 6)``; return those its robots execute
+        now."""
+        if self.passthrough:
+            return commands
+        if self.delay_steps:
+            out = self._queue[self._head].copy()
+            self._queue[self._head] = commands
+            self._head = (self._head + 1) % self.delay_steps
+        else:
+            out = np.array(commands, dtype=np.float64)
+        if self.loss > 0.0:
+            for k in np.nonzero(self._left == 0)[0].tolist():
+                self._blocks[k] = self._rngs[k].random((self.BLOCK, self.n)) < self.loss
+                self._left[k] = self.BLOCK
+            self._left -= 1
+            lost = self._blocks[np.arange(self.m), self._left]
+            if lost.any():
                 out[lost] = self._last[lost]
         self._last = out
         return out

@@ -10,6 +10,7 @@ from filterpy.kalman import KalmanFilter as FilterPyKF
 from estimators import (
     BallFilterConfig,
     BallTracker,
+    BallTrackerBatch,
     FrictionBallModel,
     FrictionBallMotion,
     LeastSquaresBall,
@@ -326,3 +327,85 @@ def test_reset_from_views_a_moment_apart_keeps_a_physical_speed():
         t = t1 + k * 0.04
         f.update(t, [(0.5 + 4.0 * (t - t1), 0.0)])
     assert f.estimate(t1 + 0.2)[2] == pytest.approx(4.0, abs=0.5)
+
+
+def _frames(rng, steps, kicks=True):
+    """Frames of a ball rolling with friction and kicked now and then, seen by two cameras
+    (sometimes at the same instant), with misses, noise, spurious detections and robots near
+    the ball: ``(t, detections (k, 2), obstacles (j, 2))``."""
+    p, v = rng.uniform(-2, 2, 2), rng.uniform(-3, 3, 2)
+    t, out = 0.0, []
+    for _ in range(steps):
+        t += rng.choice([0.0, 1 / 60, 1 / 30]) if out else 0.0
+        speed = math.hypot(*v)
+        if speed > 0:
+            v = v * max(0.0, speed - 0.4 * (1 / 60)) / speed
+        p = p + v / 60
+        if kicks and rng.random() < 0.04:
+            v = rng.uniform(-6, 6, 2)
+        dets = []
+        if rng.random() < 0.9:
+            dets.append(p + rng.normal(0, 0.01, 2))
+        while rng.random() < 0.15:
+            dets.append(rng.uniform(-4, 4, 2))
+        obs = [p + rng.uniform(-0.3, 0.3, 2) for _ in range(rng.integers(0, 3))]
+        out.append((t, np.reshape(dets, (-1, 2)), np.reshape(obs, (-1, 2))))
+    return out
+
+
+@pytest.mark.parametrize("name", ["ekf", "kf", "ekf-2phase", "ekf-improved"])
+def test_batched_trackers_equal_single_trackers_bit_for_bit(name):
+    """BallTrackerBatch, fed frame by frame with the frames of several balls (kicks,
+    outliers, restarts, simultaneous views, no detection), holds exactly the single trackers'
+    states and predictions, and counts what they count."""
+    configs = {
+        "ekf": BallFilterConfig(),
+        "kf": BallFilterConfig(deceleration=0.0, collision_noise=False, gate=None,
+                               reset_after=None),
+        "ekf-2phase": BallFilterConfig(two_phase=(4.0, 0.7)),
+        "ekf-improved": BallFilterConfig(propagation="rk"),
+    }
+    cfg = configs[name]
+    m, steps = 6, 160
+    rng = np.random.default_rng(7)
+    streams = [_frames(rng, steps) for _ in range(m)]
+    singles = [BallTracker(cfg) for _ in range(m)]
+    batch = BallTrackerBatch(m, cfg)
+    for s in range(steps):
+        rows = [k for k in range(m) if (s + k) % 5]  # not every tracker every time
+        k_max = max(len(streams[k][s][1]) for k in rows)
+        j_max = max(len(streams[k][s][2]) for k in rows)
+        z = np.zeros((len(rows), k_max, 2))
+        has = np.zeros((len(rows), k_max), dtype=bool)
+        obs = np.zeros((len(rows), j_max, 2))
+        seen = np.zeros((len(rows), j_max), dtype=bool)
+        for r, k in enumerate(rows):
+            t, d, o = streams[k][s]
+            z[r, :len(d)], has[r, :len(d)] = d, True
+            obs[r, :len(o)], seen[r, :len(o)] = o, True
+            singles[k].update(t, d, o)
+        batch.update(rows, [streams[k][s][0] for k in rows], z, has, obs, seen)
+        t_ask = np.array([tr.time + 0.07 for tr in singles])
+        est, known = batch.estimate(t_ask)
+        for k, tr in enumerate(singles):
+            assert known[k] == tr.initialized
+            if tr.initialized:
+                assert est[k].tolist() == tr.estimate(t_ask[k]).tolist()
+                assert batch._x[k].tolist() == list(tr._track.x)
+                assert batch._P[k].tolist() == [v for block in tr._track.P for v in block]
+    for k, tr in enumerate(singles):
+        assert (batch.fused[k], batch.rejected[k], batch.resets[k], batch.maneuvers[k]) == (
+            tr.fused, tr.rejected, tr.resets, tr.maneuvers)
+        assert batch.last_fused[k] == tr.last_fused and batch.since_start[k] == tr.since_start
+    if name != "kf":  # the streams exercised the rare paths
+        assert batch.resets.sum() > 0 and batch.rejected.sum() > 0
+        assert batch.maneuvers.sum() > 0 and batch.fused.sum() > 0
+    batch.reset([0])
+    assert not batch.initialized[0] and batch.fused[0] == 0
+
+
+def test_batched_trackers_refuse_frames_out_of_order():
+    batch = BallTrackerBatch(2)
+    batch.update([0, 1], [1.0, 1.0], np.zeros((2, 1, 2)), np.ones((2, 1), dtype=bool))
+    with pytest.raises(ValueError, match="capture-time order"):
+        batch.update([1], [0.5], np.zeros((1, 1, 2)), np.ones((1, 1), dtype=bool))

@@ -71,3 +71,35 @@ def test_robot_tracker_bad_input():
     assert not tr.seen.any()
     tr.update([1.0, 0.5], np.zeros((2, 3)), [0, 0])  # the second is older: dropped
     assert tr.seen.tolist() == [True, False] and tr.dropped == 1
+
+
+def test_batched_trackers_equal_single_trackers_bit_for_bit():
+    """RobotTrackerBatch fed the detections of several trackers (robots seen for the first
+    time, late detections, headings across +-pi) holds the single trackers' estimates
+    exactly."""
+    from estimators import RobotTrackerBatch
+
+    m, n = 5, 4
+    rng = np.random.default_rng(3)
+    singles = [RobotTracker(n) for _ in range(m)]
+    batch = RobotTrackerBatch(m, n)
+    clock = np.zeros(m)
+    for _ in range(120):
+        ks, is_, ts, zs = [], [], [], []
+        for k in range(m):
+            clock[k] += rng.choice([0.0, 1 / 60, 1 / 25])
+            for i in rng.permutation(n)[: rng.integers(0, n + 1)].tolist():
+                t = clock[k] - (0.05 if rng.random() < 0.1 else 0.0)  # now and then late
+                z = [rng.uniform(-3, 3), rng.uniform(-2, 2), rng.uniform(-3.2, 3.2)]
+                singles[k].update_robot(t, z, i)
+                ks.append(k), is_.append(i), ts.append(t), zs.append(z)
+        batch.update(ks, is_, ts, np.reshape(zs, (-1, 3)))
+        ask = clock + 0.04
+        est = batch.estimate(ask)
+        for k, tr in enumerate(singles):
+            assert est[k].tolist() == tr.estimate(ask[k]).tolist()
+            assert batch.seen[k].tolist() == tr.seen.tolist()
+    assert batch.dropped.tolist() == [tr.dropped for tr in singles]
+    assert batch.dropped.sum() > 0
+    batch.reset([1])
+    assert not batch.seen[1].any() and batch.estimate(0.0)[1].tolist() == [[0.0] * 6] * n

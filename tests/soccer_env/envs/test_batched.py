@@ -115,6 +115,33 @@ def test_the_batch_perceives_as_the_single_environments(env_id, kwargs, actions)
     assert exact >= (0.0 if env_id != GK and "robot" in kwargs else 0.9)
 
 
+@pytest.mark.parametrize("env_id,kwargs,batched", [
+    (GK, {"obs_mode": "perceived", "perception": "ssl-2012"}, True),
+    (GK, {"obs_mode": "perceived", "field": "ssl-div-b",
+          "perception": {"vision": "ssl-2012", "ball_filter": "ekf-2phase"}}, True),
+    (GK, {"obs_mode": "perceived", "perception": {"vision": "realistic", "ball_filter": "kf"}},
+     True),
+    (GK, {"obs_mode": "perceived",
+          "perception": {"vision": "realistic", "ball_filter": "ekf-improved"}}, True),
+    ("soccer_env/Shootout-v0", {"obs_mode": "perceived", "perception": "ssl-2012"}, True),
+    (GK, {"obs_mode": "perceived", "perception": "harsh"}, False),  # jitter: out of order
+    (GK, {"obs_mode": "perceived", "perception": {"vision": "realistic", "ball_filter": "ls"}},
+     False),
+])
+def test_perceived_batches_estimate_as_one_and_equal_the_single_environments(env_id, kwargs,
+                                                                            batched):
+    """Perceived batches whose configuration allows it run one batched pipeline (the cameras
+    of every field in one array pass, the filters of every environment together); the
+    others keep each environment's own. Either way the episodes are the single
+    environments'."""
+    vec = gym.make_vec(env_id, num_envs=2, vectorization_mode="vector_entry_point", **kwargs)
+    assert (vec.unwrapped._vision is not None) == batched
+    vec.close()
+    ends, exact = _compare(kwargs, n=3, steps=200, seed=9, keeper_actions="random",
+                           env_id=env_id)
+    assert exact >= 0.9
+
+
 def test_vector_api_and_seeding():
     env = GoalkeeperVectorEnv(num_envs=3)
     assert env.observation_space.shape == (3, 19) and env.action_space.shape == (3, 6)

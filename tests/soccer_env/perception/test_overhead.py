@@ -111,6 +111,29 @@ def test_command_channel_delay_and_loss():
     assert CommandChannel(3, 0, 0.0).passthrough
 
 
+@pytest.mark.parametrize("delay,loss", [(2, 0.0), (0, 0.2), (3, 0.1)])
+def test_batched_command_channels_equal_single_channels(delay, loss):
+    """CommandChannelBatch delivers each environment's commands as its own CommandChannel
+    with the same generator does (queue, loss draws in blocks of 256, restarts)."""
+    from soccer_env.sim.commands import CommandChannelBatch
+
+    m, n = 3, 2
+    singles = [CommandChannel(n, delay, loss) for _ in range(m)]
+    batch = CommandChannelBatch(m, n, delay, loss)
+    for k in range(m):
+        singles[k].reset(np.random.default_rng(k))
+        batch.reset(k, np.random.default_rng(k))
+    rng = np.random.default_rng(9)
+    for step in range(600):
+        if step == 300:  # environment 1 starts over
+            singles[1].reset(np.random.default_rng(7))
+            batch.reset(1, np.random.default_rng(7))
+        c = rng.normal(size=(m, n, 6))
+        out = batch.send(c)
+        for k in range(m):
+            np.testing.assert_array_equal(out[k], singles[k].send(c[k]))
+
+
 def test_perception_config_defaults_and_forms():
     assert PerceptionConfig.create(None, "truth").vision.name == "ideal"
     assert PerceptionConfig.create(None, "perceived").vision.name == "realistic"

@@ -186,3 +186,83 @@ def test_vision_preset_validation():
         vision("realistic", ball_detection=1.5)
     with pytest.raises(TypeError, match=r"unknown vision parameter\(s\) \['fps'\]"):
         vision("realistic", fps=60)
+
+
+def _truths(rng, n_robots, steps, dt, field):
+    """A wandering scene: robots walking about, a ball rolling near them (so that they hide
+    it now and then) and chipped now and then; ``(time, ball (6,), robots (N, 6))`` per
+    step."""
+    from soccer_env.presets import field as field_spec
+
+    f = field_spec(field)
+    robots = np.zeros((n_robots, 6))
+    robots[:, 0] = rng.uniform(-f.half_length, f.half_length, n_robots)
+    robots[:, 1] = rng.uniform(-f.half_width, f.half_width, n_robots)
+    robots[:, 2] = rng.uniform(-math.pi, math.pi, n_robots)
+    ball = np.zeros(6)
+    ball[0:2] = robots[0, 0:2] + 0.12
+    out = []
+    for s in range(steps):
+        robots[:, 0:2] += rng.normal(0, 0.03, (n_robots, 2))
+        robots[:, 2] = np.remainder(robots[:, 2] + rng.normal(0, 0.4, n_robots) + math.pi,
+                                    2 * math.pi) - math.pi
+        near = robots[rng.integers(n_robots), 0:2]
+        ball[0:2] = near + rng.normal(0, 0.15, 2) if rng.random() < 0.3 else ball[0:2] + 0.02
+        ball[2] = max(0.0, rng.normal(0.0, 0.1)) if rng.random() < 0.2 else 0.0
+        out.append(WorldState(s * dt, ball.copy(), robots.copy(), (), np.zeros(n_robots)))
+    return out
+
+
+@pytest.mark.parametrize("preset,field,n_robots,dt", [
+    ("ssl-2012", "ssl-div-b", 3, 1 / 60),   # four cameras at 25 Hz
+    ("realistic", "ssl-2012", 2, 1 / 60),   # misses, dribbler reflections, occlusion
+    ("noisy", "ssl-div-b", 7, 1 / 30),      # many frames of many robots, spurious balls
+    ("ideal", "ssl-2012", 2, 1 / 60),       # every camera every step
+])
+def test_batched_vision_equals_single_sensors_bit_for_bit(preset, field, n_robots, dt):
+    """OverheadVisionBatch on m fields gives each field's single OverheadVision frames, bit
+    for bit, from the same generators: warm-up frames, frames delivered step by step (with
+    fields stepped on different steps and restarted), under every kind of event."""
+    import dataclasses
+
+    from soccer_env.presets import ball as ball_spec
+    from soccer_env.presets import field as field_spec
+    from soccer_env.presets import robot as robot_spec
+    from soccer_env.sensors.overhead import OverheadVisionBatch
+
+    spec = (dataclasses.replace(vision("harsh"), latency_jitter=0.0, dribbler_false_rate=3.0,
+                                random_false_rate=4.0, ball_detection=0.8, frame_rate=75.0)
+            if preset == "noisy" else vision(preset))
+    f, rs, bs = field_spec(field), robot_spec("ssl"), ball_spec("ssl")
+    m, steps = 4, 150
+    rng = np.random.default_rng(11)
+    scenes = [_truths(rng, n_robots, steps, dt, field) for _ in range(m)]
+    singles = [OverheadVision(spec, f, rs, bs, n_robots) for _ in range(m)]
+    batch = OverheadVisionBatch(spec, f, rs, bs, n_robots, m)
+
+    def start(ks, s):
+        warm_single = [singles[k].reset(scenes[k][s], np.random.default_rng((k, s)))
+                       for k in ks]
+        st = [scenes[k][s] for k in ks]
+        warm = batch.reset(ks, [x.time for x in st],
+                           [np.r_[x.ball[0:2], x.ball[2]] for x in st],
+                           [x.robots[:, 0:3] for x in st],
+                           [np.random.default_rng((k, s)) for k in ks])
+        for k, frames in zip(ks, warm_single):
+            assert warm.frames(k) == frames
+
+    start(list(range(m)), 0)
+    delivered = 0
+    for s in range(1, steps):
+        ks = [k for k in range(m) if (s + k) % 7]  # fields skip steps now and then
+        if s == 80:
+            start([1, 2], s)
+            continue
+        st = [scenes[k][s] for k in ks]
+        got = batch.step(ks, [x.time for x in st], [np.r_[x.ball[0:2], x.ball[2]] for x in st],
+                         [x.robots[:, 0:3] for x in st])
+        for k in ks:
+            frames = singles[k].step(scenes[k][s])
+            assert got.frames(k) == frames, (k, s)
+            delivered += len(frames)
+    assert delivered > 50

@@ -1,0 +1,148 @@
+"""The perception of many environments at once: :class:`FilteredPerceptionBatch`, the
+``obs_mode="perceived"`` pipeline of SSL teams (:class:`~soccer_env.perception.overhead.
+FilteredPerception`) for ``m`` environments as arrays.
+
+The overhead cameras of every field capture in one array pass
+(:class:`~soccer_env.sensors.overhead.OverheadVisionBatch`), and the robot and ball filters of
+every environment update together, one array operation per round of frames
+(:class:`~estimators.RobotTrackerBatch`, :class:`~estimators.BallTrackerBatch`): round ``j``
+takes every environment's ``j``-th frame of the step in capture-time order, as the single
+pipeline consumes them. Environment ``k``'s beliefs are, bit for bit, those of a single
+:class:`~soccer_env.perception.match.MatchPerception` fed the same truth from the same
+generator (``tests/soccer_env/perception/test_batched.py``).
+
+:func:`batch_refusal` says when a configuration needs the single pipelines instead: raw
+observations, humanoids, the pixels detector, randomised sensor figures, belief features, two
+SSL teams with different configurations, latency jitter (frames then arrive out of capture
+order, which the batched ball filter does not replay) and the least-squares ball predictor.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from estimators import BallTracker, BallTrackerBatch, RobotTrackerBatch
+from soccer_env.perception.match import MatchPerception
+from soccer_env.perception.overhead import FilteredPerception
+from soccer_env.sensors.overhead import FrameBatch, OverheadVision, OverheadVisionBatch
+
+__all__ = ["FilteredPerceptionBatch", "batch_refusal"]
+
+
+def batch_refusal(perception: MatchPerception) -> str | None:
+    """Why ``perception`` (an environment's, as built) cannot run as a
+    :class:`FilteredPerceptionBatch`; None when it can."""
+    if perception.obs_mode != "perceived":
+        return f"obs_mode={perception.obs_mode!r} (only 'perceived' is batched)"
+    if perception.reads_bodies:
+        return "humanoid perception"
+    if perception._randomized:
+        return "randomised sensor figures"
+    if perception.features:
+        return "belief features"
+    if len(perception._groups) != 1:
+        return "two SSL teams with different perception"
+    _, pipe, _ = perception._groups[0]
+    if not isinstance(pipe, FilteredPerception):
+        return f"{type(pipe).__name__}"
+    if pipe.detector is not None or type(pipe.sensor) is not OverheadVision:
+        return f"the {pipe.config.detector!r} detector"
+    if pipe.vision_spec.latency_jitter != 0.0:
+        return "latency jitter (frames out of capture order)"
+    if type(pipe.ball_tracker) is not BallTracker:
+        return f"the {pipe.config.ball_filter!r} ball filter"
+    return None
+
+
+class FilteredPerceptionBatch:
+    """The perceived beliefs of ``m`` environments of one configuration (see the module
+    docstring).
+
+    Args:
+        perception: one environment's :class:`MatchPerception` (as the single environment
+            builds it; :func:`batch_refusal` must accept it): the configuration, the sensor
+            and the filters' parameters are taken from it.
+        m: environments.
+    """
+
+    def __init__(self, perception: MatchPerception, m: int) -> None:
+        why = batch_refusal(perception)
+        if why is not None:
+            raise ValueError(f"this perception does not run batched: {why}")
+        robots, pipe, _ = perception._groups[0]
+        self.m = int(m)
+        self.n_robots = pipe.n_robots
+        s = pipe.sensor
+        self.sensor = OverheadVisionBatch(s.spec, s.field, s.robot_spec, s.ball_spec,
+                                          s.n_robots, self.m, s.cameras)
+        one = pipe.robot_tracker
+        self.robots = RobotTrackerBatch(self.m, one.n, measurement=s.robot_model)
+        self.robots.q, self.robots.r, self.robots.var_v0 = (np.array(one.q), np.array(one.r),
+                                                            one.var_v0)
+        b = pipe.ball_tracker
+        self.ball = BallTrackerBatch(self.m, b.config, b.measurement)
+        self._capture_times = pipe._capture_times
+        #: How far ahead of the present the observation's belief is predicted [s].
+        self.ahead = pipe.ahead
+        self._now = np.zeros(self.m)
+        self._beliefs: tuple[np.ndarray, np.ndarray] | None = None
+
+    def reset(self, rows, times, balls, robots, rngs: list[np.random.Generator]) -> None:
+        """Start episodes in environments ``rows`` ``(d,)`` at ``times`` with the truth
+        ``balls`` ``(d, 3)`` (``x, y, z``) and ``robots`` ``(d, N, 3)`` (poses), each
+        drawing from its sensor generator in ``rngs`` (``MatchPerception.reset``)."""
+        rows = np.asarray(rows, dtype=np.int64)
+        if not len(rows):
+            return
+        self.robots.reset(rows)
+        self.ball.reset(rows)
+        frames = self.sensor.reset(rows, times, balls, robots, rngs)
+        self._consume(frames)
+        self._now[rows] = times
+        self._beliefs = None
+
+    def update(self, rows, times, balls, robots) -> None:
+        """Advance environments ``rows`` to ``times`` with their truth (as :meth:`reset`)."""
+        rows = np.asarray(rows, dtype=np.int64)
+        if not len(rows):
+            return
+        self._consume(self.sensor.step(rows, times, balls, robots))
+        self._now[rows] = times
+        self._beliefs = None
+
+    def beliefs(self) -> tuple[np.ndarray, np.ndarray]:
+        """Every environment's belief for its observation, predicted to its present plus
+        :attr:`ahead`: ``(ball (m, 6), robots (m, N, 6))`` (``x, y, 0, vx, vy, 0`` for the
+        ball, zeros before its first detection), read only."""
+        if self._beliefs is None:
+            t = self._now + self.ahead
+            est, known = self.ball.estimate(t)
+            ball = np.zeros((self.m, 6))
+            ball[:, 0:2], ball[:, 3:5] = est[:, 0:2], est[:, 2:4]
+            ball[~known] = 0.0
+            robots = self.robots.estimate(t)
+            ball.flags.writeable = robots.flags.writeable = False
+            self._beliefs = (ball, robots)
+        return self._beliefs
+
+    def _consume(self, frames: FrameBatch) -> None:
+        """``FilteredPerception.consume`` of every environment's frames: by capture time
+        (delivery order among equals), robots first, then the ball, one round per frame."""
+        if not frames.count:
+            return
+        order = np.lexsort((np.arange(frames.count), frames.t_capture, frames.env))
+        f = frames.take(order)
+        first = np.ones(f.count, dtype=bool)
+        first[1:] = f.env[1:] != f.env[:-1]
+        starts = np.nonzero(first)[0]
+        rank = np.arange(f.count) - np.repeat(starts, np.diff(np.append(starts, f.count)))
+        for j in range(int(rank.max()) + 1):
+            r = f.take(rank == j)
+            k, i = np.nonzero(r.robot_seen)
+            if len(k):
+                self.robots.update(r.env[k], i, r.t_capture[k], r.robots[k, i])
+            has = r.ball_seen.any(axis=1)
+            if has.any():
+                b = r.take(has)
+                stamp = b.t_capture if self._capture_times else b.t_delivered
+                self.ball.update(b.env, stamp, b.balls, b.ball_seen, b.robots, b.robot_seen)
