@@ -263,15 +263,19 @@ class BatchedTask(VectorEnv):
                                         perception.losses):
             channel.reset(rng, delay, loss)
 
-    def _start_vision(self) -> None:
+    def _start_vision(self, stepped: np.ndarray | None = None) -> None:
         """Start the batched perception of the environments whose episodes began since the
-        last call (:meth:`_perceive_start`)."""
-        if self._vision is None or not self._starting:
+        last call (:meth:`_perceive_start`), and advance that of the environments
+        ``stepped`` (which must not be among them) in the same pass."""
+        if self._vision is None:
             return
-        rows = np.array(self._starting, dtype=np.int64)
-        self._starting = []
-        times, balls, robots = self._truth_arrays(rows)
-        self._vision.reset(rows, times, balls, robots, [self._sensor_rngs[k] for k in rows])
+        step = None if stepped is None else (stepped, *self._truth_arrays(stepped))
+        start = None
+        if self._starting:
+            rows = np.array(self._starting, dtype=np.int64)
+            self._starting = []
+            start = (rows, *self._truth_arrays(rows), [self._sensor_rngs[k] for k in rows])
+        self._vision.advance(step, start)
 
     def _truth_arrays(self, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(times, balls (d, 3) x y z, robot poses (d, N, 3))`` of environments ``rows``,
@@ -407,9 +411,12 @@ class BatchedTask(VectorEnv):
         self.batch.step(commands)
         self._steps += 1
         outcome, rewards = self._judge(act, live)
+        stepped = None
         if self._vision is not None:
-            rows = np.nonzero(live)[0]
-            self._vision.update(rows, *self._truth_arrays(rows))
+            stepped = np.nonzero(live)[0]
+            if self._same_step:  # (the final observations need the beliefs now)
+                self._vision.update(stepped, *self._truth_arrays(stepped))
+                stepped = None
         elif not self._truth:
             worlds = self.batch.worlds
             for k in np.nonzero(live)[0].tolist():
@@ -446,7 +453,9 @@ class BatchedTask(VectorEnv):
         # start their next episode now.
         for k in np.nonzero(restarting)[0].tolist():
             self._restart(k)
-        self._start_vision()
+        # The batched perception of the environments that played and of those that start
+        # over, in one pass.
+        self._start_vision(stepped)
         if restarting.any():
             if not self._same_step:
                 rewards[restarting] = 0.0

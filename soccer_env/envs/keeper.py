@@ -17,8 +17,7 @@ __all__ = ["ScriptedGoalkeeper", "drive_command", "drive_commands", "turn_comman
 #: Proportional gain of :func:`turn_command` [1/s].
 TURN_GAIN = 8.0
 
-#: The full turn that :func:`turn_command` wraps angles by [rad].
-_TWO_PI = 2.0 * math.pi
+
 def drive_command(px: float, py: float, c: float, s: float, tx: float, ty: float,
                   max_speed: float, max_acceleration: float, speed_cap: float | None = None
                   ) -> tuple[float, float]:

@@ -91,24 +91,32 @@ class FilteredPerceptionBatch:
         """Start episodes in environments ``rows`` ``(d,)`` at ``times`` with the truth
         ``balls`` ``(d, 3)`` (``x, y, z``) and ``robots`` ``(d, N, 3)`` (poses), each
         drawing from its sensor generator in ``rngs`` (``MatchPerception.reset``)."""
-        rows = np.asarray(rows, dtype=np.int64)
-        if not len(rows):
-            return
-        self.robots.reset(rows)
-        self.ball.reset(rows)
-        frames = self.sensor.reset(rows, times, balls, robots, rngs)
-        self._consume(frames)
-        self._now[rows] = times
-        self._beliefs = None
+        self.advance(start=(rows, times, balls, robots, rngs))
 
     def update(self, rows, times, balls, robots) -> None:
         """Advance environments ``rows`` to ``times`` with their truth (as :meth:`reset`)."""
-        rows = np.asarray(rows, dtype=np.int64)
-        if not len(rows):
-            return
-        self._consume(self.sensor.step(rows, times, balls, robots))
-        self._now[rows] = times
-        self._beliefs = None
+        self.advance((rows, times, balls, robots))
+
+    def advance(self, step: tuple | None = None, start: tuple | None = None) -> None:
+        """:meth:`update` the environments of ``step`` (``(rows, times, balls, robots)``)
+        and :meth:`reset` those of ``start`` (``(rows, times, balls, robots, rngs)``) in one
+        pass; the two sets of rows must not meet."""
+        parts = []
+        if step is not None and len(step[0]):
+            rows, times, balls, robots = step
+            rows = np.asarray(rows, dtype=np.int64)
+            parts.append(self.sensor.step(rows, times, balls, robots))
+            self._now[rows] = times
+        if start is not None and len(start[0]):
+            rows, times, balls, robots, rngs = start
+            rows = np.asarray(rows, dtype=np.int64)
+            self.robots.reset(rows)
+            self.ball.reset(rows)
+            parts.append(self.sensor.reset(rows, times, balls, robots, rngs))
+            self._now[rows] = times
+        if parts:
+            self._consume(parts[0] if len(parts) == 1 else FrameBatch.join(parts))
+            self._beliefs = None
 
     def beliefs(self) -> tuple[np.ndarray, np.ndarray]:
         """Every environment's belief for its observation, predicted to its present plus
@@ -128,21 +136,25 @@ class FilteredPerceptionBatch:
     def _consume(self, frames: FrameBatch) -> None:
         """``FilteredPerception.consume`` of every environment's frames: by capture time
         (delivery order among equals), robots first, then the ball, one round per frame."""
-        if not frames.count:
+        count = frames.count
+        if not count:
             return
-        order = np.lexsort((np.arange(frames.count), frames.t_capture, frames.env))
-        f = frames.take(order)
-        first = np.ones(f.count, dtype=bool)
-        first[1:] = f.env[1:] != f.env[:-1]
+        env = frames.env
+        order = np.lexsort((np.arange(count), frames.t_capture, env))
+        sorted_env = env[order]
+        first = np.ones(count, dtype=bool)
+        first[1:] = sorted_env[1:] != sorted_env[:-1]
         starts = np.nonzero(first)[0]
-        rank = np.arange(f.count) - np.repeat(starts, np.diff(np.append(starts, f.count)))
+        rank = np.arange(count) - np.repeat(starts, np.diff(np.append(starts, count)))
+        stamps = frames.t_capture if self._capture_times else frames.t_delivered
+        has_ball = frames.ball_seen.any(axis=1)
         for j in range(int(rank.max()) + 1):
-            r = f.take(rank == j)
-            k, i = np.nonzero(r.robot_seen)
+            idx = order[rank == j] if len(starts) < count else order
+            k, i = np.nonzero(frames.robot_seen[idx])
             if len(k):
-                self.robots.update(r.env[k], i, r.t_capture[k], r.robots[k, i])
-            has = r.ball_seen.any(axis=1)
-            if has.any():
-                b = r.take(has)
-                stamp = b.t_capture if self._capture_times else b.t_delivered
-                self.ball.update(b.env, stamp, b.balls, b.ball_seen, b.robots, b.robot_seen)
+                f = idx[k]
+                self.robots.update(env[f], i, frames.t_capture[f], frames.robots[f, i])
+            b = idx[has_ball[idx]]
+            if len(b):
+                self.ball.update(env[b], stamps[b], frames.balls[b], frames.ball_seen[b],
+                                 frames.robots[b], frames.robot_seen[b])

@@ -361,7 +361,9 @@ class FrameBatch(NamedTuple):
 
     def take(self, index: np.ndarray) -> FrameBatch:
         """The frames at ``index`` (an index array or a boolean mask)."""
-        return FrameBatch(*(a[index] for a in self))
+        if index.dtype == bool:  # (one scan of the mask instead of one per column)
+            index = np.flatnonzero(index)
+        return FrameBatch(*[a[index] for a in self])
 
     def frames(self, k: int) -> list[DetectionFrame]:
         """Field ``k``'s frames as :class:`DetectionFrame` (for tests and inspection)."""
@@ -414,7 +416,9 @@ class OverheadVisionBatch:
         self._normals = _BatchDraws(self.m, "normal")
         self._uniforms = _BatchDraws(self.m, "uniform")
         N = n_robots
-        self._queue = FrameBatch(np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64),
+        #: Frames in flight: the frames captured in each step, in the order of the steps.
+        self._queue: list[FrameBatch] = []
+        self._empty = FrameBatch(np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64),
                                  np.zeros(0), np.zeros(0), np.zeros((0, N + 2, 2)),
                                  np.zeros((0, N + 2), dtype=bool), np.zeros((0, N, 3)),
                                  np.zeros((0, N), dtype=bool))
@@ -434,8 +438,13 @@ class OverheadVisionBatch:
         robots = np.asarray(robots, dtype=np.float64)
         period = self._period()
         c = len(self.cameras)
-        keep = ~np.isin(self._queue.env, rows)
-        self._queue = self._queue.take(keep)
+        queue = []
+        for chunk in self._queue:
+            drop = np.isin(chunk.env, rows)
+            if drop.all():
+                continue
+            queue.append(chunk.take(~drop) if drop.any() else chunk)
+        self._queue = queue
         for j, k in enumerate(rows.tolist()):
             rng = rngs[j]
             self._rngs[k] = rng
@@ -499,18 +508,27 @@ class OverheadVisionBatch:
             counts = np.bincount(env, minlength=self.m)[env]
             self._span = (prev_t, prev_ball, prev_robots, slot)
             new = self._capture(env, cam, t, counts, emit_empty=False)
-            queue = FrameBatch.join([self._queue, new])
-        else:
-            queue = self._queue
+            if new.count:
+                self._queue.append(new)
         self._prev_t[rows], self._prev_ball[rows], self._prev_robots[rows] = now, balls, robots
         limit = np.full(self.m, -math.inf)
         limit[rows] = now + 1e-12
-        out = queue.t_delivered <= limit[queue.env]
-        self._queue = queue.take(~out)
-        delivered = queue.take(out)
-        order = np.lexsort((delivered.camera, delivered.t_capture, delivered.t_delivered,
-                            delivered.env))
-        return delivered.take(order)
+        delivered, queue = [], []
+        for chunk in self._queue:
+            out = chunk.t_delivered <= limit[chunk.env]
+            if out.all():
+                delivered.append(chunk)
+            elif out.any():
+                delivered.append(chunk.take(out))
+                queue.append(chunk.take(~out))
+            else:
+                queue.append(chunk)
+        self._queue = queue
+        if not delivered:
+            return self._empty
+        got = delivered[0] if len(delivered) == 1 else FrameBatch.join(delivered)
+        order = np.lexsort((got.camera, got.t_capture, got.t_delivered, got.env))
+        return got.take(order)
 
     # ------------------------------------------------------------------------------------
 
