@@ -22,12 +22,17 @@ which contacts can amplify; tested). Finished environments reset at the next ste
 episode's first observation with reward 0), drawing their next episode from their own
 generator as a single environment's ``reset()`` does.
 
-Raw and perceived observations, actuation latency and command loss: each environment keeps
-the single environment's own perception (sensors, filters) and command channels, fed with its
-world's state after every batched physics step, so its sensor draws and beliefs are the single
-environment's (tested). That runs every observation mode in one process, but the perception
-costs what it costs in a single environment: a perceived batch steps at about the single
-environment's rate until the estimators are batched across environments.
+Perceived observations of SSL robots run as one batch
+(:class:`~soccer_env.perception.batched.FilteredPerceptionBatch`): the overhead cameras of
+every field capture in one array pass, and the robot and ball filters of every environment
+update together, drawing from each environment's own sensor stream exactly as a single
+environment's perception does, so that the beliefs are the single environment's bit for bit
+(tested). The command channels (actuation latency, command loss) of every environment run as
+one batch too. Configurations the batched perception does not take
+(:func:`~soccer_env.perception.batched.batch_refusal`: raw observations, latency jitter,
+randomised sensor figures, belief features, the least-squares ball predictor, humanoids) keep
+each environment's own perception and channels, fed with its world's state after every
+batched physics step: the same beliefs, at about the single environment's cost.
 
 Humanoid keepers (with their team-mates) and attackers run in the batch too: their walk
 engines, heads and perception world by world, so a humanoid batch saves only the physics.
@@ -192,7 +197,7 @@ class BatchedTask(VectorEnv):
         #: each environment keeps its own perception.
         self._vision: FilteredPerceptionBatch | None = None
         self._starting: list[int] = []
-        if not self._truth and batch_refusal(base) is None:
+        if not self._truth and batch_refusal(base, n) is None:
             self._vision = FilteredPerceptionBatch(base, n)
         if not self._plain:
             self._perceptions = ([base] * n if self._vision is not None

@@ -18,10 +18,14 @@ does: :meth:`MatchBatch.step` returns the new match's first observation and the 
 match's last one in ``final_obs`` (stable-baselines3's convention; Gymnasium's
 ``SAME_STEP`` autoreset).
 
-Raw and perceived observations, actuation latency and command loss: each match keeps a single
-match's own perception (its teams' sensors and filters) and command channels, fed with its
-world's state after every batched physics step, so its sensor draws and beliefs are the
-single match's (tested); the perception then costs what it costs in a single match.
+Perceived observations of SSL matches run as one batch
+(:class:`~soccer_env.perception.batched.FilteredPerceptionBatch`: every field's cameras in one
+array pass, every match's filters updated together, each match drawing from its own sensor
+stream), with the same beliefs as a single match's, bit for bit (tested); so do the command
+channels. Other configurations (raw observations, the two teams perceiving differently, latency
+jitter, randomised sensor figures, belief features) keep each match's own perception and
+channels, fed with its world's state after every batched physics step: the same beliefs, at
+a single match's cost.
 
 Humanoid and mixed matches run too: the humanoids' walk engines, heads and perception match by
 match, so the batch saves their physics only.
@@ -39,9 +43,10 @@ import numpy as np
 
 from soccer_env.envs.batched import NotBatchable
 from soccer_env.envs.match import SoccerParallelEnv
+from soccer_env.perception.batched import FilteredPerceptionBatch, batch_refusal
 from soccer_env.perception.match import MatchPerception
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
-from soccer_env.sim.commands import CommandChannel, validate_actions
+from soccer_env.sim.commands import CommandChannel, CommandChannelBatch, validate_actions
 from soccer_env.sim.heads import HeadControl, aim_heads
 from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff
 from soccer_env.validation import check_int, check_seed
@@ -142,15 +147,28 @@ class MatchBatch:
         self._reads_bodies = probe._reads_bodies
         self._world_rngs: list[np.random.Generator | None] = [None] * n
         self._heads: list[Any] = [None] * n
+        # Perceived SSL matches whose configuration allows it perceive as one batch
+        # (FilteredPerceptionBatch), the others match by match.
+        self._vision: FilteredPerceptionBatch | None = None
+        self._starting: list[int] = []
+        if not self._truth and batch_refusal(base, n) is None:
+            self._vision = FilteredPerceptionBatch(base, n)
+        self._team_channels = None
         if not self._plain:
-            self._perceptions = [
-                MatchPerception(probe.obs_mode, probe.perceptions, self.field, self.ball_spec,
-                                w0.robot_specs, w0.teams.tolist(), w0.names, w0.control_dt,
-                                probe.belief_features) for _ in range(n)]
-            self._channels = [[CommandChannel(c.n, c.delay_steps, c.loss)
-                               for c in probe._channels] for _ in range(n)]
+            self._perceptions = (
+                [base] * n if self._vision is not None else
+                [MatchPerception(probe.obs_mode, probe.perceptions, self.field, self.ball_spec,
+                                 w0.robot_specs, w0.teams.tolist(), w0.names, w0.control_dt,
+                                 probe.belief_features) for _ in range(n)])
             self._in_play = [(sl, t) for t, (sl, count) in
                              enumerate(zip(probe._slices, (w0.n_blue, w0.n_yellow))) if count]
+            if not base._randomized:  # every match's channels of a team as one batch
+                self._team_channels = [
+                    (sl, t, CommandChannelBatch(n, probe._channels[t].n, base.delays[t],
+                                                base.losses[t])) for sl, t in self._in_play]
+            else:
+                self._channels = [[CommandChannel(c.n, c.delay_steps, c.loss)
+                                   for c in probe._channels] for _ in range(n)]
             self._sensor_rngs: list[np.random.Generator | None] = [None] * n
             if probe._heads is not None:  # each match's head control, as the probe's
                 auto = probe._heads.robots
@@ -192,10 +210,39 @@ class MatchBatch:
         if self._plain:
             return
         rng, perception = self._sensor_rngs[k], self._perceptions[k]
-        perception.reset(world.snapshot(), rng, self._body(k))
+        if self._vision is not None:  # (started with the others: _start_vision)
+            self._starting.append(k)
+        else:
+            perception.reset(world.snapshot(), rng, self._body(k))
+        if self._team_channels is not None:  # (a channel draws nothing when it starts)
+            for _, _, channel in self._team_channels:
+                channel.reset(k, rng)
+            return
         for channel, delay, loss in zip(self._channels[k], perception.delays,
                                         perception.losses):
             channel.reset(rng, delay, loss)
+
+    def _start_vision(self, stepped: np.ndarray | None = None) -> None:
+        """The batched perception: advance the matches ``stepped`` and start those whose
+        match began since the last call (:meth:`_begin`), in one pass."""
+        if self._vision is None:
+            return
+        step = None if stepped is None else (stepped, *self._truth_arrays(stepped))
+        start = None
+        if self._starting:
+            rows = np.array(self._starting, dtype=np.int64)
+            self._starting = []
+            start = (rows, *self._truth_arrays(rows), [self._sensor_rngs[k] for k in rows])
+        self._vision.advance(step, start)
+
+    def _truth_arrays(self, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(times, balls (d, 3) x y z, robot poses (d, N, 3))`` of matches ``rows``."""
+        batch = self.batch
+        state = batch.state[rows]
+        balls = state[:, 0, 0:3].copy()
+        worlds = batch.worlds
+        balls[:, 2] = [worlds[k]._z for k in rows.tolist()]
+        return batch.times[rows], balls, state[:, 1:, 0:3]
 
     def _body(self, k: int) -> Any:
         """Match ``k``'s robots' bodies, if its perception reads them (humanoids)."""
@@ -227,6 +274,7 @@ class MatchBatch:
                          self._world_rngs if self.batch.humanoid_indices else None)
         for k, (_, kickoff) in enumerate(placed):
             self._begin(k, kickoff)
+        self._start_vision()
         self._started = True
         return self._observe()
 
@@ -265,7 +313,13 @@ class MatchBatch:
             for heads, p, c, now in zip(self._heads, self._perceptions, commands,
                                         batch.times.tolist()):
                 heads.apply(c, now, p.attention)
-        if not self._plain:  # each match's commands through its channels
+        if self._plain:
+            pass
+        elif self._team_channels is not None:  # every team's commands through its channels
+            commands = np.array(commands, dtype=np.float64)
+            for sl, _, channel in self._team_channels:
+                commands[:, sl] = channel.send(commands[:, sl])
+        else:  # each match's commands through its channels
             commands = np.stack([
                 np.concatenate([ch[t].send(c[sl]) for sl, t in self._in_play])
                 for ch, c in zip(self._channels, commands)])
@@ -290,7 +344,9 @@ class MatchBatch:
                 self.restart_team[k] = place_free_kick(world, exit_, kind)
             world.clear_exit()
 
-        if not self._truth:
+        if self._vision is not None:
+            self._start_vision(np.arange(n))
+        elif not self._truth:
             for k, (perception, world) in enumerate(zip(self._perceptions, batch.worlds)):
                 perception.update(world.snapshot(), self._body(k))
         rewards = self._rewards(scorer, events, ball_x_before)
@@ -308,6 +364,7 @@ class MatchBatch:
                 poses, kickoff = self._place(k)
                 batch.restart(k, poses, (0.0, 0.0), self._world_rngs[k])
                 self._begin(k, kickoff)
+            self._start_vision()
             obs = self._observe()
         return MatchStep(obs, rewards, terminated, truncated, events, scores, lengths, final_obs)
 
@@ -344,6 +401,9 @@ class MatchBatch:
         game = per_team[:, self._teams]
         if self._truth:
             return self.builder.build_batch(state[:, 1:], state[:, 0], game)
+        if self._vision is not None:  # one belief per match, shared by its robots
+            ball, robots = self._vision.beliefs()
+            return self.builder.build_batch(robots, ball, game)
         # Each match's beliefs, through the builders a single match uses.
         out = np.empty((n, self.n_robots, self.builder.space().shape[0]), dtype=np.float32)
         for k, perception in enumerate(self._perceptions):

@@ -432,87 +432,105 @@ class OverheadVisionBatch:
         ball at ``balls`` ``(d, 3)`` (``x, y, z``) and the robots at ``robots`` ``(d, N, 3)``
         (poses), each drawing from its generator in ``rngs``; returns their warm-up frames
         (:meth:`OverheadVision.reset`)."""
-        rows = np.asarray(rows, dtype=np.int64)
-        times = np.asarray(times, dtype=np.float64)
-        balls = np.asarray(balls, dtype=np.float64)
-        robots = np.asarray(robots, dtype=np.float64)
-        period = self._period()
-        c = len(self.cameras)
-        queue = []
-        for chunk in self._queue:
-            drop = np.isin(chunk.env, rows)
-            if drop.all():
-                continue
-            queue.append(chunk.take(~drop) if drop.any() else chunk)
-        self._queue = queue
-        for j, k in enumerate(rows.tolist()):
-            rng = rngs[j]
-            self._rngs[k] = rng
-            self._normals.clear(k, rng)
-            self._uniforms.clear(k, rng)
-            self._next[k] = (rng.uniform(0.0, period, c) + times[j] if period is not None
-                             else math.inf)
-        self._prev_t[rows], self._prev_ball[rows], self._prev_robots[rows] = times, balls, robots
-        d = len(rows)
-        env = np.repeat(rows, c)
-        cams = np.tile(np.arange(c), d)
-        t = np.repeat(times, c)
-        frames = self._capture(env, cams, t, np.repeat(np.full(d, c), c), emit_empty=True)
-        latency = self.spec.latency
-        return frames._replace(t_capture=frames.t_capture - latency,
-                               t_delivered=frames.t_capture.copy())
+        return self.advance(start=(rows, times, balls, robots, rngs))[1]
 
     def step(self, rows, times, balls, robots) -> FrameBatch:
         """Advance fields ``rows`` ``(d,)`` to times ``times`` with their truth (as
         :meth:`reset`): capture the frames due since their last step and return the frames
         delivered by now (:meth:`OverheadVision.step`)."""
-        rows = np.asarray(rows, dtype=np.int64)
-        now = np.asarray(times, dtype=np.float64)
-        balls = np.asarray(balls, dtype=np.float64)
-        robots = np.asarray(robots, dtype=np.float64)
+        return self.advance(step=(rows, times, balls, robots))[0]
+
+    def advance(self, step: tuple | None = None, start: tuple | None = None
+                ) -> tuple[FrameBatch, FrameBatch]:
+        """:meth:`step` the fields of ``step`` (``(rows, times, balls, robots)``) and
+        :meth:`reset` those of ``start`` (``(rows, times, balls, robots, rngs)``) with one
+        capture pass; returns ``(frames delivered to the stepped fields, warm-up frames of the
+        started ones)``. The two sets of fields must not meet."""
         c = len(self.cameras)
         period = self._period()
-        prev_t, prev_ball = self._prev_t[rows], self._prev_ball[rows]
-        prev_robots = self._prev_robots[rows]
-        self._cur = (now, balls, robots)
-        if period is None:
-            env = np.repeat(rows, c)
-            cam = np.tile(np.arange(c), len(rows))
-            t = np.repeat(now, c)
-        else:
-            nxt = self._next[rows]
-            limit = (now + 1e-12)[:, None]
-            found = []
-            rounds = 0
-            while True:
-                due = nxt <= limit
-                if not due.any():
-                    break
-                r, cam = np.nonzero(due)
-                found.append((r, cam, nxt[r, cam], np.full(len(r), rounds)))
-                nxt[due] += period
-                rounds += 1
-            self._next[rows] = nxt
-            if found:
-                r, cam, t, it = (np.concatenate(col) for col in zip(*found))
-                order = np.lexsort((it, cam, r))  # field, then camera, then time
-                r, cam, t = r[order], cam[order], t[order]
-                env = rows[r]
+        parts = []  # (env, cams, times, counts, t0, span, prev ball, ball, prev robots, robots)
+        if step is not None and len(step[0]):
+            rows, now, balls, robots = step
+            rows = np.asarray(rows, dtype=np.int64)
+            now = np.asarray(now, dtype=np.float64)
+            balls = np.asarray(balls, dtype=np.float64)
+            robots = np.asarray(robots, dtype=np.float64)
+            if period is None:
+                r = np.repeat(np.arange(len(rows)), c)
+                cam = np.tile(np.arange(c), len(rows))
+                t = now[r]
             else:
-                env = cam = np.zeros(0, dtype=np.int64)
+                nxt = self._next[rows]
+                limit = (now + 1e-12)[:, None]
+                found = []
+                rounds = 0
+                while True:
+                    due = nxt <= limit
+                    if not due.any():
+                        break
+                    r, cam = np.nonzero(due)
+                    found.append((r, cam, nxt[r, cam], np.full(len(r), rounds)))
+                    nxt[due] += period
+                    rounds += 1
+                self._next[rows] = nxt
+                r = cam = np.zeros(0, dtype=np.int64)
                 t = np.zeros(0)
-        if len(env):
-            # Where each field's step starts (its prev state) and ends.
-            slot = np.empty(self.m, dtype=np.int64)
-            slot[rows] = np.arange(len(rows))
-            counts = np.bincount(env, minlength=self.m)[env]
-            self._span = (prev_t, prev_ball, prev_robots, slot)
-            new = self._capture(env, cam, t, counts, emit_empty=False)
+                if found:
+                    r, cam, t, it = (np.concatenate(col) for col in zip(*found))
+                    order = np.lexsort((it, cam, r))  # field, then camera, then time
+                    r, cam, t = r[order], cam[order], t[order]
+            if len(r):
+                env = rows[r]
+                counts = np.bincount(r, minlength=len(rows))[r]
+                t0 = self._prev_t[env]
+                parts.append((env, cam, t, counts, t0, now[r] - t0, self._prev_ball[env],
+                              balls[r], self._prev_robots[env], robots[r]))
+            self._prev_t[rows], self._prev_ball[rows] = now, balls
+            self._prev_robots[rows] = robots
+        n_step = sum(len(p[0]) for p in parts)
+        if start is not None and len(start[0]):
+            rows, times, balls, robots, rngs = start
+            rows = np.asarray(rows, dtype=np.int64)
+            times = np.asarray(times, dtype=np.float64)
+            balls = np.asarray(balls, dtype=np.float64)
+            robots = np.asarray(robots, dtype=np.float64)
+            queue = []
+            for chunk in self._queue:
+                drop = np.isin(chunk.env, rows)
+                if drop.all():
+                    continue
+                queue.append(chunk.take(~drop) if drop.any() else chunk)
+            self._queue = queue
+            for j, k in enumerate(rows.tolist()):
+                rng = rngs[j]
+                self._rngs[k] = rng
+                self._normals.clear(k, rng)
+                self._uniforms.clear(k, rng)
+                self._next[k] = (rng.uniform(0.0, period, c) + times[j] if period is not None
+                                 else math.inf)
+            self._prev_t[rows], self._prev_ball[rows] = times, balls
+            self._prev_robots[rows] = robots
+            # Every camera at once, of a scene standing still.
+            r = np.repeat(np.arange(len(rows)), c)
+            t = times[r]
+            parts.append((rows[r], np.tile(np.arange(c), len(rows)), t, np.full(len(r), c), t,
+                          np.zeros(len(r)), balls[r], balls[r], robots[r], robots[r]))
+        if not parts:
+            return self._empty, self._empty
+        columns = parts[0] if len(parts) == 1 else [np.concatenate(col) for col in zip(*parts)]
+        frames = self._capture(*columns)
+        warm = frames.take(np.arange(n_step, frames.count))
+        warm = warm._replace(t_capture=warm.t_capture - self.spec.latency,
+                             t_delivered=warm.t_capture.copy())
+        if n_step:
+            new = frames.take(np.arange(n_step))
+            new = new.take(new.ball_seen.any(axis=1) | new.robot_seen.any(axis=1))
             if new.count:
                 self._queue.append(new)
-        self._prev_t[rows], self._prev_ball[rows], self._prev_robots[rows] = now, balls, robots
+        if step is None or not len(step[0]):
+            return self._empty, warm
         limit = np.full(self.m, -math.inf)
-        limit[rows] = now + 1e-12
+        limit[np.asarray(step[0], dtype=np.int64)] = np.asarray(step[1], dtype=np.float64) + 1e-12
         delivered, queue = [], []
         for chunk in self._queue:
             out = chunk.t_delivered <= limit[chunk.env]
@@ -525,35 +543,25 @@ class OverheadVisionBatch:
                 queue.append(chunk)
         self._queue = queue
         if not delivered:
-            return self._empty
+            return self._empty, warm
         got = delivered[0] if len(delivered) == 1 else FrameBatch.join(delivered)
         order = np.lexsort((got.camera, got.t_capture, got.t_delivered, got.env))
-        return got.take(order)
+        return got.take(order), warm
 
     # ------------------------------------------------------------------------------------
 
     def _capture(self, env: np.ndarray, cams: np.ndarray, times: np.ndarray,
-                 counts: np.ndarray, emit_empty: bool) -> FrameBatch:
+                 counts: np.ndarray, t0: np.ndarray, span: np.ndarray, pb: np.ndarray,
+                 cb: np.ndarray, pr: np.ndarray, cr: np.ndarray) -> FrameBatch:
         """The frames of cameras ``cams`` of fields ``env`` captured at ``times`` (each
-        field's frames consecutive, camera-major as :meth:`OverheadVision.step` lists them;
-        ``counts``: each frame's field's number of frames): :meth:`OverheadVision._capture`
-        on arrays."""
+        field's frames consecutive, camera-major as :meth:`OverheadVision.step` lists them),
+        each frame with its field's number of frames this step ``counts``, its step's start
+        ``t0`` and length ``span`` [s], ball ``x, y, z`` at its start and end ``pb``, ``cb``
+        and robot poses ``pr``, ``cr``: :meth:`OverheadVision._capture` on arrays (frames that
+        detected nothing included)."""
         spec, rs = self.spec, self._one.robot_spec
         F, N = len(env), self.n_robots
         r = self._one.ball_spec.radius
-        if emit_empty:  # reset: the truth stands still
-            k = np.searchsorted(np.unique(env), env)
-            t0 = times
-            pb = cb = self._prev_ball[env]
-            pr = cr = self._prev_robots[env]
-            span = np.zeros(F)
-        else:
-            prev_t, prev_ball, prev_robots, slot = self._span
-            now, balls, robots = self._cur
-            k = slot[env]
-            t0, pb, pr = prev_t[k], prev_ball[k], prev_robots[k]
-            cb, cr = balls[k], robots[k]
-            span = now[k] - t0
         with np.errstate(divide="ignore", invalid="ignore"):
             w = np.where(span > 0, (times - t0) / np.where(span > 0, span, 1.0), 1.0)
         # Robot poses at the capture times: positions on the line, headings on the short arc
@@ -632,11 +640,8 @@ class OverheadVisionBatch:
         ball_seen[:, N + 1] = spurious
         balls[~ball_seen] = 0.0
         delivered = times + (spec.latency + spec.latency_jitter * uf[:, 2 * N + 4])
-        frames = FrameBatch(env.astype(np.int64), cams.astype(np.int64), times.copy(),
-                            delivered, balls, ball_seen, poses, robot_seen)
-        if emit_empty:
-            return frames
-        return frames.take(ball_seen.any(axis=1) | robot_seen.any(axis=1))
+        return FrameBatch(env.astype(np.int64), cams.astype(np.int64), times.copy(),
+                          delivered, balls, ball_seen, poses, robot_seen)
 
 
 class _BatchDraws:

@@ -68,13 +68,24 @@ def _compare(kwargs: dict, n: int, steps: int, seed: int) -> dict[str, int]:
     {"blue": 2, "yellow": 2, "match_duration": 3.0, "field": "ssl-2012",
      "shaping": {"ball_progress": 1.0, "ball_distance": 0.5}},
     {"blue": 3, "yellow": 1, "max_cycles": 150, "field": "ssl-2012"},
-    # Each match's own perception and command channels (latency), fed from the batch.
+    # The batched perception and command channels (latency; losses under "realistic").
     {"blue": 2, "yellow": 2, "match_duration": 3.0, "field": "ssl-2012",
      "obs_mode": "perceived", "perception": "ssl-2012"},
+    {"blue": 2, "yellow": 2, "match_duration": 3.0, "field": "ssl-div-b",
+     "obs_mode": "perceived", "perception": "realistic"},
+    # Each match's own perception (the teams perceive differently), fed from the batch.
+    {"blue": 2, "yellow": 2, "match_duration": 3.0, "field": "ssl-2012",
+     "obs_mode": "perceived", "perception": {"blue": "ssl-2012", "yellow": "realistic"}},
     {"blue": 2, "yellow": 1, "max_cycles": 150, "field": "ssl-2012", "obs_mode": "raw",
      "perception": {"blue": "realistic", "yellow": "ssl-2012"}, "belief_features": True},
 ])
-def test_the_batch_plays_the_single_matches(kwargs):
+def test_the_batch_plays_the_single_matches(kwargs, monkeypatch):
+    import soccer_env.perception.batched as perception_batch
+
+    monkeypatch.setattr(perception_batch, "MIN_BATCH", 1)  # (batched at any size)
+    batch = MatchBatch(2, **kwargs)
+    shared = kwargs.get("obs_mode") == "perceived" and isinstance(kwargs["perception"], str)
+    assert (batch._vision is not None) == shared  # one batched perception where it can
     # (Contacts amplify the shared spaces' rounding; under noisy raw detections the scripted
     # teams' choices make that visible after about 350 steps.)
     counts = _compare(kwargs, n=4, steps=300 if "obs_mode" in kwargs else 400, seed=3)
