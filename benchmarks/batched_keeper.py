@@ -14,9 +14,9 @@ entry point (``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")`
 environments. The runs alternate within each round; ratios are to the single environment of the
 same round, and the median over rounds is printed. "Physics alone" is the rate the batch would
 reach if nothing but Chipmunk's steps (``cpSpaceStep``, timed call by call within the same run)
-cost anything: the ceiling of any batching on top of these physics. Memory: the growth of the process's resident
-set when ``--memory`` environments are built and reset in a fresh process, divided by their
-number.
+cost anything: the ceiling of any batching on top of these physics. Memory: the growth of the
+process's resident set when ``--memory`` environments are built and reset in a fresh process,
+divided by their number.
 """
 
 from __future__ import annotations
