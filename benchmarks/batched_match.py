@@ -2,9 +2,11 @@
 1,024, in one and two processes, ours and VMAS's from one run; and memory per match.
 
 Usage: ``python benchmarks/batched_match.py [--size 2] [--batches 1 16 64 128 256 512 1024]
-[--target 40000] [--rounds 3] [--vmas-python PATH] [--memory 1000] [--json FILE]``.
+[--target 40000] [--rounds 3] [--vmas-python PATH] [--memory 1000] [--obs-mode truth]
+[--perception P] [--json FILE]``.
 
-Ours: ``N`` vs ``N`` SSL robots on truth observations (``--size``, default 2 vs 2), the blue
+Ours: ``N`` vs ``N`` SSL robots on truth observations (``--size``, default 2 vs 2; or
+``--obs-mode`` and ``--perception``), the blue
 team learning, the yellow team the scripted opponent, as
 :func:`agents.multiagent.make_match_vec_env` steps them for training with ``batched=True``:
 ``1 process`` is every match in one batch in this process, ``2 processes`` the matches
@@ -44,10 +46,12 @@ def _steps(batch: int, target: int) -> int:
     return max(20, min(300, -(-target // batch)))
 
 
-def _ours(size: int, batch: int, processes: int, target: int, batched: bool = True) -> float:
+def _ours(size: int, batch: int, processes: int, target: int, batched: bool = True,
+          extra: dict | None = None) -> float:
     from agents.multiagent import make_match_vec_env
 
-    venv = make_match_vec_env({"blue": size, "yellow": size}, n_matches=batch, learner="blue",
+    venv = make_match_vec_env({"blue": size, "yellow": size, **(extra or {})}, n_matches=batch,
+                              learner="blue",
                               opponent="scripted", seed=0,
                               workers=0 if processes == 1 else processes, batched=batched)
     try:
@@ -76,16 +80,17 @@ def _vmas(python: str, size: int, batches: list[int], threads: int, target: int
     return {int(r["envs"]): float(r["env_steps_per_s"]) for r in rows}
 
 
-def _memory(size: int, n: int) -> float:
+def _memory(size: int, n: int, extra: dict | None = None) -> float:
     """Bytes per match of ``n`` batched matches, measured in a fresh process."""
+    kwargs = {"blue": size, "yellow": size, **(extra or {})}
     code = (
         "import numpy as np\n"
         "from soccer_env.envs.batched_match import MatchBatch\n"
         "def rss():\n"
         "    return int(open('/proc/self/statm').read().split()[1]) * 4096\n"
-        f"MatchBatch(2, blue={size}, yellow={size}).reset(seed=0)\n"
+        f"MatchBatch(2, **{kwargs!r}).reset(seed=0)\n"
         "before = rss()\n"
-        f"b = MatchBatch({n}, blue={size}, yellow={size})\n"
+        f"b = MatchBatch({n}, **{kwargs!r})\n"
         "b.reset(seed=0)\n"
         f"for _ in range(20): b.step(np.zeros(({n}, {2 * size}, 6)))\n"
         f"print((rss() - before) / {n})\n")
@@ -106,15 +111,22 @@ def main(argv: list[str] | None = None) -> int:
                    help="a Python with vmas installed: also time VMAS football")
     p.add_argument("--memory", type=int, default=1000,
                    help="matches for the memory figure (0: skip)")
+    p.add_argument("--obs-mode", default="truth", help="our matches' observation mode (truth)")
+    p.add_argument("--perception", default=None,
+                   help="our matches' perception preset (the mode's default)")
     p.add_argument("--json", default=None)
     args = p.parse_args(argv)
+    extra: dict = {"obs_mode": args.obs_mode}
+    if args.perception:
+        extra["perception"] = args.perception
     cases = [("ours", 1), ("ours", 2)] + ([("vmas", 1), ("vmas", 2)] if args.vmas_python
                                           else [])
     rates: dict[tuple[str, int, int], list[float]] = {}
     single: list[float] = []
     for r in range(args.rounds):
         order = cases if r % 2 == 0 else list(reversed(cases))
-        single.append(_ours(args.size, 1, 1, min(args.target, 3000), batched=False))
+        single.append(_ours(args.size, 1, 1, min(args.target, 3000), batched=False,
+                            extra=extra))
         for who, procs in order:
             if who == "vmas":
                 got = _vmas(args.vmas_python, args.size, args.batches, procs, args.target)
@@ -123,9 +135,9 @@ def main(argv: list[str] | None = None) -> int:
             else:
                 for b in args.batches:
                     rates.setdefault((who, procs, b), []).append(
-                        _ours(args.size, b, procs, args.target))
+                        _ours(args.size, b, procs, args.target, extra=extra))
     med = {k: statistics.median(v) for k, v in rates.items()}
-    results: dict[str, object] = {"size": args.size, "unbatched_1": single,
+    results: dict[str, object] = {"size": args.size, "kwargs": extra, "unbatched_1": single,
                                   "rates": {f"{w}:{p}:{b}": v for (w, p, b), v in rates.items()}}
     case = f"{args.size} vs {args.size}"
     print(f"{case}, env-steps/s (median of {args.rounds} rounds); one match unbatched: "
@@ -155,7 +167,7 @@ def main(argv: list[str] | None = None) -> int:
         else:
             print()
     if args.memory:
-        per = _memory(args.size, args.memory)
+        per = _memory(args.size, args.memory, extra)
         results["bytes_per_match"] = per
         print(f"memory: {per:,.0f} bytes per match ({args.memory} matches in one batch)")
     if args.json:
