@@ -24,7 +24,6 @@ from __future__ import annotations
 import argparse
 import json
 import statistics
-import subprocess
 import sys
 import time
 
@@ -79,22 +78,16 @@ def _batch(n: int, steps: int, kwargs: dict) -> tuple[float, float]:
 
 def _memory(n: int, kwargs: dict) -> float:
     """Bytes per environment of ``n`` batched environments, measured in a fresh process."""
-    code = (
-        "import gymnasium as gym, numpy as np, soccer_env, resource\n"
-        "def rss():\n"
-        "    return int(open('/proc/self/statm').read().split()[1]) * 4096\n"
-        f"kwargs = {kwargs!r}\n"
-        "gym.make_vec('soccer_env/Goalkeeper-v0', num_envs=2, "
-        "vectorization_mode='vector_entry_point', **kwargs).reset(seed=0)\n"
-        "before = rss()\n"
-        f"env = gym.make_vec('soccer_env/Goalkeeper-v0', num_envs={n}, "
-        "vectorization_mode='vector_entry_point', **kwargs)\n"
-        "env.reset(seed=0)\n"
-        f"for _ in range(20): env.step(np.zeros(({n}, 6), np.float32))\n"
-        f"print((rss() - before) / {n})\n")
-    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True,
-                         text=True).stdout
-    return float(out.strip().splitlines()[-1])
+    from soccer_lab.bench import memory_per_item
+
+    def make(count: int) -> str:
+        return (f"gym.make_vec('soccer_env/Goalkeeper-v0', num_envs={count}, "
+                f"vectorization_mode='vector_entry_point', **{kwargs!r})")
+
+    return memory_per_item(
+        f"import gymnasium as gym, numpy as np, soccer_env\n{make(2)}.reset(seed=0)",
+        f"env = {make(n)}\nenv.reset(seed=0)\n"
+        f"for _ in range(20): env.step(np.zeros(({n}, 6), np.float32))", n)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -82,21 +82,14 @@ def _vmas(python: str, size: int, batches: list[int], threads: int, target: int
 
 def _memory(size: int, n: int, extra: dict | None = None) -> float:
     """Bytes per match of ``n`` batched matches, measured in a fresh process."""
+    from soccer_lab.bench import memory_per_item
+
     kwargs = {"blue": size, "yellow": size, **(extra or {})}
-    code = (
-        "import numpy as np\n"
-        "from soccer_env.envs.batched_match import MatchBatch\n"
-        "def rss():\n"
-        "    return int(open('/proc/self/statm').read().split()[1]) * 4096\n"
-        f"MatchBatch(2, **{kwargs!r}).reset(seed=0)\n"
-        "before = rss()\n"
-        f"b = MatchBatch({n}, **{kwargs!r})\n"
-        "b.reset(seed=0)\n"
-        f"for _ in range(20): b.step(np.zeros(({n}, {2 * size}, 6)))\n"
-        f"print((rss() - before) / {n})\n")
-    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True,
-                         text=True).stdout
-    return float(out.strip().splitlines()[-1])
+    return memory_per_item(
+        "import numpy as np\nfrom soccer_env.envs.batched_match import MatchBatch\n"
+        f"MatchBatch(2, **{kwargs!r}).reset(seed=0)",
+        f"b = MatchBatch({n}, **{kwargs!r})\nb.reset(seed=0)\n"
+        f"for _ in range(20): b.step(np.zeros(({n}, {2 * size}, 6)))", n)
 
 
 def main(argv: list[str] | None = None) -> int:

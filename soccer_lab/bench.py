@@ -60,6 +60,25 @@ REFERENCE = {
 }
 
 
+def memory_per_item(prelude: str, build: str, n: int) -> float:
+    """Bytes of resident memory per item that ``build`` (Python source making ``n`` items)
+    adds in a fresh interpreter, after ``prelude`` (imports, and a small warm-up build so that
+    imports and first-use caches are not counted): the growth of the process's resident set
+    (``/proc/self/statm``) divided by ``n``."""
+    import subprocess
+    import sys
+
+    code = (f"{prelude}\n"
+            "def _rss():\n"
+            "    return int(open('/proc/self/statm').read().split()[1]) * 4096\n"
+            "_before = _rss()\n"
+            f"{build}\n"
+            f"print((_rss() - _before) / {n})\n")
+    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True,
+                         text=True).stdout
+    return float(out.strip().splitlines()[-1])
+
+
 def _rate(run: Callable[[], None], steps: int) -> float:
     t0 = time.perf_counter()
     run()

@@ -68,14 +68,13 @@ from soccer_env.envs.goalkeeper import (
     fire_shot,
     place_episode,
 )
+from soccer_env.envs.senses import Senses
 from soccer_env.envs.shootout import CLEAR_SPEED as SHOOTOUT_CLEAR_SPEED
 from soccer_env.envs.shootout import STOP_SPEED as SHOOTOUT_STOP_SPEED
 from soccer_env.envs.shootout import ShootoutEnv
-from soccer_env.perception.batched import FilteredPerceptionBatch, batch_refusal
-from soccer_env.perception.match import MatchPerception
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
-from soccer_env.sim.commands import CommandChannel, CommandChannelBatch, validate_actions
-from soccer_env.sim.heads import HeadControl, aim_heads
+from soccer_env.sim.commands import validate_actions
+from soccer_env.sim.heads import aim_heads
 from soccer_env.sim.referee import classify_exit
 from soccer_env.validation import check_int, check_seed
 
@@ -180,55 +179,12 @@ class BatchedTask(VectorEnv):
         self._steps = np.zeros(n, dtype=np.int64)
         self._needs_reset = np.zeros(n, dtype=bool)
         self._started = False
-        # Raw and perceived observations, and actuation latency or command loss (which apply
-        # in truth mode too): each environment keeps the single environment's own perception
-        # and command channels, fed from the batch.
-        self._truth = probe.obs_mode == "truth"
-        base = probe._perception
-        humanoids = bool(w0.humanoid_indices)
-        # Humanoids' heads follow their robots' attention, which the perception gives.
-        self._plain = (self._truth and not any(base.delays) and not any(base.losses)
-                       and not humanoids)
-        self._reads_bodies = probe._reads_bodies
         self._world_rngs: list[np.random.Generator | None] = [None] * n
-        self._heads: list[Any] = [None] * n
-        #: The perceived beliefs of every environment as one batch, where the configuration
-        #: allows (:func:`~soccer_env.perception.batched.batch_refusal`); else None, and
-        #: each environment keeps its own perception.
-        self._vision: FilteredPerceptionBatch | None = None
-        self._starting: list[int] = []
-        if not self._truth and batch_refusal(base, n) is None:
-            self._vision = FilteredPerceptionBatch(base, n)
-        if not self._plain:
-            self._perceptions = ([base] * n if self._vision is not None
-                                 else [self._new_perception() for _ in range(n)])
-            self._in_play = [(sl, t) for t, (sl, count) in
-                             enumerate(zip(probe._slices, (w0.n_blue, w0.n_yellow))) if count]
-            # Every environment's command channels of a team as one batch, unless the
-            # latency and loss are drawn per episode.
-            self._team_channels = None
-            if not base._randomized:
-                self._team_channels = [
-                    (sl, t, CommandChannelBatch(n, probe._channels[t].n, base.delays[t],
-                                                base.losses[t])) for sl, t in self._in_play]
-            else:
-                self._channels = [[CommandChannel(c.n, c.delay_steps, c.loss)
-                                   for c in probe._channels] for _ in range(n)]
-            self._sensor_rngs: list[np.random.Generator | None] = [None] * n
-            self._seen: list[Any] = [None] * n
-            if probe._heads is not None:  # each environment's head control, as the probe's
-                auto = probe._heads.robots
-                self._heads = [HeadControl(w0.robot_specs, auto,
-                                           [p.cameras[i].height for i in auto], probe.head)
-                               for p in self._perceptions]
+        # Perception, command channels (actuation latency and command loss, which apply in
+        # truth mode too) and head control beside the physics.
+        self._senses = Senses(probe, self.batch, n)
+        self._truth = self._senses.truth
         self._setup()
-
-    def _new_perception(self) -> MatchPerception:
-        """A perception of both teams as the single environment builds it."""
-        p, w = self.probe, self.probe.world
-        return MatchPerception(p.obs_mode, p.perceptions, self.field, self.ball_spec,
-                               w.robot_specs, w.teams.tolist(), w.names, w.control_dt,
-                               p.belief_features)
 
     def _streams(self, k: int, sensors_first: bool) -> None:
         """Draw environment ``k``'s two stream seeds (the world's and the sensors', in the
@@ -239,58 +195,8 @@ class BatchedTask(VectorEnv):
         sensors, world = (first, second) if sensors_first else (second, first)
         if self.batch.humanoid_indices:  # their falls, kick directions and odometry
             self._world_rngs[k] = np.random.default_rng(world)
-        if not self._plain:
-            self._sensor_rngs[k] = np.random.default_rng(sensors)
-
-    def _body(self, k: int) -> Any:
-        """Environment ``k``'s robots' bodies, if its perception reads them (humanoids)."""
-        return self.batch.worlds[k].body_state() if self._reads_bodies else None
-
-    def _perceive_start(self, k: int) -> None:
-        """Environment ``k``'s perception and command channels at the start of an episode
-        (after its world is placed and its task has begun), as ``SoccerCore._start``."""
-        if self._plain:
-            return
-        rng = self._sensor_rngs[k]
-        perception = self._perceptions[k]
-        if self._vision is not None:  # (started with the others: _start_vision)
-            self._starting.append(k)
-        else:
-            world = self.batch.worlds[k]
-            self._seen[k] = perception.reset(world.snapshot(), rng, self._body(k))[0]
-        # (A channel draws nothing when it starts, so that it may start before the batched
-        # perception.)
-        if self._team_channels is not None:
-            for _, _, channel in self._team_channels:
-                channel.reset(k, rng)
-            return
-        for channel, delay, loss in zip(self._channels[k], perception.delays,
-                                        perception.losses):
-            channel.reset(rng, delay, loss)
-
-    def _start_vision(self, stepped: np.ndarray | None = None) -> None:
-        """Start the batched perception of the environments whose episodes began since the
-        last call (:meth:`_perceive_start`), and advance that of the environments
-        ``stepped`` (which must not be among them) in the same pass."""
-        if self._vision is None:
-            return
-        step = None if stepped is None else (stepped, *self._truth_arrays(stepped))
-        start = None
-        if self._starting:
-            rows = np.array(self._starting, dtype=np.int64)
-            self._starting = []
-            start = (rows, *self._truth_arrays(rows), [self._sensor_rngs[k] for k in rows])
-        self._vision.advance(step, start)
-
-    def _truth_arrays(self, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """``(times, balls (d, 3) x y z, robot poses (d, N, 3))`` of environments ``rows``,
-        what the overhead cameras see."""
-        batch = self.batch
-        state = batch.state[rows]
-        balls = state[:, 0, 0:3].copy()
-        worlds = batch.worlds
-        balls[:, 2] = [worlds[k]._z for k in rows.tolist()]
-        return batch.times[rows], balls, state[:, 1:, 0:3]
+        if not self._senses.plain:
+            self._senses.sensor_rngs[k] = np.random.default_rng(sensors)
 
     # ------------------------------------------------------------------------------------
     # The task's hooks
@@ -335,15 +241,15 @@ class BatchedTask(VectorEnv):
         self._aim(k)
         self._steps[k] = 0
         self._begin(k, drawn)
-        self._perceive_start(k)
+        self._senses.start(k)
 
     def _aim(self, k: int) -> None:
         """Environment ``k``'s humanoids' heads at the start of an episode (as
         ``SoccerCore._start``: turned to the ball, no glance under way)."""
         if self.batch.humanoid_indices:
             aim_heads(self.batch.worlds[k])
-            if self._heads[k] is not None:
-                self._heads[k].reset()
+            if self._senses.heads[k] is not None:
+                self._senses.heads[k].reset()
 
     def reset(self, *, seed: int | list[int] | None = None,
               options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict[str, Any]]:
@@ -372,8 +278,8 @@ class BatchedTask(VectorEnv):
         for k, (_, _, drawn) in enumerate(placed):
             self._aim(k)
             self._begin(k, drawn)
-            self._perceive_start(k)
-        self._start_vision()
+            self._senses.start(k)
+        self._senses.flush()
         self._needs_reset[:] = False
         self._started = True
         return self._observe(), {"episode_steps": self._steps.copy()}
@@ -399,34 +305,13 @@ class BatchedTask(VectorEnv):
         act[restarting] = 0.0  # a finished environment's action is ignored
         act = validate_actions(act, self._names, self._out_of_range)
         commands = self._commands(act)
-        if self._heads[0] is not None:  # each environment's heads, from its attention
-            times = self.batch.times.tolist()
-            for heads, p, c, now in zip(self._heads, self._perceptions, commands, times):
-                heads.apply(c, now, p.attention)
-        if self._plain:
-            pass
-        elif self._team_channels is not None:  # every team's commands through its channels
-            commands = np.array(commands, dtype=np.float64)
-            for sl, _, channel in self._team_channels:
-                commands[:, sl] = channel.send(commands[:, sl])
-        else:  # each environment's commands through its channels
-            commands = np.stack([
-                np.concatenate([ch[t].send(c[sl]) for sl, t in self._in_play])
-                for ch, c in zip(self._channels, commands)])
+        commands = self._senses.send(commands)
         self.batch.step(commands)
         self._steps += 1
         outcome, rewards = self._judge(act, live)
-        stepped = None
-        if self._vision is not None:
-            stepped = np.nonzero(live)[0]
-            if self._same_step:  # (the final observations need the beliefs now)
-                self._vision.update(stepped, *self._truth_arrays(stepped))
-                stepped = None
-        elif not self._truth:
-            worlds = self.batch.worlds
-            for k in np.nonzero(live)[0].tolist():
-                self._seen[k] = self._perceptions[k].update(worlds[k].snapshot(),
-                                                            self._body(k))[0]
+        # (The batched perception advances with the episodes that start at the end of the step,
+        # unless the final observations need it before.)
+        self._senses.update(np.nonzero(live)[0], batched=self._same_step)
         outcome[restarting] = None
         terminated = outcome != None  # noqa: E711 (element-wise)
         truncated = np.zeros(n, dtype=bool)
@@ -460,7 +345,7 @@ class BatchedTask(VectorEnv):
             self._restart(k)
         # The batched perception of the environments that played and of those that start
         # over, in one pass.
-        self._start_vision(stepped)
+        self._senses.flush(None if self._same_step else np.nonzero(live)[0])
         if restarting.any():
             if not self._same_step:
                 rewards[restarting] = 0.0
@@ -484,11 +369,12 @@ class BatchedTask(VectorEnv):
             state = self.batch.state
             robots = state[:, 1:1 + self.builder.n_robots]
             return self.builder.build_batch(robots, state[:, 0])[:, 0]
-        if self._vision is not None:
-            ball, robots = self._vision.beliefs()
+        vision = self._senses.vision
+        if vision is not None:
+            ball, robots = vision.beliefs()
             return self.builder.build_batch(robots[:, :self.builder.n_robots], ball)[:, 0]
         build = self.builder.build
-        return np.stack([build(seen)[0] for seen in self._seen])
+        return np.stack([build(seen)[0] for seen in self._senses.seen])
 
     def close(self, **kwargs: Any) -> None:
         self.batch.close()
@@ -645,17 +531,17 @@ class ShootoutVectorEnv(BatchedTask):
             # A humanoid keeper decides in plain Python, one environment at a time, from the
             # view a single environment builds (its dives turn on thresholds).
             views = ([build(w.snapshot())[0] for w in self.batch.worlds] if self._truth
-                     else [build(p.belief(1))[0] for p in self._perceptions])
+                     else [build(p.belief(1))[0] for p in self._senses.perceptions])
             keeper = np.stack([self.keeper(view) for view in views])
         else:
             if self._truth:
                 state = self.batch.state
                 view = self._keeper_view.build_batch(state[:, 1:], state[:, 0])[:, 0]
-            elif self._vision is not None:  # the keeper plays from its team's belief
-                ball, robots = self._vision.beliefs()
+            elif self._senses.vision is not None:  # the keeper plays from its team's belief
+                ball, robots = self._senses.vision.beliefs()
                 view = self._keeper_view.build_batch(robots, ball)[:, 0]
             else:
-                view = np.stack([build(p.belief(1))[0] for p in self._perceptions])
+                view = np.stack([build(p.belief(1))[0] for p in self._senses.perceptions])
             keeper = self.keeper.act_batch(view)
         both = np.stack([act, np.clip(keeper, -1.0, 1.0)], axis=1)
         return self._model.commands(both.reshape(-1, 6)).reshape(self.num_envs, 2, 6)

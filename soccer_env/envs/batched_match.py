@@ -43,11 +43,10 @@ import numpy as np
 
 from soccer_env.envs.batched import NotBatchable
 from soccer_env.envs.match import SoccerParallelEnv
-from soccer_env.perception.batched import FilteredPerceptionBatch, batch_refusal
-from soccer_env.perception.match import MatchPerception
+from soccer_env.envs.senses import Senses
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
-from soccer_env.sim.commands import CommandChannel, CommandChannelBatch, validate_actions
-from soccer_env.sim.heads import HeadControl, aim_heads
+from soccer_env.sim.commands import validate_actions
+from soccer_env.sim.heads import aim_heads
 from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff
 from soccer_env.validation import check_int, check_seed
 
@@ -135,46 +134,11 @@ class MatchBatch:
         self.restart_team = np.full(n, -1, dtype=np.int64)
         self.cycles = np.zeros(n, dtype=np.int64)
         self._started = False
-        # Raw and perceived observations, actuation latency and command loss (which apply in
-        # truth mode too): each match keeps a single match's own perception and command
-        # channels, fed from the batch.
-        self._truth = probe.obs_mode == "truth"
-        base = probe._perception
-        humanoids = bool(w0.humanoid_indices)
-        # Humanoids' heads follow their robots' attention, which the perception gives.
-        self._plain = (self._truth and not any(base.delays) and not any(base.losses)
-                       and not humanoids)
-        self._reads_bodies = probe._reads_bodies
         self._world_rngs: list[np.random.Generator | None] = [None] * n
-        self._heads: list[Any] = [None] * n
-        # Perceived SSL matches whose configuration allows it perceive as one batch
-        # (FilteredPerceptionBatch), the others match by match.
-        self._vision: FilteredPerceptionBatch | None = None
-        self._starting: list[int] = []
-        if not self._truth and batch_refusal(base, n) is None:
-            self._vision = FilteredPerceptionBatch(base, n)
-        self._team_channels = None
-        if not self._plain:
-            self._perceptions = (
-                [base] * n if self._vision is not None else
-                [MatchPerception(probe.obs_mode, probe.perceptions, self.field, self.ball_spec,
-                                 w0.robot_specs, w0.teams.tolist(), w0.names, w0.control_dt,
-                                 probe.belief_features) for _ in range(n)])
-            self._in_play = [(sl, t) for t, (sl, count) in
-                             enumerate(zip(probe._slices, (w0.n_blue, w0.n_yellow))) if count]
-            if not base._randomized:  # every match's channels of a team as one batch
-                self._team_channels = [
-                    (sl, t, CommandChannelBatch(n, probe._channels[t].n, base.delays[t],
-                                                base.losses[t])) for sl, t in self._in_play]
-            else:
-                self._channels = [[CommandChannel(c.n, c.delay_steps, c.loss)
-                                   for c in probe._channels] for _ in range(n)]
-            self._sensor_rngs: list[np.random.Generator | None] = [None] * n
-            if probe._heads is not None:  # each match's head control, as the probe's
-                auto = probe._heads.robots
-                self._heads = [HeadControl(w0.robot_specs, auto,
-                                           [p.cameras[i].height for i in auto], probe.head)
-                               for p in self._perceptions]
+        # Perception, command channels (actuation latency and command loss, which apply in
+        # truth mode too) and head control beside the physics.
+        self._senses = Senses(probe, self.batch, n)
+        self._truth = self._senses.truth
         self._builders = probe._builders
 
     # ------------------------------------------------------------------------------------
@@ -192,8 +156,8 @@ class MatchBatch:
         sensors = rng.integers(2**63)  # the sensors' stream
         if self.batch.humanoid_indices:
             self._world_rngs[k] = np.random.default_rng(world)
-        if not self._plain:
-            self._sensor_rngs[k] = np.random.default_rng(sensors)
+        if not self._senses.plain:
+            self._senses.sensor_rngs[k] = np.random.default_rng(sensors)
         return poses, kickoff
 
     def _begin(self, k: int, kickoff: int) -> None:
@@ -202,51 +166,12 @@ class MatchBatch:
         world = self.batch.worlds[k]
         if self.batch.humanoid_indices:  # heads turned to the ball, no glance under way
             aim_heads(world)
-            if self._heads[k] is not None:
-                self._heads[k].reset()
+            if self._senses.heads[k] is not None:
+                self._senses.heads[k].reset()
         self.score[k] = 0
         self.restart_team[k] = kickoff
         self.cycles[k] = 0
-        if self._plain:
-            return
-        rng, perception = self._sensor_rngs[k], self._perceptions[k]
-        if self._vision is not None:  # (started with the others: _start_vision)
-            self._starting.append(k)
-        else:
-            perception.reset(world.snapshot(), rng, self._body(k))
-        if self._team_channels is not None:  # (a channel draws nothing when it starts)
-            for _, _, channel in self._team_channels:
-                channel.reset(k, rng)
-            return
-        for channel, delay, loss in zip(self._channels[k], perception.delays,
-                                        perception.losses):
-            channel.reset(rng, delay, loss)
-
-    def _start_vision(self, stepped: np.ndarray | None = None) -> None:
-        """The batched perception: advance the matches ``stepped`` and start those whose
-        match began since the last call (:meth:`_begin`), in one pass."""
-        if self._vision is None:
-            return
-        step = None if stepped is None else (stepped, *self._truth_arrays(stepped))
-        start = None
-        if self._starting:
-            rows = np.array(self._starting, dtype=np.int64)
-            self._starting = []
-            start = (rows, *self._truth_arrays(rows), [self._sensor_rngs[k] for k in rows])
-        self._vision.advance(step, start)
-
-    def _truth_arrays(self, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """``(times, balls (d, 3) x y z, robot poses (d, N, 3))`` of matches ``rows``."""
-        batch = self.batch
-        state = batch.state[rows]
-        balls = state[:, 0, 0:3].copy()
-        worlds = batch.worlds
-        balls[:, 2] = [worlds[k]._z for k in rows.tolist()]
-        return batch.times[rows], balls, state[:, 1:, 0:3]
-
-    def _body(self, k: int) -> Any:
-        """Match ``k``'s robots' bodies, if its perception reads them (humanoids)."""
-        return self.batch.worlds[k].body_state() if self._reads_bodies else None
+        self._senses.start(k)
 
     def reset(self, seed: int | Sequence[int | None] | None = None) -> np.ndarray:
         """Start every match; returns the observations ``(M, N, obs_dim)``.
@@ -274,7 +199,7 @@ class MatchBatch:
                          self._world_rngs if self.batch.humanoid_indices else None)
         for k, (_, kickoff) in enumerate(placed):
             self._begin(k, kickoff)
-        self._start_vision()
+        self._senses.flush()
         self._started = True
         return self._observe()
 
@@ -309,20 +234,7 @@ class MatchBatch:
             commands = np.concatenate(
                 [m.commands(act[:, sl].reshape(-1, 6)).reshape(n, -1, 6)
                  for m, sl in self._slices], axis=1)
-        if self._heads[0] is not None:  # each match's heads, from its robots' attention
-            for heads, p, c, now in zip(self._heads, self._perceptions, commands,
-                                        batch.times.tolist()):
-                heads.apply(c, now, p.attention)
-        if self._plain:
-            pass
-        elif self._team_channels is not None:  # every team's commands through its channels
-            commands = np.array(commands, dtype=np.float64)
-            for sl, _, channel in self._team_channels:
-                commands[:, sl] = channel.send(commands[:, sl])
-        else:  # each match's commands through its channels
-            commands = np.stack([
-                np.concatenate([ch[t].send(c[sl]) for sl, t in self._in_play])
-                for ch, c in zip(self._channels, commands)])
+        commands = self._senses.send(commands)
         batch.step(commands)
 
         # The referee.
@@ -344,11 +256,7 @@ class MatchBatch:
                 self.restart_team[k] = place_free_kick(world, exit_, kind)
             world.clear_exit()
 
-        if self._vision is not None:
-            self._start_vision(np.arange(n))
-        elif not self._truth:
-            for k, (perception, world) in enumerate(zip(self._perceptions, batch.worlds)):
-                perception.update(world.snapshot(), self._body(k))
+        self._senses.update(np.arange(n))
         rewards = self._rewards(scorer, events, ball_x_before)
         obs = self._observe()
         terminated = batch.times >= self.match_duration - 1e-9
@@ -364,7 +272,7 @@ class MatchBatch:
                 poses, kickoff = self._place(k)
                 batch.restart(k, poses, (0.0, 0.0), self._world_rngs[k])
                 self._begin(k, kickoff)
-            self._start_vision()
+            self._senses.flush()
             obs = self._observe()
         return MatchStep(obs, rewards, terminated, truncated, events, scores, lengths, final_obs)
 
@@ -401,12 +309,12 @@ class MatchBatch:
         game = per_team[:, self._teams]
         if self._truth:
             return self.builder.build_batch(state[:, 1:], state[:, 0], game)
-        if self._vision is not None:  # one belief per match, shared by its robots
-            ball, robots = self._vision.beliefs()
+        if self._senses.vision is not None:  # one belief per match, shared by its robots
+            ball, robots = self._senses.vision.beliefs()
             return self.builder.build_batch(robots, ball, game)
         # Each match's beliefs, through the builders a single match uses.
         out = np.empty((n, self.n_robots, self.builder.space().shape[0]), dtype=np.float32)
-        for k, perception in enumerate(self._perceptions):
+        for k, perception in enumerate(self._senses.perceptions):
             for group, builder in self._builders:
                 out[k, group] = builder.build(perception.belief(group[0]), game[k, group])
         return out

@@ -138,11 +138,11 @@ def test_perceived_batches_estimate_as_one_and_equal_the_single_environments(
     import soccer_env.perception.batched as perception_batch
 
     vec = gym.make_vec(env_id, num_envs=2, vectorization_mode="vector_entry_point", **kwargs)
-    assert vec.unwrapped._vision is None  # below MIN_BATCH
+    assert vec.unwrapped._senses.vision is None  # below MIN_BATCH
     vec.close()
     monkeypatch.setattr(perception_batch, "MIN_BATCH", 1)
     vec = gym.make_vec(env_id, num_envs=2, vectorization_mode="vector_entry_point", **kwargs)
-    assert (vec.unwrapped._vision is not None) == batched
+    assert (vec.unwrapped._senses.vision is not None) == batched
     vec.close()
     ends, exact = _compare(kwargs, n=3, steps=200, seed=9, keeper_actions="random",
                            env_id=env_id)

@@ -85,7 +85,7 @@ def test_the_batch_plays_the_single_matches(kwargs, monkeypatch):
     monkeypatch.setattr(perception_batch, "MIN_BATCH", 1)  # (batched at any size)
     batch = MatchBatch(2, **kwargs)
     shared = kwargs.get("obs_mode") == "perceived" and isinstance(kwargs["perception"], str)
-    assert (batch._vision is not None) == shared  # one batched perception where it can
+    assert (batch._senses.vision is not None) == shared  # one batched perception where it can
     # (Contacts amplify the shared spaces' rounding; under noisy raw detections the scripted
     # teams' choices make that visible after about 350 steps.)
     counts = _compare(kwargs, n=4, steps=300 if "obs_mode" in kwargs else 400, seed=3)
