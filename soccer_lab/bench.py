@@ -329,6 +329,65 @@ def run_benchmarks(steps: int = 20000, match_steps: int = 5000, repeats: int = 3
     }
 
 
+#: The cases ``soccer-env bench --profile`` profiles: (runner, robot, default perception).
+PROFILE_CASES = {
+    "goalkeeper": ("goalkeeper", "ssl", "ssl-2012"),
+    "match": ("match", "ssl", "ssl-2012"),
+    "humanoid-goalkeeper": ("goalkeeper", HUMANOID, HUMANOID_CAMERA),
+    "humanoid-match": ("match", HUMANOID, HUMANOID_CAMERA),
+}
+
+
+def profile_perceived(case: str, perception: str | None = None, steps: int = 2000,
+                      top: int = 25, seed: int = 0) -> dict[str, Any]:
+    """Profile ``steps`` perceived steps of ``case`` (a key of :data:`PROFILE_CASES`: the
+    Goalkeeper-v0 or the match of :func:`run_benchmarks`) with :mod:`cProfile`: the ``top``
+    functions by their own time, per environment step (calls, own and cumulative
+    microseconds), and the step rates with and without the profiler."""
+    import cProfile
+    import pstats
+
+    if case not in PROFILE_CASES:
+        raise ValueError(f"case must be one of {sorted(PROFILE_CASES)}, got {case!r}")
+    kind, robot, default = PROFILE_CASES[case]
+    preset = perception or default
+    make = _goalkeeper_runner if kind == "goalkeeper" else _match_runner
+    run, _ = make(steps, seed=seed, obs_mode="perceived", perception=preset, robot=robot)
+    rate = _rate(run, steps)
+    run, _ = make(steps, seed=seed, obs_mode="perceived", perception=preset, robot=robot)
+    profiler = cProfile.Profile()
+    t0 = time.perf_counter()
+    profiler.runcall(run)
+    profiled = steps / (time.perf_counter() - t0)
+    stats = pstats.Stats(profiler).stats  # (file, line, name) -> (cc, nc, tt, ct, callers)
+    rows = sorted(stats.items(), key=lambda item: -item[1][2])[:top]
+    functions = [{"function": f"{file}:{line}({name})" if line else name,
+                  "calls_per_step": nc / steps, "own_us_per_step": tt / steps * 1e6,
+                  "total_us_per_step": ct / steps * 1e6}
+                 for (file, line, name), (_, nc, tt, ct, _) in rows]
+    return {"case": case, "perception": preset, "steps": steps, "steps_per_s": rate,
+            "profiled_steps_per_s": profiled, "functions": functions}
+
+
+def format_profile(res: dict[str, Any]) -> str:
+    """A plain-text table of :func:`profile_perceived`'s results (paths shortened to the
+    package)."""
+    head = (f"{res['case']}, perceived ({res['perception']}): {res['steps_per_s']:,.0f} steps/s "
+            f"({res['profiled_steps_per_s']:,.0f} under the profiler); top functions by own "
+            f"time per step")
+    rows = [("function", "calls/step", "own us/step", "total us/step")]
+    for f in res["functions"]:
+        name = f["function"]
+        for root in ("/site-packages/", "/soccer_env/", "/estimators/", "/agents/"):
+            if root in name:
+                name = root.strip("/").replace("site-packages", "") + "/" + name.split(
+                    root, 1)[1] if root != "/site-packages/" else name.split(root, 1)[1]
+                break
+        rows.append((name, f"{f['calls_per_step']:.2f}", f"{f['own_us_per_step']:.1f}",
+                     f"{f['total_us_per_step']:.1f}"))
+    return head + "\n" + _table(rows)
+
+
 def format_table(res: dict[str, Any]) -> str:
     """A plain-text table of :func:`run_benchmarks` results."""
     rows = [("task", "steps/s", "bare pymunk", "env/bare", "rSoccer ref", "x rSoccer", "aim")]
@@ -394,12 +453,31 @@ def main(argv: list[str] | None = None) -> int:
                         "environments in this process against single ones (0: skip)")
     p.add_argument("--frames", action="store_true",
                    help="time the camera-image renderers instead (needs the pixels extra)")
+    p.add_argument("--profile", choices=sorted(PROFILE_CASES), default=None,
+                   help="profile a perceived step of this case instead (cProfile: the top "
+                        "functions by own time per step)")
+    p.add_argument("--perception", default=None,
+                   help="with --profile: the perception preset (default: ssl-2012, or "
+                        "kidsize-2012 for humanoids)")
+    p.add_argument("--top", type=int, default=25,
+                   help="with --profile: how many functions to list (default: 25)")
     args = p.parse_args(argv)
     for name in ("steps", "match_steps", "repeats"):
         if getattr(args, name) < 1:
             p.error(f"--{name.replace('_', '-')} must be >= 1")
     if not 0 <= args.batch <= 65536:
         p.error(f"--batch must be in 0..65536, got {args.batch}")
+    if args.top < 1:
+        p.error("--top must be >= 1")
+    if args.profile:
+        steps = args.steps if args.profile.endswith("goalkeeper") else args.match_steps
+        try:
+            prof = profile_perceived(args.profile, args.perception, min(steps, 5000),
+                                     args.top)
+        except (KeyError, ValueError) as why:
+            p.error(str(why))
+        print(json.dumps(prof, indent=2) if args.json else format_profile(prof))
+        return 0
     if args.frames:
         ms = bench_frames()
         print(json.dumps(ms, indent=2) if args.json else

@@ -65,3 +65,25 @@ def test_bench_times_the_batched_environments_against_single_ones(capsys):
     with pytest.raises(SystemExit):
         main(["bench", "--batch", "-1"])
     assert "--batch must be in 0..65536" in capsys.readouterr().err
+
+
+def test_bench_profiles_a_perceived_step(capsys):
+    """``soccer-env bench --profile CASE``: the top functions of a perceived step by their own
+    time per step, as a table and as JSON; the estimators' and sensors' functions show up."""
+    import json
+
+    from soccer_lab.cli import main
+
+    assert main(["bench", "--profile", "goalkeeper", "--steps", "120", "--top", "40"]) == 0
+    text = capsys.readouterr().out
+    assert text.startswith("goalkeeper, perceived (ssl-2012):")
+    assert "own us/step" in text and "sensors/overhead.py" in text
+    assert main(["bench", "--profile", "humanoid-match", "--match-steps", "30", "--top", "5",
+                 "--json"]) == 0
+    res = json.loads(capsys.readouterr().out)
+    assert res["perception"] == "kidsize-2012" and len(res["functions"]) == 5
+    own = [f["own_us_per_step"] for f in res["functions"]]
+    assert own == sorted(own, reverse=True) and res["steps_per_s"] > 0
+    with pytest.raises(SystemExit):
+        main(["bench", "--profile", "goalkeeper", "--top", "0"])
+    assert "--top must be >= 1" in capsys.readouterr().err
