@@ -74,10 +74,10 @@ def _directions(origins: np.ndarray, directions: np.ndarray | None,
         d = np.asarray(directions, dtype=np.float64)
         if d.shape != (n, 2):
             raise ValueError(f"directions must have shape ({n}, 2), got {d.shape}")
-        if np.any(np.hypot(d[:, 0], d[:, 1]) <= 0.0):
+        if (np.hypot(d[:, 0], d[:, 1]) <= 0.0).any():
             raise ValueError("directions must be non-zero vectors")
         psi = np.arctan2(d[:, 1], d[:, 0])
-    if not np.all(np.isfinite(psi)):
+    if not np.isfinite(psi).all():
         raise ValueError("directions/angles must be finite")
     return psi
 
@@ -92,7 +92,7 @@ def hough_lines(origins: np.ndarray | Sequence[Sequence[float]],
     p = np.asarray(origins, dtype=np.float64)
     if p.ndim != 2 or p.shape[1] != 2:
         raise ValueError(f"origins must have shape (n, 2), got {p.shape}")
-    if not np.all(np.isfinite(p)):
+    if not np.isfinite(p).all():
         raise ValueError("origins must be finite")
     theta = _directions(p, directions, angles) + 0.5 * np.pi
     rho = p[:, 0] * np.cos(theta) + p[:, 1] * np.sin(theta)
@@ -108,7 +108,7 @@ def fusion_weights(distances: np.ndarray | Sequence[float], weighting: str = "in
     if power is None:
         FUSION_WEIGHTINGS.check(weighting, "weighting")  # raises, naming the options
     L = np.asarray(distances, dtype=np.float64)
-    if L.ndim != 1 or not np.all(np.isfinite(L)) or np.any(L <= 0.0):
+    if L.ndim != 1 or not np.isfinite(L).all() or (L <= 0.0).any():
         raise ValueError(f"distances must be a 1-d array of positive finite numbers, got {L}")
     return L ** -float(power)
 
@@ -141,7 +141,7 @@ def hough_fuse(origins: np.ndarray | Sequence[Sequence[float]],
         k = np.asarray(weights, dtype=np.float64)
         if k.shape != (n,):
             raise ValueError(f"weights must have shape ({n},), got {k.shape}")
-        if not np.all(np.isfinite(k)) or np.any(k < 0.0):
+        if not np.isfinite(k).all() or (k < 0.0).any():
             raise ValueError("weights must be finite and non-negative")
     if np.count_nonzero(k > 0.0) < 2:
         raise ValueError(f"need at least two lines with positive weight to fuse, got "
@@ -251,17 +251,17 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
     p = np.asarray(origins, dtype=np.float64)
     if p.ndim != 2 or p.shape[1] != 2 or len(p) == 0:
         raise ValueError(f"origins must have shape (n, 2) with n >= 1, got {p.shape}")
-    if not np.all(np.isfinite(p)):
+    if not np.isfinite(p).all():
         raise ValueError("origins must be finite")
     n = len(p)
     psi = np.asarray(angles, dtype=np.float64)
-    if psi.shape != (n,) or not np.all(np.isfinite(psi)):
+    if psi.shape != (n,) or not np.isfinite(psi).all():
         raise ValueError(f"angles must be a finite ({n},) array, got {angles!r}")
     r = np.asarray(ranges, dtype=np.float64)
     if r.shape != (n,):
         raise ValueError(f"ranges must have shape ({n},), got {r.shape}")
     known = np.isfinite(r)
-    if np.any(r[known] <= 0.0):
+    if (r[known] <= 0.0).any():
         raise ValueError(f"ranges must be > 0 (or NaN for bearing only), got {ranges!r}")
     power = FUSION_WEIGHTINGS.get(weighting)
     if power is None:
@@ -273,10 +273,10 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
         raise ValueError(f"min_angle must be in (0, pi/2], got {min_angle!r}")
     if velocity is not None and stamps is not None:
         v = np.asarray(velocity, dtype=np.float64)
-        if v.shape != (2,) or not np.all(np.isfinite(v)):
+        if v.shape != (2,) or not np.isfinite(v).all():
             raise ValueError(f"velocity must be a finite (2,) vector, got {velocity!r}")
         st = np.asarray(stamps, dtype=np.float64)
-        if st.shape != (n,) or not np.all(np.isfinite(st)):
+        if st.shape != (n,) or not np.isfinite(st).all():
             raise ValueError(f"stamps must be a finite ({n},) array, got {stamps!r}")
         t_now = float(st.max()) if now is None else float(now)
         if not math.isfinite(t_now):

@@ -70,7 +70,7 @@ def triangulate(landmarks: np.ndarray | Sequence[Sequence[float]],
     if P.ndim != 2 or P.shape[1] != 2 or phi.shape != (len(P),):
         raise ValueError(f"landmarks must have shape (n, 2) and bearings (n,), got {P.shape} "
                          f"and {phi.shape}")
-    if not (np.all(np.isfinite(P)) and np.all(np.isfinite(phi))):
+    if not (np.isfinite(P).all() and np.isfinite(phi).all()):
         raise ValueError("landmarks and bearings must be finite")
     if len(P) < 3:
         return _fail(f"{len(P)} landmark(s): three are needed (with two the robot lies "

@@ -180,7 +180,7 @@ class ParticleBallTracker:
         if threshold is not None and not 0.0 < threshold <= 1.0:
             raise ValueError(f"threshold must be in (0, 1] or None, got {threshold!r}")
         fs = np.asarray(fission_sigma, dtype=np.float64)
-        if fs.shape != (4,) or not np.all(np.isfinite(fs)) or np.any(fs < 0.0):
+        if fs.shape != (4,) or not np.isfinite(fs).all() or (fs < 0.0).any():
             raise ValueError(f"fission_sigma must be four finite values >= 0 (px, py, vx, vy), "
                              f"got {fission_sigma!r}")
         if sfn_when not in ("above", "below"):
@@ -328,7 +328,7 @@ class ParticleBallTracker:
     def _check(self, t: float, z, sigma) -> tuple[float, np.ndarray, np.ndarray]:
         t = check_time(t)
         zz = _floats(z)
-        if zz is None or zz.shape != (2,) or not np.all(np.isfinite(zz)):
+        if zz is None or zz.shape != (2,) or not np.isfinite(zz).all():
             raise ValueError(f"z must be a finite (2,) position, got {z!r}")
         s = _floats(sigma)
         if s is None:
@@ -342,7 +342,7 @@ class ParticleBallTracker:
             R = np.diag([sv * sv, sv * sv])
         else:
             R = s
-            ok = (R.shape == (2, 2) and np.all(np.isfinite(R))
+            ok = (R.shape == (2, 2) and np.isfinite(R).all()
                   and abs(R[0, 1] - R[1, 0]) <= 1e-12 * max(1.0, abs(R[0, 1]))
                   and R[0, 0] > 0.0 and R[0, 0] * R[1, 1] - R[0, 1] * R[1, 0] > 0.0)
             if not ok:

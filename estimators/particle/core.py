@@ -113,7 +113,7 @@ class BootstrapPF:
             x = x[:, None]
         if x.ndim != 2 or len(x) < 2:
             raise ValueError(f"particles must have shape (N, d) with N >= 2, got {x.shape}")
-        if not np.all(np.isfinite(x)):
+        if not np.isfinite(x).all():
             raise ValueError("particles must be finite")
         if not 0.0 < threshold <= 1.0:
             raise ValueError(f"threshold (N_th / N) must be in (0, 1], got {threshold!r}")
@@ -137,7 +137,7 @@ class BootstrapPF:
 
     def _likelihood(self, y: np.ndarray) -> np.ndarray:
         lik = np.asarray(self.likelihood(self.particles, y), dtype=np.float64)
-        if lik.shape != (self.n,) or np.any(lik < 0.0) or not np.all(np.isfinite(lik)):
+        if lik.shape != (self.n,) or (lik < 0.0).any() or not np.isfinite(lik).all():
             raise ValueError(f"likelihood must return ({self.n},) finite non-negative values")
         return lik
 
@@ -197,7 +197,7 @@ class FBPF(BootstrapPF):
         if v.ndim > 1 or (v.ndim == 1 and v.shape != (d,)):
             raise ValueError(f"fission_variance must be a scalar or have shape ({d},), got "
                              f"shape {v.shape}")
-        if not (np.all(np.isfinite(v)) and np.all(v >= 0.0)):
+        if not (np.isfinite(v).all() and (v >= 0.0).all()):
             raise ValueError(f"fission_variance must be >= 0, got {fission_variance!r}")
         self.fission_variance: float | np.ndarray = float(v) if v.ndim == 0 else v.copy()
 

@@ -46,6 +46,7 @@ paper's method, not a library's; vectorised numpy; every draw from the given gen
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -92,6 +93,13 @@ def kld_sample_size(k: int | np.ndarray, epsilon: float, delta: float) -> np.nda
     a = 2.0 / (9.0 * km1)
     n = km1 / (2.0 * epsilon) * (1.0 - a + np.sqrt(a) * z) ** 3
     return np.where(k <= 1.0, 1.0, np.ceil(n))
+
+
+@functools.lru_cache(maxsize=16)
+def _kld_table(epsilon: float, delta: float, max_particles: int) -> list[float]:
+    """:func:`kld_sample_size` for ``k = 0 .. max_particles``, as a list (looked up draw by
+    draw while resampling)."""
+    return kld_sample_size(np.arange(max_particles + 1), epsilon, delta).tolist()
 
 
 @dataclass(frozen=True)
@@ -197,7 +205,7 @@ class KLDLocalizer:
             self.particles = self._uniform(self.cfg.max_particles)
         else:
             p = np.asarray(pose, dtype=np.float64)
-            if p.shape != (3,) or not np.all(np.isfinite(p)):
+            if p.shape != (3,) or not np.isfinite(p).all():
                 raise ValueError(f"pose must be a finite (3,) array, got {pose!r}")
             n = self.cfg.min_particles
             self.particles = p + rng.normal(0.0, 1.0, (n, 3)) * np.asarray(pose_sigma)
@@ -218,7 +226,7 @@ class KLDLocalizer:
         """Move every particle by the body-frame displacement ``(dx, dy, dtheta)`` [m, m,
         rad] with the odometry noise."""
         d = np.asarray(odometry, dtype=np.float64)
-        if d.shape != (3,) or not np.all(np.isfinite(d)):
+        if d.shape != (3,) or not np.isfinite(d).all():
             raise ValueError(f"odometry must be a finite (dx, dy, dtheta), got {odometry!r}")
         c = self.cfg
         dist, turn = math.hypot(d[0], d[1]), abs(d[2])
@@ -245,7 +253,7 @@ class KLDLocalizer:
                         bearings: np.ndarray | None = None) -> np.ndarray:
         L = np.asarray(landmarks, dtype=np.float64).reshape(-1, 2)
         r = np.asarray(ranges, dtype=np.float64).reshape(-1)
-        if len(r) != len(L) or not (np.all(np.isfinite(L)) and np.all(np.isfinite(r))):
+        if len(r) != len(L) or not (np.isfinite(L).all() and np.isfinite(r).all()):
             raise ValueError(f"landmarks ((m, 2)) and ranges ((m,)) must match and be finite, "
                              f"got {L.shape} and {r.shape}")
         return np.sum(self._pair_log_likelihood(L, r, self._check_bearings(bearings, r)),
@@ -256,7 +264,7 @@ class KLDLocalizer:
         if bearings is None or self.cfg.bearing_sigma is None:
             return None
         b = np.asarray(bearings, dtype=np.float64).reshape(-1)
-        if b.shape != r.shape or not np.all(np.isfinite(b)):
+        if b.shape != r.shape or not np.isfinite(b).all():
             raise ValueError("bearings must be finite and match ranges")
         return b
 
@@ -303,7 +311,7 @@ class KLDLocalizer:
         kinds = [kinds] if isinstance(kinds, str) else list(kinds)
         r = np.asarray(ranges, dtype=np.float64).reshape(-1)
         m = len(kinds)
-        if len(r) != m or not np.all(np.isfinite(r)):
+        if len(r) != m or not np.isfinite(r).all():
             raise ValueError(f"kinds ({m}) and ranges ({r.shape}) must match and ranges be "
                              f"finite")
         if m == 0:
@@ -315,7 +323,7 @@ class KLDLocalizer:
                 raise ValueError(f"unknown landmark kind {kind!r}; the table has "
                                  f"{sorted(table)}")
             pos = np.asarray(table[kind], dtype=np.float64).reshape(-1, 2)
-            if len(pos) == 0 or not np.all(np.isfinite(pos)):
+            if len(pos) == 0 or not np.isfinite(pos).all():
                 raise ValueError(f"table[{kind!r}] must hold one or more finite (x, y) "
                                  f"positions")
             starts.append(sum(len(c) for c in cands))
@@ -354,14 +362,20 @@ class KLDLocalizer:
         if c.alpha_fast > 0.0 and self.w_slow > 0.0:
             inject = max(0.0, 1.0 - self.w_fast / (c.recovery_ratio * self.w_slow))
         size = np.asarray(c.bin_size)
+        bound = _kld_table(c.epsilon, c.delta, c.max_particles)
         cumulative = np.cumsum(self.weights)
         cumulative /= cumulative[-1]
         # Draw in batches (doubling from about the current size) until the KLD bound holds for
-        # the draws so far, rather than max_particles candidates every time.
+        # the draws so far, rather than max_particles candidates every time. The bound is
+        # checked draw by draw in plain Python (a set of the occupied bins): a hundred draws
+        # cost less so than the dozen array operations of a prefix count.
         batch = min(c.max_particles, max(c.min_particles, 2 * self.n))
-        cand = np.empty((0, 3))
-        while True:
-            take = min(batch, c.max_particles - len(cand))
+        parts: list[np.ndarray] = []
+        seen: set[tuple[int, int, int]] = set()
+        drawn = 0
+        n = 0
+        while not n:
+            take = min(batch, c.max_particles - drawn)
             # Multinomial draws by inverting the cumulative weights (what rng.choice does,
             # without its per-call checks).
             idx = np.searchsorted(cumulative, self.rng.random(take), side="right")
@@ -369,27 +383,19 @@ class KLDLocalizer:
             if inject > 0.0:
                 fresh = self.rng.random(take) < inject
                 new[fresh] = self._uniform(int(fresh.sum()))
-            cand = np.concatenate([cand, new])
-            bins = np.floor(cand / size).astype(np.int64)
-            # k(n): distinct bins among the first n draws, each bin as one integer key (a
-            # 1-d unique is many times faster than a row-wise one).
-            bins -= bins.min(axis=0)
-            span = bins.max(axis=0) + 1
-            key = (bins[:, 0] * span[1] + bins[:, 1]) * span[2] + bins[:, 2]
-            _, first = np.unique(key, return_index=True)
-            new_bin = np.zeros(len(cand), dtype=np.int64)
-            new_bin[first] = 1
-            k = np.cumsum(new_bin)
-            n_draw = np.arange(1, len(cand) + 1)
-            enough = (n_draw >= kld_sample_size(k, c.epsilon, c.delta)) & \
-                (n_draw >= c.min_particles)
-            if enough.any():
-                n = int(np.argmax(enough)) + 1
-                break
-            if len(cand) >= c.max_particles:
+            parts.append(new)
+            # k(n): the distinct bins among the first n draws; the first n with
+            # n >= bound(k(n)) and n >= min_particles is the sample size.
+            for key in map(tuple, np.floor(new / size).astype(np.int64).tolist()):
+                seen.add(key)
+                drawn += 1
+                if drawn >= bound[len(seen)] and drawn >= c.min_particles:
+                    n = drawn
+                    break
+            if not n and drawn >= c.max_particles:
                 n = c.max_particles
-                break
             batch *= 2
+        cand = parts[0] if len(parts) == 1 else np.concatenate(parts)
         self.particles = cand[:n].copy()
         self.weights = np.full(n, 1.0 / n)
 

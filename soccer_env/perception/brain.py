@@ -318,7 +318,7 @@ class Brain:
             return
         point = fused.point
         x0, x1, y0, y1 = p.bounds
-        if not (np.all(np.isfinite(point)) and x0 <= point[0] <= x1 and y0 <= point[1] <= y1):
+        if not (np.isfinite(point).all() and x0 <= point[0] <= x1 and y0 <= point[1] <= y1):
             return  # no ball can be there (outside the walls)
         cov = fused.cov + _MIN_SIGMA**2 * np.eye(2)
         if self.tracker is not None:

@@ -257,7 +257,7 @@ class BallImageTracker:
             return ()
         g = self.camera.ground_point(np.array([[x + 0.5, y + 0.5]]), pan, tilt,
                                      plane_height=self.ball.radius)[0]
-        if not np.all(np.isfinite(g)):
+        if not np.isfinite(g).all():
             return ()
         return ((float((x + 0.5) * self.scale), float((y + 0.5) * self.scale), float(g[0]),
                  float(g[1]), float(math.atan2(g[1], g[0]))),)

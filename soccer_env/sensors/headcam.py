@@ -223,7 +223,7 @@ class HeadCameraSensor:
         n = len(radii)
         if n == 0:
             raise ValueError("robot_radii must have one entry per robot, got none")
-        if not np.all(np.isfinite(radii) & (radii >= 0.0)):
+        if not (np.isfinite(radii) & (radii >= 0.0)).all():
             raise ValueError(f"robot_radii must be finite and >= 0, got {radii.tolist()}")
         team_list = [int(t) for t in teams]
         if len(team_list) != n or any(t not in (0, 1) for t in team_list):
