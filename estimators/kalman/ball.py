@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import bisect
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -327,6 +328,16 @@ class BallTracker:
         check_order(t, self._track.t)
         dets = _points("detections", detections)
         obs = _points("obstacles", obstacles, exact=False) if obstacles is not None else []
+        self.update_frame(t, dets, obs)
+
+    def update_frame(self, t: float, detections: Sequence[Sequence[float]],
+                     obstacles: Sequence[Sequence[float]]) -> None:
+        """:meth:`update` without its checks, for a pipeline whose frames are checked already
+        (a sensor's own: ``t`` a finite float, ``detections`` a sequence of finite ``(x, y)``
+        and ``obstacles`` of finite rows whose first two entries are a position, neither
+        None, ``t`` no older than the latest frame by more than
+        :data:`~estimators.protocol.MAX_REWIND`)."""
+        dets, obs = detections, obstacles
         if t >= self._track.t:
             self._track = self._process(self._track, t, dets, obs)
             self._log.append((t, dets, obs, self._track))

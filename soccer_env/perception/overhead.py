@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from estimators import RobotTracker
+from estimators import BallTracker, RobotTracker
 from soccer_env.perception.base import (
     OBS_MODES,
     SSL_LOST_AFTER,
@@ -199,6 +199,7 @@ class FilteredPerception(_VisionPerception):
         self.robot_tracker = RobotTracker(n_robots, measurement=self.measurements.robot_model)
         built = BALL_FILTERS.create(config.ball_filter, ball, spec, self.measurements.ball_model)
         self.ball_tracker, self._capture_times = built.tracker, built.capture_times
+        self._unchecked = isinstance(self.ball_tracker, BallTracker)
         self.ahead = spec.actuation_latency
 
     def _clear(self) -> None:
@@ -217,7 +218,10 @@ class FilteredPerception(_VisionPerception):
             if f.balls:
                 # Without latency compensation a pipeline stamps frames when they arrive.
                 stamp = t if self._capture_times else f.t_delivered
-                ball.update(stamp, f.balls, f.robots)
+                if self._unchecked:  # (the sensor's frames are checked data)
+                    ball.update_frame(stamp, f.balls, f.robots)
+                else:
+                    ball.update(stamp, f.balls, f.robots)
                 if self.features:  # of several detections, the one nearest the belief
                     self._measured = np.array(_nearest(f.balls, ball.estimate(stamp)))
 
