@@ -27,10 +27,14 @@ restriction, and the pipeline sees the swap as the robot's own motion.
 Head cameras (:class:`BallImageTracker`, humanoids): each robot finds the ball in its
 rendered head-camera images with paper 004's Kalman-started mean shift.
 
-Limitations: one overhead camera per field (fields up to 7 m long, as ``ssl-2012`` and the
-humanoid fields); the rendered resolution, not the vision preset's noise figures, sets the
-detection noise (the preset's detection probabilities, spurious balls and noise are not
-applied).
+Every overhead camera of the field has its own trackers (one camera on fields up to 7 m long,
+four on Division B and A): a camera starts tracking a robot or the ball where it was last found,
+by any camera, once that is inside its view, and stops when its tracker has lost what another
+camera has since found outside its view; in the overlaps both cameras report it, as the
+geometric cameras do.
+
+Limitations: the rendered resolution, not the vision preset's noise figures, sets the detection
+noise (the preset's detection probabilities, spurious balls and noise are not applied).
 """
 
 from __future__ import annotations
@@ -83,17 +87,23 @@ class OverheadPixelDetector:
         from estimators.image.colour import ColourTable, frame_difference
         from soccer_env.sensors.images.patterns import PATTERN, PATTERN_IDS
 
-        self.renderer = camera.renderer
+        #: Every camera's renderer (its calibration), in camera order.
+        self.renderers = list(camera.renderers)
+        self.renderer = self.renderers[0]
         self.teams = list(camera.teams)
         self.robot_specs = list(camera.robot_specs)
         self.n_robots = len(self.robot_specs)
         self.table = ColourTable(OVERHEAD_CLASSES, aliases=CLASS_ALIASES)
         self._difference = frame_difference
-        m = self.renderer.metres_per_pixel
-        self._mpp = m
-        self._robot_window = [max(5, int(round(2.2 * s.radius / m))) for s in self.robot_specs]
-        self._ball_window = max(5, int(round(4.0 * camera.ball_spec.radius / m)))
-        self._robot_radius_px = [s.radius / m for s in self.robot_specs]
+        # Window sizes in each camera's pixels (the quadrant cameras of one field are alike).
+        self._windows = []
+        for r in self.renderers:
+            m = r.metres_per_pixel
+            self._windows.append((
+                m, [max(5, int(round(2.2 * s.radius / m))) for s in self.robot_specs],
+                max(5, int(round(4.0 * camera.ball_spec.radius / m))),
+                [s.radius / m for s in self.robot_specs]))
+        m = max(r.metres_per_pixel for r in self.renderers)
         self.ball_model = PositionMeasurement(max(spec.ball_sigma, m))
         self.robot_model = PoseMeasurement(max(spec.robot_sigma, m),
                                            max(spec.robot_sigma_theta, math.radians(5.0)))
@@ -110,40 +120,62 @@ class OverheadPixelDetector:
         """Start an episode whose robots and ball start as in ``state`` (placed by the
         referee: their poses are known); ``rng`` draws the trackers' particles."""
         self._track_rng = rng
-        self._prev_image = None
-        self._trackers: list[MeanShiftParticleFilter | None] = [None] * self.n_robots
-        self._ball_tracker: MeanShiftParticleFilter | None = None
-        self._start = state
+        c = len(self.renderers)
+        self._prev_image: list[np.ndarray | None] = [None] * c
+        # Every camera's trackers of every robot and of the ball (None: not tracking there).
+        self._trackers: list[list[MeanShiftParticleFilter | None]] = [
+            [None] * self.n_robots for _ in range(c)]
+        self._ball_trackers: list[MeanShiftParticleFilter | None] = [None] * c
+        # Where each robot and the ball were last found, by any camera [m] (the referee's
+        # placement at the start): where a camera that has no tracker on it starts one.
+        self._known = [tuple(p) for p in state.robots[:, 0:2].tolist()]
+        self._known_ball = (float(state.ball[0]), float(state.ball[1]))
 
     def detections(self, frames: Sequence[ImageFrame]) -> list[DetectionFrame]:
         """The detection frames of the image ``frames`` (in capture order); frames in which
         nothing was found carry no information for a tracker and are dropped."""
         out = []
         for f in sorted(frames, key=lambda f: f.t_capture):
-            balls, ids, poses = self._detect(f.image)
+            balls, ids, poses = self._detect(f.camera, f.image)
             if balls or ids:
                 out.append(DetectionFrame(f.camera, f.t_capture, f.t_delivered, tuple(balls),
                                           tuple(ids), tuple(poses)))
         return out
 
-    def _detect(self, image: np.ndarray) -> tuple[list, list, list]:
-        """Track every robot and the ball in ``image``; their field positions."""
-        r = self.renderer
+    def _detect(self, cam: int, image: np.ndarray) -> tuple[list, list, list]:
+        """Track every robot and the ball in camera ``cam``'s ``image``; their field
+        positions.
+
+        Hand-over between cameras: a camera starts tracking a robot (or the ball) where it was
+        last found, by any camera, once that is inside its view; a camera whose tracker has
+        lost a robot that another camera has since found outside its view stops tracking it.
+        (With one camera the trackers start at the referee's placement and are kept, lost or
+        not: a lost one searches the whole image, paper 003's global search.)"""
+        r = self.renderers[cam]
+        x0, x1, y0, y1 = r.region
+        mpp, robot_window, ball_window, radius_px = self._windows[cam]
         table = self.table
-        motion = None if self._prev_image is None else self._difference(self._prev_image, image)
-        self._prev_image = image
+        prev = self._prev_image[cam]
+        motion = None if prev is None else self._difference(prev, image)
+        self._prev_image[cam] = image
         colours = {c: table.probability(image, c) for c in ("blue", "yellow", "orange")}
         dots = {c: table.probability(image, c) for c in ("pink", "green")}
+        trackers = self._trackers[cam]
         ids, poses, pixels = [], [], []
         for i in range(self.n_robots):
-            tracker = self._trackers[i]
-            if tracker is None:  # placed by the referee at kick-off: its pose is known
-                x, y = self._start.robots[i, 0:2]
-                u, v = r.to_pixel(x, y)
-                size = self._robot_window[i]
-                tracker = MeanShiftParticleFilter((u, v), (size, size), self._track_rng,
-                                                  n_particles=_PARTICLES)
-                self._trackers[i] = tracker
+            tracker = trackers[i]
+            kx, ky = self._known[i]
+            inside = x0 <= kx <= x1 and y0 <= ky <= y1
+            if tracker is None:
+                if not inside:
+                    continue
+                size = robot_window[i]
+                tracker = MeanShiftParticleFilter(r.to_pixel(kx, ky), (size, size),
+                                                  self._track_rng, n_particles=_PARTICLES)
+                trackers[i] = tracker
+            elif tracker.lost and not inside:  # found elsewhere since: another camera's
+                trackers[i] = None
+                continue
             colour = colours["blue" if self.teams[i] == 0 else "yellow"]
             u, v, _, _ = tracker.update(colour, motion)
             if tracker.lost:
@@ -151,31 +183,37 @@ class OverheadPixelDetector:
             pixels.append((u, v))
             x, y = r.to_field(u, v)
             ids.append(i)
-            poses.append((float(x), float(y), self._heading(i, u, v, dots)))
+            poses.append((float(x), float(y), self._heading(cam, i, u, v, dots)))
+            self._known[i] = (float(x), float(y))
         balls = []
-        if self._ball_tracker is None:
-            bx, by = self._start.ball[0:2]
-            size = self._ball_window
-            self._ball_tracker = MeanShiftParticleFilter(r.to_pixel(bx, by), (size, size),
-                                                         self._track_rng,
-                                                         n_particles=_PARTICLES)
-        bt = self._ball_tracker
-        robots_px = np.array(pixels) if pixels else None
-        radius_px = float(np.mean(self._robot_radius_px))
-        u, v, _, _ = bt.update(colours["orange"], motion, robots=robots_px,
-                               robot_radius_px=radius_px if pixels else None)
-        if not (bt.lost or bt.occluded):
-            x, y = r.to_field(u, v)
-            balls.append((float(x), float(y)))
+        bt = self._ball_trackers[cam]
+        kx, ky = self._known_ball
+        inside = x0 <= kx <= x1 and y0 <= ky <= y1
+        if bt is not None and (bt.lost or bt.occluded) and not inside:
+            self._ball_trackers[cam] = bt = None
+        if bt is None and inside:
+            bt = MeanShiftParticleFilter(r.to_pixel(kx, ky), (ball_window, ball_window),
+                                         self._track_rng, n_particles=_PARTICLES)
+            self._ball_trackers[cam] = bt
+        if bt is not None:
+            robots_px = np.array(pixels) if pixels else None
+            u, v, _, _ = bt.update(colours["orange"], motion, robots=robots_px,
+                                   robot_radius_px=float(np.mean(radius_px)) if pixels
+                                   else None)
+            if not (bt.lost or bt.occluded):
+                x, y = r.to_field(u, v)
+                balls.append((float(x), float(y)))
+                self._known_ball = (float(x), float(y))
         return balls, ids, poses
 
-    def _heading(self, i: int, u: float, v: float, dots: dict[str, np.ndarray]) -> float:
+    def _heading(self, cam: int, i: int, u: float, v: float, dots: dict[str, np.ndarray]
+                 ) -> float:
         """Robot ``i``'s heading [rad]: the rotation of its dot layout (5-degree steps) whose
         dots fall on the most probability of their colours."""
         layout, names = self._dots[i]
-        r = self.renderer
+        r = self.renderers[cam]
         c, s = np.cos(_HEADINGS), np.sin(_HEADINGS)
-        m = self._mpp
+        m = self._windows[cam][0]
         # Dot centres in pixels for every candidate heading: field +y is image -v.
         du = (c[:, None] * layout[None, :, 0] - s[:, None] * layout[None, :, 1]) / m
         dv = -(s[:, None] * layout[None, :, 0] + c[:, None] * layout[None, :, 1]) / m

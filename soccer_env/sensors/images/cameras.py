@@ -10,7 +10,9 @@
   (:class:`~soccer_env.sensors.images.head.HeadFrameRenderer`) instead of geometric ball
   detections; landmarks and robots stay the geometric sensor's.
 
-One overhead camera per field: fields up to 7 m long (``ssl-2012``, the humanoid fields).
+Every overhead camera of the vision preset renders its own images (one over fields up to 7 m
+long, one per quadrant on larger fields, overlapping as the geometric cameras do): each frame is
+its camera's view at the frame preset's resolution.
 """
 
 from __future__ import annotations
@@ -68,8 +70,9 @@ def interpolate_state(prev: WorldState, cur: WorldState, w: float, t: float) -> 
 
 
 class OverheadImageCamera(OverheadVision):
-    """The overhead camera of one field, delivering :class:`ImageFrame` s (module
-    docstring). :meth:`reset` and :meth:`step` return image frames where
+    """The overhead cameras of one field, delivering :class:`ImageFrame` s (module
+    docstring): each camera of :func:`~soccer_env.sensors.overhead.default_cameras` renders
+    its own area (:attr:`renderers`). :meth:`reset` and :meth:`step` return image frames where
     :class:`~soccer_env.sensors.overhead.OverheadVision` returns detection frames.
 
     Args:
@@ -85,13 +88,13 @@ class OverheadImageCamera(OverheadVision):
                  ball: BallSpec, teams: Sequence[int], frames: str = PIXEL_FRAME_PRESET
                  ) -> None:
         super().__init__(spec, field, robots[0], ball, len(robots))
-        if len(self.cameras) != 1:
-            raise ValueError(f"detector='pixels' renders one overhead camera (fields up to 7 m "
-                             f"long); the {field.name!r} field has {len(self.cameras)}")
         self.teams = [int(t) for t in teams]
         self.robot_specs = list(robots)
-        self.renderer = OverheadRenderer(frames, field, self.robot_specs, ball, self.teams,
-                                         camera=self.cameras[0])
+        #: One renderer per camera (its area is the camera's view), in camera order.
+        self.renderers = [OverheadRenderer(frames, field, self.robot_specs, ball, self.teams,
+                                           camera=cam) for cam in self.cameras]
+        #: The first camera's renderer (the only one on fields up to 7 m long).
+        self.renderer = self.renderers[0]
 
     def reset(self, state: WorldState, rng: np.random.Generator,
               image_rng: np.random.Generator | None = None) -> list[ImageFrame]:
@@ -109,7 +112,8 @@ class OverheadImageCamera(OverheadVision):
         span = cur.time - prev.time
         for cam, t in zip(cams, times):
             w = (t - prev.time) / span if span > 0 else 1.0
-            image = self.renderer.render(interpolate_state(prev, cur, w, t), self._image_rng)
+            image = self.renderers[cam].render(interpolate_state(prev, cur, w, t),
+                                               self._image_rng)
             delay = self.spec.latency + self.spec.latency_jitter * self._draws.uniforms(1)[0]
             frames.append(ImageFrame(cam, t, t + delay, image))
         return frames

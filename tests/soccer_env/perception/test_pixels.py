@@ -79,10 +79,34 @@ def test_humanoids_find_the_ball_in_their_head_camera_images():
     assert type(sensor).__name__ == "PixelHeadCamera"
 
 
-def test_pixels_need_one_overhead_camera_and_a_known_detector():
-    with pytest.raises(ValueError, match="detector='pixels' renders one overhead camera"):
-        gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived",
-                 perception={"vision": "ssl-2012", "detector": "pixels"})  # Division B
+def test_pixels_on_four_cameras_hand_robots_over_across_the_quadrants():
+    """Division B: four overlapping cameras, each rendering its quadrant with its own
+    trackers. A robot driving from its own half into the other, across the cameras' borders,
+    is found all the way: the camera it drives into takes it over where the others last saw
+    it."""
+    env = soccer_env.parallel_env(blue=1, yellow=1, field="ssl-div-b", robot="ssl",
+                                  obs_mode="perceived", max_cycles=400,
+                                  perception={"vision": "ssl-2012", "detector": "pixels"})
+    env.reset(seed=2)
+    pipeline = env.unwrapped.pipelines[0]
+    assert len(pipeline.sensor.renderers) == 4
+    errors, xs, cameras = [], [], set()
+    for _ in range(240):
+        actions = {a: np.zeros(6, np.float32) for a in env.agents}
+        actions["blue_0"] = np.array([0.6, 0.0, 0.0, 0, 0, 0], np.float32)  # forward: +x
+        _, _, _, _, infos = env.step(actions)
+        info = infos["blue_0"]
+        e, t = info["estimate"]["robot_pose"]["blue_0"], info["truth"]["robot_pose"]["blue_0"]
+        errors.append(float(np.hypot(*(e[:2] - t[:2]))))
+        xs.append(float(t[0]))
+        trackers = pipeline.detector._trackers
+        cameras |= {c for c in range(4) if trackers[c][0] is not None}
+    assert xs[0] < -0.5 and xs[-1] > 0.5  # it crossed the halfway line, two cameras' border
+    assert len(cameras) >= 2  # tracked by the cameras on both sides
+    assert max(errors[20:]) < 0.1 and np.median(errors[20:]) < 0.03
+
+
+def test_an_unknown_detector_is_refused():
     with pytest.raises(ValueError, match=r"detector must be one of \['geometric', 'pixels'\]"):
         gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived",
                  perception={"detector": "camera"})
