@@ -14,6 +14,8 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from .meanshift import RegionImage
+
 try:
     import cv2
 except ImportError as err:  # pragma: no cover - depends on the installation
@@ -166,6 +168,24 @@ class ColourTable:
         bp = cv2.calcBackProject([image], [0, 1, 2], self._hists[k], [0, 256, 0, 256, 0, 256],
                                  scale=1)
         return bp.astype(np.float32) * (1.0 / 255.0)
+
+    def region_image(self, image: np.ndarray, cls: str) -> RegionImage:
+        """:meth:`probability` of ``image`` as a :class:`~estimators.image.meanshift.
+        RegionImage`: computed box by box where the trackers read it (a box's pixels are
+        the whole image's: the look-up is per pixel)."""
+        k = self._index(cls)
+        if image.ndim != 3 or image.shape[2] != 3 or image.dtype != np.uint8:
+            raise ValueError(f"image must be an (H, W, 3) uint8 RGB array, got {image.shape} "
+                             f"{image.dtype}")
+        hist = self._hists[k]
+
+        def fill(x0: int, y0: int, x1: int, y1: int) -> np.ndarray:
+            crop = np.ascontiguousarray(image[y0:y1, x0:x1])
+            bp = cv2.calcBackProject([crop], [0, 1, 2], hist, [0, 256, 0, 256, 0, 256],
+                                     scale=1)
+            return bp.astype(np.float32) * (1.0 / 255.0)
+
+        return RegionImage(image.shape[:2], fill)
 
     def classify(self, image: np.ndarray, threshold: float = 0.5) -> np.ndarray:
         """Most probable class index per pixel (``int8``), -1 where no class reaches

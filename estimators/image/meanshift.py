@@ -42,7 +42,7 @@ import numpy as np
 
 from ..registry import Registry
 
-__all__ = ["mean_shift", "MEAN_SHIFT_KERNELS"]
+__all__ = ["mean_shift", "MEAN_SHIFT_KERNELS", "RegionImage"]
 
 
 def _flat(xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
@@ -125,6 +125,50 @@ def _point(name: str, value) -> np.ndarray:
     if arr.shape != (2,) or not np.all(np.isfinite(arr)):
         raise ValueError(f"{name} must be a finite (x, y) pair, got {value!r}")
     return arr
+
+
+class RegionImage:
+    """An ``(H, W)`` weight image computed region by region, when a tracker asks for it.
+
+    A colour look-up over a whole camera image costs more than tracking a few targets in it,
+    which read only the pixels around their particles. The trackers that take a
+    :class:`RegionImage` (:class:`~estimators.image.mspf.MeanShiftParticleFilter`) ask for
+    every region they may read before reading it (:meth:`ensure`: the particles' windows
+    widened by the longest way mean shift can take them), and for the whole image when they
+    search all of it; the pixels of :attr:`array` outside the regions asked for stay 0 and are
+    never read. So the results are those of the whole image, computed.
+
+    Args:
+        shape: ``(H, W)``.
+        fill: ``fill(x0, y0, x1, y1)`` -> the ``(y1 - y0, x1 - x0)`` pixels of the box
+            ``x0 <= x < x1``, ``y0 <= y < y1``.
+        dtype: the image's type (float32 by default).
+    """
+
+    def __init__(self, shape: tuple[int, int], fill, dtype=np.float32) -> None:
+        self.shape = (int(shape[0]), int(shape[1]))
+        self.array = np.zeros(self.shape, dtype=dtype)
+        self._fill = fill
+        self._boxes: list[tuple[int, int, int, int]] = []
+
+    def ensure(self, x0: float, y0: float, x1: float, y1: float) -> np.ndarray:
+        """Compute the pixels of the box ``x0 <= x < x1``, ``y0 <= y < y1`` (clipped to the
+        image) unless a box computed before holds it; returns :attr:`array`."""
+        h, w = self.shape
+        a, b = max(0, int(math.floor(x0))), max(0, int(math.floor(y0)))
+        c, d = min(w, int(math.ceil(x1))), min(h, int(math.ceil(y1)))
+        if a >= c or b >= d:
+            return self.array
+        for p, q, r, t in self._boxes:
+            if p <= a and q <= b and r >= c and t >= d:
+                return self.array
+        self.array[b:d, a:c] = self._fill(a, b, c, d)
+        self._boxes.append((a, b, c, d))
+        return self.array
+
+    def full(self) -> np.ndarray:
+        """The whole image, computed."""
+        return self.ensure(0, 0, self.shape[1], self.shape[0])
 
 
 # ------------------------------------------------------------------------------------------

@@ -57,7 +57,16 @@ import numpy as np
 
 from ..checks import MAX_PARTICLES, check_count
 from ..particle.core import systematic_resample
-from .meanshift import MEAN_SHIFT_KERNELS, _count, _image, _number, _point, _window_size, _Windows
+from .meanshift import (
+    MEAN_SHIFT_KERNELS,
+    RegionImage,
+    _count,
+    _image,
+    _number,
+    _point,
+    _window_size,
+    _Windows,
+)
 
 __all__ = ["MeanShiftParticleFilter", "ParticleFilterTracker"]
 
@@ -102,7 +111,11 @@ class _WindowParticleFilter:
         self.weights = np.full(self.n, 1.0 / self.n)
 
     def _images(self, colour_image, motion_image):
-        colour = _image("colour_image", colour_image)
+        # A RegionImage is read only where it has been computed: the callers ask for the
+        # regions first (see _reach).
+        self._source = colour_image if isinstance(colour_image, RegionImage) else None
+        colour = (colour_image.array if self._source is not None
+                  else _image("colour_image", colour_image))
         motion = None if motion_image is None else _image("motion_image", motion_image,
                                                           colour.shape)
         if self._win is None or (self._win.height, self._win.width) != colour.shape:
@@ -111,6 +124,17 @@ class _WindowParticleFilter:
 
     def _make_windows(self, shape: tuple[int, int]) -> _Windows:
         return _Windows(*self.window_size, shape)
+
+    def _reach(self, x0: np.ndarray, y0: np.ndarray, steps: int) -> None:
+        """Have a :class:`RegionImage` colour image computed wherever windows with top-left
+        pixels ``x0, y0`` can read within ``steps`` mean-shift steps: a step moves a window to
+        its centroid, at most ``w // 2 + 1`` pixels across (``h // 2 + 1`` down)."""
+        if self._source is None:
+            return
+        w, h = self.window_size
+        ax, ay = steps * (w // 2 + 1), steps * (h // 2 + 1)
+        self._source.ensure(float(x0.min()) - ax, float(y0.min()) - ay,
+                            float(x0.max()) + w + ax, float(y0.max()) + h + ay)
 
     def _flats(self, colour: np.ndarray, motion: np.ndarray | None
                ) -> list[tuple[np.ndarray, float]]:
@@ -206,6 +230,7 @@ class ParticleFilterTracker(_WindowParticleFilter):
         self.frame += 1
         self._propagate()
         x0, y0 = self._win.corner(self.particles)
+        self._reach(x0, y0, 0)
         mom = self._win.moments_of(flats, x0, y0)
         return self._weigh_and_estimate(self._log_likelihood(mom[:, 3]))
 
@@ -327,6 +352,8 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         shift; the first that passes the feature restriction (colour mass and
         ``feature_check``: a look-alike, such as a team-mate, is passed over) gives the
         centroid ``(x, y)`` [px]; None if none does."""
+        if isinstance(colour_image, RegionImage):
+            colour_image.full()
         colour, _ = self._images(colour_image, None)
         win = self._win
         w, h = win.w, win.h
@@ -359,6 +386,7 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
     def _area_in_use(self, colour: np.ndarray) -> float:
         if self.area is None:  # calibrate on the first image, mean shift from the start
             x0, y0 = self._win.corner(self.estimate[None, :2])
+            self._reach(x0, y0, max(self.mean_shift_iter, 1))
             _, _, _, mom = self._win.shift([(colour.ravel(), 1.0)], x0, y0,
                                            max(self.mean_shift_iter, 1), self.eps)
             mass = float(mom[0, 3])
@@ -389,7 +417,7 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         self.frame += 1
         self.occluded, self.occluder = False, None
         if self.lost:  # re-initialise by a global search
-            found = self.global_search(colour)
+            found = self.global_search(colour_image if self._source is not None else colour)
             if found is None:
                 self.lost_frames += 1
                 return self.estimate.copy()
@@ -402,6 +430,7 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         self._propagate()
         win = self._win
         x0, y0 = win.corner(self.particles)
+        self._reach(x0, y0, self.mean_shift_iter)
         if self.mean_shift_iter > 0:
             x0, y0, _, mom = win.shift(flats, x0, y0, self.mean_shift_iter, self.eps)
             moved = win.centroids(mom, x0, y0)

@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 
@@ -158,8 +159,10 @@ class OverheadPixelDetector:
         prev = self._prev_image[cam]
         motion = None if prev is None else self._difference(prev, image)
         self._prev_image[cam] = image
-        colours = {c: table.probability(image, c) for c in ("blue", "yellow", "orange")}
-        dots = {c: table.probability(image, c) for c in ("pink", "green")}
+        # The class probabilities, looked up only where the trackers and the heading read
+        # them (the same pixels as a look-up of the whole image).
+        colours = {c: table.region_image(image, c) for c in ("blue", "yellow", "orange")}
+        dots = {c: table.region_image(image, c) for c in ("pink", "green")}
         trackers = self._trackers[cam]
         ids, poses, pixels = [], [], []
         for i in range(self.n_robots):
@@ -206,7 +209,7 @@ class OverheadPixelDetector:
                 self._known_ball = (float(x), float(y))
         return balls, ids, poses
 
-    def _heading(self, cam: int, i: int, u: float, v: float, dots: dict[str, np.ndarray]
+    def _heading(self, cam: int, i: int, u: float, v: float, dots: dict[str, Any]
                  ) -> float:
         """Robot ``i``'s heading [rad]: the rotation of its dot layout (5-degree steps) whose
         dots fall on the most probability of their colours."""
@@ -220,8 +223,9 @@ class OverheadPixelDetector:
         cols = np.clip(np.rint(u + du).astype(int), 0, r.spec.width - 1)
         rows = np.clip(np.rint(v + dv).astype(int), 0, r.spec.height - 1)
         score = np.zeros(len(_HEADINGS))
+        box = (int(cols.min()), int(rows.min()), int(cols.max()) + 1, int(rows.max()) + 1)
         for k, name in enumerate(names):
-            score += dots[name][rows[:, k], cols[:, k]]
+            score += dots[name].ensure(*box)[rows[:, k], cols[:, k]]
         return float(math.remainder(_HEADINGS[int(np.argmax(score))], 2.0 * math.pi))
 
 
