@@ -149,3 +149,57 @@ def test_feature_check_hook_vetoes_windows():
 def test_bad_arguments_raise_value_error_naming_them(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+@pytest.mark.parametrize("cls", [MeanShiftParticleFilter, ParticleFilterTracker])
+def test_region_images_give_the_whole_images_results_bit_for_bit(cls):
+    """A RegionImage, computed only where the tracker asks (its windows widened by the
+    longest way mean shift can take them; everything for a global search), gives the tracks
+    of the whole images exactly, through manoeuvres, a lost track and its global search; the
+    mean-shift filter computes a small part of each image."""
+    from estimators.image.meanshift import RegionImage
+
+    rng = np.random.default_rng(4)
+    truth = np.concatenate([manoeuvre(rng)[:30], np.array([[250.0 - 3 * k, 190.0 - 2 * k]
+                                                          for k in range(10)])])
+    frames = ([weight_image(rng, [p], [(60.0, 60.0)]) for p in truth[:30]]
+              + [weight_image(rng, [], [(60.0, 60.0)]) for _ in range(3)]
+              + [weight_image(rng, [p], [(60.0, 60.0)]) for p in truth[30:]])
+    motion = frame_differences(frames)
+    computed = []
+
+    def run(lazy: bool) -> list:
+        f = cls(truth[0], (17, 17), np.random.default_rng(8), n_particles=20,
+                process_sigma=6.0, velocity=truth[1] - truth[0])
+        out = []
+        for c, m in zip(frames, motion):
+            if lazy:
+                img = RegionImage(c.shape, lambda x0, y0, x1, y1, c=c: c[y0:y1, x0:x1])
+                out.append(f.update(img, m).tolist())
+                computed.append(sum((x1 - x0) * (y1 - y0)
+                                    for x0, y0, x1, y1 in img._boxes) / c.size)
+            else:
+                out.append(f.update(c, m).tolist())
+        return out
+
+    assert run(True) == run(False)
+    if cls is MeanShiftParticleFilter:  # (the plain filter's particles scatter when lost)
+        assert np.median(computed) < 0.1
+
+
+def test_region_image_computes_each_box_once_and_clips_it():
+    from estimators.image.meanshift import RegionImage
+
+    calls = []
+    base = np.arange(12.0, dtype=np.float32).reshape(3, 4)
+
+    def fill(x0, y0, x1, y1):
+        calls.append((x0, y0, x1, y1))
+        return base[y0:y1, x0:x1]
+
+    img = RegionImage((3, 4), fill)
+    img.ensure(-2.5, 1, 2.2, 9)  # clipped to x 0..3, y 1..3
+    img.ensure(0, 1, 2, 2)  # inside the first box: not computed again
+    assert calls == [(0, 1, 3, 3)]
+    assert img.array.tolist() == [[0, 0, 0, 0], [4, 5, 6, 0], [8, 9, 10, 0]]
+    np.testing.assert_array_equal(img.full(), base)
