@@ -184,7 +184,7 @@ def test_region_images_give_the_whole_images_results_bit_for_bit(cls):
 
     assert run(True) == run(False)
     if cls is MeanShiftParticleFilter:  # (the plain filter's particles scatter when lost)
-        assert np.median(computed) < 0.1
+        assert np.median(computed) < 0.3  # (a 320 x 240 test image; 17 px windows)
 
 
 def test_region_image_computes_each_box_once_and_clips_it():
