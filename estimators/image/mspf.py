@@ -110,6 +110,11 @@ class _WindowParticleFilter:
         self.particles[:, 2:] = v
         self.weights = np.full(self.n, 1.0 / self.n)
 
+    def __getstate__(self) -> dict:
+        # The region image of the latest update is of no use after it (and holds the
+        # look-up that computes it): copies and pickles leave it out.
+        return {**self.__dict__, "_source": None}
+
     def _images(self, colour_image, motion_image):
         # A RegionImage is read only where it has been computed: the callers ask for the
         # regions first (see _reach).
