@@ -28,13 +28,9 @@ from stable_baselines3.common.vec_env.base_vec_env import (
 
 from agents.multiagent import MatchVecEnv
 from agents.team import TEAMS
-from soccer_env.envs.batched import (
-    DEFAULT_MAX_STEPS,
-    SHOOTOUT_MAX_STEPS,
-    GoalkeeperVectorEnv,
-    ShootoutVectorEnv,
-)
+from soccer_env.envs.batched import GoalkeeperVectorEnv, ShootoutVectorEnv
 from soccer_env.envs.batched_match import MatchBatch
+from soccer_env.envs.registration import GYMNASIUM
 
 __all__ = ["BatchedVecEnv", "BatchedMatchVecEnv", "BATCHED_TASKS"]
 
@@ -64,8 +60,7 @@ class BatchedVecEnv(VecEnv):
             raise ValueError(f"env_id must be one of {list(BATCHED_TASKS)}, got {env_id!r}")
         cls = BATCHED_TASKS[env_id]
         if max_episode_steps is None:
-            max_episode_steps = (DEFAULT_MAX_STEPS if cls is GoalkeeperVectorEnv
-                                 else SHOOTOUT_MAX_STEPS)
+            max_episode_steps = GYMNASIUM[env_id].max_episode_steps
         self.venv = cls(num_envs, max_episode_steps=max_episode_steps,
                         autoreset_mode=AutoresetMode.SAME_STEP, **(env_kwargs or {}))
         super().__init__(num_envs, self.venv.single_observation_space,

@@ -377,15 +377,19 @@ def format_profile(res: dict[str, Any]) -> str:
             f"time per step")
     rows = [("function", "calls/step", "own us/step", "total us/step")]
     for f in res["functions"]:
-        name = f["function"]
-        for root in ("/site-packages/", "/soccer_env/", "/estimators/", "/agents/"):
-            if root in name:
-                name = root.strip("/").replace("site-packages", "") + "/" + name.split(
-                    root, 1)[1] if root != "/site-packages/" else name.split(root, 1)[1]
-                break
-        rows.append((name, f"{f['calls_per_step']:.2f}", f"{f['own_us_per_step']:.1f}",
-                     f"{f['total_us_per_step']:.1f}"))
+        rows.append((_short_path(f["function"]), f"{f['calls_per_step']:.2f}",
+                     f"{f['own_us_per_step']:.1f}", f"{f['total_us_per_step']:.1f}"))
     return head + "\n" + _table(rows)
+
+
+def _short_path(name: str) -> str:
+    """A profiled function's ``path:line(name)`` from its package on (an installed
+    library's from below ``site-packages``)."""
+    for root in ("/site-packages/", "/soccer_env/", "/estimators/", "/agents/"):
+        head, sep, tail = name.partition(root)
+        if sep:
+            return tail if root == "/site-packages/" else root[1:] + tail
+    return name
 
 
 def format_table(res: dict[str, Any]) -> str:
@@ -408,25 +412,31 @@ def format_table(res: dict[str, Any]) -> str:
         text += "\n\n" + _table(rows)
     if res.get("humanoid"):
         h = res["humanoid"]
-        rows = [(f"humanoids ({h['robot']}, camera {h['camera']})", "truth steps/s",
-                 "perceived steps/s", "cost vs truth")]
-        for key, label in (("goalkeeper", "Goalkeeper-v0 + 3 team-mates (4 robots)"),
-                           ("match", "match 3 vs 3")):
-            r = h[key]
-            rows.append((label, f"{r['truth_steps_per_s']:,.0f}",
-                         f"{r['perceived_steps_per_s']:,.0f}", f"{r['cost_vs_truth']:.2f}"))
-        text += "\n\n" + _table(rows)
+        text += "\n\n" + _table(_rows(
+            h, (f"humanoids ({h['robot']}, camera {h['camera']})", "truth steps/s",
+                "perceived steps/s", "cost vs truth"),
+            (("goalkeeper", "Goalkeeper-v0 + 3 team-mates (4 robots)"),
+             ("match", "match 3 vs 3")),
+            (("truth_steps_per_s", ",.0f"), ("perceived_steps_per_s", ",.0f"),
+             ("cost_vs_truth", ".2f"))))
     if res.get("batched"):
         b = res["batched"]
-        rows = [(f"batched ({b['batch']} environments, one process)", "single env-steps/s",
-                 "batched env-steps/s", "ratio")]
-        for key, label in (("goalkeeper", "Goalkeeper-v0, truth"),
-                           ("match_2v2_scripted", "match 2 vs 2 VecEnv, scripted yellow")):
-            r = b[key]
-            rows.append((label, f"{r['single_env_steps_per_s']:,.0f}",
-                         f"{r['batched_env_steps_per_s']:,.0f}", f"{r['ratio']:.2f}"))
-        text += "\n\n" + _table(rows)
+        text += "\n\n" + _table(_rows(
+            b, (f"batched ({b['batch']} environments, one process)", "single env-steps/s",
+                "batched env-steps/s", "ratio"),
+            (("goalkeeper", "Goalkeeper-v0, truth"),
+             ("match_2v2_scripted", "match 2 vs 2 VecEnv, scripted yellow")),
+            (("single_env_steps_per_s", ",.0f"), ("batched_env_steps_per_s", ",.0f"),
+             ("ratio", ".2f"))))
     return text
+
+
+def _rows(block: dict[str, Any], head: tuple[str, ...], cases: tuple[tuple[str, str], ...],
+          fields: tuple[tuple[str, str], ...]) -> list[tuple[str, ...]]:
+    """A table's rows: ``head``, then per ``(key, label)`` of ``cases`` the label and
+    ``block[key]``'s ``fields`` (``(name, format spec)``)."""
+    return [head] + [(label, *(format(block[key][name], spec) for name, spec in fields))
+                     for key, label in cases]
 
 
 def _table(rows: list[tuple[str, ...]]) -> str:

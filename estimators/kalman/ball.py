@@ -727,40 +727,27 @@ class BallTrackerBatch:
             raise ValueError(f"m must be a positive integer, got {m!r}")
         self._one = BallTracker(config, measurement)
         self.config, self.motion, self._r = self._one.config, self._one.motion, self._one._r
-        self.m = int(m)
+        self.m = m = int(m)
+        self._t, self._x, self._P = np.empty(m), np.empty((m, 4)), np.empty((m, 12))
+        self.initialized = np.empty(m, dtype=bool)
+        self._pending = np.empty(m, dtype=bool)  # rows with candidates
+        self._v_switch, self.last_fused = np.empty(m), np.empty(m)
+        self.since_start = np.empty(m, dtype=np.int64)
+        self._candidates: list[tuple] = [()] * m
+        self.fused, self.rejected, self.resets, self.maneuvers = (
+            np.empty(m, dtype=np.int64) for _ in range(4))
         self.reset()
 
     def reset(self, rows=None) -> None:
         """Forget trackers ``rows`` (all by default)."""
-        if rows is None:
-            m = self.m
-            self._t = np.full(m, -math.inf)
-            self._x = np.zeros((m, 4))
-            self._P = np.zeros((m, 12))
-            self.initialized = np.zeros(m, dtype=bool)
-            self._v_switch = np.zeros(m)
-            self.last_fused = np.full(m, -math.inf)
-            self.since_start = np.zeros(m, dtype=np.int64)
-            self._candidates: list[tuple] = [()] * m
-            self._pending = np.zeros(m, dtype=bool)  # rows with candidates
-            self.fused = np.zeros(m, dtype=np.int64)
-            self.rejected = np.zeros(m, dtype=np.int64)
-            self.resets = np.zeros(m, dtype=np.int64)
-            self.maneuvers = np.zeros(m, dtype=np.int64)
-            return
-        rows = np.asarray(rows, dtype=np.int64)
-        self._t[rows] = -math.inf
-        self._x[rows] = 0.0
-        self._P[rows] = 0.0
-        self.initialized[rows] = False
-        self._v_switch[rows] = 0.0
-        self.last_fused[rows] = -math.inf
-        self.since_start[rows] = 0
+        rows = np.arange(self.m) if rows is None else np.asarray(rows, dtype=np.int64)
+        self._t[rows] = self.last_fused[rows] = -math.inf
+        self._x[rows] = self._P[rows] = self._v_switch[rows] = 0.0
+        self.initialized[rows] = self._pending[rows] = False
+        for array in (self.since_start, self.fused, self.rejected, self.resets, self.maneuvers):
+            array[rows] = 0
         for k in rows.tolist():
             self._candidates[k] = ()
-        self._pending[rows] = False
-        for counter in (self.fused, self.rejected, self.resets, self.maneuvers):
-            counter[rows] = 0
 
     # ------------------------------------------------------------------------------------
 

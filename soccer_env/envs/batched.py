@@ -68,6 +68,7 @@ from soccer_env.envs.goalkeeper import (
     fire_shot,
     place_episode,
 )
+from soccer_env.envs.registration import GYMNASIUM
 from soccer_env.envs.senses import Senses
 from soccer_env.envs.shootout import CLEAR_SPEED as SHOOTOUT_CLEAR_SPEED
 from soccer_env.envs.shootout import STOP_SPEED as SHOOTOUT_STOP_SPEED
@@ -82,8 +83,8 @@ __all__ = ["BatchedTask", "GoalkeeperVectorEnv", "ShootoutVectorEnv", "NotBatcha
            "make_vector", "make_shootout_vector"]
 
 #: Goalkeeper-v0's and Shootout-v0's time limits (their registrations' ``max_episode_steps``).
-DEFAULT_MAX_STEPS = 480
-SHOOTOUT_MAX_STEPS = 600
+DEFAULT_MAX_STEPS = GYMNASIUM["soccer_env/Goalkeeper-v0"].max_episode_steps
+SHOOTOUT_MAX_STEPS = GYMNASIUM["soccer_env/Shootout-v0"].max_episode_steps
 
 
 class NotBatchable(ValueError):
@@ -183,7 +184,6 @@ class BatchedTask(VectorEnv):
         # Perception, command channels (actuation latency and command loss, which apply in
         # truth mode too) and head control beside the physics.
         self._senses = Senses(probe, self.batch, n)
-        self._truth = self._senses.truth
         self._setup()
 
     def _streams(self, k: int, sensors_first: bool) -> None:
@@ -311,7 +311,7 @@ class BatchedTask(VectorEnv):
         outcome, rewards = self._judge(act, live)
         # (The batched perception advances with the episodes that start at the end of the step,
         # unless the final observations need it before.)
-        self._senses.update(np.nonzero(live)[0], batched=self._same_step)
+        self._senses.update(np.nonzero(live)[0], defer=not self._same_step)
         outcome[restarting] = None
         terminated = outcome != None  # noqa: E711 (element-wise)
         truncated = np.zeros(n, dtype=bool)
@@ -343,9 +343,7 @@ class BatchedTask(VectorEnv):
         # start their next episode now.
         for k in np.nonzero(restarting)[0].tolist():
             self._restart(k)
-        # The batched perception of the environments that played and of those that start
-        # over, in one pass.
-        self._senses.flush(None if self._same_step else np.nonzero(live)[0])
+        self._senses.flush()
         if restarting.any():
             if not self._same_step:
                 rewards[restarting] = 0.0
@@ -365,13 +363,9 @@ class BatchedTask(VectorEnv):
 
 
     def _observe(self) -> np.ndarray:
-        if self._truth:  # (the builder lays out the robots it was made for: the first ones)
-            state = self.batch.state
-            robots = state[:, 1:1 + self.builder.n_robots]
-            return self.builder.build_batch(robots, state[:, 0])[:, 0]
-        vision = self._senses.vision
-        if vision is not None:
-            ball, robots = vision.beliefs()
+        arrays = self._senses.arrays()
+        if arrays is not None:  # (the builder lays out the robots it was made for: the first)
+            ball, robots = arrays
             return self.builder.build_batch(robots[:, :self.builder.n_robots], ball)[:, 0]
         build = self.builder.build
         return np.stack([build(seen)[0] for seen in self._senses.seen])
@@ -530,16 +524,13 @@ class ShootoutVectorEnv(BatchedTask):
         if self.keeper.humanoid:
             # A humanoid keeper decides in plain Python, one environment at a time, from the
             # view a single environment builds (its dives turn on thresholds).
-            views = ([build(w.snapshot())[0] for w in self.batch.worlds] if self._truth
+            views = ([build(w.snapshot())[0] for w in self.batch.worlds] if self._senses.truth
                      else [build(p.belief(1))[0] for p in self._senses.perceptions])
             keeper = np.stack([self.keeper(view) for view in views])
-        else:
-            if self._truth:
-                state = self.batch.state
-                view = self._keeper_view.build_batch(state[:, 1:], state[:, 0])[:, 0]
-            elif self._senses.vision is not None:  # the keeper plays from its team's belief
-                ball, robots = self._senses.vision.beliefs()
-                view = self._keeper_view.build_batch(robots, ball)[:, 0]
+        else:  # the keeper plays from its team's belief (the truth in truth mode)
+            arrays = self._senses.arrays()
+            if arrays is not None:
+                view = self._keeper_view.build_batch(arrays[1], arrays[0])[:, 0]
             else:
                 view = np.stack([build(p.belief(1))[0] for p in self._senses.perceptions])
             keeper = self.keeper.act_batch(view)

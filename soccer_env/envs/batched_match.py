@@ -138,7 +138,6 @@ class MatchBatch:
         # Perception, command channels (actuation latency and command loss, which apply in
         # truth mode too) and head control beside the physics.
         self._senses = Senses(probe, self.batch, n)
-        self._truth = self._senses.truth
         self._builders = probe._builders
 
     # ------------------------------------------------------------------------------------
@@ -297,7 +296,6 @@ class MatchBatch:
     def _observe(self) -> np.ndarray:
         """``(M, N, obs_dim)`` observations with each team's game block
         (:data:`~soccer_env.envs.match.GAME_NAMES`)."""
-        state = self.batch.state
         n = self.n_matches
         time_left = np.maximum(0.0, 1.0 - self.batch.times / self.match_duration)
         restart = self.restart_team
@@ -307,11 +305,9 @@ class MatchBatch:
         per_team[:, 0] = np.stack([time_left, blue, yellow, flag], axis=1)
         per_team[:, 1] = np.stack([time_left, yellow, blue, -flag], axis=1)
         game = per_team[:, self._teams]
-        if self._truth:
-            return self.builder.build_batch(state[:, 1:], state[:, 0], game)
-        if self._senses.vision is not None:  # one belief per match, shared by its robots
-            ball, robots = self._senses.vision.beliefs()
-            return self.builder.build_batch(robots, ball, game)
+        arrays = self._senses.arrays()  # the truth, or one belief per match for its robots
+        if arrays is not None:
+            return self.builder.build_batch(arrays[1], arrays[0], game)
         # Each match's beliefs, through the builders a single match uses.
         out = np.empty((n, self.n_robots, self.builder.space().shape[0]), dtype=np.float32)
         for k, perception in enumerate(self._senses.perceptions):

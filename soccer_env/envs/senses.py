@@ -65,7 +65,8 @@ class Senses:
         self.sensor_rngs: list[np.random.Generator | None] = [None] * n
         self.seen: list[Any] = [None] * n
         self.vision: FilteredPerceptionBatch | None = None
-        self._starting: list[int] = []
+        self._starting: list[int] = []  # environments whose batched perception starts
+        self._stepped: np.ndarray | None = None  # and those whose update waits for flush
         self._team_channels: list[tuple[slice, int, CommandChannelBatch]] | None = None
         if not self.truth and batch_refusal(base, n) is None:
             self.vision = FilteredPerceptionBatch(base, n)
@@ -133,13 +134,14 @@ class Senses:
         return np.stack([np.concatenate([ch[t].send(c[sl]) for sl, t in self._in_play])
                          for ch, c in zip(self._channels, commands)])
 
-    def update(self, rows: np.ndarray, batched: bool = True) -> None:
-        """After a physics step: the perception of environments ``rows``. The batched
-        perception waits for the next :meth:`flush` unless ``batched`` (call with False when
-        that flush comes before anything reads the beliefs, to run it with the episodes that
-        start in between)."""
+    def update(self, rows: np.ndarray, defer: bool = False) -> None:
+        """After a physics step: the perception of environments ``rows``. With ``defer``
+        the batched perception waits for the next :meth:`flush`, to run in one pass with the
+        episodes that start in between (when nothing reads the beliefs before)."""
         if self.vision is not None:
-            if batched:
+            if defer:
+                self._stepped = rows
+            else:
                 self.vision.update(rows, *self.truth_arrays(rows))
             return
         if self.truth:
@@ -148,12 +150,13 @@ class Senses:
         for k in rows.tolist():
             self.seen[k] = self.perceptions[k].update(worlds[k].snapshot(), self.body(k))[0]
 
-    def flush(self, stepped: np.ndarray | None = None) -> None:
-        """The batched perception: start the environments whose episodes began since the
-        last flush (:meth:`start`), and advance the environments ``stepped`` (held back by
-        ``update(..., batched=False)``; they must not be among them), in one pass."""
+    def flush(self) -> None:
+        """The batched perception: advance the environments whose update was deferred and
+        start those whose episodes began since the last flush (:meth:`start`), in one pass
+        (the two never meet: an environment that starts over did not step)."""
         if self.vision is None:
             return
+        stepped, self._stepped = self._stepped, None
         step = None if stepped is None else (stepped, *self.truth_arrays(stepped))
         start = None
         if self._starting:
@@ -161,6 +164,16 @@ class Senses:
             self._starting = []
             start = (rows, *self.truth_arrays(rows), [self.sensor_rngs[k] for k in rows])
         self.vision.advance(step, start)
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """Every environment's world as its observation sees it, when that comes as arrays:
+        ``(ball (n, 6), robots (n, N, 6))``, the truth (:attr:`truth`) or the batched
+        perception's beliefs; None when each environment perceives on its own
+        (:attr:`seen`)."""
+        if self.truth:
+            state = self.batch.state
+            return state[:, 0], state[:, 1:]
+        return None if self.vision is None else self.vision.beliefs()
 
     def truth_arrays(self, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(times, balls (d, 3) x y z, robot poses (d, N, 3))`` of environments ``rows``,

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from estimators import BallTracker, RobotTracker
+from estimators import RobotTracker
 from soccer_env.perception.base import (
     OBS_MODES,
     SSL_LOST_AFTER,
@@ -199,7 +199,9 @@ class FilteredPerception(_VisionPerception):
         self.robot_tracker = RobotTracker(n_robots, measurement=self.measurements.robot_model)
         built = BALL_FILTERS.create(config.ball_filter, ball, spec, self.measurements.ball_model)
         self.ball_tracker, self._capture_times = built.tracker, built.capture_times
-        self._unchecked = isinstance(self.ball_tracker, BallTracker)
+        # The frames are the sensor's own, checked data: a tracker with an unchecked path
+        # (BallTracker.update_frame) is fed through it.
+        self._feed = getattr(self.ball_tracker, "update_frame", self.ball_tracker.update)
         self.ahead = spec.actuation_latency
 
     def _clear(self) -> None:
@@ -218,10 +220,7 @@ class FilteredPerception(_VisionPerception):
             if f.balls:
                 # Without latency compensation a pipeline stamps frames when they arrive.
                 stamp = t if self._capture_times else f.t_delivered
-                if self._unchecked:  # (the sensor's frames are checked data)
-                    ball.update_frame(stamp, f.balls, f.robots)
-                else:
-                    ball.update(stamp, f.balls, f.robots)
+                self._feed(stamp, f.balls, f.robots)
                 if self.features:  # of several detections, the one nearest the belief
                     self._measured = np.array(_nearest(f.balls, ball.estimate(stamp)))
 

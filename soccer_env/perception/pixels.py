@@ -90,7 +90,6 @@ class OverheadPixelDetector:
 
         #: Every camera's renderer (its calibration), in camera order.
         self.renderers = list(camera.renderers)
-        self.renderer = self.renderers[0]
         self.teams = list(camera.teams)
         self.robot_specs = list(camera.robot_specs)
         self.n_robots = len(self.robot_specs)

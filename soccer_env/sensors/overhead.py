@@ -449,12 +449,15 @@ class OverheadVisionBatch:
         c = len(self.cameras)
         period = self._period()
         parts = []  # (env, cams, times, counts, t0, span, prev ball, ball, prev robots, robots)
+        horizon = None  # each field's delivery horizon [s], when fields step
         if step is not None and len(step[0]):
             rows, now, balls, robots = step
             rows = np.asarray(rows, dtype=np.int64)
             now = np.asarray(now, dtype=np.float64)
             balls = np.asarray(balls, dtype=np.float64)
             robots = np.asarray(robots, dtype=np.float64)
+            horizon = np.full(self.m, -math.inf)
+            horizon[rows] = now + 1e-12
             if period is None:
                 r = np.repeat(np.arange(len(rows)), c)
                 cam = np.tile(np.arange(c), len(rows))
@@ -504,8 +507,8 @@ class OverheadVisionBatch:
             for j, k in enumerate(rows.tolist()):
                 rng = rngs[j]
                 self._rngs[k] = rng
-                self._normals.clear(k, rng)
-                self._uniforms.clear(k, rng)
+                self._normals.clear(k)
+                self._uniforms.clear(k)
                 self._next[k] = (rng.uniform(0.0, period, c) + times[j] if period is not None
                                  else math.inf)
             self._prev_t[rows], self._prev_ball[rows] = times, balls
@@ -527,13 +530,11 @@ class OverheadVisionBatch:
             new = new.take(new.ball_seen.any(axis=1) | new.robot_seen.any(axis=1))
             if new.count:
                 self._queue.append(new)
-        if step is None or not len(step[0]):
+        if horizon is None:
             return self._empty, warm
-        limit = np.full(self.m, -math.inf)
-        limit[np.asarray(step[0], dtype=np.int64)] = np.asarray(step[1], dtype=np.float64) + 1e-12
         delivered, queue = [], []
         for chunk in self._queue:
-            out = chunk.t_delivered <= limit[chunk.env]
+            out = chunk.t_delivered <= horizon[chunk.env]
             if out.all():
                 delivered.append(chunk)
             elif out.any():
@@ -654,7 +655,8 @@ class _BatchDraws:
         self._len = np.zeros(m, dtype=np.int64)
         self._pos = np.zeros(m, dtype=np.int64)
 
-    def clear(self, k: int, rng: np.random.Generator) -> None:
+    def clear(self, k: int) -> None:
+        """Field ``k`` starts afresh (a new ``_Draws``): nothing drawn yet."""
         self._len[k] = self._pos[k] = 0
 
     def take(self, fields: np.ndarray, need: np.ndarray, rngs: list, local: np.ndarray,

@@ -25,8 +25,7 @@ in the shared space are offset by its patch's origin, which rounds differently (
 Humanoids step in the batch too, but their walk engines, falls, lying bodies and foot strikes
 run world by world in Python (as :meth:`World.step <soccer_env.sim.world.World.step>` runs
 them), so a batch of humanoid worlds saves only the physics; their contacts are routed to
-their world by body, since a lying humanoid's shape changes. The batched environments do not
-take humanoids yet (their head control and perception would run world by world as well).
+their world by body, since a lying humanoid's shape changes.
 """
 
 from __future__ import annotations

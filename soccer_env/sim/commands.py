@@ -177,6 +177,10 @@ def validate_actions(actions: np.ndarray, names: list[str] | tuple[str, ...], mo
     return np.clip(actions, -1.0, 1.0)
 
 
+#: Steps of command losses a channel draws at once.
+LOSS_BLOCK = 256
+
+
 class CommandChannel:
     """The radio and firmware between a policy and its robots: commands take effect
     ``delay_steps`` control steps late, and each robot misses a command with probability
@@ -217,8 +221,8 @@ class CommandChannel:
         self._queue.append(commands)
         out = self._queue.popleft()
         if self.loss > 0.0:
-            if not self._losses:  # draw the losses of the next 256 steps at once
-                draws = (self._rng.random((256, self.n)) < self.loss).tolist()
+            if not self._losses:  # draw the losses of the next LOSS_BLOCK steps at once
+                draws = (self._rng.random((LOSS_BLOCK, self.n)) < self.loss).tolist()
                 self._losses = [[i for i, lost in enumerate(row) if lost] for row in draws]
             lost = self._losses.pop()
             if lost:
@@ -234,16 +238,14 @@ class CommandChannelBatch:
 
     Environment ``k``'s commands come out as a :class:`CommandChannel` with the same generator
     delivers them, bit for bit: the same queue, and the losses drawn from the same generator
-    in the same blocks of 256 steps (used from the block's last row, as the single channel
-    pops them).
+    in the same blocks of :data:`LOSS_BLOCK` steps (used from the block's last row, as the
+    single channel pops them).
 
     Args:
         m: environments.
         n_robots: the team's robots.
         delay_steps, loss: as :class:`CommandChannel`'s (the same in every environment).
     """
-
-    BLOCK = 256
 
     def __init__(self, m: int, n_robots: int, delay_steps: int, loss: float) -> None:
         self.m, self.n = int(m), int(n_robots)
@@ -252,7 +254,7 @@ class CommandChannelBatch:
         self._queue = np.zeros((max(self.delay_steps, 1), self.m, self.n, 6))
         self._head = 0
         self._last = np.zeros((self.m, self.n, 6))
-        self._blocks = np.zeros((self.m, self.BLOCK, self.n), dtype=bool)
+        self._blocks = np.zeros((self.m, LOSS_BLOCK, self.n), dtype=bool)
         self._left = np.zeros(self.m, dtype=np.int64)
         self._rngs: list[np.random.Generator | None] = [None] * self.m
 
@@ -276,8 +278,8 @@ class CommandChannelBatch:
             out = np.array(commands, dtype=np.float64)
         if self.loss > 0.0:
             for k in np.nonzero(self._left == 0)[0].tolist():
-                self._blocks[k] = self._rngs[k].random((self.BLOCK, self.n)) < self.loss
-                self._left[k] = self.BLOCK
+                self._blocks[k] = self._rngs[k].random((LOSS_BLOCK, self.n)) < self.loss
+                self._left[k] = LOSS_BLOCK
             self._left -= 1
             lost = self._blocks[np.arange(self.m), self._left]
             if lost.any():

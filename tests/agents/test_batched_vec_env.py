@@ -21,16 +21,23 @@ from agents.multiagent import MatchVecEnv, SelfPlayCallback, make_match_vec_env 
 from soccer_env.envs.batched import NotBatchable  # noqa: E402
 
 
+def _pair(n: int, env_id: str, kwargs: dict, max_episode_steps: int, seed: int):
+    """The batch and a DummyVecEnv of ``n`` single environments in Monitors, both seeded
+    ``seed`` and reset to the same first observations."""
+    ours = BatchedVecEnv(n, kwargs, max_episode_steps=max_episode_steps, env_id=env_id)
+    theirs = DummyVecEnv([lambda: Monitor(gym.make(env_id, max_episode_steps=max_episode_steps,
+                                                   **kwargs))
+                          for _ in range(n)])
+    ours.seed(seed)
+    theirs.seed(seed)
+    np.testing.assert_array_equal(ours.reset(), theirs.reset())
+    return ours, theirs
+
+
 @pytest.mark.parametrize("kwargs", [{}, {"obs_mode": "perceived", "perception": "ssl-2012"}])
 def test_same_batches_as_dummy_vec_env_of_single_environments(kwargs):
     n = 4
-    ours = BatchedVecEnv(n, kwargs, max_episode_steps=120)
-    theirs = DummyVecEnv([lambda: Monitor(gym.make("soccer_env/Goalkeeper-v0",
-                                                   max_episode_steps=120, **kwargs))
-                          for _ in range(n)])
-    ours.seed(3)
-    theirs.seed(3)
-    np.testing.assert_array_equal(ours.reset(), theirs.reset())
+    ours, theirs = _pair(n, "soccer_env/Goalkeeper-v0", kwargs, 120, 3)
     rng = np.random.default_rng(0)
     ends = 0
     for t in range(400):
@@ -169,13 +176,7 @@ def test_the_batched_shootout_as_a_vec_env():
     """Shootout-v0 through BatchedVecEnv: the same batches as DummyVecEnv of single
     environments (Monitor's episode statistics and is_success included)."""
     n = 3
-    ours = BatchedVecEnv(n, env_id="soccer_env/Shootout-v0", max_episode_steps=100)
-    theirs = DummyVecEnv([lambda: Monitor(gym.make("soccer_env/Shootout-v0",
-                                                   max_episode_steps=100))
-                          for _ in range(n)])
-    ours.seed(1)
-    theirs.seed(1)
-    np.testing.assert_array_equal(ours.reset(), theirs.reset())
+    ours, theirs = _pair(n, "soccer_env/Shootout-v0", {}, 100, 1)
     rng = np.random.default_rng(2)
     ends = 0
     for _ in range(250):
