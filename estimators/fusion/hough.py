@@ -37,8 +37,8 @@ import numpy as np
 
 from ..registry import Registry
 
-__all__ = ["hough_lines", "hough_fuse", "fusion_weights", "fuse_sightings", "FusedSighting",
-           "FUSION_WEIGHTINGS"]
+__all__ = ["hough_lines", "hough_fuse", "fusion_weights", "fuse_sightings", "fuse_lines",
+           "FusedSighting", "FUSION_WEIGHTINGS", "MIN_CROSSING_ANGLE"]
 
 #: Weightings of :func:`fusion_weights` and :func:`fuse_sightings` by name: the power ``p`` of
 #: the distance in ``K_i = 1 / L_i^p``.
@@ -53,6 +53,9 @@ FUSION_WEIGHTINGS: Registry[int] = Registry("fusion weighting", [
      "weights 1 / distance^2: near sightings dominate, as a bearing error's effect grows "
      "with the distance"),
 ])
+
+#: The shallowest crossing at which :func:`fuse_sightings` intersects lines by default [rad].
+MIN_CROSSING_ANGLE = math.radians(5.0)
 
 #: Below this ratio of the normal matrix's eigenvalues the lines are taken as parallel (no
 #: unique crossing point).
@@ -204,7 +207,7 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
                    weighting: str = "inverse", *,
                    bearing_sigma: float = math.radians(3.0),
                    range_sigma_rel: float = 0.1,
-                   min_angle: float = math.radians(5.0)) -> FusedSighting:
+                   min_angle: float = MIN_CROSSING_ANGLE) -> FusedSighting:
     """Fuse a team's sightings of one target (the ball).
 
     Robot ``i`` at ``origins[i]`` saw the target along the field-frame direction ``angles[i]``
@@ -282,13 +285,27 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
         if not math.isfinite(t_now):
             raise ValueError(f"now must be finite, got {now!r}")
         p = p + np.outer(t_now - st, v)  # each line moved with the target since its stamp
-    # The rest in plain floats: a handful of lines, where numpy's per-call overhead would cost
-    # several times the arithmetic (this runs at every camera frame of every robot).
-    P = p.tolist()
-    ux = [math.cos(a) for a in psi.tolist()]
-    uy = [math.sin(a) for a in psi.tolist()]
-    R = r.tolist()
-    has = known.tolist()
+    return fuse_lines(p.tolist(), psi.tolist(), r.tolist(), power, bearing_sigma,
+                      range_sigma_rel, min_angle)
+
+
+def fuse_lines(P: list[list[float]], angles: list[float], R: list[float], power: float,
+               bearing_sigma: float, range_sigma_rel: float, min_angle: float
+               ) -> FusedSighting:
+    """Steps 2 to 5 of :func:`fuse_sightings` without its checks, on plain lists, for
+    callers with validated data (a pipeline's own sighting lines, already moved to a common
+    time): ``P`` the origins ``[x, y]`` [m], ``angles`` [rad], ``R`` the ranges [m] (NaN:
+    bearing only), ``power`` the weighting's (``K = 1 / L^power``).
+
+    Raises:
+        ValueError: no position (see :func:`fuse_sightings`).
+    """
+    # Plain floats: a handful of lines, where numpy's per-call overhead would cost several
+    # times the arithmetic (this runs at every camera frame of every robot).
+    n = len(P)
+    ux = [math.cos(a) for a in angles]
+    uy = [math.sin(a) for a in angles]
+    has = [math.isfinite(v) for v in R]
     if n >= 2:
         far = 2.0 * max((v for v, h in zip(R, has) if h), default=0.5)
         k = [(v if h else far) ** -power for v, h in zip(R, has)]

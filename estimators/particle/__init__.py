@@ -21,7 +21,7 @@ from .core import (
     ungm_model,
     ungm_simulate,
 )
-from .localization import KLDConfig, KLDLocalizer, kld_sample_size, normal_quantile
+from .localization import KLDConfig, KLDLocalizer, LandmarkTable, kld_sample_size, normal_quantile
 
 __all__ = [
     "BootstrapPF",
@@ -36,6 +36,7 @@ __all__ = [
     "CHI2_2DOF_9999",
     "KLDConfig",
     "KLDLocalizer",
+    "LandmarkTable",
     "kld_sample_size",
     "normal_quantile",
 ]

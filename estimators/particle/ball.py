@@ -358,6 +358,13 @@ class ParticleBallTracker:
         filter's own SFN and/or resampling (see the module docstring for the start,
         re-initialisation and late measurements)."""
         t, z, R = self._check(t, z, sigma)
+        self.update_fused(t, z, R)
+
+    def update_fused(self, t: float, z: np.ndarray, R: np.ndarray) -> None:
+        """:meth:`update` without its argument checks, for callers with validated data (a
+        pipeline's own fused points): ``t`` a finite time [s], ``z`` a finite ``(2,)``
+        float array [m], ``R`` a symmetric positive definite ``2 x 2`` float array [m^2].
+        Stamps are still checked to be in order."""
         if self._pf is not None:
             check_order(t, self._t)
         prev, self._prev = self._prev, (t, z, R)

@@ -85,7 +85,9 @@ def sfn(particles: np.ndarray, weights: np.ndarray, rng: np.random.Generator,
             scale = math.sqrt(fission_variance)
         else:  # one standard deviation per column, broadcast over the offspring
             scale = np.sqrt(np.asarray(fission_variance, dtype=np.float64))
-        noise = rng.normal(0.0, scale, (n_children, p.shape[1]))
+        # N(0, scale^2) as scale times standard normals: the same draws and values as
+        # rng.normal(0, scale), without its per-element broadcasting of an array scale.
+        noise = rng.standard_normal((n_children, p.shape[1])) * scale
         new_p[n - n_children:] = p[parents] + noise  # fission
         split = w / (children + 1)
         new_w[:n - n_children] = split[:n - n_children]

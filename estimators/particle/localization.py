@@ -55,7 +55,7 @@ import numpy as np
 
 from ..checks import MAX_PARTICLES, check_count, check_real
 
-__all__ = ["KLDConfig", "KLDLocalizer", "kld_sample_size", "normal_quantile"]
+__all__ = ["KLDConfig", "KLDLocalizer", "LandmarkTable", "kld_sample_size", "normal_quantile"]
 
 
 def normal_quantile(p: float) -> float:
@@ -100,6 +100,73 @@ def _kld_table(epsilon: float, delta: float, max_particles: int) -> list[float]:
     """:func:`kld_sample_size` for ``k = 0 .. max_particles``, as a list (looked up draw by
     draw while resampling)."""
     return kld_sample_size(np.arange(max_particles + 1), epsilon, delta).tolist()
+
+
+#: Bin keys are packed into one integer, ``ix * 2^42 + iy * 2^21 + itheta``: distinct for
+#: bin indices within +-2^20 (200 km at 0.2 m bins), far beyond any field.
+_BIN_PACK = np.array([1 << 42, 1 << 21, 1], dtype=np.int64)
+
+
+class LandmarkTable:
+    """Landmark positions by kind [m], validated once, with the layout of the candidates of a
+    sequence of observed kinds cached (a robot sees the same few combinations of kinds again
+    and again), for :meth:`KLDLocalizer.update_kinds`.
+
+    Args:
+        table: kind -> ``(M_k, 2)`` positions of the landmarks of that kind [m] (one or more
+            finite positions each).
+    """
+
+    def __init__(self, table: Mapping[str, np.ndarray]) -> None:
+        positions: dict[str, np.ndarray] = {}
+        for kind, value in table.items():
+            pos = np.array(value, dtype=np.float64).reshape(-1, 2)
+            if len(pos) == 0 or not np.isfinite(pos).all():
+                raise ValueError(f"table[{kind!r}] must hold one or more finite (x, y) "
+                                 f"positions")
+            pos.flags.writeable = False
+            positions[kind] = pos
+        self.positions = positions
+        self._layouts: dict[tuple[str, ...], tuple] = {}
+
+    def __getitem__(self, kind: str) -> np.ndarray:
+        return self.positions[kind]
+
+    def __contains__(self, kind: object) -> bool:
+        return kind in self.positions
+
+    def __iter__(self):
+        return iter(self.positions)
+
+    def __len__(self) -> int:
+        return len(self.positions)
+
+    def layout(self, kinds: tuple[str, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray,
+                                                      np.ndarray]:
+        """For observations of ``kinds``: the candidates' ``x`` and ``y`` ((C,), every
+        observation's candidates in turn), how many each observation has ((m,)) and a gather
+        index ((m * K,), ``K`` the most candidates of an observation) that lays the ``C``
+        columns out as ``m`` blocks of ``K``, short blocks padded with their first candidate
+        (which leaves each block's maximum as it is)."""
+        lay = self._layouts.get(kinds)
+        if lay is None:
+            for kind in kinds:
+                if kind not in self.positions:
+                    raise ValueError(f"unknown landmark kind {kind!r}; the table has "
+                                     f"{sorted(self.positions)}")
+            cands = [self.positions[k] for k in kinds]
+            counts = np.array([len(c) for c in cands])
+            width = int(counts.max())
+            starts = np.concatenate(([0], np.cumsum(counts)[:-1]))
+            gather = (starts[:, None] + np.arange(width)[None, :]) * (
+                np.arange(width)[None, :] < counts[:, None]) + starts[:, None] * (
+                np.arange(width)[None, :] >= counts[:, None])
+            L = np.concatenate(cands)
+            lay = (np.ascontiguousarray(L[:, 0]), np.ascontiguousarray(L[:, 1]), counts,
+                   gather.reshape(-1))
+            if len(self._layouts) < 4096:
+                self._layouts[kinds] = lay
+        return lay
 
 
 @dataclass(frozen=True)
@@ -256,8 +323,9 @@ class KLDLocalizer:
         if len(r) != len(L) or not (np.isfinite(L).all() and np.isfinite(r).all()):
             raise ValueError(f"landmarks ((m, 2)) and ranges ((m,)) must match and be finite, "
                              f"got {L.shape} and {r.shape}")
-        return np.sum(self._pair_log_likelihood(L, r, self._check_bearings(bearings, r)),
-                      axis=1)
+        return np.sum(self._pair_log_likelihood(np.ascontiguousarray(L[:, 0]),
+                                                np.ascontiguousarray(L[:, 1]), r,
+                                                self._check_bearings(bearings, r)), axis=1)
 
     def _check_bearings(self, bearings: np.ndarray | None, r: np.ndarray) -> np.ndarray | None:
         """The bearings as a checked array, or None when they are not used."""
@@ -268,21 +336,35 @@ class KLDLocalizer:
             raise ValueError("bearings must be finite and match ranges")
         return b
 
-    def _pair_log_likelihood(self, L: np.ndarray, r: np.ndarray, b: np.ndarray | None
-                             ) -> np.ndarray:
-        """``(N, m)`` log-likelihood terms (up to a constant) of every particle for landmark
-        positions ``L`` ((m, 2)) seen at ranges ``r`` ((m,)) and bearings ``b`` ((m,) or
-        None), one pair per column."""
+    def _pair_log_likelihood(self, Lx: np.ndarray, Ly: np.ndarray, r: np.ndarray,
+                             b: np.ndarray | None) -> np.ndarray:
+        """``(N, C)`` log-likelihood terms (up to a constant) of every particle for landmark
+        positions ``(Lx, Ly)`` ((C,) each) seen at ranges ``r`` ((C,)) and bearings ``b``
+        ((C,) or None), one pair per column:
+        ``-(g - r)^2 / (2 sigma_r^2) - wrap(atan2(dy, dx) - theta - b)^2 / (2 sigma_b^2)``.
+        In place on two ``(N, C)`` arrays: at a hundred particles the allocations cost as
+        much as the arithmetic."""
         c = self.cfg
-        dx = L[None, :, 0] - self.particles[:, None, 0]
-        dy = L[None, :, 1] - self.particles[:, None, 1]
-        expected = np.hypot(dx, dy)
+        P = self.particles
+        dx = Lx - P[:, 0, None]
+        dy = Ly - P[:, 1, None]
+        log = np.hypot(dx, dy)  # the expected range g, then its log-likelihood term
         sigma = c.range_sigma + (c.range_sigma_rel + c.range_sigma_quad * r) * r
-        log = -0.5 * ((expected - r) / sigma) ** 2
+        log -= r
+        log /= sigma
+        np.square(log, out=log)
+        log *= -0.5
         if b is not None:
-            err = np.arctan2(dy, dx) - self.particles[:, None, 2] - b
-            err = np.remainder(err + math.pi, 2.0 * math.pi) - math.pi
-            log += -0.5 * (err / c.bearing_sigma) ** 2
+            err = np.arctan2(dy, dx)
+            err -= P[:, 2, None]
+            err -= b
+            err += math.pi
+            np.remainder(err, 2.0 * math.pi, out=err)
+            err -= math.pi
+            err /= c.bearing_sigma
+            np.square(err, out=err)
+            err *= -0.5
+            log += err
         return log
 
     def update(self, landmarks: np.ndarray, ranges: np.ndarray,
@@ -294,21 +376,24 @@ class KLDLocalizer:
         self._weigh(self._log_likelihood(landmarks, ranges, bearings), m)
 
     def update_kinds(self, kinds: Sequence[str], ranges: np.ndarray,
-                     bearings: np.ndarray | None, table: Mapping[str, np.ndarray]) -> None:
+                     bearings: np.ndarray | None,
+                     table: Mapping[str, np.ndarray] | LandmarkTable) -> None:
         """Weight by sightings of landmarks known by kind only, then KLD-resample.
 
         Args:
             kinds: ``m`` kinds (keys of ``table``), one per observation.
             ranges: ``(m,)`` measured ranges [m].
             bearings: ``(m,)`` bearings [rad, relative to the heading], or None.
-            table: kind -> ``(M_k, 2)`` positions of the landmarks of that kind [m].
+            table: kind -> ``(M_k, 2)`` positions of the landmarks of that kind [m], or a
+                :class:`LandmarkTable` of them (validated once, its layouts cached: what a
+                caller updating every frame passes).
 
         Per observation ``j`` and particle, the log-likelihood is the largest over the
         candidates of its kind (nearest-neighbour association, see the module docstring);
         the weighting, recovery bookkeeping and resampling are :meth:`update`'s. Vectorised
         over particles x candidates.
         """
-        kinds = [kinds] if isinstance(kinds, str) else list(kinds)
+        kinds = (kinds,) if isinstance(kinds, str) else tuple(kinds)
         r = np.asarray(ranges, dtype=np.float64).reshape(-1)
         m = len(kinds)
         if len(r) != m or not np.isfinite(r).all():
@@ -317,24 +402,24 @@ class KLDLocalizer:
         if m == 0:
             return
         b = self._check_bearings(bearings, r)
-        cands, starts = [], []
-        for kind in kinds:
-            if kind not in table:
-                raise ValueError(f"unknown landmark kind {kind!r}; the table has "
-                                 f"{sorted(table)}")
-            pos = np.asarray(table[kind], dtype=np.float64).reshape(-1, 2)
-            if len(pos) == 0 or not np.isfinite(pos).all():
-                raise ValueError(f"table[{kind!r}] must hold one or more finite (x, y) "
-                                 f"positions")
-            starts.append(sum(len(c) for c in cands))
-            cands.append(pos)
-        L = np.concatenate(cands)
-        counts = np.array([len(c) for c in cands])
+        if not isinstance(table, LandmarkTable):
+            table = LandmarkTable({k: table[k] for k in set(kinds) if k in table})
+        self.update_sightings(kinds, r, b, table)
+
+    def update_sightings(self, kinds: tuple[str, ...], ranges: np.ndarray,
+                         bearings: np.ndarray | None, table: LandmarkTable) -> None:
+        """:meth:`update_kinds` without its argument checks, for callers with validated data
+        (a pipeline's own frames): ``kinds`` a non-empty tuple, ``ranges`` and ``bearings``
+        finite float arrays of its length (``bearings`` None when not used)."""
+        Lx, Ly, counts, gather = table.layout(kinds)
+        m = len(kinds)
+        b = bearings if self.cfg.bearing_sigma is not None else None
         # Every (observation, candidate) pair as one column, then the best candidate of each
-        # observation (contiguous column blocks) and the sum over the observations.
-        log = self._pair_log_likelihood(L, np.repeat(r, counts),
+        # observation (the columns gathered into m padded blocks) and the sum over the
+        # observations.
+        log = self._pair_log_likelihood(Lx, Ly, np.repeat(ranges, counts),
                                         None if b is None else np.repeat(b, counts))
-        best = np.maximum.reduceat(log, np.asarray(starts), axis=1)
+        best = log[:, gather].reshape(len(log), m, -1).max(axis=2)
         self._weigh(np.sum(best, axis=1), m)
 
     def _weigh(self, log: np.ndarray, m: int) -> None:
@@ -363,15 +448,18 @@ class KLDLocalizer:
             inject = max(0.0, 1.0 - self.w_fast / (c.recovery_ratio * self.w_slow))
         size = np.asarray(c.bin_size)
         bound = _kld_table(c.epsilon, c.delta, c.max_particles)
+        low = c.min_particles
         cumulative = np.cumsum(self.weights)
         cumulative /= cumulative[-1]
         # Draw in batches (doubling from about the current size) until the KLD bound holds for
         # the draws so far, rather than max_particles candidates every time. The bound is
-        # checked draw by draw in plain Python (a set of the occupied bins): a hundred draws
-        # cost less so than the dozen array operations of a prefix count.
-        batch = min(c.max_particles, max(c.min_particles, 2 * self.n))
+        # checked draw by draw in plain Python (a set of the occupied bins, packed into one
+        # integer each): a hundred draws cost less so than the dozen array operations of a
+        # prefix count. No sample is smaller than min_particles, so the draws before it only
+        # fill the set.
+        batch = min(c.max_particles, max(low, 2 * self.n))
         parts: list[np.ndarray] = []
-        seen: set[tuple[int, int, int]] = set()
+        seen: set[int] = set()
         drawn = 0
         n = 0
         while not n:
@@ -386,10 +474,16 @@ class KLDLocalizer:
             parts.append(new)
             # k(n): the distinct bins among the first n draws; the first n with
             # n >= bound(k(n)) and n >= min_particles is the sample size.
-            for key in map(tuple, np.floor(new / size).astype(np.int64).tolist()):
+            keys = (np.floor(new / size).astype(np.int64) @ _BIN_PACK).tolist()
+            head = min(take, low - 1 - drawn)
+            if head > 0:
+                seen.update(keys[:head])
+                drawn += head
+                keys = keys[head:]
+            for key in keys:
                 seen.add(key)
                 drawn += 1
-                if drawn >= bound[len(seen)] and drawn >= c.min_particles:
+                if drawn >= bound[len(seen)] and drawn >= low:
                     n = drawn
                     break
             if not n and drawn >= c.max_particles:

@@ -12,7 +12,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from estimators import fuse_sightings
+from estimators import FUSION_WEIGHTINGS, fuse_lines
+from estimators.fusion.hough import MIN_CROSSING_ANGLE
 from soccer_env.perception.base import ball_status, sigmas
 from soccer_env.perception.options import BALL_TRACKERS, FUSIONS, LOCALIZATIONS
 from soccer_env.sensors.headcam import HeadFrame
@@ -44,7 +45,7 @@ _MAX_BALL_SPEED = 10.0
 _MIN_DIFF_GAP = 0.1
 
 
-def landmark_sightings(frame: HeadFrame) -> tuple[list[str], np.ndarray, np.ndarray]:
+def landmark_sightings(frame: HeadFrame) -> tuple[tuple[str, ...], np.ndarray, np.ndarray]:
     """The landmarks of ``frame`` that have a ground point: their kinds, ranges [m] and
     bearings [rad] in the robot frame (what the localization weighs)."""
     kinds, ranges, bearings = [], [], []
@@ -54,7 +55,7 @@ def landmark_sightings(frame: HeadFrame) -> tuple[list[str], np.ndarray, np.ndar
             kinds.append(kind)
             ranges.append(r)
             bearings.append(bearing)
-    return kinds, np.array(ranges), np.array(bearings)
+    return tuple(kinds), np.array(ranges), np.array(bearings)
 
 
 def _compose(a: tuple[float, float, float], b: tuple[float, float, float]
@@ -86,6 +87,8 @@ class Brain:
         cfg = perception.config
         self.kind = cfg.localization
         self.fusion = cfg.fusion
+        #: The fusion's weighting power (``K = 1 / L^power``).
+        self.power = FUSION_WEIGHTINGS[FUSIONS[cfg.fusion]]
         finder = perception.ball_finder
         self.finder: Any = None if finder is None else finder(perception.camera,
                                                                perception.ball_spec)
@@ -213,7 +216,7 @@ class Brain:
             self.move_localization(self.odometry_until(f.t_capture))
             kinds, ranges, bearings = landmark_sightings(f)
             if kinds:
-                self.loc.update_kinds(kinds, ranges, bearings, p.landmark_table)
+                self.loc.update_sightings(kinds, ranges, bearings, p.landmark_table)
                 self.landmark_seen = f.t_capture
             pose = self.loc_estimate = self.loc.estimate()
         else:
@@ -304,16 +307,24 @@ class Brain:
                 speed = math.hypot(*velocity)
                 if speed > _MAX_BALL_SPEED:  # never move lines by an impossible motion
                     velocity = velocity * (_MAX_BALL_SPEED / speed)
-        weighting = FUSIONS[self.fusion]
-        ranges = np.array([ln.range for ln in lines])
-        known = ranges[np.isfinite(ranges)]
+        # Each line moved with the ball since its stamp (as fuse_sightings does), in plain
+        # floats: a handful of lines.
+        if velocity is None:
+            origins = [list(ln.origin) for ln in lines]
+        else:
+            vx, vy = float(velocity[0]), float(velocity[1])
+            origins = [[ln.origin[0] + (t - ln.stamp) * vx, ln.origin[1] + (t - ln.stamp) * vy]
+                       for ln in lines]
+        ranges = [ln.range for ln in lines]
+        known = [r for r in ranges if math.isfinite(r)]
+        if (min(known, default=1.0) <= 0.0 or not all(map(math.isfinite, sum(origins, [])))
+                or not all(math.isfinite(ln.angle) for ln in lines)):
+            return  # no position from a degenerate line
         p = self.p
-        rel = max(0.05, p.range_per_metre * (float(known.max()) if len(known) else 1.0))
+        rel = max(0.05, p.range_per_metre * (max(known) if known else 1.0))
         try:
-            fused = fuse_sightings(
-                np.array([ln.origin for ln in lines]), np.array([ln.angle for ln in lines]),
-                ranges, np.array([ln.stamp for ln in lines]), now=t, velocity=velocity,
-                weighting=weighting, bearing_sigma=p.bearing_sigma, range_sigma_rel=rel)
+            fused = fuse_lines(origins, [ln.angle for ln in lines], ranges, self.power,
+                               p.bearing_sigma, rel, MIN_CROSSING_ANGLE)
         except ValueError:  # bearings only, no crossing: no position
             return
         point = fused.point
@@ -321,8 +332,11 @@ class Brain:
         if not (np.isfinite(point).all() and x0 <= point[0] <= x1 and y0 <= point[1] <= y1):
             return  # no ball can be there (outside the walls)
         cov = fused.cov + _MIN_SIGMA**2 * np.eye(2)
+        cov = 0.5 * (cov + cov.T)  # exactly symmetric, as the tracker takes it
+        if not np.isfinite(cov).all():
+            return
         if self.tracker is not None:
-            self.tracker.update(t, point, cov)
+            self.tracker.update_fused(t, point, cov)
         self.points.append((t, float(point[0]), float(point[1])))
         self.fused_at, self.fused_lines, self.fused_cov = t, len(lines), cov
 

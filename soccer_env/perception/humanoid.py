@@ -45,7 +45,7 @@ from typing import Any
 
 import numpy as np
 
-from estimators import KLDConfig, KLDLocalizer, ParticleBallTracker
+from estimators import KLDConfig, KLDLocalizer, LandmarkTable, ParticleBallTracker
 from soccer_env.perception.base import expected_age
 from soccer_env.perception.brain import _FUSION_WINDOW_FRAMES, Brain
 from soccer_env.perception.options import DETECTORS
@@ -101,7 +101,7 @@ class HumanoidTeamPerception:
         table: dict[str, list] = {}
         for pos, kind in zip(positions, kinds):
             table.setdefault(kind, []).append(pos)
-        self.landmark_table = {k: np.array(v) for k, v in table.items()}
+        self.landmark_table = LandmarkTable(table)
         wx, wy = field.half_length + field.boundary, field.half_width + field.boundary
         self.bounds = (-wx, wx, -wy, wy)
         # Landmark noise as the camera makes it: a pixel or a tilt error e moves a ground

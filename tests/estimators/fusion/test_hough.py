@@ -238,3 +238,40 @@ def test_fuse_sightings_no_position_and_bad_input():
         fuse_sightings([[0.0, 0.0]], [0.3], [1.0], bearing_sigma=0.0)
     with pytest.raises(ValueError, match="min_angle"):
         fuse_sightings([[0.0, 0.0]], [0.3], [1.0], min_angle=2.0)
+
+
+def test_fuse_lines_is_fuse_sightings_without_the_checks():
+    """The unchecked plain-list path gives fuse_sightings' results bit for bit: crossing
+    lines, shallow crossings, bearing-only lines, one ranged line, lines moved to a common
+    time."""
+    from estimators.fusion import FUSION_WEIGHTINGS, fuse_lines
+
+    rng = np.random.default_rng(3)
+    for trial in range(300):
+        n = int(rng.integers(1, 5))
+        origins = rng.uniform(-4, 4, (n, 2))
+        target = rng.uniform(-2, 2, 2)
+        rel = target - origins
+        angles = np.arctan2(rel[:, 1], rel[:, 0]) + rng.normal(0, 0.05, n)
+        if trial % 7 == 0:
+            angles[:] = angles[0] + rng.normal(0, 0.01, n)  # nearly parallel
+        ranges = np.hypot(*rel.T) * rng.uniform(0.9, 1.1, n)
+        ranges[rng.random(n) < 0.3] = np.nan
+        stamps = rng.uniform(0.0, 0.1, n)
+        velocity = rng.normal(0, 1, 2)
+        weighting = ("equal", "inverse", "inverse_square")[trial % 3]
+        try:
+            ref = fuse_sightings(origins, angles, ranges, stamps, 0.1, velocity, weighting,
+                                 bearing_sigma=0.02, range_sigma_rel=0.07)
+        except ValueError:
+            with pytest.raises(ValueError, match="no position"):
+                moved = origins + np.outer(0.1 - stamps, velocity)
+                fuse_lines(moved.tolist(), angles.tolist(), ranges.tolist(),
+                           FUSION_WEIGHTINGS[weighting], 0.02, 0.07, math.radians(5.0))
+            continue
+        moved = origins + np.outer(0.1 - stamps, velocity)
+        got = fuse_lines(moved.tolist(), angles.tolist(), ranges.tolist(),
+                         FUSION_WEIGHTINGS[weighting], 0.02, 0.07, math.radians(5.0))
+        np.testing.assert_array_equal(got.point, ref.point)
+        np.testing.assert_array_equal(got.cov, ref.cov)
+        assert (got.n_lines, got.fused, got.sigma) == (ref.n_lines, ref.fused, ref.sigma)

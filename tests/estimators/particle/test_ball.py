@@ -256,3 +256,25 @@ def test_a_restart_does_not_believe_an_impossible_speed():
     assert np.allclose(tr.estimate(0.8)[2:4], 0.0)
     with pytest.raises(ValueError, match="max_speed"):
         ParticleBallTracker(np.random.default_rng(1), max_speed=0.0)
+
+
+def test_update_fused_is_update_without_the_checks():
+    """The unchecked path (a pipeline's validated fused points) gives update()'s tracker bit
+    for bit, through the Kalman start, the particles, gating and restarts."""
+    runs = []
+    for unchecked in (False, True):
+        tracker = ParticleBallTracker(np.random.default_rng(4), deceleration=0.4)
+        rng = np.random.default_rng(5)
+        t = 0.0
+        for k in range(120):
+            t += 0.04
+            z = P0 + V * t + rng.normal(0, SIGMA, 2) + (3.0 if k == 60 else 0.0)
+            R = np.array([[0.01, 0.002], [0.002, 0.02]])
+            if unchecked:
+                tracker.update_fused(t, z, R)
+            else:
+                tracker.update(t, z, R)
+        runs.append((tracker.particles, tracker.estimate(t + 0.05), tracker.resets))
+    np.testing.assert_array_equal(runs[0][0], runs[1][0])
+    np.testing.assert_array_equal(runs[0][1], runs[1][1])
+    assert runs[0][2] == runs[1][2] >= 1

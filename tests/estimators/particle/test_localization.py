@@ -11,6 +11,8 @@ import pytest
 from estimators.particle.localization import (
     KLDConfig,
     KLDLocalizer,
+    LandmarkTable,
+    _kld_table,
     kld_sample_size,
     normal_quantile,
 )
@@ -201,3 +203,79 @@ def test_update_kinds_bad_input():
         loc.update_kinds(["empty"], [1.0], None, {"empty": np.zeros((0, 2))})
     loc.update_kinds([], [], [], TABLE)  # nothing seen: nothing changes
     assert loc.n == KLDConfig().max_particles
+
+
+def _reference_kld_resample(loc: KLDLocalizer, rng: np.random.Generator) -> np.ndarray:
+    """Fox's KLD-sampling written out plainly (one draw at a time, bins as tuples, no
+    recovery): the particles it keeps."""
+    c = loc.cfg
+    bound = _kld_table(c.epsilon, c.delta, c.max_particles)
+    cumulative = np.cumsum(loc.weights)
+    cumulative /= cumulative[-1]
+    batch = min(c.max_particles, max(c.min_particles, 2 * loc.n))
+    drawn, seen, kept = 0, set(), []
+    while True:
+        take = min(batch, c.max_particles - drawn)
+        idx = np.searchsorted(cumulative, rng.random(take), side="right")
+        for row in loc.particles[np.minimum(idx, loc.n - 1)]:
+            kept.append(row)
+            seen.add(tuple(int(v) for v in np.floor(row / np.asarray(c.bin_size))))
+            drawn += 1
+            if drawn >= c.min_particles and drawn >= bound[len(seen)]:
+                return np.array(kept)
+        if drawn >= c.max_particles:
+            return np.array(kept)
+        batch *= 2
+
+
+@pytest.mark.parametrize("spread", [0.01, 0.3, 3.0])
+def test_resampling_keeps_as_many_particles_as_fox_bound_says(spread):
+    """The resampler's packed bin keys and bulk start give exactly the sample of Fox's
+    draw-by-draw rule, from a converged belief (few bins) to a spread one (many)."""
+    for seed in range(5):
+        config = KLDConfig(min_particles=20, max_particles=3000, alpha_fast=0.0)
+        loc = KLDLocalizer(BOUNDS, np.random.default_rng(seed), config)
+        loc.particles = np.random.default_rng(100 + seed).normal(
+            [0.5, -0.2, 1.0], spread, (400, 3))
+        loc.weights = np.random.default_rng(200 + seed).random(400)
+        loc.weights /= loc.weights.sum()
+        expected = _reference_kld_resample(loc, np.random.default_rng(300 + seed))
+        loc.rng = np.random.default_rng(300 + seed)
+        loc._resample()
+        np.testing.assert_array_equal(loc.particles, expected)
+
+
+def test_a_landmark_table_gives_the_mapping_s_results_bit_for_bit():
+    """update_kinds with a LandmarkTable (validated once, layouts cached), and
+    update_sightings (the unchecked path), give exactly the plain mapping's filter."""
+    table = LandmarkTable(TABLE)
+    runs = []
+    for mode in ("mapping", "table", "sightings"):
+        loc = KLDLocalizer(BOUNDS, np.random.default_rng(5), pose=np.array([-1.0, 0.5, 0.3]))
+        rng = np.random.default_rng(6)
+        pose = np.array([-1.0, 0.5, 0.3])
+        for _ in range(30):
+            loc.predict([0.02, 0.0, 0.01])
+            kinds, r, b = _sight_kinds(pose, rng)
+            if mode == "mapping":
+                loc.update_kinds(kinds, r, b, TABLE)
+            elif mode == "table":
+                loc.update_kinds(kinds, r, b, table)
+            elif len(kinds):
+                loc.update_sightings(tuple(kinds), np.asarray(r, float), np.asarray(b, float),
+                                     table)
+        runs.append(loc.particles.copy())
+    np.testing.assert_array_equal(runs[0], runs[1])
+    np.testing.assert_array_equal(runs[0], runs[2])
+
+
+def test_landmark_table_bad_input():
+    with pytest.raises(ValueError, match="table\\['empty'\\]"):
+        LandmarkTable({"empty": np.zeros((0, 2))})
+    with pytest.raises(ValueError, match="table\\['nan'\\]"):
+        LandmarkTable({"nan": [[0.0, math.nan]]})
+    with pytest.raises(ValueError, match="unknown landmark kind 'flag'"):
+        LandmarkTable(TABLE).layout(("flag",))
+    table = LandmarkTable(TABLE)
+    with pytest.raises(ValueError):  # read-only: the cached layouts cannot go stale
+        table["corner"][0, 0] = 9.0
