@@ -22,7 +22,8 @@ except ImportError as err:  # pragma: no cover - depends on the installation
     raise ImportError("estimators.image.colour needs OpenCV; install it with: "
                       "pip install 'soccer-env[pixels]'") from err
 
-__all__ = ["RGB", "ColourTable", "hue_histogram", "back_project", "frame_difference"]
+__all__ = ["RGB", "ColourTable", "hue_histogram", "back_project", "frame_difference", "grey",
+           "difference_image"]
 
 #: A colour ``(r, g, b)``, each 0-255.
 RGB = tuple[int, int, int]
@@ -75,6 +76,27 @@ def frame_difference(prev: np.ndarray, cur: np.ndarray) -> np.ndarray:
     a = cv2.cvtColor(prev, cv2.COLOR_RGB2GRAY) if prev.ndim == 3 else prev
     b = cv2.cvtColor(cur, cv2.COLOR_RGB2GRAY) if cur.ndim == 3 else cur
     return cv2.absdiff(a, b).astype(np.float32) * (1.0 / 255.0)
+
+
+def grey(image: np.ndarray) -> np.ndarray:
+    """The grey levels (uint8) of an RGB uint8 frame, as :func:`frame_difference` takes
+    them (a grey frame is returned as it is)."""
+    return cv2.cvtColor(image, cv2.COLOR_RGB2GRAY) if image.ndim == 3 else image
+
+
+def difference_image(prev: np.ndarray, cur: np.ndarray) -> RegionImage:
+    """:func:`frame_difference` of two grey uint8 frames (:func:`grey`) as a
+    :class:`~estimators.image.meanshift.RegionImage`, computed box by box where the trackers
+    read it (a box's pixels are the whole difference's: it is per pixel)."""
+    if prev.shape != cur.shape or prev.ndim != 2:
+        raise ValueError(f"frames must be grey images of one shape, got {prev.shape} and "
+                         f"{cur.shape}")
+
+    def fill(x0: int, y0: int, x1: int, y1: int) -> np.ndarray:
+        return cv2.absdiff(prev[y0:y1, x0:x1], cur[y0:y1, x0:x1]).astype(np.float32) * (
+            1.0 / 255.0)
+
+    return RegionImage(cur.shape, fill)
 
 
 class ColourTable:

@@ -199,8 +199,12 @@ class _Windows:
     def corner(self, centres: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Top-left pixels of the windows centred (to the nearest pixel) at ``centres``
         ((N, 2)), shifted inside the image."""
-        x0 = np.clip(np.rint(centres[:, 0] - self.cx), 0, self.width - self.w).astype(np.intp)
-        y0 = np.clip(np.rint(centres[:, 1] - self.cy), 0, self.height - self.h).astype(np.intp)
+        # np.minimum(np.maximum(...)) is np.clip without its per-call dtype checks (this
+        # runs for every window of every tracker of every frame).
+        x0 = np.minimum(np.maximum(np.rint(centres[:, 0] - self.cx), 0),
+                        self.width - self.w).astype(np.intp)
+        y0 = np.minimum(np.maximum(np.rint(centres[:, 1] - self.cy), 0),
+                        self.height - self.h).astype(np.intp)
         return x0, y0
 
     def gather(self, flat: np.ndarray, x0: np.ndarray, y0: np.ndarray) -> np.ndarray:
@@ -235,8 +239,8 @@ class _Windows:
             safe = np.where(has_mass, m00, 1.0)
             dx = np.where(has_mass, np.rint(mom[:, 1] / safe - self.ox), 0.0).astype(np.intp)
             dy = np.where(has_mass, np.rint(mom[:, 2] / safe - self.oy), 0.0).astype(np.intp)
-            nx = np.clip(x0[active] + dx, 0, self.width - self.w)
-            ny = np.clip(y0[active] + dy, 0, self.height - self.h)
+            nx = np.minimum(np.maximum(x0[active] + dx, 0), self.width - self.w)
+            ny = np.minimum(np.maximum(y0[active] + dy, 0), self.height - self.h)
             mx, my = nx - x0[active], ny - y0[active]
             iters[active[has_mass]] += 1
             x0[active], y0[active] = nx, ny

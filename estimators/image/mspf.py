@@ -113,16 +113,24 @@ class _WindowParticleFilter:
     def __getstate__(self) -> dict:
         # The region image of the latest update is of no use after it (and holds the
         # look-up that computes it): copies and pickles leave it out.
-        return {**self.__dict__, "_source": None}
+        return {**self.__dict__, "_source": None, "_motion_source": None}
 
     def _images(self, colour_image, motion_image):
         # A RegionImage is read only where it has been computed: the callers ask for the
         # regions first (see _reach).
         self._source = colour_image if isinstance(colour_image, RegionImage) else None
+        self._motion_source = (motion_image if isinstance(motion_image, RegionImage)
+                               else None)
         colour = (colour_image.array if self._source is not None
                   else _image("colour_image", colour_image))
-        motion = None if motion_image is None else _image("motion_image", motion_image,
-                                                          colour.shape)
+        if self._motion_source is not None:
+            if self._motion_source.shape != colour.shape:
+                raise ValueError(f"motion_image must have shape {colour.shape}, got "
+                                 f"{self._motion_source.shape}")
+            motion = self._motion_source.array
+        else:
+            motion = None if motion_image is None else _image("motion_image", motion_image,
+                                                              colour.shape)
         if self._win is None or (self._win.height, self._win.width) != colour.shape:
             self._win = self._make_windows(colour.shape)
         return colour, motion
@@ -131,15 +139,19 @@ class _WindowParticleFilter:
         return _Windows(*self.window_size, shape)
 
     def _reach(self, x0: np.ndarray, y0: np.ndarray, steps: int) -> None:
-        """Have a :class:`RegionImage` colour image computed wherever windows with top-left
-        pixels ``x0, y0`` can read within ``steps`` mean-shift steps: a step moves a window to
-        its centroid, at most ``w // 2 + 1`` pixels across (``h // 2 + 1`` down)."""
-        if self._source is None:
+        """Have :class:`RegionImage` colour and motion images computed wherever windows with
+        top-left pixels ``x0, y0`` can read within ``steps`` mean-shift steps: a step moves a
+        window to its centroid, at most ``w // 2 + 1`` pixels across (``h // 2 + 1``
+        down)."""
+        if self._source is None and self._motion_source is None:
             return
         w, h = self.window_size
         ax, ay = steps * (w // 2 + 1), steps * (h // 2 + 1)
-        self._source.ensure(float(x0.min()) - ax, float(y0.min()) - ay,
-                            float(x0.max()) + w + ax, float(y0.max()) + h + ay)
+        box = (float(x0.min()) - ax, float(y0.min()) - ay, float(x0.max()) + w + ax,
+               float(y0.max()) + h + ay)
+        for source in (self._source, self._motion_source):
+            if source is not None:
+                source.ensure(*box)
 
     def _flats(self, colour: np.ndarray, motion: np.ndarray | None
                ) -> list[tuple[np.ndarray, float]]:
@@ -161,8 +173,9 @@ class _WindowParticleFilter:
         self.particles[:, 2:] += w
         self.particles[:, :2] += self.particles[:, 2:]
         h, wd = self._win.height, self._win.width
-        np.clip(self.particles[:, 0], 0.0, wd - 1.0, out=self.particles[:, 0])
-        np.clip(self.particles[:, 1], 0.0, h - 1.0, out=self.particles[:, 1])
+        xy = self.particles[:, :2]
+        np.maximum(xy, 0.0, out=xy)  # np.clip without its per-call checks
+        np.minimum(xy, (wd - 1.0, h - 1.0), out=xy)
 
     def _log_likelihood(self, combined_mass: np.ndarray) -> np.ndarray:
         """``log w = -Dis^2 / (2 sigma^2)``, ``Dis^2 = 1 - M / M_t``."""

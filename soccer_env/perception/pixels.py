@@ -85,7 +85,7 @@ class OverheadPixelDetector:
     """
 
     def __init__(self, camera: OverheadImageCamera, spec: VisionSpec) -> None:
-        from estimators.image.colour import ColourTable, frame_difference
+        from estimators.image.colour import ColourTable, difference_image, grey
         from soccer_env.sensors.images.patterns import PATTERN, PATTERN_IDS
 
         #: Every camera's renderer (its calibration), in camera order.
@@ -94,7 +94,7 @@ class OverheadPixelDetector:
         self.robot_specs = list(camera.robot_specs)
         self.n_robots = len(self.robot_specs)
         self.table = ColourTable(OVERHEAD_CLASSES, aliases=CLASS_ALIASES)
-        self._difference = frame_difference
+        self._difference, self._grey = difference_image, grey
         # Window sizes in each camera's pixels (the quadrant cameras of one field are alike).
         self._windows = []
         for r in self.renderers:
@@ -155,9 +155,10 @@ class OverheadPixelDetector:
         x0, x1, y0, y1 = r.region
         mpp, robot_window, ball_window, radius_px = self._windows[cam]
         table = self.table
-        prev = self._prev_image[cam]
-        motion = None if prev is None else self._difference(prev, image)
-        self._prev_image[cam] = image
+        # The frame difference (grey levels), computed where the trackers read it.
+        prev, cur = self._prev_image[cam], self._grey(image)
+        motion = None if prev is None else self._difference(prev, cur)
+        self._prev_image[cam] = cur
         # The class probabilities, looked up only where the trackers and the heading read
         # them (the same pixels as a look-up of the whole image).
         colours = {c: table.region_image(image, c) for c in ("blue", "yellow", "orange")}

@@ -153,10 +153,10 @@ def test_bad_arguments_raise_value_error_naming_them(call, name):
 
 @pytest.mark.parametrize("cls", [MeanShiftParticleFilter, ParticleFilterTracker])
 def test_region_images_give_the_whole_images_results_bit_for_bit(cls):
-    """A RegionImage, computed only where the tracker asks (its windows widened by the
-    longest way mean shift can take them; everything for a global search), gives the tracks
-    of the whole images exactly, through manoeuvres, a lost track and its global search; the
-    mean-shift filter computes a small part of each image."""
+    """Region images of the colour and the motion, computed only where the tracker asks (its
+    windows widened by the longest way mean shift can take them; everything for a global
+    search), give the tracks of the whole images exactly, through manoeuvres, a lost track
+    and its global search; the mean-shift filter computes a small part of each image."""
     from estimators.image.meanshift import RegionImage
 
     rng = np.random.default_rng(4)
@@ -175,7 +175,9 @@ def test_region_images_give_the_whole_images_results_bit_for_bit(cls):
         for c, m in zip(frames, motion):
             if lazy:
                 img = RegionImage(c.shape, lambda x0, y0, x1, y1, c=c: c[y0:y1, x0:x1])
-                out.append(f.update(img, m).tolist())
+                lazy_m = None if m is None else RegionImage(
+                    m.shape, lambda x0, y0, x1, y1, m=m: m[y0:y1, x0:x1])
+                out.append(f.update(img, lazy_m).tolist())
                 computed.append(sum((x1 - x0) * (y1 - y0)
                                     for x0, y0, x1, y1 in img._boxes) / c.size)
             else:

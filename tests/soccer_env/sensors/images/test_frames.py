@@ -7,7 +7,14 @@ import pytest
 
 pytest.importorskip("cv2", reason="rendered frames need the 'pixels' extra (OpenCV)")
 
-from estimators.image.colour import ColourTable, back_project, frame_difference, hue_histogram
+from estimators.image.colour import (
+    ColourTable,
+    back_project,
+    difference_image,
+    frame_difference,
+    grey,
+    hue_histogram,
+)
 from soccer_env import presets
 from soccer_env.presets.images import (
     CLASS_ALIASES,
@@ -406,6 +413,50 @@ def test_frame_difference():
         u, v = (int(c) for c in r.to_pixel(x, 0.0))
         assert d[v, u] > 0.1
     assert d[:100].max() == 0.0
+
+
+def test_difference_image_by_regions_is_the_frame_difference():
+    r = zoom_renderer()
+    a = r.render(world([FAR], ball=(CX, 0.0, 0, 0, 0, 0)))
+    b = r.render(world([FAR], ball=(CX + 0.05, 0.0, 0, 0, 0, 0)))
+    whole = frame_difference(a, b)
+    lazy = difference_image(grey(a), grey(b))
+    for box in ((0, 0, 50, 40), (100, 80, 300, 200), (-5, -5, 10_000, 10_000)):
+        lazy.ensure(*box)
+        x0, y0 = max(0, box[0]), max(0, box[1])
+        np.testing.assert_array_equal(lazy.array[y0:box[3], x0:box[2]],
+                                      whole[y0:box[3], x0:box[2]])
+    with pytest.raises(ValueError, match="grey"):
+        difference_image(a, b)
+
+
+@pytest.mark.parametrize("lighting", [False, True])
+def test_photometry_saturates_as_opencv_does(lighting):
+    """Lighting and noise added in 16 bits and saturated to 0..255 once, exactly what
+    OpenCV's saturating add into 8 bits gives (dark and bright pixels included)."""
+    import cv2
+
+    from soccer_env.sensors.images.common import _Photometry
+
+    photo = _Photometry(64, 48, 0.2 if lighting else 0.0, 0.3 if lighting else 0.0, 6.0)
+    img = np.random.default_rng(0).integers(0, 256, (48, 64, 3), dtype=np.uint8)
+    img[:8], img[-8:] = 0, 255
+    for seed in range(5):
+        got = photo.apply(img, np.random.default_rng(seed))
+        rng = np.random.default_rng(seed)  # the same draws, the former OpenCV formula
+        z = float(rng.standard_normal())
+        a_u, phi_u = rng.random(2).tolist()
+        oy, ox = rng.integers(0, (49, 65)).tolist()
+        out = img
+        if lighting:
+            gain = min(2.0, max(0.3, 1.0 + 0.2 * z))
+            gx = gain * 0.3 * a_u * math.cos(2 * math.pi * phi_u)
+            gy = gain * 0.3 * a_u * math.sin(2 * math.pi * phi_u)
+            ramp = (gain + gx * photo._xn)[None, :] + (gy * photo._yn)[:, None]
+            out = cv2.multiply(img, cv2.merge([ramp, ramp, ramp]), dtype=cv2.CV_16S)
+        expected = cv2.add(out, photo._bank[oy:oy + 48, ox:ox + 64], dtype=cv2.CV_8U)
+        assert got.dtype == np.uint8
+        np.testing.assert_array_equal(got, expected)
 
 
 # ------------------------------------------------------------------------------ validation
