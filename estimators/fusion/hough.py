@@ -284,24 +284,31 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
         t_now = float(st.max()) if now is None else float(now)
         if not math.isfinite(t_now):
             raise ValueError(f"now must be finite, got {now!r}")
-        p = p + np.outer(t_now - st, v)  # each line moved with the target since its stamp
+        return fuse_lines(p.tolist(), psi.tolist(), r.tolist(), power, bearing_sigma,
+                          range_sigma_rel, min_angle, st.tolist(), t_now,
+                          (float(v[0]), float(v[1])))
     return fuse_lines(p.tolist(), psi.tolist(), r.tolist(), power, bearing_sigma,
                       range_sigma_rel, min_angle)
 
 
 def fuse_lines(P: list[list[float]], angles: list[float], R: list[float], power: float,
-               bearing_sigma: float, range_sigma_rel: float, min_angle: float
-               ) -> FusedSighting:
-    """Steps 2 to 5 of :func:`fuse_sightings` without its checks, on plain lists, for
-    callers with validated data (a pipeline's own sighting lines, already moved to a common
-    time): ``P`` the origins ``[x, y]`` [m], ``angles`` [rad], ``R`` the ranges [m] (NaN:
-    bearing only), ``power`` the weighting's (``K = 1 / L^power``).
+               bearing_sigma: float, range_sigma_rel: float, min_angle: float,
+               stamps: list[float] | None = None, now: float = 0.0,
+               velocity: tuple[float, float] | None = None) -> FusedSighting:
+    """Steps 1 to 5 of :func:`fuse_sightings` without its checks, on plain lists, for
+    callers with validated data (a pipeline's own sighting lines): ``P`` the origins
+    ``[x, y]`` [m], ``angles`` [rad], ``R`` the ranges [m] (NaN: bearing only, else > 0),
+    ``power`` the weighting's (``K = 1 / L^power``); with ``stamps`` [s] and ``velocity``
+    ``(vx, vy)`` [m/s], every origin is first moved by ``velocity (now - stamp)``.
 
     Raises:
         ValueError: no position (see :func:`fuse_sightings`).
     """
     # Plain floats: a handful of lines, where numpy's per-call overhead would cost several
     # times the arithmetic (this runs at every camera frame of every robot).
+    if stamps is not None and velocity is not None:
+        vx, vy = velocity  # each line moved with the target since its stamp
+        P = [[x + (now - t) * vx, y + (now - t) * vy] for (x, y), t in zip(P, stamps)]
     n = len(P)
     ux = [math.cos(a) for a in angles]
     uy = [math.sin(a) for a in angles]

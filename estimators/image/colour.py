@@ -73,8 +73,11 @@ def frame_difference(prev: np.ndarray, cur: np.ndarray) -> np.ndarray:
     (paper 003's motion image)."""
     if prev.shape != cur.shape:
         raise ValueError(f"frames must have the same shape, got {prev.shape} and {cur.shape}")
-    a = cv2.cvtColor(prev, cv2.COLOR_RGB2GRAY) if prev.ndim == 3 else prev
-    b = cv2.cvtColor(cur, cv2.COLOR_RGB2GRAY) if cur.ndim == 3 else cur
+    return _difference(grey(prev), grey(cur))
+
+
+def _difference(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``|a - b| / 255`` of grey uint8 images, float32."""
     return cv2.absdiff(a, b).astype(np.float32) * (1.0 / 255.0)
 
 
@@ -93,10 +96,24 @@ def difference_image(prev: np.ndarray, cur: np.ndarray) -> RegionImage:
                          f"{cur.shape}")
 
     def fill(x0: int, y0: int, x1: int, y1: int) -> np.ndarray:
-        return cv2.absdiff(prev[y0:y1, x0:x1], cur[y0:y1, x0:x1]).astype(np.float32) * (
-            1.0 / 255.0)
+        return _difference(prev[y0:y1, x0:x1], cur[y0:y1, x0:x1])
 
     return RegionImage(cur.shape, fill)
+
+
+def _rgb(image: np.ndarray) -> np.ndarray:
+    """``image``, checked to be an ``(H, W, 3)`` uint8 RGB array."""
+    if image.ndim != 3 or image.shape[2] != 3 or image.dtype != np.uint8:
+        raise ValueError(f"image must be an (H, W, 3) uint8 RGB array, got {image.shape} "
+                         f"{image.dtype}")
+    return image
+
+
+def _look_up(image: np.ndarray, hist: np.ndarray) -> np.ndarray:
+    """The class probabilities of an RGB uint8 image from a quantised RGB table ``hist``
+    (0-255): float32 in [0, 1]."""
+    bp = cv2.calcBackProject([image], [0, 1, 2], hist, [0, 256, 0, 256, 0, 256], scale=1)
+    return bp.astype(np.float32) * (1.0 / 255.0)
 
 
 class ColourTable:
@@ -183,29 +200,17 @@ class ColourTable:
     def probability(self, image: np.ndarray, cls: str) -> np.ndarray:
         """Probability image of class ``cls`` (``"ball"`` means ``"orange"``) for an RGB uint8
         image: float32 ``(H, W)`` in [0, 1] (paper 003's colour image)."""
-        k = self._index(cls)
-        if image.ndim != 3 or image.shape[2] != 3 or image.dtype != np.uint8:
-            raise ValueError(f"image must be an (H, W, 3) uint8 RGB array, got {image.shape} "
-                             f"{image.dtype}")
-        bp = cv2.calcBackProject([image], [0, 1, 2], self._hists[k], [0, 256, 0, 256, 0, 256],
-                                 scale=1)
-        return bp.astype(np.float32) * (1.0 / 255.0)
+        return _look_up(_rgb(image), self._hists[self._index(cls)])
 
     def region_image(self, image: np.ndarray, cls: str) -> RegionImage:
         """:meth:`probability` of ``image`` as a :class:`~estimators.image.meanshift.
         RegionImage`: computed box by box where the trackers read it (a box's pixels are
         the whole image's: the look-up is per pixel)."""
-        k = self._index(cls)
-        if image.ndim != 3 or image.shape[2] != 3 or image.dtype != np.uint8:
-            raise ValueError(f"image must be an (H, W, 3) uint8 RGB array, got {image.shape} "
-                             f"{image.dtype}")
-        hist = self._hists[k]
+        hist = self._hists[self._index(cls)]
+        image = _rgb(image)
 
         def fill(x0: int, y0: int, x1: int, y1: int) -> np.ndarray:
-            crop = np.ascontiguousarray(image[y0:y1, x0:x1])
-            bp = cv2.calcBackProject([crop], [0, 1, 2], hist, [0, 256, 0, 256, 0, 256],
-                                     scale=1)
-            return bp.astype(np.float32) * (1.0 / 255.0)
+            return _look_up(np.ascontiguousarray(image[y0:y1, x0:x1]), hist)
 
         return RegionImage(image.shape[:2], fill)
 

@@ -48,7 +48,7 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -107,10 +107,10 @@ def _kld_table(epsilon: float, delta: float, max_particles: int) -> list[float]:
 _BIN_PACK = np.array([1 << 42, 1 << 21, 1], dtype=np.int64)
 
 
-class LandmarkTable:
-    """Landmark positions by kind [m], validated once, with the layout of the candidates of a
-    sequence of observed kinds cached (a robot sees the same few combinations of kinds again
-    and again), for :meth:`KLDLocalizer.update_kinds`.
+class LandmarkTable(Mapping[str, np.ndarray]):
+    """Landmark positions by kind [m] (a read-only mapping), validated once, with the layout
+    of the candidates of a sequence of observed kinds cached (a robot sees the same few
+    combinations of kinds again and again), for :meth:`KLDLocalizer.update_kinds`.
 
     Args:
         table: kind -> ``(M_k, 2)`` positions of the landmarks of that kind [m] (one or more
@@ -132,10 +132,7 @@ class LandmarkTable:
     def __getitem__(self, kind: str) -> np.ndarray:
         return self.positions[kind]
 
-    def __contains__(self, kind: object) -> bool:
-        return kind in self.positions
-
-    def __iter__(self):
+    def __iter__(self) -> Iterator[str]:
         return iter(self.positions)
 
     def __len__(self) -> int:
@@ -157,10 +154,9 @@ class LandmarkTable:
             cands = [self.positions[k] for k in kinds]
             counts = np.array([len(c) for c in cands])
             width = int(counts.max())
-            starts = np.concatenate(([0], np.cumsum(counts)[:-1]))
-            gather = (starts[:, None] + np.arange(width)[None, :]) * (
-                np.arange(width)[None, :] < counts[:, None]) + starts[:, None] * (
-                np.arange(width)[None, :] >= counts[:, None])
+            starts = (np.cumsum(counts) - counts)[:, None]
+            j = np.arange(width)[None, :]
+            gather = np.where(j < counts[:, None], starts + j, starts)
             L = np.concatenate(cands)
             lay = (np.ascontiguousarray(L[:, 0]), np.ascontiguousarray(L[:, 1]), counts,
                    gather.reshape(-1))

@@ -307,34 +307,27 @@ class Brain:
                 speed = math.hypot(*velocity)
                 if speed > _MAX_BALL_SPEED:  # never move lines by an impossible motion
                     velocity = velocity * (_MAX_BALL_SPEED / speed)
-        # Each line moved with the ball since its stamp (as fuse_sightings does), in plain
-        # floats: a handful of lines.
-        if velocity is None:
-            origins = [list(ln.origin) for ln in lines]
-        else:
-            vx, vy = float(velocity[0]), float(velocity[1])
-            origins = [[ln.origin[0] + (t - ln.stamp) * vx, ln.origin[1] + (t - ln.stamp) * vy]
-                       for ln in lines]
         ranges = [ln.range for ln in lines]
         known = [r for r in ranges if math.isfinite(r)]
-        if (min(known, default=1.0) <= 0.0 or not all(map(math.isfinite, sum(origins, [])))
-                or not all(math.isfinite(ln.angle) for ln in lines)):
-            return  # no position from a degenerate line
+        if min(known, default=1.0) <= 0.0:
+            return  # a sighting at the camera's foot: no line to weigh
         p = self.p
         rel = max(0.05, p.range_per_metre * (max(known) if known else 1.0))
         try:
-            fused = fuse_lines(origins, [ln.angle for ln in lines], ranges, self.power,
-                               p.bearing_sigma, rel, MIN_CROSSING_ANGLE)
+            fused = fuse_lines(
+                [list(ln.origin) for ln in lines], [ln.angle for ln in lines], ranges,
+                self.power, p.bearing_sigma, rel, MIN_CROSSING_ANGLE,
+                [ln.stamp for ln in lines], t,
+                None if velocity is None else (float(velocity[0]), float(velocity[1])))
         except ValueError:  # bearings only, no crossing: no position
             return
         point = fused.point
-        x0, x1, y0, y1 = p.bounds
-        if not (np.isfinite(point).all() and x0 <= point[0] <= x1 and y0 <= point[1] <= y1):
-            return  # no ball can be there (outside the walls)
+        # (fuse_lines builds an exactly symmetric covariance, as the tracker takes it.)
         cov = fused.cov + _MIN_SIGMA**2 * np.eye(2)
-        cov = 0.5 * (cov + cov.T)  # exactly symmetric, as the tracker takes it
-        if not np.isfinite(cov).all():
-            return
+        x0, x1, y0, y1 = p.bounds
+        if not (np.isfinite(point).all() and np.isfinite(cov).all()
+                and x0 <= point[0] <= x1 and y0 <= point[1] <= y1):
+            return  # no ball can be there (outside the walls), or a degenerate fusion
         if self.tracker is not None:
             self.tracker.update_fused(t, point, cov)
         self.points.append((t, float(point[0]), float(point[1])))

@@ -269,9 +269,14 @@ def test_fuse_lines_is_fuse_sightings_without_the_checks():
                 fuse_lines(moved.tolist(), angles.tolist(), ranges.tolist(),
                            FUSION_WEIGHTINGS[weighting], 0.02, 0.07, math.radians(5.0))
             continue
-        moved = origins + np.outer(0.1 - stamps, velocity)
-        got = fuse_lines(moved.tolist(), angles.tolist(), ranges.tolist(),
-                         FUSION_WEIGHTINGS[weighting], 0.02, 0.07, math.radians(5.0))
+        if trial % 2:  # moved by the caller, or by fuse_lines
+            moved = origins + np.outer(0.1 - stamps, velocity)
+            got = fuse_lines(moved.tolist(), angles.tolist(), ranges.tolist(),
+                             FUSION_WEIGHTINGS[weighting], 0.02, 0.07, math.radians(5.0))
+        else:
+            got = fuse_lines(origins.tolist(), angles.tolist(), ranges.tolist(),
+                             FUSION_WEIGHTINGS[weighting], 0.02, 0.07, math.radians(5.0),
+                             stamps.tolist(), 0.1, tuple(velocity.tolist()))
         np.testing.assert_array_equal(got.point, ref.point)
         np.testing.assert_array_equal(got.cov, ref.cov)
         assert (got.n_lines, got.fused, got.sigma) == (ref.n_lines, ref.fused, ref.sigma)
