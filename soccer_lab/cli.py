@@ -90,7 +90,7 @@ def _cmd_paper(argv: list[str]) -> int:
     p.add_argument("--out", default="paper_output", help="output folder")
     p.add_argument("--episodes", type=int, default=200, help="ekf: open-loop episodes")
     p.add_argument("--shots", type=int, default=1000, help="ekf: closed-loop shots per cell")
-    p.add_argument("--runs", type=int, default=200, help="ungm: simulated runs")
+    p.add_argument("--runs", type=int, default=1000, help="ungm: simulated runs")
     p.add_argument("--particles", type=int, default=100, help="ungm: particles")
     p.add_argument("--trials", type=int, default=20,
                    help="hough: noise draws per ball position")

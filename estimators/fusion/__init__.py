@@ -1,23 +1,36 @@
 """Geometric fusion of sightings (paper 000, Xu, Xie, Wang, Ni 2012).
 
 * :mod:`~estimators.fusion.hough`: Hough-space fusion of several robots' sighting lines of one
-  target (:func:`hough_fuse`, :func:`fusion_weights`), and of a team's timestamped sightings
+  target (:func:`hough_fuse`, :func:`fusion_weights`, :func:`line_offset_variance` for the
+  inverse-variance weighting), and of a team's timestamped sightings
   with an error covariance for a tracker (:func:`fuse_sightings`, and :func:`fuse_lines`
   without its checks);
 * :mod:`~estimators.fusion.triangulation`: a robot's pose from the bearings of three known
-  landmarks (:func:`triangulate`).
+  landmarks (:func:`triangulate`), and pose hypotheses from sightings of landmarks known by
+  kind only, gathered over several frames (:func:`triangulate_sightings`,
+  :class:`SightingMemory`).
 """
 
 from .hough import (
     FUSION_WEIGHTINGS,
+    INVERSE_VARIANCE,
+    WEIGHTING_NAMES,
     FusedSighting,
     fuse_lines,
     fuse_sightings,
     fusion_weights,
     hough_fuse,
     hough_lines,
+    line_offset_variance,
 )
-from .triangulation import Fix, triangulate
+from .triangulation import (
+    SEED_FAILURES,
+    Fix,
+    PoseHypotheses,
+    SightingMemory,
+    triangulate,
+    triangulate_sightings,
+)
 
 __all__ = [
     "hough_lines",
@@ -25,8 +38,15 @@ __all__ = [
     "fusion_weights",
     "fuse_sightings",
     "fuse_lines",
+    "line_offset_variance",
     "FusedSighting",
     "FUSION_WEIGHTINGS",
+    "INVERSE_VARIANCE",
+    "WEIGHTING_NAMES",
     "Fix",
+    "PoseHypotheses",
+    "SightingMemory",
+    "SEED_FAILURES",
+    "triangulate_sightings",
     "triangulate",
 ]

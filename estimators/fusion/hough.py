@@ -21,6 +21,40 @@ of the 2 x 2 normal equations
 ``c = cos(theta_i)``, ``s = sin(theta_i)``. Positions in metres (any unit works), angles in
 radians. Closed form, written out here because it is three sums and a 2 x 2 solve.
 
+**Which weights are right: inverse variance of each line's offset.** Write line ``i`` as
+``n_i . x = rho_i`` (``n_i`` its unit normal) and let ``e_i = rho_i - n_i . b`` be its signed
+perpendicular offset at the true target ``b``. The weighted least-squares point is
+``x = M^-1 sum K n rho`` with ``M = sum K n n^T``, so (to first order in the errors, the
+normals' own errors moving the point only at second order) ``x - b = M^-1 sum K_i n_i e_i``
+and, for independent zero-mean offsets of variance ``s_i^2``,
+
+    Cov(x) = M^-1 (sum K_i^2 s_i^2 n_i n_i^T) M^-1,
+
+which the Gauss-Markov theorem minimises (in the positive semi-definite order) with
+``K_i = 1 / s_i^2``, giving ``Cov(x) = (sum n n^T / s^2)^-1``; any common factor of the
+weights cancels. A robot that believes it stands at ``p + dp`` (``dp`` its position error,
+``sigma_p`` per axis), and sees the target at distance ``D`` along the direction
+``psi + db + dh`` (``db`` the sighting's bearing error, ``sigma_b``; ``dh`` its heading error,
+``sigma_h``), draws a line whose offset at the target is, to first order,
+``e = -(D (db + dh) + n . dp)``, so
+
+    s^2 = D^2 (sigma_b^2 + sigma_h^2) + sigma_p^2                          [m^2]
+
+(bearing and heading errors turn the line about the robot, moving it by ``D`` times the
+angle; a position error shifts it by its component along the normal). The weight
+``K = 1 / s^2`` (``"inverse_variance"``, :func:`line_offset_variance`) is therefore
+
+* equal weights when only positions err (``sigma_b = sigma_h = 0``; also when each robot's
+  estimate of the target has isotropic noise of ``sigma`` per axis, whose component across
+  the line is the offset: ``s = sigma``),
+* ``1 / D^2`` (``"inverse_square"``) when only angles err (pose position exact),
+* in between otherwise, and never ``1 / D`` exactly (the paper's weighting is optimal only
+  for an offset variance growing like ``D``, which none of these errors gives).
+
+A range error lies along the line and does not move it. ``D`` is the distance from the
+robot to the target, which the fusion knows only through an estimate: :func:`fuse_sightings`
+takes it at a first fused point (weights ``1 / L``) and fuses again.
+
 :func:`fuse_sightings` wraps this for a team's timestamped sightings (some with an estimated
 range, some bearing-only), moves them to a common time with a velocity estimate, falls back
 to the ranged point estimates when the lines do not cross well, and estimates the fused
@@ -38,7 +72,8 @@ import numpy as np
 from ..registry import Registry
 
 __all__ = ["hough_lines", "hough_fuse", "fusion_weights", "fuse_sightings", "fuse_lines",
-           "FusedSighting", "FUSION_WEIGHTINGS", "MIN_CROSSING_ANGLE"]
+           "line_offset_variance", "FusedSighting", "FUSION_WEIGHTINGS", "INVERSE_VARIANCE",
+           "WEIGHTING_NAMES", "MIN_CROSSING_ANGLE"]
 
 #: Weightings of :func:`fusion_weights` and :func:`fuse_sightings` by name: the power ``p`` of
 #: the distance in ``K_i = 1 / L_i^p``.
@@ -53,6 +88,16 @@ FUSION_WEIGHTINGS: Registry[int] = Registry("fusion weighting", [
      "weights 1 / distance^2: near sightings dominate, as a bearing error's effect grows "
      "with the distance"),
 ])
+
+#: The weighting that is not a power of the distance: ``K_i = 1 / s_i^2``, the inverse
+#: variance of line ``i``'s perpendicular offset at the fused point,
+#: ``s_i^2 = D_i^2 (bearing_sigma^2 + heading_sigma^2) + position_sigma^2`` (module
+#: docstring). It needs the observers' error model, so it is accepted by
+#: :func:`fusion_weights`, :func:`fuse_sightings` and (``pose_sigmas``) :func:`fuse_lines`,
+#: but is not one of the distance powers of :data:`FUSION_WEIGHTINGS`.
+INVERSE_VARIANCE = "inverse_variance"
+#: Every weighting name :func:`fusion_weights` and :func:`fuse_sightings` accept.
+WEIGHTING_NAMES: tuple[str, ...] = (*FUSION_WEIGHTINGS, INVERSE_VARIANCE)
 
 #: The shallowest crossing at which :func:`fuse_sightings` intersects lines by default [rad].
 MIN_CROSSING_ANGLE = math.radians(5.0)
@@ -102,18 +147,72 @@ def hough_lines(origins: np.ndarray | Sequence[Sequence[float]],
     return theta, rho
 
 
-def fusion_weights(distances: np.ndarray | Sequence[float], weighting: str = "inverse"
-                   ) -> np.ndarray:
+def _check_sigma(name: str, value: float) -> float:
+    """``value`` as a float if it is finite and >= 0, else ``ValueError`` naming ``name``."""
+    v = float(value)
+    if not (math.isfinite(v) and v >= 0.0):
+        raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
+    return v
+
+
+def line_offset_variance(distances: np.ndarray | Sequence[float], bearing_sigma: float,
+                         position_sigma: float = 0.0, heading_sigma: float = 0.0
+                         ) -> np.ndarray:
+    """The variance [m^2] of each sighting line's perpendicular offset at the target,
+    ``s_i^2 = D_i^2 (bearing_sigma^2 + heading_sigma^2) + position_sigma^2`` (first order;
+    derivation in the module docstring).
+
+    Args:
+        distances: ``(n,)`` distances ``D_i`` [m] from each robot to the target, > 0.
+        bearing_sigma: standard deviation of a sighting's bearing [rad], >= 0.
+        position_sigma: standard deviation of an observer's position, per axis [m], >= 0.
+        heading_sigma: standard deviation of an observer's heading [rad], >= 0.
+
+    Raises:
+        ValueError: bad distances, a negative or non-finite sigma, or all three sigmas zero
+            (no error: every variance 0 and the weights undefined).
+    """
+    L = np.asarray(distances, dtype=np.float64)
+    if L.ndim != 1 or not np.isfinite(L).all() or (L <= 0.0).any():
+        raise ValueError(f"distances must be a 1-d array of positive finite numbers, got {L}")
+    sb = _check_sigma("bearing_sigma", bearing_sigma)
+    sp = _check_sigma("position_sigma", position_sigma)
+    sh = _check_sigma("heading_sigma", heading_sigma)
+    if sb == 0.0 and sp == 0.0 and sh == 0.0:
+        raise ValueError("bearing_sigma, position_sigma and heading_sigma are all 0: at least "
+                         "one must be > 0")
+    return L * L * (sb * sb + sh * sh) + sp * sp
+
+
+def fusion_weights(distances: np.ndarray | Sequence[float], weighting: str = "inverse", *,
+                   bearing_sigma: float | None = None, position_sigma: float = 0.0,
+                   heading_sigma: float = 0.0) -> np.ndarray:
     """``K_i = 1 / L_i^p`` for the distances ``L_i`` [m] from each robot to the target, with
     ``p`` = 0, 1, 2 for ``weighting`` ``"equal"``, ``"inverse"`` (the paper's weighted
-    fusion), ``"inverse_square"`` (the names and powers of :data:`FUSION_WEIGHTINGS`)."""
+    fusion), ``"inverse_square"`` (the names and powers of :data:`FUSION_WEIGHTINGS`); or,
+    for ``"inverse_variance"``, ``K_i = 1 / s_i^2`` [1/m^2] with ``s_i^2`` the
+    :func:`line_offset_variance` of the sigmas (``bearing_sigma`` [rad] required,
+    ``position_sigma`` [m], ``heading_sigma`` [rad]), which apply to that weighting only."""
+    if weighting == INVERSE_VARIANCE:
+        if bearing_sigma is None:
+            raise ValueError("weighting 'inverse_variance' needs bearing_sigma (>= 0, rad)")
+        return 1.0 / line_offset_variance(distances, bearing_sigma, position_sigma,
+                                          heading_sigma)
     power = FUSION_WEIGHTINGS.get(weighting)
     if power is None:
-        FUSION_WEIGHTINGS.check(weighting, "weighting")  # raises, naming the options
+        _unknown_weighting(weighting)
+    if bearing_sigma is not None or position_sigma != 0.0 or heading_sigma != 0.0:
+        raise ValueError(f"bearing_sigma, position_sigma and heading_sigma apply to weighting "
+                         f"'inverse_variance' only, not {weighting!r}")
     L = np.asarray(distances, dtype=np.float64)
     if L.ndim != 1 or not np.isfinite(L).all() or (L <= 0.0).any():
         raise ValueError(f"distances must be a 1-d array of positive finite numbers, got {L}")
     return L ** -float(power)
+
+
+def _unknown_weighting(weighting: object) -> None:
+    """Raise ``ValueError`` naming every weighting of :data:`WEIGHTING_NAMES`."""
+    raise ValueError(f"weighting must be one of {list(WEIGHTING_NAMES)}, got {weighting!r}")
 
 
 def hough_fuse(origins: np.ndarray | Sequence[Sequence[float]],
@@ -207,7 +306,9 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
                    weighting: str = "inverse", *,
                    bearing_sigma: float = math.radians(3.0),
                    range_sigma_rel: float = 0.1,
-                   min_angle: float = MIN_CROSSING_ANGLE) -> FusedSighting:
+                   min_angle: float = MIN_CROSSING_ANGLE,
+                   position_sigma: float = 0.0,
+                   heading_sigma: float = 0.0) -> FusedSighting:
     """Fuse a team's sightings of one target (the ball).
 
     Robot ``i`` at ``origins[i]`` saw the target along the field-frame direction ``angles[i]``
@@ -230,12 +331,22 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
        ``max(1, chi^2 / (n - 2))`` when ``n >= 3`` lines disagree more than that
        (``chi^2 = sum e_i^2 / (bearing_sigma D_i)^2``, ``e_i`` the perpendicular residuals:
        poses worse than the model says).
+
+       With ``weighting="inverse_variance"`` the lines are first fused with ``1 / L`` weights
+       (as ``"inverse"``), then fused again with ``K_i = 1 / s_i^2``,
+       ``s_i^2 = D_i^2 (bearing_sigma^2 + heading_sigma^2) + position_sigma^2`` at that first
+       point (:func:`line_offset_variance`; ``position_sigma`` [m] per axis and
+       ``heading_sigma`` [rad] the observers' pose errors), and ``s_i`` replaces
+       ``bearing_sigma * D_i`` in the error model (the covariance is then ``M^-1``, times the
+       same ``chi^2`` factor). ``position_sigma`` and ``heading_sigma`` apply to this
+       weighting only.
     4. *Otherwise* (one line, or lines crossing at a shallower angle) the weighted mean
        ``sum K q / sum K`` of the point estimates ``q_i = origin_i + range_i (cos, sin)`` of
        the sightings that have a range, each with covariance
        ``range_i^2 (range_sigma_rel^2 u u^T + bearing_sigma^2 u_perp u_perp^T)`` (``u`` the
        line's direction), so ``cov = sum (K / sum K)^2 cov_i``, multiplied by
-       ``max(1, chi^2 / (2 (m - 1)))`` when ``m >= 2`` points disagree more than that.
+       ``max(1, chi^2 / (2 (m - 1)))`` when ``m >= 2`` points disagree more than that
+       (``"inverse_variance"`` weights these points as ``"inverse"``).
     5. With no range either, lines that cross at a shallow angle but do cross are still
        fused (their covariance is then long along the lines).
 
@@ -266,9 +377,18 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
     known = np.isfinite(r)
     if (r[known] <= 0.0).any():
         raise ValueError(f"ranges must be > 0 (or NaN for bearing only), got {ranges!r}")
-    power = FUSION_WEIGHTINGS.get(weighting)
-    if power is None:
-        FUSION_WEIGHTINGS.check(weighting, "weighting")  # raises, naming the options
+    pose_sigmas: tuple[float, float] | None = None
+    if weighting == INVERSE_VARIANCE:
+        power = 1  # the first pass, and the ranged points' fallback
+        pose_sigmas = (_check_sigma("position_sigma", position_sigma),
+                       _check_sigma("heading_sigma", heading_sigma))
+    else:
+        power = FUSION_WEIGHTINGS.get(weighting)
+        if power is None:
+            _unknown_weighting(weighting)
+        if position_sigma != 0.0 or heading_sigma != 0.0:
+            raise ValueError(f"position_sigma and heading_sigma apply to weighting "
+                             f"'inverse_variance' only, not {weighting!r}")
     for name, value in (("bearing_sigma", bearing_sigma), ("range_sigma_rel", range_sigma_rel)):
         if not (math.isfinite(value) and value > 0.0):
             raise ValueError(f"{name} must be finite and > 0, got {value!r}")
@@ -286,20 +406,25 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
             raise ValueError(f"now must be finite, got {now!r}")
         return fuse_lines(p.tolist(), psi.tolist(), r.tolist(), power, bearing_sigma,
                           range_sigma_rel, min_angle, st.tolist(), t_now,
-                          (float(v[0]), float(v[1])))
+                          (float(v[0]), float(v[1])), pose_sigmas=pose_sigmas)
     return fuse_lines(p.tolist(), psi.tolist(), r.tolist(), power, bearing_sigma,
-                      range_sigma_rel, min_angle)
+                      range_sigma_rel, min_angle, pose_sigmas=pose_sigmas)
 
 
 def fuse_lines(P: list[list[float]], angles: list[float], R: list[float], power: float,
                bearing_sigma: float, range_sigma_rel: float, min_angle: float,
                stamps: list[float] | None = None, now: float = 0.0,
-               velocity: tuple[float, float] | None = None) -> FusedSighting:
+               velocity: tuple[float, float] | None = None, *,
+               pose_sigmas: tuple[float, float] | None = None) -> FusedSighting:
     """Steps 1 to 5 of :func:`fuse_sightings` without its checks, on plain lists, for
     callers with validated data (a pipeline's own sighting lines): ``P`` the origins
     ``[x, y]`` [m], ``angles`` [rad], ``R`` the ranges [m] (NaN: bearing only, else > 0),
     ``power`` the weighting's (``K = 1 / L^power``); with ``stamps`` [s] and ``velocity``
-    ``(vx, vy)`` [m/s], every origin is first moved by ``velocity (now - stamp)``.
+    ``(vx, vy)`` [m/s], every origin is first moved by ``velocity (now - stamp)``. With
+    ``pose_sigmas`` ``(position_sigma [m], heading_sigma [rad])``, crossing lines are fused
+    again with the inverse variances of their offsets at the first fused point
+    (``fuse_sightings(weighting="inverse_variance")``, which passes ``power`` 1); None (the
+    default): ``K = 1 / L^power`` only.
 
     Raises:
         ValueError: no position (see :func:`fuse_sightings`).
@@ -324,6 +449,9 @@ def fuse_lines(P: list[list[float]], angles: list[float], R: list[float], power:
             _, M0 = _solve_lines(nx, ny, rho, [1.0] * n, normal_only=True)
             a11, a12, a22 = M0
             if (a11 * a22 - a12 * a12) / (a11 + a22) ** 2 > 0.25 * math.sin(min_angle) ** 2:
+                if pose_sigmas is not None:
+                    return _crossing_inverse_variance(crossing, P, nx, ny, rho, k,
+                                                      bearing_sigma, pose_sigmas)
                 return _crossing(crossing, P, nx, ny, rho, k, bearing_sigma)
     if any(has):
         idx = [i for i in range(n) if has[i]]
@@ -358,6 +486,9 @@ def fuse_lines(P: list[list[float]], angles: list[float], R: list[float], power:
         cov = np.array([[c00, c01], [c01, c11]])
         return FusedSighting(np.array([px_, py_]), m, False, math.sqrt(0.5 * (c00 + c11)), cov)
     if n >= 2 and crossing is not None:
+        if pose_sigmas is not None:
+            return _crossing_inverse_variance(crossing, P, nx, ny, rho, k, bearing_sigma,
+                                              pose_sigmas)
         return _crossing(crossing, P, nx, ny, rho, k, bearing_sigma)
     raise ValueError("no position: need two crossing lines or a sighting with a range, got "
                      f"{n} bearing-only sighting(s)" + (" (parallel)" if n > 1 else ""))
@@ -385,19 +516,50 @@ def _solve_lines(nx: list[float], ny: list[float], rho: list[float], k: list[flo
     return ((a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det), (a11, a12, a22)
 
 
+#: The smallest offset variance [m^2] :func:`_crossing_inverse_variance` divides by (a line
+#: whose origin is at the fused point, with no position error, would have none).
+_MIN_OFFSET_VARIANCE = 1e-12
+
+
+def _crossing_inverse_variance(crossing: tuple, P: list, nx: list[float], ny: list[float],
+                               rho: list[float], k: list[float], bearing_sigma: float,
+                               pose_sigmas: tuple[float, float]) -> FusedSighting:
+    """Step 3 of :func:`fuse_sightings` with ``weighting="inverse_variance"``: from the first
+    fused point ``crossing`` (weights ``k``), the offset variances
+    ``s_i^2 = D_i^2 (bearing_sigma^2 + heading_sigma^2) + position_sigma^2`` and the point
+    fused with ``K_i = 1 / s_i^2`` (the first one if those weights make the lines
+    degenerate), with its covariance (:func:`_crossing` with ``s_i`` as the lines' sigmas)."""
+    position_sigma, heading_sigma = pose_sigmas
+    (X, Y), _ = crossing
+    a = bearing_sigma * bearing_sigma + heading_sigma * heading_sigma
+    c = position_sigma * position_sigma
+    var = [max(((X - x) ** 2 + (Y - y) ** 2) * a + c, _MIN_OFFSET_VARIANCE) for x, y in P]
+    kv = [1.0 / v for v in var]
+    again = _solve_lines(nx, ny, rho, kv)
+    if again is None:
+        return _crossing(crossing, P, nx, ny, rho, k, bearing_sigma,
+                         [math.sqrt(v) for v in var])
+    X2, Y2 = again[0]
+    sig = [math.sqrt(max(((X2 - x) ** 2 + (Y2 - y) ** 2) * a + c, _MIN_OFFSET_VARIANCE))
+           for x, y in P]
+    return _crossing(again, P, nx, ny, rho, kv, bearing_sigma, sig)
+
+
 def _crossing(crossing: tuple, P: list, nx: list[float], ny: list[float], rho: list[float],
-              k: list[float], bearing_sigma: float) -> FusedSighting:
+              k: list[float], bearing_sigma: float, sigmas: list[float] | None = None
+              ) -> FusedSighting:
     """Step 3 of :func:`fuse_sightings`: the fused point with its covariance
     ``M^-1 (sum K^2 s^2 n n^T) M^-1``, inflated by ``chi^2 / (n - 2)`` for three or more
-    lines that disagree more than the model says."""
+    lines that disagree more than the model says; ``s_i`` is ``bearing_sigma * D_i``, or
+    ``sigmas[i]`` [m] when given."""
     (X, Y), (a11, a12, a22) = crossing
     det = a11 * a22 - a12 * a12
     i00, i01, i11 = a22 / det, -a12 / det, a11 / det  # M^-1
     s00 = s01 = s11 = 0.0
-    sig = []
-    for (x, y), a, b, w in zip(P, nx, ny, k):
-        sd = bearing_sigma * math.hypot(X - x, Y - y)  # lateral std of the line
-        sig.append(sd)
+    # The lines' lateral standard deviations at the fused point.
+    sig = [bearing_sigma * math.hypot(X - x, Y - y) for x, y in P] if sigmas is None \
+        else sigmas
+    for a, b, w, sd in zip(nx, ny, k, sig):
         g = (w * sd) ** 2
         s00 += g * a * a
         s01 += g * a * b

@@ -19,14 +19,25 @@ optical axis):
   moves the target down (``y`` grows): ``dy = (arctan(h / d_{k+1}) - arctan(h / d_k)) *
   y_B / gamma_y``.
 
-Mean shift on the weight image (the target's hue back-projection) starts at the prediction; its
-converged centroid ``z`` is the measurement. By default the posterior's position is replaced by
-``z`` (the paper; the velocity and covariance come from a standard Kalman update with ``z``);
-``posterior="update"`` keeps the standard Kalman update. The mean-shift window is the target
-size times ``window_scale`` (1 by default; 2 is the paper's back-projection region ``R``).
-The track is lost in a frame when the converged window's mean weight is below ``min_fill``:
-the filter then only predicts and reports ``lost``. :class:`PlainMeanShift` is the baseline:
-mean shift from the last position, no prediction.
+Two orders of a frame's steps, by ``order``:
+
+* ``"paper"``, as printed in paper 004: the back-projection's centroid in the region ``R``,
+  ``region_scale`` (2) times the target's size, centred at the prediction, is the measurement
+  ``z`` (pixels below ``region_floor`` dropped first: the paper's "simple filtering" of
+  low-probability points; the value 0.1 is ours); the Kalman filter is updated with ``z``;
+  mean shift (window: the target size times ``window_scale``) then starts from the
+  posterior, and its converged position replaces the posterior's position for the next
+  frame.
+* ``"ours"`` (the default): mean shift starts at the prediction, and its converged centroid is
+  both the measurement and (``posterior="replace"``) the posterior's position; the velocity
+  and covariance come from a standard Kalman update with it. ``posterior="update"`` keeps the
+  standard Kalman update instead. One mean shift per frame and no region pass; ``soccer-env
+  paper following`` measures both orders side by side.
+
+The track is lost in a frame when the converged window's mean weight is below ``min_fill``
+(in the paper's order also when ``R`` holds no weight): the filter then only predicts and
+reports ``lost``. :class:`PlainMeanShift` is the baseline: mean shift from the last position,
+no prediction.
 
 **Depth** from the target's known size (pinhole camera): ``d = f * size / apparent_size``, ``f``
 the focal length [px] (:func:`focal_length_px`: ``f = (n / 2) / tan(fov / 2)`` for ``n``
@@ -223,9 +234,14 @@ class KalmanMeanShift(_MeanShiftTrack):
         measurement_sigma: mean shift's position noise [px].
         init_sigma: initial ``(position, velocity)`` standard deviations [px, px/frame].
         posterior: ``"replace"`` (the paper: the posterior position is the mean-shift
-            position) or ``"update"`` (a standard Kalman update).
+            position) or ``"update"`` (a standard Kalman update; ``order="ours"`` only).
         window_scale: the mean-shift window is ``window_scale`` times the target size
-            (1 by default; 2 is the paper's back-projection region ``R``).
+            (1 by default).
+        order: ``"ours"`` or ``"paper"`` (see the module docstring).
+        region_scale: the paper's region ``R`` over the target size (``order="paper"``; the
+            paper: 2).
+        region_floor: weights below this are dropped before ``R``'s centroid
+            (``order="paper"``).
         max_iter, eps, kernel: as :func:`mean_shift`.
         min_fill: the track is lost in a frame whose converged window's mean weight is below
             this.
@@ -243,8 +259,21 @@ class KalmanMeanShift(_MeanShiftTrack):
                  velocity=(0.0, 0.0), accel_sigma: float = 2.0, measurement_sigma: float = 2.0,
                  init_sigma: Sequence[float] = (2.0, 5.0), posterior: str = "replace",
                  window_scale: float = 1.0, max_iter: int = 10, eps: float = 0.5,
-                 kernel: str = "flat", min_fill: float = 0.2) -> None:
+                 kernel: str = "flat", min_fill: float = 0.2, order: str = "ours",
+                 region_scale: float = 2.0, region_floor: float = 0.1) -> None:
         super().__init__(window_size, window_scale, max_iter, eps, kernel, min_fill)
+        if order not in self.ORDERS:
+            raise ValueError(f"order must be one of {self.ORDERS}, got {order!r}")
+        if order == "paper" and posterior != "replace":
+            raise ValueError("posterior must be 'replace' with order='paper' (the paper "
+                             f"replaces the posterior by mean shift's position), got "
+                             f"{posterior!r}")
+        self.order = order
+        self.region_scale = _number("region_scale", region_scale)
+        self.region_floor = _number("region_floor", region_floor, allow_low=True, high=1.0)
+        tw, th = self.target_size
+        self.region_size = (max(int(round(tw * self.region_scale)), 1),
+                            max(int(round(th * self.region_scale)), 1))
         self.image_size = _window_size("image_size", image_size)
         ego_motion_shift(0.0, 0.0, self.image_size, fov)  # validates fov
         self.fov = (float(fov[0]), float(fov[1]))
@@ -275,6 +304,9 @@ class KalmanMeanShift(_MeanShiftTrack):
         self.H = np.eye(2, 4)
         self.R = sm * sm * np.eye(2)
         self.prediction = x[:2].copy()
+
+    #: The orders of a frame's steps (see the module docstring).
+    ORDERS = ("ours", "paper")
 
     @property
     def state(self) -> np.ndarray:
@@ -312,7 +344,10 @@ class KalmanMeanShift(_MeanShiftTrack):
         (the hue back-projection, ``(H, W)``) from the prediction, then the measurement
         update (or, when lost, the prediction alone). Returns ``(x, y, vx, vy)``."""
         start = self.predict(rotation, advance, distance)
-        z, img = self._shift_from(weight_image, start)
+        if self.order == "paper":
+            z, img = self._paper_order(weight_image, start)
+        else:
+            z, img = self._shift_from(weight_image, start)
         self.lost = z is None
         if self.lost:
             # A lost target is taken to stand where it was last predicted: its own velocity
@@ -322,7 +357,8 @@ class KalmanMeanShift(_MeanShiftTrack):
             self.kf._update(None, self.H, self.R)
             self.kf.x[2:] = 0.0
             return self.state
-        self.kf._update(z, self.H, self.R)
+        if self.order == "ours":
+            self.kf._update(z, self.H, self.R)
         if self.posterior == "replace":
             self.kf.x[:2] = z
         if self.target_height_m is not None:
@@ -332,3 +368,32 @@ class KalmanMeanShift(_MeanShiftTrack):
             if size > 0.0:
                 self.distance = depth_from_size(self.target_height_m, size, self.focal_y)
         return self.state
+
+    def _paper_order(self, weight_image, start: np.ndarray
+                     ) -> tuple[np.ndarray | None, np.ndarray]:
+        """Paper 004's order: ``z`` = the centroid of the weights (those at least
+        ``region_floor``) in the region ``R`` centred at ``start``, clipped to the image; the
+        Kalman update with ``z``; mean shift from the posterior. Returns mean shift's
+        converged centroid (None when ``R`` holds no weight or the converged window's mean
+        weight is below ``min_fill``; the Kalman filter is then left at the prediction) and
+        the image."""
+        img = _image("weight_image", weight_image)
+        rw, rh = self.region_size
+        x1 = max(int(round(start[0] - 0.5 * (rw - 1))), 0)
+        y1 = max(int(round(start[1] - 0.5 * (rh - 1))), 0)
+        x2, y2 = min(x1 + rw, img.shape[1]), min(y1 + rh, img.shape[0])
+        if x2 <= x1 or y2 <= y1:
+            return None, img
+        patch = img[y1:y2, x1:x2]
+        patch = np.where(patch >= self.region_floor, patch, 0.0)
+        mass = float(patch.sum())
+        if mass <= 0.0:
+            return None, img
+        z = np.array([x1 + float(patch.sum(axis=0) @ np.arange(x2 - x1)) / mass,
+                      y1 + float(patch.sum(axis=1) @ np.arange(y2 - y1)) / mass])
+        x, P = self.kf.x.copy(), self.kf.P.copy()
+        self.kf._update(z, self.H, self.R)
+        moved, _ = self._shift_from(img, self.kf.x[:2])
+        if moved is None:
+            self.kf.x, self.kf.P = x, P  # lost: back to the prediction
+        return moved, img

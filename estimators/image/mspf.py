@@ -22,8 +22,15 @@ frame (:meth:`MeanShiftParticleFilter.update`):
 3. reweight: ``Dis = sqrt(1 - M / M_t)`` with ``M`` the window's sum of the combined image and
    ``M_t`` its pixel count, ``w = exp(-Dis^2 / (2 sigma^2))`` (the paper's factor
    ``1 / (sqrt(2 pi) sigma)`` cancels in the normalisation);
-4. estimate: the weighted mean of the particles (position and velocity), then systematic
-   resampling;
+4. estimate (``mean="weighted"``, the default, ours): the weighted mean of the particles
+   (position and velocity), then systematic resampling. As printed (``mean="paper"``): the
+   unweighted mean ``E[S_t] = (1/N) sum_i S_t^(i)`` and no resampling step; the weights of
+   step 3 then play no part in the estimate (the paper gives them no other use). The particle
+   set stays on the target through step 5 alone: the paper's set at ``t - 1`` is "the
+   particles inside the target window obtained by the feature restriction", so here the
+   particles the restriction rejects are replaced by copies of allowed ones, each drawn with
+   equal probability (not by weight), and the mean is taken over that set.
+   ``soccer-env paper meanshift`` measures both;
 5. feature restriction (our reading of the paper's "the colour, area and relative position of
    the patches restrict the search to a region" and "the particle set inside the target
    window"): a particle is allowed when its window's colour mass ``sum_W M_c`` is within
@@ -280,6 +287,9 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         feature_check: optional ``f(windows, colour_image) -> (N,) bool``, ``windows`` an
             ``(N, 4)`` int array of ``(x, y, w, h)``: further patch constraints (layout,
             heading, identity); also applied to the global search's candidate.
+        mean: step 4, ``"weighted"`` (weighted mean, then systematic resampling) or
+            ``"paper"`` (as printed: the unweighted mean of the restricted set, no
+            resampling); see the module docstring.
 
     Attributes:
         estimate: ``(x, y, vx, vy)`` [px, px/frame].
@@ -296,7 +306,7 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
                  likelihood_sigma: float = 0.15, init_sigma: float = 2.0, v_ref: float = 20.0,
                  max_motion_weight: float = 0.5, mean_shift_iter: int = 5, eps: float = 0.5,
                  kernel: str = "flat", area: float | None = None, area_tolerance: float = 0.3,
-                 feature_check: FeatureCheck | None = None) -> None:
+                 feature_check: FeatureCheck | None = None, mean: str = "weighted") -> None:
         super().__init__(position, window_size, rng, n_particles=n_particles,
                          velocity=velocity, process_sigma=process_sigma,
                          likelihood_sigma=likelihood_sigma, init_sigma=init_sigma,
@@ -310,10 +320,16 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         if feature_check is not None and not callable(feature_check):
             raise ValueError("feature_check must be callable or None")
         self.feature_check = feature_check
+        if mean not in self.MEANS:
+            raise ValueError(f"mean must be one of {self.MEANS}, got {mean!r}")
+        self.mean = mean
         self.lost = False
         self.occluded = False
         self.occluder: int | None = None
         self.lost_frames = 0
+
+    #: Step 4's choices (see the module docstring).
+    MEANS = ("weighted", "paper")
 
     def _make_windows(self, shape: tuple[int, int]) -> _Windows:
         return _Windows(*self.window_size, shape, self.kernel)
@@ -472,4 +488,21 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
                 self.lost_frames += 1
                 self.estimate = np.array([prior[0], prior[1], 0.0, 0.0])
             return self.estimate.copy()
+        if self.mean == "paper":
+            return self._restricted_mean(self._log_likelihood(mom[:, 3]), allowed)
         return self._weigh_and_estimate(self._log_likelihood(mom[:, 3]), allowed)
+
+    def _restricted_mean(self, logw: np.ndarray, allowed: np.ndarray) -> np.ndarray:
+        """Paper 003's steps 3-4 as printed: the weights (kept in :attr:`weights`, zero where
+        not allowed), the particles the restriction rejects replaced by copies of allowed
+        ones drawn with equal probability, and the unweighted mean of the set."""
+        logw = np.where(allowed, logw, -np.inf)
+        w = np.exp(logw - logw.max())
+        self.weights = w / w.sum()
+        rejected = np.flatnonzero(~allowed)
+        if len(rejected):
+            keep = np.flatnonzero(allowed)
+            self.particles[rejected] = self.particles[
+                keep[self.rng.integers(0, len(keep), len(rejected))]]
+        self.estimate = self.particles.mean(axis=0)
+        return self.estimate.copy()

@@ -21,7 +21,14 @@ from .core import (
     ungm_model,
     ungm_simulate,
 )
-from .localization import KLDConfig, KLDLocalizer, LandmarkTable, kld_sample_size, normal_quantile
+from .localization import (
+    RECOVERIES,
+    KLDConfig,
+    KLDLocalizer,
+    LandmarkTable,
+    kld_sample_size,
+    normal_quantile,
+)
 
 __all__ = [
     "BootstrapPF",
@@ -36,6 +43,7 @@ __all__ = [
     "CHI2_2DOF_9999",
     "KLDConfig",
     "KLDLocalizer",
+    "RECOVERIES",
     "LandmarkTable",
     "kld_sample_size",
     "normal_quantile",

@@ -69,7 +69,7 @@ import numpy as np
 from ..checks import MAX_PARTICLES, check_count
 from ..kalman.core import KalmanFilter
 from ..protocol import check_order, check_time
-from .core import PARTICLE_FILTERS, BootstrapPF
+from .core import FBPF, PARTICLE_FILTERS, BootstrapPF
 
 __all__ = ["ParticleBallTracker", "CHI2_2DOF_9999"]
 
@@ -145,6 +145,8 @@ class ParticleBallTracker:
             ``(px, py, vx, vy)`` [m, m, m/s, m/s] (FBPF and MFBPF; the filter gets their
             squares as its per-dimension ``fission_variance``).
         sfn_when: MFBPF's test, ``"above"`` (as printed in paper 000) or ``"below"``.
+        resample: FBPF's resampling, ``"always"`` (as printed in paper 000) or
+            ``"threshold"`` (only when ``N_eff < N_th``); see :class:`~estimators.FBPF`.
         init_speed_sigma: standard deviation of the velocity at (re-)initialisation [m/s].
         gate: squared Mahalanobis distance beyond which a measurement is implausible; None
             never re-initialises on a measurement.
@@ -168,7 +170,8 @@ class ParticleBallTracker:
                  n_particles: int = 100, accel_sigma: float = 1.0, deceleration: float = 0.0,
                  threshold: float | None = None,
                  fission_sigma: Sequence[float] = (0.02, 0.02, 0.1, 0.1),
-                 sfn_when: str = "above", init_speed_sigma: float = 2.0,
+                 sfn_when: str = "above", resample: str = "always",
+                 init_speed_sigma: float = 2.0,
                  gate: float | None = CHI2_2DOF_9999, reinit_after: int = 1,
                  lost_after: float | None = 1.0, max_lag: float = 0.1,
                  max_speed: float = 10.0,
@@ -185,6 +188,8 @@ class ParticleBallTracker:
                              f"got {fission_sigma!r}")
         if sfn_when not in ("above", "below"):
             raise ValueError(f"sfn_when must be 'above' or 'below', got {sfn_when!r}")
+        if resample not in FBPF.RESAMPLE:
+            raise ValueError(f"resample must be one of {FBPF.RESAMPLE}, got {resample!r}")
         if gate is not None:
             gate = _positive("gate", gate)
         if isinstance(reinit_after, bool) or not isinstance(reinit_after, (int, np.integer)) \
@@ -212,6 +217,8 @@ class ParticleBallTracker:
             kwargs["fission_variance"] = fs * fs
         if filter == "mfbpf":
             kwargs["sfn_when"] = sfn_when
+        if filter == "fbpf":
+            kwargs["resample"] = resample
         self._cls = PARTICLE_FILTERS[filter]
         self._kwargs = kwargs
         self.reset()

@@ -30,7 +30,14 @@ State ``(x, y, theta)`` in the field frame [m, m, rad]; particles ``(N, 3)``.
   ``n >= (k - 1) / (2 eps) * (1 - 2 / (9 (k - 1)) + sqrt(2 / (9 (k - 1))) z_{1-delta})^3``,
   ``k`` the number of histogram bins (``bin_size``) holding at least one drawn particle, between
   ``min_particles`` and ``max_particles``: many particles while the belief is spread, few once it
-  has converged. Drawn in random order (multinomial), so every prefix is a fair sample.
+  has converged. Drawn in random order (multinomial), so every prefix is a fair sample. Where
+  the bins are counted (``KLDConfig.binning``): ``"resampled"`` (the default, ours) resamples
+  right after each measurement update and counts the bins of the drawn particles, before the
+  next motion; ``"predicted"`` is Fox's KLD-sampling as published (Fox 2003, Table 1): the
+  measurement update only weighs, and the next :meth:`~KLDLocalizer.predict` draws each
+  particle from the weighted set, moves it by the motion model and counts the bin of the
+  *predicted* sample, so the sample size follows the spread after the motion noise is added
+  (larger by the motion's spread). ``soccer-env paper localization`` measures both.
 * **Recovery** (augmented MCL, Thrun et al. 2005, section 8.3.5): short- and long-term averages
   ``w_fast``, ``w_slow`` of the observation likelihood per landmark (the geometric mean over
   the landmarks seen, so that landmarks entering or leaving the view do not look like a
@@ -39,6 +46,19 @@ State ``(x, y, theta)`` in the field frame [m, m, rad]; particles ``(N, 3)``.
   ``max(0, 1 - w_fast / (recovery_ratio w_slow))`` of the new particles is drawn uniformly
   over the field (``recovery_ratio = 1`` is the textbook rule, which also fires on ordinary
   fluctuations).
+* **Recovery seed** (``recovery="triangulate"``, paper 000's three-landmark self-localization
+  put to use): the sightings of the last ``seed_memory`` updates are kept in the robot's body
+  frame, moved by the odometry (:class:`~estimators.fusion.triangulation.SightingMemory`);
+  when particles are injected, pose hypotheses are triangulated from them
+  (:func:`~estimators.fusion.triangulation.triangulate_sightings`: the bearings of three
+  landmarks, the candidate assignments the landmark kinds allow, the poses that fit every
+  sighting best, degenerate geometry skipped), and a share ``seed_fraction`` of the injected
+  particles is drawn around them, ``N(pose, diag(s_xy^2, s_xy^2, s_theta^2))`` with ``s_xy =
+  max(0.1 m, sigma_pos)``, ``s_theta = max(0.05 rad, sigma_heading)`` (the hypothesis' own
+  standard deviations from the bearing noise), a hypothesis picked uniformly per particle;
+  the rest are uniform as before. With no hypothesis (fewer than three distinct landmarks,
+  degenerate geometry, no fitting assignment) every injected particle is uniform. The
+  default ``recovery="uniform"`` is the textbook rule alone, draw for draw.
 
 Written here because KLD-sampling's variable sample size and the recovery bookkeeping are the
 paper's method, not a library's; vectorised numpy; every draw from the given generator.
@@ -54,8 +74,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..checks import MAX_PARTICLES, check_count, check_real
+from ..fusion.triangulation import PoseHypotheses, SightingMemory, triangulate_sightings
 
-__all__ = ["KLDConfig", "KLDLocalizer", "LandmarkTable", "kld_sample_size", "normal_quantile"]
+__all__ = ["KLDConfig", "KLDLocalizer", "LandmarkTable", "RECOVERIES", "kld_sample_size",
+           "normal_quantile"]
+
+#: How :class:`KLDLocalizer` draws the particles it injects when it is lost: uniformly over
+#: the bounds (augmented MCL), or partly around poses triangulated from recent sightings.
+RECOVERIES = ("uniform", "triangulate")
+#: The least spread of a triangulated seed: position [m] and heading [rad].
+_SEED_MIN_XY, _SEED_MIN_THETA = 0.1, 0.05
+#: The bearing noise the seed assumes when the filter leaves bearings out [rad].
+_SEED_BEARING_SIGMA = math.radians(5.0)
 
 
 def normal_quantile(p: float) -> float:
@@ -181,6 +211,8 @@ class KLDConfig:
             (``0 <= alpha_slow < alpha_fast <= 1``; ``alpha_fast = 0`` turns recovery off).
         recovery_ratio: how far (``0 < ratio <= 1``) the short-term average must fall below
             the long-term one before particles are injected.
+        binning: where KLD-sampling counts its bins: ``"resampled"`` (ours, the default) or
+            ``"predicted"`` (Fox 2003), see the module docstring.
     """
 
     min_particles: int = 50
@@ -199,8 +231,14 @@ class KLDConfig:
     alpha_slow: float = 0.01
     alpha_fast: float = 0.2
     recovery_ratio: float = 0.5
+    binning: str = "resampled"
+
+    #: Where KLD-sampling counts its bins (see the module docstring).
+    BINNINGS = ("resampled", "predicted")
 
     def __post_init__(self) -> None:
+        if self.binning not in self.BINNINGS:
+            raise ValueError(f"binning must be one of {self.BINNINGS}, got {self.binning!r}")
         check_count("min_particles", self.min_particles, 1, MAX_PARTICLES)
         check_count("max_particles", self.max_particles, 1, MAX_PARTICLES)
         if not self.min_particles <= self.max_particles:
@@ -249,13 +287,40 @@ class KLDLocalizer:
         config: :class:`KLDConfig`.
         pose: a known start ``(x, y, theta)`` (particles drawn around it with ``pose_sigma``),
             or None for global localization (uniform over ``bounds``, ``max_particles``).
+        recovery: how injected particles are drawn, one of :data:`RECOVERIES`: ``"uniform"``
+            (the default) or ``"triangulate"`` (a share around poses triangulated from the
+            recent sightings, see the module docstring; it needs bearings, and with
+            :meth:`update_kinds` a ``bearing_sigma``, else every draw stays uniform).
+        seed_fraction: with ``"triangulate"``, the share of the injected particles drawn
+            around the hypotheses, in [0, 1].
+        seed_memory: with ``"triangulate"``, how many updates' sightings are kept for it
+            (1..1000; at 25 frames/s, 25 is one to two seconds of a scanning head).
     """
 
     def __init__(self, bounds: tuple[float, float, float, float], rng: np.random.Generator,
                  config: KLDConfig | None = None, pose: np.ndarray | None = None,
-                 pose_sigma: tuple[float, float, float] = (0.1, 0.1, 0.1)) -> None:
+                 pose_sigma: tuple[float, float, float] = (0.1, 0.1, 0.1), *,
+                 recovery: str = "uniform", seed_fraction: float = 0.5,
+                 seed_memory: int = 25) -> None:
         if not isinstance(rng, np.random.Generator):
             raise TypeError("rng must be a numpy.random.Generator")
+        if recovery not in RECOVERIES:
+            raise ValueError(f"recovery must be one of {RECOVERIES}, got {recovery!r}")
+        if isinstance(seed_fraction, bool) or not (isinstance(seed_fraction, (int, float))
+                                                   and 0.0 <= seed_fraction <= 1.0):
+            raise ValueError(f"seed_fraction must be in [0, 1], got {seed_fraction!r}")
+        if isinstance(seed_memory, bool) or not isinstance(seed_memory, (int, np.integer)) \
+                or not 1 <= seed_memory <= 1000:
+            raise ValueError(f"seed_memory must be an integer in [1, 1000] (updates), got "
+                             f"{seed_memory!r}")
+        self.recovery = recovery
+        self.seed_fraction = float(seed_fraction)
+        #: The recent sightings (``recovery="triangulate"`` only, else None).
+        self.memory = (SightingMemory(seed_memory) if recovery == "triangulate" else None)
+        #: The landmark table of the sightings in :attr:`memory` (kind -> positions [m]).
+        self._seed_table: dict = {}
+        #: The latest recovery seed's hypotheses (None: none computed yet).
+        self.last_seed: PoseHypotheses | None = None
         x0, x1, y0, y1 = (float(b) for b in bounds)
         if not (x0 < x1 and y0 < y1) or not all(map(math.isfinite, (x0, x1, y0, y1))):
             raise ValueError(f"bounds must be (x_min, x_max, y_min, y_max) with min < max, "
@@ -273,6 +338,10 @@ class KLDLocalizer:
             n = self.cfg.min_particles
             self.particles = p + rng.normal(0.0, 1.0, (n, 3)) * np.asarray(pose_sigma)
         self.weights = np.full(len(self.particles), 1.0 / len(self.particles))
+        self._hypotheses: PoseHypotheses | None = None
+        #: Weighted by a measurement and not yet resampled (``binning="predicted"``: the
+        #: next predict resamples).
+        self._pending = False
 
     @property
     def n(self) -> int:
@@ -291,20 +360,14 @@ class KLDLocalizer:
         d = np.asarray(odometry, dtype=np.float64)
         if d.shape != (3,) or not np.isfinite(d).all():
             raise ValueError(f"odometry must be a finite (dx, dy, dtheta), got {odometry!r}")
-        c = self.cfg
-        dist, turn = math.hypot(d[0], d[1]), abs(d[2])
-        s_xy = c.a_trans * dist + c.a_rot_xy * turn
-        s_th = c.a_rot * turn + c.a_trans_theta * dist
-        n = self.n
-        noise = self.rng.normal(0.0, 1.0, (n, 3))
-        dx = d[0] + s_xy * noise[:, 0]
-        dy = d[1] + s_xy * noise[:, 1]
-        th = self.particles[:, 2] + 0.5 * d[2]  # the mid-step heading
-        cs, sn = np.cos(th), np.sin(th)
-        self.particles[:, 0] += cs * dx - sn * dy
-        self.particles[:, 1] += sn * dx + cs * dy
-        self.particles[:, 2] = np.remainder(self.particles[:, 2] + d[2] + s_th * noise[:, 2]
-                                            + math.pi, 2.0 * math.pi) - math.pi
+        if self._pending:  # Fox's KLD-sampling: draw, move and bin the predicted samples
+            self._pending = False
+            self._resample(d)
+        else:
+            self._move(self.particles, d, self.rng.normal(0.0, 1.0, (self.n, 3)))
+        if self.memory is not None:
+            self.memory.move(d)
+            self._hypotheses = None
 
     def likelihood(self, landmarks: np.ndarray, ranges: np.ndarray,
                    bearings: np.ndarray | None = None) -> np.ndarray:
@@ -369,7 +432,15 @@ class KLDLocalizer:
         m = len(np.asarray(ranges).reshape(-1))
         if m == 0:
             return
-        self._weigh(self._log_likelihood(landmarks, ranges, bearings), m)
+        log = self._log_likelihood(landmarks, ranges, bearings)
+        if self.memory is not None and bearings is not None:
+            # Known landmarks: each its own kind, named by its position.
+            L = np.asarray(landmarks, dtype=np.float64).reshape(-1, 2)
+            kinds = tuple((float(x), float(y)) for x, y in L)
+            for k, pos in zip(kinds, L):
+                self._seed_table.setdefault(k, pos[None, :])
+            self._remember(kinds, ranges, bearings)
+        self._weigh(log, m)
 
     def update_kinds(self, kinds: Sequence[str], ranges: np.ndarray,
                      bearings: np.ndarray | None,
@@ -416,7 +487,72 @@ class KLDLocalizer:
         log = self._pair_log_likelihood(Lx, Ly, np.repeat(ranges, counts),
                                         None if b is None else np.repeat(b, counts))
         best = log[:, gather].reshape(len(log), m, -1).max(axis=2)
+        if self.memory is not None and bearings is not None:
+            for k in kinds:
+                self._seed_table[k] = table[k]
+            self._remember(kinds, ranges, bearings)
         self._weigh(np.sum(best, axis=1), m)
+
+    def _move(self, p: np.ndarray, d: np.ndarray, noise: np.ndarray) -> None:
+        """Move the particles ``p`` ((n, 3), in place) by the body-frame displacement ``d``
+        with the odometry noise, ``noise`` ((n, 3)) standard normal draws."""
+        c = self.cfg
+        dist, turn = math.hypot(d[0], d[1]), abs(d[2])
+        s_xy = c.a_trans * dist + c.a_rot_xy * turn
+        s_th = c.a_rot * turn + c.a_trans_theta * dist
+        dx = d[0] + s_xy * noise[:, 0]
+        dy = d[1] + s_xy * noise[:, 1]
+        th = p[:, 2] + 0.5 * d[2]  # the mid-step heading
+        cs, sn = np.cos(th), np.sin(th)
+        p[:, 0] += cs * dx - sn * dy
+        p[:, 1] += sn * dx + cs * dy
+        p[:, 2] = np.remainder(p[:, 2] + d[2] + s_th * noise[:, 2] + math.pi,
+                               2.0 * math.pi) - math.pi
+
+    def _remember(self, kinds: tuple, ranges: np.ndarray, bearings: np.ndarray) -> None:
+        """Keep one update's sightings for the recovery seed (the memory drops the oldest)."""
+        assert self.memory is not None
+        self.memory.add(kinds, ranges, bearings)
+        self._hypotheses = None  # new sightings: triangulate afresh when next needed
+
+    def seed_hypotheses(self) -> PoseHypotheses:
+        """The poses triangulated from the remembered sightings (see the module docstring),
+        with the filter's noise model: range sigma per sighting as in the likelihood,
+        bearing sigma ``bearing_sigma`` (5 degrees when bearings are left out), inside the
+        bounds. Raises ``ValueError`` unless ``recovery="triangulate"``."""
+        if self.memory is None:
+            raise ValueError("seed_hypotheses needs recovery='triangulate'")
+        kinds, pts = self.memory.sightings()
+        c = self.cfg
+        r = np.hypot(pts[:, 0], pts[:, 1])
+        sigma_r = c.range_sigma + (c.range_sigma_rel + c.range_sigma_quad * r) * r
+        sigma_b = c.bearing_sigma if c.bearing_sigma is not None else _SEED_BEARING_SIGMA
+        return triangulate_sightings(kinds, pts, self._seed_table, sigma_r, sigma_b,
+                                     self.bounds)
+
+    def _recovery_draws(self, k: int) -> np.ndarray:
+        """``k`` injected particles: with ``recovery="triangulate"`` a share
+        ``seed_fraction`` around the triangulated hypotheses (computed once per set of
+        sightings), the rest uniform."""
+        if self.memory is None:
+            return self._uniform(k)
+        if self._hypotheses is None:
+            self._hypotheses = self.last_seed = self.seed_hypotheses()
+        hyp = self._hypotheses
+        if not hyp.ok:
+            return self._uniform(k)
+        seeded = self.rng.random(k) < self.seed_fraction
+        ns = int(seeded.sum())
+        out = np.empty((k, 3))
+        out[~seeded] = self._uniform(k - ns)
+        pick = self.rng.integers(0, len(hyp.poses), ns)
+        spread = np.column_stack([np.maximum(hyp.sigmas[pick, 0], _SEED_MIN_XY),
+                                  np.maximum(hyp.sigmas[pick, 0], _SEED_MIN_XY),
+                                  np.maximum(hyp.sigmas[pick, 1], _SEED_MIN_THETA)])
+        seed = hyp.poses[pick] + self.rng.normal(0.0, 1.0, (ns, 3)) * spread
+        seed[:, 2] = np.remainder(seed[:, 2] + math.pi, 2.0 * math.pi) - math.pi
+        out[seeded] = seed
+        return out
 
     def _weigh(self, log: np.ndarray, m: int) -> None:
         """Weights times ``exp(log)`` for ``m`` observations, the recovery averages, then
@@ -435,9 +571,14 @@ class KLDLocalizer:
         else:
             w = w / total
         self.weights = w
-        self._resample()
+        if c.binning == "predicted":
+            self._pending = True  # resampled by the next predict, on the predicted samples
+        else:
+            self._resample()
 
-    def _resample(self) -> None:
+    def _resample(self, odometry: np.ndarray | None = None) -> None:
+        """KLD-sampling from the weighted set; with ``odometry`` (Fox's order) every drawn
+        particle is moved by it before its bin is counted."""
         c = self.cfg
         inject = 0.0
         if c.alpha_fast > 0.0 and self.w_slow > 0.0:
@@ -466,7 +607,9 @@ class KLDLocalizer:
             new = self.particles[np.minimum(idx, self.n - 1)]
             if inject > 0.0:
                 fresh = self.rng.random(take) < inject
-                new[fresh] = self._uniform(int(fresh.sum()))
+                new[fresh] = self._recovery_draws(int(fresh.sum()))
+            if odometry is not None:
+                self._move(new, odometry, self.rng.normal(0.0, 1.0, (take, 3)))
             parts.append(new)
             # k(n): the distinct bins among the first n draws; the first n with
             # n >= bound(k(n)) and n >= min_particles is the sample size.

@@ -9,7 +9,9 @@ Per humanoid ("brain"), per step:
    frame captured at ``t_c`` the localization is moved by the odometry up to ``t_c`` and
    weighted by the frame's landmarks (``localization="kld"``: paper 001's KLD-sampling
    particle filter, :class:`~estimators.KLDLocalizer`, with ambiguous landmark kinds: a robot
-   sees an "L" corner, not which one; ``"odometry"``: dead reckoning from the known start;
+   sees an "L" corner, not which one; ``"kld-triangulate"``: the same, its recovery drawing
+   half of the new particles around poses triangulated from the last frames' landmarks,
+   paper 000; ``"odometry"``: dead reckoning from the known start;
    ``"truth"``: the true pose, an oracle for ablations). The ball detection nearest the
    present belief becomes a sighting line: from the estimated position at ``t_c`` along the
    estimated heading plus the detection's bearing, with the ground projection's range.
@@ -208,7 +210,8 @@ class HumanoidTeamPerception:
         return self._brains[i]
 
     def localization(self, i: int) -> KLDLocalizer | None:
-        """Robot ``i``'s localization filter (None unless ``localization="kld"``)."""
+        """Robot ``i``'s localization filter (None unless ``localization`` is ``"kld"`` or
+        ``"kld-triangulate"``)."""
         return self._brains[i].loc
 
     def tracker(self, i: int) -> ParticleBallTracker | None:

@@ -146,17 +146,23 @@ FUSIONS: Registry[str] = Registry(
        for name in FUSION_WEIGHTINGS])
 
 
-def _kld(bounds: tuple[float, float, float, float], rng: np.random.Generator,
+def _kld(recovery: str, bounds: tuple[float, float, float, float], rng: np.random.Generator,
          config: KLDConfig, pose: np.ndarray) -> KLDLocalizer:
-    """Paper 001's KLD-sampling localization started at the known pose (5 cm, 0.05 rad)."""
-    return KLDLocalizer(bounds, rng, config, pose=pose, pose_sigma=(0.05, 0.05, 0.05))
+    """Paper 001's KLD-sampling localization started at the known pose (5 cm, 0.05 rad),
+    its recovery drawing particles as ``recovery`` says (one of
+    :data:`~estimators.RECOVERIES`)."""
+    return KLDLocalizer(bounds, rng, config, pose=pose, pose_sigma=(0.05, 0.05, 0.05),
+                        recovery=recovery)
 
 
 #: Self-localization of a humanoid: a filter's factory, or None where the robot keeps its pose
 #: itself (dead reckoning, the oracle).
 LOCALIZATIONS: Registry[Callable[..., KLDLocalizer] | None] = Registry("localization", [
-    ("kld", _kld, "paper 001's KLD-sampling particle filter on odometry and landmark "
-                  "sightings"),
+    ("kld", functools.partial(_kld, "uniform"),
+     "paper 001's KLD-sampling particle filter on odometry and landmark sightings"),
+    ("kld-triangulate", functools.partial(_kld, "triangulate"),
+     "'kld' whose recovery draws half of its new particles around poses triangulated from "
+     "the last 25 frames' landmarks (paper 000) instead of all uniformly"),
     ("odometry", None, "dead reckoning from the known start pose (no landmarks)"),
     ("truth", None, "the true pose (oracle, for ablations)"),
 ])

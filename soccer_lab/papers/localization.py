@@ -51,7 +51,7 @@ from typing import Any
 
 import numpy as np
 
-from estimators import KLDConfig, KLDLocalizer
+from estimators import KLDConfig, KLDLocalizer, SightingMemory, triangulate_sightings
 from soccer_env import presets
 from soccer_env.perception.brain import Brain, landmark_sightings
 from soccer_env.perception.humanoid import HumanoidTeamPerception
@@ -87,6 +87,24 @@ KIDNAP_AT = 2.0 / 3.0  # fraction of the episode
 MIRROR_M, MIRROR_RAD = 0.5, math.radians(30.0)
 #: Frames captured while the gait turns faster than this [rad/s] count as "in turns".
 TURNING = 0.1
+#: The recovery seed's memory: the sightings of this many updates (frames with landmarks;
+#: one to two seconds of the scanning head).
+SEED_MEMORY = 25
+#: The name of KLD-sampling with the triangulation recovery seed: the KLD row's plus this.
+SEEDED = " + triangulation seed"
+#: The suffix of KLD-sampling with Fox's binning of the predicted samples
+#: (``KLDConfig(binning="predicted")``).
+FOX = ", bins of the predicted samples (Fox)"
+#: Triangulation alone (paper 000, no filter): name -> the frames with landmarks whose
+#: sightings it uses (this frame's only, or the seed's memory moved by the odometry).
+TRIANGULATIONS = {"triangulation, this frame": 1,
+                  f"triangulation, last {SEED_MEMORY} frames": SEED_MEMORY}
+#: A triangulated pose farther than this from the truth [m] is a wrong assignment.
+WRONG_M = 0.5
+#: Triangulation outcomes per frame, in the table's order: a pose within WRONG_M of the
+#: truth, a wrong assignment (ambiguous landmarks), or no pose for one of the reasons of
+#: :data:`~estimators.fusion.triangulation.SEED_FAILURES`.
+TRI_OUTCOMES = ("correct", "wrong", "too_few", "degenerate", "no_fit")
 
 
 class BrainReplay:
@@ -213,12 +231,15 @@ def _recovery(t: np.ndarray, err: np.ndarray, since: float, until: float) -> flo
     return None
 
 
-def _run_filter(ep: dict[str, Any], config: KLDConfig, seed: int) -> dict[str, Any]:
-    """Replay the episode into a filter of ``config`` started global; its errors per frame
-    (at the frame's capture time) and the summary figures."""
+def _run_filter(ep: dict[str, Any], config: KLDConfig, seed: int,
+                recovery: str = "uniform") -> dict[str, Any]:
+    """Replay the episode into a filter of ``config`` (with the ``recovery`` draws of
+    :class:`~estimators.KLDLocalizer`) started global; its errors per frame (at the frame's
+    capture time) and the summary figures."""
     team = ep["team"]
     table = team.landmark_table
-    rep = BrainReplay(KLDLocalizer(team.bounds, np.random.default_rng(seed), config))
+    rep = BrainReplay(KLDLocalizer(team.bounds, np.random.default_rng(seed), config,
+                                   recovery=recovery, seed_memory=SEED_MEMORY))
     loc = rep.loc
     initial = loc.n
     est, counts = [], []
@@ -267,6 +288,89 @@ def _run_filter(ep: dict[str, Any], config: KLDConfig, seed: int) -> dict[str, A
             "recovery_s": None if tk is None else _recovery(t, err, tk, end)}
 
 
+class _TriangulationOnly:
+    """No filter: the remembered sightings, moved by the odometry as the brain moves its
+    localization (:class:`BrainReplay` calls :meth:`predict` and :meth:`estimate`)."""
+
+    def __init__(self, frames: int) -> None:
+        self.memory = SightingMemory(frames)
+
+    def predict(self, odometry: tuple[float, float, float]) -> None:
+        self.memory.move(odometry)
+
+    def estimate(self) -> np.ndarray:
+        return np.full(3, np.nan)
+
+
+def _run_triangulation(ep: dict[str, Any], frames: int, config: KLDConfig) -> dict[str, Any]:
+    """Paper 000's triangulation alone, at every frame, from the sightings of the last
+    ``frames`` frames with landmarks (moved by the odometry), with the perception's noise
+    model ``config`` (range and bearing sigmas): each frame's outcome (:data:`TRI_OUTCOMES`),
+    the errors of its best pose, and the summary figures (shares of the frames [%], median
+    errors of the poses found and of the correct ones)."""
+    team = ep["team"]
+    table = team.landmark_table
+    tri = _TriangulationOnly(frames)
+    rep = BrainReplay.__new__(BrainReplay)  # the brain's odometry bookkeeping, no filter
+    rep.loc, rep.odo, rep.loc_estimate = tri, deque(), tri.estimate()
+    sb = float(config.bearing_sigma if config.bearing_sigma is not None else
+               math.radians(5.0))
+    truth = ep["frame_truth"]
+    outcome, pos_err, head_err, mirror = [], [], [], []
+    seconds = 0.0
+    for ev in ep["events"]:
+        if ev[0] == "odo":
+            rep.odometry(ev[1], ev[2], None)
+            continue
+        _, t_cap, kinds, ranges, bearings = ev
+        t0 = time.perf_counter()
+        rep.move_localization(rep.odometry_until(t_cap))
+        if kinds:
+            tri.memory.add(kinds, ranges, bearings)
+        k, pts = tri.memory.sightings()
+        if len(k) < 3:
+            hyp = None
+        else:
+            r = np.hypot(pts[:, 0], pts[:, 1])
+            sr = config.range_sigma + (config.range_sigma_rel + config.range_sigma_quad * r) * r
+            hyp = triangulate_sightings(k, pts, table, sr, sb, team.bounds)
+        seconds += time.perf_counter() - t0
+        tr = truth[len(outcome)]
+        if hyp is None or not hyp.ok:
+            outcome.append("too_few" if hyp is None else hyp.reason)
+            pos_err.append(math.nan)
+            head_err.append(math.nan)
+            mirror.append(False)
+            continue
+        pose = hyp.poses[0]
+        e = math.hypot(pose[0] - tr[0], pose[1] - tr[1])
+        outcome.append("correct" if e <= WRONG_M else "wrong")
+        pos_err.append(e)
+        head_err.append(abs(math.remainder(pose[2] - tr[2], 2.0 * math.pi)))
+        mirror.append(e > WRONG_M and math.hypot(pose[0] + tr[0], pose[1] + tr[1]) < MIRROR_M
+                      and abs(math.remainder(pose[2] - tr[2] - math.pi, 2.0 * math.pi))
+                      < MIRROR_RAD)
+    out = np.array(outcome)
+    e, h = np.array(pos_err), np.array(head_err)
+    found = np.isfinite(e)
+    right = out == "correct"
+    n = max(len(out), 1)
+    res: dict[str, Any] = {f"{o}_pct": float(100.0 * np.mean(out == o)) for o in TRI_OUTCOMES}
+    res.update({
+        "outcome": outcome, "pos_err": np.round(np.where(found, e, -1.0), 4).tolist(),
+        "fix_pct": float(100.0 * np.mean(found)),
+        "mirror_pct": float(100.0 * np.sum(mirror) / n),
+        "median_pos_m": _median(e[found]), "median_head_deg": _deg(_median(h[found])),
+        "median_pos_correct_m": _median(e[right]),
+        "median_head_correct_deg": _deg(_median(h[right])),
+        "ms_per_frame": seconds / n * 1e3})
+    return res
+
+
+def _deg(v: float | None) -> float | None:
+    return None if v is None else math.degrees(v)
+
+
 def _median(x: np.ndarray) -> float | None:
     return float(np.median(x)) if len(x) else None
 
@@ -293,6 +397,10 @@ MEDIAN_KEYS = ("median_pos_m", "median_head_deg", "median_pos_turning_m",
 _NEVER_KEYS = ("localized_s", "recovery_s")
 #: The position aim while walking [m].
 AIM_POS_M = 0.15
+#: Per-episode figures of triangulation alone, summarized by their median over the episodes.
+TRI_KEYS = (*(f"{o}_pct" for o in TRI_OUTCOMES), "fix_pct", "mirror_pct", "median_pos_m",
+            "median_head_deg", "median_pos_correct_m", "median_head_correct_deg",
+            "ms_per_frame")
 
 
 def _kld_config(base: KLDConfig) -> KLDConfig:
@@ -314,7 +422,10 @@ def _episode_results(job: tuple[int, float, bool, tuple[int, ...]]) -> dict[str,
     base = ep["team"].kld_config  # the camera's noise model, as the perception uses it
     kld_cfg = _kld_config(base)
     kld_name = _filter_name(kld_cfg)
-    results = {kld_name: _run_filter(ep, kld_cfg, seed + 1)}
+    results = {kld_name: _run_filter(ep, kld_cfg, seed + 1),
+               kld_name + FOX: _run_filter(ep, dataclasses.replace(kld_cfg, binning="predicted"),
+                                           seed + 1),
+               kld_name + SEEDED: _run_filter(ep, kld_cfg, seed + 1, "triangulate")}
     for n in sizes:
         cfg = dataclasses.replace(base, min_particles=int(n), max_particles=int(n))
         results[f"fixed {int(n)}"] = _run_filter(ep, cfg, seed + 1)
@@ -327,7 +438,9 @@ def _episode_results(job: tuple[int, float, bool, tuple[int, ...]]) -> dict[str,
             "kidnap_time": tk, "kidnap_to": None if tk is None else ep["kidnap_to"].tolist(),
             "falls": int(ep["falls"]), "frame_t": np.round(ep["frame_t"], 4).tolist(),
             "truth_t": np.round(ep["times"][::6], 4).tolist(),
-            "truth_pose": np.round(ep["poses"][::6], 4).tolist(), "results": results}
+            "truth_pose": np.round(ep["poses"][::6], 4).tolist(), "results": results,
+            "triangulation": {name: _run_triangulation(ep, frames, base)
+                              for name, frames in TRIANGULATIONS.items()}}
 
 
 def _over_episodes(per: list[dict[str, Any]], kidnap: bool) -> dict[str, Any]:
@@ -416,25 +529,36 @@ def run(out: str | Path = "paper_output", duration: float = 60.0, seed: int = 0,
                            if not isinstance(v, list)} for name in names} for ep in eps]
     summary = {name: _over_episodes([pe[name] for pe in per_episode], bool(s.kidnap))
                for name in names}
-    text = _text(s, eps, summary)
+    tri_per_episode = [{name: {k: v for k, v in ep["triangulation"][name].items()
+                               if not isinstance(v, list)} for name in TRIANGULATIONS}
+                       for ep in eps]
+    tri_summary = {name: {"episodes": len(eps), **{
+        key: _median(np.array([pe[name][key] for pe in tri_per_episode
+                               if pe[name][key] is not None]))
+        for key in TRI_KEYS}} for name in TRIANGULATIONS}
+    text = _text(s, eps, summary, tri_summary)
     rows = [{"filter": name, "episode": "median",
              **{k: v for k, v in r.items() if not isinstance(v, list)}}
             for name, r in summary.items()]
     rows += [{"filter": name, "episode": sd, **pe[name]}
              for sd, pe in zip(s.seeds, per_episode) for name in names]
+    rows += [{"filter": name, "episode": "median", **r} for name, r in tri_summary.items()]
+    rows += [{"filter": name, "episode": sd, **pe[name]}
+             for sd, pe in zip(s.seeds, tri_per_episode) for name in TRIANGULATIONS]
     files = write_report(s.out, "paper_localization", text, rows,
                          {"duration": s.duration, "seed": s.seed, "episodes": s.episodes,
                           "seeds": s.seeds, "kidnap_time": eps[0]["kidnap_time"],
                           "kld_config": eps[0]["kld_config"], "summary": summary,
+                          "triangulation": tri_summary,
                           "per_episode": [{k: v for k, v in ep.items()
                                            if k not in ("kld_name", "kld_config")}
                                           for ep in eps]})
     files.append(_plot(s, eps))
     return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
-            "results": summary, "episodes": [
+            "results": summary, "triangulation": tri_summary, "episodes": [
                 {"seed": sd, "kidnap_time": ep["kidnap_time"], "kidnap_to": ep["kidnap_to"],
-                 "falls": ep["falls"], "results": pe}
-                for sd, ep, pe in zip(s.seeds, eps, per_episode)]}
+                 "falls": ep["falls"], "results": pe, "triangulation": tp}
+                for sd, ep, pe, tp in zip(s.seeds, eps, per_episode, tri_per_episode)]}
 
 
 def _walk_episodes(s: Settings) -> list[dict[str, Any]]:
@@ -448,9 +572,11 @@ def _walk_episodes(s: Settings) -> list[dict[str, Any]]:
 # Report
 # ------------------------------------------------------------------------------------------
 
-def _text(s: Settings, eps: list[dict[str, Any]], summary: dict[str, Any]) -> str:
+def _text(s: Settings, eps: list[dict[str, Any]], summary: dict[str, Any],
+          tri_summary: dict[str, Any]) -> str:
     """The printed report: the setting, the filters' medians over the episodes, each
-    episode's median position error, KLD-sampling against the aims, and the paper."""
+    episode's median position error, KLD-sampling against the aims, the recovery seed's
+    effect, triangulation alone, and the paper."""
     seeds, tk = s.seeds, eps[0]["kidnap_time"]
     spec = presets.robot(ROBOT)
     span = f"seed {seeds[0]}" if len(seeds) == 1 else f"seeds {seeds[0]}-{seeds[-1]}"
@@ -474,7 +600,9 @@ def _text(s: Settings, eps: list[dict[str, Any]], summary: dict[str, Any]) -> st
         lines += ["", "Kidnapped to (x [m], y [m], heading [deg]): " + "; ".join(
             f"seed {ep['seed']} ({ep['kidnap_to'][0]:.2f}, {ep['kidnap_to'][1]:.2f}, "
             f"{math.degrees(ep['kidnap_to'][2]):.0f})" for ep in eps) + "."]
-    lines += ["", *_kld_lines(s, eps, summary), "",
+    lines += ["", *_kld_lines(s, eps, summary), "", *_fox_lines(s, eps, summary), "",
+              *_seed_lines(s, eps, summary), "",
+              *_triangulation_table(s, tri_summary), "",
               "Median position error while tracking, in turns / walking straight (medians "
               "over the episodes): "
               + "; ".join(f"{name} {_fmt2(r['median_pos_turning_m'])} / "
@@ -538,6 +666,70 @@ def _kld_lines(s: Settings, eps: list[dict[str, Any]], summary: dict[str, Any]) 
             + ("; the mean while tracking comes from the recovery's uniform draws, which "
                "grow it to thousands." if kld["tracking_particles"]
                > 1.5 * kld["tracking_particles_median"] else ".")]
+
+
+def _fox_lines(s: Settings, eps: list[dict[str, Any]], summary: dict[str, Any]
+               ) -> list[str]:
+    """KLD-sampling binning the predicted samples (Fox 2003) against binning the resampled
+    ones (ours)."""
+    name = eps[0]["kld_name"]
+    a, b = summary[name], summary[name + FOX]
+    return [f"Where the bins are counted: on the resampled particles before the motion (ours,"
+            f" the default) median position error {a['median_pos_m']:.3f} m, "
+            f"{a['tracking_particles']:.0f} particles while tracking (median "
+            f"{a['tracking_particles_median']:.0f}), {a['ms_per_update']:.2f} ms per update; "
+            f"on the predicted samples, as Fox's KLD-sampling does: {b['median_pos_m']:.3f} m, "
+            f"{b['tracking_particles']:.0f} (median {b['tracking_particles_median']:.0f}), "
+            f"{b['ms_per_update']:.2f} ms; under {AIM_POS_M:g} m in "
+            f"{a['pos_aim_episodes']} and {b['pos_aim_episodes']} of {s.episodes} "
+            "episode(s)."]
+
+
+def _seed_lines(s: Settings, eps: list[dict[str, Any]], summary: dict[str, Any]
+                ) -> list[str]:
+    """KLD-sampling with the triangulation recovery seed against its uniform recovery."""
+    name = eps[0]["kld_name"]
+    a, b = summary[name], summary[name + SEEDED]
+    return [f"Recovery seed (paper 000's triangulation from the sightings of the last "
+            f"{SEED_MEMORY} frames with landmarks, half of the injected particles around the "
+            f"poses that fit best): median position error {a['median_pos_m']:.3f} m with "
+            f"uniform recovery, {b['median_pos_m']:.3f} m with the seed; under "
+            f"{AIM_POS_M:g} m in {a['pos_aim_episodes']} and {b['pos_aim_episodes']} of "
+            f"{s.episodes} episode(s); localized after "
+            f"{_fmt_never(a['localized_s'], a['localized_never'])} and "
+            f"{_fmt_never(b['localized_s'], b['localized_never'])} s"
+            + ("" if not s.kidnap else
+               f"; recovered after {_fmt_never(a['recovery_s'], a['recovery_never'])} and "
+               f"{_fmt_never(b['recovery_s'], b['recovery_never'])} s")
+            + f"; frames at the mirror pose {a['mirror_pct']:.0f} % and "
+            f"{b['mirror_pct']:.0f} %."]
+
+
+def _triangulation_table(s: Settings, tri: dict[str, Any]) -> list[str]:
+    """Triangulation alone per frame: how often it gives a pose, how good, and why not."""
+    lines = [
+        f"Triangulation alone (paper 000, no filter) at every frame, medians over the "
+        f"{s.episodes} episode(s) of each episode's figure: the best pose of the candidate "
+        f"assignments, a wrong assignment when it is more than {WRONG_M:g} m from the truth "
+        "(the shares add up to 100 % of the frames; errors over the frames with a pose, and "
+        "over the correct ones):", "",
+        "| sightings | correct pose [%] | wrong assignment (ambiguous landmarks) [%] (at the "
+        "mirror pose) | fewer than three landmarks [%] | degenerate geometry [%] | no "
+        "assignment fits [%] | median position error [m] (correct ones) | median heading "
+        "error [deg] (correct ones) | ms per frame |",
+        "|---|---|---|---|---|---|---|---|---|"]
+    for name, r in tri.items():
+        lines.append(
+            f"| {name} | {r['correct_pct']:.0f} | {r['wrong_pct']:.0f} "
+            f"({r['mirror_pct']:.0f}) | {r['too_few_pct']:.0f} | {r['degenerate_pct']:.1f} | "
+            f"{r['no_fit_pct']:.1f} | {_fmt2(r['median_pos_m'])} "
+            f"({_fmt2(r['median_pos_correct_m'])}) | {_fmt1(r['median_head_deg'])} "
+            f"({_fmt1(r['median_head_correct_deg'])}) | {r['ms_per_frame']:.2f} |")
+    return lines
+
+
+def _fmt1(v: float | None) -> str:
+    return "-" if v is None else f"{v:.1f}"
 
 
 def _plot(s: Settings, eps: list[dict[str, Any]]) -> str:

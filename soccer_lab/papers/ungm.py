@@ -1,13 +1,18 @@
 """The particle-filter benchmark of paper 000 (Xu, Xie, Wang, Ni 2012): the univariate
 nonstationary growth model (UNGM).
 
-``soccer-env paper ungm``: bootstrap PF, FBPF and MFBPF (:mod:`estimators.particle`) with 100
-particles on ``runs`` simulated 50-step UNGM trajectories (``x_0 ~ N(0, 10)``, process noise
-variance 10, measurement noise variance 1, ``N_th = 50``, fission variance 1, as in the
-paper). Every filter sees the same trajectories and starts from the same initial particles
-(one generator per run, seeded from ``seed``). Reports the RMSE over each run's 50 steps (mean,
-standard deviation and median over runs) and the time per filter step, beside the paper's
-claim (MFBPF slightly better than FBPF; the paper gives a figure, not numbers).
+``soccer-env paper ungm``: bootstrap PF, FBPF (as printed, resampling every step, and ours,
+resampling below the threshold) and MFBPF (as printed, and with FBPF's test)
+(:mod:`estimators.particle`) with 100 particles on ``runs`` simulated 50-step UNGM trajectories
+(``x_0 ~ N(0, 10)``, process noise variance 10, measurement noise variance 1, ``N_th = 50``,
+fission variance 1, as in the paper). Every filter sees the same trajectories and starts from
+the same initial particles and generator state (one per run, seeded from ``seed``). Reports
+the RMSE over each run's 50 steps (mean, standard deviation and median over runs), the share of
+steps with ``N_eff < N_th`` (which decides each filter's SFN and resampling branch) and the
+time per filter step, then paired differences of the RMSE, run by run, with their standard
+errors: the runs are shared, so the paired difference removes the run-to-run spread of the
+trajectories themselves, which is much larger than the filters' differences. The paper's
+claim: MFBPF slightly better than FBPF (it gives a figure, not numbers).
 """
 
 from __future__ import annotations
@@ -24,7 +29,7 @@ from estimators import FBPF, MFBPF, BootstrapPF, ungm_model, ungm_simulate
 from soccer_env.render.plots import pyplot, save_figure
 from soccer_lab.papers._io import write_report
 
-__all__ = ["run", "Settings", "FILTERS", "PAPER_CLAIM"]
+__all__ = ["run", "Settings", "FILTERS", "PAIRS", "PAPER_CLAIM", "paired_difference"]
 
 PAPER_CLAIM = ("Paper 000 (Fig. 12): with 100 particles, N_th = 50 and fission variance 1 on "
                "50 UNGM steps, MFBPF's RMSE is slightly lower than FBPF's (no numbers given).")
@@ -33,8 +38,12 @@ PAPER_CLAIM = ("Paper 000 (Fig. 12): with 100 particles, N_th = 50 and fission v
 FILTERS = {
     "bootstrap": ("bootstrap PF, resampling every step",
                   lambda p, t, lk, g: BootstrapPF(p, t, lk, g)),
-    "fbpf": ("FBPF: SFN then resampling when N_eff < N_th",
-             lambda p, t, lk, g: FBPF(p, t, lk, g, threshold=0.5, fission_variance=1.0)),
+    "fbpf": ("FBPF as printed (the default): SFN when N_eff < N_th, resampling every step",
+             lambda p, t, lk, g: FBPF(p, t, lk, g, threshold=0.5, fission_variance=1.0,
+                                      resample="always")),
+    "fbpf-threshold": ("FBPF, SFN and resampling only when N_eff < N_th",
+                       lambda p, t, lk, g: FBPF(p, t, lk, g, threshold=0.5,
+                                                fission_variance=1.0, resample="threshold")),
     "mfbpf": ("MFBPF as printed: SFN when N_eff >= N_th, else copy-over resampling",
               lambda p, t, lk, g: MFBPF(p, t, lk, g, threshold=0.5, fission_variance=1.0)),
     "mfbpf-below": ("MFBPF with FBPF's test (N_eff < N_th)",
@@ -43,10 +52,33 @@ FILTERS = {
 }
 
 
+#: Paired differences reported, ``(a, b, what the difference asks)``: RMSE of ``a`` minus ``b``.
+PAIRS = (
+    ("mfbpf", "fbpf", "the paper's claim, both as printed"),
+    ("mfbpf", "fbpf-threshold", "MFBPF against FBPF resampling below the threshold"),
+    ("fbpf-threshold", "fbpf", "resampling below the threshold against every step"),
+    ("fbpf", "bootstrap", "does SFN help the printed FBPF?"),
+)
+
+
+def paired_difference(a: np.ndarray, b: np.ndarray) -> dict[str, float]:
+    """Run-by-run difference ``d = a - b`` of two filters' RMSE on the same runs: its mean,
+    standard error ``std(d, ddof=1) / sqrt(n)``, the normal 95 % interval
+    ``mean +- 1.96 SE``, and the share of runs where ``a`` is lower."""
+    d = np.asarray(a, dtype=np.float64) - np.asarray(b, dtype=np.float64)
+    se = float(d.std(ddof=1) / math.sqrt(len(d))) if len(d) > 1 else math.nan
+    mean = float(d.mean())
+    return {"mean": mean, "se": se, "low": mean - 1.96 * se, "high": mean + 1.96 * se,
+            "a_lower": float(np.mean(d < 0.0)), "equal": float(np.mean(d == 0.0))}
+
+
 def _rmse_runs(runs: int, particles: int, steps: int, seed: int
-               ) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
+               ) -> tuple[dict[str, np.ndarray], dict[str, Any], dict[str, float]]:
+    """RMSE per run and filter, run 0's estimates, and each filter's share of steps with
+    ``N_eff < N_th``."""
     transition, likelihood = ungm_model()
     rmse = {name: np.empty(runs) for name in FILTERS}
+    below = dict.fromkeys(FILTERS, 0)
     example: dict[str, Any] = {}
     seeds = np.random.SeedSequence(seed).spawn(runs)
     for r in range(runs):
@@ -59,13 +91,16 @@ def _rmse_runs(runs: int, particles: int, steps: int, seed: int
             rng = np.random.default_rng()
             rng.bit_generator.state = state  # the same draws for every filter
             f = make(p0, transition, likelihood, rng)
-            est = np.array([f.step(y)[0] for y in ys])
+            est = np.empty(len(ys))
+            for k, y in enumerate(ys):
+                est[k] = f.step(y)[0]
+                below[name] += f.n_eff < f.threshold * f.n
             rmse[name][r] = math.sqrt(float(np.mean((est - xs) ** 2)))
             if r == 0:
                 example[name] = est
         if r == 0:
             example["truth"] = xs
-    return rmse, example
+    return rmse, example, {name: n / (runs * steps) for name, n in below.items()}
 
 
 def _time_per_step(particles: int, repeats: int = 5, steps: int = 400) -> dict[str, float]:
@@ -100,7 +135,7 @@ class Settings:
     """
 
     out: Path
-    runs: int = 200
+    runs: int = 1000
     particles: int = 100
     steps: int = 50
     seed: int = 0
@@ -112,52 +147,64 @@ class Settings:
                 raise ValueError(f"{name} must be an integer >= {lo}, got {value!r}")
 
 
-def run(out: str | Path = "paper_output", runs: int = 200, particles: int = 100,
+def run(out: str | Path = "paper_output", runs: int = 1000, particles: int = 100,
         steps: int = 50, seed: int = 0) -> dict[str, Any]:
     """Run the benchmark, write ``paper_ungm.md``, ``.csv``, ``.json`` and ``.png`` into
-    ``out`` and return ``{"text", "files", "seconds", "rmse", "us_per_step"}``."""
+    ``out`` and return ``{"text", "files", "seconds", "rmse", "us_per_step", "paired"}``
+    (``paired``: :func:`paired_difference` for each of :data:`PAIRS`, keyed ``"a - b"``)."""
     settings = Settings(Path(out), runs, particles, steps, seed)
     t0 = time.perf_counter()
     settings.out.mkdir(parents=True, exist_ok=True)
-    rmse, example = _rmse_runs(int(settings.runs), int(settings.particles), int(settings.steps),
-                               settings.seed)
+    rmse, example, below = _rmse_runs(int(settings.runs), int(settings.particles),
+                                      int(settings.steps), settings.seed)
     timing = _time_per_step(int(settings.particles))
-    text, rows = _tables(settings, rmse, timing)
+    paired = {f"{a} - {b}": paired_difference(rmse[a], rmse[b]) for a, b, _ in PAIRS}
+    text, rows = _tables(settings, rmse, timing, below, paired)
     files = write_report(settings.out, "paper_ungm", text, rows, {
         "runs": settings.runs, "particles": settings.particles, "steps": settings.steps,
-        "seed": settings.seed, "rows": rows,
+        "seed": settings.seed, "rows": rows, "paired": paired, "share_below_n_th": below,
         "rmse_per_run": {k: v.tolist() for k, v in rmse.items()}})
     files.append(_plot(settings, rmse, example))
     return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
-            "rmse": {k: float(v.mean()) for k, v in rmse.items()}, "us_per_step": timing}
+            "rmse": {k: float(v.mean()) for k, v in rmse.items()}, "us_per_step": timing,
+            "paired": paired}
 
 
 # ------------------------------------------------------------------------------------------
 # Report
 # ------------------------------------------------------------------------------------------
 
-def _tables(s: Settings, rmse: dict[str, np.ndarray], timing: dict[str, float]
+def _tables(s: Settings, rmse: dict[str, np.ndarray], timing: dict[str, float],
+            below: dict[str, float], paired: dict[str, dict[str, float]]
             ) -> tuple[str, list[dict[str, Any]]]:
     """The printed report and the CSV rows."""
     lines = [f"UNGM, paper 000's benchmark: {s.runs} runs of {s.steps} steps, {s.particles} "
              "particles, N_th = N/2, fission variance 1; RMSE over each run (mean, standard "
-             "deviation, median over runs) and time per filter step (median of 5 timings of "
-             "400 steps).",
+             "deviation, median over runs), share of steps with N_eff < N_th, and time per "
+             "filter step (median of 5 timings of 400 steps).",
              "",
-             "| filter | RMSE mean | RMSE std | RMSE median | us per step |",
-             "|---|---|---|---|---|"]
+             "| filter | RMSE mean | RMSE std | RMSE median | steps N_eff < N_th | us per step |",
+             "|---|---|---|---|---|---|"]
     rows = []
     for name, (desc, _) in FILTERS.items():
         v = rmse[name]
         lines.append(f"| {name}: {desc} | {v.mean():.3f} | {v.std():.3f} | "
-                     f"{np.median(v):.3f} | {timing[name]:.1f} |")
+                     f"{np.median(v):.3f} | {below[name]:.0%} | {timing[name]:.1f} |")
         rows.append({"filter": name, "description": desc, "rmse_mean": float(v.mean()),
                      "rmse_std": float(v.std()), "rmse_median": float(np.median(v)),
-                     "us_per_step": timing[name]})
-    diff = rmse["mfbpf"] - rmse["fbpf"]
-    lines += ["", f"MFBPF minus FBPF RMSE per run: mean {diff.mean():+.3f}, MFBPF lower in "
-              f"{np.mean(diff < 0):.0%} of runs, equal in {np.mean(diff == 0):.0%}.", "",
-              PAPER_CLAIM]
+                     "share_below_n_th": below[name], "us_per_step": timing[name]})
+    lines += ["", f"Paired differences of the RMSE, run by run over the same {s.runs} runs "
+              "(a minus b; negative: a lower). Standard error std(d)/sqrt(runs), 95 % "
+              "interval mean +- 1.96 SE; 'differ' when the interval excludes 0.", "",
+              "| a - b | question | mean | SE | 95 % interval | a lower in | differ |",
+              "|---|---|---|---|---|---|---|"]
+    for a, b, question in PAIRS:
+        d = paired[f"{a} - {b}"]
+        differ = "yes" if d["low"] > 0.0 or d["high"] < 0.0 else "no"
+        lines.append(f"| {a} - {b} | {question} | {d['mean']:+.3f} | {d['se']:.3f} | "
+                     f"{d['low']:+.3f} to {d['high']:+.3f} | {d['a_lower']:.0%} of runs | "
+                     f"{differ} |")
+    lines += ["", PAPER_CLAIM]
     return "\n".join(lines), rows
 
 
@@ -166,7 +213,7 @@ def _plot(s: Settings, rmse: dict[str, np.ndarray], example: dict[str, Any]) -> 
     plt = pyplot()
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4))
     ax1.plot(example["truth"], "k-", lw=2, label="true state")
-    for name in ("bootstrap", "fbpf", "mfbpf"):
+    for name in ("bootstrap", "fbpf", "fbpf-threshold", "mfbpf"):
         ax1.plot(example[name], lw=1, label=name)
     ax1.set(xlabel="step k", ylabel="x_k", title="UNGM, run 0")
     ax1.legend(fontsize=8)

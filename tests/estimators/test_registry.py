@@ -76,7 +76,8 @@ def test_unknown_estimator_options_are_refused_with_the_options_listed():
     with pytest.raises(ValueError, match=r"^filter must be one of \['bootstrap', 'fbpf', "
                                          r"'mfbpf'\], got 'kalman'$"):
         ParticleBallTracker(np.random.default_rng(0), filter="kalman")
-    weightings = r"^weighting must be one of \['equal', 'inverse', 'inverse_square'\], got 'cubic'$"
+    weightings = (r"^weighting must be one of \['equal', 'inverse', 'inverse_square', "
+                  r"'inverse_variance'\], got 'cubic'$")
     with pytest.raises(ValueError, match=weightings):
         fusion_weights([1.0, 2.0], "cubic")
     with pytest.raises(ValueError, match=weightings):

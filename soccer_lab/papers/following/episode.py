@@ -21,7 +21,7 @@ __all__ = ["ROBOTS", "VARIANTS", "TRACKERS", "STEPS_PER_FRAME", "MIN_FILL", "SET
 ROBOTS = {"humanoid-2012": ("humanoid-2012", "kidsize-2012"),
           "humanoid": ("humanoid-kid", "kidsize")}
 VARIANTS = ("turn", "follow")
-TRACKERS = ("kalman", "plain")
+TRACKERS = ("kalman", "kalman-paper", "plain")
 STEPS_PER_FRAME = 4
 #: Lost below this mean weight in a window of the target's size (the estimators' default);
 #: a window ``x`` times larger is lost below ``MIN_FILL / x^2``.
@@ -71,7 +71,8 @@ def size_distance(bp: np.ndarray, pos: np.ndarray, window: tuple[int, int], diam
 
 
 def labels(scales: tuple[float, ...]) -> list[str]:
-    """Tracker labels: ``"kalman x1"``, ``"plain x1"``, ... per window scale."""
+    """Tracker labels: ``"kalman x1"``, ``"kalman-paper x1"``, ``"plain x1"``, ... per window
+    scale."""
     return [f"{tr} x{sc:g}" for sc in scales for tr in TRACKERS]
 
 
@@ -351,6 +352,10 @@ class Tracking:
                 start, self.window, image_size=(scene.renderer.width, scene.renderer.height),
                 fov=(cam.hfov, cam.vfov), camera_height=scene.drop, distance=d_start,
                 target_height_m=self.diameter, window_scale=sc, min_fill=fill)
+            self.trackers[f"kalman-paper x{sc:g}"] = KalmanMeanShift(
+                start, self.window, image_size=(scene.renderer.width, scene.renderer.height),
+                fov=(cam.hfov, cam.vfov), camera_height=scene.drop, distance=d_start,
+                target_height_m=self.diameter, window_scale=sc, min_fill=fill, order="paper")
             self.trackers[f"plain x{sc:g}"] = PlainMeanShift(start, self.window,
                                                              window_scale=sc, min_fill=fill)
         for lab in self.labels:

@@ -56,20 +56,26 @@ def analyse(eps: list[dict[str, Any]], scales: tuple[float, ...]) -> dict[str, A
     fast = turn_bins["all"][-1]
     verdicts = {}
     for sc in scales:
-        k_lab, p_lab = f"kalman x{sc:g}", f"plain x{sc:g}"
-        verdicts[f"x{sc:g}"] = {
-            "kalman_off_target": fast[f"{k_lab} off_target_rate"],
-            "plain_off_target": fast[f"{p_lab} off_target_rate"],
-            "kalman_lost": fast[f"{k_lab} lost_rate"],
-            "plain_lost": fast[f"{p_lab} lost_rate"],
-            "off_target": verdict(fast[f"{k_lab} off_target_rate"],
-                                  fast[f"{p_lab} off_target_rate"]),
-            "kalman_hazard": fast[f"{k_lab} loss_hazard"],
-            "plain_hazard": fast[f"{p_lab} loss_hazard"],
-            "lost": verdict(fast[f"{k_lab} lost_rate"], fast[f"{p_lab} lost_rate"]),
-            "hazard": verdict(fast[f"{k_lab} loss_hazard"], fast[f"{p_lab} loss_hazard"])}
+        p_lab = f"plain x{sc:g}"
+        for order, k_lab in (("ours", f"kalman x{sc:g}"), ("paper", f"kalman-paper x{sc:g}")):
+            verdicts[f"x{sc:g} ({order})"] = _verdict(fast, k_lab, p_lab)
     return {"by_variant": by_variant, "summary": summary, "turn_bins": turn_bins,
             "jump_bins": jump_bins, "verdicts": verdicts}
+
+
+def _verdict(fast: dict[str, Any], k_lab: str, p_lab: str) -> dict[str, Any]:
+    """The aim judged on the fast bin for the Kalman tracker ``k_lab`` against ``p_lab``."""
+    return {
+        "kalman_off_target": fast[f"{k_lab} off_target_rate"],
+        "plain_off_target": fast[f"{p_lab} off_target_rate"],
+        "kalman_lost": fast[f"{k_lab} lost_rate"],
+        "plain_lost": fast[f"{p_lab} lost_rate"],
+        "off_target": verdict(fast[f"{k_lab} off_target_rate"],
+                              fast[f"{p_lab} off_target_rate"]),
+        "kalman_hazard": fast[f"{k_lab} loss_hazard"],
+        "plain_hazard": fast[f"{p_lab} loss_hazard"],
+        "lost": verdict(fast[f"{k_lab} lost_rate"], fast[f"{p_lab} lost_rate"]),
+        "hazard": verdict(fast[f"{k_lab} loss_hazard"], fast[f"{p_lab} loss_hazard"])}
 
 
 def text(s: Any, eps: list[dict[str, Any]], res: dict[str, Any]) -> str:
@@ -173,6 +179,15 @@ def _jump_table(jump_bins: list[dict[str, Any]], labels: list[str]) -> list[str]
     return lines
 
 
+def pipeline_label() -> str:
+    """The tracker label of the humanoid pixel pipeline's ball tracker
+    (:class:`soccer_env.perception.pixels.BallImageTracker`)."""
+    from soccer_env.perception.pixels import BallImageTracker
+
+    kind = "kalman" if BallImageTracker.ORDER == "ours" else "kalman-paper"
+    return f"{kind} x{BallImageTracker.WINDOW_SCALE:g}"
+
+
 def _aim_lines(fast: dict[str, Any], verdicts: dict[str, Any], wmax: float) -> list[str]:
     lines = [f"Paper 004's claim: {PAPER['claim']}. Its results: {PAPER['results']}.", "",
              f"Aim: {AIM}. Fast turns (>= {TURN_BINS[-1][1] * wmax:.2f} rad/s, "
@@ -185,6 +200,12 @@ def _aim_lines(fast: dict[str, Any], verdicts: dict[str, Any], wmax: float) -> l
                      f"{_pct(vd['plain_lost'])}: {vd['lost']}; by the loss hazard "
                      f"{_pct(vd['kalman_hazard'])} against {_pct(vd['plain_hazard'])}: "
                      f"{vd['hazard']}.")
+    lines += ["", "Orders: `kalman` starts mean shift at the prediction and takes its result as "
+              "the measurement and the posterior (ours); `kalman-paper` takes the centroid of "
+              "the back-projection in the region R (twice the target) around the prediction "
+              "as the measurement, updates the Kalman filter, then starts mean shift from the "
+              f"posterior (paper 004 as printed). The humanoid pixel pipeline's ball tracker "
+              f"runs `{pipeline_label()}`."]
     return lines
 
 

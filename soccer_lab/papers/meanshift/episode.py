@@ -18,6 +18,7 @@ from soccer_lab.papers.meanshift.scene import (
     FIELD,
     FRAME,
     KINDS,
+    LOST_KINDS,
     ROBOT,
     Driver,
     IdentityCheck,
@@ -80,7 +81,7 @@ class Episode:
         m = self.n_frames - 1
         self.err = {k: np.zeros((m, n)) for k in KINDS}
         self.mate = {k: np.zeros((m, n), bool) for k in KINDS}
-        self.lost = np.zeros((m, n), bool)
+        self.lost = {k: np.zeros((m, n), bool) for k in LOST_KINDS}
         self.true_area_ok = np.zeros((m, n), bool)
         self.true_id_ok = np.zeros((m, n), bool)
         self.upd_s = dict.fromkeys(KINDS, 0.0)
@@ -145,13 +146,14 @@ class Episode:
             x0, y0 = (int(round(c - 0.5 * (side - 1))) for c in truth[i])
             area = mean_shift(col[self.teams[i]], (x0, y0, side, side), max_iter=5, eps=0.5)[3]
             areas.append(area)
-            for k, (cls, npart) in KINDS.items():
+            for k, (cls, npart, options) in KINDS.items():
                 ms = cls == "MeanShiftParticleFilter"
+                # The same draws for the variants of one tracker (common random numbers).
                 trng = np.random.default_rng([self.seed, 5, i, npart, int(ms)])
                 if ms:
                     tr = MeanShiftParticleFilter(truth[i], (side, side), trng,
                                                  n_particles=npart, area=max(area, 1e-6),
-                                                 feature_check=self.checks[i])
+                                                 feature_check=self.checks[i], **options)
                 else:
                     tr = ParticleFilterTracker(truth[i], (side, side), trng,
                                                n_particles=npart)
@@ -184,8 +186,8 @@ class Episode:
                 e = tr.update(col[self.teams[i]], motion)
                 self.upd_s[k] += time.perf_counter() - t1
                 est[i] = e[:2]
-                if k == "ms-pf-20":
-                    self.lost[f - 1, i] = tr.lost
+                if k in self.lost:
+                    self.lost[k][f - 1, i] = tr.lost
             d = np.hypot(*(est[:, None, :] - truth[None, :, :]).transpose(2, 0, 1))
             self.err[k][f - 1] = np.diag(d)
             same = self.team_of[:, None] == self.team_of[None, :]
@@ -205,7 +207,8 @@ class Episode:
                 "window_px": self.side, "frames": n_frames - 1, "robots": self.n,
                 "err_px": {k: v.tolist() for k, v in self.err.items()},
                 "mate": {k: v.tolist() for k, v in self.mate.items()},
-                "lost": self.lost.tolist(), "speed": self.speeds.tolist(),
+                "lost": {k: v.tolist() for k, v in self.lost.items()},
+                "speed": self.speeds.tolist(),
                 "residual_px": residual.tolist(), "true_area_ok": self.true_area_ok.tolist(),
                 "true_id_ok": self.true_id_ok.tolist(),
                 "ms_per_update": {k: 1e3 * v / updates for k, v in self.upd_s.items()},

@@ -86,7 +86,7 @@ def summarise(eps: list[dict[str, Any]]
     for k in KINDS:
         err = np.concatenate([np.asarray(e["err_px"][k]) for e in eps])
         mate = np.concatenate([np.asarray(e["mate"][k]) for e in eps])
-        lost = (np.concatenate([np.asarray(e["lost"]) for e in eps]) if k == "ms-pf-20"
+        lost = (np.concatenate([np.asarray(e["lost"][k]) for e in eps]) if k in eps[0]["lost"]
                 else None)
         s = _measures(err, mate, lost, mpp, radius_px, fast)
         s["ms_per_update"] = float(np.mean([e["ms_per_update"][k] for e in eps]))
@@ -97,7 +97,7 @@ def summarise(eps: list[dict[str, Any]]
                      **{kk: v for kk, v in s.items() if not isinstance(v, list)}})
         for e in eps:
             ek = np.asarray(e["err_px"][k])
-            el = np.asarray(e["lost"]) if k == "ms-pf-20" else None
+            el = np.asarray(e["lost"][k]) if k in e["lost"] else None
             es = _measures(ek, np.asarray(e["mate"][k]), el, mpp, radius_px,
                            np.asarray(e["speed"]) > 2.0)
             rows.append({"episode": e["seed"], "tracker": k, **es,
@@ -130,10 +130,10 @@ def diagnostics(eps: list[dict[str, Any]]) -> dict[str, Any]:
     """The mean-shift PF's diagnostics: how often the true robot's window would fail its
     restriction or identity check, its lost-track events, and the lost frames in which the
     true robot would have passed both."""
-    lost_all = np.concatenate([np.asarray(e["lost"]) for e in eps])
+    lost_all = np.concatenate([np.asarray(e["lost"]["ms-pf-20"]) for e in eps])
     area_ok = np.concatenate([np.asarray(e["true_area_ok"]) for e in eps])
     id_ok = np.concatenate([np.asarray(e["true_id_ok"]) for e in eps])
-    runs = lost_runs([np.asarray(e["lost"]) for e in eps])
+    runs = lost_runs([np.asarray(e["lost"]["ms-pf-20"]) for e in eps])
     visible = area_ok & id_ok
     return {"true_area_fail_share": float(1.0 - area_ok.mean()),
             "true_id_fail_share": float(1.0 - id_ok.mean()),
@@ -248,9 +248,24 @@ def _aim_lines(summary: dict[str, dict[str, Any]], diag: dict[str, Any], prep: f
             f"{'worse' if pf20_worse else 'not worse'} than with 200 here (RMSE "
             f"{p20['rmse_mm']:.0f} vs {p200['rmse_mm']:.0f} mm, off target "
             f"{100 * p20['off_target_share']:.1f} vs {100 * p200['off_target_share']:.1f} %).",
+            _printed_line(summary),
             f"- Paper: cycle about {PAPER['cycle_ms']:g} ms on a Pentium 4: tracking "
             f"{n_rob} robots here takes {cycle:.2f} ms per frame on this machine (no "
             "capture, no decision making; a modern CPU)."]
+
+
+def _printed_line(summary: dict[str, dict[str, Any]]) -> str:
+    """Paper 003's step 4 as printed (``ms-pf-20-paper``) beside ours (``ms-pf-20``)."""
+    ours, printed = summary["ms-pf-20"], summary["ms-pf-20-paper"]
+
+    def figures(s: dict[str, Any]) -> str:
+        return (f"median {s['median_px']:.2f} px, RMSE {s['rmse_px']:.2f} px, off target "
+                f"{100 * s['off_target_share']:.1f} %, on a team-mate "
+                f"{100 * s['on_teammate_share']:.1f} %, lost {100 * s['lost_share']:.1f} %")
+
+    return ("- Step 4 as printed (the unweighted mean of the restricted particles, no "
+            f"resampling): {figures(printed)}; ours (weighted mean, systematic resampling): "
+            f"{figures(ours)}.")
 
 
 def plot(eps: list[dict[str, Any]], summary: dict[str, dict[str, Any]], path: Path) -> str:

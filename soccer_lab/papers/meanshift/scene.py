@@ -11,13 +11,19 @@ import numpy as np
 
 from soccer_env import presets
 
-__all__ = ["KINDS", "FRAME", "FIELD", "ROBOT", "CONTROL_DT", "INTERVAL", "SPEED", "TURN",
-           "WALL_MARGIN", "INWARD_CONE", "HEADINGS", "DOT_BOX", "IdentityCheck", "start_poses",
-           "Driver"]
+__all__ = ["KINDS", "LOST_KINDS", "FRAME", "FIELD", "ROBOT", "CONTROL_DT", "INTERVAL", "SPEED",
+           "TURN", "WALL_MARGIN", "INWARD_CONE", "HEADINGS", "DOT_BOX", "IdentityCheck",
+           "start_poses", "Driver"]
 
-#: Tracker kinds: name -> (class name, particles).
-KINDS = {"ms-pf-20": ("MeanShiftParticleFilter", 20), "pf-20": ("ParticleFilterTracker", 20),
-         "pf-200": ("ParticleFilterTracker", 200)}
+#: Tracker kinds: name -> (class name, particles, keyword options). ``ms-pf-20-paper`` is
+#: paper 003's step 4 as printed (unweighted mean of the restricted set, no resampling).
+KINDS: dict[str, tuple[str, int, dict]] = {
+    "ms-pf-20": ("MeanShiftParticleFilter", 20, {}),
+    "ms-pf-20-paper": ("MeanShiftParticleFilter", 20, {"mean": "paper"}),
+    "pf-20": ("ParticleFilterTracker", 20, {}),
+    "pf-200": ("ParticleFilterTracker", 200, {})}
+#: The kinds with a lost-track test (the mean-shift PFs).
+LOST_KINDS = tuple(k for k, (cls, _, _) in KINDS.items() if cls == "MeanShiftParticleFilter")
 #: The camera preset (paper 003's 640 x 480 at 30 Hz, blur and noise).
 FRAME = "mirosot"
 #: MiroSot middle league (5 vs 5) dimensions on the ssl-2012 preset (see

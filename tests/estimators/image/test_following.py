@@ -58,6 +58,45 @@ def test_kalman_mean_shift_keeps_a_target_that_the_turning_camera_sweeps_across(
     assert blind.lost_frames > 0
 
 
+@pytest.mark.parametrize("order", ["ours", "paper"])
+def test_both_orders_keep_the_target_the_turning_camera_sweeps_across(order):
+    rng = np.random.default_rng(8)
+    steps = 40
+    yaw = 0.35 * np.sin(2 * np.pi * np.arange(steps + 1) / 20)
+    own = np.cumsum(rng.normal(0.0, 0.5, (steps + 1, 2)), axis=0)
+    truth = np.stack([160.0 + yaw * W + own[:, 0], 120.0 + own[:, 1]], axis=1)
+    frames = [weight_image(rng, [p], [(40.0, 40.0)], sigma=5.0) for p in truth]
+    kms = KalmanMeanShift(truth[0], (21, 21), image_size=(W, H), fov=(1.0, 0.75), order=order)
+    est = [kms.update(frames[k], rotation=yaw[k] - yaw[k - 1]) for k in range(1, steps + 1)]
+    assert kms.lost_frames == 0
+    assert rmse(est, truth[1:]) < 1.5
+
+
+def test_paper_order_measures_the_region_centroid_then_shifts_from_the_posterior():
+    """Paper 004's order: the measurement is the weights' centroid in the region R (twice
+    the target) around the prediction; mean shift starts from the Kalman posterior and its
+    result replaces the posterior's position. A target 14 px from the prediction (outside a
+    21 px window centred there, inside the 42 px region): R sees part of it, the update pulls
+    the posterior towards it, mean shift from there reaches its centre."""
+    rng = np.random.default_rng(1)
+    img = weight_image(rng, [(174.0, 120.0)], [], sigma=4.0)
+    kms = KalmanMeanShift((160.0, 120.0), (21, 21), image_size=(W, H), fov=(1.0, 0.75),
+                          order="paper", init_sigma=(20.0, 5.0))
+    kms.update(img)
+    assert not kms.lost
+    assert abs(kms.state[0] - 174.0) < 1.0 and abs(kms.state[1] - 120.0) < 1.0
+    # The Kalman filter's measurement was R's centroid, between the prediction and the
+    # target (R holds only the target's near side), not mean shift's converged position.
+    z = kms.kf.y + kms.prediction  # innovation plus the predicted position
+    assert 160.0 < z[0] < 174.0
+    # Nothing in R: lost, left at the prediction.
+    kms = KalmanMeanShift((40.0, 200.0), (21, 21), image_size=(W, H), fov=(1.0, 0.75),
+                          order="paper")
+    kms.update(img)
+    assert kms.lost
+    np.testing.assert_allclose(kms.state[:2], (40.0, 200.0))
+
+
 def test_kalman_mean_shift_standard_update_and_forward_motion():
     h, d0, s = 1.0, 3.0, 0.1
     fov = (1.0, 0.75)
@@ -98,6 +137,16 @@ def test_depth_from_apparent_size():
     img[120 - px // 2:120 - px // 2 + px, 152:168] = 0.9
     kms.update(img)
     assert kms.distance == pytest.approx(f * size_m / px, rel=0.03)
+
+
+def test_bad_order_arguments():
+    with pytest.raises(ValueError, match="order must be one of"):
+        KalmanMeanShift((1, 1), (5, 5), image_size=(W, H), fov=(1.0, 0.75), order="printed")
+    with pytest.raises(ValueError, match="posterior must be 'replace' with order='paper'"):
+        KalmanMeanShift((1, 1), (5, 5), image_size=(W, H), fov=(1.0, 0.75), order="paper",
+                        posterior="update")
+    with pytest.raises(ValueError, match="region_scale"):
+        KalmanMeanShift((1, 1), (5, 5), image_size=(W, H), fov=(1.0, 0.75), region_scale=0)
 
 
 @pytest.mark.parametrize("call, name", [

@@ -40,6 +40,36 @@ def test_mean_shift_pf_with_20_particles_beats_plain_pf_on_a_manoeuvring_target(
     assert ms20 <= pf200 + 0.5, (ms20, pf200)  # as good as ten times the particles
 
 
+def test_step_four_as_printed_tracks_with_the_unweighted_mean_of_the_restricted_set():
+    """Paper 003's step 4 as printed: the estimate is the plain mean of the particles, every
+    particle is inside the feature restriction after the update (rejected ones replaced by
+    allowed ones), no resampling by weight; and it tracks the manoeuvring target as well as
+    the weighted mean with resampling does."""
+    errors = {"weighted": [], "paper": []}
+    for seed in range(3):
+        rng = np.random.default_rng(seed)
+        truth = manoeuvre(rng)
+        frames = [weight_image(rng, [p], [(60.0, 60.0), (260.0, 180.0)]) for p in truth]
+        motion = frame_differences(frames)
+        for mean in errors:
+            f = MeanShiftParticleFilter(truth[0], (17, 17), np.random.default_rng(100 + seed),
+                                        process_sigma=6.0, velocity=truth[1] - truth[0],
+                                        mean=mean)
+            est = []
+            for c, m in zip(frames, motion):
+                est.append(f.update(c, m))
+                if mean == "paper" and not f.lost:
+                    np.testing.assert_allclose(est[-1], f.particles.mean(axis=0))
+                    x0, y0 = f.windows()[:, 0], f.windows()[:, 1]
+                    mass = np.array([c[y:y + 17, x:x + 17].sum() for x, y in zip(x0, y0)])
+                    # every particle's window within the colour-mass band (up to the pixel
+                    # rounding of the window corner at the particle's moved centre)
+                    assert np.all(np.abs(mass - f.area) <= 0.35 * f.area)
+            errors[mean].append(rmse(est, truth))
+    assert np.mean(errors["paper"]) < 1.5, errors
+    assert np.mean(errors["paper"]) <= np.mean(errors["weighted"]) + 0.5, errors
+
+
 def test_lost_track_and_global_reacquisition():
     rng = np.random.default_rng(5)
     first = np.array([[60.0 + 4 * k, 60.0 + 2 * k] for k in range(15)])
@@ -145,6 +175,7 @@ def test_feature_check_hook_vetoes_windows():
      "robot_radius_px"),
     (lambda: MeanShiftParticleFilter((1, 1), (5, 5), GEN).update(IMG), "area"),
     (lambda: ParticleFilterTracker((1, 1), (5, 5), GEN, process_sigma=-1), "process_sigma"),
+    (lambda: MeanShiftParticleFilter((1, 1), (5, 5), GEN, mean="median"), "mean"),
 ])
 def test_bad_arguments_raise_value_error_naming_them(call, name):
     with pytest.raises(ValueError, match=name):

@@ -19,8 +19,9 @@ from estimators.particle import (
     ungm_simulate,
 )
 
-FILTERS = [BootstrapPF, FBPF, MFBPF, lambda *a, **k: MFBPF(*a, sfn_when="below", **k)]
-IDS = ["bootstrap", "fbpf", "mfbpf", "mfbpf-below"]
+FILTERS = [BootstrapPF, FBPF, lambda *a, **k: FBPF(*a, resample="threshold", **k), MFBPF,
+           lambda *a, **k: MFBPF(*a, sfn_when="below", **k)]
+IDS = ["bootstrap", "fbpf", "fbpf-threshold", "mfbpf", "mfbpf-below"]
 
 
 def _random_walk(q=0.5, r=1.0):
@@ -69,7 +70,12 @@ def test_matches_the_kalman_posterior_on_a_linear_gaussian_model(make):
         m += gain * (y - m)
         p *= 1.0 - gain
         diffs.append(abs(f.step(y)[0] - m))
-    assert np.mean(diffs) < 0.06 and max(diffs) < 0.25
+    # SFN drops the particles lighter than 1/N (the posterior's tails); when the next
+    # measurement lands in a tail (step 12 here, 1.9 from the predicted mean) the estimate
+    # is pulled short of the exact one. Paper 000's FBPF, resampling after every SFN, shows
+    # it most (0.28 off at that step, back within 0.05 three steps later).
+    worst = 0.35 if make is FBPF else 0.25
+    assert np.mean(diffs) < 0.06 and max(diffs) < worst
 
 
 @pytest.mark.parametrize("make", FILTERS, ids=IDS)
@@ -155,6 +161,8 @@ def test_bad_input():
         FBPF(np.zeros((5, 1)), tr, lik, rng, fission_variance=-1.0)
     with pytest.raises(ValueError, match="sfn_when"):
         MFBPF(np.zeros((5, 1)), tr, lik, rng, sfn_when="sometimes")
+    with pytest.raises(ValueError, match="resample must be one of"):
+        FBPF(np.zeros((5, 1)), tr, lik, rng, resample="never")
     with pytest.raises(TypeError, match="Generator"):
         BootstrapPF(np.zeros((5, 1)), tr, lik, 42)
     f = BootstrapPF(np.zeros((5, 1)), lambda x, k, g: x[:3], lik, rng)
@@ -221,3 +229,54 @@ def test_fission_variance_per_dimension():
         FBPF(np.zeros((5, 2)), tr, lik, rng, fission_variance=[0.1, 0.2, 0.3])
     with pytest.raises(ValueError, match="fission_variance must be >= 0"):
         MFBPF(np.zeros((5, 2)), tr, lik, rng, fission_variance=[0.1, -0.2])
+
+
+def test_printed_fbpf_resamples_at_every_step_and_ours_only_below_the_threshold():
+    """Paper 000's FBPF listing resamples after every measurement (every step starts from
+    equal weights); the threshold variant keeps unequal weights while N_eff >= N_th."""
+    tr, lik = ungm_model()
+    _, _, ys = ungm_simulate(40, np.random.default_rng(2))
+    kept_unequal = {}
+    for resample in ("always", "threshold"):
+        rng = np.random.default_rng(4)
+        f = FBPF(rng.normal(0, 3, (100, 1)), tr, lik, rng, resample=resample)
+        unequal = 0
+        for y in ys:
+            f.step(y)
+            unequal += int(np.ptp(f.weights) > 0.0)
+            if resample == "always":
+                np.testing.assert_array_equal(f.weights, np.full(100, 0.01))
+        kept_unequal[resample] = unequal
+    assert kept_unequal["threshold"] > 10
+
+
+@pytest.mark.parametrize("make", FILTERS, ids=IDS)
+def test_likelihoods_far_below_the_smallest_double_squared_keep_the_filter_finite(make):
+    """A measurement far from every particle: likelihoods of 1e-200 (their squares, and the
+    square of their sum, underflow to zero). The effective sample size is still that of the
+    (equal) weights, N."""
+    rng = np.random.default_rng(0)
+    f = make(rng.normal(0, 1, (50, 1)), lambda x, k, g: x, lambda x, y: np.full(len(x), 1e-200),
+             rng)
+    est = f.step(0.0)
+    assert np.all(np.isfinite(est))
+    assert f.n_eff == pytest.approx(50.0)
+    assert f.weights.sum() == pytest.approx(1.0)
+
+
+@pytest.mark.slow
+def test_thousands_of_ungm_runs_run_through():
+    """2,000 UNGM runs seeded as ``soccer-env paper ungm --seed 0`` seeds them (run 228 once
+    made MFBPF divide zero by zero): every estimate finite, every N_eff within [1, N]."""
+    tr, lik = ungm_model()
+    seeds = np.random.SeedSequence(0).spawn(2000)
+    for seq in seeds:
+        sim_seed, filter_seed = seq.spawn(2)
+        _, _, ys = ungm_simulate(50, np.random.default_rng(sim_seed))
+        rng = np.random.default_rng(filter_seed)
+        for f in (MFBPF(rng.normal(0.0, math.sqrt(10.0), (100, 1)), tr, lik, rng),
+                  FBPF(rng.normal(0.0, math.sqrt(10.0), (100, 1)), tr, lik, rng,
+                       resample="always")):
+            for y in ys:
+                assert math.isfinite(float(f.step(y)[0]))
+                assert 1.0 - 1e-9 <= f.n_eff <= 100.0 + 1e-9

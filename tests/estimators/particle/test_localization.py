@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from estimators.particle.localization import (
+    RECOVERIES,
     KLDConfig,
     KLDLocalizer,
     LandmarkTable,
@@ -279,3 +280,197 @@ def test_landmark_table_bad_input():
     table = LandmarkTable(TABLE)
     with pytest.raises(ValueError):  # read-only: the cached layouts cannot go stale
         table["corner"][0, 0] = 9.0
+
+
+# --------------------------------------------------------------------------------------------
+# Recovery seeded by triangulation (paper 000's three-landmark self-localization)
+# --------------------------------------------------------------------------------------------
+
+#: Posts told apart by colour, corners and centre-line ends by kind only.
+COLOURED = {"post_a": np.array([[3, 0.7], [3, -0.7]], dtype=float),
+            "post_b": np.array([[-3, 0.7], [-3, -0.7]], dtype=float),
+            "L": np.array([[3, 2], [3, -2], [-3, 2], [-3, -2]], dtype=float),
+            "T": np.array([[0, 2], [0, -2]], dtype=float)}
+
+
+def _sight_coloured(pose, rng, noise=0.02, max_range=4.0):
+    kinds, ranges, bearings = [], [], []
+    for kind, pos in COLOURED.items():
+        rel = pos - pose[:2]
+        dist = np.hypot(*rel.T)
+        for j in np.flatnonzero(dist < max_range):
+            kinds.append(kind)
+            ranges.append(dist[j] * (1.0 + rng.normal(0, noise)))
+            bearings.append(math.atan2(rel[j, 1], rel[j, 0]) - pose[2] + rng.normal(0, noise))
+    return kinds, np.array(ranges), np.array(bearings)
+
+
+def _frames_to_recover(recovery, seed, known=False, frames=60):
+    """A fixed-size filter (300 particles) tracks a walking robot from a known start, which
+    is then picked up and put down elsewhere: the frames until the estimate is within 0.2 m
+    (None: not within ``frames``)."""
+    sight_rng = np.random.default_rng(100 + seed)
+    cfg = KLDConfig(min_particles=300, max_particles=300, bearing_sigma=0.05)
+    pose = np.array([-1.0, 0.5, 0.3])
+    loc = KLDLocalizer(BOUNDS, np.random.default_rng(seed), cfg, pose=pose, recovery=recovery)
+    table = LandmarkTable(COLOURED)
+
+    def frame(pose):
+        pose = pose + [0.02 * math.cos(pose[2]), 0.02 * math.sin(pose[2]), 0.0]
+        loc.predict((0.02, 0.0, 0.0))
+        kinds, ranges, bearings = _sight_coloured(pose, sight_rng)
+        if known:  # the landmarks' identities known: each sighting its nearest landmark
+            pts = pose[:2] + np.column_stack([ranges * np.cos(bearings + pose[2]),
+                                              ranges * np.sin(bearings + pose[2])])
+            where = np.array([COLOURED[k][np.argmin(np.hypot(*(COLOURED[k] - p).T))]
+                              for k, p in zip(kinds, pts)])
+            loc.update(where, ranges, bearings)
+        else:
+            loc.update_kinds(kinds, ranges, bearings, table)
+        return pose
+
+    for _ in range(20):
+        pose = frame(pose)
+    assert np.hypot(*(loc.estimate()[:2] - pose[:2])) < 0.2
+    pose = np.array([1.5, -0.8, 2.5])  # kidnapped
+    for k in range(frames):
+        pose = frame(pose)
+        if np.hypot(*(loc.estimate()[:2] - pose[:2])) < 0.2:
+            return k + 1
+    return None
+
+
+def test_triangulated_seed_recovers_a_kidnapped_robot_far_sooner_than_uniform_draws():
+    seeds = range(4)
+    tri = [_frames_to_recover("triangulate", s) for s in seeds]
+    uni = [_frames_to_recover("uniform", s) for s in seeds]
+    # The seed: once the likelihood averages call the filter lost (a few frames), the
+    # triangulated pose is among the new particles at once.
+    assert all(t is not None and t <= 15 for t in tri), tri
+    # Uniform draws over 24 m^2 x 2 pi land near the pose by chance: far later, or never.
+    later = [60 if u is None else u for u in uni]
+    assert np.median(later) >= 2 * np.median(tri), (tri, uni)
+    # Landmarks of known identity (update) feed the seed as well.
+    assert _frames_to_recover("triangulate", 0, known=True) <= 15
+
+
+def test_the_seed_is_skipped_when_the_geometry_gives_no_pose():
+    # Only two landmarks in view: no hypothesis, every injected particle uniform (as
+    # "uniform", but the filter keeps working).
+    loc = KLDLocalizer(BOUNDS, np.random.default_rng(0), recovery="triangulate")
+    two = LANDMARKS[[0, 1]]
+    pose = np.array([1.0, 0.0, 0.0])
+    for _ in range(5):
+        rel = two - pose[:2]
+        loc.predict(np.zeros(3))
+        loc.update(two, np.hypot(*rel.T), np.arctan2(rel[:, 1], rel[:, 0]))
+    hyp = loc.seed_hypotheses()
+    assert not hyp.ok and hyp.reason == "too_few"
+    assert loc._recovery_draws(100).shape == (100, 3)
+    # The robot on the line of three collinear landmarks: degenerate, skipped.
+    line = np.array([[3.0, -2.0], [3.0, -0.7], [3.0, 0.7]])
+    loc = KLDLocalizer((-3.0, 3.0, -4.0, 2.0), np.random.default_rng(0),
+                       recovery="triangulate")
+    pose = np.array([3.0, -3.5, 1.0])
+    rel = line - pose[:2]
+    loc.update(line, np.hypot(*rel.T), np.arctan2(rel[:, 1], rel[:, 0]) - pose[2])
+    hyp = loc.seed_hypotheses()
+    assert not hyp.ok and hyp.reason == "degenerate"
+    draws = loc._recovery_draws(1000)
+    assert (draws[:, 0] >= -3.0).all() and (draws[:, 0] <= 3.0).all()  # uniform, in bounds
+    assert np.std(draws[:, 0]) > 1.0
+
+
+def test_uniform_recovery_is_the_default_draw_for_draw():
+    runs = []
+    for kwargs in ({}, {"recovery": "uniform", "seed_fraction": 0.3, "seed_memory": 3}):
+        loc = KLDLocalizer(BOUNDS, np.random.default_rng(5), **kwargs)
+        _, errors, counts = _walk(loc, np.array([0.0, 0.0, 0.0]), 20, np.random.default_rng(6))
+        runs.append((errors.tolist(), counts.tolist(), loc.particles.tolist()))
+        assert loc.memory is None
+    assert runs[0] == runs[1]
+
+
+def test_recovery_option_bad_input():
+    rng = np.random.default_rng(0)
+    with pytest.raises(ValueError, match=r"recovery must be one of \('uniform', "
+                                         r"'triangulate'\), got 'kidnap'"):
+        KLDLocalizer(BOUNDS, rng, recovery="kidnap")
+    for bad in (-0.1, 1.5, math.nan, True, "half"):
+        with pytest.raises(ValueError, match=r"seed_fraction must be in \[0, 1\]"):
+            KLDLocalizer(BOUNDS, rng, recovery="triangulate", seed_fraction=bad)
+    for bad in (0, 1001, 2.5, False):
+        with pytest.raises(ValueError, match=r"seed_memory must be an integer in \[1, 1000\]"):
+            KLDLocalizer(BOUNDS, rng, recovery="triangulate", seed_memory=bad)
+    with pytest.raises(ValueError, match="recovery='triangulate'"):
+        KLDLocalizer(BOUNDS, rng).seed_hypotheses()
+    assert RECOVERIES == ("uniform", "triangulate")
+
+
+def _reference_fox_predict(loc: KLDLocalizer, d: np.ndarray, rng: np.random.Generator
+                           ) -> np.ndarray:
+    """Fox's KLD-sampling (2003, Table 1) written out plainly: draw a particle, move it by the
+    motion model, count the bin of the *predicted* sample; stop at the bound."""
+    c = loc.cfg
+    bound = _kld_table(c.epsilon, c.delta, c.max_particles)
+    cumulative = np.cumsum(loc.weights)
+    cumulative /= cumulative[-1]
+    batch = min(c.max_particles, max(c.min_particles, 2 * loc.n))
+    drawn, seen, kept = 0, set(), []
+    while True:
+        take = min(batch, c.max_particles - drawn)
+        idx = np.searchsorted(cumulative, rng.random(take), side="right")
+        rows = loc.particles[np.minimum(idx, loc.n - 1)].copy()
+        noise = rng.normal(0.0, 1.0, (take, 3))
+        dist, turn = math.hypot(d[0], d[1]), abs(d[2])
+        s_xy = c.a_trans * dist + c.a_rot_xy * turn
+        s_th = c.a_rot * turn + c.a_trans_theta * dist
+        for row, e in zip(rows, noise):
+            th = row[2] + 0.5 * d[2]
+            dx, dy = d[0] + s_xy * e[0], d[1] + s_xy * e[1]
+            moved = np.array([row[0] + math.cos(th) * dx - math.sin(th) * dy,
+                              row[1] + math.sin(th) * dx + math.cos(th) * dy,
+                              math.remainder(row[2] + d[2] + s_th * e[2], 2.0 * math.pi)])
+            kept.append(moved)
+            seen.add(tuple(int(v) for v in np.floor(moved / np.asarray(c.bin_size))))
+            drawn += 1
+            if drawn >= c.min_particles and drawn >= bound[len(seen)]:
+                return np.array(kept)
+        if drawn >= c.max_particles:
+            return np.array(kept)
+        batch *= 2
+
+
+def test_fox_binning_counts_the_predicted_samples():
+    """binning="predicted": an update only weighs (no resampling); the next predict draws,
+    moves and bins the predicted samples as Fox's listing does, so with the motion's spread
+    added it keeps more particles than binning the resampled ones."""
+    counts = {}
+    for binning in KLDConfig.BINNINGS:
+        config = KLDConfig(min_particles=20, max_particles=3000, alpha_fast=0.0,
+                           binning=binning)
+        loc = KLDLocalizer(BOUNDS, np.random.default_rng(3), config,
+                           pose=np.array([0.5, -0.2, 1.0]), pose_sigma=(0.05, 0.05, 0.05))
+        loc.update(*_sight(np.array([0.5, -0.2, 1.0]), np.random.default_rng(4)))
+        if binning == "predicted":
+            assert loc.n == 20 and np.ptp(loc.weights) > 0.0  # weighed, not resampled
+            d = np.array([0.4, 0.0, 0.6])  # a large, turning step: a wide motion spread
+            expected = _reference_fox_predict(loc, d, np.random.default_rng(9))
+            loc.rng = np.random.default_rng(9)
+            loc.predict(d)
+            np.testing.assert_allclose(loc.particles, expected, atol=1e-12)
+            np.testing.assert_array_equal(loc.weights, np.full(loc.n, 1.0 / loc.n))
+        else:
+            loc.predict(np.array([0.4, 0.0, 0.6]))
+        counts[binning] = loc.n
+    assert counts["predicted"] > counts["resampled"], counts
+
+
+def test_fox_binning_tracks_and_adapts_as_ours_does():
+    rng = np.random.default_rng(0)
+    loc = KLDLocalizer(BOUNDS, np.random.default_rng(1), KLDConfig(binning="predicted"))
+    _, errors, counts = _walk(loc, np.array([-1.0, 0.5, 0.3]), 200, rng)
+    assert np.median(errors[20:]) < 0.15
+    assert np.max(counts[20:]) * 3 <= KLDConfig().max_particles
+    with pytest.raises(ValueError, match="binning must be one of"):
+        KLDConfig(binning="before")

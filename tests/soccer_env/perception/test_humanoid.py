@@ -81,6 +81,22 @@ def test_localization_corrects_the_unreported_turn_of_getting_up():
     assert kld[:, 0].max() < 0.5  # none settles on the mirror pose across the field
 
 
+def test_the_triangulation_recovery_seed_is_a_localization_option():
+    # "kld" keeps the uniform recovery (the default, unchanged); "kld-triangulate" gives the
+    # same filter a triangulated recovery seed fed by the frames' landmarks.
+    for name, recovery in (("kld", "uniform"), ("kld-triangulate", "triangulate")):
+        env = keeper(localization=name)
+        env.reset(seed=0)
+        for _ in range(60):
+            _, _, _, _, info = env.step(STAND)
+        loc = env.pipelines[0].localization(0)
+        assert loc.recovery == recovery
+        assert (loc.memory is not None and len(loc.memory) > 0) == (recovery == "triangulate")
+        assert pose_error(info)[0] < 0.3
+    with pytest.raises(ValueError, match=r"localization must be one of \[.*'kld-triangulate'"):
+        PerceptionConfig(vision="ideal", localization="kld-triangulated")
+
+
 def test_a_walking_keeper_never_strays_far_from_its_pose():
     # The gait's pitch sway makes far landmarks' ranges err by tens of per cent, frame after
     # frame: the localization must neither trust them nor take them for a kidnapping.

@@ -48,7 +48,7 @@ def test_the_humanoid_families_follow_the_estimators_registries():
     assert list(BALL_TRACKERS) == ["none", *PARTICLE_FILTERS]
     assert list(FUSIONS) == ["own", *FUSION_WEIGHTINGS]
     assert FUSIONS["own"] == "inverse"  # a lone own line, weighted as in the weighted fusion
-    assert list(LOCALIZATIONS) == ["kld", "odometry", "truth"]
+    assert list(LOCALIZATIONS) == ["kld", "kld-triangulate", "odometry", "truth"]
     assert list(DETECTORS) == ["geometric", "pixels"]
     for family in (BALL_FILTERS, BALL_TRACKERS, FUSIONS, LOCALIZATIONS, DETECTORS):
         assert all(family.description(name) for name in family)

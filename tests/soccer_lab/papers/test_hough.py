@@ -36,3 +36,40 @@ def test_command_line_and_bad_arguments(tmp_path, capsys):
         main(["paper", "hough", "--trials", "0", "--out", str(tmp_path)])
     with pytest.raises(ValueError, match="sway_sigma"):
         hough.run(tmp_path, trials=1, sway_sigma=-1.0)
+
+
+def test_noise_models_bound_the_claim_and_leave_the_first_table_alone(tmp_path):
+    """The noise-model table: inverse variance is equal weights under isotropic noise (so 1/L
+    cannot help there) and 1/L^2 under bearing noise; it draws from its own generators, so
+    the first table's results are those of the seed's own stream, bit for bit; the report
+    prints the paper's figures, both readings of its 8.6 cm, and the answer for a team."""
+    import numpy as np
+
+    res = hough.run(tmp_path, trials=1, seed=3, seeds=2)
+    models = res["noise_models"]
+    assert set(hough.NOISE_MODELS) <= set(models)
+    for key in ("isotropic", "isotropic_rms"):
+        m = models[key]["mean_m"]
+        assert abs(m["inverse_variance"] - m["equal"]) < 1e-12
+        assert models[key]["best_weighting"] == "equal"
+    assert models["bearing"]["sigmas"]["position_m"] == 0.0
+    cam = models["camera"]
+    assert cam["seeds"] == 2 and len(cam["single_m"]) == 5
+    assert cam["best_single_m"] <= min(cam["single_m"])  # the mean of each seed's best
+    assert models["recommendation"]["weighting"] in hough.MODEL_WEIGHTINGS
+    rng = np.random.default_rng(3)
+    first = hough._evaluate("camera", 1, rng, pixel_sigma=2.0, pose_sigma=0.03,
+                            heading_sigma=np.radians(1.0), sway_sigma=np.radians(2.0))
+    assert first == res["camera"]
+    text = res["text"]
+    for needed in ("| 118 | 87 |", "0.74", "0.52", "8.6 cm", "one robot alone",
+                   "equal-weight cooperation", "**For a team with our head camera**"):
+        assert needed in text, needed
+    assert text.rstrip().splitlines()[-1].startswith("**For a team with our head camera**")
+
+
+def test_noise_model_settings_are_checked(tmp_path):
+    with pytest.raises(ValueError, match=r"seeds must be an integer in \[1, 100\]"):
+        hough.Settings(tmp_path, seeds=0)
+    with pytest.raises(ValueError, match="robot must be a humanoid robot preset"):
+        hough.Settings(tmp_path, robot="ssl")

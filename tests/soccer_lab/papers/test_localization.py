@@ -23,6 +23,9 @@ from soccer_lab.papers import localization
 pytestmark = pytest.mark.slow
 
 KLD = "KLD-sampling (50-5000)"
+SEEDED = KLD + " + triangulation seed"
+FOX = KLD + ", bins of the predicted samples (Fox)"
+TRI = list(localization.TRIANGULATIONS)
 SEEDS = [4, 5]
 #: Figures that do not depend on timing.
 FIGURES = ("median_pos_m", "median_head_deg", "initial_particles", "first_second_particles",
@@ -39,7 +42,7 @@ def short_run(tmp_path_factory):
 
 def test_kld_adapts_tracks_and_recovers(short_run):
     out, res = short_run
-    assert set(res["results"]) == {KLD, "fixed 1000"}
+    assert list(res["results"]) == [KLD, FOX, SEEDED, "fixed 1000"]
     kld = res["results"][KLD]
     assert kld["episodes"] == len(SEEDS)
     # Many particles at the global start, few while tracking (the aim: 3 times fewer).
@@ -119,8 +122,11 @@ def test_same_episode_for_every_filter_and_outputs(short_run):
     with (out / "paper_localization.csv").open() as fh:
         rows = list(csv.DictReader(fh))
     assert [(r["filter"], r["episode"]) for r in rows] == [
-        (KLD, "median"), ("fixed 1000", "median"),
-        (KLD, "4"), ("fixed 1000", "4"), (KLD, "5"), ("fixed 1000", "5")]
+        (KLD, "median"), (FOX, "median"), (SEEDED, "median"), ("fixed 1000", "median"),
+        (KLD, "4"), (FOX, "4"), (SEEDED, "4"), ("fixed 1000", "4"),
+        (KLD, "5"), (FOX, "5"), (SEEDED, "5"), ("fixed 1000", "5"),
+        (TRI[0], "median"), (TRI[1], "median"), (TRI[0], "4"), (TRI[1], "4"),
+        (TRI[0], "5"), (TRI[1], "5")]
     assert float(rows[0]["median_pos_m"]) == pytest.approx(res["results"][KLD]["median_pos_m"])
     md = (out / "paper_localization.md").read_text()
     assert "| filter |" in md and "recovered after the kidnapping" in md
@@ -131,6 +137,47 @@ def test_same_episode_for_every_filter_and_outputs(short_run):
     assert localization.BrainReplay.move_localization is Brain.move_localization
 
 
+def test_triangulation_alone_and_as_the_recovery_seed(short_run):
+    out, res = short_run
+    tri = res["triangulation"]
+    assert list(tri) == TRI == ["triangulation, this frame", "triangulation, last 25 frames"]
+    for name, r in tri.items():
+        per = [ep["triangulation"][name] for ep in res["episodes"]]
+        for p in per:  # every frame has one outcome
+            assert sum(p[f"{o}_pct"] for o in localization.TRI_OUTCOMES) == pytest.approx(100.0)
+            assert p["fix_pct"] == pytest.approx(p["correct_pct"] + p["wrong_pct"])
+            assert p["mirror_pct"] <= p["wrong_pct"]
+        for key in localization.TRI_KEYS:
+            vals = [p[key] for p in per if p[key] is not None]
+            assert r[key] == pytest.approx(float(np.median(vals)))
+    one, many = tri[TRI[0]], tri[TRI[1]]
+    # One 51-degree frame rarely holds three landmarks; the head scan's last frames do.
+    assert one["too_few_pct"] > 50.0 > many["too_few_pct"]
+    assert many["correct_pct"] > 3 * one["correct_pct"]
+    # A correct assignment is accurate (bearings of 2 degrees); wrong ones are the field's
+    # ambiguity (mostly its mirror image).
+    assert many["median_pos_correct_m"] < 0.15 and many["median_head_correct_deg"] < 5.0
+    assert many["wrong_pct"] > 0.0
+    # Per frame: outcomes, and errors where there is a pose (-1 where none).
+    data = json.loads((out / "paper_localization.json").read_text())
+    ep = data["per_episode"][0]
+    frames = len(ep["frame_t"])
+    for name in TRI:
+        outcome, err = ep["triangulation"][name]["outcome"], ep["triangulation"][name]["pos_err"]
+        assert len(outcome) == len(err) == frames
+        assert set(outcome) <= set(localization.TRI_OUTCOMES)
+        assert all((e > localization.WRONG_M) == (o == "wrong") for o, e in zip(outcome, err)
+                   if o in ("correct", "wrong"))
+        assert all(e == -1.0 for o, e in zip(outcome, err) if o not in ("correct", "wrong"))
+    assert data["triangulation"][TRI[1]]["correct_pct"] == pytest.approx(many["correct_pct"])
+    # The seeded filter is the same filter and walk; the text compares the two.
+    seeded = res["results"][SEEDED]
+    assert seeded["initial_particles"] == res["results"][KLD]["initial_particles"]
+    assert "Recovery seed (paper 000's triangulation" in res["text"]
+    assert "| triangulation, last 25 frames |" in res["text"]
+    assert "fewer than three landmarks [%]" in res["text"]
+
+
 def test_reproducible_whatever_the_workers_and_without_kidnapping(tmp_path, short_run):
     _, res = short_run
     # The same run inline (the fixture used two processes), timings aside.
@@ -139,6 +186,9 @@ def test_reproducible_whatever_the_workers_and_without_kidnapping(tmp_path, shor
     for name, r in res["results"].items():
         for key in FIGURES + ("median_pos_m_per_episode",):
             assert again["results"][name][key] == r[key]
+    for name, r in res["triangulation"].items():
+        for key in localization.TRI_KEYS[:-1]:  # the timing aside
+            assert again["triangulation"][name][key] == r[key]
     # One episode alone is the same as that seed's episode among several.
     alone = localization.run(tmp_path / "alone", duration=24.0, seed=SEEDS[1],
                              fixed_sizes=(1000,), episodes=1, workers=1)

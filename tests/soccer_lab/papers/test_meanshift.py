@@ -54,7 +54,7 @@ def test_outputs_written(short_run):
 def test_every_tracker_kind_measured_consistently(short_run):
     _, res = short_run
     summary = res["summary"]
-    assert set(summary) == {"ms-pf-20", "pf-20", "pf-200"}
+    assert set(summary) == {"ms-pf-20", "ms-pf-20-paper", "pf-20", "pf-200"}
     data = json.loads((short_run[0] / "paper_meanshift.json").read_text())
     mm_per_px = 1e3 * data["metres_per_pixel"]
     for kind, s in summary.items():

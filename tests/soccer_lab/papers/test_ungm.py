@@ -19,8 +19,10 @@ def test_tables_plot_and_reproducibility(tmp_path):
     assert a["rmse"] == b["rmse"]
     data = json.loads((tmp_path / "a" / "paper_ungm.json").read_text())
     per_run = {k: np.array(v) for k, v in data["rmse_per_run"].items()}
-    # MFBPF with FBPF's test runs FBPF's algorithm: the same numbers, run by run.
-    np.testing.assert_allclose(per_run["mfbpf-below"], per_run["fbpf"])
+    # MFBPF with FBPF's test runs FBPF's algorithm with resampling below the threshold: the
+    # same numbers, run by run.
+    np.testing.assert_allclose(per_run["mfbpf-below"], per_run["fbpf-threshold"])
+    assert set(data["paired"]) == {f"{a} - {b}" for a, b, _ in ungm.PAIRS}
     # Every filter tracks the state far better than its spread (UNGM's |x| reaches ~20).
     assert all(2.0 < v < 8.0 for v in a["rmse"].values())
     assert (tmp_path / "a" / "paper_ungm.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
