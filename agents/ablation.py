@@ -196,6 +196,9 @@ HUMANOID_CONFIGS: Registry[EstimatorConfig] = _registry(
                          fusion="inverse", ball_tracker="fbpf"),
         _humanoid_config("fusion-mfbpf", "Hough fusion (1/L), MFBPF tracking (default)",
                          fusion="inverse", ball_tracker="mfbpf"),
+        _humanoid_config("fusion-ivar-mfbpf", "Hough fusion weighted by the inverse variance "
+                         "of each line's offset, MFBPF tracking", source="paper 000; the "
+                         "weighting ours", fusion="inverse_variance", ball_tracker="mfbpf"),
         _humanoid_config("pixels", "fusion-mfbpf with every robot finding the ball in its "
                          "rendered head-camera images (Kalman-started mean shift)",
                          source="papers 000 and 004", fusion="inverse", ball_tracker="mfbpf",

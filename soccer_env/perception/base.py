@@ -156,7 +156,7 @@ class PerceptionConfig:
     detector: str = "geometric"
     camera: HeadCameraSpec | str | None = None
     radio: RadioSpec | str = "zigbee"
-    localization: str = "kld"
+    localization: str = "kld-triangulate"
     fusion: str = "inverse"
     ball_tracker: str = "mfbpf"
     randomize: Any = ()

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from estimators import FUSION_WEIGHTINGS, fuse_lines
+from estimators import FUSION_WEIGHTINGS, INVERSE_VARIANCE, fuse_lines
 from estimators.fusion.hough import MIN_CROSSING_ANGLE
 from soccer_env.perception.base import ball_status, sigmas
 from soccer_env.perception.options import BALL_TRACKERS, FUSIONS, LOCALIZATIONS
@@ -87,8 +87,13 @@ class Brain:
         cfg = perception.config
         self.kind = cfg.localization
         self.fusion = cfg.fusion
-        #: The fusion's weighting power (``K = 1 / L^power``).
-        self.power = FUSION_WEIGHTINGS[FUSIONS[cfg.fusion]]
+        weighting = FUSIONS[cfg.fusion]
+        #: The fusion's weighting power (``K = 1 / L^power``; the inverse-variance weighting
+        #: starts from ``1 / L``) and, for the inverse-variance weighting, the observers'
+        #: pose errors ``(position [m], heading [rad])`` (else None).
+        self.power = 1 if weighting == INVERSE_VARIANCE else FUSION_WEIGHTINGS[weighting]
+        self.pose_sigmas = (perception.pose_sigmas if weighting == INVERSE_VARIANCE
+                            else None)
         finder = perception.ball_finder
         self.finder: Any = None if finder is None else finder(perception.camera,
                                                                perception.ball_spec)
@@ -318,7 +323,8 @@ class Brain:
                 [list(ln.origin) for ln in lines], [ln.angle for ln in lines], ranges,
                 self.power, p.bearing_sigma, rel, MIN_CROSSING_ANGLE,
                 [ln.stamp for ln in lines], t,
-                None if velocity is None else (float(velocity[0]), float(velocity[1])))
+                None if velocity is None else (float(velocity[0]), float(velocity[1])),
+                pose_sigmas=self.pose_sigmas)
         except ValueError:  # bearings only, no crossing: no position
             return
         point = fused.point

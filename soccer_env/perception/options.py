@@ -7,8 +7,8 @@ one-line description (what ``soccer-env list``, the ablation and the error messa
   :data:`~estimators.PARTICLE_FILTERS`, name -> ``factory(rng, deceleration, max_speed)``
   (None for ``"none"``);
 * :data:`FUSIONS` (humanoids, ``fusion=``): the robot's own sighting, or Hough-space fusion with
-  one of the estimators' :data:`~estimators.FUSION_WEIGHTINGS`; name -> the weighting of
-  :func:`~estimators.fuse_sightings`;
+  one of the estimators' :data:`~estimators.FUSION_WEIGHTINGS` or the inverse variance of each
+  line's offset; name -> the weighting of :func:`~estimators.fuse_sightings`;
 * :data:`LOCALIZATIONS` (humanoids, ``localization=``): name -> ``factory(bounds, rng, config,
   pose)`` of the localization filter, or None for dead reckoning and the oracle, which the
   robot's :class:`~soccer_env.perception.brain.Brain` keeps itself;
@@ -28,6 +28,7 @@ import numpy as np
 
 from estimators import (
     FUSION_WEIGHTINGS,
+    INVERSE_VARIANCE,
     MIN_SIGMA_XY,
     PARTICLE_FILTERS,
     BallFilterConfig,
@@ -143,7 +144,11 @@ FUSIONS: Registry[str] = Registry(
     [("own", "inverse", "the robot's own sighting only")]
     + [(name, name, f"Hough-space fusion of the team's sightings, "
                     f"{FUSION_WEIGHTINGS.description(name)}")
-       for name in FUSION_WEIGHTINGS])
+       for name in FUSION_WEIGHTINGS]
+    + [(INVERSE_VARIANCE, INVERSE_VARIANCE,
+        "Hough-space fusion of the team's sightings, each line weighted by the inverse "
+        "variance of its offset at the ball (the camera's bearing noise and the observers' "
+        "localization error)")])
 
 
 def _kld(recovery: str, bounds: tuple[float, float, float, float], rng: np.random.Generator,

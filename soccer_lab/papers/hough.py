@@ -635,8 +635,8 @@ def _model_tables(s: Settings, res: dict[str, Any]) -> tuple[str, list[dict[str,
     def verdict(x: float) -> str:
         return f"{1 - x:.0%} smaller" if x <= 1.0 else f"{x - 1:.0%} larger"  # error
 
-    lines += ["", "**For a team with our head camera** (model (d)): of the Hough "
-              f"weightings use {_WLABEL[w]}"
+    lines += ["", "**For a team with our head camera** (model (d)), on this geometry: of the "
+              f"Hough weightings the lowest error is {_WLABEL[w]}'s"
               + (f" ({eq} within two standard errors of it over the seeds)" if eq else "")
               + f"; inverse variance over the paper's 1/L: {_pm(iv)}. Team fusion of the 5 "
               f"robots ({cam['mean_m'][w] * mm:.0f} mm) over the best single robot "
@@ -645,7 +645,9 @@ def _model_tables(s: Settings, res: dict[str, Any]) -> tuple[str, list[dict[str,
               f"{f['min']:.2f}-{f['max']:.2f}): fused error {verdict(f['mean'])}; over the robot "
               f"that believes itself nearest the ball ({cam['nearest_m'] * mm:.0f} mm): "
               f"{g['mean']:.2f} ± {g['sd']:.2f}. Paper 000, hardware: {hw:.2f} if its 8.6 cm "
-              "is one robot alone."]
+              "is one robot alone. (In the closed loop the weighting's effect on the keeper's "
+              "saves is measured by `soccer-env ablation --robot humanoid`, configurations "
+              "fusion-mfbpf and fusion-ivar-mfbpf.)"]
     return "\n".join(lines), rows
 
 

@@ -42,7 +42,7 @@ __all__ = ["run", "Settings", "match_errors", "keeper_saves", "MATCH_CONFIGS", "
            "PAPER"]
 
 #: Blue's ball estimation in the match: names of :data:`agents.ablation.HUMANOID_CONFIGS`.
-MATCH_CONFIGS = ("own", "own-mfbpf", "fusion", "fusion-mfbpf")
+MATCH_CONFIGS = ("own", "own-mfbpf", "fusion", "fusion-mfbpf", "fusion-ivar-mfbpf")
 #: The keeper's configurations (the same plus the truth).
 KEEPER_CONFIGS = ("truth", *MATCH_CONFIGS)
 PAPER = {"baseline_mm": 86.0, "fused_mm": 45.0, "gain": 0.48}

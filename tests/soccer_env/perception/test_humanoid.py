@@ -82,8 +82,9 @@ def test_localization_corrects_the_unreported_turn_of_getting_up():
 
 
 def test_the_triangulation_recovery_seed_is_a_localization_option():
-    # "kld" keeps the uniform recovery (the default, unchanged); "kld-triangulate" gives the
-    # same filter a triangulated recovery seed fed by the frames' landmarks.
+    # "kld-triangulate" (the default) gives the filter a triangulated recovery seed fed by the
+    # frames' landmarks; "kld" keeps the uniform recovery.
+    assert PerceptionConfig(vision="ideal").localization == "kld-triangulate"
     for name, recovery in (("kld", "uniform"), ("kld-triangulate", "triangulate")):
         env = keeper(localization=name)
         env.reset(seed=0)
@@ -141,6 +142,25 @@ def test_team_fusion_locates_a_static_ball_better_than_own_sightings():
     fused = [static_ball_error("inverse", s) for s in range(4)]
     assert np.mean(fused) < 0.7 * np.mean(own)
     assert np.mean(fused) < 0.05
+
+
+def test_inverse_variance_fusion_locates_a_static_ball_as_well_as_1_over_l():
+    """fusion="inverse_variance" weighs each team-mate's line by the inverse variance of its
+    offset (the camera's bearing noise, the localization's pose error); it fuses as well as
+    the paper's 1/L on a still ball. With the oracle localization the pose errors are zero."""
+    ivar = [static_ball_error("inverse_variance", s) for s in range(4)]
+    inverse = [static_ball_error("inverse", s) for s in range(4)]
+    assert np.mean(ivar) < 0.05
+    assert np.mean(ivar) < 1.2 * np.mean(inverse)
+    env = keeper(fusion="inverse_variance", mates=3)
+    env.reset(seed=0)
+    assert env.pipelines[0].brain(0).pose_sigmas == (0.05, pytest.approx(math.radians(2.5)))
+    env = keeper(fusion="inverse_variance", localization="truth", mates=3)
+    env.reset(seed=0)
+    assert env.pipelines[0].brain(0).pose_sigmas == (0.0, 0.0)
+    env = keeper(fusion="inverse", mates=3)
+    env.reset(seed=0)
+    assert env.pipelines[0].brain(0).pose_sigmas is None
 
 
 def test_a_fallen_robot_sends_nothing_until_it_has_got_up():
