@@ -198,7 +198,7 @@ class Detector(NamedTuple):
 def _geometric_overhead(vision: VisionSpec, field: FieldSpec, robot: RobotSpec,
                         robots: Sequence[RobotSpec], ball: BallSpec, teams: Sequence[int]
                         ) -> tuple[OverheadVision, None]:
-    return OverheadVision(vision, field, robot, ball, len(robots)), None
+    return OverheadVision(vision, field, robot, ball, len(robots), robots=robots), None
 
 
 def _geometric_head(camera: HeadCameraSpec, field: FieldSpec, ball: BallSpec,

@@ -12,10 +12,13 @@ In a frame, every robot inside the camera's view is detected with probability
 with probability ``ball_detection`` (position noise from
 :class:`~estimators.models.PositionMeasurement`, the same objects the filters use) unless it is
 occluded: the ball is hidden when at least ``occlusion_threshold`` of its disc, seen from the
-camera, is covered by a robot's body. A ball in flight is reported where the camera ray through
-it meets the plane of a ball lying on the carpet, not above its ground position. Spurious
-balls appear at robot fronts (dribbler reflections, ``dribbler_false_rate`` per second per
-robot in view) and anywhere in a camera's view (``random_false_rate`` per second per camera).
+camera, is covered by a robot's body, each robot with its own footprint radius and height (an
+SSL robot is a wide, low cylinder; a humanoid a narrow, tall one that hides a ball farther
+behind it). A ball in flight is reported where the camera ray through it meets the plane of a
+ball lying on the carpet, not above its ground position. Spurious balls appear at SSL robots'
+fronts (dribbler reflections, ``dribbler_false_rate`` per second per SSL robot in view;
+humanoids have no dribbler) and anywhere in a camera's view (``random_false_rate`` per second
+per camera).
 
 Between two environment steps the truth is interpolated linearly to each capture time.
 """
@@ -24,13 +27,14 @@ from __future__ import annotations
 
 import heapq
 import math
+from collections.abc import Sequence
 from typing import NamedTuple
 
 import numpy as np
 
 from estimators import PoseMeasurement, PositionMeasurement
 from estimators.exact import wrap_angles
-from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
+from soccer_env.presets import BallSpec, FieldSpec, RobotSpec, SSLRobotSpec
 from soccer_env.presets.sensors import VisionSpec
 from soccer_env.state import WorldState
 
@@ -106,13 +110,34 @@ class OverheadVision:
             radius).
         n_robots: number of robots in the world.
         cameras: override :func:`default_cameras`.
+        robots: every robot's spec, in world order (its radius and height for occlusion,
+            whether it has a dribbler); default: ``robot`` for all ``n_robots``.
     """
 
     def __init__(self, spec: VisionSpec, field: FieldSpec, robot: SSLRobotSpec, ball: BallSpec,
-                 n_robots: int, cameras: list[Camera] | None = None) -> None:
+                 n_robots: int, cameras: list[Camera] | None = None,
+                 robots: Sequence[RobotSpec] | None = None) -> None:
         self.spec = spec
         self.field, self.robot_spec, self.ball_spec = field, robot, ball
         self.n_robots = n_robots
+        specs = [robot] * n_robots if robots is None else list(robots)
+        if len(specs) != n_robots:
+            raise ValueError(f"robots must hold one spec per robot ({n_robots}), got "
+                             f"{len(specs)}")
+        #: Every robot's spec (occlusion by its own footprint and height).
+        self.robot_specs = specs
+        shapes: dict[tuple[float, float], list[int]] = {}
+        for i, rs in enumerate(specs):
+            shapes.setdefault((float(rs.height), float(rs.radius)), []).append(i)
+        #: Robots grouped by body ``((height, radius), indices)``; None when every robot has
+        #: ``robot``'s body (the common case, one group without an index list).
+        self._shapes: list[tuple[tuple[float, float], list[int]]] | None = (
+            None if list(shapes) == [(float(robot.height), float(robot.radius))]
+            else list(shapes.items()))
+        #: Each robot's dribbler distance from its centre [m] (None: no dribbler).
+        self._fronts = [getattr(rs, "front_distance", None) for rs in specs]
+        self._uniform_front = all(f == getattr(robot, "front_distance", None)
+                                  for f in self._fronts)
         self.cameras = cameras or default_cameras(field, spec.camera_height,
                                                   spec.camera_overlap)
         self.ball_model = PositionMeasurement(spec.ball_sigma)
@@ -212,7 +237,8 @@ class OverheadVision:
         period = self._period() or 0.0
         p_dribbler = 1.0 - math.exp(-spec.dribbler_false_rate * period)
         p_random = 1.0 - math.exp(-spec.random_false_rate * period)
-        front = rs.front_distance + r
+        front = rs.front_distance + r if self._uniform_front else 0.0
+        fronts = self._fronts
         frames = []
         nn, nu = 3 * (N + 2), 2 * N + 5
         for f, (cam, t) in enumerate(zip(cams, times)):
@@ -229,6 +255,10 @@ class OverheadVision:
                     ids.append(i)
                     poses.append(robot_noise(x, y, th, nf[3 * i], nf[3 * i + 1], nf[3 * i + 2]))
                 if uf[N + i] < p_dribbler:  # a spurious ball at this robot's dribbler
+                    if not self._uniform_front:
+                        if fronts[i] is None:
+                            continue  # a humanoid: no dribbler
+                        front = fronts[i] + r
                     balls.append(ball_noise(x + front * math.cos(th), y + front * math.sin(th),
                                             nf[3 * N], nf[3 * N + 1]))
             # The ball, where this camera's ray through it meets the resting-ball plane.
@@ -256,15 +286,31 @@ class OverheadVision:
         """Fraction of the ball's disc (centre ``bx, by`` as seen, centre height ``zc``) that
         the camera at ``(cx, cy, h)`` cannot see past the robots.
 
-        A robot of radius ``R`` and height ``H`` hides, in the horizontal plane through the
-        ball's centre, the region swept by its cross-section from its own position to the
-        projection of its top, ``c + (p - c) (h - zc) / (h - H)``, whose radius grows to
-        ``R (h - zc) / (h - H)``: a capsule of the larger radius (3 % at most larger than the
-        true shape under a 4 m camera). A ball above the robots cannot be hidden.
+        A robot of radius ``R`` and height ``H`` (its own spec's) hides, in the horizontal
+        plane through the ball's centre, the region swept by its cross-section from its own
+        position to the projection of its top, ``c + (p - c) (h - zc) / (h - H)``, whose radius
+        grows to ``R (h - zc) / (h - H)``: a capsule of the larger radius (3 % at most larger
+        than the true shape of an SSL robot under a 4 m camera). A ball above a robot cannot be
+        hidden by it.
         """
-        H, R, r = self.robot_spec.height, self.robot_spec.radius, self.ball_spec.radius
+        if self._shapes is None:
+            hidden = self._hidden_by(bx, by, zc, robots, cx, cy, h, self.robot_spec.height,
+                                     self.robot_spec.radius, None)
+        else:
+            hidden = None
+            for (H, R), members in self._shapes:
+                hidden = self._hidden_by(bx, by, zc, [robots[i] for i in members], cx, cy, h,
+                                         H, R, hidden)
+        return 0.0 if hidden is None else sum(hidden) / len(hidden)
+
+    def _hidden_by(self, bx: float, by: float, zc: float, robots: list, cx: float, cy: float,
+                   h: float, H: float, R: float, hidden: list[bool] | None
+                   ) -> list[bool] | None:
+        """:meth:`_hidden` for ``robots`` of one body (height ``H``, radius ``R``): the ring
+        points of the ball's disc they cover added to ``hidden`` (None: none covered yet)."""
+        r = self.ball_spec.radius
         if zc >= H:
-            return 0.0
+            return hidden
         k = (h - zc) / (h - H)
         radius = R * k
         reach2 = (radius + r) ** 2
@@ -272,7 +318,6 @@ class OverheadVision:
         # ``radius + |top - p|`` from it, and ``|top - p| = (k - 1) |p - c|`` with the
         # robot's distance to the camera's foot, under 10 m on any field.
         near2 = (radius + r + 10.0 * (k - 1.0) + 0.01) ** 2
-        hidden = None
         for x, y, _ in robots:
             if (x - bx) ** 2 + (y - by) ** 2 > near2:
                 continue
@@ -295,7 +340,7 @@ class OverheadVision:
                 s = 0.0 if s < 0.0 else (1.0 if s > 1.0 else s)
                 qx, qy = px - s * sx, py - s * sy
                 hidden[j] = qx * qx + qy * qy <= radius * radius
-        return 0.0 if hidden is None else sum(hidden) / len(hidden)
+        return hidden
 
 
 class _Draws:

@@ -104,6 +104,67 @@ def test_ball_hidden_behind_a_robot_but_not_in_front():
         assert (len(warm[0].balls) == 1) == visible, x
 
 
+def test_each_robot_hides_the_ball_with_its_own_footprint_and_height():
+    """A humanoid (0.1 m radius, 0.6 m tall) casts a longer shadow from an overhead camera
+    than an SSL robot (0.09 m, 0.15 m): camera 4 m above the origin, robot at x = 2 m, ball
+    0.3 m beyond it. Behind the humanoid the ball is hidden; behind an SSL robot, and with the
+    humanoid described as an SSL robot (the old behaviour), it is seen."""
+    from soccer_env import presets
+
+    humanoid, ssl = presets.robot("humanoid-2012"), presets.robot("ssl")
+    w = park(make_world(), poses=[(2.0, 0.0, 0.0)])
+    cam = [Camera(0.0, 0.0, 4.0, -10, 10, -10, 10)]
+    spec = vision("realistic", ball_detection=1.0, robot_detection=1.0, ball_sigma=0.0,
+                  dribbler_false_rate=0.0)
+    r = w.ball_spec.radius
+    # The humanoid's shadow in the ball's plane reaches 2 (4 - r) / (4 - 0.6) = 2.33 m.
+    k = (4.0 - r) / (4.0 - humanoid.height)
+    assert 2.0 * k + humanoid.radius * k > 2.3 + r
+    w.set_ball(2.3, 0.0)
+    seen = {}
+    for name, body in (("humanoid", humanoid), ("ssl", ssl)):
+        v = OverheadVision(spec, w.field, ssl, w.ball_spec, w.n_robots, cam, robots=[body])
+        seen[name] = len(v.reset(w.snapshot(), np.random.default_rng(0))[0].balls) == 1
+    assert seen == {"humanoid": False, "ssl": True}
+    with pytest.raises(ValueError, match="robots must hold one spec per robot"):
+        OverheadVision(spec, w.field, ssl, w.ball_spec, w.n_robots, cam, robots=[ssl, ssl])
+
+
+def test_mixed_teams_hide_the_ball_behind_either_kind_of_robot():
+    """Two groups of bodies in one world: a ball behind the humanoid is hidden and one behind
+    the SSL robot (beyond its shorter shadow) is seen, in the same frames."""
+    from soccer_env import presets
+
+    humanoid, ssl = presets.robot("humanoid-2012"), presets.robot("ssl")
+    w = park(make_world(n_blue=2), poses=[(2.0, 0.0, 0.0), (-2.0, 0.0, 0.0)])
+    cam = [Camera(0.0, 0.0, 4.0, -10, 10, -10, 10)]
+    spec = vision("realistic", ball_detection=1.0, robot_detection=1.0, ball_sigma=0.0,
+                  dribbler_false_rate=0.0)
+    for x, visible in ((2.3, False), (-2.3, True)):
+        w.set_ball(x, 0.0)
+        v = OverheadVision(spec, w.field, ssl, w.ball_spec, w.n_robots, cam,
+                           robots=[humanoid, ssl])
+        assert (len(v.reset(w.snapshot(), np.random.default_rng(0))[0].balls) == 1) == visible
+
+
+def test_humanoids_have_no_dribbler_reflections():
+    from soccer_env import presets
+
+    humanoid, ssl = presets.robot("humanoid-2012"), presets.robot("ssl")
+    w = park(make_world(n_blue=2), poses=[(-1.0, 0.0, 0.0), (1.0, 1.0, math.pi / 2)])
+    w.set_ball(-3.0, -2.0)
+    spec = vision("realistic", dribbler_false_rate=60.0, random_false_rate=0.0,
+                  ball_detection=0.0)
+    v = OverheadVision(spec, w.field, ssl, w.ball_spec, w.n_robots,
+                       [Camera(0, 0, 4, -10, 10, -10, 10)], robots=[ssl, humanoid])
+    v.reset(w.snapshot(), np.random.default_rng(0))
+    balls = np.concatenate([np.reshape(fr.balls, (-1, 2))
+                            for fr in run_frames(v, static_states(w, 60)[1:])])
+    front = np.array([-1.0 + ssl.front_distance + w.ball_spec.radius, 0.0])
+    assert len(balls) > 20
+    assert np.hypot(*(balls - front).T).max() < 0.02  # all at the SSL robot's dribbler
+
+
 def test_chipped_ball_seen_along_the_camera_ray():
     w = park(make_world())
     cam = [Camera(0.0, 0.0, 4.0, -10, 10, -10, 10)]
