@@ -166,8 +166,8 @@ LOCALIZATIONS: Registry[Callable[..., KLDLocalizer] | None] = Registry("localiza
     ("kld", functools.partial(_kld, "uniform"),
      "paper 001's KLD-sampling particle filter on odometry and landmark sightings"),
     ("kld-triangulate", functools.partial(_kld, "triangulate"),
-     "'kld' whose recovery draws half of its new particles around poses triangulated from "
-     "the last 25 frames' landmarks (paper 000) instead of all uniformly"),
+     "the default: 'kld' whose recovery draws half of its new particles around poses "
+     "triangulated from the last 25 frames' landmarks (paper 000) instead of all uniformly"),
     ("odometry", None, "dead reckoning from the known start pose (no landmarks)"),
     ("truth", None, "the true pose (oracle, for ablations)"),
 ])
