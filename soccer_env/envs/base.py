@@ -31,7 +31,7 @@ file.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import gymnasium as gym
@@ -75,7 +75,8 @@ class SoccerCore(RenderingMixin):
     environment, and the fixed parts of its reset and step (see the module docstring).
 
     Attributes set by :meth:`_build`: ``field``, ``ball_spec``, ``team_specs`` (blue's and
-    yellow's robot model), ``robot_spec`` (the first robot's), ``world``, ``obs_mode``,
+    yellow's robot model), ``robot_spec`` (the first robot's), ``world``, ``obs_mode`` (a
+    string, or ``{"blue": ..., "yellow": ...}`` when the teams' modes differ),
     ``perceptions`` (both teams' :class:`~soccer_env.perception.base.PerceptionConfig`),
     ``perception`` (blue's), ``render_mode``, ``out_of_range_actions``, ``head``,
     ``info_mode`` (``"full"``: nested dicts; ``"flat"``: numbers under fixed keys, see
@@ -89,7 +90,7 @@ class SoccerCore(RenderingMixin):
     # ------------------------------------------------------------------------------------
 
     def _build(self, *, team_specs: tuple[RobotSpec, RobotSpec], n_blue: int, n_yellow: int,
-               field: FieldSpec, ball: BallSpec, obs_mode: str,
+               field: FieldSpec, ball: BallSpec, obs_mode: str | Mapping[str, str],
                perceptions: tuple[PerceptionConfig, PerceptionConfig], control_dt: float,
                physics_dt: float, out_of_range_actions: str, render_mode: str | None,
                render_width: int, head: str, policy_heads: Sequence[int],
@@ -102,7 +103,8 @@ class SoccerCore(RenderingMixin):
         :mod:`soccer_env.observations`; builders made by :meth:`_observation_builder`).
         ``info_mode``: ``"full"`` or ``"flat"`` (:mod:`soccer_env.envs.flat_info`).
         """
-        check_choice("obs_mode", obs_mode, OBS_MODES)
+        for mode in ([obs_mode] if isinstance(obs_mode, str) else obs_mode.values()):
+            check_choice("obs_mode", mode, OBS_MODES)
         check_choice("info_mode", info_mode, INFO_MODES)
         check_choice("render_mode", render_mode, [None, *RENDER_MODES])
         check_choice("out_of_range_actions", out_of_range_actions, OUT_OF_RANGE_MODES)

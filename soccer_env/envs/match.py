@@ -102,7 +102,10 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
 
     ## Perception
     Each team perceives with its own pipeline (``perception`` for both, or
-    ``{"blue": ..., "yellow": ...}``): SSL teams through the overhead vision, humanoid teams
+    ``{"blue": ..., "yellow": ...}``, and likewise ``obs_mode``: one team may see the truth or
+    raw detections while the other filters them): SSL teams through the overhead vision (two
+    SSL teams on the same vision preset read the same camera frames, as SSL-Vision serves both
+    teams, each filtering them its own way), humanoid teams
     each robot through its head camera, its localization and the team radio
     (:mod:`soccer_env.perception.humanoid`), so a humanoid agent's observation and
     ``info["estimate"]`` are its own belief.
@@ -131,7 +134,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         robot: str | RobotSpec | Mapping[str, str | RobotSpec] = "ssl",
         field: str | FieldSpec | None = None,
         ball: str | BallSpec | None = None,
-        obs_mode: str = "truth",
+        obs_mode: str | Mapping[str, str] = "truth",
         perception: Any = None,
         render_mode: str | None = None,
         match_duration: float = 300.0,
@@ -153,7 +156,11 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         if blue + yellow < 1:
             raise ValueError(f"a match needs at least one robot: blue + yellow must be >= 1, "
                              f"got {blue} + {yellow}")
-        check_choice("obs_mode", obs_mode, OBS_MODES)  # before it picks the default perception
+        modes = _per_team("obs_mode", obs_mode)
+        for team, mode in zip(("blue", "yellow"), modes):
+            # before it picks the default perception
+            check_choice("obs_mode" if modes[0] == modes[1] else f"obs_mode of {team}", mode,
+                         OBS_MODES)
         self.match_duration = check_range("match_duration", match_duration, 1e-3, 1e6)
         if max_cycles is not None:
             max_cycles = check_int("max_cycles (a positive integer or None)", max_cycles, 1,
@@ -163,10 +170,11 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         team_specs = tuple(presets.robot(r) for r in _per_team("robot", robot))
         _, fld, bl = resolve_world(team_specs[0] if blue else team_specs[1], field, ball)
         self.shaping = parse_scales("shaping", shaping, MATCH_SHAPING)
-        perceptions = tuple(PerceptionConfig.create(p, obs_mode, s.kind) for p, s in
-                            zip(_per_team("perception", perception), team_specs))
+        perceptions = tuple(PerceptionConfig.create(p, m, s.kind) for p, m, s in
+                            zip(_per_team("perception", perception), modes, team_specs))
+        both = modes[0] if modes[0] == modes[1] else {"blue": modes[0], "yellow": modes[1]}
         self._build(team_specs=team_specs, n_blue=blue, n_yellow=yellow, field=fld, ball=bl,
-                    obs_mode=obs_mode, perceptions=perceptions, control_dt=control_dt,
+                    obs_mode=both, perceptions=perceptions, control_dt=control_dt,
                     physics_dt=physics_dt, out_of_range_actions=out_of_range_actions,
                     render_mode=render_mode, render_width=render_width, head=head,
                     policy_heads=range(blue + yellow),

@@ -5,7 +5,7 @@ pipeline, and a belief per robot.
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -14,6 +14,7 @@ from soccer_env.perception.base import PerceptionConfig
 from soccer_env.perception.humanoid import HumanoidTeamPerception
 from soccer_env.perception.overhead import (
     TruthPerception,
+    _VisionPerception,
     make_perception,
 )
 from soccer_env.perception.randomization import check_ranges, draw
@@ -27,13 +28,17 @@ class MatchPerception:
     """The perception of both teams of a world: each team's own pipeline, and a belief per
     robot (the match's, and the humanoid keeper's with its team-mates).
 
-    SSL teams share the overhead vision: two SSL teams with the same configuration share one
-    pipeline (SSL-Vision serves both; their beliefs coincide). A humanoid team runs a
+    SSL teams share the overhead vision: two SSL teams with the same configuration and
+    observation mode share one pipeline (SSL-Vision serves both; their beliefs coincide); with
+    different ones each team runs its own pipeline on the same camera frames when both use the
+    same geometric vision preset without randomisation (what each team does with SSL-Vision's
+    frames is its own), else on its own sensor. A humanoid team runs a
     :class:`~soccer_env.perception.humanoid.HumanoidTeamPerception` over its humanoids, each
-    with its own belief. In truth mode every agent believes the truth.
+    with its own belief. In truth mode every agent of that team believes the truth.
 
     Args:
-        obs_mode: the observation mode.
+        obs_mode: the observation mode, one for both teams or ``(blue's, yellow's)`` (or
+            ``{"blue": ..., "yellow": ...}``).
         configs: the two teams' :class:`PerceptionConfig` (blue, yellow).
         field, ball: the world's field and ball.
         robots: every robot's model, in world order (blue first).
@@ -52,10 +57,19 @@ class MatchPerception:
                  field: FieldSpec, ball: BallSpec, robots: Sequence[RobotSpec],
                  teams: Sequence[int], names: Sequence[str], control_dt: float,
                  features: bool = False) -> None:
-        self.obs_mode = obs_mode
+        if isinstance(obs_mode, str):
+            modes = (obs_mode, obs_mode)
+        elif isinstance(obs_mode, Mapping):
+            modes = (obs_mode["blue"], obs_mode["yellow"])
+        else:
+            modes = tuple(obs_mode)
+        #: Each team's observation mode (blue, yellow).
+        self.obs_modes: tuple[str, str] = (str(modes[0]), str(modes[1]))
+        #: The observation mode of both teams, or ``"blue/yellow"`` modes when they differ.
+        self.obs_mode = modes[0] if modes[0] == modes[1] else f"{modes[0]}/{modes[1]}"
         self.features = bool(features)
         # In truth mode every robot believes the truth: the latest state is every belief.
-        self._truth = obs_mode == "truth"
+        self._truth = modes[0] == modes[1] == "truth"
         self._state: WorldState | None = None
         specs = list(robots)
         teams = [int(t) for t in teams]
@@ -79,26 +93,29 @@ class MatchPerception:
         self._randomized: dict[int, tuple[Any, Any, Any]] = {}
         ssl_teams = [t for t in (0, 1) if kinds[t] == "ssl"]
         if ssl_teams:
-            shared = len(ssl_teams) == 2 and configs[0] == configs[1]
+            shared = (len(ssl_teams) == 2 and configs[0] == configs[1]
+                      and modes[0] == modes[1])
             for t in ([ssl_teams[0]] if shared else ssl_teams):
                 cfg = configs[t]
+                mode = modes[t]
                 group = members[0] + members[1] if shared else members[t]
                 tts = ssl_teams if shared else [t]
 
-                def build(spec, cfg=cfg, t=t, tts=tts):
+                def build(spec, cfg=cfg, t=t, tts=tts, mode=mode):
                     # The commands' latency in whole control steps and their loss follow the
                     # (drawn) spec; the filters predict to when the commands take effect.
                     delay = round(spec.actuation_latency / control_dt)
                     for tt in tts:
                         self.delays[tt], self.losses[tt] = delay, spec.command_loss
-                    return make_perception(obs_mode, dataclasses.replace(cfg, vision=spec),
+                    return make_perception(mode, dataclasses.replace(cfg, vision=spec),
                                            field, specs[members[t][0]], ball, n,
                                            delay * control_dt, teams, specs, features)
 
-                if cfg.randomize and obs_mode != "truth":
+                if cfg.randomize and mode != "truth":
                     check_ranges(cfg.vision, cfg.randomize, "ssl")
                     self._randomized[len(self._groups)] = (cfg.vision, cfg.randomize, build)
                 self._groups.append((group, build(cfg.vision), False))
+            self._share_frames()
         for t in (0, 1):
             if kinds[t] != "humanoid":
                 continue
@@ -106,10 +123,10 @@ class MatchPerception:
             spec = specs[members[t][0]]
             camera = cfg.camera if cfg.camera is not None else head_camera(spec.camera)
             self.cameras.update(dict.fromkeys(members[t], camera))
-            if obs_mode == "truth":
+            if modes[t] == "truth":
                 self._groups.append((members[t], TruthPerception(cfg), False))
                 continue
-            if obs_mode == "raw":
+            if modes[t] == "raw":
                 cfg = dataclasses.replace(cfg, localization="odometry", fusion="own",
                                           ball_tracker="none")
 
@@ -124,6 +141,19 @@ class MatchPerception:
         self._index_humanoids()
         self._beliefs: dict[int, Any] = {}
         self._current: dict[int, Any] = {}
+
+    def _share_frames(self) -> None:
+        """Two SSL teams' own pipelines on the same camera frames: the second takes the
+        first's frames when both read the same geometric vision (one preset, no
+        randomisation)."""
+        vision = [(g, pipe) for g, (_, pipe, _) in enumerate(self._groups)
+                  if isinstance(pipe, _VisionPerception)]
+        if len(vision) != 2 or self._randomized:
+            return
+        (_, a), (_, b) = vision
+        if (a.detector is None and b.detector is None
+                and a.vision_spec == b.vision_spec):
+            b.frames_from = a
 
     @property
     def reads_bodies(self) -> bool:

@@ -65,6 +65,12 @@ class _VisionPerception:
         #: The detections' measurement models (the filters weigh them with these).
         self.measurements = self.detector if self.detector is not None else self.sensor
         self.n_robots = n_robots
+        #: Another team's pipeline whose camera frames this one takes instead of its own
+        #: sensor's (:class:`~soccer_env.perception.match.MatchPerception` sets it for two SSL
+        #: teams on the same vision; that pipeline is reset and updated first).
+        self.frames_from: _VisionPerception | None = None
+        #: The frames of the latest reset or update.
+        self.last_frames: list[DetectionFrame] = []
         #: Whether the beliefs carry their :class:`~soccer_env.state.BeliefQuality` (the
         #: environments' ``belief_features``).
         self.features = False
@@ -73,7 +79,9 @@ class _VisionPerception:
 
     def reset(self, state: WorldState, rng: np.random.Generator):
         self._clear()
-        if self.detector is None:
+        if self.frames_from is not None:
+            frames = self.frames_from.last_frames
+        elif self.detector is None:
             frames = self.sensor.reset(state, rng)
         else:
             # The images' lighting and noise, then the trackers, draw from streams seeded in
@@ -81,13 +89,18 @@ class _VisionPerception:
             image_rng = np.random.default_rng(rng.integers(2**63))
             self.detector.reset(state, np.random.default_rng(rng.integers(2**63)))
             frames = self.detector.detections(self.sensor.reset(state, rng, image_rng))
+        self.last_frames = frames
         self.consume(frames, state.time)
         return self.beliefs(state.time)
 
     def update(self, state: WorldState):
-        frames = self.sensor.step(state)
-        if self.detector is not None:
-            frames = self.detector.detections(frames)
+        if self.frames_from is not None:
+            frames = self.frames_from.last_frames
+        else:
+            frames = self.sensor.step(state)
+            if self.detector is not None:
+                frames = self.detector.detections(frames)
+        self.last_frames = frames
         self.consume(frames, state.time)
         return self.beliefs(state.time)
 

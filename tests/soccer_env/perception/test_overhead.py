@@ -172,3 +172,80 @@ def test_raw_velocity_does_not_difference_overlapping_cameras():
         *_, info = env.step(np.zeros(6, np.float32))
         speeds.append(np.hypot(*info["estimate"]["ball_velocity"]))
     assert np.mean(speeds) < 0.3 and np.max(speeds) < 1.0
+
+
+def test_each_team_its_own_observation_mode_on_shared_camera_frames():
+    """obs_mode per team: blue filters the frames with the EKF, yellow reads the raw
+    detections, both from the same SSL-Vision frames (one sensor); blue's belief is filtered,
+    yellow's is the latest detection."""
+    env = soccer_env.parallel_env(blue=2, yellow=2, obs_mode={"blue": "perceived",
+                                                              "yellow": "raw"},
+                                  perception="ssl-2012")
+    env.reset(seed=0)
+    match = env._perception
+    blue, yellow = match.pipelines
+    assert match.obs_modes == ("perceived", "raw") and env.obs_mode == {
+        "blue": "perceived", "yellow": "raw"}
+    assert type(blue).__name__ == "FilteredPerception"
+    assert type(yellow).__name__ == "RawPerception" and yellow.frames_from is blue
+    rng = np.random.default_rng(0)
+    for _ in range(30):
+        *_, infos = env.step({a: rng.uniform(-1, 1, 6) * [1, 1, 1, 0, 0, 0]
+                              for a in env.agents})
+        assert yellow.last_frames is blue.last_frames  # the same frames, not a second draw
+    assert env.agents  # still playing
+    # Two SSL teams with the same configuration and mode still share one pipeline.
+    env = soccer_env.parallel_env(blue=2, yellow=2, obs_mode="perceived", perception="ssl-2012")
+    env.reset(seed=0)
+    assert len(env._perception.pipelines) == 1
+
+
+def test_different_filters_on_the_same_frames_see_the_same_detections():
+    """EKF against the uncompensated KF: different filters per team on one vision preset
+    take the same detection frames, so their raw inputs agree exactly."""
+    env = soccer_env.parallel_env(blue=2, yellow=2, obs_mode="perceived", perception={
+        "blue": {"vision": "ssl-2012", "ball_filter": "ekf"},
+        "yellow": {"vision": "ssl-2012", "ball_filter": "kf"}})
+    env.reset(seed=3)
+    blue, yellow = env._perception.pipelines
+    assert yellow.frames_from is blue
+    rng = np.random.default_rng(1)
+    frames = 0
+    for _ in range(40):
+        env.step({a: rng.uniform(-1, 1, 6) * [1, 1, 1, 0, 0, 0] for a in env.agents})
+        assert yellow.last_frames == blue.last_frames
+        frames += len(blue.last_frames)
+    assert frames > 10
+
+
+def test_a_truth_team_believes_the_truth_beside_a_perceiving_team():
+    env = soccer_env.parallel_env(blue=1, yellow=1, obs_mode={"blue": "truth",
+                                                              "yellow": "perceived"},
+                                  perception={"blue": "ideal", "yellow": "realistic"})
+    env.reset(seed=0)
+    rng = np.random.default_rng(2)
+    for _ in range(20):
+        *_, infos = env.step({a: rng.uniform(-1, 1, 6) * [1, 1, 1, 0, 0, 0]
+                              for a in env.agents})
+        b = infos["blue_0"]
+        np.testing.assert_array_equal(b["estimate"]["ball_position"],
+                                      b["truth"]["ball_position"])
+    y = infos["yellow_0"]
+    assert not np.array_equal(y["estimate"]["ball_position"], y["truth"]["ball_position"])
+
+
+def test_bad_per_team_observation_modes():
+    with pytest.raises(ValueError, match="obs_mode of yellow"):
+        soccer_env.parallel_env(blue=1, yellow=1, obs_mode={"blue": "truth",
+                                                            "yellow": "filtered"})
+    with pytest.raises(ValueError, match="obs_mode per team must have exactly the keys"):
+        soccer_env.parallel_env(blue=1, yellow=1, obs_mode={"blue": "truth"})
+
+
+def test_per_team_observation_modes_pass_the_pettingzoo_api_test():
+    from pettingzoo.test import parallel_api_test
+
+    env = soccer_env.parallel_env(blue=1, yellow=1, obs_mode={"blue": "perceived",
+                                                              "yellow": "raw"},
+                                  perception="ssl-2012", max_cycles=60)
+    parallel_api_test(env, num_cycles=50)
