@@ -78,6 +78,7 @@ from .fusion import (
     line_offset_variance,
     triangulate,
     triangulate_sightings,
+    weighting_power,
 )
 from .image import (
     MEAN_SHIFT_KERNELS,
@@ -123,6 +124,7 @@ from .particle import (
     LandmarkTable,
     ParticleBallTracker,
     kld_sample_size,
+    seed_poses,
     sfn,
     systematic_resample,
     ungm_model,
@@ -156,6 +158,7 @@ __all__ = [
     "hough_lines",
     "fusion_weights",
     "line_offset_variance",
+    "weighting_power",
     "BootstrapPF",
     "FBPF",
     "MFBPF",
@@ -173,6 +176,7 @@ __all__ = [
     "RECOVERIES",
     "LandmarkTable",
     "kld_sample_size",
+    "seed_poses",
     "HeadCamera",
     "mean_shift",
     "MeanShiftParticleFilter",

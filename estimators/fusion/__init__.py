@@ -22,6 +22,7 @@ from .hough import (
     hough_fuse,
     hough_lines,
     line_offset_variance,
+    weighting_power,
 )
 from .triangulation import (
     SEED_FAILURES,
@@ -39,6 +40,7 @@ __all__ = [
     "fuse_sightings",
     "fuse_lines",
     "line_offset_variance",
+    "weighting_power",
     "FusedSighting",
     "FUSION_WEIGHTINGS",
     "INVERSE_VARIANCE",

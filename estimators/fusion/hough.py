@@ -72,8 +72,8 @@ import numpy as np
 from ..registry import Registry
 
 __all__ = ["hough_lines", "hough_fuse", "fusion_weights", "fuse_sightings", "fuse_lines",
-           "line_offset_variance", "FusedSighting", "FUSION_WEIGHTINGS", "INVERSE_VARIANCE",
-           "WEIGHTING_NAMES", "MIN_CROSSING_ANGLE"]
+           "line_offset_variance", "weighting_power", "FusedSighting", "FUSION_WEIGHTINGS",
+           "INVERSE_VARIANCE", "WEIGHTING_NAMES", "MIN_CROSSING_ANGLE"]
 
 #: Weightings of :func:`fusion_weights` and :func:`fuse_sightings` by name: the power ``p`` of
 #: the distance in ``K_i = 1 / L_i^p``.
@@ -198,9 +198,7 @@ def fusion_weights(distances: np.ndarray | Sequence[float], weighting: str = "in
             raise ValueError("weighting 'inverse_variance' needs bearing_sigma (>= 0, rad)")
         return 1.0 / line_offset_variance(distances, bearing_sigma, position_sigma,
                                           heading_sigma)
-    power = FUSION_WEIGHTINGS.get(weighting)
-    if power is None:
-        _unknown_weighting(weighting)
+    power = weighting_power(weighting)
     if bearing_sigma is not None or position_sigma != 0.0 or heading_sigma != 0.0:
         raise ValueError(f"bearing_sigma, position_sigma and heading_sigma apply to weighting "
                          f"'inverse_variance' only, not {weighting!r}")
@@ -208,6 +206,19 @@ def fusion_weights(distances: np.ndarray | Sequence[float], weighting: str = "in
     if L.ndim != 1 or not np.isfinite(L).all() or (L <= 0.0).any():
         raise ValueError(f"distances must be a 1-d array of positive finite numbers, got {L}")
     return L ** -float(power)
+
+
+def weighting_power(weighting: str) -> int:
+    """The distance power ``p`` of ``K = 1 / L^p`` that :func:`fuse_lines` takes for
+    ``weighting`` (a name of :data:`WEIGHTING_NAMES`): :data:`FUSION_WEIGHTINGS`' power, or 1
+    for ``"inverse_variance"`` (its first pass, and its weights of ranged points when lines
+    do not cross). ``ValueError`` naming the weightings for an unknown one."""
+    if weighting == INVERSE_VARIANCE:
+        return 1
+    power = FUSION_WEIGHTINGS.get(weighting)
+    if power is None:
+        _unknown_weighting(weighting)
+    return power
 
 
 def _unknown_weighting(weighting: object) -> None:
@@ -378,15 +389,11 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
     if (r[known] <= 0.0).any():
         raise ValueError(f"ranges must be > 0 (or NaN for bearing only), got {ranges!r}")
     pose_sigmas: tuple[float, float] | None = None
+    power = weighting_power(weighting)
     if weighting == INVERSE_VARIANCE:
-        power = 1  # the first pass, and the ranged points' fallback
         pose_sigmas = (_check_sigma("position_sigma", position_sigma),
                        _check_sigma("heading_sigma", heading_sigma))
-    else:
-        power = FUSION_WEIGHTINGS.get(weighting)
-        if power is None:
-            _unknown_weighting(weighting)
-        if position_sigma != 0.0 or heading_sigma != 0.0:
+    elif position_sigma != 0.0 or heading_sigma != 0.0:
             raise ValueError(f"position_sigma and heading_sigma apply to weighting "
                              f"'inverse_variance' only, not {weighting!r}")
     for name, value in (("bearing_sigma", bearing_sigma), ("range_sigma_rel", range_sigma_rel)):
@@ -530,19 +537,22 @@ def _crossing_inverse_variance(crossing: tuple, P: list, nx: list[float], ny: li
     fused with ``K_i = 1 / s_i^2`` (the first one if those weights make the lines
     degenerate), with its covariance (:func:`_crossing` with ``s_i`` as the lines' sigmas)."""
     position_sigma, heading_sigma = pose_sigmas
-    (X, Y), _ = crossing
     a = bearing_sigma * bearing_sigma + heading_sigma * heading_sigma
     c = position_sigma * position_sigma
-    var = [max(((X - x) ** 2 + (Y - y) ** 2) * a + c, _MIN_OFFSET_VARIANCE) for x, y in P]
+
+    def variances(point: tuple[float, float]) -> list[float]:
+        X, Y = point  # plain floats, as line_offset_variance's formula
+        return [max(((X - x) ** 2 + (Y - y) ** 2) * a + c, _MIN_OFFSET_VARIANCE)
+                for x, y in P]
+
+    var = variances(crossing[0])
     kv = [1.0 / v for v in var]
     again = _solve_lines(nx, ny, rho, kv)
     if again is None:
         return _crossing(crossing, P, nx, ny, rho, k, bearing_sigma,
                          [math.sqrt(v) for v in var])
-    X2, Y2 = again[0]
-    sig = [math.sqrt(max(((X2 - x) ** 2 + (Y2 - y) ** 2) * a + c, _MIN_OFFSET_VARIANCE))
-           for x, y in P]
-    return _crossing(again, P, nx, ny, rho, kv, bearing_sigma, sig)
+    return _crossing(again, P, nx, ny, rho, kv, bearing_sigma,
+                     [math.sqrt(v) for v in variances(again[0])])
 
 
 def _crossing(crossing: tuple, P: list, nx: list[float], ny: list[float], rho: list[float],

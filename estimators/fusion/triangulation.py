@@ -106,33 +106,10 @@ def triangulate(landmarks: np.ndarray | Sequence[Sequence[float]],
         raise ValueError(f"triangulate takes exactly three landmarks, got {len(P)}")
     if np.min(np.hypot(*(P[[0, 1, 2]] - P[[1, 2, 0]]).T)) <= 0.0:
         return _fail("two landmarks coincide")
-    (x1, y1), (x2, y2), (x3, y3) = P
-    a1, a2, a3 = phi
-    sins = [math.sin(a2 - a1), math.sin(a3 - a2)]
-    if min(abs(s) for s in sins) < _MIN_SIN:
-        return _fail("two bearings are equal or opposite: the robot is on the line through "
-                     "two landmarks")
-    t12 = math.cos(a2 - a1) / sins[0]
-    t23 = math.cos(a3 - a2) / sins[1]
-    if abs(t12 + t23) < _MIN_SIN:
-        return _fail("the bearings are inconsistent (no third circle)")
-    t31 = (1.0 - t12 * t23) / (t12 + t23)
-    x1p, y1p, x3p, y3p = x1 - x2, y1 - y2, x3 - x2, y3 - y2
-    x12, y12 = x1p + t12 * y1p, y1p - t12 * x1p
-    x23, y23 = x3p - t23 * y3p, y3p + t23 * x3p
-    x31, y31 = (x3p + x1p) + t31 * (y3p - y1p), (y3p + y1p) - t31 * (x3p - x1p)
-    k31 = x1p * x3p + y1p * y3p + t31 * (x1p * y3p - x3p * y1p)
-    det = (x12 - x23) * (y23 - y31) - (y12 - y23) * (x23 - x31)
-    scale = max(abs(x12), abs(y12), abs(x23), abs(y23), abs(x31), abs(y31), 1e-300) ** 2
-    if abs(det) < _MIN_DET * scale:
-        return _fail("the robot is on the circle through the three landmarks (or on their "
-                     "line): the position is not determined")
-    xr = x2 + k31 * (y12 - y23) / det
-    yr = y2 + k31 * (x23 - x12) / det
-    pos = np.array([xr, yr])
-    angles = np.arctan2(P[:, 1] - yr, P[:, 0] - xr) - phi
-    heading = math.atan2(float(np.mean(np.sin(angles))), float(np.mean(np.cos(angles))))
-    return Fix(True, pos, heading)
+    pos, heading, code = _total(P[None], phi[None])
+    if code[0] != _OK:
+        return _fail(_REASONS[int(code[0])])
+    return Fix(True, pos[0], float(heading[0]))
 
 
 #: Why :func:`triangulate_sightings` found no pose: fewer than three distinct sightings; every
@@ -183,20 +160,34 @@ def _wrap(a: np.ndarray | float) -> np.ndarray:
     return np.remainder(np.asarray(a) + math.pi, 2.0 * math.pi) - math.pi
 
 
+#: :func:`_total`'s outcome codes, and :func:`triangulate`'s reasons for the failures.
+_OK, _PARALLEL, _INCONSISTENT, _CIRCLE = 0, 1, 2, 3
+_REASONS = {
+    _PARALLEL: "two bearings are equal or opposite: the robot is on the line through two "
+               "landmarks",
+    _INCONSISTENT: "the bearings are inconsistent (no third circle)",
+    _CIRCLE: "the robot is on the circle through the three landmarks (or on their line): "
+             "the position is not determined",
+}
+
+
 def _total(P: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`triangulate` for ``A`` triples at once: ``P`` ``(A, 3, 2)`` landmarks [m],
-    ``phi`` ``(A, 3)`` bearings [rad]; positions ``(A, 2)``, headings ``(A,)`` and whether
-    each is determined (the same tests as :func:`triangulate`)."""
+    """ToTal's closed form (see the module docstring) for ``A`` triples at once: ``P``
+    ``(A, 3, 2)`` landmarks [m], ``phi`` ``(A, 3)`` bearings [rad]; positions ``(A, 2)``,
+    headings ``(A,)`` and an outcome code per triple (``_OK``, or the first degenerate case
+    met: ``_PARALLEL``, ``_INCONSISTENT``, ``_CIRCLE``; positions and headings of failed
+    triples are meaningless). :func:`triangulate` is this for one triple."""
     x1, y1 = P[:, 0, 0], P[:, 0, 1]
     x2, y2 = P[:, 1, 0], P[:, 1, 1]
     x3, y3 = P[:, 2, 0], P[:, 2, 1]
     a1, a2, a3 = phi[:, 0], phi[:, 1], phi[:, 2]
     s12, s23 = np.sin(a2 - a1), np.sin(a3 - a2)
-    ok = (np.abs(s12) >= _MIN_SIN) & (np.abs(s23) >= _MIN_SIN)
+    code = np.where((np.abs(s12) >= _MIN_SIN) & (np.abs(s23) >= _MIN_SIN), _OK, _PARALLEL)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         t12 = np.cos(a2 - a1) / s12
         t23 = np.cos(a3 - a2) / s23
-        ok &= np.abs(t12 + t23) >= _MIN_SIN
+        code = np.where((code == _OK) & ~(np.abs(t12 + t23) >= _MIN_SIN), _INCONSISTENT,
+                        code)
         t31 = (1.0 - t12 * t23) / (t12 + t23)
         x1p, y1p, x3p, y3p = x1 - x2, y1 - y2, x3 - x2, y3 - y2
         x12, y12 = x1p + t12 * y1p, y1p - t12 * x1p
@@ -206,14 +197,15 @@ def _total(P: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.n
         det = (x12 - x23) * (y23 - y31) - (y12 - y23) * (x23 - x31)
         scale = np.maximum(np.max(np.abs(np.stack([x12, y12, x23, y23, x31, y31])), axis=0),
                            1e-300) ** 2
-        ok &= np.abs(det) >= _MIN_DET * scale
         xr = x2 + k31 * (y12 - y23) / det
         yr = y2 + k31 * (x23 - x12) / det
-    ok &= np.isfinite(xr) & np.isfinite(yr)
+    code = np.where((code == _OK) & ~((np.abs(det) >= _MIN_DET * scale) & np.isfinite(xr)
+                                      & np.isfinite(yr)), _CIRCLE, code)
+    ok = code == _OK
     xr, yr = np.where(ok, xr, 0.0), np.where(ok, yr, 0.0)
     ang = np.arctan2(P[:, :, 1] - yr[:, None], P[:, :, 0] - xr[:, None]) - phi
     heading = np.arctan2(np.mean(np.sin(ang), axis=1), np.mean(np.cos(ang), axis=1))
-    return np.column_stack([xr, yr]), heading, ok
+    return np.column_stack([xr, yr]), heading, code
 
 
 def triangulate_sightings(kinds: Sequence[Hashable], points: np.ndarray | Sequence[Sequence[float]],
@@ -339,9 +331,9 @@ def triangulate_sightings(kinds: Sequence[Hashable], points: np.ndarray | Sequen
     phi = np.concatenate(phis)
     # The poses, and for the conditioning each with one bearing moved by one sigma.
     eye = np.vstack([np.zeros(3), np.eye(3)]) * bearing_sigma
-    pos, head, fine = _total(np.repeat(L, 4, axis=0),
+    pos, head, code = _total(np.repeat(L, 4, axis=0),
                              (phi[:, None, :] + eye[None, :, :]).reshape(-1, 3))
-    pos, head, fine = pos.reshape(-1, 4, 2), head.reshape(-1, 4), fine.reshape(-1, 4)
+    pos, head, fine = pos.reshape(-1, 4, 2), head.reshape(-1, 4), (code == _OK).reshape(-1, 4)
     d2 = np.sum((pos[:, 1:] - pos[:, :1]) ** 2, axis=(1, 2))
     sig_pos = np.where(fine.all(axis=1), np.sqrt(0.5 * d2), np.inf)
     well = sig_pos <= max_sigma  # determined and well-conditioned

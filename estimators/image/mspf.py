@@ -193,16 +193,22 @@ class _WindowParticleFilter:
                             ) -> np.ndarray:
         """Normalised weights (zero where not ``allowed``), weighted-mean estimate, then
         systematic resampling."""
-        if allowed is not None:
-            logw = np.where(allowed, logw, -np.inf)
-        w = np.exp(logw - logw.max())
-        w /= w.sum()
-        self.weights = w
+        w = self._normalised(logw, allowed)
         self.estimate = w @ self.particles
         idx = systematic_resample(w, self.rng)
         self.particles = self.particles[idx]
         self.weights = np.full(self.n, 1.0 / self.n)
         return self.estimate.copy()
+
+    @staticmethod
+    def _normalised(logw: np.ndarray, allowed: np.ndarray | None) -> np.ndarray:
+        """The weights ``exp(logw)`` normalised, zero where not ``allowed`` (scaled by the
+        largest against underflow)."""
+        if allowed is not None:
+            logw = np.where(allowed, logw, -np.inf)
+        w = np.exp(logw - logw.max())
+        w /= w.sum()
+        return w
 
     def windows(self) -> np.ndarray:
         """The particles' current windows ``(N, 4)`` as ``(x, y, w, h)`` [px] (after the
@@ -496,9 +502,7 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         """Paper 003's steps 3-4 as printed: the weights (kept in :attr:`weights`, zero where
         not allowed), the particles the restriction rejects replaced by copies of allowed
         ones drawn with equal probability, and the unweighted mean of the set."""
-        logw = np.where(allowed, logw, -np.inf)
-        w = np.exp(logw - logw.max())
-        self.weights = w / w.sum()
+        self.weights = self._normalised(logw, allowed)
         rejected = np.flatnonzero(~allowed)
         if len(rejected):
             keep = np.flatnonzero(allowed)

@@ -28,6 +28,7 @@ from .localization import (
     LandmarkTable,
     kld_sample_size,
     normal_quantile,
+    seed_poses,
 )
 
 __all__ = [
@@ -47,4 +48,5 @@ __all__ = [
     "LandmarkTable",
     "kld_sample_size",
     "normal_quantile",
+    "seed_poses",
 ]

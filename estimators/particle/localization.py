@@ -77,7 +77,7 @@ from ..checks import MAX_PARTICLES, check_count, check_real
 from ..fusion.triangulation import PoseHypotheses, SightingMemory, triangulate_sightings
 
 __all__ = ["KLDConfig", "KLDLocalizer", "LandmarkTable", "RECOVERIES", "kld_sample_size",
-           "normal_quantile"]
+           "normal_quantile", "seed_poses"]
 
 #: How :class:`KLDLocalizer` draws the particles it injects when it is lost: uniformly over
 #: the bounds (augmented MCL), or partly around poses triangulated from recent sightings.
@@ -86,6 +86,20 @@ RECOVERIES = ("uniform", "triangulate")
 _SEED_MIN_XY, _SEED_MIN_THETA = 0.1, 0.05
 #: The bearing noise the seed assumes when the filter leaves bearings out [rad].
 _SEED_BEARING_SIGMA = math.radians(5.0)
+
+
+def seed_poses(kinds: Sequence[str], points: np.ndarray, table: Mapping[str, np.ndarray],
+               config: KLDConfig, bounds: tuple[float, float, float, float] | None = None
+               ) -> PoseHypotheses:
+    """:func:`~estimators.fusion.triangulation.triangulate_sightings` of body-frame sightings
+    ``points`` ((m, 2) [m]) of ``kinds`` with the localization's noise model ``config``: each
+    sighting's range sigma as in the likelihood (:meth:`KLDConfig.range_sigmas`), the bearing
+    sigma ``bearing_sigma`` (5 degrees when bearings are left out)."""
+    pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    sigma_b = (config.bearing_sigma if config.bearing_sigma is not None
+               else _SEED_BEARING_SIGMA)
+    return triangulate_sightings(kinds, pts, table, config.range_sigmas(np.hypot(
+        pts[:, 0], pts[:, 1])), sigma_b, bounds)
 
 
 def normal_quantile(p: float) -> float:
@@ -235,6 +249,11 @@ class KLDConfig:
 
     #: Where KLD-sampling counts its bins (see the module docstring).
     BINNINGS = ("resampled", "predicted")
+
+    def range_sigmas(self, r: np.ndarray) -> np.ndarray:
+        """The range noise ``sigma_r = range_sigma + range_sigma_rel r + range_sigma_quad r^2``
+        [m] of sightings at ranges ``r`` [m]."""
+        return self.range_sigma + (self.range_sigma_rel + self.range_sigma_quad * r) * r
 
     def __post_init__(self) -> None:
         if self.binning not in self.BINNINGS:
@@ -408,7 +427,7 @@ class KLDLocalizer:
         dx = Lx - P[:, 0, None]
         dy = Ly - P[:, 1, None]
         log = np.hypot(dx, dy)  # the expected range g, then its log-likelihood term
-        sigma = c.range_sigma + (c.range_sigma_rel + c.range_sigma_quad * r) * r
+        sigma = c.range_sigmas(r)
         log -= r
         log /= sigma
         np.square(log, out=log)
@@ -523,12 +542,7 @@ class KLDLocalizer:
         if self.memory is None:
             raise ValueError("seed_hypotheses needs recovery='triangulate'")
         kinds, pts = self.memory.sightings()
-        c = self.cfg
-        r = np.hypot(pts[:, 0], pts[:, 1])
-        sigma_r = c.range_sigma + (c.range_sigma_rel + c.range_sigma_quad * r) * r
-        sigma_b = c.bearing_sigma if c.bearing_sigma is not None else _SEED_BEARING_SIGMA
-        return triangulate_sightings(kinds, pts, self._seed_table, sigma_r, sigma_b,
-                                     self.bounds)
+        return seed_poses(kinds, pts, self._seed_table, self.cfg, self.bounds)
 
     def _recovery_draws(self, k: int) -> np.ndarray:
         """``k`` injected particles: with ``recovery="triangulate"`` a share

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from estimators import FUSION_WEIGHTINGS, INVERSE_VARIANCE, fuse_lines
+from estimators import INVERSE_VARIANCE, fuse_lines, weighting_power
 from estimators.fusion.hough import MIN_CROSSING_ANGLE
 from soccer_env.perception.base import ball_status, sigmas
 from soccer_env.perception.options import BALL_TRACKERS, FUSIONS, LOCALIZATIONS
@@ -91,7 +91,7 @@ class Brain:
         #: The fusion's weighting power (``K = 1 / L^power``; the inverse-variance weighting
         #: starts from ``1 / L``) and, for the inverse-variance weighting, the observers'
         #: pose errors ``(position [m], heading [rad])`` (else None).
-        self.power = 1 if weighting == INVERSE_VARIANCE else FUSION_WEIGHTINGS[weighting]
+        self.power = weighting_power(weighting)
         self.pose_sigmas = (perception.pose_sigmas if weighting == INVERSE_VARIANCE
                             else None)
         finder = perception.ball_finder

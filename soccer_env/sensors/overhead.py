@@ -134,10 +134,11 @@ class OverheadVision:
         self._shapes: list[tuple[tuple[float, float], list[int]]] | None = (
             None if list(shapes) == [(float(robot.height), float(robot.radius))]
             else list(shapes.items()))
-        #: Each robot's dribbler distance from its centre [m] (None: no dribbler).
-        self._fronts = [getattr(rs, "front_distance", None) for rs in specs]
-        self._uniform_front = all(f == getattr(robot, "front_distance", None)
-                                  for f in self._fronts)
+        fronts = [getattr(rs, "front_distance", None) for rs in specs]
+        #: Each robot's dribbler distance from its centre [m] (None: no dribbler); None when
+        #: every robot's is ``robot``'s.
+        self._fronts: list[float | None] | None = (
+            None if all(f == robot.front_distance for f in fronts) else fronts)
         self.cameras = cameras or default_cameras(field, spec.camera_height,
                                                   spec.camera_overlap)
         self.ball_model = PositionMeasurement(spec.ball_sigma)
@@ -237,8 +238,8 @@ class OverheadVision:
         period = self._period() or 0.0
         p_dribbler = 1.0 - math.exp(-spec.dribbler_false_rate * period)
         p_random = 1.0 - math.exp(-spec.random_false_rate * period)
-        front = rs.front_distance + r if self._uniform_front else 0.0
         fronts = self._fronts
+        front = rs.front_distance + r
         frames = []
         nn, nu = 3 * (N + 2), 2 * N + 5
         for f, (cam, t) in enumerate(zip(cams, times)):
@@ -255,12 +256,11 @@ class OverheadVision:
                     ids.append(i)
                     poses.append(robot_noise(x, y, th, nf[3 * i], nf[3 * i + 1], nf[3 * i + 2]))
                 if uf[N + i] < p_dribbler:  # a spurious ball at this robot's dribbler
-                    if not self._uniform_front:
-                        if fronts[i] is None:
-                            continue  # a humanoid: no dribbler
-                        front = fronts[i] + r
-                    balls.append(ball_noise(x + front * math.cos(th), y + front * math.sin(th),
-                                            nf[3 * N], nf[3 * N + 1]))
+                    d = front if fronts is None else (
+                        None if fronts[i] is None else fronts[i] + r)  # None: a humanoid
+                    if d is not None:
+                        balls.append(ball_noise(x + d * math.cos(th), y + d * math.sin(th),
+                                                nf[3 * N], nf[3 * N + 1]))
             # The ball, where this camera's ray through it meets the resting-ball plane.
             bx = pb[0] + w * (cb[0] - pb[0])
             by = pb[1] + w * (cb[1] - pb[1])

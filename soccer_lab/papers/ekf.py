@@ -30,7 +30,7 @@ from typing import Any
 
 import numpy as np
 
-from estimators import BallFilterConfig, BallTracker, LeastSquaresBall
+from estimators import BallFilterConfig, BallTracker, KalmanFilter, LeastSquaresBall
 from soccer_env import presets
 from soccer_env.presets.sensors import vision
 from soccer_env.render.plots import pyplot, save_figure
@@ -106,26 +106,24 @@ def steady_state_floor(sigma_xy: float = SIGMA, sigma_r: float = 0.1, cycle: flo
     if any(not (math.isfinite(a) and a >= 0.0) for a in ahead):
         raise ValueError(f"ahead must be finite and >= 0 seconds, got {ahead!r}")
     F = np.array([[1.0, cycle], [0.0, 1.0]])
-    q = sigma_r * sigma_r
-    P = np.diag([sigma_xy**2, q])
-    for _ in range(10_000):
-        prior = F @ P @ F.T
-        prior[1, 1] += q
-        gain = prior[:, 0] / (prior[0, 0] + sigma_xy**2)
-        new = prior - np.outer(gain, prior[0])
-        if np.allclose(new, P, rtol=1e-13, atol=0.0):
+    Q = np.diag([0.0, sigma_r * sigma_r])
+    H, R = np.array([[1.0, 0.0]]), np.array([[sigma_xy * sigma_xy]])
+    kf = KalmanFilter(np.zeros(2), np.diag([sigma_xy**2, sigma_r**2]))
+    for _ in range(10_000):  # the covariance's fixed point (the measurement values not used)
+        before = kf.P
+        kf._predict(F, Q)
+        kf._update(np.zeros(1), H, R)
+        if np.allclose(kf.P, before, rtol=1e-13, atol=0.0):
             break
-        P = new
+    steady = kf.P
     out = {}
     for a in ahead:
         # Predicted cycle by cycle, as the filter does (a rounded to whole cycles): the
         # velocity noise accumulates as a random walk, its integral on the position.
-        n = int(round(a / cycle))
-        Pa = P.copy()
-        for _ in range(n):
-            Pa = F @ Pa @ F.T
-            Pa[1, 1] += q
-        out[float(a)] = math.sqrt(2.0 * Pa[0, 0])
+        kf.P = steady
+        for _ in range(int(round(a / cycle))):
+            kf._predict(F, Q)
+        out[float(a)] = math.sqrt(2.0 * kf.P[0, 0])
     return out
 
 

@@ -74,6 +74,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from itertools import combinations
 from pathlib import Path
@@ -151,7 +152,19 @@ def _sightings_camera(ball: np.ndarray, robots: np.ndarray, rng: np.random.Gener
                       cam: HeadCamera, pixel_sigma: float, pose_sigma: float,
                       heading_sigma: float, sway_sigma: float
                       ) -> tuple[np.ndarray, np.ndarray]:
-    """Per robot: its estimated position and its estimate of the ball (field frame, m)."""
+    """Per robot: its estimated position and its estimate of the ball (field frame, m), the
+    head's true tilt off the believed one by ``N(0, sway_sigma^2)``."""
+    return _head_sightings(ball, robots, rng, cam, pixel_sigma, pose_sigma, heading_sigma,
+                           lambda: (0.0, rng.normal(0.0, sway_sigma)))
+
+
+def _head_sightings(ball: np.ndarray, robots: np.ndarray, rng: np.random.Generator,
+                    cam: HeadCamera, pixel_sigma: float, pose_sigma: float,
+                    heading_sigma: float, sway: Callable[[], tuple[float, float]]
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """Per robot: its estimated position and its estimate of the ball (field frame, m) from
+    its head camera aimed at the ball, the head's true pan and tilt off the believed ones by
+    ``sway()`` [rad] (drawn per robot), pixel noise, and the pose errors."""
     est_pos = robots + rng.normal(0.0, pose_sigma, robots.shape)
     est_ball = np.empty_like(robots)
     for i, p in enumerate(robots):
@@ -162,9 +175,10 @@ def _sightings_camera(ball: np.ndarray, robots: np.ndarray, rng: np.random.Gener
         dist = float(np.hypot(*rel))
         pan = math.atan2(local[0, 1], local[0, 0])
         tilt = math.atan2(cam.height, dist)  # the ball centred in the image
-        uv, _ = cam.project(local, pan, tilt + rng.normal(0.0, sway_sigma))  # swaying head
+        d_pan, d_tilt = sway()
+        uv, _ = cam.project(local, pan + d_pan, tilt + d_tilt)  # the swaying head
         uv = uv + rng.normal(0.0, pixel_sigma, uv.shape)
-        g = cam.ground_point(uv, pan, tilt)[0]  # with the tilt the robot believes
+        g = cam.ground_point(uv, pan, tilt)[0]  # with the head angles the robot believes
         if not np.all(np.isfinite(g)):  # above the horizon: no range, only a bearing
             g = local[0] * (cam.height / math.tan(0.5 * cam.vfov)) / dist
         h_est = heading + rng.normal(0.0, heading_sigma)  # the robot's belief
@@ -297,28 +311,13 @@ def _sightings_walking(ball: np.ndarray, robots: np.ndarray, rng: np.random.Gene
     ``phi`` uniform in [0, 2) steps, the camera's true pan and tilt are the commanded ones plus
     ``sway_pan sin(pi phi)`` and ``sway_tilt sin(2 pi phi)`` [rad] (:mod:`soccer_env.sim.walk`
     at full activity), which the robot does not know of."""
-    est_pos = robots + rng.normal(0.0, pose_sigma, robots.shape)
-    est_ball = np.empty_like(robots)
-    cam = camera
-    for i, p in enumerate(robots):
-        heading = rng.uniform(-math.pi, math.pi)  # the body faces anywhere; the head turns
-        rel = ball - p
-        c, s = math.cos(heading), math.sin(heading)
-        local = np.array([[c * rel[0] + s * rel[1], -s * rel[0] + c * rel[1]]])
-        dist = float(np.hypot(*rel))
-        pan = math.atan2(local[0, 1], local[0, 0])
-        tilt = math.atan2(cam.height, dist)  # the ball centred in the image
+
+    def sway() -> tuple[float, float]:
         phase = rng.uniform(0.0, 2.0)
-        uv, _ = cam.project(local, pan + sway_pan * math.sin(math.pi * phase),
-                            tilt + sway_tilt * math.sin(2.0 * math.pi * phase))
-        uv = uv + rng.normal(0.0, pixel_sigma, uv.shape)
-        g = cam.ground_point(uv, pan, tilt)[0]  # with the head angles the robot believes
-        if not np.all(np.isfinite(g)):  # above the horizon: no range, only a bearing
-            g = local[0] * (cam.height / math.tan(0.5 * cam.vfov)) / dist
-        h_est = heading + rng.normal(0.0, heading_sigma)  # the robot's belief
-        ce, se = math.cos(h_est), math.sin(h_est)
-        est_ball[i] = est_pos[i] + [ce * g[0] - se * g[1], se * g[0] + ce * g[1]]
-    return est_pos, est_ball
+        return sway_pan * math.sin(math.pi * phase), sway_tilt * math.sin(2.0 * math.pi * phase)
+
+    return _head_sightings(ball, robots, rng, camera, pixel_sigma, pose_sigma, heading_sigma,
+                           sway)
 
 
 def _fuse_all(model: _Model, pos: np.ndarray, est: np.ndarray) -> dict[str, np.ndarray]:

@@ -45,13 +45,14 @@ import math
 import os
 import time
 from collections import deque
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from estimators import KLDConfig, KLDLocalizer, SightingMemory, triangulate_sightings
+from estimators import KLDConfig, KLDLocalizer, SightingMemory, seed_poses
 from soccer_env import presets
 from soccer_env.perception.brain import Brain, landmark_sightings
 from soccer_env.perception.humanoid import HumanoidTeamPerception
@@ -231,6 +232,39 @@ def _recovery(t: np.ndarray, err: np.ndarray, since: float, until: float) -> flo
     return None
 
 
+def _replay(ep: dict[str, Any], rep: BrainReplay,
+            frame: Callable[[tuple, np.ndarray, np.ndarray], Any]) -> tuple[list[Any], float]:
+    """Feed the recorded episode to ``rep``: the odometry as it came, and at every frame the
+    localization moved to the frame's capture time, then ``frame(kinds, ranges, bearings)``.
+    Returns each frame's result and the seconds spent moving and in ``frame``."""
+    out, seconds = [], 0.0
+    for ev in ep["events"]:
+        if ev[0] == "odo":
+            rep.odometry(ev[1], ev[2], None)
+            continue
+        _, t_cap, kinds, ranges, bearings = ev
+        t0 = time.perf_counter()
+        rep.move_localization(rep.odometry_until(t_cap))
+        res = frame(kinds, ranges, bearings)
+        seconds += time.perf_counter() - t0
+        out.append(res)
+    return out, seconds
+
+
+def _pose_errors(est: np.ndarray, truth: np.ndarray, wrong: float
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Position [m] and heading [rad] errors of the poses ``est`` ((n, 3); NaN rows: no pose)
+    against ``truth``, and whether each lies at the pose the field's 180-degree symmetry makes
+    look the same (only the goal-post colours tell them apart), more than ``wrong`` [m] from
+    the truth."""
+    err = np.hypot(est[:, 0] - truth[:, 0], est[:, 1] - truth[:, 1])
+    herr = np.abs(np.remainder(est[:, 2] - truth[:, 2] + math.pi, 2.0 * math.pi) - math.pi)
+    mirror = ((np.hypot(est[:, 0] + truth[:, 0], est[:, 1] + truth[:, 1]) < MIRROR_M)
+              & (np.abs(np.remainder(est[:, 2] - truth[:, 2], 2.0 * math.pi) - math.pi)
+                 < MIRROR_RAD) & (err > wrong))
+    return err, herr, mirror
+
+
 def _run_filter(ep: dict[str, Any], config: KLDConfig, seed: int,
                 recovery: str = "uniform") -> dict[str, Any]:
     """Replay the episode into a filter of ``config`` (with the ``recovery`` draws of
@@ -242,30 +276,18 @@ def _run_filter(ep: dict[str, Any], config: KLDConfig, seed: int,
                                    recovery=recovery, seed_memory=SEED_MEMORY))
     loc = rep.loc
     initial = loc.n
-    est, counts = [], []
-    seconds = 0.0
-    for ev in ep["events"]:
-        if ev[0] == "odo":
-            rep.odometry(ev[1], ev[2], None)
-            continue
-        _, t_cap, kinds, ranges, bearings = ev
-        t0 = time.perf_counter()
-        rep.move_localization(rep.odometry_until(t_cap))
+
+    def frame(kinds: tuple, ranges: np.ndarray, bearings: np.ndarray) -> tuple[np.ndarray, int]:
         if kinds:
             loc.update_kinds(kinds, ranges, bearings, table)
         rep.loc_estimate = loc.estimate()
-        seconds += time.perf_counter() - t0
-        est.append(rep.loc_estimate)
-        counts.append(loc.n)
+        return rep.loc_estimate, loc.n
+
+    per_frame, seconds = _replay(ep, rep, frame)
+    counts = [c for _, c in per_frame]
     t, truth = ep["frame_t"], ep["frame_truth"]
-    e = np.array(est)
-    err = np.hypot(e[:, 0] - truth[:, 0], e[:, 1] - truth[:, 1])
-    herr = np.abs(np.remainder(e[:, 2] - truth[:, 2] + math.pi, 2.0 * math.pi) - math.pi)
-    # The estimate at the pose the field's 180-degree symmetry makes look the same (only
-    # goal-post colours tell them apart).
-    mirror = ((np.hypot(e[:, 0] + truth[:, 0], e[:, 1] + truth[:, 1]) < MIRROR_M)
-              & (np.abs(np.remainder(e[:, 2] - truth[:, 2], 2.0 * math.pi) - math.pi)
-                 < MIRROR_RAD) & (err > MIRROR_M))
+    e = np.array([est for est, _ in per_frame])
+    err, herr, mirror = _pose_errors(e, truth, MIRROR_M)
     n = np.array(counts)
     tk = ep["kidnap_time"]
     end = float(ep["times"][-1]) + 1.0
@@ -313,46 +335,22 @@ def _run_triangulation(ep: dict[str, Any], frames: int, config: KLDConfig) -> di
     tri = _TriangulationOnly(frames)
     rep = BrainReplay.__new__(BrainReplay)  # the brain's odometry bookkeeping, no filter
     rep.loc, rep.odo, rep.loc_estimate = tri, deque(), tri.estimate()
-    sb = float(config.bearing_sigma if config.bearing_sigma is not None else
-               math.radians(5.0))
-    truth = ep["frame_truth"]
-    outcome, pos_err, head_err, mirror = [], [], [], []
-    seconds = 0.0
-    for ev in ep["events"]:
-        if ev[0] == "odo":
-            rep.odometry(ev[1], ev[2], None)
-            continue
-        _, t_cap, kinds, ranges, bearings = ev
-        t0 = time.perf_counter()
-        rep.move_localization(rep.odometry_until(t_cap))
+
+    def frame(kinds: tuple, ranges: np.ndarray, bearings: np.ndarray) -> Any:
         if kinds:
             tri.memory.add(kinds, ranges, bearings)
         k, pts = tri.memory.sightings()
-        if len(k) < 3:
-            hyp = None
-        else:
-            r = np.hypot(pts[:, 0], pts[:, 1])
-            sr = config.range_sigma + (config.range_sigma_rel + config.range_sigma_quad * r) * r
-            hyp = triangulate_sightings(k, pts, table, sr, sb, team.bounds)
-        seconds += time.perf_counter() - t0
-        tr = truth[len(outcome)]
-        if hyp is None or not hyp.ok:
-            outcome.append("too_few" if hyp is None else hyp.reason)
-            pos_err.append(math.nan)
-            head_err.append(math.nan)
-            mirror.append(False)
-            continue
-        pose = hyp.poses[0]
-        e = math.hypot(pose[0] - tr[0], pose[1] - tr[1])
-        outcome.append("correct" if e <= WRONG_M else "wrong")
-        pos_err.append(e)
-        head_err.append(abs(math.remainder(pose[2] - tr[2], 2.0 * math.pi)))
-        mirror.append(e > WRONG_M and math.hypot(pose[0] + tr[0], pose[1] + tr[1]) < MIRROR_M
-                      and abs(math.remainder(pose[2] - tr[2] - math.pi, 2.0 * math.pi))
-                      < MIRROR_RAD)
-    out = np.array(outcome)
-    e, h = np.array(pos_err), np.array(head_err)
+        return None if len(k) < 3 else seed_poses(k, pts, table, config, team.bounds)
+
+    hyps, seconds = _replay(ep, rep, frame)
+    poses = np.array([hyp.poses[0] if hyp is not None and hyp.ok else np.full(3, np.nan)
+                      for hyp in hyps]).reshape(-1, 3)
+    e, h, mirror = _pose_errors(poses, ep["frame_truth"][:len(hyps)], WRONG_M)
     found = np.isfinite(e)
+    outcome = [("correct" if err <= WRONG_M else "wrong") if ok
+               else ("too_few" if hyp is None else hyp.reason)
+               for hyp, err, ok in zip(hyps, e.tolist(), found.tolist())]
+    out = np.array(outcome)
     right = out == "correct"
     n = max(len(out), 1)
     res: dict[str, Any] = {f"{o}_pct": float(100.0 * np.mean(out == o)) for o in TRI_OUTCOMES}

@@ -123,9 +123,9 @@ TABLE = {
 }
 
 
-def _sight_kinds(pose, rng, max_range=4.0, noise=0.03):
+def _sight_kinds(pose, rng, max_range=4.0, noise=0.03, table=TABLE):
     kinds, ranges, bearings = [], [], []
-    for kind, pos in TABLE.items():
+    for kind, pos in table.items():
         rel = pos - pose[:2]
         dist = np.hypot(*rel.T)
         for j in np.flatnonzero(dist < max_range):
@@ -206,9 +206,12 @@ def test_update_kinds_bad_input():
     assert loc.n == KLDConfig().max_particles
 
 
-def _reference_kld_resample(loc: KLDLocalizer, rng: np.random.Generator) -> np.ndarray:
+def _reference_kld_resample(loc: KLDLocalizer, rng: np.random.Generator,
+                            d: np.ndarray | None = None) -> np.ndarray:
     """Fox's KLD-sampling written out plainly (one draw at a time, bins as tuples, no
-    recovery): the particles it keeps."""
+    recovery): the particles it keeps. With the odometry ``d`` (Fox 2003, Table 1) every
+    drawn particle is first moved by the motion model, and the bin of the *predicted* sample
+    is counted."""
     c = loc.cfg
     bound = _kld_table(c.epsilon, c.delta, c.max_particles)
     cumulative = np.cumsum(loc.weights)
@@ -218,7 +221,11 @@ def _reference_kld_resample(loc: KLDLocalizer, rng: np.random.Generator) -> np.n
     while True:
         take = min(batch, c.max_particles - drawn)
         idx = np.searchsorted(cumulative, rng.random(take), side="right")
-        for row in loc.particles[np.minimum(idx, loc.n - 1)]:
+        rows = loc.particles[np.minimum(idx, loc.n - 1)]
+        if d is not None:
+            rows = [_reference_move(row, d, e, c) for row, e in
+                    zip(rows, rng.normal(0.0, 1.0, (take, 3)))]
+        for row in rows:
             kept.append(row)
             seen.add(tuple(int(v) for v in np.floor(row / np.asarray(c.bin_size))))
             drawn += 1
@@ -227,6 +234,20 @@ def _reference_kld_resample(loc: KLDLocalizer, rng: np.random.Generator) -> np.n
         if drawn >= c.max_particles:
             return np.array(kept)
         batch *= 2
+
+
+def _reference_move(row: np.ndarray, d: np.ndarray, e: np.ndarray, c: KLDConfig
+                    ) -> np.ndarray:
+    """One particle moved by the odometry ``d`` with standard normal noise ``e``, written
+    out plainly."""
+    dist, turn = math.hypot(d[0], d[1]), abs(d[2])
+    s_xy = c.a_trans * dist + c.a_rot_xy * turn
+    s_th = c.a_rot * turn + c.a_trans_theta * dist
+    th = row[2] + 0.5 * d[2]
+    dx, dy = d[0] + s_xy * e[0], d[1] + s_xy * e[1]
+    return np.array([row[0] + math.cos(th) * dx - math.sin(th) * dy,
+                     row[1] + math.sin(th) * dx + math.cos(th) * dy,
+                     math.remainder(row[2] + d[2] + s_th * e[2], 2.0 * math.pi)])
 
 
 @pytest.mark.parametrize("spread", [0.01, 0.3, 3.0])
@@ -293,18 +314,6 @@ COLOURED = {"post_a": np.array([[3, 0.7], [3, -0.7]], dtype=float),
             "T": np.array([[0, 2], [0, -2]], dtype=float)}
 
 
-def _sight_coloured(pose, rng, noise=0.02, max_range=4.0):
-    kinds, ranges, bearings = [], [], []
-    for kind, pos in COLOURED.items():
-        rel = pos - pose[:2]
-        dist = np.hypot(*rel.T)
-        for j in np.flatnonzero(dist < max_range):
-            kinds.append(kind)
-            ranges.append(dist[j] * (1.0 + rng.normal(0, noise)))
-            bearings.append(math.atan2(rel[j, 1], rel[j, 0]) - pose[2] + rng.normal(0, noise))
-    return kinds, np.array(ranges), np.array(bearings)
-
-
 def _frames_to_recover(recovery, seed, known=False, frames=60):
     """A fixed-size filter (300 particles) tracks a walking robot from a known start, which
     is then picked up and put down elsewhere: the frames until the estimate is within 0.2 m
@@ -318,7 +327,7 @@ def _frames_to_recover(recovery, seed, known=False, frames=60):
     def frame(pose):
         pose = pose + [0.02 * math.cos(pose[2]), 0.02 * math.sin(pose[2]), 0.0]
         loc.predict((0.02, 0.0, 0.0))
-        kinds, ranges, bearings = _sight_coloured(pose, sight_rng)
+        kinds, ranges, bearings = _sight_kinds(pose, sight_rng, noise=0.02, table=COLOURED)
         if known:  # the landmarks' identities known: each sighting its nearest landmark
             pts = pose[:2] + np.column_stack([ranges * np.cos(bearings + pose[2]),
                                               ranges * np.sin(bearings + pose[2])])
@@ -407,40 +416,6 @@ def test_recovery_option_bad_input():
     assert RECOVERIES == ("uniform", "triangulate")
 
 
-def _reference_fox_predict(loc: KLDLocalizer, d: np.ndarray, rng: np.random.Generator
-                           ) -> np.ndarray:
-    """Fox's KLD-sampling (2003, Table 1) written out plainly: draw a particle, move it by the
-    motion model, count the bin of the *predicted* sample; stop at the bound."""
-    c = loc.cfg
-    bound = _kld_table(c.epsilon, c.delta, c.max_particles)
-    cumulative = np.cumsum(loc.weights)
-    cumulative /= cumulative[-1]
-    batch = min(c.max_particles, max(c.min_particles, 2 * loc.n))
-    drawn, seen, kept = 0, set(), []
-    while True:
-        take = min(batch, c.max_particles - drawn)
-        idx = np.searchsorted(cumulative, rng.random(take), side="right")
-        rows = loc.particles[np.minimum(idx, loc.n - 1)].copy()
-        noise = rng.normal(0.0, 1.0, (take, 3))
-        dist, turn = math.hypot(d[0], d[1]), abs(d[2])
-        s_xy = c.a_trans * dist + c.a_rot_xy * turn
-        s_th = c.a_rot * turn + c.a_trans_theta * dist
-        for row, e in zip(rows, noise):
-            th = row[2] + 0.5 * d[2]
-            dx, dy = d[0] + s_xy * e[0], d[1] + s_xy * e[1]
-            moved = np.array([row[0] + math.cos(th) * dx - math.sin(th) * dy,
-                              row[1] + math.sin(th) * dx + math.cos(th) * dy,
-                              math.remainder(row[2] + d[2] + s_th * e[2], 2.0 * math.pi)])
-            kept.append(moved)
-            seen.add(tuple(int(v) for v in np.floor(moved / np.asarray(c.bin_size))))
-            drawn += 1
-            if drawn >= c.min_particles and drawn >= bound[len(seen)]:
-                return np.array(kept)
-        if drawn >= c.max_particles:
-            return np.array(kept)
-        batch *= 2
-
-
 def test_fox_binning_counts_the_predicted_samples():
     """binning="predicted": an update only weighs (no resampling); the next predict draws,
     moves and bins the predicted samples as Fox's listing does, so with the motion's spread
@@ -455,7 +430,7 @@ def test_fox_binning_counts_the_predicted_samples():
         if binning == "predicted":
             assert loc.n == 20 and np.ptp(loc.weights) > 0.0  # weighed, not resampled
             d = np.array([0.4, 0.0, 0.6])  # a large, turning step: a wide motion spread
-            expected = _reference_fox_predict(loc, d, np.random.default_rng(9))
+            expected = _reference_kld_resample(loc, np.random.default_rng(9), d)
             loc.rng = np.random.default_rng(9)
             loc.predict(d)
             np.testing.assert_allclose(loc.particles, expected, atol=1e-12)
