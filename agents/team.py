@@ -156,7 +156,9 @@ class ScriptedTeam:
         size = int(u.world.n_blue if t == 0 else u.world.n_yellow)
         if size < 1:
             raise ValueError(f"the {team} team of this match has no robots")
-        return cls(u.field, u.ball_spec, u.robot_spec, u.builder.names_for(t), size,
+        # In a mixed match each team has its own robot model.
+        spec = u.team_specs[t] if hasattr(u, "team_specs") else u.robot_spec
+        return cls(u.field, u.ball_spec, spec, u.builder.names_for(t), size,
                    prefix=f"{team}_", **kwargs)
 
     # ------------------------------------------------------------------------------------

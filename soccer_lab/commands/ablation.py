@@ -1,13 +1,14 @@
 """``soccer-env ablation``: one keeper policy on the same seeded shots under every estimator
-configuration and sensor preset (:func:`agents.ablation.run_ablation`), its tables printed and
-written (:func:`agents.ablation.write_outputs`)."""
+configuration and sensor preset (:func:`agents.ablation.run_ablation`), or with ``--env
+soccer_env/Match-v0`` pairs of configurations playing seeded matches against each other
+(:func:`agents.match_ablation.run_match_ablation`); the tables printed and written."""
 
 from __future__ import annotations
 
 import argparse
 import sys
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 from agents.ablation import (
     DEFAULT_CHUNK_SIZE,
@@ -18,6 +19,14 @@ from agents.ablation import (
     robot_kind,
     run_ablation,
     write_outputs,
+)
+from agents.evaluation import GOALKEEPER_ID
+from agents.match_ablation import (
+    DEFAULT_DURATION,
+    DEFAULT_MATCH_PRESETS,
+    DEFAULT_PAIRS,
+    DEFAULT_TEAM_SIZE,
+    MATCH_ID,
 )
 from soccer_env.presets.sensors import HEAD_CAMERAS, VISION
 from soccer_lab.cli_args import add_trust_argument, key_values
@@ -31,30 +40,56 @@ def parser() -> argparse.ArgumentParser:
         prog="soccer-env ablation",
         description="Evaluate one keeper policy on the same seeded shots under every estimator "
                     "configuration and sensor preset: save rate with Wilson 95 % interval, "
-                    "ball estimation RMSE and estimator compute per step.")
+                    "ball estimation RMSE and estimator compute per step. With --env "
+                    f"{MATCH_ID}: two teams with the same policy, each perceiving through "
+                    "its own configuration, play seeded matches (colours swapped every "
+                    "other match): wins, draws and losses with Wilson 95 % intervals, goals, "
+                    "goal difference with a paired 95 % interval and each team's ball error.")
+    p.add_argument("--env", default=GOALKEEPER_ID, choices=(GOALKEEPER_ID, MATCH_ID),
+                   help=f"{GOALKEEPER_ID}: the keeper on seeded shots; {MATCH_ID}: matches "
+                        f"between pairs of configurations (default: {GOALKEEPER_ID})")
     p.add_argument("--policy", default="scripted",
                    help="policy reference: scripted, idle, baseline:NAME, a .zip/.npz file or "
-                        "a training run folder (default: scripted)")
-    p.add_argument("--episodes", type=int, default=1000,
-                   help="shots per cell, seeds start-seed onwards (default: 1000)")
+                        "a training run folder; in matches the team policy of both teams: "
+                        "scripted, idle or a .npz file (default: scripted)")
+    p.add_argument("--episodes", type=int, default=None,
+                   help="shots per cell, seeds start-seed onwards (default: 1000; keeper "
+                        "only)")
     p.add_argument("--robot", default="ssl", choices=list(ROBOT_KINDS),
                    help="the keeper's robot kind: ssl (overhead vision) or humanoid (head "
                         "cameras, localization, team fusion; robot humanoid-2012 unless "
                         "--env-kwarg robot=... names another) (default: ssl)")
     p.add_argument("--presets", default=None,
-                   help=f"comma-separated sensor presets (default: all; ssl: "
-                        f"{','.join(VISION)}; humanoid: {','.join(HEAD_CAMERAS)})")
-    p.add_argument("--configs", default="all",
+                   help=f"comma-separated sensor presets or 'all' (ssl: {','.join(VISION)}; "
+                        f"humanoid: {','.join(HEAD_CAMERAS)}) (default: all for the keeper; "
+                        f"in matches ssl: {','.join(DEFAULT_MATCH_PRESETS['ssl'])}, humanoid: "
+                        f"{','.join(DEFAULT_MATCH_PRESETS['humanoid'])})")
+    p.add_argument("--configs", default=None,
                    help="comma-separated estimator configurations (default: all; ssl: "
                         f"{','.join(ESTIMATOR_CONFIGS)}; humanoid: "
-                        f"{','.join(HUMANOID_CONFIGS)})")
+                        f"{','.join(HUMANOID_CONFIGS)}; keeper only)")
+    p.add_argument("--pairs", default=None,
+                   help="matches only: comma-separated pairs A:B of estimator configurations "
+                        "(default: ssl " + ",".join(f"{a}:{b}" for a, b in DEFAULT_PAIRS["ssl"])
+                        + "; humanoid " + ",".join(f"{a}:{b}" for a, b in
+                                                   DEFAULT_PAIRS["humanoid"]) + ")")
+    p.add_argument("--matches", type=int, default=None,
+                   help="matches only: matches per pair and preset, seed start-seed + k // 2 "
+                        "for match k, A blue when k is even (default: 100)")
+    p.add_argument("--team-size", type=int, default=None,
+                   help=f"matches only: robots per team, 1..11 (default: {DEFAULT_TEAM_SIZE})")
+    p.add_argument("--duration", type=float, default=None,
+                   help=f"matches only: match length in seconds (default: "
+                        f"{DEFAULT_DURATION:g})")
     p.add_argument("--workers", type=int, default=None,
                    help="processes (default: all cores); the results do not depend on it")
     p.add_argument("--out", default="ablation_output",
                    help="output folder (default: ablation_output)")
-    p.add_argument("--start-seed", type=int, default=0, help="seed of the first shot")
-    p.add_argument("--chunk-size", type=int, default=DEFAULT_CHUNK_SIZE,
-                   help=f"consecutive seeds per job (default: {DEFAULT_CHUNK_SIZE})")
+    p.add_argument("--start-seed", type=int, default=0,
+                   help="seed of the first shot or match (default: 0)")
+    p.add_argument("--chunk-size", type=int, default=None,
+                   help=f"consecutive seeds per job (default: {DEFAULT_CHUNK_SIZE}; keeper "
+                        "only)")
     p.add_argument("--env-kwarg", action="append", default=[], metavar="KEY=VALUE",
                    help="environment keyword argument shared by all cells (value parsed as "
                         "JSON), repeatable, e.g. control_dt=0.04 or field=ssl-2012; obs_mode "
@@ -64,29 +99,57 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
+_KEEPER_ONLY = ("episodes", "configs", "chunk_size")
+_MATCH_ONLY = ("pairs", "matches", "team_size", "duration")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """``soccer-env ablation``: run the ablation, write its outputs and print the table."""
     p = parser()
     args = p.parse_args(list(sys.argv[1:] if argv is None else argv))
-    for name in ("episodes", "chunk_size"):
-        if getattr(args, name) < 1:
-            p.error(f"--{name.replace('_', '-')} must be >= 1, got {getattr(args, name)}")
+    match = args.env == MATCH_ID
+    wrong = [n for n in (_KEEPER_ONLY if match else _MATCH_ONLY)
+             if getattr(args, n) is not None]
+    if wrong:
+        opts = ", ".join("--" + n.replace("_", "-") for n in wrong)
+        verb = "applies" if len(wrong) == 1 else "apply"
+        p.error(f"{opts} {verb} to {GOALKEEPER_ID if match else MATCH_ID} only, not to "
+                f"--env {args.env}")
+    if args.trust and match:
+        p.error(f"--trust applies to {GOALKEEPER_ID} only: match teams load .npz files, "
+                "which never unpickle")
+    for name, default in (("episodes", 1000), ("chunk_size", DEFAULT_CHUNK_SIZE),
+                          ("matches", 100), ("team_size", DEFAULT_TEAM_SIZE)):
+        value = getattr(args, name)
+        if value is not None and value < 1:
+            p.error(f"--{name.replace('_', '-')} must be >= 1, got {value}")
+        setattr(args, name, default if value is None else value)
+    if args.duration is not None and not 0 < args.duration < float("inf"):
+        p.error(f"--duration must be a positive number of seconds, got {args.duration}")
     if args.workers is not None and args.workers < 1:
         p.error(f"--workers must be >= 1, got {args.workers}")
     try:
         kind = robot_kind(args.robot)
-        presets = parse_names(args.presets, kind.presets, "sensor preset(s)")
-        configs = parse_names(args.configs, kind.configs, "estimator configuration(s)")
+        if match:
+            presets = parse_names(args.presets or ",".join(DEFAULT_MATCH_PRESETS[args.robot]),
+                                  kind.presets, "sensor preset(s)")
+        else:
+            presets = parse_names(args.presets, kind.presets, "sensor preset(s)")
+            configs = parse_names(args.configs or "all", kind.configs,
+                                  "estimator configuration(s)")
         env_kwargs = key_values(args.env_kwarg, "--env-kwarg")
     except ValueError as exc:
         p.error(str(exc))
     t0 = time.perf_counter()
 
     def progress(done: int, total: int) -> None:
+        unit = "matches" if match else "jobs"
         if not args.quiet and (done == total or done % max(1, total // 20) == 0):
-            print(f"ablation: {done}/{total} jobs ({time.perf_counter() - t0:.0f} s)",
+            print(f"ablation: {done}/{total} {unit} ({time.perf_counter() - t0:.0f} s)",
                   file=sys.stderr, flush=True)
 
+    if match:
+        return _main_matches(p, args, presets, env_kwargs, progress)
     try:
         res = run_ablation(args.policy, args.episodes, presets, configs, args.start_seed,
                            args.workers, args.chunk_size, env_kwargs=env_kwargs,
@@ -98,4 +161,25 @@ def main(argv: Sequence[str] | None = None) -> int:
     for path in files.values():
         print(f"wrote {path}")
     print(f"{len(res.cells)} cells x {res.episodes} shots in {res.seconds:.0f} s")
+    return 0
+
+
+def _main_matches(p: argparse.ArgumentParser, args: argparse.Namespace, presets: list[str],
+                  env_kwargs: dict, progress: Callable[[int, int], None]) -> int:
+    """The match ablation of ``soccer-env ablation --env soccer_env/Match-v0``."""
+    from agents.match_ablation import run_match_ablation
+    from agents.match_ablation import write_outputs as write_match_outputs
+
+    try:
+        res = run_match_ablation(args.pairs, presets, args.matches, args.robot,
+                                 args.team_size, args.duration or DEFAULT_DURATION,
+                                 args.start_seed, args.workers, args.policy, env_kwargs,
+                                 progress)
+    except (ValueError, TypeError, FileNotFoundError) as exc:
+        p.error(str(exc))
+    files = write_match_outputs(res, args.out)
+    print(res.markdown())
+    for path in files.values():
+        print(f"wrote {path}")
+    print(f"{len(res.cells)} cells x {res.matches} matches in {res.seconds:.0f} s")
     return 0
