@@ -31,7 +31,7 @@ from soccer_env.presets import BallSpec, FieldSpec
 from soccer_env.sim.world import BallExit, World
 
 __all__ = ["ExitKind", "classify_exit", "formation", "place_free_kick", "place_kickoff",
-           "FREE_KICK_INSET", "STOP_DISTANCE"]
+           "place_penalty", "FREE_KICK_INSET", "STOP_DISTANCE"]
 
 #: Distance [m] from the lines at which a ball out of play is placed back.
 FREE_KICK_INSET = 0.2
@@ -118,6 +118,43 @@ def place_kickoff(world: World, kickoff_team: int, rng: np.random.Generator, jit
     blue = formation(world.field, 0, world.n_blue, kickoff_team == 0, r, rng, jitter)
     yellow = formation(world.field, 1, world.n_yellow, kickoff_team == 1, r, rng, jitter)
     poses = np.concatenate([blue, yellow])
+    _separate(poses, 2.0 * r + 0.05)
+    return poses
+
+
+def place_penalty(world: World, team: int, mark: tuple[float, float], behind: float
+                  ) -> np.ndarray:
+    """Penalty-kick poses ``(N, 3)`` of all robots of ``world`` (blue first) for ``team``
+    shooting from ``mark`` (SSL rules 2025, 5.3.5): the defending keeper (its team's robot 0)
+    on its goal line between the posts, facing the field; the attacking team's robot 1 (robot
+    0 when it has one robot) just behind the ball facing the goal; every other robot in a line
+    ``behind`` metres plus a robot radius behind the ball, spread across the field and facing
+    the goal. Team 0 (blue) attacks +x."""
+    f = world.field
+    r = float(world.radii.max())
+    direction = 1.0 if team == 0 else -1.0
+    goal_x = direction * f.half_length
+    mx, my = mark
+    poses = np.zeros((world.n_robots, 3))
+    heading = 0.0 if team == 0 else math.pi
+    line_x = mx - direction * (behind + r + 0.05)
+    line_x = float(np.clip(line_x, -f.half_length + r, f.half_length - r))
+    others = []
+    for t in (0, 1):
+        members = [i for i in range(world.n_robots) if int(world.teams[i]) == t]
+        for k, i in enumerate(members):
+            if t != team and k == 0:  # the keeper, touching its goal line, facing the field
+                poses[i] = (goal_x - direction * r, 0.0, 0.0 if t == 0 else math.pi)
+            elif t == team and k == min(1, len(members) - 1):  # the kicker
+                poses[i] = (mx - direction * (r + world.ball_spec.radius + 0.05), my, heading)
+            else:
+                others.append(i)
+    if others:
+        gap = 2.0 * r + 0.1
+        ys = (np.arange(len(others)) - (len(others) - 1) / 2.0) * gap
+        limit = f.half_width - r
+        for i, y in zip(others, np.clip(ys, -limit, limit)):
+            poses[i] = (line_x, float(y), heading)
     _separate(poses, 2.0 * r + 0.05)
     return poses
 
