@@ -38,14 +38,21 @@ import shlex
 import time
 from collections import Counter
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from concurrent.futures import as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from agents import ablation_report
 from agents.ablation_report import write_outputs
-from agents.evaluation import GOALKEEPER_ID, EvalResult, evaluate, process_pool, wilson
+from agents.evaluation import (
+    GOALKEEPER_ID,
+    EvalResult,
+    describe_policy,
+    evaluate,
+    map_jobs,
+    resolve_workers,
+    wilson,
+)
 from estimators.registry import Registry
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.perception.options import BALL_FILTERS
@@ -54,8 +61,11 @@ from soccer_env.validation import check_fields
 
 __all__ = ["EstimatorConfig", "ESTIMATOR_CONFIGS", "HUMANOID_CONFIGS", "ROBOT_KINDS",
            "RobotKind", "robot_kind", "register_config", "AblationResult", "run_ablation",
-           "write_outputs", "parse_names", "default_presets", "DEFAULT_CHUNK_SIZE"]
+           "write_outputs", "parse_names", "default_presets", "DEFAULT_CHUNK_SIZE",
+           "DEFAULT_EPISODES"]
 
+#: Shots per cell.
+DEFAULT_EPISODES = 1000
 #: Consecutive seeds per job: small enough to keep every core busy to the end, large enough
 #: that building the environment and the policy per job costs little.
 DEFAULT_CHUNK_SIZE = 100
@@ -354,12 +364,6 @@ class AblationResult:
         return ablation_report.markdown(self)
 
 
-def _describe(policy: Any) -> str:
-    if isinstance(policy, (str, os.PathLike)):
-        return os.fspath(policy)
-    return getattr(policy, "__name__", type(policy).__name__)
-
-
 def _run_job(job: tuple) -> EvalResult:
     """One job: the seeds ``[start, start + n)`` of one cell, in this process."""
     policy, env_id, env_kwargs, start, n = job
@@ -408,7 +412,8 @@ def _resolve_policy(policy: Any, env_id: str, env_kwargs: Mapping[str, Any],
     return policy
 
 
-def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: int = 1000,
+def run_ablation(policy: str | os.PathLike | Callable = "scripted",
+                 episodes: int = DEFAULT_EPISODES,
                  presets: str | Sequence[str] | None = None,
                  configs: str | Sequence[str] | None = None, start_seed: int = 0,
                  workers: int | None = None, chunk_size: int = DEFAULT_CHUNK_SIZE,
@@ -468,9 +473,11 @@ def run_ablation(policy: str | os.PathLike | Callable = "scripted", episodes: in
                 jobs.append((job_policy, env_id, specs[name].make_env_kwargs(preset, base), s,
                              min(chunk_size, start_seed + episodes - s)))
     parts: dict[tuple[str, str], list[EvalResult]] = {}
-    for key, out in zip(keys, _run_jobs(jobs, workers, progress)):
+    # The jobs carry their environment's keyword arguments, so configurations registered at
+    # run time need not exist in the workers.
+    for key, out in zip(keys, map_jobs(_run_job, jobs, workers, progress)):
         parts.setdefault(key, []).append(out)
-    label = _describe(policy)
+    label = describe_policy(policy)
     cells = {(p, c): _merge(parts[(p, c)], label) for p in preset_names for c in config_names}
     return AblationResult(policy=label, episodes=episodes, start_seed=start_seed,
                           presets=preset_names, configs=config_names, cells=cells,
@@ -485,28 +492,4 @@ def _check_counts(episodes: Any, chunk_size: Any, workers: Any) -> tuple[int, in
         raise ValueError(f"episodes must be an integer >= 1, got {episodes!r}")
     if int(chunk_size) < 1:
         raise ValueError(f"chunk_size must be >= 1, got {chunk_size!r}")
-    workers = (os.cpu_count() or 1) if workers is None else int(workers)
-    if workers < 1:
-        raise ValueError(f"workers must be >= 1, got {workers!r}")
-    return int(episodes), int(chunk_size), workers
-
-
-def _run_jobs(jobs: list[tuple], workers: int,
-              progress: Callable[[int, int], None] | None) -> list[EvalResult]:
-    """Every job's evaluation, in job order, over ``workers`` processes (here for one)."""
-    outs: list[EvalResult | None] = [None] * len(jobs)
-    if workers == 1 or len(jobs) == 1:
-        for i, job in enumerate(jobs):
-            outs[i] = _run_job(job)
-            if progress:
-                progress(i + 1, len(jobs))
-        return outs
-    # The jobs carry their environment's keyword arguments, so configurations registered at
-    # run time need not exist in the workers.
-    with process_pool(min(workers, len(jobs))) as pool:
-        futures = {pool.submit(_run_job, job): i for i, job in enumerate(jobs)}
-        for done, fut in enumerate(as_completed(futures), 1):
-            outs[futures[fut]] = fut.result()
-            if progress:
-                progress(done, len(jobs))
-    return outs
+    return int(episodes), int(chunk_size), resolve_workers(workers)

@@ -8,6 +8,7 @@ from __future__ import annotations
 import csv
 import json
 import os
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -15,7 +16,7 @@ if TYPE_CHECKING:
     from agents.ablation import AblationResult
     from agents.evaluation import EvalResult
 
-__all__ = ["write_outputs", "markdown", "rows", "data", "plot", "rate_text"]
+__all__ = ["write_outputs", "write_files", "markdown", "rows", "data", "plot", "rate_text"]
 
 
 def markdown(res: AblationResult) -> str:
@@ -161,15 +162,23 @@ def plot(res: AblationResult, path: Path) -> str:
 def write_outputs(res: AblationResult, out: str | os.PathLike) -> dict[str, Path]:
     """Write ``ablation.md``, ``.csv``, ``.json`` and ``.png`` to ``out``; return their
     paths by kind."""
+    return write_files(out, "ablation", markdown(res), rows(res), data(res),
+                       lambda path: plot(res, path))
+
+
+def write_files(out: str | os.PathLike, stem: str, text: str, table: list[dict[str, Any]],
+                numbers: dict[str, Any], draw: Callable[[Path], Any]) -> dict[str, Path]:
+    """Write ``out/stem.md`` (``text``), ``.csv`` (``table``, one row per dict, the first
+    row's keys as the header), ``.json`` (``numbers``) and ``.png`` (``draw(path)``);
+    return their paths by kind."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    files = {k: out / f"ablation.{k}" for k in ("md", "csv", "json", "png")}
-    files["md"].write_text(markdown(res) + "\n")
-    table = rows(res)
+    files = {k: out / f"{stem}.{k}" for k in ("md", "csv", "json", "png")}
+    files["md"].write_text(text + "\n")
     with files["csv"].open("w", newline="") as fh:
         writer = csv.DictWriter(fh, fieldnames=list(table[0]))
         writer.writeheader()
         writer.writerows(table)
-    files["json"].write_text(json.dumps(data(res), indent=1) + "\n")
-    plot(res, files["png"])
+    files["json"].write_text(json.dumps(numbers, indent=1) + "\n")
+    draw(files["png"])
     return files

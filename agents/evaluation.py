@@ -19,7 +19,7 @@ import os
 import time
 from collections import Counter
 from collections.abc import Callable, Iterator, Mapping, Sequence
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -31,7 +31,8 @@ import soccer_env  # noqa: F401  (registers the environments)
 from agents.policies import make_policy, reset_policy
 
 __all__ = ["wilson", "EvalResult", "evaluate", "record_video", "process_context",
-           "process_pool", "ignore_interrupts", "GOALKEEPER_ID", "check_full_infos"]
+           "process_pool", "map_jobs", "resolve_workers", "describe_policy",
+           "ignore_interrupts", "GOALKEEPER_ID", "check_full_infos"]
 
 GOALKEEPER_ID = "soccer_env/Goalkeeper-v0"
 
@@ -191,7 +192,7 @@ def evaluate(policy: str | os.PathLike | Callable = "scripted",
     check_full_infos(env_kwargs, "evaluate")
     seeds = list(range(int(start_seed), int(start_seed) + int(episodes)))
     workers = min(int(workers), len(seeds))
-    name = _describe(policy)
+    name = describe_policy(policy)
     if isinstance(policy, (str, os.PathLike)) and (
             os.fspath(policy).endswith(".zip") or Path(policy).is_dir()):
         # Load a saved model once here (its numpy copy pickles cheaply) rather than import
@@ -203,12 +204,7 @@ def evaluate(policy: str | os.PathLike | Callable = "scripted",
             probe.close()
     chunks = [seeds[i::workers] for i in range(workers)]
     jobs = [(policy, env_id, env_kwargs, c, measure_estimator) for c in chunks]
-    if workers > 1:
-        # forkserver, not fork: a parent that has used torch deadlocks forked children.
-        with process_pool(workers) as pool:
-            parts = list(pool.map(_run_episodes, jobs))
-    else:
-        parts = [_run_episodes(jobs[0])]
+    parts = map_jobs(_run_episodes, jobs, workers)
     saved_by_seed: dict[int, bool] = {}
     outcomes: Counter = Counter()
     for chunk, part in zip(chunks, parts):
@@ -269,7 +265,42 @@ def process_pool(workers: int) -> Iterator[ProcessPoolExecutor]:
     pool.shutdown(wait=True)
 
 
-def _describe(policy: Any) -> str:
+def resolve_workers(workers: Any) -> int:
+    """``workers`` as a process count: None for every core, else an integer >= 1
+    (``ValueError`` otherwise)."""
+    workers = (os.cpu_count() or 1) if workers is None else int(workers)
+    if workers < 1:
+        raise ValueError(f"workers must be >= 1, got {workers!r}")
+    return workers
+
+
+def map_jobs(fn: Callable[[Any], Any], jobs: Sequence[Any], workers: int | None = None,
+             progress: Callable[[int, int], None] | None = None) -> list[Any]:
+    """``[fn(job) for job in jobs]``, in job order, over ``workers`` processes (None: every
+    core; with one, or a single job, in this process). ``fn`` must be a module-level
+    function and the jobs must pickle (they reach fresh processes, see
+    :func:`process_context`). ``progress(done, total)`` is called after each job."""
+    workers = min(resolve_workers(workers), len(jobs))
+    if workers <= 1:
+        outs = []
+        for job in jobs:
+            outs.append(fn(job))
+            if progress:
+                progress(len(outs), len(jobs))
+        return outs
+    results: list[Any] = [None] * len(jobs)
+    with process_pool(workers) as pool:
+        futures = {pool.submit(fn, job): i for i, job in enumerate(jobs)}
+        for done, fut in enumerate(as_completed(futures), 1):
+            results[futures[fut]] = fut.result()
+            if progress:
+                progress(done, len(jobs))
+    return results
+
+
+def describe_policy(policy: Any) -> str:
+    """A policy reference as text for tables: the path or name given, else the callable's
+    name."""
     if isinstance(policy, (str, os.PathLike)):
         return os.fspath(policy)
     return getattr(policy, "__name__", type(policy).__name__)

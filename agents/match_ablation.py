@@ -22,7 +22,6 @@ W/D/L shares per cell).
 
 from __future__ import annotations
 
-import csv
 import json
 import os
 import shlex
@@ -33,11 +32,13 @@ from pathlib import Path
 from typing import Any
 
 from agents.ablation import DEFAULT_HUMANOID, EstimatorConfig, parse_names, robot_kind
+from agents.ablation_report import write_files
+from agents.evaluation import describe_policy, resolve_workers
 from agents.matches import HeadToHead, Side, match_jobs, run_match_jobs
 
 __all__ = ["MATCH_ID", "DEFAULT_PAIRS", "DEFAULT_MATCH_PRESETS", "DEFAULT_TEAM_SIZE",
-           "DEFAULT_DURATION", "MatchAblationResult", "run_match_ablation", "parse_pairs",
-           "write_outputs"]
+           "DEFAULT_DURATION", "DEFAULT_MATCHES", "MatchAblationResult", "run_match_ablation",
+           "parse_pairs", "write_outputs"]
 
 MATCH_ID = "soccer_env/Match-v0"
 #: The pairs played unless told otherwise, per robot kind: the paper's EKF against raw
@@ -54,6 +55,8 @@ DEFAULT_MATCH_PRESETS = {"ssl": ("ssl-2012", "realistic"), "humanoid": ("kidsize
 DEFAULT_TEAM_SIZE = 3
 #: Match length [s].
 DEFAULT_DURATION = 300.0
+#: Matches per pair and preset.
+DEFAULT_MATCHES = 100
 #: Environment keyword arguments the ablation sets itself.
 _OWN_KEYS = ("blue", "yellow", "match_duration", "obs_mode", "perception")
 
@@ -242,7 +245,8 @@ def _mm(err: tuple[float, float]) -> str:
 
 
 def run_match_ablation(pairs: str | Iterable[Any] | None = None,
-                       presets: str | Sequence[str] | None = None, matches: int = 100,
+                       presets: str | Sequence[str] | None = None,
+                       matches: int = DEFAULT_MATCHES,
                        robot: str = "ssl", team_size: int = DEFAULT_TEAM_SIZE,
                        duration: float = DEFAULT_DURATION, start_seed: int = 0,
                        workers: int | None = None, policy: Any = "scripted",
@@ -301,7 +305,7 @@ def run_match_ablation(pairs: str | Iterable[Any] | None = None,
             keys += [key] * len(cell_jobs)
             jobs += cell_jobs
     _probe(jobs[0])
-    workers = (os.cpu_count() or 1) if workers is None else int(workers)
+    workers = resolve_workers(workers)
     t0 = time.perf_counter()
     records = run_match_jobs(jobs, workers, progress)
     cells: dict[tuple[str, str], HeadToHead] = {}
@@ -309,10 +313,9 @@ def run_match_ablation(pairs: str | Iterable[Any] | None = None,
         if key not in cells:
             cells[key] = HeadToHead(job[1], job[2], [], shared)
         cells[key].records.append(rec)
-    label = policy if isinstance(policy, str) else getattr(policy, "__name__", "policy")
-    return MatchAblationResult(robot, label, pair_list, preset_names, int(matches),
-                               int(start_seed), int(team_size), float(duration), cells, specs,
-                               base, workers, time.perf_counter() - t0)
+    return MatchAblationResult(robot, describe_policy(policy), pair_list, preset_names,
+                               int(matches), int(start_seed), int(team_size), float(duration),
+                               cells, specs, base, workers, time.perf_counter() - t0)
 
 
 def _probe(job: tuple) -> None:
@@ -372,15 +375,5 @@ def plot(res: MatchAblationResult, path: Path) -> str:
 def write_outputs(res: MatchAblationResult, out: str | os.PathLike) -> dict[str, Path]:
     """Write ``match_ablation.md``, ``.csv``, ``.json`` and ``.png`` to ``out``; return their
     paths by kind."""
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    files = {k: out / f"match_ablation.{k}" for k in ("md", "csv", "json", "png")}
-    files["md"].write_text(res.markdown() + "\n")
-    table = res.rows()
-    with files["csv"].open("w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(table[0]))
-        writer.writeheader()
-        writer.writerows(table)
-    files["json"].write_text(json.dumps(res.to_dict(), indent=1) + "\n")
-    plot(res, files["png"])
-    return files
+    return write_files(out, "match_ablation", res.markdown(), res.rows(), res.to_dict(),
+                       lambda path: plot(res, path))

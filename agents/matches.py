@@ -30,14 +30,13 @@ import math
 import os
 import time
 from collections.abc import Callable, Mapping, Sequence
-from concurrent.futures import as_completed
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from agents.evaluation import check_full_infos, process_pool, wilson
+from agents.evaluation import check_full_infos, map_jobs, wilson
 from soccer_env.perception.base import OBS_MODES
 
 __all__ = ["Side", "MatchRecord", "HeadToHead", "head_to_head", "match_jobs",
@@ -267,22 +266,7 @@ def run_match_jobs(jobs: Sequence[tuple], workers: int | None = None,
                    progress: Callable[[int, int], None] | None = None) -> list[MatchRecord]:
     """Every job's :class:`MatchRecord`, in job order, over ``workers`` processes (None: all
     cores; one: here). ``progress(done, total)`` is called after each match."""
-    workers = (os.cpu_count() or 1) if workers is None else int(workers)
-    if workers < 1:
-        raise ValueError(f"workers must be >= 1, got {workers!r}")
-    outs: list[dict[str, Any] | None] = [None] * len(jobs)
-    if workers == 1 or len(jobs) <= 1:
-        for i, job in enumerate(jobs):
-            outs[i] = _play_job(job)
-            if progress:
-                progress(i + 1, len(jobs))
-    else:
-        with process_pool(min(workers, len(jobs))) as pool:
-            futures = {pool.submit(_play_job, job): i for i, job in enumerate(jobs)}
-            for done, fut in enumerate(as_completed(futures), 1):
-                outs[futures[fut]] = fut.result()
-                if progress:
-                    progress(done, len(jobs))
+    outs = map_jobs(_play_job, jobs, workers, progress)
     return [_record(job, out) for job, out in zip(jobs, outs)]
 
 

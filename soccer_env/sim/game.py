@@ -96,7 +96,7 @@ import numpy as np
 
 from soccer_env.presets import BallSpec, FieldSpec
 from soccer_env.presets.rules import RuleSpec
-from soccer_env.sim.referee import classify_exit
+from soccer_env.sim.referee import ExitKind, classify_exit, free_kick_spot
 
 __all__ = ["GameController", "GameOptions", "Frame", "Decision", "GameEvent", "TeamInfo",
            "COMMANDS", "STAGES", "PLACEMENTS", "FREE_KICK_RULES", "FOULS"]
@@ -287,6 +287,14 @@ class GameController:
         self.in_play = False
         self.time = 0.0
         self.first_kickoff = 0
+        # Kept across restarts: the ball's height since each team's last touch (7), each
+        # team's last non-stopping foul (7), the last frame's robots (crashing), and whether
+        # the coming free kick is indirect.
+        self._after_touch: dict[int, float] = {0: 0.0, 1: 0.0}
+        self._last_nonstop_foul = [-math.inf, -math.inf]
+        self._prev_robots: np.ndarray | None = None
+        self._pending_indirect = False
+        self._exit: ExitKind | None = None
         self._reset_restart()
 
     # ------------------------------------------------------------------------------------
@@ -323,8 +331,11 @@ class GameController:
         self._command_time += dt
         if self.clock_running:
             self._run_clocks(dt, d)
-        if frame.exit is not None:
-            d.exit_kind = classify_exit(frame.exit, self.field, self.ball_spec).kind
+        # How the ball left the field this step, classified once for every rule that asks.
+        self._exit = (None if frame.exit is None else
+                      classify_exit(frame.exit, self.field, self.ball_spec))
+        if self._exit is not None:
+            d.exit_kind = self._exit.kind
         if self.in_play or self.command == "force_start":
             self._referee_play(frame, ball, robots, touched, dt, d)
         else:
@@ -395,16 +406,12 @@ class GameController:
         self._progress_time = 0.0
         self._held_since: dict[int, float] = {}
         self._held_start: dict[int, tuple[float, float]] = {}
-        self._after_touch: dict[int, float] = {0: 0.0, 1: 0.0}
         self._last_touch = -1
         self._last_touch_point: tuple[float, float] | None = None
         self._crossed_half = False
         self._last_foul: dict[tuple[int, str], float] = {}
-        self._last_nonstop_foul = [-math.inf, -math.inf]
         self._touched_by_other = False
         self._prev_ball_speed = 0.0
-        if not hasattr(self, "_prev_robots"):
-            self._prev_robots: np.ndarray | None = None
 
     def _set_command(self, command: str, team: int) -> None:
         self.command, self.command_team = command, team
@@ -413,9 +420,7 @@ class GameController:
     def _issue(self, command: str, team: int, position: tuple[float, float] | None,
                d: Decision, line_up: bool = True) -> None:
         """Issue a restart command (after stop or placement)."""
-        keep_last = (self._last_nonstop_foul, self._after_touch)
         self._reset_restart()
-        self._last_nonstop_foul, self._after_touch = keep_last
         self.designated = position
         self.next_command = None
         self.in_play = False
@@ -445,8 +450,6 @@ class GameController:
             raise ValueError(f"cannot issue {command!r}")
         self._pending_indirect = False
 
-    _pending_indirect = False
-
     def _penalty_mark(self, team: int) -> tuple[float, float]:
         """The penalty mark ``team`` shoots from (blue attacks +x)."""
         hx = self.field.half_length
@@ -461,9 +464,7 @@ class GameController:
         by the referee for None), then ``next_command`` follows. ``out``: the free kick
         follows the ball leaving the field (it goes to the other team when ``placer`` may not
         place; 5.2)."""
-        keep_last = (self._last_nonstop_foul, self._after_touch)
         self._reset_restart()
-        self._last_nonstop_foul, self._after_touch = keep_last
         self.in_play = False
         self.next_command = next_command
         self.designated = position
@@ -591,11 +592,10 @@ class GameController:
         else:
             info.yellow_cards.append(self.rules.yellow_card_time)
         d.events.append(GameEvent("red_card" if red else "yellow_card", team))
-        members = [int(i) for i in np.flatnonzero(self.teams == team)
-                   if int(i) not in info.off and int(i) not in info.returning]
         if info.returning:  # a robot waiting to come back stays off instead
             info.off.append(info.returning.pop())
             return
+        members = [int(i) for i in np.flatnonzero(self.teams == team) if int(i) not in info.off]
         candidates = [i for i in members if i != self.keepers[team]]
         if len(members) <= 1 or not candidates:
             return  # a team keeps at least one robot
@@ -766,7 +766,7 @@ class GameController:
     def _ball_out(self, frame: Frame, ball: np.ndarray, d: Decision) -> None:
         """Goals and the ball leaving the field (6, 7)."""
         ex = frame.exit
-        kind = classify_exit(ex, self.field, self.ball_spec)
+        kind = self._exit
         last = self._last_touch
         last_team = int(self.teams[last]) if last >= 0 else -1
         if kind.kind == "goal":
@@ -783,9 +783,7 @@ class GameController:
             d.events.append(GameEvent("ball_left_field_touch_line", last_team, last, ex.x,
                                       ex.y))
             team = 1 - last_team if last_team >= 0 else (0 if ex.x > 0 else 1)
-            hx = self.field.half_length - self.rules.line_margin
-            spot = (float(np.clip(ex.x, -hx, hx)),
-                    math.copysign(self.field.half_width - self.rules.line_margin, ex.y))
+            spot = free_kick_spot(ex, kind, self.field, self.rules.line_margin)
             self._stop(d, ("direct_free", team), self._valid_free_kick(*spot), team, ball,
                        indirect=self.options.free_kicks == "2019", out=True)
             return
@@ -832,7 +830,7 @@ class GameController:
         (a goal is :meth:`_ball_out`'s)."""
         team = self._kick_team
         if frame.exit is not None:
-            kind = classify_exit(frame.exit, self.field, self.ball_spec)
+            kind = self._exit
             if kind.kind == "goal" and kind.scorer == team:
                 self._goal(team, frame.exit, d)
                 return True

@@ -28,15 +28,17 @@ from dataclasses import dataclass
 import numpy as np
 
 from soccer_env.presets import BallSpec, FieldSpec
+from soccer_env.presets.rules import RULES
 from soccer_env.sim.world import BallExit, World
 
 __all__ = ["ExitKind", "classify_exit", "formation", "place_free_kick", "place_kickoff",
            "place_penalty", "FREE_KICK_INSET", "STOP_DISTANCE"]
 
-#: Distance [m] from the lines at which a ball out of play is placed back.
-FREE_KICK_INSET = 0.2
+#: Distance [m] from the lines at which a ball out of play is placed back (the SSL rules'
+#: free-kick margin).
+FREE_KICK_INSET = RULES["ssl-2025-div-b"].line_margin
 #: Distance [m] opponents must keep from the ball at a restart (SSL rules, stop state).
-STOP_DISTANCE = 0.5
+STOP_DISTANCE = RULES["ssl-2025-div-b"].stop_distance
 
 # Formation slots in units of (half length, half width) for a team attacking +x. The first
 # slot is the keeper (used when a team has at least two robots), the second the kick-off taker.
@@ -178,14 +180,16 @@ def _separate(poses: np.ndarray, gap: float, rounds: int = 20) -> None:
             return
 
 
-def free_kick_spot(exit: BallExit, kind: ExitKind, field: FieldSpec) -> tuple[float, float]:
-    """Where the ball is placed after leaving the field (see the module docstring)."""
+def free_kick_spot(exit: BallExit, kind: ExitKind, field: FieldSpec,
+                   inset: float = FREE_KICK_INSET) -> tuple[float, float]:
+    """Where the ball is placed after leaving the field, ``inset`` metres inside the lines
+    (see the module docstring)."""
     hx, hy = field.half_length, field.half_width
     if kind.kind == "touch":
-        x = float(np.clip(exit.x, -hx + FREE_KICK_INSET, hx - FREE_KICK_INSET))
-        return x, math.copysign(hy - FREE_KICK_INSET, exit.y)
+        x = float(np.clip(exit.x, -hx + inset, hx - inset))
+        return x, math.copysign(hy - inset, exit.y)
     side = math.copysign(1.0, exit.y) if exit.y != 0.0 else 1.0
-    return kind.end * (hx - FREE_KICK_INSET), side * (hy - FREE_KICK_INSET)
+    return kind.end * (hx - inset), side * (hy - inset)
 
 
 def place_free_kick(world: World, exit: BallExit, kind: ExitKind) -> int:

@@ -8,10 +8,11 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 
 from agents.ablation import (
     DEFAULT_CHUNK_SIZE,
+    DEFAULT_EPISODES,
     ESTIMATOR_CONFIGS,
     HUMANOID_CONFIGS,
     ROBOT_KINDS,
@@ -24,10 +25,13 @@ from agents.evaluation import GOALKEEPER_ID
 from agents.match_ablation import (
     DEFAULT_DURATION,
     DEFAULT_MATCH_PRESETS,
+    DEFAULT_MATCHES,
     DEFAULT_PAIRS,
     DEFAULT_TEAM_SIZE,
     MATCH_ID,
+    run_match_ablation,
 )
+from agents.match_ablation import write_outputs as write_match_outputs
 from soccer_env.presets.sensors import HEAD_CAMERAS, VISION
 from soccer_lab.cli_args import add_trust_argument, key_values
 
@@ -53,8 +57,8 @@ def parser() -> argparse.ArgumentParser:
                         "a training run folder; in matches the team policy of both teams: "
                         "scripted, idle or a .npz file (default: scripted)")
     p.add_argument("--episodes", type=int, default=None,
-                   help="shots per cell, seeds start-seed onwards (default: 1000; keeper "
-                        "only)")
+                   help=f"shots per cell, seeds start-seed onwards (default: "
+                        f"{DEFAULT_EPISODES}; keeper only)")
     p.add_argument("--robot", default="ssl", choices=list(ROBOT_KINDS),
                    help="the keeper's robot kind: ssl (overhead vision) or humanoid (head "
                         "cameras, localization, team fusion; robot humanoid-2012 unless "
@@ -75,7 +79,7 @@ def parser() -> argparse.ArgumentParser:
                                                    DEFAULT_PAIRS["humanoid"]) + ")")
     p.add_argument("--matches", type=int, default=None,
                    help="matches only: matches per pair and preset, seed start-seed + k // 2 "
-                        "for match k, A blue when k is even (default: 100)")
+                        f"for match k, A blue when k is even (default: {DEFAULT_MATCHES})")
     p.add_argument("--team-size", type=int, default=None,
                    help=f"matches only: robots per team, 1..11 (default: {DEFAULT_TEAM_SIZE})")
     p.add_argument("--duration", type=float, default=None,
@@ -118,13 +122,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     if args.trust and match:
         p.error(f"--trust applies to {GOALKEEPER_ID} only: match teams load .npz files, "
                 "which never unpickle")
-    for name, default in (("episodes", 1000), ("chunk_size", DEFAULT_CHUNK_SIZE),
-                          ("matches", 100), ("team_size", DEFAULT_TEAM_SIZE)):
+    for name, default in (("episodes", DEFAULT_EPISODES), ("chunk_size", DEFAULT_CHUNK_SIZE),
+                          ("matches", DEFAULT_MATCHES), ("team_size", DEFAULT_TEAM_SIZE)):
         value = getattr(args, name)
         if value is not None and value < 1:
             p.error(f"--{name.replace('_', '-')} must be >= 1, got {value}")
         setattr(args, name, default if value is None else value)
-    if args.duration is not None and not 0 < args.duration < float("inf"):
+    if args.duration is None:
+        args.duration = DEFAULT_DURATION
+    elif not 0 < args.duration < float("inf"):
         p.error(f"--duration must be a positive number of seconds, got {args.duration}")
     if args.workers is not None and args.workers < 1:
         p.error(f"--workers must be >= 1, got {args.workers}")
@@ -148,38 +154,21 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"ablation: {done}/{total} {unit} ({time.perf_counter() - t0:.0f} s)",
                   file=sys.stderr, flush=True)
 
-    if match:
-        return _main_matches(p, args, presets, env_kwargs, progress)
     try:
-        res = run_ablation(args.policy, args.episodes, presets, configs, args.start_seed,
-                           args.workers, args.chunk_size, env_kwargs=env_kwargs,
-                           progress=progress, robot=args.robot, trust=args.trust)
+        if match:
+            res = run_match_ablation(args.pairs, presets, args.matches, args.robot,
+                                     args.team_size, args.duration, args.start_seed,
+                                     args.workers, args.policy, env_kwargs, progress)
+        else:
+            res = run_ablation(args.policy, args.episodes, presets, configs, args.start_seed,
+                               args.workers, args.chunk_size, env_kwargs=env_kwargs,
+                               progress=progress, robot=args.robot, trust=args.trust)
     except (ValueError, TypeError, FileNotFoundError) as exc:
         p.error(str(exc))
-    files = write_outputs(res, args.out)
+    files = (write_match_outputs if match else write_outputs)(res, args.out)
     print(res.markdown())
     for path in files.values():
         print(f"wrote {path}")
-    print(f"{len(res.cells)} cells x {res.episodes} shots in {res.seconds:.0f} s")
-    return 0
-
-
-def _main_matches(p: argparse.ArgumentParser, args: argparse.Namespace, presets: list[str],
-                  env_kwargs: dict, progress: Callable[[int, int], None]) -> int:
-    """The match ablation of ``soccer-env ablation --env soccer_env/Match-v0``."""
-    from agents.match_ablation import run_match_ablation
-    from agents.match_ablation import write_outputs as write_match_outputs
-
-    try:
-        res = run_match_ablation(args.pairs, presets, args.matches, args.robot,
-                                 args.team_size, args.duration or DEFAULT_DURATION,
-                                 args.start_seed, args.workers, args.policy, env_kwargs,
-                                 progress)
-    except (ValueError, TypeError, FileNotFoundError) as exc:
-        p.error(str(exc))
-    files = write_match_outputs(res, args.out)
-    print(res.markdown())
-    for path in files.values():
-        print(f"wrote {path}")
-    print(f"{len(res.cells)} cells x {res.matches} matches in {res.seconds:.0f} s")
+    size = f"{res.matches} matches" if match else f"{res.episodes} shots"
+    print(f"{len(res.cells)} cells x {size} in {res.seconds:.0f} s")
     return 0

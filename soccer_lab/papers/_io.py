@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import csv
 import json
-import os
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
@@ -27,13 +26,9 @@ def check_count(name: str, value: Any, lo: int, hi: int) -> int:
 def map_jobs(fn: Callable[[Any], Any], jobs: Sequence[Any], workers: int | None) -> list[Any]:
     """``[fn(job) for job in jobs]``, in order, over ``workers`` processes (None: every core;
     one, or a single job: in this process). ``fn`` must be a module-level function."""
-    n = min(workers or os.cpu_count() or 1, len(jobs))
-    if n <= 1:
-        return [fn(j) for j in jobs]
-    from agents.evaluation import process_pool
+    from agents.evaluation import map_jobs as run
 
-    with process_pool(n) as pool:
-        return list(pool.map(fn, jobs))
+    return run(fn, jobs, workers or None)
 
 
 def write_csv(path: Path, rows: list[dict[str, Any]]) -> None:

@@ -64,6 +64,19 @@ class Game:
         assert self.gc.in_play
         self.kick(0 if team == 0 else 2, to=(0.2, 0.0))
 
+    def throw_in(self, x: float = 1.0):
+        """Yellow touches the ball last and it leaves over the touch line at ``x``: blue's
+        throw-in (a free kick) follows."""
+        self.kick(3, to=(x, 2.5))
+        return self.exit(x, HY + 0.03)
+
+    def free_kick(self, x: float = 1.0):
+        """Blue's throw-in at ``x`` placed by the referee, every robot away: blue's free kick
+        is issued."""
+        self.throw_in(x)
+        self.keep_away()
+        self.run(2.1)
+
     def exit(self, x, y, z=0.0):
         """The ball has left the field at ``(x, y)``."""
         self.ball[0:3] = (x, y, z)
@@ -127,8 +140,7 @@ def test_the_clock_stops_while_no_team_may_play_the_ball():
 def test_throw_in_is_placed_by_the_robots_of_the_team_that_did_not_touch_last():
     g = Game()
     g.kick_off(0)
-    g.kick(3, to=(1.0, 2.5))  # yellow touches last
-    d = g.exit(1.0, HY + 0.03)
+    d = g.throw_in()  # yellow touches last
     assert "ball_left_field_touch_line" in g.events
     assert (g.gc.command, g.gc.command_team) == ("ball_placement", 0)
     assert g.gc.next_command == ("direct_free", 0)
@@ -148,8 +160,7 @@ def test_throw_in_is_placed_by_the_robots_of_the_team_that_did_not_touch_last():
 def test_failed_placement_passes_the_free_kick_then_the_referee_places():
     g = Game()
     g.kick_off(0)
-    g.kick(3, to=(1.0, 2.5))
-    g.exit(1.0, HY + 0.03)
+    g.throw_in()
     g.keep_away()
     g.run(30.1)  # blue never moves the ball
     assert g.events.count("placement_failed") == 1
@@ -168,8 +179,7 @@ def test_a_team_with_five_failures_may_not_place_and_loses_throw_ins():
     g = Game()
     g.kick_off(0)
     g.gc.team_info[0].placement_failures = 4
-    g.kick(3, to=(1.0, 2.5))
-    g.exit(1.0, HY + 0.03)
+    g.throw_in()
     g.keep_away()
     g.run(30.1)
     assert not g.gc.team_info[0].can_place
@@ -185,8 +195,7 @@ def test_a_team_with_five_failures_may_not_place_and_loses_throw_ins():
 def test_referee_placement_stops_until_every_robot_keeps_its_distance():
     g = Game(placement="referee")
     g.kick_off(0)
-    g.kick(3, to=(1.0, 2.5))
-    d = g.exit(1.0, HY + 0.03)
+    d = g.throw_in()
     assert g.gc.command == "stop" and d.place_ball == pytest.approx((1.0, HY - 0.2))
     g.robots[1, 0:2] = (1.2, HY - 0.3)  # 0.13 m from the ball's surface
     g.run(5.0)
@@ -290,10 +299,7 @@ def test_penalty_turned_back_by_the_keeper_ends_with_a_goal_kick():
 def test_double_touch_after_a_free_kick():
     g = Game(placement="referee")
     g.kick_off(0)
-    g.kick(3, to=(1.0, 2.5))
-    g.exit(1.0, HY + 0.03)
-    g.keep_away()
-    g.run(2.1)
+    g.free_kick()
     assert g.gc.command == "direct_free"
     g.kick(1, to=(1.1, HY - 0.2))
     assert g.gc.in_play
@@ -305,10 +311,7 @@ def test_double_touch_after_a_free_kick():
 def test_no_double_touch_when_another_robot_touched_in_between():
     g = Game(placement="referee")
     g.kick_off(0)
-    g.kick(3, to=(1.0, 2.5))
-    g.exit(1.0, HY + 0.03)
-    g.keep_away()
-    g.run(2.1)
+    g.free_kick()
     g.kick(1, to=(1.1, HY - 0.2))
     g.kick(3, to=(1.2, HY - 0.3))
     g.kick(1, to=(1.3, HY - 0.3))
@@ -407,8 +410,7 @@ def test_fouls_can_be_turned_off():
 def test_too_fast_in_stop_after_the_grace_period_once_per_robot():
     g = Game(placement="referee")
     g.kick_off(0)
-    g.kick(3, to=(1.0, 2.5))
-    g.exit(1.0, HY + 0.03)
+    g.throw_in()
     g.robots[0, 3] = 2.0  # blue's keeper drives at 2 m/s
     g.robots[0, 0:2] = (-4.0, 0.0)
     g.robots[1, 0:2] = (1.0, 2.6)  # and blue 1 stands at the ball: the stop goes on
@@ -421,10 +423,7 @@ def test_too_fast_in_stop_after_the_grace_period_once_per_robot():
 def test_defender_too_close_at_a_free_kick_restarts_the_kickers_timer():
     g = Game(placement="referee")
     g.kick_off(0)
-    g.kick(3, to=(1.0, 2.5))
-    g.exit(1.0, HY + 0.03)
-    g.keep_away()
-    g.run(2.1)
+    g.free_kick()
     assert g.gc.command == "direct_free"
     g.run(9.0)
     g.robots[3, 0:2] = (1.3, HY - 0.2)  # yellow 0.21 m from the ball's centre
@@ -437,10 +436,7 @@ def test_defender_too_close_at_a_free_kick_restarts_the_kickers_timer():
 def test_robot_too_close_to_the_opponent_defense_area_at_a_free_kick():
     g = Game(placement="referee")
     g.kick_off(0)
-    g.kick(3, to=(1.0, 2.5))
-    g.exit(1.0, HY + 0.03)
-    g.keep_away()
-    g.run(2.1)
+    g.free_kick()
     g.robots[1, 0:2] = (HX - 1.2, 0.0)  # 0.11 m from yellow's defense area
     g.run(2.1)
     assert "attacker_too_close_to_defense_area" in g.events
@@ -512,10 +508,7 @@ def test_indirect_free_kick_under_the_2019_rules():
     for touch_again, counts in ((False, False), (True, True)):
         g = Game(placement="referee", free_kicks="2019")
         g.kick_off(0)
-        g.kick(3, to=(3.0, 2.5))
-        g.exit(3.0, HY + 0.03)  # throw-in for blue: indirect in 2019
-        g.keep_away()
-        g.run(2.1)
+        g.free_kick(3.0)  # after a throw-in: indirect in 2019
         g.kick(1, to=(3.1, 2.7), speed=(3.0, -2.0))
         if touch_again:
             g.kick(0, to=(3.5, 1.0))  # another blue robot touches it
@@ -526,10 +519,7 @@ def test_indirect_free_kick_under_the_2019_rules():
 def test_the_2025_free_kick_is_direct():
     g = Game(placement="referee")
     g.kick_off(0)
-    g.kick(3, to=(3.0, 2.5))
-    g.exit(3.0, HY + 0.03)
-    g.keep_away()
-    g.run(2.1)
+    g.free_kick(3.0)
     g.kick(1, to=(3.1, 2.7), speed=(3.0, -2.0))
     assert g.exit(HX + 0.03, 0.0).scorer == 0
 
