@@ -10,6 +10,12 @@ frame), so the team plays on whatever its perception provides:
   goal, then walks into the ball and kicks when it lies at its foot; the others hold a
   position between the ball and their own goal, spread across the field, facing the ball.
 
+In a match with the game flow (``game=...``, the humanoid laws) the team reads the referee
+state at the end of its observations: at the opponents' kick-off every robot stays in its half
+and outside the centre circle, at their throw-ins, goal kicks and corner kicks it keeps the
+laws' 0.75 m (plus its radius and 10 cm) from the ball, until the ball is in play; a robot
+with a removal penalty stands still.
+
 Walking commands are normalised per axis by the robot's forward, backward, sideways and turn
 limits. The head is left to the environment's head controller (action entries 4 and 5 are
 zero).
@@ -54,6 +60,10 @@ class HumanoidTeam:
         self._mates = [(index[f"mate{j}.dx"], index[f"mate{j}.dy"]) for j in range(n_mates)]
         self.keeper = (ScriptedGoalkeeper(field, ball, robot, names)
                        if len(self.agents) >= 2 else None)
+        game = ("game.kickoff_theirs", "game.free_kick_theirs", "game.on_field")
+        self._game = [index[n] for n in game] if all(n in index for n in game) else None
+        # Distance kept from the ball at the opponents' restarts [m] (Law 13: 0.75 m).
+        self.keep = 0.75 + robot.radius + 0.1
 
     @classmethod
     def for_env(cls, env: Any, team: str = "blue", **kwargs: Any) -> HumanoidTeam:
@@ -73,8 +83,16 @@ class HumanoidTeam:
 
     def act_one(self, obs: np.ndarray, k: int) -> np.ndarray:
         """The action of the team's ``k``-th robot."""
+        waiting = False
+        if self._game is not None:
+            kickoff, free_kick, on_field = (float(obs[i]) for i in self._game)
+            if on_field < 0.5:
+                return np.zeros(6, dtype=np.float32)
+            waiting = kickoff > 0.5 or free_kick > 0.5
         if k == 0 and self.keeper is not None:
-            return self.keeper(obs)
+            ball_distance = math.hypot(float(obs[self._idx[4]]), float(obs[self._idx[5]]))
+            if not waiting or ball_distance >= self.keep:
+                return self.keeper(obs)
         r, f = self.robot, self.field
         px, py, ax, ay, dx, dy = (float(obs[i]) for i in self._idx)
         c, s = ax, -ay
@@ -105,6 +123,27 @@ class HumanoidTeam:
             ty = lane * 0.3 * f.width
             face = math.atan2(by - ty, bx - tx)
             kick = 0.0
+        if waiting:
+            # The opponents' restart: keep away from the ball (and at a kick-off in the own
+            # half, which also keeps the robot out of the centre circle).
+            kick = 0.0
+            if kickoff > 0.5:
+                tx = min(tx, -r.radius - 0.1)
+            ex, ey = tx - bx, ty - by
+            d = math.hypot(ex, ey)
+            if d < self.keep:  # the target outside the circle
+                ex, ey, d = (ex, ey, d) if d > 1e-9 else (-1.0, 0.0, 1.0)
+                tx, ty = bx + ex / d * (self.keep + 0.05), by + ey / d * (self.keep + 0.05)
+            # A path through the circle: out along the radius first.
+            ux, uy = tx - px, ty - py
+            n = ux * ux + uy * uy
+            u = 0.0 if n < 1e-12 else max(0.0, min(1.0, ((bx - px) * ux + (by - py) * uy) / n))
+            if math.hypot(px + u * ux - bx, py + u * uy - by) < self.keep:
+                ex, ey = px - bx, py - by
+                d = math.hypot(ex, ey)
+                ex, ey, d = (ex, ey, d) if d > 1e-9 else (-1.0, 0.0, 1.0)
+                tx, ty = bx + ex / d * (self.keep + 0.2), by + ey / d * (self.keep + 0.2)
+            face = math.atan2(by - py, bx - px)
         vx, vy = drive_command(px, py, c, s, tx, ty, r.max_forward_speed, r.max_acceleration)
         ax_ = vx / (r.max_forward_speed if vx >= 0.0 else r.max_backward_speed)
         ay_ = vy / r.max_sideways_speed

@@ -25,8 +25,14 @@ robots of a team read the same belief, so they agree):
   spread across the goal-ball line and kept out of the own defense area. They face the ball
   and clear it forward when it reaches their kicker.
 
-Restarts are played like open play (the referee moves robots at a restart but does not
-enforce the stop distance afterwards), and the opponent defense area is not avoided.
+Without the game flow, restarts are played like open play (the simple referee moves robots at
+a restart but does not enforce the stop distance afterwards), and the opponent defense area is
+not avoided. In a match with the game flow (``game=...``) the team reads the referee state
+at the end of its observations and plays the restarts as the rules ask
+(:mod:`agents.team_restarts`): keeping its distance at stop and at the opponents' restarts,
+placing the ball with the dribbler, taking its kick-offs, free kicks and penalty kicks with
+one kick no faster than the ball speed limit, and leaving the ball alone after taking a
+restart until another robot has touched it.
 
 All positions are in the team frame [m], headings in radians, speeds in m/s.
 """
@@ -39,8 +45,9 @@ from typing import Any
 
 import numpy as np
 
+from agents.team_restarts import RestartPlay
 from estimators import FrictionBallModel
-from soccer_env import MAX_TEAM_SIZE
+from soccer_env import MAX_TEAM_SIZE, presets
 from soccer_env.envs.keeper import (
     ScriptedGoalkeeper,
     drive_command,
@@ -50,15 +57,20 @@ from soccer_env.envs.keeper import (
     turn_commands,
     wrap_angles,
 )
+from soccer_env.envs.match import GAME_FLOW_NAMES
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
+from soccer_env.presets.rules import RuleSpec
 
 __all__ = ["ScriptedTeam", "TEAMS"]
 
+#: How far the robot that took a restart keeps from the ball until another robot has touched
+#: it, beyond a robot and a ball radius [m].
+BARRED_CLEARANCE = 0.25
 #: Team names accepted by :meth:`ScriptedTeam.for_env`, in team-index order.
 TEAMS = ("blue", "yellow")
 
 
-class ScriptedTeam:
+class ScriptedTeam(RestartPlay):
     """Scripted policy for one team of :class:`~soccer_env.envs.match.SoccerParallelEnv`.
 
     Args:
@@ -75,6 +87,9 @@ class ScriptedTeam:
             False uses ``np.hypot``, which makes :meth:`act_batch` about 40 % faster and
             differs in the last bit for about one pair in 160 (the float32 actions almost
             always come out the same).
+        rules: the rule preset whose distances and limits the team keeps at restarts when
+            its observations carry the game flow (default ``"ssl-2025-div-b"``;
+            :meth:`for_env` passes the match's).
 
     Use :meth:`for_env` to build it from a match. Calls:
 
@@ -90,7 +105,8 @@ class ScriptedTeam:
     def __init__(self, field: FieldSpec, ball: BallSpec, robot: SSLRobotSpec,
                  names: Sequence[str], team_size: int, prefix: str = "blue_",
                  guard_offset: float = 0.05, attack_speed: float = 2.0,
-                 defender_spacing: float = 0.45, exact: bool = True) -> None:
+                 defender_spacing: float = 0.45, exact: bool = True,
+                 rules: str | RuleSpec | None = None) -> None:
         if not 1 <= int(team_size) <= MAX_TEAM_SIZE:
             raise ValueError(f"team_size must be 1..{MAX_TEAM_SIZE}, got {team_size}")
         index = {n: i for i, n in enumerate(names)}
@@ -120,6 +136,14 @@ class ScriptedTeam:
         n_opps = sum(1 for n in names if n.startswith("opp") and n.endswith(".dx"))
         self._opp_idx = [(index[f"opp{j}.dx"], index[f"opp{j}.dy"]) for j in range(n_opps)]
         self.obs_size = len(names)
+        # The game flow's referee state, when the observations carry it.
+        self._game = ({n: index[n] for n in GAME_FLOW_NAMES}
+                      if all(n in index for n in GAME_FLOW_NAMES) else None)
+        self._rules = presets.rules(rules if rules is not None else "ssl-2025-div-b")
+        # Kicker power of every kick: full without the game flow; with it, 0.2 m/s under
+        # the ball speed limit (8.4.2).
+        self._kick_power = 1.0 if self._game is None else min(
+            1.0, (self._rules.ball_speed_limit - 0.2) / robot.kicker_max_speed)
         # Geometry (team frame).
         hx, hy = field.half_length, field.half_width
         r = robot.radius
@@ -158,6 +182,9 @@ class ScriptedTeam:
             raise ValueError(f"the {team} team of this match has no robots")
         # In a mixed match each team has its own robot model.
         spec = u.team_specs[t] if hasattr(u, "team_specs") else u.robot_spec
+        game_rules = getattr(u, "game_rules", None)
+        if isinstance(game_rules, RuleSpec):
+            kwargs.setdefault("rules", game_rules)
         return cls(u.field, u.ball_spec, spec, u.builder.names_for(t), size,
                    prefix=f"{team}_", **kwargs)
 
@@ -204,6 +231,19 @@ class ScriptedTeam:
                              f"{obs.shape}")
         rows = obs.reshape(-1, self.obs_size)
         index = np.tile(np.arange(self.team_size), obs.shape[0])
+        if self._game is not None:
+            g = self._game
+            special = ((rows[:, g["game.running"]] < 0.5) | (rows[:, g["game.on_field"]] < 0.5)
+                       | (rows[:, g["game.barred"]] > 0.5))
+            if special.any():
+                # Restarts (and the rare rows that must leave the ball alone) row by row.
+                out = np.empty((len(rows), 6), dtype=np.float32)
+                plain = ~special
+                if plain.any():
+                    out[plain] = self._act_rows(rows[plain], index[plain])
+                for k in np.flatnonzero(special):
+                    out[k] = self.act_one(rows[k], int(index[k]))
+                return out.reshape(obs.shape[:2] + (6,))
         return self._act_rows(rows, index).reshape(obs.shape[:2] + (6,))
 
     def act_one(self, obs: np.ndarray | Sequence[float], index: int) -> list[float]:
@@ -220,28 +260,77 @@ class ScriptedTeam:
         # Opponents in the team frame.
         opps = [(px + c * mx - s * my, py + s * mx + c * my)
                 for mx, my in ((o[ix], o[iy]) for ix, iy in self._opp_idx)]
+        if self._game is not None and self._needs_restart_play(o):
+            xs, ys = self._team_positions(o, index, px, py, c, s)
+            return self._restart(o, index, px, py, c, s, bx, by, bvx, bvy, dx, dy, xs, ys,
+                                 opps)
         if self.has_keeper and index == 0:
             if self._keeper_should_clear(bx, by, bvx, bvy):
                 return self._attack(px, py, c, s, bx, by, bvx, bvy, dx, dy, opps, keeper=True)
-            return self.keeper(o).tolist()  # it reads entries by index: a list will do
-        # Team-mates in the team frame, indexed by robot (self included).
+            action = self.keeper(o).tolist()  # it reads entries by index: a list will do
+            action[3] = min(action[3], self._kick_power)
+            return action
+        xs, ys = self._team_positions(o, index, px, py, c, s)
+        role, rank, n_def = self._role(index, xs, ys, bx, by)
+        if role == "attacker":
+            return self._attack(px, py, c, s, bx, by, bvx, bvy, dx, dy, opps)
+        return self._defend(px, py, c, s, bx, by, dx, dy, rank, n_def)
+
+    def _team_positions(self, o: list[float], index: int, px: float, py: float, c: float,
+                        s: float) -> tuple[list[float], list[float]]:
+        """The team's robots in the team frame, indexed by robot (self included) [m]."""
         xs, ys = [0.0] * self.team_size, [0.0] * self.team_size
         xs[index], ys[index] = px, py
         for j, (ix, iy) in enumerate(self._mate_idx):
             k = j if j < index else j + 1
             mx, my = o[ix], o[iy]
             xs[k], ys[k] = px + c * mx - s * my, py + s * mx + c * my
-        role, rank, n_def = self._role(index, xs, ys, bx, by)
+        return xs, ys
+
+    def _open_play(self, o: list[float], index: int, px: float, py: float, c: float,
+                   s: float, bx: float, by: float, bvx: float, bvy: float, dx: float,
+                   dy: float, xs: list[float], ys: list[float],
+                   opps: list[tuple[float, float]], barred: int) -> list[float]:
+        """Open play when robot ``barred`` of the team (-1: none) may not touch the ball:
+        it defends without clearing the ball, and another robot attacks."""
+        if self.has_keeper and index == 0 and barred != 0:
+            if self._keeper_should_clear(bx, by, bvx, bvy):
+                return self._attack(px, py, c, s, bx, by, bvx, bvy, dx, dy, opps, keeper=True)
+            action = self.keeper(o).tolist()
+            action[3] = min(action[3], self._kick_power)
+            return action
+        if index == barred:
+            # It defends from the first slot, keeping off the ball's path: at least
+            # BARRED_CLEARANCE from it, going round it.
+            first = 1 if self.has_keeper else 0
+            n_def = max(1, self.team_size - first - 1)
+            tx, ty = self._defend_target(bx, by, 0, n_def)
+            keep = self.robot.radius + self.ball.radius + BARRED_CLEARANCE
+            reach = min(math.hypot(bx - px, by - py) / self.robot.max_speed, 1.0)
+            if bvx * bvx + bvy * bvy > 1e-4:  # where the ball will be
+                bx, by = (float(v) for v in self.model.predict(np.array([bx, by, bvx, bvy]),
+                                                               reach)[0:2])
+            tx, ty = self._clear_of(tx, ty, bx, by, keep)
+            if math.hypot(px - bx, py - by) < keep:
+                tx, ty = self._clear_of(px, py, bx, by, keep + 0.05)
+            else:
+                tx, ty = self._round(px, py, tx, ty, bx, by, keep)
+            tx, ty = self._outside_defense_area(tx, ty)
+            r = self.robot
+            vx, vy = drive_command(px, py, c, s, tx, ty, r.max_speed, r.max_acceleration)
+            omega = turn_command(c, s, math.atan2(by - py, bx - px), r.max_angular_speed)
+            return [vx / r.max_speed, vy / r.max_speed, omega, 0.0, -1.0, -1.0]
+        role, rank, n_def = self._role(index, xs, ys, bx, by, barred)
         if role == "attacker":
             return self._attack(px, py, c, s, bx, by, bvx, bvy, dx, dy, opps)
         return self._defend(px, py, c, s, bx, by, dx, dy, rank, n_def)
 
     # ------------------------------------------------------------------------------------
 
-    def _role(self, index: int, xs: list[float], ys: list[float], bx: float, by: float
-              ) -> tuple[str, int, int]:
+    def _role(self, index: int, xs: list[float], ys: list[float], bx: float, by: float,
+              barred: int = -1) -> tuple[str, int, int]:
         """``(role, rank, defenders)``: this robot's role, its rank among the defenders and
-        their number."""
+        their number (robot ``barred`` is never the attacker)."""
         first = 1 if self.has_keeper else 0
         field_players = range(first, self.team_size)
         # Cost to take the ball [m]: distance to the point behind the ball on the line from
@@ -255,6 +344,8 @@ class ScriptedTeam:
         qx, qy = bx - back * ex, by - back * ey
         best, attacker = math.inf, -1
         for k in field_players:
+            if k == barred:
+                continue
             ahead = (xs[k] - bx) * ex + (ys[k] - by) * ey > self._contact
             cost = math.hypot(xs[k] - qx, ys[k] - qy) + (0.5 if ahead else 0.0)
             if cost < best:
@@ -320,11 +411,14 @@ class ScriptedTeam:
                 cap = self.attack_speed
         if not keeper:
             tx, ty = self._outside_defense_area(tx, ty)
+        if self._game is not None:  # touching the ball partly inside it is a foul (8.4.2)
+            tx, ty = self._outside_opponent_defense(tx, ty, r.radius + 0.03)
         tx = max(-self._lim_x, min(self._lim_x, tx))
         ty = max(-self._lim_y, min(self._lim_y, ty))
         vx, vy = drive_command(px, py, c, s, tx, ty, r.max_speed, r.max_acceleration, cap)
         omega = turn_command(c, s, face, r.max_angular_speed)
-        kick = 1.0 if shoot and dx > 0.0 and self._on_target(px, py, c, s, opps) else 0.0
+        kick = self._kick_power if shoot and dx > 0.0 and self._on_target(px, py, c, s, opps) \
+            else 0.0
         return [vx / r.max_speed, vy / r.max_speed, omega, kick, -1.0, -1.0]
 
     def _aim(self, px: float, py: float, bx: float, by: float,
@@ -411,9 +505,9 @@ class ScriptedTeam:
             return False
         return self._clearance(px, py, self._goal_x, y_goal, opps) > 0.0
 
-    def _defend(self, px: float, py: float, c: float, s: float, bx: float, by: float,
-                dx: float, dy: float, rank: int, n_def: int) -> list[float]:
-        """Hold slot ``rank`` of ``n_def`` between the ball and the own goal."""
+    def _defend_target(self, bx: float, by: float, rank: int, n_def: int
+                       ) -> tuple[float, float]:
+        """Slot ``rank`` of ``n_def`` defenders between the ball and the own goal [m]."""
         r = self.robot
         ox = -self._goal_x
         fx, fy = bx - ox, by
@@ -426,8 +520,13 @@ class ScriptedTeam:
         base = max(self.field.defense_depth + r.radius + 0.4, 0.45 * d_ball)
         dist = min(base + 0.9 * line, max(d_ball - 0.6, self.field.defense_depth + 0.3))
         offset = (slot - 0.5 * (in_line - 1)) * self.defender_spacing * (1 + line)
-        tx = ox + dist * fx + offset * nx
-        ty = dist * fy + offset * ny
+        return ox + dist * fx + offset * nx, dist * fy + offset * ny
+
+    def _defend(self, px: float, py: float, c: float, s: float, bx: float, by: float,
+                dx: float, dy: float, rank: int, n_def: int) -> list[float]:
+        """Hold slot ``rank`` of ``n_def`` between the ball and the own goal."""
+        r = self.robot
+        tx, ty = self._defend_target(bx, by, rank, n_def)
         tx, ty = self._around_ball(px, py, tx, ty, bx, by)
         tx, ty = self._outside_defense_area(tx, ty)
         tx = max(-self._lim_x, min(self._lim_x, tx))
@@ -436,7 +535,7 @@ class ScriptedTeam:
         omega = turn_command(c, s, math.atan2(by - py, bx - px), r.max_angular_speed)
         # Clear the ball forward if it reaches the kicker while we face the opponent half.
         in_front = 0.0 < dx < r.front_distance + 0.1 and abs(dy) < 0.5 * r.kicker_width
-        kick = 1.0 if in_front and c > 0.3 else 0.0
+        kick = self._kick_power if in_front and c > 0.3 else 0.0
         return [vx / r.max_speed, vy / r.max_speed, omega, kick, -1.0, -1.0]
 
     def _around_ball(self, px: float, py: float, tx: float, ty: float, bx: float, by: float
@@ -494,6 +593,8 @@ class ScriptedTeam:
             clear = keeper & self._keeper_should_clear_rows(bx, by, bvx, bvy)
             guard = keeper & ~clear
             out[guard] = self.keeper.act_batch(obs[guard])
+            if self._kick_power < 1.0:
+                out[guard, 3] = np.minimum(out[guard, 3], self._kick_power)
             attack |= clear
             field = ~keeper
         if field.any():
@@ -607,6 +708,8 @@ class ScriptedTeam:
         cap = np.where(~beside & (align > 0.25), self.attack_speed, r.max_speed)
         outside_x, outside_y = self._outside_defense_area_rows(tx, ty)
         tx, ty = np.where(keeper, tx, outside_x), np.where(keeper, ty, outside_y)
+        if self._game is not None:  # touching the ball partly inside it is a foul (8.4.2)
+            tx, ty = self._outside_opponent_defense_rows(tx, ty, r.radius + 0.03)
         tx = np.clip(tx, -self._lim_x, self._lim_x)
         ty = np.clip(ty, -self._lim_y, self._lim_y)
         vx, vy = drive_commands(px, py, c, s, tx, ty, r.max_speed, r.max_acceleration, cap,
@@ -614,7 +717,8 @@ class ScriptedTeam:
         out = np.empty((len(px), 6))
         out[:, 0], out[:, 1] = vx / r.max_speed, vy / r.max_speed
         out[:, 2] = turn_commands(c, s, face, r.max_angular_speed)
-        out[:, 3] = shoot & (dx > 0.0) & self._on_target_rows(px, py, c, s, opps)
+        out[:, 3] = (shoot & (dx > 0.0) & self._on_target_rows(px, py, c, s, opps)) \
+            * self._kick_power
         out[:, 4:] = -1.0
         return out
 
@@ -729,7 +833,7 @@ class ScriptedTeam:
         out[:, 2] = turn_commands(c, s, np.arctan2(by - py, bx - px), r.max_angular_speed)
         in_front = (0.0 < dx) & (dx < r.front_distance + 0.1) & (np.abs(dy)
                                                                   < 0.5 * r.kicker_width)
-        out[:, 3] = in_front & (c > 0.3)
+        out[:, 3] = (in_front & (c > 0.3)) * self._kick_power
         out[:, 4:] = -1.0
         return out
 

@@ -112,6 +112,9 @@ class MatchBatch:
                                "every world's frames)")
         if probe.render_mode is not None:
             raise NotBatchable("the batched match does not render")
+        if probe.game_rules is not None:
+            raise NotBatchable("the batched match plays the simple referee only; the game flow "
+                               "(game=...) runs in SoccerParallelEnv")
         self.probe = probe
         self.field, self.ball_spec = probe.field, probe.ball_spec
         self.match_duration, self.max_cycles = probe.match_duration, probe.max_cycles

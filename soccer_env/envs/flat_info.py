@@ -34,8 +34,9 @@ Goalkeeper-v0 adds ``outcome`` (code below), ``is_success`` (1.0 at the last ste
 else 0.0), ``shot_fired``, ``keeper_touched``, ``shot_speed`` [m/s] and ``shot_chip``;
 Shootout-v0 adds ``outcome``, ``is_success`` (1.0 at the last step of a goal) and
 ``keeper_touched``; the match adds ``event`` (code below), ``score_blue`` and
-``score_yellow``. ``env.flat_info_keys`` (``env.unwrapped.flat_info_keys`` through Gymnasium's
-wrappers) lists an environment's keys.
+``score_yellow``, and with the game flow its referee state
+(:data:`~soccer_env.envs.match.FLAT_GAME_KEYS`). ``env.flat_info_keys``
+(``env.unwrapped.flat_info_keys`` through Gymnasium's wrappers) lists an environment's keys.
 
 :data:`OUTCOME_CODES` (``outcome``: 0 while the episode goes on) and :data:`EVENT_CODES`
 (``event``: what ended the ball's play this step, 0 for nothing):
@@ -48,7 +49,7 @@ code   outcome         event
 2      ``stopped``     ``touch``
 3      ``cleared``     ``goal_line``
 4      ``out``         ``over_bar``
-5      ``saved``
+5      ``saved``       ``invalid_goal`` (game flow: a goal the rules disallow)
 =====  ==============  ===============
 """
 
@@ -71,7 +72,7 @@ OUTCOME_CODES: dict[str | None, int] = {None: 0, "goal": 1, "stopped": 2, "clear
                                         "out": 4, "saved": 5}
 #: ``event`` of the match as a number (``None``: nothing happened to the ball's play).
 EVENT_CODES: dict[str | None, int] = {None: 0, "goal": 1, "touch": 2, "goal_line": 3,
-                                      "over_bar": 4}
+                                      "over_bar": 4, "invalid_goal": 5}
 
 #: The keys every environment's flat info starts with, in order.
 COMMON_KEYS = (

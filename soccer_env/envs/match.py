@@ -17,11 +17,22 @@ from soccer_env.envs.base import SoccerCore, resolve_world
 from soccer_env.envs.flat_info import EVENT_CODES, as_float64, flat_common, flat_keys
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
+from soccer_env.presets.rules import RuleSpec
 from soccer_env.render.renderer import RENDER_MODES
 from soccer_env.sim.commands import (
     validate_actions,
 )
-from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff
+from soccer_env.sim.game import (
+    COMMANDS,
+    SITUATIONS,
+    Decision,
+    Frame,
+    GameController,
+    GameEvent,
+    game_config,
+)
+from soccer_env.sim.humanoid_game import HumanoidGameController
+from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff, place_penalty
 from soccer_env.sim.world import MAX_TEAM_SIZE
 from soccer_env.validation import (
     check_choice,
@@ -33,7 +44,8 @@ from soccer_env.validation import (
     reject_unknown,
 )
 
-__all__ = ["SoccerParallelEnv", "parallel_env", "env", "MATCH_SHAPING", "GAME_NAMES"]
+__all__ = ["SoccerParallelEnv", "parallel_env", "env", "MATCH_SHAPING", "GAME_NAMES",
+           "GAME_FLOW_NAMES", "FLAT_GAME_KEYS"]
 
 #: Shaping terms of the match (all off unless given a scale). Rates are per second and
 #: multiplied by the control step.
@@ -45,6 +57,33 @@ MATCH_SHAPING = {
 
 #: Game-state entries at the end of every match observation.
 GAME_NAMES = ("game.time_left", "game.goals_for", "game.goals_against", "game.restart")
+
+#: The referee state after :data:`GAME_NAMES` when the match plays the game flow
+#: (``game=...``), in the team frame, "ours" being the agent's team: the situation as a
+#: one-hot (:data:`~soccer_env.sim.game.SITUATIONS`, with the team taking the restart or
+#: placing the ball), whether the free kick is indirect, the team of the command that follows
+#: the stop or the placement (+1 ours, -1 theirs, 0 none), the designated position (a flag,
+#: then ``x, y`` [m], 0 when none), the second half flag, the stage's playing time left as a
+#: fraction of the stage, running yellow cards, red cards, fouls and robots allowed on the
+#: field of both teams, whether the team may place the ball, which of the team's robots may
+#: not touch the ball again before another robot has (its number in the team plus one, 0 for
+#: none: the kicker of a restart, SSL rules 8.2), and whether the agent's robot is on the
+#: field (0 while a card or a removal penalty keeps it off).
+GAME_FLOW_NAMES = (
+    "game.stop", "game.placement_ours", "game.placement_theirs", "game.kickoff_ours",
+    "game.kickoff_theirs", "game.penalty_ours", "game.penalty_theirs", "game.free_kick_ours",
+    "game.free_kick_theirs", "game.running", "game.indirect", "game.next_team",
+    "game.target_set", "game.target_x", "game.target_y", "game.second_half",
+    "game.stage_time_left", "game.yellow_ours", "game.yellow_theirs", "game.red_ours",
+    "game.red_theirs", "game.fouls_ours", "game.fouls_theirs", "game.allowed_ours",
+    "game.allowed_theirs", "game.can_place", "game.barred", "game.on_field",
+)
+#: Columns of the situation's one-hot in :data:`GAME_FLOW_NAMES`, per ``(kind, ours)``.
+_SITUATION_COLUMN = {("stop", True): 0, ("stop", False): 0, ("running", True): 9,
+                     ("running", False): 9}
+for _k, _kind in enumerate(SITUATIONS[1:5]):
+    _SITUATION_COLUMN[(_kind, True)] = 1 + 2 * _k
+    _SITUATION_COLUMN[(_kind, False)] = 2 + 2 * _k
 
 
 def _per_team(name: str, value: Any) -> tuple[Any, Any]:
@@ -76,8 +115,11 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     velocity, ball, team-mates, opponents, goal posts), followed by the game state
     :data:`GAME_NAMES`: match time left as a fraction of ``match_duration``, goals for,
     goals against, and +1 / -1 while a restart awarded to the agent's own team / the opponents
-    waits for its first touch (0 otherwise). Yellow's observations are in its own team frame,
-    so one policy can play both sides.
+    waits for its first touch (0 otherwise); with the game flow (``game=...``) also the
+    referee state :data:`GAME_FLOW_NAMES` (the command as a situation, ours or theirs, the
+    designated position, the stage and its time left, cards, fouls, robots allowed, and
+    whether the agent's robot is on the field), and ``game.time_left`` counts playing time.
+    Yellow's observations are in its own team frame, so one policy can play both sides.
 
     ## Rewards
     Zero-sum on goals: +1 to every agent of the scoring team, -1 to every agent of the other.
@@ -85,16 +127,41 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     ``info[agent]["reward_terms"]`` logs each.
 
     ## Rules and episode end
-    Goals, outs, free kicks and kick-offs as in :mod:`soccer_env.sim.referee`. All agents are
-    terminated when the match clock reaches ``match_duration`` (the clock is part of the
-    observation, so its end is a terminal state of the game); all are truncated after
-    ``max_cycles`` parallel steps if that is set.
+    By default (``game=None``) the simple referee of :mod:`soccer_env.sim.referee`: goals,
+    outs, free kicks and kick-offs, robots moved instantly. All agents are terminated when the
+    match clock reaches ``match_duration`` (the clock is part of the observation, so its end is
+    a terminal state of the game); all are truncated after ``max_cycles`` parallel steps if
+    that is set.
+
+    With ``game=...`` the match plays the game flow of the rule book on the truth: for SSL
+    teams the RoboCup SSL rules, 2025 edition (:class:`~soccer_env.sim.game.GameController`:
+    stop, ball placement by the teams' robots, kick-offs, free kicks, penalty kicks, fouls,
+    yellow and red cards, half time), for humanoid teams the RoboCup Humanoid League laws,
+    2025 (:class:`~soccer_env.sim.humanoid_game.HumanoidGameController`: kick-off, drop ball,
+    throw-in, goal and corner kicks, removal penalties). The robots play the restarts
+    themselves (the teams' software reads the game block); the simulation only lines the
+    teams up for kick-offs and penalty kicks, places the ball where the referee would, and
+    takes robots sent off to the run-off area beyond the touch line at ``y < 0`` (their
+    actions are ignored until they return). ``match_duration`` is then playing time (the
+    clock stops while the ball is out of play in SSL matches), and the episode terminates when
+    the controller ends the match. ``game``: True (the robot kind's rules), a rule preset's
+    name (:data:`~soccer_env.presets.rules.RULES`: ``"ssl-2025-div-b"``,
+    ``"ssl-2025-div-a"``, ``"humanoid-2025-kid"``) or spec, or a mapping with ``rules`` and,
+    for SSL rules, the options of :class:`~soccer_env.sim.game.GameOptions` (``placement``,
+    ``fouls``, ``cards``, ``half_time``, ``free_kicks``). Batched matches and mixed matches do
+    not play it.
 
     ## Info
     Every agent's info holds ``truth`` (the same dict for all agents: ball and every robot in
     field coordinates), ``estimate`` (the present-time belief of the agent's team, or for a
     humanoid its own, same keys), ``reward_terms``, ``score`` ``{"blue": int, "yellow":
-    int}`` and ``event`` (None, ``"goal"``, ``"touch"``, ``"goal_line"`` or ``"over_bar"``);
+    int}`` and ``event`` (None, ``"goal"``, ``"touch"``, ``"goal_line"``, ``"over_bar"`` or,
+    with the game flow, ``"invalid_goal"``); with the game flow, ``game`` (the referee
+    state: ``command``, ``command_team``, ``situation``, ``situation_team``,
+    ``next_command``, ``designated``, ``in_play``, ``stage``, ``stage_time_left``,
+    ``playing_time_left``, the step's ``events`` as the SSL game controller names them, and
+    per team ``goals``, ``fouls``, ``yellow_cards`` (time left of each [s]), ``red_cards``,
+    ``placement_failures``, ``can_place``, ``robots_allowed``, ``off_field``);
     with humanoids in the match, ``robot_state`` (every humanoid's walk engine state, see
     :meth:`~soccer_env.sim.world.World.humanoid_state`). With ``info_mode="flat"``: numbers
     only under fixed keys (:attr:`flat_info_keys`), the agent's own robot's truth and belief,
@@ -120,7 +187,8 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     uniform jitter of the kick-off formation); ``render_width``; ``head`` (humanoid agents:
     "auto", "scan" or "action"); ``belief_features`` (every agent's observation ends with
     how sure its belief is: 11 entries, 13 with humanoids in the match; see
-    :mod:`soccer_env.observations`); ``info_mode`` ("full", the default, or "flat").
+    :mod:`soccer_env.observations`); ``info_mode`` ("full", the default, or "flat");
+    ``game`` (see Rules).
     """
 
     #: ``name`` is the registered id (``pettingzoo.make``'s and ``soccer_env.PETTINGZOO``'s).
@@ -148,6 +216,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         head: str = "auto",
         belief_features: bool = False,
         info_mode: str = "full",
+        game: Any = None,
         **unknown: Any,
     ) -> None:
         reject_unknown("parallel_env", unknown, keyword_names(SoccerParallelEnv.__init__))
@@ -180,13 +249,39 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
                     policy_heads=range(blue + yellow),
                     belief_features=belief_features, info_mode=info_mode)
         w = self.world
+        # The game flow needs both teams of one robot kind (SSL rules or humanoid laws).
+        kinds = {spec.kind for spec, n in zip(team_specs, (blue, yellow)) if n}
+        cfg = game_config(game, "ssl-2025-div-b" if kinds == {"ssl"} else "humanoid-2025-kid")
+        if cfg is not None:
+            rules_kind = "ssl" if isinstance(cfg[0], RuleSpec) else "humanoid"
+            if kinds != {rules_kind}:
+                raise ValueError(f"game rules {cfg[0].name!r} are for matches of {rules_kind} "
+                                 f"robots; this match plays {sorted(kinds)} (the game flow "
+                                 "needs both teams of one robot kind)")
+        #: The game flow's rule preset and options (None: the simple referee).
+        self.game_rules, self.game_options = cfg if cfg is not None else (None, None)
+        #: The episode's game controller (None without the game flow).
+        self.game: GameController | HumanoidGameController | None = None
+        #: The robots off the field (by cards or removal penalties), in the order they left.
+        self.off_field: list[int] = []
+        #: The game controller's decision of the last step (or of the start).
+        self._decision: Decision | None = None
         #: The first robot's action mapping.
         self.robot_model = self._models[0] if blue else self._models[1]
         self.possible_agents = list(w.names)
         self.agents: list[str] = []
         game_low, game_high = (0.0, 0.0, 0.0, -1.0), (1.0, 1000.0, 1000.0, 1.0)
+        game_names = GAME_NAMES
+        if cfg is not None:
+            lx = self.field.half_length + self.field.boundary
+            ly = self.field.half_width + self.field.boundary
+            flow_low = [0.0] * 11 + [-1.0, 0.0, -lx, -ly, 0.0, 0.0] + [0.0] * 11
+            flow_high = [1.0] * 11 + [1.0, 1.0, lx, ly, 1.0, 1.0] + [1000.0] * 4 + \
+                [1e6, 1e6] + [float(MAX_TEAM_SIZE)] * 2 + [1.0, float(MAX_TEAM_SIZE), 1.0]
+            game_low, game_high = game_low + tuple(flow_low), game_high + tuple(flow_high)
+            game_names = GAME_NAMES + GAME_FLOW_NAMES
         self.builder = self._observation_builder(range(w.n_robots), game_low, game_high,
-                                                 GAME_NAMES)
+                                                 game_names)
         self._teams = w.teams.tolist()
         #: Every possible agent's spaces (PettingZoo's ``observation_spaces`` and
         #: ``action_spaces``; ``observation_space(agent)`` reads them).
@@ -194,7 +289,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         self.action_spaces = {a: self._models[t].action_space()
                               for a, t in zip(self.possible_agents, self._teams)}
         # One observation builder per group of robots that share a belief.
-        self._builders = [(g, self._observation_builder(g, game_low, game_high, GAME_NAMES))
+        self._builders = [(g, self._observation_builder(g, game_low, game_high, game_names))
                           for g in self._perception.groups]
         self.state_space = _state_space(self.field, w.n_robots)
         self.score = [0, 0]
@@ -215,10 +310,28 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         self.score = [0, 0]
         self.restart_team = self._kickoff
         self.cycles = 0
+        self.off_field = []
+        self._decision = None
+        if self.game_rules is not None:
+            w = self.world
+            game_rng = np.random.default_rng(rng.integers(2**63))
+            if isinstance(self.game_rules, RuleSpec):
+                self.game = GameController(self.field, self.ball_spec, w.teams, w.radii,
+                                           self.game_rules, self.game_options,
+                                           self.match_duration, game_rng)
+            else:
+                self.game = HumanoidGameController(self.field, self.ball_spec, w.teams,
+                                                   w.radii, self.game_rules,
+                                                   self.match_duration, game_rng)
+            self._decision = self.game.start(self._kickoff)
+            self.restart_team = self.game.restart_team
 
     def _after_physics(self) -> tuple[str | None, int]:
         """The referee: the step's event (None, ``"goal"``, ``"touch"``, ``"goal_line"``,
-        ``"over_bar"``) and the scoring team (-1 if none)."""
+        ``"over_bar"``, with the game flow also ``"invalid_goal"``) and the scoring team (-1
+        if none)."""
+        if self.game is not None:
+            return self._referee_game()
         w = self.world
         self.cycles += 1
         if any(w.touched):
@@ -236,6 +349,192 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
                 self.restart_team = place_free_kick(w, w.ball_exit, kind)
             w.clear_exit()
         return event, scorer
+
+    # ------------------------------------------------------------------------------------
+    # The game flow
+    # ------------------------------------------------------------------------------------
+
+    def _referee_game(self) -> tuple[str | None, int]:
+        """One step of the game controller on the truth, and what it asks of the world."""
+        w, g = self.world, self.game
+        self.cycles += 1
+        for i in self.off_field:  # delayed commands may have moved it
+            x, y = self._bench_spot(i)
+            pose = w.robot_array()[i]
+            if math.hypot(pose[0] - x, pose[1] - y) > 0.01:
+                w.set_robot(i, x, y, float(pose[2]))
+        d = g.step(Frame(w.time, w.ball_array(), w.robot_array(), w.touched, w.ball_exit))
+        if w.ball_exit is not None:
+            w.clear_exit()
+        self._apply(d)
+        self._decision = d
+        self.restart_team = g.restart_team
+        if d.scorer >= 0:
+            self.score[d.scorer] += 1
+        event = d.exit_kind
+        if event == "goal" and d.scorer < 0:
+            event = "invalid_goal"
+        return event, d.scorer
+
+    def _apply(self, d: Decision) -> None:
+        """Do in the world what the game controller asks: robots off and back on, the
+        teams lined up, the ball placed, robots cleared from around it."""
+        w, g = self.world, self.game
+        for i in d.send_off:
+            if i not in self.off_field:
+                self.off_field.append(i)
+        for i in d.bring_on:
+            if i in self.off_field:
+                self.off_field.remove(i)
+                x, y = self._entry_spot(i)
+                w.set_robot(i, x, y, 0.0 if w.teams[i] == 0 else math.pi)
+        if d.line_up is not None:
+            kind, team = d.line_up
+            if kind == "kickoff":
+                poses, ball = place_kickoff(w, team, self._rng, self.formation_jitter), (0.0, 0.0)
+            else:
+                ball = g.designated
+                poses = place_penalty(w, team, ball, self.game_rules.penalty_behind)
+            for i in self.off_field:
+                poses[i, 0:2] = self._bench_spot(i)
+            w.place_all(poses, ball)
+        elif d.place_ball is not None:
+            w.set_ball(*d.place_ball)
+        for i in d.send_off:
+            pose = w.robot_array()[i]
+            w.set_robot(i, *self._bench_spot(i), float(pose[2]))
+        if d.place_ball is not None or d.clear is not None:
+            keep, team = d.clear if d.clear is not None else (0.0, -1)
+            self._clear_ball(keep, team)
+
+    def _clear_ball(self, keep: float, team: int) -> None:
+        """Move robots not of ``team`` (-1: all) whose centres lie within ``keep`` metres of
+        the ball (and any robot overlapping it) radially out to that distance, at rest."""
+        w = self.world
+        bx, by = (float(v) for v in w.ball_array()[0:2])
+        lim_x = w.field.half_length + w.field.boundary
+        lim_y = w.field.half_width + w.field.boundary
+        for i, (x, y, th) in enumerate(w.robot_array()[:, 0:3].tolist()):
+            if i in self.off_field:
+                continue
+            r = float(w.radii[i])
+            need = r + self.ball_spec.radius + 0.01
+            if team < 0 or int(w.teams[i]) != team:
+                need = max(need, keep)
+            dx, dy = x - bx, y - by
+            dist = math.hypot(dx, dy)
+            if dist >= need:
+                continue
+            if dist < 1e-9:  # on the ball: away from the centre spot, or along -x
+                dx, dy, dist = (-bx, -by, math.hypot(bx, by)) if math.hypot(bx, by) > 1e-9 \
+                    else (-1.0, 0.0, 1.0)
+            nx = float(np.clip(bx + dx / dist * need, -lim_x + r, lim_x - r))
+            ny = float(np.clip(by + dy / dist * need, -lim_y + r, lim_y - r))
+            w.set_robot(i, nx, ny, th)
+
+    def _bench_spot(self, robot: int) -> tuple[float, float]:
+        """Where a robot off the field waits [m]: beyond the touch line at ``y < 0``, in the
+        middle of the run-off area, in its own half, the team's robots side by side."""
+        w = self.world
+        t = int(w.teams[robot])
+        r = float(w.radii[robot])
+        k = [i for i in self.off_field if int(w.teams[i]) == t].index(robot)
+        f = self.field
+        x = (0.5 + k * (2.0 * r + 0.1)) * (-1.0 if t == 0 else 1.0)
+        y = -min(f.half_width + 0.5 * f.boundary, f.half_width + f.boundary - r - 0.01)
+        return x, y
+
+    def _entry_spot(self, robot: int) -> tuple[float, float]:
+        """Where a robot comes back on [m]: on its side of the halfway line, on the touch
+        line nearer the bench (the other one if the ball lies within a metre, beyond the
+        distance either rule book asks robots to keep at restarts)."""
+        w = self.world
+        t = int(w.teams[robot])
+        r = float(w.radii[robot])
+        x = (r + 0.1) * (-1.0 if t == 0 else 1.0)
+        y = -(self.field.half_width - r - 0.05)
+        ball = w.ball_array()
+        if math.hypot(ball[0] - x, ball[1] - y) < r + 1.0:
+            y = -y
+        return x, y
+
+    def _game_rows(self) -> np.ndarray:
+        """``(N, G)`` game-state entries of every robot (:data:`GAME_NAMES`, then with the
+        game flow :data:`GAME_FLOW_NAMES`), each in its team's frame."""
+        w, g = self.world, self.game
+        blue, yellow = self.score
+        restart = self.restart_team
+        flag = 0.0 if restart < 0 else (1.0 if restart == 0 else -1.0)
+        if g is None:
+            time_left = max(0.0, 1.0 - w.time / self.match_duration)
+            per_team = np.array([(time_left, blue, yellow, flag),
+                                 (time_left, yellow, blue, -flag)])
+            return per_team[self._teams]
+        time_left = min(1.0, max(0.0, g.playing_time_left / self.match_duration))
+        kind, team = g.situation()
+        nxt = g.next_command[1] if g.next_command is not None else -1
+        target = g.designated
+        stage_length = g.stage_duration
+        infos = g.team_info
+        rows = np.zeros((2, len(GAME_NAMES) + len(GAME_FLOW_NAMES)))
+        for t in (0, 1):
+            sign = 1.0 if t == 0 else -1.0  # the team frame turns yellow's half a turn
+            ours, theirs = infos[t], infos[1 - t]
+            row = rows[t]
+            row[0:4] = (time_left, self.score[t], self.score[1 - t], flag * sign)
+            flow = row[4:]
+            flow[_SITUATION_COLUMN[(kind, team == t)]] = 1.0
+            flow[10] = float(g.indirect)
+            flow[11] = 0.0 if nxt < 0 else (1.0 if nxt == t else -1.0)
+            if target is not None:
+                flow[12:15] = (1.0, sign * target[0], sign * target[1])
+            flow[15] = float(g.stage == "second_half")
+            flow[16] = min(1.0, max(0.0, g.stage_time_left / stage_length))
+            flow[17:25] = (len(ours.yellow_cards), len(theirs.yellow_cards), ours.red_cards,
+                           theirs.red_cards, ours.fouls, theirs.fouls, g.robots_allowed(t),
+                           g.robots_allowed(1 - t))
+            flow[25] = float(ours.can_place)
+        barred = g.barred_robot
+        if barred >= 0:
+            t = int(w.teams[barred])
+            rows[t, len(GAME_NAMES) + 26] = 1 + barred - (0 if t == 0 else w.n_blue)
+        out = rows[self._teams]
+        if self.off_field:
+            out[self.off_field, -1] = 0.0
+        out[[i for i in range(w.n_robots) if i not in self.off_field], -1] = 1.0
+        return out
+
+    def _game_info(self) -> dict[str, Any]:
+        """``info["game"]``: the referee state and the step's game events."""
+        g, w = self.game, self.world
+        teams = ("blue", "yellow")
+
+        def team_name(t: int) -> str | None:
+            return teams[t] if t >= 0 else None
+
+        events = [] if self._decision is None else self._decision.events
+        kind, team = g.situation()
+        out: dict[str, Any] = {
+            "command": g.command, "command_team": team_name(g.command_team),
+            "situation": kind, "situation_team": team_name(team),
+            "next_command": (None if g.next_command is None else
+                             (g.next_command[0], team_name(g.next_command[1]))),
+            "designated": g.designated, "in_play": bool(g.in_play), "stage": g.stage,
+            "stage_time_left": float(g.stage_time_left),
+            "playing_time_left": float(g.playing_time_left),
+            "events": [_event_dict(e, w.names) for e in events],
+        }
+        for t, name in enumerate(teams):
+            info = g.team_info[t]
+            out[name] = {"goals": self.score[t], "fouls": info.fouls,
+                         "yellow_cards": [float(c) for c in info.yellow_cards],
+                         "red_cards": info.red_cards,
+                         "placement_failures": info.placement_failures,
+                         "can_place": bool(info.can_place),
+                         "robots_allowed": g.robots_allowed(t),
+                         "off_field": [w.names[i] for i in self.off_field
+                                       if int(w.teams[i]) == t]}
+        return out
 
     # ------------------------------------------------------------------------------------
     # PettingZoo API
@@ -261,12 +560,17 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         if not self.agents:
             raise RuntimeError("the match is over (no live agents); call reset()")
         act = self._gather(actions)
+        if self.off_field:  # robots off the field stand still
+            act[self.off_field] = 0.0
         w = self.world
         ball_x_before = float(w.ball_array()[0]) if self.shaping["ball_progress"] else 0.0
         state, (event, scorer) = self._advance(act)
         rewards, terms = self._rewards(state, event, scorer, ball_x_before)
         obs = self._observe()
-        done = w.time >= self.match_duration - 1e-9
+        if self.game is not None:
+            done = self._decision is not None and self._decision.over
+        else:
+            done = w.time >= self.match_duration - 1e-9
         trunc = self.max_cycles is not None and self.cycles >= self.max_cycles
         infos = self._infos(state, terms, event)
         terminations = dict.fromkeys(self.agents, bool(done))
@@ -284,7 +588,13 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         return np.concatenate([s.ball, s.robots.ravel()]).astype(np.float32)
 
     def _hud(self) -> list[str]:
-        return [f"blue {self.score[0]} : {self.score[1]} yellow", f"t = {self.world.time:6.2f} s"]
+        lines = [f"blue {self.score[0]} : {self.score[1]} yellow",
+                 f"t = {self.world.time:6.2f} s"]
+        g = self.game
+        if g is not None:
+            team = "" if g.command_team < 0 else (" blue" if g.command_team == 0 else " yellow")
+            lines.append(f"{g.command}{team}, {g.stage}")
+        return lines
 
     # ------------------------------------------------------------------------------------
 
@@ -336,12 +646,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         return validate_actions(act, agents, self.out_of_range_actions)
 
     def _observe(self) -> dict[str, np.ndarray]:
-        time_left = max(0.0, 1.0 - self.world.time / self.match_duration)
-        blue, yellow = self.score
-        restart = self.restart_team
-        flag = 0.0 if restart < 0 else (1.0 if restart == 0 else -1.0)
-        per_team = np.array([(time_left, blue, yellow, flag), (time_left, yellow, blue, -flag)])
-        game = per_team[self._teams]
+        game = self._game_rows()
         if len(self._builders) == 1:
             rows = self.builder.build(self._perception.belief(0), game)
             return dict(zip(self.possible_agents, rows))
@@ -359,7 +664,9 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         n = len(teams)
         goal = [0.0] * n if scorer < 0 else [1.0 if t == scorer else -1.0 for t in teams]
         progress = [0.0] * n
-        if sc["ball_progress"] and event is None:
+        moved = self._decision is not None and (self._decision.line_up is not None or
+                                                self._decision.place_ball is not None)
+        if sc["ball_progress"] and event is None and not moved:
             # Ball displacement towards the opponent goal this step: velocity times dt.
             dx = sc["ball_progress"] * (float(state.ball[0]) - ball_x_before)
             progress = [dx if t == 0 else -dx for t in teams]
@@ -377,7 +684,10 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     def flat_info_keys(self) -> tuple[str, ...]:
         """The keys of every agent's flat info (``info_mode="flat"``), in order: the same for
         every agent at every reset and step."""
-        return flat_keys(("goal", *MATCH_SHAPING), ("event", "score_blue", "score_yellow"))
+        extra = ("event", "score_blue", "score_yellow")
+        if self.game_rules is not None:
+            extra += FLAT_GAME_KEYS
+        return flat_keys(("goal", *MATCH_SHAPING), extra)
 
     def _infos(self, state, terms: dict, event: str | None) -> dict[str, dict]:
         """Every live agent's info: the truth, its team's or its own present belief."""
@@ -385,6 +695,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
             return self._flat_infos(state, terms, event)
         truth = state.truth_dict()
         robot_state = self.world.humanoid_state() if self.world.walk is not None else None
+        game = self._game_info() if self.game is not None else None
         estimates: dict[int, dict] = {}
         infos = {}
         for a in self.agents:
@@ -396,12 +707,24 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
             infos[a] = self._agent_info(truth, estimates[key], terms[a], event)
             if robot_state is not None:
                 infos[a]["robot_state"] = robot_state
+            if game is not None:
+                infos[a]["game"] = game
         return infos
 
     def _flat_infos(self, state, terms: dict, event: str | None) -> dict[str, dict]:
         """Every live agent's flat info (:mod:`soccer_env.envs.flat_info`)."""
         game = {"event": float(EVENT_CODES[event]), "score_blue": float(self.score[0]),
                 "score_yellow": float(self.score[1])}
+        g = self.game
+        if g is not None:
+            game.update(game_command=float(COMMANDS.index(g.command)),
+                        game_command_team=float(g.command_team), game_in_play=float(g.in_play),
+                        game_stage_time_left=float(g.stage_time_left))
+            for t, name in enumerate(("blue", "yellow")):
+                info = g.team_info[t]
+                game[f"game_fouls_{name}"] = float(info.fouls)
+                game[f"game_yellow_cards_{name}"] = float(len(info.yellow_cards))
+                game[f"game_red_cards_{name}"] = float(info.red_cards)
         names = self.world.names
         infos = {}
         for a in self.agents:
@@ -415,6 +738,23 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
                     ) -> dict[str, Any]:
         return {"truth": truth, "estimate": estimate, "reward_terms": terms,
                 "score": {"blue": self.score[0], "yellow": self.score[1]}, "event": event}
+
+
+#: The flat info's keys of the game flow (``info_mode="flat"`` with ``game=...``): the command
+#: (its index in :data:`~soccer_env.sim.game.COMMANDS`), its team (-1 none, 0 blue, 1 yellow),
+#: whether the ball is in play, the stage's playing time left [s], and per team the fouls,
+#: running yellow cards and red cards.
+FLAT_GAME_KEYS = ("game_command", "game_command_team", "game_in_play", "game_stage_time_left",
+                  "game_fouls_blue", "game_yellow_cards_blue", "game_red_cards_blue",
+                  "game_fouls_yellow", "game_yellow_cards_yellow", "game_red_cards_yellow")
+
+
+def _event_dict(event: GameEvent, names: list[str]) -> dict[str, Any]:
+    """A game event as ``info["game"]["events"]`` holds it (team and robot by name)."""
+    return {"kind": event.kind,
+            "team": None if event.team < 0 else ("blue", "yellow")[event.team],
+            "robot": None if event.robot < 0 else names[event.robot],
+            "x": event.x, "y": event.y}
 
 
 #: Bounds of :meth:`SoccerParallelEnv.state` beyond the walls' and the robots' own limits:

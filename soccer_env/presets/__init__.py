@@ -35,7 +35,7 @@ from soccer_env.presets.images import (
     head_frame,
     overhead_frame,
 )
-from soccer_env.presets.rules import RULES, RuleSpec, rules
+from soccer_env.presets.rules import RULES, HumanoidRuleSpec, RuleSpec, rules
 from soccer_env.presets.sensors import (
     HEAD_CAMERAS,
     RADIO_PRESETS,
@@ -69,5 +69,6 @@ __all__ = [
     "ROBOTS", "DEFAULT_FIELDS", "field", "ball", "robot", "default_field", "GRAVITY",
     "VisionSpec", "VISION", "vision", "HeadCameraSpec", "HEAD_CAMERAS", "head_camera",
     "RadioSpec", "RADIO_PRESETS", "radio", "RGB", "COLOURS", "OverheadFrameSpec", "OVERHEAD_FRAMES",
-    "overhead_frame", "HeadFrameSpec", "HEAD_FRAMES", "head_frame", "RuleSpec", "RULES", "rules",
+    "overhead_frame", "HeadFrameSpec", "HEAD_FRAMES", "head_frame", "RuleSpec", "HumanoidRuleSpec",
+    "RULES", "rules",
 ]

@@ -3,7 +3,12 @@ they come from (see :mod:`soccer_env.presets` for the conventions).
 
 ``RULES["ssl-2025-div-b"]`` and ``RULES["ssl-2025-div-a"]`` are the RoboCup Small Size League
 rules, 2025 edition (https://robocup-ssl.github.io/ssl-rules/2025/sslrules.html), for the two
-divisions; the section of each number is given beside it.
+divisions (:class:`RuleSpec`, played by :class:`soccer_env.sim.game.GameController`);
+``RULES["humanoid-2025-kid"]`` is the RoboCup Humanoid League Laws of the Game 2025, KidSize,
+virtual competition where the two differ (https://github.com/RoboCup-Humanoid-TC/Rules;
+:class:`HumanoidRuleSpec`, played by
+:class:`soccer_env.sim.humanoid_game.HumanoidGameController`). The section or law of each
+number is given beside it. Tell the two kinds apart with ``isinstance``.
 """
 
 from __future__ import annotations
@@ -15,7 +20,7 @@ from typing import Any
 from estimators.registry import Registry
 from soccer_env.validation import check_number, preset_table, resolve_preset
 
-__all__ = ["RuleSpec", "RULES", "rules"]
+__all__ = ["RuleSpec", "HumanoidRuleSpec", "RULES", "rules"]
 
 
 @dataclass(frozen=True)
@@ -151,9 +156,60 @@ class RuleSpec:
                              f"placement_time ({self.placement_time})")
 
 
+@dataclass(frozen=True)
+class HumanoidRuleSpec:
+    """The numbers of the RoboCup Humanoid League Laws of the Game (distances [m], times [s]);
+    law numbers are the rule book's, "Section II" its competition rules (game interruption
+    procedure, removal penalty).
+
+    Attributes:
+        name: the preset's name.
+        half_duration: playing time of each of the two equal periods; the clock never stops
+            (Law 7: 10 minutes; the controller plays the match duration it is given).
+        ball_in_play_distance: a kick-off's or game interruption's ball is in play once it
+            moved this far (Laws 8 and 13, footnote for the virtual competition: 5 cm).
+        in_play_time: ... or this long after the referee's signal (Laws 8 and 13: 10 s).
+        opponent_distance: opponents of the team taking a game interruption (throw-in, goal
+            kick, corner kick, free kick) stay at least this far from the ball until it is in
+            play, measured between the centres of the ball and the robot (Law 13; Section II,
+            game interruption procedure: 0.75 m in KidSize).
+        removal_time: a removal penalty keeps the robot off the field this long (Law 13;
+            Section II, removal penalty: 10 s since 2025, 30 s before).
+        dropped_ball_time: a ball in play that moved less than ``dropped_ball_distance`` for
+            this long is dropped at the centre mark (Law 8, virtual competition: 2 minutes).
+        dropped_ball_distance: see ``dropped_ball_time`` (Law 8: 5 cm).
+        line_inset: how far inside the field lines the referee puts the ball for a throw-in,
+            a goal kick or a corner kick, which the laws put on the line (Laws 15-17); half
+            the 0.05 m line width, as the league's virtual referee (hlvs_webots) does.
+        source: the rule book.
+        kind: ``"humanoid"``, naming the family of the rules.
+    """
+
+    name: str
+    half_duration: float = 600.0
+    ball_in_play_distance: float = 0.05
+    in_play_time: float = 10.0
+    opponent_distance: float = 0.75
+    removal_time: float = 10.0
+    dropped_ball_time: float = 120.0
+    dropped_ball_distance: float = 0.05
+    line_inset: float = 0.025
+    source: str = ""
+    kind: str = "humanoid"
+
+    def __post_init__(self) -> None:
+        for name in ("half_duration", "ball_in_play_distance", "in_play_time",
+                     "opponent_distance", "removal_time", "dropped_ball_time",
+                     "dropped_ball_distance"):
+            check_number(name, getattr(self, name), 1e-6, 1e4)
+        check_number("line_inset", self.line_inset, 0.0, 1e4)
+        if self.kind != "humanoid":
+            raise ValueError(f"kind must be 'humanoid', got {self.kind!r}")
+
+
 _SSL_2025 = "RoboCup Small Size League rules, 2025 edition"
 
-RULES: Registry[RuleSpec] = preset_table("rules", {
+RULES: Registry[RuleSpec | HumanoidRuleSpec] = preset_table("rules", {
     "ssl-2025-div-b": RuleSpec(
         name="ssl-2025-div-b", division="B", free_kick_time=10.0, no_progress_time=10.0,
         keeper_held_time=10.0, penalty_mark_distance=6.0,
@@ -162,9 +218,15 @@ RULES: Registry[RuleSpec] = preset_table("rules", {
         name="ssl-2025-div-a", division="A", free_kick_time=5.0, no_progress_time=5.0,
         keeper_held_time=5.0, penalty_mark_distance=8.0,
         source=f"{_SSL_2025}, Division A"),
+    "humanoid-2025-kid": HumanoidRuleSpec(
+        name="humanoid-2025-kid",
+        source="RoboCup Humanoid League Laws of the Game 2025, KidSize (virtual competition "
+               "where it differs)"),
 })
 
 
-def rules(spec: str | RuleSpec = "ssl-2025-div-b", **overrides: Any) -> RuleSpec:
-    """A rule preset by name (or a spec), with ``overrides`` of its fields (validated)."""
+def rules(spec: str | RuleSpec | HumanoidRuleSpec = "ssl-2025-div-b", **overrides: Any
+          ) -> RuleSpec | HumanoidRuleSpec:
+    """A rule preset by name (or a spec of either kind), with ``overrides`` of its fields
+    (validated)."""
     return resolve_preset("rules", RULES, spec, overrides)

@@ -88,18 +88,20 @@ robot 0 of each team.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from soccer_env.presets import BallSpec, FieldSpec
 from soccer_env.presets.rules import RuleSpec
+from soccer_env.presets.rules import rules as rule_preset
 from soccer_env.sim.referee import ExitKind, classify_exit, free_kick_spot
 
 __all__ = ["GameController", "GameOptions", "Frame", "Decision", "GameEvent", "TeamInfo",
-           "COMMANDS", "STAGES", "PLACEMENTS", "FREE_KICK_RULES", "FOULS"]
+           "COMMANDS", "STAGES", "PLACEMENTS", "FREE_KICK_RULES", "FOULS", "SITUATIONS",
+           "GAME_KEYS", "game_config"]
 
 #: Referee commands, as a team's software receives them.
 COMMANDS = ("stop", "ball_placement", "prepare_kickoff", "prepare_penalty", "normal_start",
@@ -116,6 +118,12 @@ FOULS = ("attacker_too_close_to_defense_area", "keeper_held_ball",
          "bot_kicked_ball_too_fast", "bot_crash_unique", "bot_crash_drawn",
          "defender_too_close_to_kick_point", "bot_too_fast_in_stop",
          "bot_interfered_placement")
+
+#: What a team's software makes of the command (:meth:`GameController.situation`): the
+#: restart being prepared or taken, or open play.
+SITUATIONS = ("stop", "placement", "kickoff", "penalty", "free_kick", "running")
+#: Keys of the ``game`` argument's mapping form (:func:`game_config`).
+GAME_KEYS = ("rules", "placement", "fouls", "cards", "half_time", "free_kicks")
 
 #: A ball slower than this is stationary [m/s] (the rule book leaves it to the referee).
 STATIONARY_SPEED = 0.05
@@ -170,6 +178,9 @@ class Decision:
             formation (the ball included), or None.
         send_off: robots to take off the field.
         bring_on: robots to bring back.
+        clear: after placing the ball, move every robot not of team ``clear[1]`` (-1: every
+            robot) whose centre lies nearer the ball's than ``clear[0]`` metres radially out
+            to that distance; None for nothing.
         over: the match has ended.
     """
 
@@ -180,6 +191,7 @@ class Decision:
     line_up: tuple[str, int] | None = None
     send_off: list[int] = field(default_factory=list)
     bring_on: list[int] = field(default_factory=list)
+    clear: tuple[float, int] | None = None
     over: bool = False
 
 
@@ -238,6 +250,33 @@ class GameOptions:
             if not isinstance(getattr(self, name), bool):
                 raise ValueError(f"{name} must be True or False, got "
                                  f"{getattr(self, name)!r}")
+
+
+def game_config(game: Any, default: str = "ssl-2025-div-b"
+                ) -> tuple[Any, GameOptions] | None:
+    """The rule preset and options of an environment's ``game`` argument: None or False (no
+    game flow), True (the ``default`` rules and options), a rule preset's name or spec
+    (:data:`~soccer_env.presets.rules.RULES`), or a mapping with the keys :data:`GAME_KEYS`
+    (``rules`` defaults to ``default``, the others to :class:`GameOptions`' defaults; they
+    apply to SSL rules only)."""
+    if game is None or game is False:
+        return None
+    if game is True:
+        return rule_preset(default), GameOptions()
+    if isinstance(game, Mapping):
+        unknown = sorted(set(game) - set(GAME_KEYS), key=str)
+        if unknown:
+            raise ValueError(f"game has unknown key(s) {unknown}; allowed: {list(GAME_KEYS)}")
+        spec = rule_preset(game.get("rules", default))
+        options = {k: v for k, v in game.items() if k != "rules"}
+        if options and not isinstance(spec, RuleSpec):
+            raise ValueError(f"game options {sorted(options)} apply to SSL rules only; rules "
+                             f"{spec.name!r} take none")
+        return spec, GameOptions(**options)
+    if isinstance(game, str) or hasattr(game, "source"):
+        return rule_preset(game), GameOptions()
+    raise TypeError(f"game must be None, True, a rule preset's name or spec, or a mapping "
+                    f"with the keys {list(GAME_KEYS)}, got {type(game).__name__}")
 
 
 class GameController:
@@ -320,6 +359,60 @@ class GameController:
         info = self.team_info[team]
         return int(np.sum(self.teams == team)) - len(info.yellow_cards) - info.red_cards
 
+    def situation(self) -> tuple[str, int]:
+        """What the command means for the teams: ``(kind, team)`` with ``kind`` one of
+        :data:`SITUATIONS` and ``team`` the team taking the restart or placing the ball (-1
+        for stop and open play). A penalty kick stays ``"penalty"`` while its ball is in
+        play (only the kicker and the keeper may play it)."""
+        cmd = self.command
+        if cmd == "stop":
+            return "stop", -1
+        if cmd == "ball_placement":
+            return "placement", self.command_team
+        if cmd == "prepare_kickoff":
+            return "kickoff", self.command_team
+        if cmd == "prepare_penalty" or (self._penalty and cmd == "normal_start"):
+            return "penalty", self._kick_team
+        if not self.in_play and cmd == "normal_start":
+            return "kickoff", self._kick_team
+        if not self.in_play and cmd == "direct_free":
+            return "free_kick", self._kick_team
+        return "running", -1
+
+    @property
+    def restart_team(self) -> int:
+        """The team whose restart is being prepared or waits to be taken (-1: none, open
+        play or a force start)."""
+        kind, team = self.situation()
+        if kind in ("kickoff", "penalty", "free_kick"):
+            return -1 if kind == "penalty" and self.in_play else team
+        if self.next_command is not None:
+            return self.next_command[1]
+        return -1
+
+    @property
+    def barred_robot(self) -> int:
+        """The robot that may not touch the ball until another robot has (the kicker of a
+        kick-off or free kick once the ball is in play, 8.2), or -1."""
+        if self.in_play and self._kicker >= 0 and not self._touched_by_other:
+            return self._kicker
+        return -1
+
+    @property
+    def indirect(self) -> bool:
+        """Whether the coming or running free kick is indirect and a goal by its team would
+        not count yet (2019 rules)."""
+        if self.next_command is not None:
+            return self._pending_indirect
+        return self._indirect and not self._indirect_ok
+
+    @property
+    def playing_time_left(self) -> float:
+        """Playing time left in the match [s] (this stage's and the stages after it)."""
+        stages = self._stages[self._stages.index(self.stage) + 1:]
+        return self.stage_time_left + self._stage_duration() * sum(
+            s != "post_game" for s in stages)
+
     def step(self, frame: Frame) -> Decision:
         """Referee one control step (see the module docstring)."""
         d = Decision()
@@ -354,8 +447,13 @@ class GameController:
     # Clocks and stages
     # ------------------------------------------------------------------------------------
 
-    def _stage_duration(self) -> float:
+    @property
+    def stage_duration(self) -> float:
+        """Playing time of one stage [s]."""
         return self.duration / 2.0 if self.options.half_time else self.duration
+
+    def _stage_duration(self) -> float:
+        return self.stage_duration
 
     def _run_clocks(self, dt: float, d: Decision) -> None:
         self.stage_time_left = max(0.0, self.stage_time_left - dt)
@@ -441,7 +539,9 @@ class GameController:
         elif command == "direct_free":
             self._set_command("direct_free", team)
             self._kick_team = team
-            self._kick_point = position
+            # Where the ball lies when the kick is issued (within the placement tolerance of
+            # the designated position): read from the first frame.
+            self._kick_point = None
             self._indirect = self._pending_indirect
         elif command == "force_start":
             self._set_command("force_start", -1)
@@ -894,11 +994,12 @@ class GameController:
         moved = math.hypot(bx - self._kick_point[0], by - self._kick_point[1])
         limit = (r.penalty_time if self._penalty else
                  r.kickoff_time if self.command == "normal_start" else r.free_kick_time)
-        if self.options.fouls:
+        if self.options.fouls and moved < r.ball_in_play_distance:
+            kx, ky = self._kick_point
             for i in range(len(self.teams)):
                 if int(self.teams[i]) == team or not self._on_field(i):
                     continue
-                if self._gap(robots, i, bx, by) < r.stop_distance and not self._penalty:
+                if self._gap(robots, i, kx, ky) < r.stop_distance and not self._penalty:
                     if self._foul(d, "defender_too_close_to_kick_point", int(self.teams[i]),
                                   i, bx, by):
                         self._command_time = 0.0  # the kicking team's timer restarts

@@ -106,7 +106,7 @@ def test_goalkeeper_flat_shot_entries():
 
 def test_outcome_codes_cover_every_outcome():
     assert set(OUTCOME_CODES) == {None, "goal", "stopped", "cleared", "out", "saved"}
-    assert set(EVENT_CODES) == {None, "goal", "touch", "goal_line", "over_bar"}
+    assert set(EVENT_CODES) == {None, "goal", "touch", "goal_line", "over_bar", "invalid_goal"}
     assert OUTCOME_CODES[None] == 0 == EVENT_CODES[None]
     assert len(set(OUTCOME_CODES.values())) == len(OUTCOME_CODES)
 
