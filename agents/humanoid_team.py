@@ -31,6 +31,7 @@ import numpy as np
 
 from soccer_env.envs.keeper import ScriptedGoalkeeper, drive_command, turn_command
 from soccer_env.presets import BallSpec, FieldSpec, HumanoidRobotSpec
+from soccer_env.sim.game import segment_distance
 
 __all__ = ["HumanoidTeam"]
 
@@ -135,10 +136,7 @@ class HumanoidTeam:
                 ex, ey, d = (ex, ey, d) if d > 1e-9 else (-1.0, 0.0, 1.0)
                 tx, ty = bx + ex / d * (self.keep + 0.05), by + ey / d * (self.keep + 0.05)
             # A path through the circle: out along the radius first.
-            ux, uy = tx - px, ty - py
-            n = ux * ux + uy * uy
-            u = 0.0 if n < 1e-12 else max(0.0, min(1.0, ((bx - px) * ux + (by - py) * uy) / n))
-            if math.hypot(px + u * ux - bx, py + u * uy - by) < self.keep:
+            if segment_distance(bx, by, px, py, tx, ty) < self.keep:
                 ex, ey = px - bx, py - by
                 d = math.hypot(ex, ey)
                 ex, ey, d = (ex, ey, d) if d > 1e-9 else (-1.0, 0.0, 1.0)

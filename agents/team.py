@@ -232,9 +232,7 @@ class ScriptedTeam(RestartPlay):
         rows = obs.reshape(-1, self.obs_size)
         index = np.tile(np.arange(self.team_size), obs.shape[0])
         if self._game is not None:
-            g = self._game
-            special = ((rows[:, g["game.running"]] < 0.5) | (rows[:, g["game.on_field"]] < 0.5)
-                       | (rows[:, g["game.barred"]] > 0.5))
+            special = self._needs_restart_play(rows)
             if special.any():
                 # Restarts (and the rare rows that must leave the ball alone) row by row.
                 out = np.empty((len(rows), 6), dtype=np.float32)
@@ -314,7 +312,7 @@ class ScriptedTeam(RestartPlay):
             if math.hypot(px - bx, py - by) < keep:
                 tx, ty = self._clear_of(px, py, bx, by, keep + 0.05)
             else:
-                tx, ty = self._round(px, py, tx, ty, bx, by, keep)
+                tx, ty = self._around_ball(px, py, tx, ty, bx, by, keep, 0.05)
             tx, ty = self._outside_defense_area(tx, ty)
             r = self.robot
             vx, vy = drive_command(px, py, c, s, tx, ty, r.max_speed, r.max_acceleration)
@@ -538,23 +536,25 @@ class ScriptedTeam(RestartPlay):
         kick = self._kick_power if in_front and c > 0.3 else 0.0
         return [vx / r.max_speed, vy / r.max_speed, omega, kick, -1.0, -1.0]
 
-    def _around_ball(self, px: float, py: float, tx: float, ty: float, bx: float, by: float
-                     ) -> tuple[float, float]:
-        """A waypoint beside the ball if the straight path from ``(px, py)`` to ``(tx, ty)``
-        passes within a robot radius, a ball radius and 15 cm of the ball, else the target
-        (a defender on its way to its slot must not knock the ball about)."""
+    def _around_ball(self, px: float, py: float, tx: float, ty: float, bx: float, by: float,
+                     clear: float | None = None, pad: float = 0.0) -> tuple[float, float]:
+        """A waypoint beside the ball, ``clear + pad`` from it, if the straight path from
+        ``(px, py)`` to ``(tx, ty)`` passes within ``clear`` of the ball (default a robot
+        radius, a ball radius and 15 cm), else the target (a defender on its way to its slot
+        must not knock the ball about)."""
         ux, uy = tx - px, ty - py
         length = math.hypot(ux, uy)
         if length < 1e-6:
             return tx, ty
         ux, uy = ux / length, uy / length
-        clear = self.robot.radius + self.ball.radius + 0.15
+        if clear is None:
+            clear = self.robot.radius + self.ball.radius + 0.15
         along = (bx - px) * ux + (by - py) * uy
         side = (px - bx) * -uy + (py - by) * ux  # the robot's side of the ball, along n
         if not 0.0 < along < length or abs(side) >= clear:
             return tx, ty
         sign = 1.0 if side >= 0.0 else -1.0
-        return bx - sign * clear * uy, by + sign * clear * ux
+        return bx - sign * (clear + pad) * uy, by + sign * (clear + pad) * ux
 
     def _outside_defense_area(self, x: float, y: float) -> tuple[float, float]:
         """Move a target inside the own defense area (widened by a robot radius and 5 cm) to

@@ -51,6 +51,8 @@ SITUATION_NAMES = {
     "game.penalty_theirs": ("penalty", False), "game.free_kick_ours": ("free_kick", True),
     "game.free_kick_theirs": ("free_kick", False), "game.running": ("running", None),
 }
+#: The game block's entries that tell open play from the rest.
+_RESTART_ENTRIES = ("game.running", "game.on_field", "game.barred")
 #: Extra distance kept beyond what the rules ask [m].
 MARGIN = 0.1
 #: Fraction of the stop speed limit driven during stop.
@@ -81,11 +83,15 @@ class RestartPlay:
                 return value
         return "running", None
 
-    def _needs_restart_play(self, o: Sequence[float]) -> bool:
-        """Whether the observation asks for more than open play."""
+    def _needs_restart_play(self, o: np.ndarray | Sequence[float]) -> bool | np.ndarray:
+        """Whether an observation (a sequence) or each observation row (an array
+        ``(n, obs_dim)``) asks for more than open play."""
         g = self._game
-        return (o[g["game.running"]] < 0.5 or o[g["game.on_field"]] < 0.5
-                or o[g["game.barred"]] > 0.5)
+        if isinstance(o, np.ndarray) and o.ndim == 2:
+            running, on_field, barred = (o[:, g[n]] for n in _RESTART_ENTRIES)
+        else:
+            running, on_field, barred = (o[g[n]] for n in _RESTART_ENTRIES)
+        return (running < 0.5) | (on_field < 0.5) | (barred > 0.5)
 
     # ------------------------------------------------------------------------------------
 
@@ -163,8 +169,8 @@ class RestartPlay:
         if math.hypot(px - bx, py - by) < keep and clear_kick:
             tx, ty = self._clear_of(px, py, bx, by, keep + 0.05)
         else:
-            tx, ty = self._round(px, py, tx, ty, bx, by, keep if clear_kick else
-                                 r.radius + self.ball.radius + 0.15)
+            tx, ty = self._around_ball(px, py, tx, ty, bx, by, keep if clear_kick else
+                                       r.radius + self.ball.radius + 0.15, 0.05)
         cap = rules.stop_speed * STOP_SPEED_FRACTION if kind in ("stop", "placement") else None
         vx, vy = drive_command(px, py, c, s, tx, ty, r.max_speed, r.max_acceleration, cap)
         omega = turn_command(c, s, math.atan2(by - py, bx - px), r.max_angular_speed)
@@ -224,7 +230,8 @@ class RestartPlay:
         if along > -contact + 0.01 or abs(lateral) > 0.5 * r.kicker_width:
             # Not yet behind the ball: go to the waiting point (round the ball if needed).
             tx, ty = bx - (contact + 0.1) * ex, by - (contact + 0.1) * ey
-            tx, ty = self._round(px, py, tx, ty, bx, by, r.radius + self.ball.radius + 0.05)
+            tx, ty = self._around_ball(px, py, tx, ty, bx, by,
+                                       r.radius + self.ball.radius + 0.05, 0.05)
             cap = None
         elif heading_err > 0.1:
             tx, ty, cap = bx - (contact + 0.1) * ex, by - (contact + 0.1) * ey, 0.5
@@ -279,7 +286,8 @@ class RestartPlay:
             tx, ty, cap = bx - (contact - 0.01) * ux, by - (contact - 0.01) * uy, 0.3
         else:
             tx, ty = bx - (contact + 0.08) * ux, by - (contact + 0.08) * uy
-            tx, ty = self._round(px, py, tx, ty, bx, by, r.radius + self.ball.radius + 0.05)
+            tx, ty = self._around_ball(px, py, tx, ty, bx, by,
+                                       r.radius + self.ball.radius + 0.05, 0.05)
             cap = None
         lx = self.field.half_length + self.field.boundary - r.radius - 0.005
         ly = self.field.half_width + self.field.boundary - r.radius - 0.005
@@ -355,22 +363,6 @@ class RestartPlay:
         t = 0.0 if n < 1e-12 else max(0.0, min(1.0, ((x - ax) * ex + (y - ay) * ey) / n))
         cx, cy = ax + t * ex, ay + t * ey
         return RestartPlay._away_from(x, y, cx, cy, dist)
-
-    def _round(self, px: float, py: float, tx: float, ty: float, bx: float, by: float,
-               clear: float) -> tuple[float, float]:
-        """A waypoint beside the ball if the straight path from ``(px, py)`` to ``(tx, ty)``
-        passes within ``clear`` of the ball, else the target."""
-        ux, uy = tx - px, ty - py
-        length = math.hypot(ux, uy)
-        if length < 1e-6:
-            return tx, ty
-        ux, uy = ux / length, uy / length
-        along = (bx - px) * ux + (by - py) * uy
-        side = (px - bx) * -uy + (py - by) * ux
-        if not 0.0 < along < length or abs(side) >= clear:
-            return tx, ty
-        sign = 1.0 if side >= 0.0 else -1.0
-        return bx - sign * (clear + 0.05) * uy, by + sign * (clear + 0.05) * ux
 
     def _outside_opponent_defense(self, x: float, y: float, margin: float | None = None
                                   ) -> tuple[float, float]:

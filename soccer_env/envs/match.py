@@ -24,7 +24,6 @@ from soccer_env.sim.commands import (
 )
 from soccer_env.sim.game import (
     COMMANDS,
-    SITUATIONS,
     Decision,
     Frame,
     GameController,
@@ -78,12 +77,16 @@ GAME_FLOW_NAMES = (
     "game.red_theirs", "game.fouls_ours", "game.fouls_theirs", "game.allowed_ours",
     "game.allowed_theirs", "game.can_place", "game.barred", "game.on_field",
 )
-#: Columns of the situation's one-hot in :data:`GAME_FLOW_NAMES`, per ``(kind, ours)``.
-_SITUATION_COLUMN = {("stop", True): 0, ("stop", False): 0, ("running", True): 9,
-                     ("running", False): 9}
-for _k, _kind in enumerate(SITUATIONS[1:5]):
-    _SITUATION_COLUMN[(_kind, True)] = 1 + 2 * _k
-    _SITUATION_COLUMN[(_kind, False)] = 2 + 2 * _k
+#: Column of each entry of :data:`GAME_FLOW_NAMES`.
+_FLOW = {name: k for k, name in enumerate(GAME_FLOW_NAMES)}
+
+
+def _situation_column(kind: str, ours: bool) -> int:
+    """The column of the situation ``kind`` (:data:`~soccer_env.sim.game.SITUATIONS`) of
+    the own team (``ours``) or the opponents in :data:`GAME_FLOW_NAMES`."""
+    if kind in ("stop", "running"):
+        return _FLOW[f"game.{kind}"]
+    return _FLOW[f"game.{kind}_{'ours' if ours else 'theirs'}"]
 
 
 def _per_team(name: str, value: Any) -> tuple[Any, Any]:
@@ -252,12 +255,10 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         # The game flow needs both teams of one robot kind (SSL rules or humanoid laws).
         kinds = {spec.kind for spec, n in zip(team_specs, (blue, yellow)) if n}
         cfg = game_config(game, "ssl-2025-div-b" if kinds == {"ssl"} else "humanoid-2025-kid")
-        if cfg is not None:
-            rules_kind = "ssl" if isinstance(cfg[0], RuleSpec) else "humanoid"
-            if kinds != {rules_kind}:
-                raise ValueError(f"game rules {cfg[0].name!r} are for matches of {rules_kind} "
-                                 f"robots; this match plays {sorted(kinds)} (the game flow "
-                                 "needs both teams of one robot kind)")
+        if cfg is not None and kinds != {cfg[0].kind}:
+            raise ValueError(f"game rules {cfg[0].name!r} are for matches of {cfg[0].kind} "
+                             f"robots; this match plays {sorted(kinds)} (the game flow needs "
+                             "both teams of one robot kind)")
         #: The game flow's rule preset and options (None: the simple referee).
         self.game_rules, self.game_options = cfg if cfg is not None else (None, None)
         #: The episode's game controller (None without the game flow).
@@ -477,31 +478,35 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         stage_length = g.stage_duration
         infos = g.team_info
         rows = np.zeros((2, len(GAME_NAMES) + len(GAME_FLOW_NAMES)))
+        barred = g.barred_robot
         for t in (0, 1):
             sign = 1.0 if t == 0 else -1.0  # the team frame turns yellow's half a turn
             ours, theirs = infos[t], infos[1 - t]
-            row = rows[t]
-            row[0:4] = (time_left, self.score[t], self.score[1 - t], flag * sign)
-            flow = row[4:]
-            flow[_SITUATION_COLUMN[(kind, team == t)]] = 1.0
-            flow[10] = float(g.indirect)
-            flow[11] = 0.0 if nxt < 0 else (1.0 if nxt == t else -1.0)
+            rows[t, 0:len(GAME_NAMES)] = (time_left, self.score[t], self.score[1 - t],
+                                         flag * sign)
+            flow = dict.fromkeys(GAME_FLOW_NAMES, 0.0)
+            flow[GAME_FLOW_NAMES[_situation_column(kind, team == t)]] = 1.0
+            flow["game.indirect"] = float(g.indirect)
+            flow["game.next_team"] = 0.0 if nxt < 0 else (1.0 if nxt == t else -1.0)
             if target is not None:
-                flow[12:15] = (1.0, sign * target[0], sign * target[1])
-            flow[15] = float(g.stage == "second_half")
-            flow[16] = min(1.0, max(0.0, g.stage_time_left / stage_length))
-            flow[17:25] = (len(ours.yellow_cards), len(theirs.yellow_cards), ours.red_cards,
-                           theirs.red_cards, ours.fouls, theirs.fouls, g.robots_allowed(t),
-                           g.robots_allowed(1 - t))
-            flow[25] = float(ours.can_place)
-        barred = g.barred_robot
-        if barred >= 0:
-            t = int(w.teams[barred])
-            rows[t, len(GAME_NAMES) + 26] = 1 + barred - (0 if t == 0 else w.n_blue)
+                flow["game.target_set"] = 1.0
+                flow["game.target_x"], flow["game.target_y"] = sign * target[0], \
+                    sign * target[1]
+            flow["game.second_half"] = float(g.stage == "second_half")
+            flow["game.stage_time_left"] = min(1.0, max(0.0, g.stage_time_left / stage_length))
+            flow["game.yellow_ours"] = len(ours.yellow_cards)
+            flow["game.yellow_theirs"] = len(theirs.yellow_cards)
+            flow["game.red_ours"], flow["game.red_theirs"] = ours.red_cards, theirs.red_cards
+            flow["game.fouls_ours"], flow["game.fouls_theirs"] = ours.fouls, theirs.fouls
+            flow["game.allowed_ours"] = g.robots_allowed(t)
+            flow["game.allowed_theirs"] = g.robots_allowed(1 - t)
+            flow["game.can_place"] = float(ours.can_place)
+            if barred >= 0 and int(w.teams[barred]) == t:
+                flow["game.barred"] = 1 + barred - (0 if t == 0 else w.n_blue)
+            rows[t, len(GAME_NAMES):] = list(flow.values())
         out = rows[self._teams]
-        if self.off_field:
-            out[self.off_field, -1] = 0.0
-        out[[i for i in range(w.n_robots) if i not in self.off_field], -1] = 1.0
+        out[:, -1] = 1.0  # game.on_field
+        out[self.off_field, -1] = 0.0
         return out
 
     def _game_info(self) -> dict[str, Any]:

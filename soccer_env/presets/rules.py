@@ -89,6 +89,7 @@ class RuleSpec:
         stage_pause: how long the game controller waits, at most, for robots to obey stop or a
             kick-off's positions before it continues anyway (5.1.2: up to 10 s after halt).
         source: the rule book.
+        kind: ``"ssl"``, the robots the rules are for (as a robot spec's ``kind``).
     """
 
     name: str
@@ -128,8 +129,11 @@ class RuleSpec:
     cards_for_red: int = 2
     stage_pause: float = 10.0
     source: str = ""
+    kind: str = "ssl"
 
     def __post_init__(self) -> None:
+        if self.kind != "ssl":
+            raise ValueError(f"kind must be 'ssl', got {self.kind!r}")
         if self.division not in ("A", "B"):
             raise ValueError(f"division must be 'A' or 'B', got {self.division!r}")
         for name in ("stop_distance", "stop_speed", "ball_in_play_distance", "kickoff_time",
@@ -182,7 +186,7 @@ class HumanoidRuleSpec:
             a goal kick or a corner kick, which the laws put on the line (Laws 15-17); half
             the 0.05 m line width, as the league's virtual referee (hlvs_webots) does.
         source: the rule book.
-        kind: ``"humanoid"``, naming the family of the rules.
+        kind: ``"humanoid"``, the robots the rules are for (as a robot spec's ``kind``).
     """
 
     name: str

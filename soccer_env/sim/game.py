@@ -95,13 +95,13 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from soccer_env.presets import BallSpec, FieldSpec
-from soccer_env.presets.rules import RuleSpec
+from soccer_env.presets.rules import HumanoidRuleSpec, RuleSpec
 from soccer_env.presets.rules import rules as rule_preset
 from soccer_env.sim.referee import ExitKind, classify_exit, free_kick_spot
 
 __all__ = ["GameController", "GameOptions", "Frame", "Decision", "GameEvent", "TeamInfo",
            "COMMANDS", "STAGES", "PLACEMENTS", "FREE_KICK_RULES", "FOULS", "SITUATIONS",
-           "GAME_KEYS", "game_config"]
+           "GAME_KEYS", "game_config", "RefereeState", "segment_distance"]
 
 #: Referee commands, as a team's software receives them.
 COMMANDS = ("stop", "ball_placement", "prepare_kickoff", "prepare_penalty", "normal_start",
@@ -273,13 +273,45 @@ def game_config(game: Any, default: str = "ssl-2025-div-b"
             raise ValueError(f"game options {sorted(options)} apply to SSL rules only; rules "
                              f"{spec.name!r} take none")
         return spec, GameOptions(**options)
-    if isinstance(game, str) or hasattr(game, "source"):
+    if isinstance(game, (str, RuleSpec, HumanoidRuleSpec)):
         return rule_preset(game), GameOptions()
     raise TypeError(f"game must be None, True, a rule preset's name or spec, or a mapping "
                     f"with the keys {list(GAME_KEYS)}, got {type(game).__name__}")
 
 
-class GameController:
+class RefereeState:
+    """What both game controllers (this module's SSL one and
+    :class:`~soccer_env.sim.humanoid_game.HumanoidGameController`) keep and show: the
+    match's specs and robots, and the referee state a team's software receives."""
+
+    def _init_referee(self, field: FieldSpec, ball: BallSpec, teams: Sequence[int],
+                      radii: Sequence[float], duration: float,
+                      rng: np.random.Generator) -> None:
+        """Check the robots and the duration; the state before the start."""
+        if not 0.0 < duration < math.inf:
+            raise ValueError(f"duration must be a positive number of seconds, got {duration}")
+        self.field, self.ball_spec = field, ball
+        self.teams = np.asarray(teams, dtype=int)
+        self.radii = np.asarray(radii, dtype=float)
+        if self.radii.shape != self.teams.shape:
+            raise ValueError(f"radii must have one entry per robot ({len(self.teams)}), got "
+                             f"{self.radii.shape}")
+        self.duration = float(duration)
+        self.rng = rng
+        #: Robot index of each team's keeper (its first robot), -1 for a team without robots.
+        self.keepers = [int(np.flatnonzero(self.teams == t)[0]) if np.any(self.teams == t)
+                        else -1 for t in (0, 1)]
+        self.team_info = [TeamInfo(), TeamInfo()]
+        self.command = "stop"
+        self.command_team = -1
+        self.designated: tuple[float, float] | None = None
+        self.next_command: tuple[str, int] | None = None
+        self.in_play = False
+        self.time = 0.0
+        self.first_kickoff = 0
+
+
+class GameController(RefereeState):
     """The referee and game controller of one SSL match (see the module docstring).
 
     Args:
@@ -299,33 +331,17 @@ class GameController:
     def __init__(self, field: FieldSpec, ball: BallSpec, teams: Sequence[int],
                  radii: Sequence[float], rules: RuleSpec, options: GameOptions,
                  duration: float, rng: np.random.Generator) -> None:
-        self.field, self.ball_spec, self.rules, self.options = field, ball, rules, options
-        self.teams = np.asarray(teams, dtype=int)
-        self.radii = np.asarray(radii, dtype=float)
-        if not 0.0 < duration < math.inf:
-            raise ValueError(f"duration must be a positive number of seconds, got {duration}")
-        self.duration = float(duration)
-        self.rng = rng
+        self._init_referee(field, ball, teams, radii, duration, rng)
+        self.rules, self.options = rules, options
         hx = field.half_length
         mark = hx - rules.penalty_mark_distance
         if not -hx < mark < hx:
             raise ValueError(f"rules {rules.name!r}: the penalty mark lies "
                              f"{rules.penalty_mark_distance} m from the goal, outside field "
                              f"{field.name!r} ({field.length} m long)")
-        #: Robot index of each team's keeper (its first robot), -1 for a team without robots.
-        self.keepers = [int(np.flatnonzero(self.teams == t)[0]) if np.any(self.teams == t)
-                        else -1 for t in (0, 1)]
         self._stages = list(STAGES) if options.half_time else ["first_half", "post_game"]
-        self.team_info = [TeamInfo(), TeamInfo()]
         self.stage = self._stages[0]
-        self.stage_time_left = self._stage_duration()
-        self.command = "stop"
-        self.command_team = -1
-        self.designated: tuple[float, float] | None = None
-        self.next_command: tuple[str, int] | None = None
-        self.in_play = False
-        self.time = 0.0
-        self.first_kickoff = 0
+        self.stage_time_left = self.stage_duration
         # Kept across restarts: the ball's height since each team's last touch (7), each
         # team's last non-stopping foul (7), the last frame's robots (crashing), and whether
         # the coming free kick is indirect.
@@ -410,7 +426,7 @@ class GameController:
     def playing_time_left(self) -> float:
         """Playing time left in the match [s] (this stage's and the stages after it)."""
         stages = self._stages[self._stages.index(self.stage) + 1:]
-        return self.stage_time_left + self._stage_duration() * sum(
+        return self.stage_time_left + self.stage_duration * sum(
             s != "post_game" for s in stages)
 
     def step(self, frame: Frame) -> Decision:
@@ -452,9 +468,6 @@ class GameController:
         """Playing time of one stage [s]."""
         return self.duration / 2.0 if self.options.half_time else self.duration
 
-    def _stage_duration(self) -> float:
-        return self.stage_duration
-
     def _run_clocks(self, dt: float, d: Decision) -> None:
         self.stage_time_left = max(0.0, self.stage_time_left - dt)
         for info in self.team_info:
@@ -473,7 +486,7 @@ class GameController:
             self.in_play = False
             d.over = True
             return
-        self.stage_time_left = self._stage_duration()
+        self.stage_time_left = self.stage_duration
         for info in self.team_info:  # placement rights are per half (5.2)
             info.can_place = True
             info.placement_failures = 0
@@ -1068,7 +1081,7 @@ class GameController:
             if int(self.teams[i]) == team or not self._on_field(i):
                 self._interference.pop(i, None)
                 continue
-            gap = _segment_distance(float(robots[i, 0]), float(robots[i, 1]), bx, by,
+            gap = segment_distance(float(robots[i, 0]), float(robots[i, 1]), bx, by,
                                     *target) - self.radii[i]
             if gap < r.placement_interference_distance:
                 self._interference[i] = self._interference.get(i, 0.0) + dt
@@ -1117,7 +1130,7 @@ class GameController:
         d.place_ball = target
 
 
-def _segment_distance(px: float, py: float, ax: float, ay: float, bx: float, by: float
+def segment_distance(px: float, py: float, ax: float, ay: float, bx: float, by: float
                       ) -> float:
     """Distance from ``(px, py)`` to the segment from ``(ax, ay)`` to ``(bx, by)`` [m]."""
     dx, dy = bx - ax, by - ay

@@ -103,7 +103,7 @@ import numpy as np
 
 from soccer_env.presets import BallSpec, FieldSpec
 from soccer_env.presets.rules import HumanoidRuleSpec
-from soccer_env.sim.game import SITUATIONS, STAGES, Decision, Frame, GameEvent, TeamInfo
+from soccer_env.sim.game import SITUATIONS, STAGES, Decision, Frame, GameEvent, RefereeState
 from soccer_env.sim.referee import ExitKind, classify_exit
 from soccer_env.sim.world import BallExit
 
@@ -120,7 +120,7 @@ HUMANOID_FOULS = ("defender_too_close_to_kick_point",)
 _TIME_EPS = 1e-9
 
 
-class HumanoidGameController:
+class HumanoidGameController(RefereeState):
     """The autonomous referee of one Humanoid League match (see the module docstring).
 
     Args:
@@ -142,29 +142,10 @@ class HumanoidGameController:
                  rng: np.random.Generator) -> None:
         if not isinstance(rules, HumanoidRuleSpec):
             raise TypeError(f"rules must be a HumanoidRuleSpec, got {type(rules).__name__}")
-        if not 0.0 < duration < math.inf:
-            raise ValueError(f"duration must be a positive number of seconds, got {duration}")
-        self.field, self.ball_spec, self.rules = field, ball, rules
-        self.teams = np.asarray(teams, dtype=int)
-        self.radii = np.asarray(radii, dtype=float)
-        if self.radii.shape != self.teams.shape:
-            raise ValueError(f"radii must have one entry per robot ({len(self.teams)}), got "
-                             f"{self.radii.shape}")
-        self.duration = float(duration)
-        self.rng = rng
-        #: Robot index of each team's keeper (its first robot), -1 for a team without robots.
-        self.keepers = [int(np.flatnonzero(self.teams == t)[0]) if np.any(self.teams == t)
-                        else -1 for t in (0, 1)]
-        self.team_info = [TeamInfo(), TeamInfo()]
+        self._init_referee(field, ball, teams, radii, duration, rng)
+        self.rules = rules
         self.stage = STAGES[0]
         self.stage_time_left = self.stage_duration
-        self.command = "stop"
-        self.command_team = -1
-        self.designated: tuple[float, float] | None = None
-        self.next_command: tuple[str, int] | None = None
-        self.in_play = False
-        self.time = 0.0
-        self.first_kickoff = 0
         #: The restart being taken, or the last one (one of :data:`RESTARTS`), None before
         #: the start.
         self.restart_kind: str | None = None
