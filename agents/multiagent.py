@@ -569,7 +569,9 @@ class SelfPlayCallback(BaseCallback):
 
     The copy is a frozen :class:`~agents.policies.NumpyPolicy` (the deterministic action; it
     does not change while the learner trains). If the observations pass through
-    ``VecNormalize``, the copy carries a frozen copy of its statistics. With
+    ``VecNormalize``, the copy carries a frozen copy of its statistics; if the learner acts
+    through an action map (:class:`~agents.team_residual.TeamResidualVecEnv`), the copy
+    acts through the same map. With
     ``pool_size > 1`` the callback keeps the last ``pool_size`` copies and each match draws
     one of them whenever it resets; with ``pool_size == 1`` the newest copy replaces the
     opponent of every match at once.
@@ -605,6 +607,12 @@ class SelfPlayCallback(BaseCallback):
 
     def _init_callback(self) -> None:
         self._venv, self._norm = _find_match_vec_env(self.training_env)
+        self._action_map = None
+        env = self.training_env
+        while isinstance(env, VecEnvWrapper):
+            if self._action_map is None and hasattr(env, "action_map"):
+                self._action_map = env.action_map
+            env = env.venv
         if self._venv.learner == "both":
             raise ValueError("SelfPlayCallback needs learner='blue' or 'yellow': with "
                              "learner='both' both teams already play the learning policy")
@@ -624,7 +632,8 @@ class SelfPlayCallback(BaseCallback):
 
     def snapshot(self) -> Any:
         """A frozen copy of the learner's current deterministic policy."""
-        return NumpyPolicy.from_sb3(self.model, {"timesteps": self.num_timesteps}, self._norm)
+        return NumpyPolicy.from_sb3(self.model, {"timesteps": self.num_timesteps}, self._norm,
+                                    action_map=self._action_map)
 
     def update_opponent(self) -> None:
         """Copy the learner now and hand the copy (or the pool) to the VecEnv."""

@@ -165,12 +165,12 @@ class NumpyPolicy:
                  meta: dict[str, Any] | None = None,
                  normalize: tuple[np.ndarray, np.ndarray, float, float] | None = None,
                  action_map: dict[str, Any] | None = None, frame_stack: int = 1) -> None:
-        from agents.wrappers import ACTION_MAPS
+        from agents.wrappers import POLICY_MAPS
 
         if output not in ("clip", "tanh", "scale"):
             raise ValueError(f"output must be 'clip', 'tanh' or 'scale', got {output!r}")
-        if action_map is not None and (action_map.get("kind") not in ACTION_MAPS):
-            raise ValueError(f"action_map kind must be one of {list(ACTION_MAPS)}, got "
+        if action_map is not None and (action_map.get("kind") not in POLICY_MAPS):
+            raise ValueError(f"action_map kind must be one of {list(POLICY_MAPS)}, got "
                              f"{action_map!r}")
         if isinstance(frame_stack, bool) or not isinstance(frame_stack, (int, np.integer)) \
                 or frame_stack < 1:
@@ -209,9 +209,9 @@ class NumpyPolicy:
         if self.low.shape != (self.action_size,) or self.high.shape != (self.action_size,):
             raise ValueError(f"low and high must have shape ({self.action_size},)")
         if self.action_map is not None and \
-                self.action_size != ACTION_MAPS[self.action_map["kind"]]:
+                self.action_size != POLICY_MAPS[self.action_map["kind"]]:
             raise ValueError(f"a {self.action_map['kind']!r} policy has "
-                             f"{ACTION_MAPS[self.action_map['kind']]} outputs, got "
+                             f"{POLICY_MAPS[self.action_map['kind']]} outputs, got "
                              f"{self.action_size}")
         if self.normalize is not None:
             mean, var, clip, eps = self.normalize

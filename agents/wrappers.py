@@ -58,7 +58,7 @@ import numpy as np
 
 from soccer_env.envs.keeper import TURN_GAIN, ScriptedGoalkeeper
 
-__all__ = ["ACTION_MAPS", "FieldVelocityActions", "TargetActions", "GuardActions",
+__all__ = ["ACTION_MAPS", "POLICY_MAPS", "FieldVelocityActions", "TargetActions", "GuardActions",
            "GuardResidualActions", "BallResidualActions", "action_to_command",
            "target_params", "residual_params", "ball_residual_params", "scripted_guard_y",
            "wrap_actions", "stack_frames", "wrap_learner"]
@@ -66,6 +66,10 @@ __all__ = ["ACTION_MAPS", "FieldVelocityActions", "TargetActions", "GuardActions
 #: Action spaces of a learning keeper (see the module docstring) and their sizes.
 ACTION_MAPS = {"native": 6, "velocity": 3, "target": 2, "guard": 1,
                "guard-residual": 1, "ball-residual": 2}
+
+#: Every map a numpy policy may act through, with its size: the keeper's maps and the match
+#: team's ``"team-residual"`` (:mod:`agents.team_residual`).
+POLICY_MAPS = {**ACTION_MAPS, "team-residual": 6}
 
 #: The maps that drive an SSL robot's native command (``"ball-residual"`` takes any keeper).
 SSL_MAPS = ("velocity", "target", "guard", "guard-residual")
@@ -250,10 +254,19 @@ def action_to_command(kind: str, obs: np.ndarray, action: np.ndarray,
     * ``"ball-residual"`` (2 numbers): the believed ball velocity of the observation plus
       ``(a_0, a_1) residual`` in the team frame, and the scripted keeper's command on that
       observation (an SSL robot's or a humanoid's; see :func:`ball_residual_params`).
+    * ``"team-residual"`` (6 numbers, whole teams of a match, robots in order): the scripted
+      SSL team's command plus ``a * residual`` (:func:`agents.team_residual.team_residual_command`).
     """
-    if kind not in ACTION_MAPS or kind == "native":
-        raise ValueError(f"kind must be one of {[k for k in ACTION_MAPS if k != 'native']}, "
+    if kind not in POLICY_MAPS or kind == "native":
+        raise ValueError(f"kind must be one of {[k for k in POLICY_MAPS if k != 'native']}, "
                          f"got {kind!r}")
+    if kind == "team-residual":
+        if params is None:
+            raise ValueError("the 'team-residual' map needs its params (see "
+                             "agents.team_residual.team_residual_params)")
+        from agents.team_residual import team_residual_command
+
+        return team_residual_command(obs, action, params)
     obs = np.asarray(obs, dtype=np.float64)
     act = np.clip(np.asarray(action, dtype=np.float64), -1.0, 1.0)
     size = ACTION_MAPS[kind]

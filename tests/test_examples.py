@@ -38,7 +38,7 @@ def _run(script: str, *args: str, timeout: float = 300) -> str:
 
 def test_every_example_is_tested():
     tested = {"torchrl_envs.py", "supersuit_match_ppo.py", "recurrent_ppo_keeper.py",
-              "rl_zoo3_keeper.py", "batched_self_play.py",
+              "rl_zoo3_keeper.py", "batched_self_play.py", "train_ssl_team.py",
               "rllib_match.py"}  # tests/examples/test_rllib_example.py, in make test-rllib
     assert {p.name for p in EXAMPLES.glob("*.py")} == tested
 
@@ -129,3 +129,18 @@ def test_batched_self_play_example():
     out = _run("batched_self_play.py")
     assert "16 learners (8 matches x 2 blue robots)" in out
     assert "trained 512 agent steps" in out and "score:" in out
+
+
+def test_train_ssl_team_example(tmp_path):
+    _needs("stable_baselines3")
+    out = _run("train_ssl_team.py", "--out", str(tmp_path / "run"))
+    assert "trained 512 agent steps" in out and "3 copies" in out
+    lines = [json.loads(x) for x in (tmp_path / "run" / "progress.jsonl").read_text().split("\n")
+             if x]
+    assert [x["checkpoint"] for x in lines] == [f"team_{x['steps']}.npz" for x in lines]
+    assert all(x["wins"] + x["draws"] + x["losses"] == 2 for x in lines)
+    from agents.policies import NumpyPolicy
+
+    team = NumpyPolicy.load(tmp_path / "run" / "final_team.npz")
+    assert team.action_map["kind"] == "team-residual" and team.normalize is not None
+    assert team.meta["steps"] == 512 and team.meta["train_kwargs"]["blue"] == 2

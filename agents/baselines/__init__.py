@@ -13,6 +13,14 @@ statistics, to fine-tune; both load without unpickling, see :mod:`agents.model_f
 >>> obs, info = env.reset(seed=0)
 >>> keeper(obs).shape
 (6,)
+
+The shipped SSL match team (:data:`SSL_TEAM_2V2`, :func:`load_team`) is a numpy policy of the
+same kind that plays every robot of a team of two in
+:class:`~soccer_env.envs.match.SoccerParallelEnv`: it acts through the ``"team-residual"``
+map (:mod:`agents.team_residual`) and takes the observations of the whole team at once, robots
+in order (``team(np.stack([obs["blue_0"], obs["blue_1"]]))``), as
+:func:`agents.matches.head_to_head` calls it. Its earlier copies from the same training run lie
+in ``ssl_team_2v2_checkpoints/``.
 """
 
 from __future__ import annotations
@@ -23,9 +31,22 @@ from typing import Any
 from agents.policies import NumpyPolicy
 
 __all__ = ["BASELINES", "load_baseline", "baseline_path", "baseline_env_kwargs",
-           "make_baseline_env"]
+           "make_baseline_env", "SSL_TEAM_2V2", "SSL_TEAM_CHECKPOINTS", "load_team"]
 
 _HERE = Path(__file__).parent
+
+#: The shipped SSL match team, 2 vs 2 (``examples/train_ssl_team.py`` trained it; its
+#: ``meta`` holds the training match, the steps and the minutes).
+SSL_TEAM_2V2 = _HERE / "ssl_team_2v2.npz"
+#: The copies of the team its training saved on the way, ``team_<steps>.npz``.
+SSL_TEAM_CHECKPOINTS = _HERE / "ssl_team_2v2_checkpoints"
+
+
+def load_team() -> NumpyPolicy:
+    """The shipped SSL match team (:data:`SSL_TEAM_2V2`): call it on the observations of
+    both robots of a team, in order, of a 2 vs 2 match made with
+    ``soccer_env.parallel_env(**load_team().meta["eval_kwargs"])``."""
+    return NumpyPolicy.load(SSL_TEAM_2V2)
 
 #: Shipped baselines: name -> (file stem, description).
 BASELINES: dict[str, tuple[str, str]] = {

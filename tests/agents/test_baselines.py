@@ -76,3 +76,31 @@ def test_unknown_baseline_names_what_is_shipped():
         load_baseline("keeper-dqn")
     with pytest.raises(ValueError, match="kind must be"):
         baseline_path("keeper-ppo-ssl2012", "onnx")
+
+
+def test_the_shipped_team_plays_a_match_from_its_own_files():
+    import soccer_env
+    from agents.baselines import SSL_TEAM_2V2, SSL_TEAM_CHECKPOINTS, load_team
+    from agents.matches import team_policy
+
+    team = load_team()
+    assert SSL_TEAM_2V2.stat().st_size < 200_000
+    assert team.action_map["kind"] == "team-residual" and team.normalize is not None
+    meta = team.meta
+    assert meta["command"].startswith("python examples/train_ssl_team.py")
+    assert meta["steps"] > 0 and meta["minutes"] > 0
+    copies = sorted(SSL_TEAM_CHECKPOINTS.glob("team_*.npz"))
+    assert copies and all(p.stat().st_size < 200_000 for p in copies)
+    env = soccer_env.parallel_env(**{**meta["eval_kwargs"], "match_duration": 1.0})
+    obs, _ = env.reset(seed=0)
+    play = team_policy(str(SSL_TEAM_2V2), env, "yellow")
+    steps = 0
+    while env.agents:
+        actions = play(obs)
+        assert sorted(actions) == ["yellow_0", "yellow_1"]
+        assert all(a.shape == (6,) and np.all(np.abs(a) <= 1.0) for a in actions.values())
+        actions.update({a: np.zeros(6, np.float32) for a in ("blue_0", "blue_1")})
+        obs, *_ = env.step(actions)
+        steps += 1
+    assert steps == 30
+    env.close()

@@ -1,0 +1,163 @@
+"""Train the shipped SSL match team: 2 vs 2, PPO with parameter sharing, a correction to the
+scripted team, self-play against a pool of past copies and the scripted team.
+
+    python examples/train_ssl_team.py --out runs/ssl-team          # the shipped team's run
+    python examples/train_ssl_team.py --tiny                       # seconds: what CI runs
+
+Every blue robot of every match is one entry of stable-baselines3's batch
+(:func:`agents.multiagent.make_match_vec_env`, the matches stepped as one batch in each of two
+worker processes), so one policy plays both robots, whichever role it takes. The robots act
+through the ``"team-residual"`` map (:mod:`agents.team_residual`): the learner's action is a
+correction to the scripted team's command from the same observation, so training starts from
+a team that already plays, and the exploration noise starts small (``log_std_init=-2``: a
+standard deviation of 0.14 on each command entry).
+
+Opponents: the scripted team alone for the first ``--warmup`` steps; then, every
+``--copy-every`` steps, a frozen copy of the learner joins a pool of the last
+``--pool`` copies, and each match, when it restarts, draws its yellow team from the copies and
+the scripted team, the scripted team as often as all the copies together.
+
+Rewards: +1 for a goal scored, -1 for a goal conceded (shared by the team), and
+``ball_progress`` shaping of 0.2 per metre the ball moves towards the opponent goal
+(zero-sum). Matches of 30 s at 30 commands a second.
+
+Each copy is written to ``OUT/checkpoints/team_<steps>.npz`` (a numpy policy with the map and
+the observation statistics: arrays only), and the last one to ``OUT/final_team.npz``; with
+``--eval N`` each copy also plays N seeded matches against the scripted team
+(:func:`agents.matches.head_to_head`), and the line is printed and appended to
+``OUT/progress.jsonl``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shlex
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import torch
+from stable_baselines3 import PPO
+from stable_baselines3.common.vec_env import VecNormalize
+
+import soccer_env
+from agents.matches import Side, head_to_head
+from agents.multiagent import SelfPlayCallback, make_match_vec_env
+from agents.team_residual import TeamResidualVecEnv, team_residual_params
+
+#: The training match: 2 vs 2 SSL robots, Division B, truth observations, the simple referee.
+TRAIN_KWARGS: dict[str, Any] = {"blue": 2, "yellow": 2, "match_duration": 30.0,
+                                "control_dt": 1.0 / 30.0, "shaping": {"ball_progress": 0.2}}
+#: The match the copies are evaluated in (and the shipped team's figures measured in).
+EVAL_KWARGS: dict[str, Any] = {"blue": 2, "yellow": 2, "match_duration": 60.0,
+                               "control_dt": 1.0 / 30.0}
+#: PPO's settings.
+PPO_KWARGS: dict[str, Any] = {"n_steps": 128, "batch_size": 4096, "n_epochs": 5,
+                              "gamma": 0.995, "learning_rate": 3e-4, "ent_coef": 0.0,
+                              "policy_kwargs": {"net_arch": [128, 128], "log_std_init": -2.0}}
+
+
+class PoolSelfPlay(SelfPlayCallback):
+    """:class:`~agents.multiagent.SelfPlayCallback` whose pool keeps the scripted team beside
+    the copies (as often as all of them together), after ``warmup`` steps against the scripted
+    team alone; each copy saved as a numpy policy file and, with ``eval_matches``, played
+    against the scripted team."""
+
+    def __init__(self, out: Path, update_every: int, pool_size: int, warmup: int,
+                 eval_matches: int, workers: int) -> None:
+        super().__init__(update_every=update_every, pool_size=pool_size, copy_at_start=False)
+        self.out = out
+        self.warmup = int(warmup)
+        self.eval_matches = int(eval_matches)
+        self.workers = int(workers)
+        self.t0 = time.perf_counter()
+
+    def _on_step(self) -> bool:
+        if self.num_timesteps < self.warmup:
+            self._last_update = self.num_timesteps
+            return True
+        return super()._on_step()
+
+    def update_opponent(self) -> None:
+        copy = self.snapshot()
+        self.pool.append(copy)
+        self._venv.set_opponent_pool(["scripted"] * len(self.pool) + list(self.pool))
+        self.n_updates += 1
+        path = copy.save(self.out / "checkpoints" / f"team_{self.num_timesteps}.npz")
+        line: dict[str, Any] = {"steps": int(self.num_timesteps),
+                                "seconds": round(time.perf_counter() - self.t0, 1),
+                                "checkpoint": path.name}
+        if self.eval_matches:
+            h = head_to_head(Side(str(path), "truth"), Side("scripted", "truth"),
+                             self.eval_matches, start_seed=10_000, env_kwargs=EVAL_KWARGS,
+                             workers=self.workers)
+            gd = h.goal_difference()
+            line.update(wins=h.wins, draws=h.draws, losses=h.losses,
+                        goals_for=h.goals_for, goals_against=h.goals_against,
+                        goal_difference=round(gd[0], 3))
+        print(json.dumps(line), flush=True)
+        with open(self.out / "progress.jsonl", "a") as f:
+            f.write(json.dumps(line) + "\n")
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--tiny", action="store_true",
+                   default=os.environ.get("SOCCER_EXAMPLES_TINY") == "1",
+                   help="4 matches of 1 s, a few hundred steps (what the tests run)")
+    p.add_argument("--out", default="runs/ssl-team", help="run folder (default runs/ssl-team)")
+    p.add_argument("--steps", type=int, default=60_000_000,
+                   help="agent steps (default 60,000,000)")
+    p.add_argument("--matches", type=int, default=256, help="matches stepped at once (256)")
+    p.add_argument("--workers", type=int, default=2, help="worker processes (2)")
+    p.add_argument("--warmup", type=int, default=10_000_000,
+                   help="steps against the scripted team alone (10,000,000)")
+    p.add_argument("--copy-every", type=int, default=5_000_000,
+                   help="steps between copies of the learner (5,000,000)")
+    p.add_argument("--pool", type=int, default=4, help="copies kept in the pool (4)")
+    p.add_argument("--eval", type=int, default=40,
+                   help="matches each copy plays against the scripted team (40; 0: none)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the matches and of PPO (0)")
+    args = p.parse_args(argv)
+    torch.set_num_threads(1)
+    train, ppo = dict(TRAIN_KWARGS), dict(PPO_KWARGS)
+    if args.tiny:
+        train["match_duration"] = 1.0
+        args.matches, args.steps, args.warmup, args.copy_every, args.eval = 4, 512, 128, 128, 2
+        ppo.update(n_steps=16, batch_size=64, n_epochs=1)
+    out = Path(args.out)
+    (out / "checkpoints").mkdir(parents=True, exist_ok=True)
+    env = soccer_env.parallel_env(**train)
+    params = team_residual_params(env, "blue")
+    env.close()
+    venv = make_match_vec_env(train, n_matches=args.matches, learner="blue",
+                              opponent="scripted", seed=args.seed, workers=args.workers,
+                              batched=True)
+    venv = VecNormalize(TeamResidualVecEnv(venv, params), gamma=ppo["gamma"])
+    model = PPO("MlpPolicy", venv, seed=args.seed, verbose=0, **ppo)
+    callback = PoolSelfPlay(out, args.copy_every, args.pool, args.warmup, args.eval,
+                            args.workers)
+    t0 = time.perf_counter()
+    model.learn(args.steps, callback=callback)
+    minutes = (time.perf_counter() - t0) / 60
+    final = callback.snapshot()
+    command = "python examples/train_ssl_team.py " + shlex.join(
+        sys.argv[1:] if argv is None else argv)
+    final.meta.update(steps=int(model.num_timesteps), minutes=round(minutes, 1),
+                      command=command.strip(), train_kwargs=train, eval_kwargs=EVAL_KWARGS,
+                      ppo=ppo)
+    path = final.save(out / "final_team.npz")
+    venv.close()
+    print(f"trained {model.num_timesteps:,} agent steps in {minutes:.1f} min; "
+          f"{callback.n_updates} copies; the team: {path}")
+    h = head_to_head(Side(str(path), "truth"), Side("scripted", "truth"), args.eval or 2,
+                     start_seed=20_000, env_kwargs=EVAL_KWARGS, workers=args.workers)
+    print(h.summary())
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
