@@ -547,20 +547,24 @@ def make_match_vec_env(env_kwargs: Mapping[str, Any] | None = None, n_matches: i
     return venv
 
 
-def _find_match_vec_env(env: VecEnv) -> tuple[Any, VecNormalize | None]:
-    """The :class:`MatchVecEnv` under ``env``'s wrappers, and the outermost ``VecNormalize``
-    that normalises observations, if any."""
-    norm = None
+def _find_match_vec_env(env: VecEnv) -> tuple[Any, VecNormalize | None, dict | None]:
+    """The :class:`MatchVecEnv` under ``env``'s wrappers, the outermost ``VecNormalize``
+    that normalises observations, if any, and the action map of the outermost wrapper that
+    maps the learner's actions (:class:`~agents.team_residual.TeamResidualVecEnv`), if
+    any."""
+    norm = action_map = None
     while isinstance(env, VecEnvWrapper):
         if norm is None and isinstance(env, VecNormalize) and env.norm_obs:
             norm = env
+        if action_map is None and hasattr(env, "action_map"):
+            action_map = env.action_map
         env = env.venv
     from agents.match_workers import MatchWorkerVecEnv
 
     if not isinstance(env, (MatchVecEnv, MatchWorkerVecEnv)):
         raise ValueError(f"SelfPlayCallback needs a model trained on a MatchVecEnv (possibly "
                          f"wrapped), got {type(env).__name__}")
-    return env, norm
+    return env, norm, action_map
 
 
 class SelfPlayCallback(BaseCallback):
@@ -606,13 +610,7 @@ class SelfPlayCallback(BaseCallback):
         self._last_update = 0
 
     def _init_callback(self) -> None:
-        self._venv, self._norm = _find_match_vec_env(self.training_env)
-        self._action_map = None
-        env = self.training_env
-        while isinstance(env, VecEnvWrapper):
-            if self._action_map is None and hasattr(env, "action_map"):
-                self._action_map = env.action_map
-            env = env.venv
+        self._venv, self._norm, self._action_map = _find_match_vec_env(self.training_env)
         if self._venv.learner == "both":
             raise ValueError("SelfPlayCallback needs learner='blue' or 'yellow': with "
                              "learner='both' both teams already play the learning policy")

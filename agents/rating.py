@@ -222,15 +222,23 @@ def fit_ratings(results: Sequence[HeadToHead], anchor: str | None = None,
 
 def round_robin(sides: Sequence[Side], matches: int = 100, start_seed: int = 0,
                 env_kwargs: Mapping[str, Any] | None = None, workers: int | None = None,
-                progress: Callable[[str], None] | None = None) -> list[HeadToHead]:
+                progress: Callable[[str], None] | None = None,
+                pairs: Sequence[tuple[Side, Side]] | None = None) -> list[HeadToHead]:
     """:func:`~agents.matches.head_to_head` between every pair of ``sides`` (labels must
-    differ), ``matches`` seeded matches each, every pair on the same seeds."""
+    differ), or only between the ``pairs`` given (sides of ``sides``), ``matches`` seeded
+    matches each, every pair on the same seeds; ``progress`` is called with each pair's
+    summary line."""
     labels = [s.label for s in sides]
     if len(sides) < 2 or len(set(labels)) != len(labels):
         raise ValueError(f"a round robin needs two or more sides with different labels, got "
                          f"{labels}")
+    if pairs is None:
+        pairs = list(itertools.combinations(sides, 2))
+    strangers = sorted({s.label for pair in pairs for s in pair if s not in sides})
+    if strangers:
+        raise ValueError(f"pairs must be made of the sides {labels}; got {strangers}")
     out = []
-    for a, b in itertools.combinations(sides, 2):
+    for a, b in pairs:
         h = head_to_head(a, b, matches, start_seed, env_kwargs, workers)
         if progress is not None:
             progress(h.summary())

@@ -57,26 +57,25 @@ def team_residual_params(env: Any, team: str = "blue", residual: float = TEAM_RE
     """The constants of the ``"team-residual"`` map for ``team`` of the match ``env`` (possibly
     wrapped): the field, ball and robot specs as numbers, the observation's entry names, the
     team size and ``residual``. Only SSL teams without the game flow."""
-    from agents.team import TEAMS
+    from agents.team import TEAMS, ScriptedTeam
 
     u = getattr(env, "unwrapped", env)
     if team not in TEAMS:
         raise ValueError(f"team must be one of {list(TEAMS)}, got {team!r}")
-    t = TEAMS.index(team)
-    spec = u.team_specs[t] if hasattr(u, "team_specs") else u.robot_spec
-    if spec.kind != "ssl":
+    kind = u.team_specs[TEAMS.index(team)].kind
+    if kind != "ssl":
         raise ValueError(f"the 'team-residual' map corrects the scripted SSL team; the {team} "
-                         f"team's robots are {spec.kind!r}")
+                         f"team's robots are {kind!r}")
     if getattr(u, "game_rules", None) is not None:
         raise ValueError("the 'team-residual' map needs every robot of the team on the field: "
                          "play it without the game flow (game=None)")
     if not (np.isfinite(residual) and 0.0 < residual <= 2.0):
         raise ValueError(f"residual must be in (0, 2], got {residual!r}")
-    size = int(u.world.n_blue if t == 0 else u.world.n_yellow)
-    return {"team_size": size, "residual": float(residual),
-            "names": list(u.builder.names_for(t)),
-            "field": dataclasses.asdict(u.field), "ball": dataclasses.asdict(u.ball_spec),
-            "robot": dataclasses.asdict(spec)}
+    scripted = ScriptedTeam.for_env(u, team)
+    return {"team_size": scripted.team_size, "residual": float(residual),
+            "names": list(u.builder.names_for(team)),
+            "field": dataclasses.asdict(scripted.field),
+            "ball": dataclasses.asdict(scripted.ball), "robot": dataclasses.asdict(scripted.robot)}
 
 
 @lru_cache(maxsize=8)
@@ -108,7 +107,12 @@ def team_residual_command(obs: np.ndarray, act: np.ndarray, params: Mapping[str,
     ``(n, obs_dim)`` and actions ``(n, 6)`` of whole teams, robots in order (``n`` a multiple
     of the team size): ``clip(u_s + a * residual, -1, 1)`` with ``u_s`` the scripted team's
     command, its switches' "off" moved to ``-1`` (see the module docstring)."""
-    team = _team(json.dumps(dict(params), sort_keys=True))
+    return _command(_team(json.dumps(dict(params), sort_keys=True)), float(params["residual"]),
+                    obs, act)
+
+
+def _command(team: Any, residual: float, obs: np.ndarray, act: np.ndarray) -> np.ndarray:
+    """:func:`team_residual_command` with the scripted team already rebuilt."""
     obs = np.asarray(obs)
     act = np.clip(np.asarray(act, dtype=np.float64), -1.0, 1.0)
     if obs.ndim != 2 or act.shape != (len(obs), 6):
@@ -123,7 +127,7 @@ def team_residual_command(obs: np.ndarray, act: np.ndarray, params: Mapping[str,
     base = base.astype(np.float64)
     switches = list(_SWITCHES)
     base[:, switches] = np.where(base[:, switches] > 0.0, base[:, switches], -1.0)
-    return np.clip(base + act * float(params["residual"]), -1.0, 1.0).astype(np.float32)
+    return np.clip(base + act * residual, -1.0, 1.0).astype(np.float32)
 
 
 class TeamResidualVecEnv(VecEnvWrapper):
@@ -139,7 +143,9 @@ class TeamResidualVecEnv(VecEnvWrapper):
     def __init__(self, venv: VecEnv, params: Mapping[str, Any]) -> None:
         super().__init__(venv)
         self.params = dict(params)
-        size = int(self.params["team_size"])
+        # Rebuilt once here, not at every step.
+        self._team = _team(json.dumps(self.params, sort_keys=True))
+        size = self._team.team_size
         if venv.num_envs % size:
             raise ValueError(f"the VecEnv's {venv.num_envs} entries are not whole teams of "
                              f"{size} robots")
@@ -160,7 +166,8 @@ class TeamResidualVecEnv(VecEnvWrapper):
     def step_async(self, actions: np.ndarray) -> None:
         if self._obs is None:
             raise RuntimeError("call reset() before step()")
-        self.venv.step_async(team_residual_command(self._obs, actions, self.params))
+        self.venv.step_async(_command(self._team, float(self.params["residual"]), self._obs,
+                                      actions))
 
     def step_wait(self):
         obs, rewards, dones, infos = self.venv.step_wait()

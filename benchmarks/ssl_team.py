@@ -27,14 +27,9 @@ import json
 import time
 from pathlib import Path
 
+from agents.baselines import SSL_TEAM_2V2, SSL_TEAM_CHECKPOINTS, load_team
 from agents.matches import Side, head_to_head
-from agents.rating import fit_ratings, rating_table
-
-BASELINES = Path(__file__).resolve().parent.parent / "agents" / "baselines"
-TEAM = BASELINES / "ssl_team_2v2.npz"
-CHECKPOINTS = BASELINES / "ssl_team_2v2_checkpoints"
-#: The match of the figures (the one the team's training evaluated its copies in).
-EVAL_KWARGS = {"blue": 2, "yellow": 2, "match_duration": 60.0, "control_dt": 1.0 / 30.0}
+from agents.rating import fit_ratings, rating_table, round_robin
 
 
 def _steps(path: Path) -> int:
@@ -51,9 +46,11 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--out", default=None, help="a JSON file for the results")
     args = p.parse_args(argv)
     t0 = time.perf_counter()
-    team = Side(str(TEAM), "truth", label="shipped team")
+    # The match of the figures: the one the team's training evaluated its copies in.
+    eval_kwargs = load_team().meta["eval_kwargs"]
+    team = Side(str(SSL_TEAM_2V2), "truth", label="shipped team")
     scripted = Side("scripted", "truth", label="scripted")
-    h = head_to_head(team, scripted, args.matches, start_seed=0, env_kwargs=EVAL_KWARGS,
+    h = head_to_head(team, scripted, args.matches, start_seed=0, env_kwargs=eval_kwargs,
                      workers=args.workers)
     gd = h.goal_difference()
     print(f"{h.summary()}  [{time.perf_counter() - t0:.0f} s]")
@@ -62,20 +59,18 @@ def main(argv: list[str] | None = None) -> int:
         r, lo, hi = h.rate(outcome)
         print(f"| {outcome} | {100 * r:.1f} % | {100 * lo:.1f} to {100 * hi:.1f} % |")
     print(f"| goal difference per match | {gd[0]:+.2f} | {gd[1]:+.2f} to {gd[2]:+.2f} |")
-    report = {"env_kwargs": EVAL_KWARGS, "head_to_head": h.to_dict()}
+    report = {"env_kwargs": eval_kwargs, "head_to_head": h.to_dict()}
     if args.round_robin:
-        copies = sorted(CHECKPOINTS.glob("team_*.npz"), key=_steps)
+        copies = sorted(SSL_TEAM_CHECKPOINTS.glob("team_*.npz"), key=_steps)
         idle = Side("idle", "truth", label="idle")
         players = [scripted, team, *(Side(str(c), "truth", label=f"copy at "
                                           f"{_steps(c) / 1e6:.0f} M steps") for c in copies)]
         pairs = [(scripted, idle), (team, idle),
                  *((a, b) for a, b in itertools.combinations(players, 2)
                    if (a, b) != (scripted, team))]
-        results = [h]
-        for a, b in pairs:
-            results.append(head_to_head(a, b, args.round_robin, start_seed=1000,
-                                        env_kwargs=EVAL_KWARGS, workers=args.workers))
-            print(results[-1].summary())
+        results = [h, *round_robin([*players, idle], args.round_robin, start_seed=1000,
+                                   env_kwargs=eval_kwargs, workers=args.workers,
+                                   progress=print, pairs=pairs)]
         ratings = fit_ratings(results, anchor="scripted")
         print(rating_table(ratings))
         report["ratings"] = [r.__dict__ for r in ratings]

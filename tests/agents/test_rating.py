@@ -132,3 +132,14 @@ def test_a_round_robin_rates_a_team_that_plays_above_one_that_does_not():
     assert r["scripted"].score == 1.0 and r["idle"].matches == 2
     with pytest.raises(ValueError, match="different labels"):
         rate([sides[0], sides[0]], matches=2)
+
+
+def test_a_round_robin_plays_only_the_pairs_given():
+    sides = [Side("scripted", "truth", label="scripted"), Side("idle", "truth", label="idle"),
+             Side("idle", "truth", label="idle too")]
+    results = rate(sides, matches=2, env_kwargs={"blue": 1, "yellow": 1, "match_duration": 1.0},
+                   workers=1, pairs=[(sides[0], sides[1]), (sides[0], sides[2])])[1]
+    assert [(h.a.label, h.b.label) for h in results] == [("scripted", "idle"),
+                                                         ("scripted", "idle too")]
+    with pytest.raises(ValueError, match=r"pairs must be made of the sides .* got \['other'\]"):
+        rate(sides, matches=2, pairs=[(sides[0], Side("idle", label="other"))])
