@@ -167,22 +167,23 @@ ESTIMATOR_CONFIGS: Registry[EstimatorConfig] = _registry(
                         "latency and command loss still apply)", "upper bound"),
         EstimatorConfig("raw", "raw", "latest delayed detections, unfiltered (velocity from "
                         "the last two sightings)", "lower bound"),
-        _filter_config("kf", "paper 002 (baseline without latency compensation)"),
-        _filter_config("kf-comp", "paper 002 (latency compensation without friction model)"),
-        _filter_config("ekf", "paper 002"),
-        _filter_config("ekf-improved", "paper 002 (improved EKF)"),
-        _filter_config("ekf-2phase", "soccer_env (paper 002's EKF with a two-phase ball)"),
-        _filter_config("ls", "paper 002 (least-squares baseline)"),
+        _filter_config("kf", "Zhao et al. (2012) (baseline without latency compensation)"),
+        _filter_config("kf-comp", "Zhao et al. (2012) (latency compensation without friction "
+                       "model)"),
+        _filter_config("ekf", "Zhao et al. (2012)"),
+        _filter_config("ekf-improved", "Zhao et al. (2012) (improved EKF)"),
+        _filter_config("ekf-2phase", "soccer_env (Zhao et al.'s 2012 EKF with a two-phase ball)"),
+        _filter_config("ls", "Zhao et al. (2012) (least-squares baseline)"),
     ))
 
 
 def _humanoid_config(name: str, description: str, obs_mode: str = "perceived",
-                     source: str = "paper 000", **perception: str) -> EstimatorConfig:
+                     source: str = "Xu et al. (2012)", **perception: str) -> EstimatorConfig:
     return EstimatorConfig(name, obs_mode, description, source, perception=perception,
                            robot="humanoid")
 
 
-#: The humanoid robot of the humanoid ablation unless ``robot`` is given: paper 000's.
+#: The humanoid robot of the humanoid ablation unless ``robot`` is given: Xu et al.'s (2012).
 DEFAULT_HUMANOID = "humanoid-2012"
 
 #: The humanoid estimator configurations, by name, in table order: what the keeper believes
@@ -207,11 +208,12 @@ HUMANOID_CONFIGS: Registry[EstimatorConfig] = _registry(
         _humanoid_config("fusion-mfbpf", "Hough fusion (1/L), MFBPF tracking (default)",
                          fusion="inverse", ball_tracker="mfbpf"),
         _humanoid_config("fusion-ivar-mfbpf", "Hough fusion weighted by the inverse variance "
-                         "of each line's offset, MFBPF tracking", source="paper 000; the "
+                         "of each line's offset, MFBPF tracking", source="Xu et al. (2012); the "
                          "weighting ours", fusion="inverse_variance", ball_tracker="mfbpf"),
         _humanoid_config("pixels", "fusion-mfbpf with every robot finding the ball in its "
                          "rendered head-camera images (Kalman-started mean shift)",
-                         source="papers 000 and 004", fusion="inverse", ball_tracker="mfbpf",
+                         source="Xu et al. (2012) and Yu et al. (2010)", fusion="inverse",
+                         ball_tracker="mfbpf",
                          detector="pixels"),
     ))
 

@@ -17,7 +17,8 @@ images), :mod:`~soccer_env.perception` (what a team believes), :mod:`~soccer_env
 registration). Below all of them, :mod:`estimators` (numpy only); above, :mod:`agents` and the
 application layer :mod:`soccer_lab`, which this package never imports.
 
-"Paper 000" to "paper 004" are the five source papers, cited in full in the README's "Source
+"Xu et al. (2012)" to "Yu et al. (2010)" are the five source papers, cited in full in the README's
+"Source
 papers" section.
 """
 

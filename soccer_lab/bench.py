@@ -10,7 +10,7 @@ observations is the median ratio of truth and perceived runs timed in alternatio
 ``--batch N`` it also times the batched Goalkeeper-v0 and the batched 2 vs 2 match VecEnv
 against single environments (:func:`bench_batched`).
 
-Humanoids (paper 000's ``humanoid-2012`` with its ``kidsize-2012`` head camera): the keeper
+Humanoids (Xu et al.'s 2012 ``humanoid-2012`` with its ``kidsize-2012`` head camera): the keeper
 with its three watching team-mates (four robots, each with its camera, localization, radio,
 fusion and tracker when perceived) and a 3 vs 3 match; their random actions neither kick nor
 dive (a robot that dives at random lies blind most of the time, which would understate the

@@ -1,4 +1,4 @@
-"""Geometric fusion of sightings (paper 000, Xu, Xie, Wang, Ni 2012).
+"""Geometric fusion of sightings (Xu, Xie, Wang and Ni 2012).
 
 * :mod:`~estimators.fusion.hough`: Hough-space fusion of several robots' sighting lines of one
   target (:func:`hough_fuse`, :func:`fusion_weights`, :func:`line_offset_variance` for the

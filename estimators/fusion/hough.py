@@ -1,5 +1,5 @@
-"""Hough-space fusion of several robots' sightings of one target (paper 000, Xu, Xie, Wang, Ni
-2012, SPEC 1.1).
+"""Hough-space fusion of several robots' sightings of one target (Xu et al. 2012, Xu, Xie, Wang, Ni
+2012).
 
 Robot ``i`` at ``p_i`` sees the target along the direction ``psi_i`` (its estimated heading
 plus the sighting's bearing). The line ``L_i`` through ``p_i`` along ``psi_i`` maps to the point
@@ -80,10 +80,10 @@ __all__ = ["hough_lines", "hough_fuse", "fusion_weights", "fuse_sightings", "fus
 FUSION_WEIGHTINGS: Registry[int] = Registry("fusion weighting", [
     ("equal", 0,
      "equal weights: every robot's sighting line counts the same (the plain Hough fusion of "
-     "paper 000, Xu, Xie, Wang, Ni 2012)"),
+     "Xu, Xie, Wang and Ni 2012)"),
     ("inverse", 1,
      "weights 1 / distance: a robot's sighting counts in inverse proportion to its distance "
-     "from the target (the weighted fusion of paper 000, Xu, Xie, Wang, Ni 2012)"),
+     "from the target (the weighted fusion of Xu, Xie, Wang and Ni 2012)"),
     ("inverse_square", 2,
      "weights 1 / distance^2: near sightings dominate, as a bearing error's effect grows "
      "with the distance"),

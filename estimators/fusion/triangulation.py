@@ -1,10 +1,11 @@
-"""Self-localization from the bearings of three known landmarks (paper 000, Xu, Xie, Wang, Ni
-2012, SPEC 1.1).
+"""Self-localization from the bearings of three known landmarks (Xu et al. 2012, Xu, Xie, Wang, Ni
+2012).
 
 A robot at ``R = (x, y)`` with heading ``theta`` measures the bearing ``phi_i`` of landmark
 ``P_i`` relative to its heading (counter-clockwise positive; with a panning head, the camera's
 bearing plus the pan angle). Any two landmarks and ``R`` lie on a circle whose inscribed angle
-at ``R`` is ``phi_j - phi_i`` (paper 000's two circles through ``P1, P2`` and ``P2, P3``); ``R``
+at ``R`` is ``phi_j - phi_i`` (Xu et al.'s 2012 two circles through ``P1, P2`` and ``P2, P3``);
+``R``
 is the second intersection of those circles, and the heading follows from any bearing:
 ``theta = atan2(P_i - R) - phi_i`` (averaged over the three on the circle).
 
@@ -24,7 +25,7 @@ Degenerate configurations are reported, not crashed on (:class:`Fix` with ``ok=F
 
 **Ambiguous landmarks** (:func:`triangulate_sightings`): a robot sees *a* line corner or *a*
 goal post of a colour, not which one, and a head-camera frame (51 degrees) rarely holds three
-landmarks, so paper 000 pans the head and combines the sightings of several frames. Given
+landmarks, so Xu et al. (2012) pans the head and combines the sightings of several frames. Given
 sightings as points in the robot's present body frame (``(r cos b, r sin b)`` for range ``r``
 and bearing ``b``; older frames' sightings moved by the odometry since) and each one's kind,
 :func:`triangulate_sightings` tries the candidate assignments that a landmark table allows for
@@ -374,7 +375,7 @@ def triangulate_sightings(kinds: Sequence[Hashable], points: np.ndarray | Sequen
 
 class SightingMemory:
     """The landmark sightings of the last ``frames`` frames, kept in the robot's present body
-    frame by moving them with the odometry (paper 000 pans the head and combines several
+    frame by moving them with the odometry (Xu et al. 2012 pans the head and combines several
     frames' sightings, its 51-degree view rarely holding three landmarks).
 
     A sighting at range ``r`` and bearing ``b`` is the body-frame point ``p = r (cos b,

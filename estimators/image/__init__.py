@@ -7,7 +7,7 @@ table or a hue histogram, or a frame difference); numpy-only, whatever made the 
   003 (Li, Wu, Kong 2010; :class:`MeanShiftParticleFilter`) and the plain particle filter it
   is compared with (:class:`ParticleFilterTracker`);
 * :mod:`~estimators.image.following`: the Kalman-started mean shift with ego-motion
-  compensation of paper 004 (Yu, Wei, Zhang 2010; :class:`KalmanMeanShift`), plain mean shift
+  compensation of Yu, Wei and Zhang (2010; :class:`KalmanMeanShift`), plain mean shift
   (:class:`PlainMeanShift`), and the pinhole helpers (:func:`ego_motion_shift`,
   :func:`depth_from_size`, :func:`apparent_height`, :func:`focal_length_px`).
 """

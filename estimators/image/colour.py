@@ -1,5 +1,6 @@
-"""Colour operations of the image trackers: paper 003's colour look-up table and motion image,
-paper 004's hue histogram and back-projection.
+"""Colour operations of the image trackers: Li et al.'s (2010) colour look-up table and motion
+image,
+Yu et al.'s (2010) hue histogram and back-projection.
 
 Images are ``(H, W, 3)`` ``uint8`` arrays in RGB order. These wrap OpenCV's colour conversions,
 histograms and back-projections (the ``pixels`` extra), the one part of :mod:`estimators`
@@ -70,7 +71,7 @@ def back_project(image: np.ndarray, histogram: np.ndarray, min_saturation: int =
 
 def frame_difference(prev: np.ndarray, cur: np.ndarray) -> np.ndarray:
     """Absolute grey-level difference of two RGB (or grey) uint8 frames, float32 in [0, 1]
-    (paper 003's motion image)."""
+    (Li et al.'s 2010 motion image)."""
     if prev.shape != cur.shape:
         raise ValueError(f"frames must have the same shape, got {prev.shape} and {cur.shape}")
     return _difference(grey(prev), grey(cur))
@@ -117,7 +118,7 @@ def _look_up(image: np.ndarray, hist: np.ndarray) -> np.ndarray:
 
 
 class ColourTable:
-    """A colour look-up table (paper 003's, built offline): quantised RGB -> class
+    """A colour look-up table (Li et al.'s 2010, built offline): quantised RGB -> class
     probabilities.
 
     The RGB cube is cut into ``2**bits`` levels per channel. For each cell centre ``x`` and
@@ -199,7 +200,7 @@ class ColourTable:
 
     def probability(self, image: np.ndarray, cls: str) -> np.ndarray:
         """Probability image of class ``cls`` (``"ball"`` means ``"orange"``) for an RGB uint8
-        image: float32 ``(H, W)`` in [0, 1] (paper 003's colour image)."""
+        image: float32 ``(H, W)`` in [0, 1] (Li et al.'s 2010 colour image)."""
         return _look_up(_rgb(image), self._hists[self._index(cls)])
 
     def region_image(self, image: np.ndarray, cls: str) -> RegionImage:

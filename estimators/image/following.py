@@ -1,9 +1,9 @@
-"""The Kalman-started mean shift with ego-motion compensation of paper 004 (Yu, Wei, Zhang
-2010, SPEC 1.5), plain mean shift from the last position, and depth from a target's apparent
+"""The Kalman-started mean shift with ego-motion compensation of Yu et al. (2010) (Yu, Wei, Zhang
+2010), plain mean shift from the last position, and depth from a target's apparent
 size, on weight images (images, points, windows and mean shift as in
 :mod:`estimators.image.meanshift`).
 
-**Paper 004 (Kalman-started mean shift).** :class:`KalmanMeanShift` filters the image-plane
+**Yu et al. (2010) (Kalman-started mean shift).** :class:`KalmanMeanShift` filters the image-plane
 state ``X = (x, y, vx, vy)`` [px, px, px/frame, px/frame] of a target seen by a camera on a
 moving robot: ``X_{k+1} = A X_k + B(u_k) + w_k``, ``A`` constant velocity over one frame, and
 the robot's own motion ``u = (theta, s)`` over the last frame as control input (the paper's
@@ -21,7 +21,7 @@ optical axis):
 
 Two orders of a frame's steps, by ``order``:
 
-* ``"paper"``, as printed in paper 004: the back-projection's centroid in the region ``R``,
+* ``"paper"``, as printed in Yu et al. (2010): the back-projection's centroid in the region ``R``,
   ``region_scale`` (2) times the target's size, centred at the prediction, is the measurement
   ``z`` (pixels below ``region_floor`` dropped first: the paper's "simple filtering" of
   low-probability points; the value 0.1 is ours); the Kalman filter is updated with ``z``;
@@ -61,7 +61,7 @@ __all__ = ["KalmanMeanShift", "PlainMeanShift", "depth_from_size", "focal_length
 
 
 # ------------------------------------------------------------------------------------------
-# Paper 004: Kalman-started mean shift with ego-motion compensation
+# Yu et al. (2010): Kalman-started mean shift with ego-motion compensation
 # ------------------------------------------------------------------------------------------
 
 def focal_length_px(pixels: float, fov: float) -> float:
@@ -113,7 +113,7 @@ def ego_motion_shift(rotation: float, advance: float, image_size: Sequence[int],
                      fov: Sequence[float], camera_height: float = 0.0,
                      distance: float | None = None) -> np.ndarray:
     """Image shift ``(dx, dy)`` [px] of a target caused by the robot's own motion over one
-    frame (paper 004, see the module docstring):
+    frame (Yu et al. 2010, see the module docstring):
     ``dx = theta * x_B / gamma_x`` (``theta = rotation`` [rad], positive counter-clockwise,
     i.e. a left turn, which moves the scene right) and
     ``dy = (arctan(h / (d - s)) - arctan(h / d)) * y_B / gamma_y`` (``s = advance`` [m]
@@ -183,7 +183,7 @@ class _MeanShiftTrack:
 
 
 class PlainMeanShift(_MeanShiftTrack):
-    """Mean shift from the last position, no prediction: paper 004's baseline.
+    """Mean shift from the last position, no prediction: Yu et al.'s (2010) baseline.
 
     Args:
         position: initial ``(x, y)`` [px].
@@ -215,7 +215,7 @@ class PlainMeanShift(_MeanShiftTrack):
 
 
 class KalmanMeanShift(_MeanShiftTrack):
-    """Kalman-started mean shift with ego-motion compensation, paper 004 (Yu, Wei and Zhang
+    """Kalman-started mean shift with ego-motion compensation, Yu et al. (2010) (Yu, Wei and Zhang
     2010); see the module docstring for the model, the sign conventions and our readings.
 
     Args:
@@ -371,7 +371,7 @@ class KalmanMeanShift(_MeanShiftTrack):
 
     def _paper_order(self, weight_image, start: np.ndarray
                      ) -> tuple[np.ndarray | None, np.ndarray]:
-        """Paper 004's order: ``z`` = the centroid of the weights (those at least
+        """Yu et al.'s (2010) order: ``z`` = the centroid of the weights (those at least
         ``region_floor``) in the region ``R`` centred at ``start``, clipped to the image; the
         Kalman update with ``z``; mean shift from the posterior. Returns mean shift's
         converged centroid (None when ``R`` holds no weight or the converged window's mean

@@ -1,5 +1,5 @@
-"""Mean shift on weight images: the building block of the image trackers of paper 003
-(Li, Wu, Kong 2010; :mod:`estimators.image.mspf`) and paper 004 (Yu, Wei, Zhang 2010;
+"""Mean shift on weight images: the building block of the image trackers of Li et al. (2010)
+(Li, Wu, Kong 2010; :mod:`estimators.image.mspf`) and Yu, Wei and Zhang (2010;
 :mod:`estimators.image.following`), with the window machinery and argument checks they share.
 
 **Images and coordinates.** Every image is a 2-D array of non-negative weights (float32 in

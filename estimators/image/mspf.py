@@ -1,8 +1,8 @@
-"""The feature-restricted mean-shift particle filter of paper 003 (Li, Wu, Kong 2010,
-SPEC 1.4) and the plain particle filter it is compared with, on weight images (images, points,
+"""The feature-restricted mean-shift particle filter of Li, Wu and Kong (2010) and the plain
+particle filter it is compared with, on weight images (images, points,
 windows and mean shift as in :mod:`estimators.image.meanshift`).
 
-**Paper 003 (feature-restricted mean-shift particle filter).** State per particle
+**Li et al. (2010) (feature-restricted mean-shift particle filter).** State per particle
 ``(x, y, vx, vy)`` [px, px, px/frame, px/frame]; the heading ``phi`` of the paper's state is
 left to the ``feature_check`` hook (it needs the patch layout, not the weight images). The
 2nd-order autoregressive model ``S_t - S_{t-1} = S_{t-1} - S_{t-2} + w``,
@@ -81,7 +81,7 @@ FeatureCheck = Callable[[np.ndarray, np.ndarray], np.ndarray]
 
 
 # ------------------------------------------------------------------------------------------
-# Paper 003: particle filters on window likelihoods
+# Li et al. (2010): particle filters on window likelihoods
 # ------------------------------------------------------------------------------------------
 
 class _WindowParticleFilter:
@@ -223,7 +223,7 @@ class _WindowParticleFilter:
 
 
 class ParticleFilterTracker(_WindowParticleFilter):
-    """Plain particle filter on window likelihoods: paper 003's baseline (see the module
+    """Plain particle filter on window likelihoods: Li et al.'s (2010) baseline (see the module
     docstring): AR(2) motion, the likelihood ``exp(-Dis^2 / (2 sigma^2))`` of the combined
     colour/motion image over each particle's window, weighted-mean estimate, systematic
     resampling every frame; no mean shift, no feature restriction, no lost-track handling.
@@ -267,7 +267,7 @@ class ParticleFilterTracker(_WindowParticleFilter):
 
 
 class MeanShiftParticleFilter(_WindowParticleFilter):
-    """Feature-restricted mean-shift particle filter of paper 003 (Li, Wu and Kong 2010) for
+    """Feature-restricted mean-shift particle filter of Li, Wu and Kong (2010) for
     one target (see the module docstring for the maths and our readings).
 
     Args:
@@ -356,7 +356,7 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
 
     def occluded_by(self, robot_positions, robot_radius_px: float,
                     predicted=None) -> int | None:
-        """Paper 003's ball occlusion test: the index of the robot nearest to the target's
+        """Li et al.'s (2010) ball occlusion test: the index of the robot nearest to the target's
         predicted position among those inside its search window, else None. A robot (a square
         of half-side ``robot_radius_px`` [px] around its ``(x, y)``) is inside when it
         overlaps the search window (``window_size`` centred at the predicted position), which
@@ -499,7 +499,7 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         return self._weigh_and_estimate(self._log_likelihood(mom[:, 3]), allowed)
 
     def _restricted_mean(self, logw: np.ndarray, allowed: np.ndarray) -> np.ndarray:
-        """Paper 003's steps 3-4 as printed: the weights (kept in :attr:`weights`, zero where
+        """Li et al.'s (2010) steps 3-4 as printed: the weights (kept in :attr:`weights`, zero where
         not allowed), the particles the restriction rejects replaced by copies of allowed
         ones drawn with equal probability, and the unweighted mean of the set."""
         self.weights = self._normalised(logw, allowed)

@@ -3,7 +3,7 @@
 * :mod:`~estimators.kalman.core`: :class:`KalmanFilter`, one set of equations for the linear
   filter and the EKF (a building block: ``predict`` / ``update`` / ``innovation``);
 * :mod:`~estimators.kalman.ball`: ball trackers for delayed overhead-camera detections, the
-  EKF of paper 002 (Zhao, Wang, Li 2012; :class:`BallTracker`, :class:`BallFilterConfig`) and
+  EKF of Zhao, Wang and Li (2012; :class:`BallTracker`, :class:`BallFilterConfig`) and
   its least-squares baseline (:class:`LeastSquaresBall`);
 * :mod:`~estimators.kalman.robots`: decoupled constant-velocity pose trackers for many robots
   (:class:`RobotTracker`).

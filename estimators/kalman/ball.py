@@ -1,4 +1,5 @@
-"""Ball trackers for delayed overhead-camera detections: the EKF of paper 002 (Zhao, Wang, Li
+"""Ball trackers for delayed overhead-camera detections: the EKF of Zhao et al. (2012) (Zhao, Wang,
+Li
 2012) and its baselines.
 
 Both trackers follow the tracker protocol (:class:`~estimators.protocol.Tracker`): they take
@@ -7,7 +8,7 @@ positions ``(k, 2)`` [m], robot positions ``(j, 2)`` seen in the same frame), an
 ``estimate(t) -> (x, y, vx, vy)`` for any later time ``t`` (None before the first detection)
 and forget everything on ``reset()``.
 
-Latency compensation (paper 002, SPEC 1.3): a measurement corrects the state *at its capture
+Latency compensation (Zhao et al. 2012): a measurement corrects the state *at its capture
 time*, and the estimate is predicted from there to whatever time is asked, the present or the
 present plus the actuation latency. Frames may arrive out of order (several cameras): the
 tracker keeps a short history and replays it in capture-time order. A tracker given arrival
@@ -42,7 +43,7 @@ CHI2_2DOF_999 = 13.815510557964274
 
 @dataclass(frozen=True)
 class BallFilterConfig:
-    """Configuration of :class:`BallTracker`. Defaults are paper 002's parameters.
+    """Configuration of :class:`BallTracker`. Defaults are Zhao et al.'s (2012) parameters.
 
     Attributes:
         deceleration: carpet friction ``a_f`` [m/s^2] (paper: 0.23); 0 makes a
@@ -261,10 +262,10 @@ class _Track(NamedTuple):
 
 
 class BallTracker:
-    """Kalman / extended Kalman ball tracker with latency compensation (paper 002).
+    """Kalman / extended Kalman ball tracker with latency compensation (Zhao et al. 2012).
 
     Args:
-        config: filter configuration (paper 002's EKF by default).
+        config: filter configuration (Zhao et al.'s 2012 EKF by default).
         measurement: the sensor's :class:`~estimators.models.PositionMeasurement` (the same
             object that simulates the detections); by default one with ``config.sigma_xy``.
 
@@ -401,7 +402,7 @@ class BallTracker:
         return self._sigma_v(position, obs)
 
     def _sigma_v(self, position, obstacles: list) -> float:
-        """Eq. 19 of paper 002 (:meth:`velocity_sigma` with the obstacles already a list of
+        """Eq. 19 of Zhao et al. (2012) (:meth:`velocity_sigma` with the obstacles already a list of
         rows)."""
         c = self.config
         if not c.collision_noise or not obstacles:
@@ -509,7 +510,7 @@ class BallTracker:
 
 
 class LeastSquaresBall:
-    """The least-squares trajectory predictor of paper 002's comparison.
+    """The least-squares trajectory predictor of Zhao et al.'s (2012) comparison.
 
     Fits ``p(t) = p0 + v (t - t_last)`` to the last ``window`` detections by least squares
     (separately in ``x`` and ``y``) and extrapolates to the requested time. Of several

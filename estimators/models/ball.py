@@ -1,4 +1,5 @@
-"""The closed-form motion of a ball rolling on carpet: the ball model of paper 002 (Zhao, Wang,
+"""The closed-form motion of a ball rolling on carpet: the ball model of Zhao et al. (2012) (Zhao,
+Wang,
 Li 2012)."""
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ def _states(state) -> np.ndarray:
 class FrictionBallModel:
     """A ball decelerating at a constant ``deceleration`` against its velocity until it stops.
 
-    This is the ball model of paper 002 (Zhao, Wang, Li 2012, SPEC 1.3): carpet friction is a
+    This is the ball model of Zhao, Wang and Li (2012): carpet friction is a
     constant deceleration ``a_f`` opposite to the motion, so between collisions the ball moves
     in a straight line, decelerates uniformly and stops instead of reversing. For a state
     ``(px, py, vx, vy)`` with speed ``v`` and direction ``u = (vx, vy) / v``, after ``dt``
@@ -38,7 +39,7 @@ class FrictionBallModel:
     arrays of shape ``(..., 4)``. Units: metres, seconds.
 
     Args:
-        deceleration: ``a_f`` [m/s^2], >= 0 (paper 002 measured 0.23 m/s^2).
+        deceleration: ``a_f`` [m/s^2], >= 0 (Zhao et al. 2012 measured 0.23 m/s^2).
     """
 
     def __init__(self, deceleration: float) -> None:

@@ -1,5 +1,5 @@
 """Pinhole model of a humanoid's head camera, and the ground projection of a sighting
-(paper 000, Xu, Xie, Wang, Ni 2012, SPEC 1.1).
+(Xu, Xie, Wang and Ni 2012).
 
 Frames: the robot frame has its origin on the ground under the camera, ``x`` forward, ``y``
 to the left, ``z`` up [m]. The paper's world frame at the robot is ``(x_w, y_w, z_w) =
@@ -37,9 +37,9 @@ class HeadCamera:
     """A pinhole head camera (see the module docstring).
 
     Attributes:
-        height: camera height above the ground [m] (paper 000: 0.56).
-        hfov: horizontal field of view [rad] (paper 000: 51 degrees).
-        width, height_px: image size [pixels] (paper 000: 720 x 625 at 25 frames/s).
+        height: camera height above the ground [m] (Xu et al. 2012: 0.56).
+        hfov: horizontal field of view [rad] (Xu et al. 2012: 51 degrees).
+        width, height_px: image size [pixels] (Xu et al. 2012: 720 x 625 at 25 frames/s).
     """
 
     height: float = 0.56

@@ -18,7 +18,7 @@ __all__ = [
     "PAPER_CYCLE",
 ]
 
-#: The decision cycle of paper 002 (Zhao, Wang, Li 2012) [s]. The paper's velocity noise
+#: The decision cycle of Zhao, Wang and Li (2012) [s]. The paper's velocity noise
 #: ``sigma_v`` is per cycle; for other step lengths its variance scales with
 #: ``dt / PAPER_CYCLE`` (a velocity random walk), so that the filter's behaviour does not
 #: depend on how often it is predicted.
@@ -31,7 +31,7 @@ def wrap_angle(a):
 
 
 class FrictionBallMotion:
-    """Ball state ``(x, y, vx, vy)`` decelerated by carpet friction (paper 002, SPEC 1.3).
+    """Ball state ``(x, y, vx, vy)`` decelerated by carpet friction (Zhao et al. 2012).
 
     Over a step ``T`` the paper's discrete model (eq. 14) is
 
@@ -54,7 +54,7 @@ class FrictionBallMotion:
     constant-velocity model with the same noise.
 
     Args:
-        deceleration: ``a_f`` [m/s^2] (paper 002: 0.23).
+        deceleration: ``a_f`` [m/s^2] (Zhao et al. 2012: 0.23).
         propagation: ``"jacobian"`` or ``"rk"``.
     """
 

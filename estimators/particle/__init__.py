@@ -1,9 +1,9 @@
 """Particle filters: the filter cores and the trackers built on them.
 
 * :mod:`~estimators.particle.core`: the bootstrap, fission-bootstrap and modified fission-
-  bootstrap particle filters of paper 000 (Xu, Xie, Wang, Ni 2012) on ``(N, d)`` particle
+  bootstrap particle filters of Xu, Xie, Wang and Ni (2012) on ``(N, d)`` particle
   arrays (building blocks: ``predict`` / ``correct`` / ``step``), their resampling and SFN
-  steps, and paper 000's UNGM benchmark;
+  steps, and Xu et al.'s (2012) UNGM benchmark;
 * :mod:`~estimators.particle.ball`: a ball tracker on those filters for a team's fused ball
   positions (:class:`ParticleBallTracker`);
 * :mod:`~estimators.particle.localization`: adaptive self-localization by KLD-sampling, paper

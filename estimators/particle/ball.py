@@ -1,11 +1,10 @@
-"""Particle-filter ball tracking with the filters of paper 000 (Xu, Xie, Wang, Ni 2012,
-SPEC 1.1).
+"""Particle-filter ball tracking with the filters of Xu, Xie, Wang and Ni (2012).
 
 The fused ball positions of a team (Hough fusion, :func:`~estimators.fusion.fuse_sightings`)
-jitter around the truth; paper 000 smooths and predicts them with a particle filter on the
+jitter around the truth; Xu et al. (2012) smooths and predicts them with a particle filter on the
 ball's state ``X = (px, py, vx, vy)`` [m, m, m/s, m/s] in the field frame.
 
-**Motion** (constant velocity, SPEC 1.1, with the corrected ``B`` for this state order), over a
+**Motion** (constant velocity, with the corrected ``B`` for this state order), over a
 step of ``dT`` seconds taken from the time stamps:
 
     X_t = A X_{t-1} + B W_t,
@@ -13,7 +12,7 @@ step of ``dT`` seconds taken from the time stamps:
     B = [[dT^2/2, 0], [0, dT^2/2], [dT, 0], [0, dT]],
     W_t ~ N(0, accel_sigma^2 I_2)   (white acceleration noise [m/s^2]).
 
-With ``deceleration = a > 0`` (rolling friction, as in paper 002, Zhao, Wang, Li 2012) the
+With ``deceleration = a > 0`` (rolling friction, as in Zhao, Wang and Li 2012) the
 deterministic part ``A X`` is replaced by uniform deceleration along the motion that stops the
 ball instead of reversing it: with speed ``s = |v|``, unit direction ``u`` and
 ``tau = min(dT, s / a)``, ``p' = p + u (s tau - a tau^2 / 2)``, ``v' = u (s - a tau)``; the
@@ -26,7 +25,7 @@ over the particles (a constant factor, which no filter's weights depend on, agai
 underflow).
 
 **Filters**: :class:`~estimators.particle.BootstrapPF`, :class:`~estimators.particle.FBPF` or
-:class:`~estimators.particle.MFBPF` (the default, paper 000's), with their own resampling and
+:class:`~estimators.particle.MFBPF` (the default, Xu et al.'s (2012)), with their own resampling and
 SFN; the fission perturbation has one standard deviation per state component
 (``fission_sigma`` [m, m, m/s, m/s]), because a single variance cannot suit metres and metres
 per second alike.
@@ -129,13 +128,13 @@ def _floats(value) -> np.ndarray | None:
 
 
 class ParticleBallTracker:
-    """Ball tracker on paper 000's particle filters (see the module docstring).
+    """Ball tracker on Xu et al.'s (2012) particle filters (see the module docstring).
 
     Args:
         rng: the generator of every random draw.
         filter: a name in :data:`~estimators.particle.core.PARTICLE_FILTERS`:
-            ``"bootstrap"``, ``"fbpf"`` or ``"mfbpf"`` (paper 000's, the default).
-        n_particles: number of particles (paper 000: 100).
+            ``"bootstrap"``, ``"fbpf"`` or ``"mfbpf"`` (Xu et al.'s 2012, the default).
+        n_particles: number of particles (Xu et al. 2012: 100).
         accel_sigma: standard deviation of the white acceleration noise ``W`` [m/s^2].
         deceleration: rolling deceleration ``a`` [m/s^2]; 0 is the plain constant-velocity
             model.
@@ -144,8 +143,8 @@ class ParticleBallTracker:
         fission_sigma: standard deviations of the fission offspring's perturbation,
             ``(px, py, vx, vy)`` [m, m, m/s, m/s] (FBPF and MFBPF; the filter gets their
             squares as its per-dimension ``fission_variance``).
-        sfn_when: MFBPF's test, ``"above"`` (as printed in paper 000) or ``"below"``.
-        resample: FBPF's resampling, ``"always"`` (as printed in paper 000) or
+        sfn_when: MFBPF's test, ``"above"`` (as printed in Xu et al. (2012)) or ``"below"``.
+        resample: FBPF's resampling, ``"always"`` (as printed in Xu et al. (2012)) or
             ``"threshold"`` (only when ``N_eff < N_th``); see :class:`~estimators.FBPF`.
         init_speed_sigma: standard deviation of the velocity at (re-)initialisation [m/s].
         gate: squared Mahalanobis distance beyond which a measurement is implausible; None

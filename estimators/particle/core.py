@@ -1,5 +1,5 @@
 """Bootstrap, fission-bootstrap (FBPF) and the modified FBPF (MFBPF) particle filters of
-paper 000 (Xu, Xie, Wang, Ni 2012, SPEC 1.1), on ``(N, d)`` particle arrays.
+Xu, Xie, Wang and Ni (2012), on ``(N, d)`` particle arrays.
 
 The model is the user's: ``transition(particles, k, rng) -> particles`` draws
 ``x_k ~ p(x_k | x_{k-1})`` for every row, ``likelihood(particles, y) -> (N,)`` evaluates
@@ -22,7 +22,7 @@ the posterior's tails at every step and make the filter overconfident.
   resampling), normalise, estimate, resample (systematic) when ``N_eff = 1 / sum w^2`` falls
   below ``N_th`` (every step by default, the classic bootstrap filter).
 * :class:`FBPF`: the same with SFN applied before resampling when ``N_eff < N_th``; as
-  printed in paper 000 (``resample="always"``, the default) it resamples at every step, with
+  printed in Xu et al. (2012) (``resample="always"``, the default) it resamples at every step, with
   ``resample="threshold"`` only when ``N_eff < N_th``.
 * :class:`MFBPF` (the paper's simplification for embedded hardware): weights accumulate,
   ``w_k = w_{k-1} p(y_k | x_k)`` with their sum ``S_k`` in the same pass, the estimate is
@@ -195,12 +195,12 @@ class FBPF(BootstrapPF):
 
     Two orders, by ``resample``:
 
-    * ``"always"`` (the default), paper 000's listing (section 5.1, steps 1-6): weights
+    * ``"always"`` (the default), Xu et al.'s (2012) listing (section 5.1, steps 1-6): weights
       ``w_k = p(y_k | x_k)``, normalised; estimate; SFN when ``N_eff < N_th``; then systematic
       resampling at every step, so every step starts from ``N`` equally weighted particles.
     * ``"threshold"``: SFN and resampling only when ``N_eff < N_th``; otherwise the weights
       carry over, ``w_k = w_{k-1} p(y_k | x_k)``, as in the bootstrap filter with a
-      threshold (the usual way to add less resampling noise). On paper 000's UNGM benchmark
+      threshold (the usual way to add less resampling noise). On Xu et al.'s (2012) UNGM benchmark
       it is measurably worse (``soccer-env paper ungm --runs 10000``: RMSE 0.056 higher,
       paired standard error 0.011), so the printed order is the default.
 
@@ -303,14 +303,14 @@ PARTICLE_FILTERS: Registry[type[BootstrapPF]] = Registry("particle filter", [
      "fission bootstrap particle filter (Cheng and Zhang 2008): bootstrap PF with "
      "sort-fission-normalise against sample impoverishment"),
     ("mfbpf", MFBPF,
-     "modified fission bootstrap particle filter of paper 000 (Xu, Xie, Wang, Ni 2012): FBPF "
+     "modified fission bootstrap particle filter of Xu, Xie, Wang and Ni (2012): FBPF "
      "simplified for embedded hardware, weights kept between resamplings and fission while "
      "the effective sample size is high"),
 ])
 
 
 # ------------------------------------------------------------------------------------------
-# The univariate nonstationary growth model (UNGM), paper 000's benchmark
+# The univariate nonstationary growth model (UNGM), Xu et al.'s (2012) benchmark
 # ------------------------------------------------------------------------------------------
 
 def ungm_model(process_variance: float = 10.0, measurement_variance: float = 1.0

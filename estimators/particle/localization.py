@@ -1,17 +1,16 @@
-"""Adaptive particle-filter self-localization with KLD-sampling (paper 001, Guo, Li 2013,
-SPEC 1.2).
+"""Adaptive particle-filter self-localization with KLD-sampling (Guo and Li 2013).
 
 State ``(x, y, theta)`` in the field frame [m, m, rad]; particles ``(N, 3)``.
 
 * **Motion** (:meth:`KLDLocalizer.predict`): the odometry's body-frame displacement
-  ``(dx, dy, dtheta)`` since the last call (from wheel encoders, as in paper 001, or a walk
+  ``(dx, dy, dtheta)`` since the last call (from wheel encoders, as in Guo and Li (2013), or a walk
   engine), applied to every particle in its own frame with Gaussian noise whose standard
   deviation grows with the motion: ``sigma_xy = a_trans * |d| + a_rot_xy * |dtheta|`` and
-  ``sigma_theta = a_rot * |dtheta| + a_trans_theta * |d|`` (turning slips most, as paper 001
+  ``sigma_theta = a_rot * |dtheta| + a_trans_theta * |d|`` (turning slips most, as Guo and Li (2013)
   observed).
 * **Observation** (:meth:`KLDLocalizer.update`): each sighted landmark of known position gives a
   measured range and bearing; ``p(z | chi) = N(range; g(chi), sigma_r^2) N(bearing; b(chi),
-  sigma_b^2)`` multiplied over the landmarks (paper 001 uses the range term only; the bearing
+  sigma_b^2)`` multiplied over the landmarks (Guo and Li 2013 uses the range term only; the bearing
   term is optional, ``sigma_bearing=None`` turns it off), with ``sigma_r`` growing with the
   range (``sigma_r = range_sigma + range_sigma_rel * range + range_sigma_quad * range^2``:
   stereo depth error grows linearly, a monocular ground projection's with the square of the
@@ -46,7 +45,7 @@ State ``(x, y, theta)`` in the field frame [m, m, rad]; particles ``(N, 3)``.
   ``max(0, 1 - w_fast / (recovery_ratio w_slow))`` of the new particles is drawn uniformly
   over the field (``recovery_ratio = 1`` is the textbook rule, which also fires on ordinary
   fluctuations).
-* **Recovery seed** (``recovery="triangulate"``, paper 000's three-landmark self-localization
+* **Recovery seed** (``recovery="triangulate"``, Xu et al.'s (2012) three-landmark self-localization
   put to use): the sightings of the last ``seed_memory`` updates are kept in the robot's body
   frame, moved by the odometry (:class:`~estimators.fusion.triangulation.SightingMemory`);
   when particles are injected, pose hypotheses are triangulated from them
@@ -220,7 +219,7 @@ class KLDConfig:
         a_trans, a_rot_xy, a_rot, a_trans_theta: odometry noise (see the module docstring).
         range_sigma, range_sigma_rel, range_sigma_quad: range noise ``sigma_r = range_sigma
             + range_sigma_rel * range + range_sigma_quad * range^2`` [m, 1, 1/m].
-        bearing_sigma: bearing noise [rad]; None leaves bearings out (paper 001: ranges only).
+        bearing_sigma: bearing noise [rad]; None leaves bearings out (Guo and Li 2013: ranges only).
         alpha_slow, alpha_fast: averaging rates of the recovery's likelihood averages
             (``0 <= alpha_slow < alpha_fast <= 1``; ``alpha_fast = 0`` turns recovery off).
         recovery_ratio: how far (``0 < ratio <= 1``) the short-term average must fall below

@@ -6,7 +6,7 @@ Three observation modes share one observation layout:
 * ``"raw"``: the latest delayed detections of the overhead vision, unfiltered (positions as
   last seen; velocities as the difference of the last two sightings);
 * ``"perceived"``: the estimation stack's belief: the ball tracker chosen by
-  ``ball_filter`` (paper 002's EKF by default) and batched robot pose filters, fed with the
+  ``ball_filter`` (Zhao et al.'s 2012 EKF by default) and batched robot pose filters, fed with the
   vision's frames by capture time and predicted to the present plus the actuation latency,
   so that the policy acts on where things will be when its command takes effect.
 
@@ -129,7 +129,7 @@ class PerceptionConfig:
         ball_filter: one of :data:`~soccer_env.perception.options.BALL_FILTERS` (used by
             ``obs_mode="perceived"``).
         detector: ``"geometric"`` (the sensor model's detections) or ``"pixels"`` (rendered
-            images tracked by paper 003's mean-shift particle filters,
+            images tracked by Li et al.'s (2010) mean-shift particle filters,
             :mod:`soccer_env.perception.pixels`; needs the ``pixels`` extra).
 
     Humanoids (head cameras, :mod:`soccer_env.perception.humanoid`):

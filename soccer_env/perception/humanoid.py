@@ -1,6 +1,6 @@
 """What a humanoid team believes: every robot localizes itself, sees through its head camera,
 shares its sightings over the team radio, fuses them in Hough space and tracks the ball with a
-particle filter (papers 000 and 001).
+particle filter (Xu et al. 2012 and Guo and Li (2013)).
 
 Per humanoid ("brain"), per step:
 
@@ -10,7 +10,7 @@ Per humanoid ("brain"), per step:
    weighted by the frame's landmarks (``localization="kld-triangulate"``, the default: paper
    001's KLD-sampling particle filter, :class:`~estimators.KLDLocalizer`, with ambiguous
    landmark kinds: a robot sees an "L" corner, not which one, its recovery drawing half of the
-   new particles around poses triangulated from the last frames' landmarks, paper 000;
+   new particles around poses triangulated from the last frames' landmarks, Xu et al. (2012);
    ``"kld"``: the same with a uniform recovery; ``"odometry"``: dead reckoning from the known
    start;
    ``"truth"``: the true pose, an oracle for ablations). The ball detection nearest the
@@ -23,9 +23,9 @@ Per humanoid ("brain"), per step:
    within 1.5 frame periods plus the radio's latency and jitter of it (the latest per
    team-mate), each moved by the tracked ball velocity times its age,
    are fused by :func:`~estimators.fuse_sightings` (``fusion="equal" | "inverse" |
-   "inverse_square"``: paper 000's Hough-space least squares with the weighting named; with
+   "inverse_square"``: Xu et al.'s (2012) Hough-space least squares with the weighting named; with
    ``"own"`` only the robot's own sighting is used).
-5. **Tracking**: the fused point feeds paper 000's particle filter
+5. **Tracking**: the fused point feeds Xu et al.'s (2012) particle filter
    (:class:`~estimators.ParticleBallTracker`, ``ball_tracker="mfbpf" | "fbpf" |
    "bootstrap"``, 100 particles) stamped with the capture time, so its prediction to the
    present compensates the camera latency; with ``"none"`` the belief is the latest fused

@@ -77,7 +77,7 @@ def _kalman(compensated: bool, ball: BallSpec, vision: VisionSpec,
 
 def _ekf(propagation: str, two_phase: bool, ball: BallSpec, vision: VisionSpec,
          measurement: PositionMeasurement) -> BallFilter:
-    """Paper 002's friction EKF with the ball's rolling deceleration (and, with
+    """Zhao et al.'s (2012) friction EKF with the ball's rolling deceleration (and, with
     ``two_phase``, its sliding phase after kicks); its other parameters are the paper's."""
     cfg = BallFilterConfig(deceleration=ball.rolling_deceleration, propagation=propagation,
                            sigma_xy=_sigma(vision),
@@ -97,14 +97,14 @@ BALL_FILTERS: Registry[Callable[..., BallFilter]] = Registry("ball filter", [
      "constant-velocity Kalman filter fed arrival times (no latency compensation), no gating"),
     ("kf-comp", functools.partial(_kalman, True), "the same with latency compensation"),
     ("ekf", functools.partial(_ekf, "jacobian", False),
-     "paper 002's friction EKF (analytic Jacobian), latency compensation, eq. 19 "
+     "Zhao et al.'s (2012) friction EKF (analytic Jacobian), latency compensation, eq. 19 "
      "collision-aware noise, gating and reset on kicks (default)"),
     ("ekf-improved", functools.partial(_ekf, "rk", False),
-     "paper 002's improved EKF (Runge-Kutta propagation, F = M), otherwise as 'ekf'"),
+     "Zhao et al.'s (2012) improved EKF (Runge-Kutta propagation, F = M), otherwise as 'ekf'"),
     ("ekf-2phase", functools.partial(_ekf, "jacobian", True),
      "'ekf' with the two-phase sliding/rolling model after detected kicks"),
     ("ls", _least_squares,
-     "paper 002's least-squares predictor (line fit to the last 6 detections)"),
+     "Zhao et al.'s (2012) least-squares predictor (line fit to the last 6 detections)"),
 ])
 
 
@@ -112,7 +112,7 @@ BALL_FILTERS: Registry[Callable[..., BallFilter]] = Registry("ball filter", [
 # Humanoid teams: ball trackers, fusion, localization
 # --------------------------------------------------------------------------------------------
 
-#: Particles of a humanoid's ball tracker (paper 000: 100).
+#: Particles of a humanoid's ball tracker (Xu et al. 2012: 100).
 PARTICLES = 100
 
 
@@ -136,7 +136,8 @@ BALL_TRACKERS: Registry[Callable[..., ParticleBallTracker] | None] = Registry(
         f"{PARTICLE_FILTERS.description(name)}; {PARTICLES} particles")
        for name in PARTICLE_FILTERS])
 
-#: Ball fusion: the robot's own sighting only, or paper 000's Hough-space fusion of the team's
+#: Ball fusion: the robot's own sighting only, or Xu et al.'s (2012) Hough-space fusion of the
+# team's
 #: sightings with one of the estimators' weightings (the value: the weighting
 #: :func:`~estimators.fuse_sightings` applies; a lone own line is weighted as ``"inverse"``).
 FUSIONS: Registry[str] = Registry(
@@ -153,7 +154,7 @@ FUSIONS: Registry[str] = Registry(
 
 def _kld(recovery: str, bounds: tuple[float, float, float, float], rng: np.random.Generator,
          config: KLDConfig, pose: np.ndarray) -> KLDLocalizer:
-    """Paper 001's KLD-sampling localization started at the known pose (5 cm, 0.05 rad),
+    """Guo and Li's (2013) KLD-sampling localization started at the known pose (5 cm, 0.05 rad),
     its recovery drawing particles as ``recovery`` says (one of
     :data:`~estimators.RECOVERIES`)."""
     return KLDLocalizer(bounds, rng, config, pose=pose, pose_sigma=(0.05, 0.05, 0.05),
@@ -164,10 +165,10 @@ def _kld(recovery: str, bounds: tuple[float, float, float, float], rng: np.rando
 #: itself (dead reckoning, the oracle).
 LOCALIZATIONS: Registry[Callable[..., KLDLocalizer] | None] = Registry("localization", [
     ("kld", functools.partial(_kld, "uniform"),
-     "paper 001's KLD-sampling particle filter on odometry and landmark sightings"),
+     "Guo and Li's (2013) KLD-sampling particle filter on odometry and landmark sightings"),
     ("kld-triangulate", functools.partial(_kld, "triangulate"),
      "the default: 'kld' whose recovery draws half of its new particles around poses "
-     "triangulated from the last 25 frames' landmarks (paper 000) instead of all uniformly"),
+     "triangulated from the last 25 frames' landmarks (Xu et al. 2012) instead of all uniformly"),
     ("odometry", None, "dead reckoning from the known start pose (no landmarks)"),
     ("truth", None, "the true pose (oracle, for ablations)"),
 ])
@@ -244,6 +245,6 @@ DETECTORS: Registry[Detector] = Registry("detector", [
     ("geometric", Detector(_geometric_overhead, _geometric_head, None),
      "the sensor model's noisy detections"),
     ("pixels", Detector(_pixels_overhead, _pixels_head, _pixels_ball_finder),
-     "rendered camera images tracked by paper 003's mean-shift particle filters (overhead) and "
-     "paper 004's Kalman-started mean shift (head cameras); needs the pixels extra"),
+     "rendered camera images tracked by Li et al.'s (2010) mean-shift particle filters (overhead) "
+     "and Yu et al.'s (2010) Kalman-started mean shift (head cameras); needs the pixels extra"),
 ])

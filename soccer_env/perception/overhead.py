@@ -4,7 +4,7 @@ the trackers on its rendered images):
 * :class:`TruthPerception` (``obs_mode="truth"``): the oracle, the true state itself;
 * :class:`RawPerception` (``"raw"``): the latest delayed detections, unfiltered;
 * :class:`FilteredPerception` (``"perceived"``): the ball filter chosen by ``ball_filter``
-  (paper 002's EKF by default) and batched robot pose filters, fed with the frames by capture
+  (Zhao et al.'s 2012 EKF by default) and batched robot pose filters, fed with the frames by capture
   time and predicted to the present plus the actuation latency.
 
 :func:`make_perception` builds the pipeline of an observation mode.

@@ -1,4 +1,5 @@
-"""Perception from rendered images: the image trackers of papers 003 and 004 instead of
+"""Perception from rendered images: the image trackers of Li et al. (2010) and Yu et al. (2010)
+instead of
 geometric detections (``perception={"detector": "pixels", ...}``).
 
 Overhead (:class:`OverheadPixelDetector`, SSL teams): the overhead camera
@@ -8,24 +9,24 @@ vision preset's timing; the detector finds the robots and the ball in each:
 * the colour look-up table (:class:`~estimators.image.colour.ColourTable`, built offline from the
   nominal colours as MiroSot teams do) turns the image into class probabilities; the frame
   difference gives the motion image;
-* every robot is tracked by paper 003's mean-shift particle filter
+* every robot is tracked by Li et al.'s (2010) mean-shift particle filter
   (:class:`estimators.MeanShiftParticleFilter`, 20 particles) on its team colour, started at
   its kick-off pose (robots are placed by the referee); its heading is read from its player
   dots by matching the known dot layout of its number, rotated in 5-degree steps, against the
   dots' colour probabilities (the best sum wins);
 * the ball is tracked the same way on orange; when its tracker loses it next to a robot it is
-  taken as occluded by that robot (paper 003's rule) and not reported, so that the filters
+  taken as occluded by that robot (Li et al.'s 2010 rule) and not reported, so that the filters
   downstream predict it;
 * a lost robot or ball tracker reports nothing and is searched for over the whole image on the
-  next frame (paper 003's global search).
+  next frame (Li et al.'s 2010 global search).
 
 The detections then go through the same pipeline as the geometric ones (the EKF, the robot
 filters). Robots of one team look alike except for their dots, so a tracker can swap to a
-team-mate that passes close by: nothing in paper 003's method prevents it beyond the feature
+team-mate that passes close by: nothing in Li et al.'s (2010) method prevents it beyond the feature
 restriction, and the pipeline sees the swap as the robot's own motion.
 
 Head cameras (:class:`BallImageTracker`, humanoids): each robot finds the ball in its
-rendered head-camera images with paper 004's Kalman-started mean shift.
+rendered head-camera images with Yu et al.'s (2010) Kalman-started mean shift.
 
 Every overhead camera of the field has its own trackers (one camera on fields up to 7 m long,
 four on Division B and A): a camera starts tracking a robot or the ball where it was last found,
@@ -63,7 +64,7 @@ __all__ = ["OverheadPixelDetector", "BallImageTracker"]
 
 #: Heading candidates of the dot-layout match [rad].
 _HEADINGS = np.radians(np.arange(0.0, 360.0, 5.0))
-#: Particles of the mean-shift particle filters (paper 003: about 20 suffice).
+#: Particles of the mean-shift particle filters (Li et al. 2010: about 20 suffice).
 _PARTICLES = 20
 
 
@@ -150,7 +151,7 @@ class OverheadPixelDetector:
         last found, by any camera, once that is inside its view; a camera whose tracker has
         lost a robot that another camera has since found outside its view stops tracking it.
         (With one camera the trackers start at the referee's placement and are kept, lost or
-        not: a lost one searches the whole image, paper 003's global search.)"""
+        not: a lost one searches the whole image, Li et al.'s (2010) global search.)"""
         r = self.renderers[cam]
         x0, x1, y0, y1 = r.region
         mpp, robot_window, ball_window, radius_px = self._windows[cam]
@@ -230,7 +231,7 @@ class OverheadPixelDetector:
 
 
 class BallImageTracker:
-    """One robot's ball finder in its head-camera images: paper 004's Kalman-started mean
+    """One robot's ball finder in its head-camera images: Yu et al.'s (2010) Kalman-started mean
     shift (:class:`estimators.KalmanMeanShift`) on the back-projection of the ball's hue
     histogram, its prediction moved by the robot's own turning (odometry and the pan servo)
     and the tilt servo; when it has no track, a search of the whole image (the largest blob of
@@ -246,7 +247,7 @@ class BallImageTracker:
     """
 
     #: The Kalman-started mean shift's order of steps and window (times the ball's size):
-    #: paper 004's order (the centroid in the region R of twice the ball's size updates the
+    #: Yu et al.'s (2010) order (the centroid in the region R of twice the ball's size updates the
     #: Kalman filter, mean shift starts from the posterior) with a window of twice the ball's
     #: size, ``kalman-paper x2`` in ``soccer-env paper following``: off target in 0.0 % of its
     #: frames against 35 % for our order with a window of the ball's size (``kalman x1``, the

@@ -41,7 +41,7 @@ COLOURS: dict[str, RGB] = {
     "floor": (70, 70, 70),
 }
 
-#: The colour classes an overhead camera's look-up table tells apart (paper 003's, built
+#: The colour classes an overhead camera's look-up table tells apart (Li et al.'s 2010, built
 #: offline from the nominal colours): the ball, the two team patches, the two player-dot
 #: colours and the carpet.
 OVERHEAD_CLASSES: dict[str, RGB] = {
@@ -120,10 +120,10 @@ class OverheadFrameSpec:
 
 
 OVERHEAD_FRAMES: Registry[OverheadFrameSpec] = preset_table('overhead_frame', {
-    # No imperfection: no blur, no lighting change, no noise. 640 x 480 (paper 003's image)
+    # No imperfection: no blur, no lighting change, no noise. 640 x 480 (Li et al.'s 2010 image)
     # at 60 Hz (SSL-Vision's 60-75 Hz, as VISION["realistic"]).
     "clean": OverheadFrameSpec(
-        name="clean", source="no imperfection; 640 x 480 (paper 003), 60 Hz (SSL-Vision)"),
+        name="clean", source="no imperfection; 640 x 480 (Li et al. 2010), 60 Hz (SSL-Vision)"),
     # An SSL-Vision-like camera: 60 Hz, 4 m high (VISION). Assumptions (ours): 5 ms
     # exposure (teams shorten it to limit blur), 3 % flicker of the hall lighting, up to 15 %
     # brightness ramp across the image (uneven lighting), 3 grey levels of sensor noise.
@@ -133,13 +133,13 @@ OVERHEAD_FRAMES: Registry[OverheadFrameSpec] = preset_table('overhead_frame', {
         source="SSL-Vision rate and height (VISION); exposure, lighting and noise "
                "assumed",
     ),
-    # Paper 003's MiroSot camera: 640 x 480, about 33 ms per cycle (30 Hz). Assumptions
+    # Li et al.'s (2010) MiroSot camera: 640 x 480, about 33 ms per cycle (30 Hz). Assumptions
     # (ours): an analog camera of the era integrating a 1/60 s field, 2.5 m above the field,
     # 5 % flicker, 20 % ramp, 5 grey levels of noise.
     "mirosot": OverheadFrameSpec(
         name="mirosot", frame_rate=30.0, exposure=1.0 / 60.0, blur_samples=12,
         gain_sigma=0.05, gradient=0.2, noise_sigma=5.0, camera_height=2.5,
-        source="paper 003 (640 x 480, 33 ms cycle); exposure, height, lighting and noise "
+        source="Li et al. (2010) (640 x 480, 33 ms cycle); exposure, height, lighting and noise "
                "assumed",
     ),
 })
@@ -190,11 +190,11 @@ class HeadFrameSpec:
 
 HEAD_FRAMES: Registry[HeadFrameSpec] = preset_table('head_frame', {
     "clean": HeadFrameSpec(name="clean", source="no imperfection"),
-    # Paper 000's CCD camera of 2012 under hall lighting. Assumptions (ours): 5 % gain
+    # Xu et al.'s (2012) CCD camera of 2012 under hall lighting. Assumptions (ours): 5 % gain
     # changes (auto exposure, flicker), up to 20 % ramp, 4 grey levels of noise.
     "realistic": HeadFrameSpec(
         name="realistic", gain_sigma=0.05, gradient=0.2, noise_sigma=4.0,
-        source="lighting and noise assumed (CCD head camera of paper 000's era)",
+        source="lighting and noise assumed (CCD head camera of Xu et al.'s (2012) era)",
     ),
 })
 

@@ -88,7 +88,8 @@ VISION: Registry[VisionSpec] = preset_table('vision', {
         random_false_rate=0.0, occlusion_threshold=2.0, camera_height=4.0,
         camera_overlap=0.3, source="no imperfection",
     ),
-    # Paper 002: 40 ms decision cycle (25 Hz vision), 120 ms from image capture to actuation,
+    # Zhao et al. (2012): 40 ms decision cycle (25 Hz vision), 120 ms from image capture to
+    # actuation,
     # ball position noise delta_xy = 25 mm. The paper does not split the 120 ms; we take one
     # 40 ms cycle for command transmission and execution and 80 ms for the vision pipeline,
     # so a measurement is three cycles old when the command it leads to takes effect (the
@@ -99,7 +100,7 @@ VISION: Registry[VisionSpec] = preset_table('vision', {
         robot_sigma_theta=0.05, ball_detection=1.0, robot_detection=1.0,
         dribbler_false_rate=0.0, random_false_rate=0.0, occlusion_threshold=0.4,
         camera_height=4.0, camera_overlap=0.3,
-        source="paper 002 (25 Hz, 120 ms capture to actuation, 25 mm)",
+        source="Zhao et al. (2012) (25 Hz, 120 ms capture to actuation, 25 mm)",
     ),
     # ER-Force simulator, realism preset "Realistic": ball 1.4 mm, robots 1.3 mm and 0.01 rad,
     # 5 % missing ball and 2 % missing robot detections, 35 ms vision delay plus 10 ms
@@ -209,7 +210,7 @@ class HeadCameraSpec:
 
 
 HEAD_CAMERAS: Registry[HeadCameraSpec] = preset_table('head_camera', {
-    # Perfect sensing: paper 000's camera geometry, a frame at every step call
+    # Perfect sensing: Xu et al.'s (2012) camera geometry, a frame at every step call
     # (frame_rate=None), no delay, no noise, every object in view and range detected, no
     # spurious balls. Occlusion stays on: it is geometry, not an imperfection. Ranges of
     # 100 m: everything on any field.
@@ -219,9 +220,9 @@ HEAD_CAMERAS: Registry[HeadCameraSpec] = preset_table('head_camera', {
         ball_range=100.0, landmark_range=100.0, robot_range=100.0,
         ball_detection=1.0, landmark_detection=1.0, robot_detection=1.0,
         false_ball_rate=0.0, occlusion=True, distinct_goals=True,
-        source="no imperfection; paper 000's camera geometry",
+        source="no imperfection; Xu et al.'s (2012) camera geometry",
     ),
-    # Paper 000's robot of 2012: CCD camera 0.56 m high, 51 degrees horizontal field of view,
+    # Xu et al.'s (2012) robot of 2012: CCD camera 0.56 m high, 51 degrees horizontal field of view,
     # 720 x 625 pixels at 25 frames/s (all from the paper). Assumptions (ours): 0.04 s from
     # capture to delivery (one frame period of embedded DSP processing), no jitter (a fixed
     # pipeline); 2 px noise on a colour blob's centroid; an orange ball found up to 5 m
@@ -235,15 +236,15 @@ HEAD_CAMERAS: Registry[HeadCameraSpec] = preset_table('head_camera', {
         ball_range=5.0, landmark_range=4.0, robot_range=4.0,
         ball_detection=0.95, landmark_detection=0.9, robot_detection=0.9,
         false_ball_rate=0.2, occlusion=True, distinct_goals=True,
-        source="paper 000 (0.56 m, 51 deg, 720 x 625, 25 Hz); paper 001 (4 m landmark "
-               "range); latency, noise, detection and false rates assumed",
+        source="Xu et al. (2012) (0.56 m, 51 deg, 720 x 625, 25 Hz); Guo and Li (2013) (4 m "
+               "landmark range); latency, noise, detection and false rates assumed",
     ),
     # A current KidSize robot (assumptions of ours, of the order of published KidSize
-    # platforms): the same camera geometry as paper 000's, so that presets differ in their
+    # platforms): the same camera geometry as Xu et al.'s (2012), so that presets differ in their
     # processing only (real robots now often use wider lenses: override hfov); 30 frames/s;
     # 0.05 s from capture to delivery with up to 0.01 s of jitter (a neural detector on a
     # shared CPU/GPU); 1.5 px noise (a detector's box centre); a size-1 ball found up to 6 m;
-    # landmarks and robots ignored beyond 4 m, as paper 001 does (their ground projections
+    # landmarks and robots ignored beyond 4 m, as Guo and Li (2013) does (their ground projections
     # are poor farther away); detection 0.95 / 0.9 / 0.9; 0.1 spurious balls per second.
     # Both goals are white under the current rules: posts cannot be told apart.
     "kidsize": HeadCameraSpec(
@@ -252,7 +253,7 @@ HEAD_CAMERAS: Registry[HeadCameraSpec] = preset_table('head_camera', {
         ball_range=6.0, landmark_range=4.0, robot_range=4.0,
         ball_detection=0.95, landmark_detection=0.9, robot_detection=0.9,
         false_ball_rate=0.1, occlusion=True, distinct_goals=False,
-        source="current Humanoid KidSize rules (white goals); camera as paper 000; timing, "
+        source="current Humanoid KidSize rules (white goals); camera as Xu et al. (2012); timing, "
                "noise, ranges, detection and false rates assumed",
     ),
 })
@@ -283,7 +284,7 @@ class RadioSpec:
 #: Named links.
 RADIO_PRESETS: Registry[RadioSpec] = preset_table("radio", {
     "ideal": RadioSpec(0.0, 0.0, 0.0, name="ideal", source="instant and lossless"),
-    # Paper 000's robots talk over a self-organising ZigBee network; it gives no figures.
+    # Xu et al.'s (2012) robots talk over a self-organising ZigBee network; it gives no figures.
     "zigbee": RadioSpec(0.03, 0.02, 0.1, name="zigbee",
                         source="our reading of a crowded 2.4 GHz ZigBee network at a RoboCup "
                                "venue: tens of milliseconds, one packet in ten lost"),

@@ -239,7 +239,7 @@ class HumanoidRobotSpec:
     Odometry (what the walk engine believes it walked): the gait's displacement with, per gait
     step, Gaussian relative errors ``odometry_trans_sigma`` on the translation and
     ``odometry_rot_sigma`` on the rotation, plus ``odometry_turn_slip`` metres of sideways
-    slip per radian turned (turns slip most, as paper 001 observed).
+    slip per radian turned (turns slip most, as Guo and Li (2013) observed).
     """
 
     name: str
@@ -344,7 +344,7 @@ RobotSpec = SSLRobotSpec | HumanoidRobotSpec
 # --------------------------------------------------------------------------------------------
 
 FIELDS: Registry[FieldSpec] = preset_table('field', {
-    # Paper 002 (Zhao, Wang, Li 2012): "a 6.1 m x 4.7 m green carpet", the SSL 5 vs 5 field of
+    # Zhao, Wang and Li (2012): "a 6.1 m x 4.7 m green carpet", the SSL 5 vs 5 field of
     # 2012. Goal 0.7 m wide, 0.18 m deep, 0.16 m high (SSL rules 2012). The 2012 defense area
     # was two quarter circles of radius 0.8 m around the posts joined by a 0.35 m line; it is
     # approximated by its bounding rectangle, 0.35 + 2 * 0.8 = 1.95 m by 0.8 m. The paper does not
@@ -354,7 +354,7 @@ FIELDS: Registry[FieldSpec] = preset_table('field', {
         goal_width=0.7, goal_depth=0.18, goal_height=0.16, goal_wall_thickness=0.02,
         defense_width=1.95, defense_depth=0.8, center_circle_radius=0.5, line_width=0.01,
         wall_restitution=0.5, ball="ssl-2012",
-        source="paper 002 (6.1 x 4.7 m carpet); SSL rules 2012 (goal, defense area)",
+        source="Zhao et al. (2012) (6.1 x 4.7 m carpet); SSL rules 2012 (goal, defense area)",
     ),
     # SSL rules (2023 onwards), Division B: 9 x 6 m, boundary 0.3 m, goal 1.0 m wide,
     # 0.18 m deep, 0.155 m high inside, walls 0.02 m; defense area 2 x 1 m; centre circle 0.5 m.
@@ -373,7 +373,7 @@ FIELDS: Registry[FieldSpec] = preset_table('field', {
         wall_restitution=0.5, ball="ssl",
         source="SSL rules 2023+, Division A",
     ),
-    # Paper 000 (Xu et al. 2012): "RoboCup standard, 4 m x 6 m" humanoid field. The paper gives
+    # Xu et al. (2012): "RoboCup standard, 4 m x 6 m" humanoid field. The paper gives
     # nothing else; the other dimensions are our reading of the RoboCup Humanoid League KidSize
     # rules of that era (goal 1.5 m wide, goal area 2.2 x 0.6 m, centre circle 1.2 m diameter,
     # border strip 0.7 m) and assumptions where we found no figure (goal 0.5 m deep, 0.8 m high).
@@ -382,7 +382,7 @@ FIELDS: Registry[FieldSpec] = preset_table('field', {
         goal_width=1.5, goal_depth=0.5, goal_height=0.8, goal_wall_thickness=0.05,
         defense_width=2.2, defense_depth=0.6, center_circle_radius=0.6, line_width=0.05,
         wall_restitution=0.3, ball="kidsize-2012",
-        source="paper 000 (6 x 4 m); RoboCup Humanoid KidSize rules 2012",
+        source="Xu et al. (2012) (6 x 4 m); RoboCup Humanoid KidSize rules 2012",
     ),
     # RoboCup Humanoid League KidSize rules (2020 onwards): 9 x 6 m, goal 2.6 m wide, 0.6 m
     # deep, 1.2 m high; goal area 3 x 1 m; centre circle 1.5 m diameter; border strip 1 m.
@@ -413,7 +413,7 @@ _SSL_BALL = BallSpec(
 
 BALLS: Registry[BallSpec] = preset_table('ball', {
     "ssl": _SSL_BALL,
-    # Humanoid KidSize of 2012 (paper 000's era): an orange ball of tennis-ball size on green
+    # Humanoid KidSize of 2012 (Xu et al.'s 2012 era): an orange ball of tennis-ball size on green
     # carpet. Our reading of the rules of that era and assumptions where we found no figure:
     # radius 33 mm, 57 g; a felt ball on carpet slides briefly and rolls with about
     # 0.5 m/s^2 (assumed); no chip kicks, so the chip parameters keep the golf ball's.
@@ -434,11 +434,12 @@ BALLS: Registry[BallSpec] = preset_table('ball', {
         source="Humanoid KidSize rules 2020+ (size 1 ball); decelerations on artificial grass "
                "assumed",
     ),
-    # Paper 002: the ball of 2012 on that carpet rolls with a_f = 0.23 m/s^2 (measured); the
+    # Zhao et al. (2012): the ball of 2012 on that carpet rolls with a_f = 0.23 m/s^2 (measured);
+    # the
     # paper does not model a sliding phase, so that keeps the current SSL values.
     "ssl-2012": dataclasses.replace(
         _SSL_BALL, name="ssl-2012", rolling_deceleration=0.23,
-        source="paper 002 (a_f = 0.23 m/s^2); otherwise as 'ssl'",
+        source="Zhao et al. (2012) (a_f = 0.23 m/s^2); otherwise as 'ssl'",
     ),
 })
 
@@ -465,21 +466,22 @@ _SSL_ROBOT = SSLRobotSpec(
 
 ROBOTS: Registry[RobotSpec] = preset_table('robot', {
     "ssl": _SSL_ROBOT,
-    # Paper 002: SSL robots of 2012 reach more than 2.5 m/s with more than 2.5 m/s^2 and kick
+    # Zhao et al. (2012): SSL robots of 2012 reach more than 2.5 m/s with more than 2.5 m/s^2 and
+    # kick
     # at 5.0 m/s or more; the paper's decision cycle is 40 ms. Body as 'ssl'.
     "ssl-2012": dataclasses.replace(
         _SSL_ROBOT, name="ssl-2012", max_speed=2.5, max_acceleration=2.5,
         max_angular_speed=8.0, max_angular_acceleration=40.0, kicker_max_speed=5.0,
         chip_max_speed=5.0,
-        source="paper 002 (2.5 m/s, 2.5 m/s^2, 5 m/s kicks); body as 'ssl'",
+        source="Zhao et al. (2012) (2.5 m/s, 2.5 m/s^2, 5 m/s kicks); body as 'ssl'",
     ),
 })
 
 # A KidSize humanoid (RoboCup Humanoid League, 2020 onwards; the figures are of the order of
 # published KidSize platforms such as Darwin-OP, NimbRo-OP and Wolfgang-OP, rounded, and
-# assumptions where marked). 0.6 m tall with the camera at 0.56 m (paper 000), 3.5 kg; the
+# assumptions where marked). 0.6 m tall with the camera at 0.56 m (Xu et al. 2012), 3.5 kg; the
 # feet and legs collide as a disc of 0.1 m radius. Walk: 0.3 m/s forward, half that backward
-# and sideways, 1 rad/s turning (paper 001 keeps its robot at 0.5 m/s or less; SPEC: "a few
+# and sideways, 1 rad/s turning (Guo and Li 2013 keeps its robot at 0.5 m/s or less; "a few
 # tenths of m/s"), reaching full speed in under a second (0.4 m/s^2, 3 rad/s^2), stepping at
 # 2.5 steps per second with 2 degrees of yaw and pitch sway (assumed). Head: pan +-120
 # degrees, tilt from 10 degrees up to 70 degrees down, servos at 5 rad/s. Kick: a 1 s motion
@@ -501,19 +503,19 @@ _KIDSIZE = HumanoidRobotSpec(
     lying_width=0.15, get_up_time=5.0,
     fall_heading_sigma=0.3, odometry_trans_sigma=0.1, odometry_rot_sigma=0.15,
     odometry_turn_slip=0.03, restitution=0.2, surface_friction=0.8,
-    source="KidSize platforms (Darwin-OP, NimbRo-OP, Wolfgang-OP), rounded; paper 000 "
+    source="KidSize platforms (Darwin-OP, NimbRo-OP, Wolfgang-OP), rounded; Xu et al. (2012) "
            "(camera 0.56 m); gait sway, falls and odometry noise assumed",
 )
 
 ROBOTS.register("humanoid", _KIDSIZE, _KIDSIZE.source)
-# Paper 000's 21-servo robot of 2012: the same body with the slower walk of that era's
-# KidSize robots (0.2 m/s forward, assumed) and paper 000's camera (25 Hz, 720 x 625, 51
+# Xu et al.'s (2012) 21-servo robot of 2012: the same body with the slower walk of that era's
+# KidSize robots (0.2 m/s forward, assumed) and Xu et al.'s (2012) camera (25 Hz, 720 x 625, 51
 # degrees at 0.56 m).
 _KIDSIZE_2012 = dataclasses.replace(
     _KIDSIZE, name="humanoid-2012", max_forward_speed=0.2, max_backward_speed=0.1,
     max_sideways_speed=0.1, max_turn_speed=0.6, max_acceleration=0.3, kick_max_speed=2.5,
     camera="kidsize-2012",
-    source="paper 000 (21 servos, head camera 0.56 m, 51 degrees, 25 Hz); walk of 2012 "
+    source="Xu et al. (2012) (21 servos, head camera 0.56 m, 51 degrees, 25 Hz); walk of 2012 "
            "KidSize robots assumed; otherwise as 'humanoid'",
 )
 ROBOTS.register("humanoid-2012", _KIDSIZE_2012, _KIDSIZE_2012.source)

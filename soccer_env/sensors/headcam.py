@@ -1,5 +1,5 @@
-"""Head camera: what a humanoid robot sees through the pan/tilt camera in its head (paper 000,
-paper 001; SPEC 1.1 and 1.2).
+"""Head camera: what a humanoid robot sees through the pan/tilt camera in its head (Xu et al. 2012,
+Guo and Li (2013)).
 
 Geometry. The camera of observer ``i`` sits ``spec.height`` above the robot's centre
 ``(x_i, y_i)`` and looks along the robot's heading ``theta_i`` turned by the head: pan ``alpha``
@@ -20,7 +20,7 @@ angles and interpreted with the believed ones.
 Objects. Per frame the sensor looks for the ball (its centre, ``z = ball z + radius``), the
 static landmarks of :func:`field_landmarks` (goal-post feet and line crossings, on the ground)
 and every other robot's foot point nearest the observer (``c_j - R_j (c_j - c_i) / |c_j -
-c_i|``, on the ground: paper 001's obstacle-ground corners). An object is detected if
+c_i|``, on the ground: Guo and Li's (2013) obstacle-ground corners). An object is detected if
 
 1. its pixel with the true orientation lies inside the ``width x height_px`` image, in front of
    the camera;
@@ -108,7 +108,8 @@ def field_landmarks(field: FieldSpec, distinct_goals: bool
 
     In this order:
 
-    * goal posts (4): the feet of the posts, paper 001's obstacle-ground corners, at the posts'
+    * goal posts (4): the feet of the posts, Guo and Li's (2013) obstacle-ground corners, at the
+    posts'
       centres ``(+-L/2, +-(goal_width/2 + goal_wall_thickness/2))`` (``goal_width`` is between
       the posts' inner edges); ``"post_blue"`` at ``x = -L/2`` and ``"post_yellow"`` at
       ``x = +L/2`` if ``distinct_goals``, else ``"post"``;

@@ -1,6 +1,6 @@
 """A team's radio: robots broadcast what they believe over a lossy link with latency.
 
-Paper 000's humanoids share their pose estimates and ball sightings over a self-organising
+Xu et al.'s (2012) humanoids share their pose estimates and ball sightings over a self-organising
 ZigBee network that robots join and leave. :class:`TeamRadio` models that link:
 
 * a robot that has joined broadcasts a :class:`Message` (its pose estimate and, if it sees the

@@ -8,7 +8,7 @@ spread over processes by :func:`soccer_lab.papers._io.map_jobs`) and the report 
 and the text).
 
 :data:`PAPERS` registers the reproductions (name -> ``run``, with a one-line description);
-:data:`CITATIONS` gives the source papers by number.
+:data:`CITATIONS` gives the source papers in full.
 """
 
 from __future__ import annotations
@@ -21,19 +21,24 @@ from estimators.registry import Registry
 
 __all__ = ["PAPERS", "CITATIONS"]
 
-#: The source papers by number, as the reproductions and the README cite them.
+#: The source papers, by the short name the reproductions, the docstrings and the
+#: documentation cite them with: the full citation of each.
 CITATIONS = {
-    "000": "Xu, Xie, Wang, Ni, \"Target localization algorithm for cooperative multi-soccer "
-           "robots based on Hough space\", Journal of Image and Graphics 17(6), 2012",
-    "001": "Guo, Li, \"A method of localization for mobile robot based on "
-           "obstacle-ground-corner\", Acta Scientiarum Naturalium Universitatis Sunyatseni, "
-           "2013",
-    "002": "Zhao, Wang, Li, \"Application of extended Kalman filter algorithm in intelligent "
-           "robot soccer competition\", 2012",
-    "003": "Li, Wu, Kong, \"Mean shift-based and feature-restricted particle filter for "
-           "maneuver targets tracking\", Control and Decision 25(1), 2010",
-    "004": "Yu, Wei, Zhang, \"Person following of mobile robot using monocular camera\", "
-           "Chinese Journal of Scientific Instrument 31(3), 2010",
+    "Xu et al. (2012)": "Xu Jiaming, Xie Lun, Wang Zhiliang, Ni Shanchao. Target localization "
+                        "algorithm for cooperative multi-soccer robots based on Hough space. "
+                        "Journal of Image and Graphics 17(6): 687-695, 2012",
+    "Guo and Li (2013)": "Guo Binghua, Li Zhonghua. A method of localization for mobile robot "
+                         "based on obstacle-ground-corner. Acta Scientiarum Naturalium "
+                         "Universitatis Sunyatseni 2013(5): 45-50",
+    "Zhao et al. (2012)": "Zhao Xiao, Wang Ming, Li Xiaoming. Application of extended Kalman "
+                          "filter algorithm in intelligent robot soccer competition. Journal "
+                          "of Mechanical & Electrical Engineering 2012(3): 334-338",
+    "Li et al. (2010)": "Li Haitao, Wu Peiliang, Kong Lingfu. Mean shift-based and "
+                        "feature-restricted particle filter for maneuver targets tracking. "
+                        "Control and Decision 25(1): 149-152, 2010",
+    "Yu et al. (2010)": "Yu Dan, Wei Wei, Zhang Yuanhui. Person following of mobile robot "
+                        "using monocular camera. Chinese Journal of Scientific Instrument "
+                        "31(3), 2010",
 }
 
 
@@ -52,19 +57,20 @@ def _run_of(name: str) -> Callable[..., dict[str, Any]]:
 
 #: The paper reproductions: name -> its module's ``run``, and what it reproduces.
 PAPERS: Registry[Callable[..., dict[str, Any]]] = Registry("paper reproduction", [
-    ("ekf", _run_of("ekf"), "paper 002: EKF ball prediction with latency compensation (open "
-                            "and closed loop)"),
-    ("ungm", _run_of("ungm"), "paper 000: bootstrap PF, FBPF and MFBPF on the UNGM benchmark"),
-    ("localization", _run_of("localization"), "paper 001: KLD-sampling localization against "
-                                              "fixed-size filters, walking"),
-    ("hough", _run_of("hough"), "paper 000: Hough-space fusion of several robots' sightings "
+    ("ekf", _run_of("ekf"), "Zhao et al. (2012): EKF ball prediction with latency compensation "
+                            "(open and closed loop)"),
+    ("ungm", _run_of("ungm"), "Xu et al. (2012): bootstrap PF, FBPF and MFBPF on the UNGM "
+                              "benchmark"),
+    ("localization", _run_of("localization"), "Guo and Li (2013): KLD-sampling localization "
+                                              "against fixed-size filters, walking"),
+    ("hough", _run_of("hough"), "Xu et al. (2012): Hough-space fusion of several robots' sightings "
                                 "(Table 1 geometry)"),
-    ("team", _run_of("team"), "paper 000 in the closed loop: humanoid matches and keeper, one "
-                              "robot alone against team fusion and particle tracking"),
-    ("meanshift", _run_of("meanshift"), "paper 003: the feature-restricted mean-shift PF "
+    ("team", _run_of("team"), "Xu et al. (2012) in the closed loop: humanoid matches and keeper, "
+                              "one robot alone against team fusion and particle tracking"),
+    ("meanshift", _run_of("meanshift"), "Li et al. (2010): the feature-restricted mean-shift PF "
                                         "against plain PFs on robots manoeuvring in rendered "
                                         "overhead images"),
-    ("following", _run_of("following"), "paper 004: the Kalman-started mean shift against "
+    ("following", _run_of("following"), "Yu et al. (2010): the Kalman-started mean shift against "
                                         "plain mean shift on a turning humanoid's head-camera "
                                         "images"),
 ])

@@ -1,4 +1,4 @@
-"""Paper 002 (Zhao, Wang, Li 2012): EKF ball prediction with latency compensation.
+"""Zhao, Wang and Li (2012): EKF ball prediction with latency compensation.
 
 Two experiments, both seeded:
 
@@ -41,7 +41,7 @@ from soccer_lab.papers._io import write_csv
 __all__ = ["run", "Settings", "open_loop", "closed_loop", "PAPER_CLAIMS", "ESTIMATORS",
            "steady_state_floor"]
 
-#: What paper 002 reports, for the tables.
+#: What Zhao et al. (2012) reports, for the tables.
 PAPER_CLAIMS = {
     "latency_error": "up to 20 cm between true and used positions without compensation",
     "ekf_error": "0-0.5 cm prediction error (basic EKF)",
@@ -89,7 +89,8 @@ def steady_state_floor(sigma_xy: float = SIGMA, sigma_r: float = 0.1, cycle: flo
     tracking [m, root mean square over both axes], at capture time and ``ahead`` seconds later.
 
     Per axis the filter's model is ``x_{k+1} = x_k + T v_k``, ``v_{k+1} = v_k + w_k`` with
-    ``w ~ N(0, sigma_r^2)`` per cycle ``T`` (paper 002: ``delta_R`` = 100 mm/s per 40 ms), and
+    ``w ~ N(0, sigma_r^2)`` per cycle ``T`` (Zhao et al. 2012: ``delta_R`` = 100 mm/s per 40 ms),
+    and
     measures ``z = x + N(0, sigma_xy^2)`` (``delta_xy`` = 25 mm) every cycle. The posterior
     covariance converges to the fixed point ``P`` of the Riccati recursion
     ``P^- = F P F^T + Q``, ``P = P^- - P^- H^T (H P^- H^T + R)^-1 H P^-`` (iterated here to
@@ -314,7 +315,7 @@ def closed_loop(shots: int = 1000, workers: int | None = None,
 
 def _markdown_open(res: dict[str, Any]) -> str:
     lines = [
-        f"Open loop, paper 002's setting: {res['episodes']} seeded shots, "
+        f"Open loop, Zhao et al.'s (2012) setting: {res['episodes']} seeded shots, "
         f"{res['collisions']} collisions (walls and robots).",
         "",
         "| estimator | position RMSE now [mm] | steady [mm] | at actuation [mm] "
@@ -337,7 +338,7 @@ def _markdown_open(res: dict[str, Any]) -> str:
         "the shot and after each collision, during which no estimator can know the new motion "
         "(it is seen 2 cycles late) or has yet to lock on.",
         "",
-        "Paper 002 reports: " + "; ".join(PAPER_CLAIMS.values()) + "."]
+        "Zhao et al. (2012) reports: " + "; ".join(PAPER_CLAIMS.values()) + "."]
     floor = res["floor_m"]
     lines += [
         "",
@@ -347,7 +348,7 @@ def _markdown_open(res: dict[str, Any]) -> str:
         "",
         "| | at capture [mm] | present, capture + 80 ms [mm] | actuation, + 120 ms [mm] |",
         "|---|---|---|---|",
-        "| paper 002, basic EKF | | 0-5 | 0-5 |",
+        "| Zhao et al. (2012), basic EKF | | 0-5 | 0-5 |",
         f"| floor implied by the paper's noise figures | {1000 * floor['capture']:.1f} | "
         f"{1000 * floor['present']:.1f} | {1000 * floor['actuation']:.1f} |",
     ]
@@ -391,7 +392,7 @@ def _plots(open_res: dict | None, closed_res: dict | None, out: Path) -> list[st
         ax.set_yscale("log")
         ax.set_xlabel("time [s]")
         ax.set_ylabel("present-time position error [mm]")
-        ax.set_title("Paper 002 setting, one shot (dotted: collisions)")
+        ax.set_title("Zhao et al. (2012) setting, one shot (dotted: collisions)")
         ax.legend(fontsize=8, ncol=2)
         ax.grid(alpha=0.3)
         files.append(save_figure(fig, out / "paper_ekf_trace.png"))

@@ -1,4 +1,4 @@
-"""Cooperative ball localization of paper 000 (Xu, Xie, Wang, Ni 2012): Hough-space fusion
+"""Cooperative ball localization of Xu, Xie, Wang and Ni (2012): Hough-space fusion
 on its Table 1 geometry.
 
 ``soccer-env paper hough``: five robots at the paper's positions (a 6 m x 4 m field), the ball
@@ -90,7 +90,7 @@ from soccer_lab.papers._io import check_count, write_report
 __all__ = ["run", "Settings", "ROBOTS_MM", "PATH_MM", "PAPER", "HARDWARE_BASELINE_READINGS",
            "NOISE_MODELS", "MODEL_WEIGHTINGS"]
 
-#: Table 1 of paper 000 (millimetres): robot positions, the ball's straight path.
+#: Table 1 of Xu et al. (2012) (millimetres): robot positions, the ball's straight path.
 ROBOTS_MM = np.array([[1000, 3500], [250, 2000], [1750, 350], [4250, 2400], [5600, 3900]],
                      dtype=float)
 PATH_MM = (np.array([3000.0, 3200.0]), np.array([4500.0, 1200.0]))
@@ -513,9 +513,9 @@ def _tables(s: Settings, cam: dict[str, Any], paper: dict[str, Any]
             ) -> tuple[str, list[dict[str, Any]]]:
     """The printed report and the CSV rows."""
     mm = _MM
-    lines = [f"Paper 000, Table 1 geometry: 5 robots, the ball in 50 mm steps from (3000, 3200) "
-             f"to (4500, 1200) mm, {s.trials} noise draws per position. Mean error of the "
-             "fused ball position [mm].", "",
+    lines = [f"Xu et al. (2012), Table 1 geometry: 5 robots, the ball in 50 mm steps from "
+             f"(3000, 3200) to (4500, 1200) mm, {s.trials} noise draws per position. "
+             "Mean error of the fused ball position [mm].", "",
              "| noise model | equal weights | 1/L | 1/L^2 | best single robot | 4 robots "
              "(1/L, all subsets) | 1/L over equal | 4 robots over best single |",
              "|---|---|---|---|---|---|---|---|"]
@@ -535,7 +535,7 @@ def _tables(s: Settings, cam: dict[str, Any], paper: dict[str, Any]
                      "best_single_mm": res["best_single_m"] * mm,
                      **{f"robots_{k}_mm": v * mm for k, v in res["by_count_m"].items()}})
     ratio = PAPER["weighted_mm"] / PAPER["equal_mm"]
-    lines += ["", f"Paper 000: equal weights {PAPER['equal_mm']:.0f} mm, weighted "
+    lines += ["", f"Xu et al. (2012): equal weights {PAPER['equal_mm']:.0f} mm, weighted "
               f"{PAPER['weighted_mm']:.0f} mm (ratio {ratio:.2f}) in simulation; on hardware "
               f"{PAPER['hardware_baseline_mm']:.0f} mm -> weighted cooperation "
               f"{PAPER['hardware_fused_mm']:.0f} mm (about 48 % better), the 86 mm being "
@@ -590,7 +590,7 @@ def _model_tables(s: Settings, res: dict[str, Any]) -> tuple[str, list[dict[str,
                          r["inverse_variance_over_inverse"]["mean"],
                      "inverse_variance_over_inverse_sd":
                          r["inverse_variance_over_inverse"]["sd"]})
-    lines.append(f"| paper 000, simulation (192 mm on the nodes) | | | | | | | | "
+    lines.append(f"| Xu et al. (2012), simulation (192 mm on the nodes) | | | | | | | | "
                  f"{PAPER['equal_mm']:.0f} | {PAPER['weighted_mm']:.0f} | | |")
     hw = PAPER["hardware_fused_mm"] / PAPER["hardware_baseline_mm"]
     lines += ["", "Ratios of mean errors (each seed's ratio on the same draws; mean ± sd over "
@@ -605,10 +605,10 @@ def _model_tables(s: Settings, res: dict[str, Any]) -> tuple[str, list[dict[str,
                      f"{_pm(r['inverse_variance_over_inverse'])} | {_WLABEL[b]} | "
                      f"{_pm(r['best_over_equal'])} | {_pm(r['fused_over_best_single'][b])} |")
     sim = PAPER["weighted_mm"] / PAPER["equal_mm"]
-    lines += [f"| paper 000, simulation | {sim:.2f} | | 1/L | {sim:.2f} | |",
-              f"| paper 000, hardware, if 8.6 cm is equal-weight cooperation | {hw:.2f} | | "
+    lines += [f"| Xu et al. (2012), simulation | {sim:.2f} | | 1/L | {sim:.2f} | |",
+              f"| Xu et al. (2012), hardware, if 8.6 cm is equal-weight cooperation | {hw:.2f} | | "
               f"1/L | {hw:.2f} | |",
-              f"| paper 000, hardware, if 8.6 cm is one robot alone | | | 1/L | | {hw:.2f} "
+              f"| Xu et al. (2012), hardware, if 8.6 cm is one robot alone | | | 1/L | | {hw:.2f} "
               "(4 robots) |", "",
               "The paper's hardware sentence (\"加权后 ... 平均误差由 8.6 cm 缩减到 4.5 cm\": "
               "after weighting the mean error falls from 8.6 to 4.5 cm) names one baseline for "
@@ -643,10 +643,10 @@ def _model_tables(s: Settings, res: dict[str, Any]) -> tuple[str, list[dict[str,
               f"{f['mean']:.2f} ± {f['sd']:.2f} (sd over {cam['seeds']} seeds, range "
               f"{f['min']:.2f}-{f['max']:.2f}): fused error {verdict(f['mean'])}; over the robot "
               f"that believes itself nearest the ball ({cam['nearest_m'] * mm:.0f} mm): "
-              f"{g['mean']:.2f} ± {g['sd']:.2f}. Paper 000, hardware: {hw:.2f} if its 8.6 cm "
-              "is one robot alone. (In the closed loop the weighting's effect on the keeper's "
-              "saves is measured by `soccer-env ablation --robot humanoid`, configurations "
-              "fusion-mfbpf and fusion-ivar-mfbpf.)"]
+              f"{g['mean']:.2f} ± {g['sd']:.2f}. Xu et al. (2012), hardware: {hw:.2f} if its "
+              "8.6 cm is one robot alone. (In the closed loop the weighting's effect on the "
+              "keeper's saves is measured by `soccer-env ablation --robot humanoid`, "
+              "configurations fusion-mfbpf and fusion-ivar-mfbpf.)"]
     return "\n".join(lines), rows
 
 
@@ -657,6 +657,7 @@ def _plot(s: Settings, cam: dict[str, Any], paper: dict[str, Any]) -> str:
     ks = list(range(1, 6))
     for label, res in (("head camera", cam), ("paper's reading", paper)):
         ax.plot(ks, [res["by_count_m"][k] * _MM for k in ks], "o-", label=label)
-    ax.set(xlabel="robots", ylabel="mean error [mm]", title="Hough fusion, paper 000 Table 1")
+    ax.set(xlabel="robots", ylabel="mean error [mm]",
+           title="Hough fusion, Xu et al. (2012) Table 1")
     ax.legend()
     return save_figure(fig, s.out / "paper_hough.png")

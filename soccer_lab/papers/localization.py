@@ -1,4 +1,4 @@
-"""The adaptive localization of paper 001 (Guo, Li 2013): KLD-sampling against fixed-size
+"""The adaptive localization of Guo and Li (2013): KLD-sampling against fixed-size
 particle filters on a walking humanoid, with a kidnapping.
 
 ``soccer-env paper localization``: one ``humanoid-2012`` robot (:mod:`soccer_env.sim.walk`'s
@@ -35,7 +35,7 @@ happened are counted); the share of frames whose estimate sits at the mirror pos
 turned by 180 degrees, which only the goal posts' colours tell apart). Beside it, each episode's
 median position error per filter. The aims (judged on these medians: the particles at
 the start against the mean while tracking, and the median position error, with the number of
-episodes in which the position aim holds) and paper 001's claims are printed beside.
+episodes in which the position aim holds) and Guo and Li's (2013) claims are printed beside.
 """
 
 from __future__ import annotations
@@ -64,8 +64,8 @@ from soccer_lab.papers._io import check_count, map_jobs, write_report
 
 __all__ = ["run", "Settings", "PAPER", "AIMS"]
 
-PAPER = ("Paper 001: KLD-sampling keeps many particles while uncertain and few once converged; "
-         "errors are larger in turns (wheel slip); robot speed <= 0.5 m/s.")
+PAPER = ("Guo and Li (2013): KLD-sampling keeps many particles while uncertain and few once "
+         "converged; errors are larger in turns (wheel slip); robot speed <= 0.5 m/s.")
 AIMS = ("Aims: KLD-sampling using at least 3 times fewer particles while tracking than "
         "while globally localizing, with median position error under 0.15 m while walking.")
 ROBOT = "humanoid-2012"
@@ -96,7 +96,7 @@ SEEDED = " + triangulation seed"
 #: The suffix of KLD-sampling with Fox's binning of the predicted samples
 #: (``KLDConfig(binning="predicted")``).
 FOX = ", bins of the predicted samples (Fox)"
-#: Triangulation alone (paper 000, no filter): name -> the frames with landmarks whose
+#: Triangulation alone (Xu et al. 2012, no filter): name -> the frames with landmarks whose
 #: sightings it uses (this frame's only, or the seed's memory moved by the odometry).
 TRIANGULATIONS = {"triangulation, this frame": 1,
                   f"triangulation, last {SEED_MEMORY} frames": SEED_MEMORY}
@@ -325,7 +325,7 @@ class _TriangulationOnly:
 
 
 def _run_triangulation(ep: dict[str, Any], frames: int, config: KLDConfig) -> dict[str, Any]:
-    """Paper 000's triangulation alone, at every frame, from the sightings of the last
+    """Xu et al.'s (2012) triangulation alone, at every frame, from the sightings of the last
     ``frames`` frames with landmarks (moved by the odometry), with the perception's noise
     model ``config`` (range and bearing sigmas): each frame's outcome (:data:`TRI_OUTCOMES`),
     the errors of its best pose, and the summary figures (shares of the frames [%], median
@@ -688,7 +688,7 @@ def _seed_lines(s: Settings, eps: list[dict[str, Any]], summary: dict[str, Any]
     """KLD-sampling with the triangulation recovery seed against its uniform recovery."""
     name = eps[0]["kld_name"]
     a, b = summary[name], summary[name + SEEDED]
-    return [f"Recovery seed (paper 000's triangulation from the sightings of the last "
+    return [f"Recovery seed (Xu et al.'s 2012 triangulation from the sightings of the last "
             f"{SEED_MEMORY} frames with landmarks, half of the injected particles around the "
             f"poses that fit best): median position error {a['median_pos_m']:.3f} m with "
             f"uniform recovery, {b['median_pos_m']:.3f} m with the seed; under "
@@ -706,7 +706,7 @@ def _seed_lines(s: Settings, eps: list[dict[str, Any]], summary: dict[str, Any]
 def _triangulation_table(s: Settings, tri: dict[str, Any]) -> list[str]:
     """Triangulation alone per frame: how often it gives a pose, how good, and why not."""
     lines = [
-        f"Triangulation alone (paper 000, no filter) at every frame, medians over the "
+        f"Triangulation alone (Xu et al. 2012, no filter) at every frame, medians over the "
         f"{s.episodes} episode(s) of each episode's figure: the best pose of the candidate "
         f"assignments, a wrong assignment when it is more than {WRONG_M:g} m from the truth "
         "(the shares add up to 100 % of the frames; errors over the frames with a pose, and "

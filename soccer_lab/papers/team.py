@@ -1,11 +1,11 @@
-"""Paper 000 (Xu, Xie, Wang, Ni 2012) in the closed loop: what a humanoid team knows about
+"""Xu, Xie, Wang and Ni (2012) in the closed loop: what a humanoid team knows about
 the ball, alone or together.
 
 ``soccer-env paper team``:
 
-* **Match.** Humanoid matches on paper 000's 6 m x 4 m field (robot ``humanoid-2012``, head
+* **Match.** Humanoid matches on Xu et al.'s (2012) 6 m x 4 m field (robot ``humanoid-2012``, head
   camera ``kidsize-2012``: 25 Hz, 51 degrees, 0.56 m, the ZigBee-like team radio): four blue
-  robots (a keeper and three field players, paper 000's hardware team size) against three
+  robots (a keeper and three field players, Xu et al.'s (2012) hardware team size) against three
   yellow ones, both teams scripted (:class:`agents.humanoid_team.HumanoidTeam`) and acting on
   their own perception. For each blue ball-estimation configuration (the robot's own
   sightings alone, with and without particle tracking; the team's Hough fusion, with and
@@ -17,7 +17,7 @@ the ball, alone or together.
   on the same seeded shots: a subset of the humanoid estimator ablation
   (``soccer-env ablation --robot humanoid``).
 
-Paper 000 reports (hardware, 300 trials): a mean error of 8.6 cm falling to 4.5 cm with
+Xu et al. (2012) reports (hardware, 300 trials): a mean error of 8.6 cm falling to 4.5 cm with
 weighted cooperative localization (about 48 % better), and a particle-filtered track smoother
 than the raw fused positions. Its sentence names one baseline for three methods: the 8.6 cm is
 either one robot alone or equal-weight cooperation
@@ -189,10 +189,10 @@ def run(out: str | Path = "paper_output", matches: int = 4, duration: float = 60
 def _tables(s: Settings, m: dict[str, Any], k: dict[str, Any] | None
             ) -> tuple[str, list[dict[str, Any]]]:
     """The printed report and the CSV rows: the matches, then the keeper."""
-    lines = [f"Humanoid matches on paper 000's field: {BLUE} blue ({ROBOT}, camera {CAMERA}) "
-             f"against {YELLOW} yellow, {s.matches} seeded match(es) of {s.duration:g} s per "
-             "configuration of blue's ball estimation; blue robots' ball belief against the "
-             "truth at every step.", "",
+    lines = [f"Humanoid matches on Xu et al.'s (2012) field: {BLUE} blue ({ROBOT}, camera "
+             f"{CAMERA}) against {YELLOW} yellow, {s.matches} seeded match(es) of "
+             f"{s.duration:g} s per configuration of blue's ball estimation; blue robots' ball "
+             "belief against the truth at every step.", "",
              "| blue's ball estimation | mean error [m] | median [m] | within 0.3 m | "
              "mean while rolling [m] | localization median [m] | ms per step |",
              "|---|---|---|---|---|---|---|"]
@@ -205,10 +205,10 @@ def _tables(s: Settings, m: dict[str, Any], k: dict[str, Any] | None
                      **{kk: v for kk, v in r.items() if not isinstance(v, list)}})
     own, fused = m["configs"]["own"]["mean_m"], m["configs"]["fusion"]["mean_m"]
     lines += ["", f"Team fusion against one robot alone (mean error): {1 - fused / own:.0%} "
-              f"better (paper 000, hardware: {PAPER['gain']:.0%}, {PAPER['baseline_mm']:.0f} mm "
-              f"-> {PAPER['fused_mm']:.0f} mm, if its 86 mm is one robot alone; the sentence "
-              "can also read as equal-weight cooperation -> weighted, see `soccer-env paper "
-              "hough`)."]
+              f"better (Xu et al. 2012, hardware: {PAPER['gain']:.0%}, "
+              f"{PAPER['baseline_mm']:.0f} mm -> {PAPER['fused_mm']:.0f} mm, if its 86 mm is "
+              "one robot alone; the sentence can also read as equal-weight cooperation -> "
+              "weighted, see `soccer-env paper hough`)."]
     if k is not None:
         lines += ["", f"Humanoid keeper ({ROBOT}, 3 watching team-mates), scripted, "
                   f"{s.shots} seeded shots per configuration; `{k['command']}`:", "",

@@ -1,4 +1,4 @@
-"""The particle-filter benchmark of paper 000 (Xu, Xie, Wang, Ni 2012): the univariate
+"""The particle-filter benchmark of Xu, Xie, Wang and Ni (2012): the univariate
 nonstationary growth model (UNGM).
 
 ``soccer-env paper ungm``: bootstrap PF, FBPF (as printed, resampling every step, and ours,
@@ -31,8 +31,8 @@ from soccer_lab.papers._io import write_report
 
 __all__ = ["run", "Settings", "FILTERS", "PAIRS", "PAPER_CLAIM", "paired_difference"]
 
-PAPER_CLAIM = ("Paper 000 (Fig. 12): with 100 particles, N_th = 50 and fission variance 1 on "
-               "50 UNGM steps, MFBPF's RMSE is slightly lower than FBPF's (no numbers given).")
+PAPER_CLAIM = ("Xu et al. (2012), Fig. 12: with 100 particles, N_th = 50 and fission variance 1 "
+               "on 50 UNGM steps, MFBPF's RMSE is slightly lower than FBPF's (no numbers given).")
 
 #: Filters compared: name -> (description, constructor(particles, transition, likelihood, rng)).
 FILTERS = {
@@ -178,7 +178,7 @@ def _tables(s: Settings, rmse: dict[str, np.ndarray], timing: dict[str, float],
             below: dict[str, float], paired: dict[str, dict[str, float]]
             ) -> tuple[str, list[dict[str, Any]]]:
     """The printed report and the CSV rows."""
-    lines = [f"UNGM, paper 000's benchmark: {s.runs} runs of {s.steps} steps, {s.particles} "
+    lines = [f"UNGM, Xu et al.'s (2012) benchmark: {s.runs} runs of {s.steps} steps, {s.particles} "
              "particles, N_th = N/2, fission variance 1; RMSE over each run (mean, standard "
              "deviation, median over runs), share of steps with N_eff < N_th, and time per "
              "filter step (median of 5 timings of 400 steps).",

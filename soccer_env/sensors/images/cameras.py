@@ -36,7 +36,7 @@ __all__ = ["ImageFrame", "OverheadImageCamera", "PixelHeadCamera", "interpolate_
 
 #: The frame preset of the rendered overhead images (:data:`soccer_env.presets.OVERHEAD_FRAMES`).
 PIXEL_FRAME_PRESET = "realistic"
-#: Rendered head-camera images [px] (the camera's field of view at a quarter of paper 000's
+#: Rendered head-camera images [px] (the camera's field of view at a quarter of Xu et al.'s (2012)
 #: 720 x 625 pixels, for speed; detections are scaled back to the camera's pixels).
 HEAD_IMAGE_SIZE = (320, 240)
 

@@ -1,4 +1,4 @@
-"""Overhead frames (:class:`OverheadRenderer`), the camera of SSL / MiroSot vision (paper 003's
+"""Overhead frames (:class:`OverheadRenderer`), the camera of SSL / MiroSot vision (Li et al.'s 2010
 setting). An orthographic view of the field plane from a camera above the centre of the region
 it sees (the whole walled area by default, scaled to fit the image with square pixels and
 centred): carpet, field lines, defense areas, centre circle, goals and walls come from a

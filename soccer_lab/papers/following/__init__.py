@@ -1,7 +1,7 @@
-"""The Kalman-started mean shift of paper 004 (Yu, Wei, Zhang 2010) with ego-motion
+"""The Kalman-started mean shift of Yu, Wei and Zhang (2010) with ego-motion
 compensation, on a turning humanoid's head-camera images.
 
-``soccer-env paper following``: one ``humanoid-2012`` robot (the robot of paper 000 (Xu, Xie,
+``soccer-env paper following``: one ``humanoid-2012`` robot (the robot of Xu et al. (2012) (Xu, Xie,
 Wang, Ni 2012): 0.6 rad/s top turn rate, 3 rad/s^2, 0.2 m/s forward;
 :mod:`soccer_env.sim.walk`'s walk engine with its gait sway and odometry errors in
 :class:`~soccer_env.sim.world.World`) on the ``humanoid-2012`` field (6 m x 4 m, orange ball of
@@ -24,7 +24,7 @@ overshoot, then reverses (so the turn rate changes all the time and the ball sta
 variants, each with ``episodes`` episodes of ``duration`` seconds:
 
 * ``turn``: turning in place, the ball 1-3 m away;
-* ``follow`` (paper 004's person following): the robot also walks forward towards the ball
+* ``follow`` (Yu et al.'s 2010 person following): the robot also walks forward towards the ball
   (``vx = 0.4 (d - 1 m)``, clipped to its top speed; the gait's speed ellipsoid then slows the
   turning), starting 2.2-2.8 m away.
 
@@ -38,14 +38,15 @@ Trackers, on the same frames (the hue back-projection,
 ball: the pixels within 0.8 of its apparent radius of its true centre, as an operator marking
 the target would give), all started at the ball's true pixel of the first frame. The target
 window is the ball's apparent diameter there (``2 round(r) + 1`` px); each tracker runs at each
-of ``window_scales`` times it: 1 (the target size: the bandwidth of paper 004's argument) and 2
+of ``window_scales`` times it: 1 (the target size: the bandwidth of Yu et al.'s (2010) argument)
+and 2
 (the paper's back-projection region ``R``, twice the target). A tracker reports lost when the
 mean weight in its converged window is below ``0.2 / scale^2`` (the estimators' default 0.2 for
 a target-sized window, scaled so that the same amount of target must be in any window: a round
 ball fills only ``pi / 16`` of a window twice its size, below 0.2). Otherwise the estimators'
 defaults (flat kernel, 10 iterations; Kalman noise 2 px/frame^2 and 2 px):
 
-* ``kalman``: :class:`estimators.KalmanMeanShift` (paper 004) fed with the robot's
+* ``kalman``: :class:`estimators.KalmanMeanShift` (Yu et al. 2010) fed with the robot's
   own motion between frames: the rotation is the walk engine's odometry ``dtheta`` summed
   over the frame's control steps, the advance the odometry's displacement projected on the
   bearing of the tracked position (the paper's ``s`` towards the target). Odometry, not the
@@ -56,7 +57,7 @@ defaults (flat kernel, 10 iterations; Kalman noise 2 px/frame^2 and 2 px):
 * ``plain``: :class:`estimators.PlainMeanShift`, mean shift from the last position;
   when lost it stays where it was.
 
-Neither searches the whole image after a loss (paper 004 has no such step).
+Neither searches the whole image after a loss (Yu et al. 2010 has no such step).
 
 Measured per tracker on the frames after the first in which the ball's centre is in the image
 (frames with the ball out of view are counted apart): the share of frames in which it reports
@@ -75,7 +76,8 @@ same rates by turn-rate bin (the true body turn rate over the frame period: slow
 of the top rate, medium, fast above two thirds: 0.2 and 0.4 rad/s for the 2012 robot), with the
 ball's mean image jump between frames in its apparent radii, with and without the gait's sway
 (the pixel the ball would have had with the servo angles alone), and by that jump (a window of
-scale ``x`` has a half-width of about ``x`` radii), the quantity paper 004's argument is about.
+scale ``x`` has a half-width of about ``x`` radii), the quantity Yu et al.'s (2010) argument is
+about.
 
 The paper's claim and the aim ("the Kalman-started tracker losing the ball at most half
 as often as plain mean shift under fast turns") are printed beside ours, the aim judged per
@@ -180,7 +182,7 @@ def run(out: str | Path = "paper_output", episodes: int = 10, duration: float = 
         window_scales: tuple[float, ...] = (1.0, 2.0)) -> dict[str, Any]:
     """Run ``episodes`` seeded episodes of ``duration`` seconds per variant (``turn``,
     ``follow``) with both trackers at each of ``window_scales`` (mean-shift window over the
-    ball's apparent diameter: 1, the bandwidth of paper 004's argument, and 2, its
+    ball's apparent diameter: 1, the bandwidth of Yu et al.'s (2010) argument, and 2, its
     back-projection region R) on the same frames (module docstring); write
     ``paper_following.md``, ``.csv``, ``.json`` and ``.png`` into ``out``. ``workers``
     processes share the episodes (default: all cores; 1 runs them here; the figures other

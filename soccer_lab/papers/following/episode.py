@@ -1,4 +1,4 @@
-"""One seeded episode of paper 004 (Yu, Wei, Zhang 2010)'s reproduction: the scripted scene (a
+"""One seeded episode of Yu, Wei and Zhang (2010)'s reproduction: the scripted scene (a
 humanoid sweeping its heading around the ball, walking towards it in ``follow``, the ball
 rolled now and then) and both trackers at every window scale on the same head-camera frames
 (see :mod:`soccer_lab.papers.following`)."""

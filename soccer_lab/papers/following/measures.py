@@ -1,4 +1,4 @@
-"""The measures of paper 004 (Yu, Wei, Zhang 2010)'s reproduction: which frames count, the
+"""The measures of Yu, Wei and Zhang (2010)'s reproduction: which frames count, the
 trackers' errors, losses and recoveries, pooled per variant (:func:`summarise`) and by turn
 rate or image jump (:func:`binned`), and the aim's verdict (see
 :mod:`soccer_lab.papers.following`)."""

@@ -1,4 +1,4 @@
-"""The report of paper 004 (Yu, Wei, Zhang 2010)'s reproduction: the measures of every
+"""The report of Yu, Wei and Zhang (2010)'s reproduction: the measures of every
 episode pooled (:func:`analyse`), the printed text with the paper's claim and the aim
 (:func:`text`), the CSV rows and JSON data, and the figure (:func:`plot`); see
 :mod:`soccer_lab.papers.following`."""
@@ -110,7 +110,7 @@ def _intro(s: Any, eps: list[dict[str, Any]]) -> str:
     windows = [e["window"][0] for e in eps]
     w, h = s.size
     return (
-        f"Paper 004 on a turning humanoid: robot `{s.robot}` (top turn rate "
+        f"Yu et al. (2010) on a turning humanoid: robot `{s.robot}` (top turn rate "
         f"{spec.max_turn_speed:g} rad/s, gait sway {math.degrees(spec.sway_pan):g} degrees yaw "
         f"/ {math.degrees(spec.sway_tilt):g} degrees pitch at {spec.step_frequency:g} "
         f"steps/s) on field `{field_name}` (ball radius {1000 * ball.radius:.0f} mm), head "
@@ -189,7 +189,7 @@ def pipeline_label() -> str:
 
 
 def _aim_lines(fast: dict[str, Any], verdicts: dict[str, Any], wmax: float) -> list[str]:
-    lines = [f"Paper 004's claim: {PAPER['claim']}. Its results: {PAPER['results']}.", "",
+    lines = [f"Yu et al.'s (2010) claim: {PAPER['claim']}. Its results: {PAPER['results']}.", "",
              f"Aim: {AIM}. Fast turns (>= {TURN_BINS[-1][1] * wmax:.2f} rad/s, "
              f"{fast['frames']} frames, both variants), Kalman against plain, judged on the "
              "share of frames off target (the lost-track rate):"]
@@ -204,7 +204,7 @@ def _aim_lines(fast: dict[str, Any], verdicts: dict[str, Any], wmax: float) -> l
               "the measurement and the posterior (ours); `kalman-paper` takes the centroid of "
               "the back-projection in the region R (twice the target) around the prediction "
               "as the measurement, updates the Kalman filter, then starts mean shift from the "
-              f"posterior (paper 004 as printed). The humanoid pixel pipeline's ball tracker "
+              f"posterior (Yu et al. 2010 as printed). The humanoid pixel pipeline's ball tracker "
               f"runs `{pipeline_label()}`."]
     return lines
 
@@ -226,7 +226,7 @@ def rows(res: dict[str, Any], labels: list[str]) -> list[dict[str, Any]]:
 
 
 def _plotted(res: dict[str, Any]) -> dict[str, Any]:
-    """The figure's episode: the first of paper 004's setting (following)."""
+    """The figure's episode: the first of Yu et al.'s (2010) setting (following)."""
     return res["by_variant"]["follow"][0]
 
 

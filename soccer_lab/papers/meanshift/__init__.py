@@ -1,11 +1,11 @@
-"""The feature-restricted mean-shift particle filter of paper 003 (Li, Wu, Kong 2010) on fast
+"""The feature-restricted mean-shift particle filter of Li, Wu and Kong (2010) on fast
 robots seen from above.
 
 ``soccer-env paper meanshift``: robots of both teams manoeuvre sharply on a small field and an
 overhead camera films them; every robot is tracked in the images by three trackers, which all
 read the same frames:
 
-* ``ms-pf-20``: paper 003's :class:`estimators.MeanShiftParticleFilter` with 20
+* ``ms-pf-20``: Li et al.'s (2010) :class:`estimators.MeanShiftParticleFilter` with 20
   particles (AR(2) motion, mean shift on every particle, the feature restriction, lost-track
   handling by a global search) and an identity check by the robot's player dots (below);
 * ``pf-20`` and ``pf-200``: the plain :class:`estimators.ParticleFilterTracker`
@@ -19,7 +19,8 @@ SSL bodies (0.18 m across, 2.4 times a 7.5 cm MiroSot cube), and on this field a
 has 4.4 mm per pixel, so a robot is about 41 px across, its team patch about 11 px and a robot
 at 3 m/s moves about 23 px per frame: the pixel sizes and speeds of a MiroSot robot (7.5 cm, 2-3
 m/s) on a 640 x 480 image of a 1.5-2.2 m field. On the 6.1 m ``ssl-2012`` field the team patch
-would be under 5 px across. Robots: ``n`` blue and ``n`` yellow (3 + 3 by default, paper 003's
+would be under 5 px across. Robots: ``n`` blue and ``n`` yellow (3 + 3 by default, Li et al.'s
+(2010)
 figure 5 shows a 3 vs 3 game) of the ``ssl`` preset (3 m/s, 3 m/s^2, 10 rad/s), team-mates
 sharing the team colour (the paper's "similar colours" difficulty), each team's robots numbered
 0, 1, 2, ... by their player dots (:class:`soccer_env.sensors.images.patterns.PatchPattern`).
@@ -29,7 +30,8 @@ its top rate); a robot within 0.3 m of a wall that is heading for it draws a new
 once, pointing within 60 degrees of the direction to the field's centre. Robots collide with
 each other, the walls and the ball (at rest at the start, placed away from the robots).
 :class:`~soccer_env.sim.world.World` steps at 1/60 s; the camera (``mirosot`` preset of
-:data:`soccer_env.presets.OVERHEAD_FRAMES`: 640 x 480 at 30 Hz, paper 003's 33 ms cycle; 1/60 s
+:data:`soccer_env.presets.OVERHEAD_FRAMES`: 640 x 480 at 30 Hz, Li et al.'s (2010) 33 ms cycle;
+1/60 s
 exposure, so motion blur; 5 % gain flicker, up to 20 % brightness ramp and 5 grey levels of
 noise) renders every second step, starting with the robots at rest at time 0.
 

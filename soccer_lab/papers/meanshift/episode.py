@@ -1,4 +1,4 @@
-"""One seeded episode of paper 003 (Li, Wu, Kong 2010)'s reproduction: simulate the robots,
+"""One seeded episode of Li, Wu and Kong (2010)'s reproduction: simulate the robots,
 render the overhead frames, track every robot with every tracker kind and measure them (see
 :mod:`soccer_lab.papers.meanshift`)."""
 

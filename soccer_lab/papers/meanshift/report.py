@@ -1,4 +1,4 @@
-"""The report of paper 003 (Li, Wu, Kong 2010)'s reproduction: the episodes' measures pooled
+"""The report of Li, Wu and Kong (2010)'s reproduction: the episodes' measures pooled
 (:func:`summarise`, :func:`motion`, :func:`diagnostics`), the printed text with the paper's
 claims and the aims (:func:`text`) and the figure (:func:`plot`); see
 :mod:`soccer_lab.papers.meanshift`."""
@@ -18,9 +18,9 @@ from soccer_lab.papers.meanshift.scene import FRAME, INTERVAL, KINDS, ROBOT, TUR
 __all__ = ["PAPER", "AIMS", "CDF_EDGES_MM", "summarise", "prep_ms", "motion", "diagnostics",
            "verdicts", "text", "plot", "lost_runs"]
 
-#: Paper 003's figures (experiment 2: Pentium 4 2.6 GHz, 640 x 480 images).
+#: Li et al.'s (2010) figures (experiment 2: Pentium 4 2.6 GHz, 640 x 480 images).
 PAPER = {"plain_pf_particles": 200, "ms_pf_particles": 20, "cycle_ms": 33.0,
-         "text": "Paper 003: a plain PF needs at least 200 particles to track the robots "
+         "text": "Li et al. (2010): a plain PF needs at least 200 particles to track the robots "
                  "reliably, the feature-restricted mean-shift PF about 20; the system's cycle "
                  "stays about 33 ms (Pentium 4 2.6 GHz, 640 x 480)."}
 #: The aims of the reproduction.
@@ -162,7 +162,7 @@ def text(eps: list[dict[str, Any]], summary: dict[str, dict[str, Any]], per_team
     n_rob = 2 * per_team
     frames = sum(e["frames"] for e in eps)
     w, h = eps[0]["image"]
-    lines = [f"Paper 003: {per_team} blue + {per_team} yellow `{ROBOT}` robots manoeuvring "
+    lines = [f"Li et al. (2010): {per_team} blue + {per_team} yellow `{ROBOT}` robots manoeuvring "
              f"sharply (a new body-frame velocity at 80-100 % of "
              f"{presets.robot(ROBOT).max_speed:g} m/s and a turn rate within +-"
              f"{TURN * presets.robot(ROBOT).max_angular_speed:g} rad/s every "
@@ -255,7 +255,7 @@ def _aim_lines(summary: dict[str, dict[str, Any]], diag: dict[str, Any], prep: f
 
 
 def _printed_line(summary: dict[str, dict[str, Any]]) -> str:
-    """Paper 003's step 4 as printed (``ms-pf-20-paper``) beside ours (``ms-pf-20``)."""
+    """Li et al.'s (2010) step 4 as printed (``ms-pf-20-paper``) beside ours (``ms-pf-20``)."""
     ours, printed = summary["ms-pf-20"], summary["ms-pf-20-paper"]
 
     def figures(s: dict[str, Any]) -> str:

@@ -1,4 +1,4 @@
-"""The scene of paper 003 (Li, Wu, Kong 2010)'s reproduction: the field, robots and camera, the
+"""The scene of Li, Wu and Kong (2010)'s reproduction: the field, robots and camera, the
 robots' random sharp manoeuvres (:class:`Driver`) and the identity check by the player dots
 (:class:`IdentityCheck`); see :mod:`soccer_lab.papers.meanshift`."""
 
@@ -16,7 +16,7 @@ __all__ = ["KINDS", "LOST_KINDS", "FRAME", "FIELD", "ROBOT", "CONTROL_DT", "INTE
            "start_poses", "Driver"]
 
 #: Tracker kinds: name -> (class name, particles, keyword options). ``ms-pf-20-paper`` is
-#: paper 003's step 4 as printed (unweighted mean of the restricted set, no resampling).
+#: Li et al.'s (2010) step 4 as printed (unweighted mean of the restricted set, no resampling).
 KINDS: dict[str, tuple[str, int, dict]] = {
     "ms-pf-20": ("MeanShiftParticleFilter", 20, {}),
     "ms-pf-20-paper": ("MeanShiftParticleFilter", 20, {"mean": "paper"}),
@@ -24,7 +24,7 @@ KINDS: dict[str, tuple[str, int, dict]] = {
     "pf-200": ("ParticleFilterTracker", 200, {})}
 #: The kinds with a lost-track test (the mean-shift PFs).
 LOST_KINDS = tuple(k for k, (cls, _, _) in KINDS.items() if cls == "MeanShiftParticleFilter")
-#: The camera preset (paper 003's 640 x 480 at 30 Hz, blur and noise).
+#: The camera preset (Li et al.'s 2010 640 x 480 at 30 Hz, blur and noise).
 FRAME = "mirosot"
 #: MiroSot middle league (5 vs 5) dimensions on the ssl-2012 preset (see
 #: :mod:`soccer_lab.papers.meanshift`).

@@ -1,4 +1,4 @@
-"""Hough-space fusion (paper 000): exact on consistent lines, the least-squares point of
+"""Hough-space fusion (Xu et al. 2012): exact on consistent lines, the least-squares point of
 inconsistent ones, invariant to the frame, better weighted when bearings are noisy."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ import pytest
 
 from estimators.fusion import FusedSighting, fuse_sightings, fusion_weights, hough_fuse, hough_lines
 
-# Paper 000, Table 1 (millimetres): the five robots and the ball's start.
+# Xu et al. (2012), Table 1 (millimetres): the five robots and the ball's start.
 ROBOTS = np.array([[1000, 3500], [250, 2000], [1750, 350], [4250, 2400], [5600, 3900]],
                   dtype=float)
 BALL = np.array([3000.0, 3200.0])

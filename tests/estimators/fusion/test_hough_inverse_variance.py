@@ -20,7 +20,7 @@ from estimators import (
     line_offset_variance,
 )
 
-# Paper 000, Table 1 [m]: the five robots and the ball's start.
+# Xu et al. (2012), Table 1 [m]: the five robots and the ball's start.
 ROBOTS = np.array([[1.0, 3.5], [0.25, 2.0], [1.75, 0.35], [4.25, 2.4], [5.6, 3.9]])
 BALL = np.array([3.0, 3.2])
 

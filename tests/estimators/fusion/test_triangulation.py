@@ -1,4 +1,4 @@
-"""Three-landmark triangulation (paper 000): exact on exact bearings, error that grows
+"""Three-landmark triangulation (Xu et al. 2012): exact on exact bearings, error that grows
 smoothly with bearing noise, and the degenerate configurations reported."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ import pytest
 
 from estimators.fusion import SEED_FAILURES, SightingMemory, triangulate, triangulate_sightings
 
-# Two goal posts and the far corner of a 6 m x 4 m humanoid field (paper 000's), in metres.
+# Two goal posts and the far corner of a 6 m x 4 m humanoid field (Xu et al.'s 2012), in metres.
 LANDMARKS = np.array([[3.0, 0.7], [3.0, -0.7], [-3.0, 2.0]])
 
 

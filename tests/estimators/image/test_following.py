@@ -1,4 +1,4 @@
-"""Paper 004's Kalman-started mean shift with ego-motion compensation, plain mean shift and
+"""Yu et al.'s (2010) Kalman-started mean shift with ego-motion compensation, plain mean shift and
 depth from size on synthetic weight images: a camera that turns fast, a robot walking towards
 its target, the ego-motion shift's signs, bad arguments."""
 
@@ -73,7 +73,7 @@ def test_both_orders_keep_the_target_the_turning_camera_sweeps_across(order):
 
 
 def test_paper_order_measures_the_region_centroid_then_shifts_from_the_posterior():
-    """Paper 004's order: the measurement is the weights' centroid in the region R (twice
+    """Yu et al.'s (2010) order: the measurement is the weights' centroid in the region R (twice
     the target) around the prediction; mean shift starts from the Kalman posterior and its
     result replaces the posterior's position. A target 14 px from the prediction (outside a
     21 px window centred there, inside the 42 px region): R sees part of it, the update pulls

@@ -1,4 +1,4 @@
-"""Paper 003's feature-restricted mean-shift particle filter and the plain particle filter on
+"""Li et al.'s (2010) feature-restricted mean-shift particle filter and the plain particle filter on
 synthetic weight images: a manoeuvring target, a distractor of a similar colour, a target that
 disappears and reappears, a ball occluded by a robot, reproducibility, the feature-check hook,
 bad arguments."""
@@ -41,7 +41,7 @@ def test_mean_shift_pf_with_20_particles_beats_plain_pf_on_a_manoeuvring_target(
 
 
 def test_step_four_as_printed_tracks_with_the_unweighted_mean_of_the_restricted_set():
-    """Paper 003's step 4 as printed: the estimate is the plain mean of the particles, every
+    """Li et al.'s (2010) step 4 as printed: the estimate is the plain mean of the particles, every
     particle is inside the feature restriction after the update (rejected ones replaced by
     allowed ones), no resampling by weight; and it tracks the manoeuvring target as well as
     the weighted mean with resampling does."""

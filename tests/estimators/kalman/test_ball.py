@@ -16,7 +16,7 @@ from estimators import (
     LeastSquaresBall,
 )
 
-PAPER = BallFilterConfig()  # paper 002's EKF
+PAPER = BallFilterConfig()  # Zhao et al.'s (2012) EKF
 CONFIGS = {
     "kf": BallFilterConfig(deceleration=0.0, collision_noise=False, gate=None, reset_after=None),
     "ekf": PAPER,
@@ -141,7 +141,7 @@ def rmse(e):
 
 @pytest.mark.parametrize("name", ["ekf", "ekf-improved"])
 def test_latency_compensated_ekf_beats_raw_delayed_detections(name):
-    """Paper 002's setting: 25 Hz, 120 ms latency, 25 mm noise, a_f = 0.23 m/s^2."""
+    """Zhao et al.'s (2012) setting: 25 Hz, 120 ms latency, 25 mm noise, a_f = 0.23 m/s^2."""
     est, raw = present_time_errors(make(name), latency=0.12, v0=(2.5, 1.0))
     settled = slice(10, None)
     assert rmse(est[settled]) * 5 <= rmse(raw[settled])

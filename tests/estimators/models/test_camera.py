@@ -1,4 +1,4 @@
-"""The pinhole head camera (paper 000): projection and ground projection invert each other,
+"""The pinhole head camera (Xu et al. 2012): projection and ground projection invert each other,
 the pan-then-tilt order, the field of view, error growing with distance."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Particle-filter ball tracker (paper 000's filters on the constant-velocity ball model):
+"""Particle-filter ball tracker (Xu et al.'s 2012 filters on the constant-velocity ball model):
 tracking accuracy for every filter, prediction with and without deceleration, restarts after
 a teleport or a long absence, late measurements, reproducibility and bad arguments."""
 

@@ -1,4 +1,4 @@
-"""Particle filters of paper 000: reproducible, accurate against known truth (the Kalman
+"""Particle filters of Xu et al. (2012): reproducible, accurate against known truth (the Kalman
 filter's exact posterior on a linear Gaussian model, the UNGM's simulated states), the SFN
 step's bookkeeping, and bad input."""
 
@@ -72,7 +72,7 @@ def test_matches_the_kalman_posterior_on_a_linear_gaussian_model(make):
         diffs.append(abs(f.step(y)[0] - m))
     # SFN drops the particles lighter than 1/N (the posterior's tails); when the next
     # measurement lands in a tail (step 12 here, 1.9 from the predicted mean) the estimate
-    # is pulled short of the exact one. Paper 000's FBPF, resampling after every SFN, shows
+    # is pulled short of the exact one. Xu et al.'s (2012) FBPF, resampling after every SFN, shows
     # it most (0.28 off at that step, back within 0.05 three steps later).
     worst = 0.35 if make is FBPF else 0.25
     assert np.mean(diffs) < 0.06 and max(diffs) < worst
@@ -80,7 +80,8 @@ def test_matches_the_kalman_posterior_on_a_linear_gaussian_model(make):
 
 @pytest.mark.parametrize("make", FILTERS, ids=IDS)
 def test_ungm_tracks_the_simulated_state(make):
-    """On paper 000's benchmark (100 particles, 50 steps) every filter's RMSE is far below the
+    """On Xu et al.'s (2012) benchmark (100 particles, 50 steps) every filter's RMSE is far below
+    the
     spread of the state itself."""
     tr, lik = ungm_model()
     rmse, spread = [], []
@@ -232,7 +233,7 @@ def test_fission_variance_per_dimension():
 
 
 def test_printed_fbpf_resamples_at_every_step_and_ours_only_below_the_threshold():
-    """Paper 000's FBPF listing resamples after every measurement (every step starts from
+    """Xu et al.'s (2012) FBPF listing resamples after every measurement (every step starts from
     equal weights); the threshold variant keeps unequal weights while N_eff >= N_th."""
     tr, lik = ungm_model()
     _, _, ys = ungm_simulate(40, np.random.default_rng(2))

@@ -1,4 +1,4 @@
-"""KLD-sampling particle-filter localization (paper 001): global localization, tracking with
+"""KLD-sampling particle-filter localization (Guo and Li 2013): global localization, tracking with
 few particles, recovery after kidnapping, the KLD bound, reproducibility, bad input."""
 
 from __future__ import annotations
@@ -304,7 +304,7 @@ def test_landmark_table_bad_input():
 
 
 # --------------------------------------------------------------------------------------------
-# Recovery seeded by triangulation (paper 000's three-landmark self-localization)
+# Recovery seeded by triangulation (Xu et al.'s 2012 three-landmark self-localization)
 # --------------------------------------------------------------------------------------------
 
 #: Posts told apart by colour, corners and centre-line ends by kind only.

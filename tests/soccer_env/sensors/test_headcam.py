@@ -380,7 +380,7 @@ def test_presets_match_their_sources():
     old = HEAD_CAMERAS["kidsize-2012"]
     assert (old.height, old.width, old.height_px, old.frame_rate) == (0.56, 720, 625, 25.0)
     assert old.hfov == pytest.approx(math.radians(51.0)) and old.distinct_goals
-    assert old.landmark_range == 4.0  # paper 001
+    assert old.landmark_range == 4.0  # Guo and Li (2013)
     assert not head_camera("kidsize").distinct_goals
     ideal = head_camera("ideal")
     assert ideal.occlusion and ideal.pixel_sigma == 0.0 and ideal.false_ball_rate == 0.0

@@ -1,4 +1,4 @@
-"""The paper 002 benchmark: its claims as testable orderings, and its command line."""
+"""The Zhao et al. (2012) benchmark: its claims as testable orderings, and its command line."""
 
 import json
 from pathlib import Path
@@ -43,7 +43,7 @@ def test_paper_command_writes_tables_and_plots(tmp_path: Path, capsys):
     assert main(["paper", "ekf", "--out", str(tmp_path), "--episodes", "4", "--shots", "2",
                  "--workers", "1"]) == 0
     out = capsys.readouterr().out
-    assert "Paper 002 reports" in out and "| sensor preset |" in out
+    assert "Zhao et al. (2012) reports" in out and "| sensor preset |" in out
     for name in ("paper_ekf_open_loop.md", "paper_ekf_open_loop.csv",
                  "paper_ekf_closed_loop.md", "paper_ekf_closed_loop.csv",
                  "paper_ekf_trace.png", "paper_ekf_save_rates.png"):

@@ -1,4 +1,5 @@
-"""``soccer-env paper following``: paper 004's Kalman-started mean shift against plain mean shift
+"""``soccer-env paper following``: Yu et al.'s (2010) Kalman-started mean shift against plain mean
+shift
 on a turning humanoid's head-camera frames."""
 
 from __future__ import annotations
@@ -34,7 +35,7 @@ def test_the_run_writes_its_outputs(short_run):
     assert len(data["episode_list"]) == len(following.VARIANTS)
     csv = (out / "paper_following.csv").read_text().splitlines()
     assert csv[0].startswith("table,variant") and len(csv) > 10
-    assert "Paper 004" in res["text"] and following.AIM in res["text"]
+    assert "Yu et al. (2010)" in res["text"] and following.AIM in res["text"]
     assert res["seconds"] > 0.0
 
 

@@ -26,7 +26,7 @@ def test_reproducible_and_fusion_beats_the_average_robot(tmp_path):
     cam = a["camera"]
     # Five robots' bearings fused beat what one robot alone knows, on average.
     assert cam["by_count_m"][5] < cam["by_count_m"][1]
-    assert "Paper 000" in a["text"]
+    assert "Xu et al. (2012)" in a["text"]
 
 
 def test_command_line_and_bad_arguments(tmp_path, capsys):

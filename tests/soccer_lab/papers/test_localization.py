@@ -173,7 +173,7 @@ def test_triangulation_alone_and_as_the_recovery_seed(short_run):
     # The seeded filter is the same filter and walk; the text compares the two.
     seeded = res["results"][SEEDED]
     assert seeded["initial_particles"] == res["results"][KLD]["initial_particles"]
-    assert "Recovery seed (paper 000's triangulation" in res["text"]
+    assert "Recovery seed (Xu et al.'s 2012 triangulation" in res["text"]
     assert "| triangulation, last 25 frames |" in res["text"]
     assert "fewer than three landmarks [%]" in res["text"]
 

@@ -1,5 +1,6 @@
 """``soccer-env paper meanshift``: fast-manoeuvring robots of two teams filmed by the MiroSot
-overhead camera, each tracked by paper 003's mean-shift PF (20 particles, identity check by the
+overhead camera, each tracked by Li et al.'s (2010) mean-shift PF (20 particles, identity check by
+the
 player dots) and by the plain PF with 20 and 200 particles: outputs written, every tracker
 kind measured with consistent figures, the identity check tells team-mates apart, the figures
 do not depend on the workers, bad arguments rejected."""

@@ -26,7 +26,7 @@ def test_team_benchmark_measures_every_configuration_and_writes_its_outputs(tmp_
         assert (tmp_path / f"paper_team.{suffix}").stat().st_size > 0
     data = json.loads((tmp_path / "paper_team.json").read_text())
     assert data["paper"]["gain"] == 0.48
-    assert "paper 000, hardware: 48%" in res["text"]
+    assert "Xu et al. 2012, hardware: 48%" in res["text"]
 
 
 def test_team_benchmark_rejects_bad_arguments(tmp_path: Path):

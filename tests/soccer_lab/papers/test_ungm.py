@@ -26,7 +26,7 @@ def test_tables_plot_and_reproducibility(tmp_path):
     # Every filter tracks the state far better than its spread (UNGM's |x| reaches ~20).
     assert all(2.0 < v < 8.0 for v in a["rmse"].values())
     assert (tmp_path / "a" / "paper_ungm.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert "Paper 000" in (tmp_path / "a" / "paper_ungm.md").read_text()
+    assert "Xu et al. (2012)" in (tmp_path / "a" / "paper_ungm.md").read_text()
 
 
 def test_command_line_and_bad_arguments(tmp_path, capsys):
