@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 PIP := $(BIN)/python -m pip
 
-.PHONY: demo test test-rllib bench lint clean
+.PHONY: demo test test-rllib bench lint docs clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -48,6 +48,15 @@ $(RLLIB_VENV)/.installed: pyproject.toml | $(RLLIB_BIN)/python
 test-rllib: $(RLLIB_VENV)/.installed
 	$(RLLIB_BIN)/python -m pytest $(RLLIB_TESTS)
 
+# The documentation site (mkdocs.yml, docs/): --strict fails on any warning (a broken link, a
+# page missing from the navigation, a reference or docstring that mkdocstrings cannot read).
+$(VENV)/.docs-installed: pyproject.toml | $(BIN)/python
+	$(PIP) install --quiet -e ".[docs]"
+	touch $@
+
+docs: $(VENV)/.docs-installed
+	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --site-dir site
+
 bench: $(VENV)/.demo-installed
 	$(BIN)/soccer-env bench
 
@@ -55,4 +64,4 @@ lint: $(VENV)/.dev-installed
 	$(BIN)/ruff check soccer_env estimators agents soccer_lab tests benchmarks examples
 
 clean:
-	rm -rf $(VENV) $(RLLIB_VENV) demo_output bench_output .pytest_cache
+	rm -rf $(VENV) $(RLLIB_VENV) demo_output bench_output .pytest_cache site

@@ -16,7 +16,8 @@ if TYPE_CHECKING:
     from agents.ablation import AblationResult
     from agents.evaluation import EvalResult
 
-__all__ = ["write_outputs", "write_files", "markdown", "rows", "data", "plot", "rate_text"]
+__all__ = ["write_outputs", "write_files", "markdown", "rows", "data", "plot", "figure",
+           "rate_text"]
 
 
 def markdown(res: AblationResult) -> str:
@@ -114,14 +115,36 @@ def data(res: AblationResult) -> dict[str, Any]:
 
 
 def plot(res: AblationResult, path: Path) -> str:
-    """Grouped bars per preset: save rate with its interval, ball RMSE, compute per step."""
+    """Write :func:`figure` of ``res`` to ``path`` (PNG); return the path."""
+    from soccer_env.render.plots import save_figure
+
+    return save_figure(figure(res), path)
+
+
+def figure(res: AblationResult):
+    """Grouped bars per preset: save rate with its interval, ball RMSE, compute per step; the
+    legend of the configurations beside the bars, the title naming the environment, the robots,
+    the field and the policy.
+
+    Returns:
+        The :class:`matplotlib.figure.Figure` (not yet laid out; :func:`plot` saves it).
+    """
     import numpy as np
 
-    from soccer_env.render.plots import pyplot, save_figure
+    from agents.ablation import DEFAULT_HUMANOID
+    from soccer_env.render.plots import (
+        LABEL_SIZE,
+        TITLE_SIZE,
+        describe_world,
+        interval_key,
+        legend_beside,
+        pyplot,
+    )
 
     plt = pyplot()
     n_p, n_c = len(res.presets), len(res.configs)
-    fig, axes = plt.subplots(3, 1, figsize=(max(7.0, 1.6 + 0.32 * n_p * n_c), 9.5), sharex=True)
+    fig, axes = plt.subplots(3, 1, figsize=(max(7.0, 1.6 + 0.32 * n_p * n_c) + 2.4, 9.8),
+                             sharex=True)
     width = 0.8 / n_c
     x = np.arange(n_p)
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
@@ -136,27 +159,42 @@ def plot(res: AblationResult, path: Path) -> str:
         axes[1].bar(pos, np.where(rmse > 0, rmse, np.nan), width, color=color)
         us = np.array([c.estimator_us_per_step or 0.0 for c in cells])
         axes[2].bar(pos, us, width, color=color)
-    axes[0].set_ylabel("save rate [%]")
+    axes[0].set_ylabel("save rate [%]", fontsize=LABEL_SIZE)
     axes[0].set_ylim(0, 105)
-    axes[0].set_title(f"Policy {res.policy}: {res.episodes} shots per bar (95 % CI)")
-    axes[0].legend(fontsize=8, ncol=min(n_c, 4), loc="lower left")
-    axes[1].set_ylabel("ball RMSE [mm]")
-    if any(res.cell(p, c).ball_rmse_m > 0 for p in res.presets for c in res.configs):
+    kwargs = dict(res.env_kwargs)
+    robot = kwargs.get("robot", DEFAULT_HUMANOID if res.robot == "humanoid" else "ssl")
+    env = res.env_id.split("/")[-1]
+    fig.suptitle(f"Estimator ablation on {env}: policy {res.policy}, {res.episodes} shots per "
+                 f"bar\n{describe_world(robot, kwargs.get('field'))}", fontsize=TITLE_SIZE)
+    axes[0].set_title("Save rate", fontsize=LABEL_SIZE)
+    axes[1].set_ylabel("ball RMSE [mm]", fontsize=LABEL_SIZE)
+    errors_mm = [1000 * res.cell(p, c).ball_rmse_m for p in res.presets for c in res.configs]
+    errors_mm = [e for e in errors_mm if e > 0 and np.isfinite(e)]
+    if errors_mm:
         from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
         axes[1].set_yscale("log")
-        # Ticks at 1, 2 and 5 per decade: a range within one decade still gets labels.
+        # Ticks at 1, 2 and 5 per decade: a range within one decade still gets labels; the
+        # axis runs from the tick below the smallest bar to the tick above the largest.
         axes[1].yaxis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
         axes[1].yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
         axes[1].yaxis.set_minor_formatter(NullFormatter())
-    axes[1].set_title("Ball estimation error (truth: 0, not drawn)", fontsize=10)
-    axes[2].set_ylabel("estimator [us/step]")
-    axes[2].set_title("Estimator compute per step", fontsize=10)
+        ticks = [m * 10.0 ** k for k in range(-3, 9) for m in (1.0, 2.0, 5.0)]
+        low = max([v for v in ticks if v <= min(errors_mm) / 1.1], default=ticks[0])
+        high = min([v for v in ticks if v >= max(errors_mm) * 1.1], default=ticks[-1])
+        axes[1].set_ylim(low, high)
+    axes[1].set_title("Ball estimation error, believed against true position over all steps "
+                      "(truth: 0, not drawn)", fontsize=LABEL_SIZE)
+    axes[2].set_ylabel("estimator [us/step]", fontsize=LABEL_SIZE)
+    axes[2].set_title("Estimator compute per environment step", fontsize=LABEL_SIZE)
     axes[2].set_xticks(x, res.presets)
-    axes[2].set_xlabel("sensor preset")
+    axes[2].set_xlabel("head-camera preset" if res.robot == "humanoid"
+                       else "sensor preset (overhead vision)", fontsize=LABEL_SIZE)
     for ax in axes:
         ax.grid(axis="y", alpha=0.3)
-    return save_figure(fig, path)
+    first = legend_beside(axes[0], title="ball estimate")
+    legend_beside(axes[0], [interval_key("95 % Wilson interval", color="k")], below=first)
+    return fig
 
 
 def write_outputs(res: AblationResult, out: str | os.PathLike) -> dict[str, Path]:

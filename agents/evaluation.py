@@ -310,13 +310,16 @@ def record_video(policy: str | os.PathLike | Callable, path: str | os.PathLike,
                  env_kwargs: Mapping[str, Any] | None = None, seeds: Sequence[int] = (0, 1, 2),
                  env_id: str = GOALKEEPER_ID, width: int = 640, trust: bool = False) -> Path:
     """Render the episodes ``seeds`` (rgb_array, the belief drawn over the truth) to ``path``
-    (``.mp4``; a ``.gif`` beside it if no ffmpeg is available). Returns the file written.
-    ``trust``: as for :func:`evaluate`."""
-    from soccer_env.render.video import write_video
+    (``.mp4``; a ``.gif`` beside it if no ffmpeg is available). Each episode opens with its
+    title card and ends on its outcome banner, whose frame is held for
+    :data:`~soccer_env.render.video.HOLD_SECONDS` before the next episode. Returns the file
+    written. ``trust``: as for :func:`evaluate`."""
+    from soccer_env.render.video import hold_last, write_video
 
     kwargs = {**dict(env_kwargs or {}), "render_mode": "rgb_array", "render_width": width}
     env = gym.make(env_id, **kwargs)
     pol = make_policy(policy, env, trust=trust)
+    fps = env.unwrapped.metadata["render_fps"]
     frames = []
     for seed in seeds:
         obs, _ = env.reset(seed=int(seed))
@@ -327,6 +330,6 @@ def record_video(policy: str | os.PathLike | Callable, path: str | os.PathLike,
             frames.append(env.render())
             if term or trunc:
                 break
-    fps = env.unwrapped.metadata["render_fps"]
+        hold_last(frames, fps)
     env.close()
     return write_video(frames, Path(path), fps)

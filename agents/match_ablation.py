@@ -38,7 +38,7 @@ from agents.matches import HeadToHead, Side, match_jobs, run_match_jobs
 
 __all__ = ["MATCH_ID", "DEFAULT_PAIRS", "DEFAULT_MATCH_PRESETS", "DEFAULT_TEAM_SIZE",
            "DEFAULT_DURATION", "DEFAULT_MATCHES", "MatchAblationResult", "run_match_ablation",
-           "parse_pairs", "write_outputs"]
+           "parse_pairs", "write_outputs", "plot", "figure"]
 
 MATCH_ID = "soccer_env/Match-v0"
 #: The pairs played unless told otherwise, per robot kind: the paper's EKF against raw
@@ -338,22 +338,55 @@ def _probe(job: tuple) -> None:
 # ------------------------------------------------------------------------------------------
 
 def plot(res: MatchAblationResult, path: Path) -> str:
-    """Per cell: A's goal difference per match with its interval, and the W/D/L shares."""
+    """Write :func:`figure` of ``res`` to ``path`` (PNG); return the path."""
+    from soccer_env.render.plots import save_figure
+
+    return save_figure(figure(res), path)
+
+
+def figure(res: MatchAblationResult):
+    """Per cell (a row: pair and preset): A's goal difference per match with its interval,
+    and the W/D/L shares; legends above the panels, the title naming the teams, the robots and
+    the field.
+
+    Returns:
+        The :class:`matplotlib.figure.Figure` (constrained layout; :func:`plot` saves it).
+    """
     import numpy as np
 
-    from soccer_env.render.plots import pyplot, save_figure
+    from soccer_env.render.plots import (
+        LABEL_SIZE,
+        TICK_SIZE,
+        TITLE_SIZE,
+        describe_world,
+        interval_key,
+        legend_above,
+        pyplot,
+        style_key,
+    )
 
     plt = pyplot()
-    labels = [f"{a} vs {b}\n{p}" for p in res.presets for a, b in res.pairs]
+    labels = [f"A {a} vs B {b}\npreset {p}" for p in res.presets for a, b in res.pairs]
     cells = [res.cell(p, a, b) for p in res.presets for a, b in res.pairs]
     y = np.arange(len(cells))[::-1]
-    fig, axes = plt.subplots(1, 2, figsize=(10.0, 1.2 + 0.7 * len(cells)), sharey=True)
+    fig, axes = plt.subplots(1, 2, figsize=(11.0, 2.2 + 0.7 * len(cells)), sharey=True,
+                             layout="constrained")
     gd = np.array([c.goal_difference() for c in cells])
+    bounded = np.isfinite(gd[:, 1]) & np.isfinite(gd[:, 2])
     err = np.abs(gd[:, 1:] - gd[:, :1]).T
-    axes[0].errorbar(gd[:, 0], y, xerr=np.where(np.isfinite(err), err, 0), fmt="o",
-                     capsize=3, color="tab:blue")
+    keys = []
+    if bounded.any():
+        axes[0].errorbar(gd[bounded, 0], y[bounded], xerr=err[:, bounded], fmt="o",
+                         capsize=3, color="tab:blue")
+        keys.append(interval_key("mean, 95 % interval", marker="o", horizontal=True,
+                                 color="tab:blue"))
+    if not bounded.all():  # one seed: no interval
+        axes[0].plot(gd[~bounded, 0], y[~bounded], "o", mfc="none", color="tab:blue")
+        keys.append(style_key("mean (one seed: no interval)", ls="None", marker="o",
+                              color="tab:blue", mfc="none"))
     axes[0].axvline(0.0, color="grey", lw=1, ls="--")
-    axes[0].set_xlabel("goal difference A - B per match (95 % CI)")
+    keys.append(style_key("no difference", ls="--", lw=1, color="grey"))
+    axes[0].set_xlabel("goal difference A - B per match", fontsize=LABEL_SIZE)
     axes[0].set_yticks(y, labels)
     shares = np.array([[c.rate(o)[0] for o in ("wins", "draws", "losses")] for c in cells])
     left = np.zeros(len(cells))
@@ -362,14 +395,18 @@ def plot(res: MatchAblationResult, path: Path) -> str:
         axes[1].barh(y, 100 * shares[:, j], left=left, color=color, label=name)
         left += 100 * shares[:, j]
     axes[1].set_xlim(0, 100)
-    axes[1].set_xlabel("share of matches [%]")
-    axes[1].legend(loc="upper center", bbox_to_anchor=(0.5, -0.12 - 0.3 / len(cells)),
-                   ncol=3, fontsize=8)
-    fig.suptitle(f"{res.matches} matches per row, {res.team_size} vs {res.team_size}, "
-                 f"{res.duration:g} s")
+    axes[1].set_xlabel("share of matches [%]", fontsize=LABEL_SIZE)
+    legend_above(axes[0], keys)
+    legend_above(axes[1])
+    kwargs = dict(res.env_kwargs)
+    robot = kwargs.get("robot", DEFAULT_HUMANOID if res.robot == "humanoid" else "ssl")
+    fig.suptitle(f"Estimators in matches on {MATCH_ID.split('/')[-1]}: two {res.policy} teams "
+                 f"of {res.team_size}, {res.duration:g} s matches, {res.matches} per row\n"
+                 f"{describe_world(robot, kwargs.get('field'))}", fontsize=TITLE_SIZE)
     for ax in axes:
         ax.grid(axis="x", alpha=0.3)
-    return save_figure(fig, path)
+        ax.tick_params(labelsize=TICK_SIZE)
+    return fig
 
 
 def write_outputs(res: MatchAblationResult, out: str | os.PathLike) -> dict[str, Path]:

@@ -550,7 +550,7 @@ def make_match_vec_env(env_kwargs: Mapping[str, Any] | None = None, n_matches: i
 def _find_match_vec_env(env: VecEnv) -> tuple[Any, VecNormalize | None, dict | None]:
     """The :class:`MatchVecEnv` under ``env``'s wrappers, the outermost ``VecNormalize``
     that normalises observations, if any, and the action map of the outermost wrapper that
-    maps the learner's actions (:class:`~agents.team_residual.TeamResidualVecEnv`), if
+    maps the learner's actions (:class:`~agents.team_residual_vec_env.TeamResidualVecEnv`), if
     any."""
     norm = action_map = None
     while isinstance(env, VecEnvWrapper):
@@ -574,7 +574,7 @@ class SelfPlayCallback(BaseCallback):
     The copy is a frozen :class:`~agents.policies.NumpyPolicy` (the deterministic action; it
     does not change while the learner trains). If the observations pass through
     ``VecNormalize``, the copy carries a frozen copy of its statistics; if the learner acts
-    through an action map (:class:`~agents.team_residual.TeamResidualVecEnv`), the copy
+    through an action map (:class:`~agents.team_residual_vec_env.TeamResidualVecEnv`), the copy
     acts through the same map. With
     ``pool_size > 1`` the callback keeps the last ``pool_size`` copies and each match draws
     one of them whenever it resets; with ``pool_size == 1`` the newest copy replaces the

@@ -136,7 +136,8 @@ class NumpyPolicy:
     Args:
         layers: the network, input to output.
         output: ``"clip"``, ``"tanh"`` or ``"scale"``.
-        low, high: the action box.
+        low: the action box's lower bounds.
+        high: the action box's upper bounds.
         meta: free-form description (algorithm, environment, training configuration), saved
             with the weights.
         normalize: ``(mean, var, clip, epsilon)`` of a policy trained behind

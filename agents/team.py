@@ -74,7 +74,9 @@ class ScriptedTeam(RestartPlay):
     """Scripted policy for one team of :class:`~soccer_env.envs.match.SoccerParallelEnv`.
 
     Args:
-        field, ball, robot: the match's specs (geometry, rolling deceleration, robot limits).
+        field: the match's field (geometry).
+        ball: the match's ball (its rolling deceleration).
+        robot: the team's robot spec (its limits).
         names: the entry names of this team's observations
             (``env.builder.names_for(team_index)``).
         team_size: robots in the team (1 .. ``MAX_TEAM_SIZE``).

@@ -27,7 +27,8 @@ needs all its robots on the field (no game flow, whose cards send robots off).
 :func:`team_residual_params` records what rebuilds the scripted team (the specs as numbers, the
 observation's entry names, the team size), so a saved :class:`~agents.policies.NumpyPolicy`
 with ``action_map={"kind": "team-residual", "params": ...}`` acts on the plain match without
-the environment it was trained in; :class:`TeamResidualVecEnv` is the map in training.
+the environment it was trained in;
+:class:`~agents.team_residual_vec_env.TeamResidualVecEnv` is the map in training.
 """
 
 from __future__ import annotations
@@ -39,10 +40,8 @@ from functools import lru_cache
 from typing import Any
 
 import numpy as np
-from stable_baselines3.common.vec_env import VecEnv, VecEnvWrapper
 
-__all__ = ["TEAM_RESIDUAL", "team_residual_params", "team_residual_command",
-           "TeamResidualVecEnv"]
+__all__ = ["TEAM_RESIDUAL", "team_residual_params", "team_residual_command"]
 
 #: The largest correction of every command entry (1: the learner can override the scripted
 #: command entirely).
@@ -128,48 +127,3 @@ def _command(team: Any, residual: float, obs: np.ndarray, act: np.ndarray) -> np
     switches = list(_SWITCHES)
     base[:, switches] = np.where(base[:, switches] > 0.0, base[:, switches], -1.0)
     return np.clip(base + act * residual, -1.0, 1.0).astype(np.float32)
-
-
-class TeamResidualVecEnv(VecEnvWrapper):
-    """A match VecEnv (:func:`~agents.multiagent.make_match_vec_env`) whose learning team acts
-    through the ``"team-residual"`` map: the learner's action ``a`` in ``[-1, 1]^6`` becomes
-    the scripted team's command from the entry's last observation plus ``a * residual``.
-
-    Wrap it inside ``VecNormalize`` (the map reads the plain observations). ``params`` is
-    what a :class:`~agents.policies.NumpyPolicy` copy of the learner needs as its
-    ``action_map`` (:attr:`action_map`).
-    """
-
-    def __init__(self, venv: VecEnv, params: Mapping[str, Any]) -> None:
-        super().__init__(venv)
-        self.params = dict(params)
-        # Rebuilt once here, not at every step.
-        self._team = _team(json.dumps(self.params, sort_keys=True))
-        size = self._team.team_size
-        if venv.num_envs % size:
-            raise ValueError(f"the VecEnv's {venv.num_envs} entries are not whole teams of "
-                             f"{size} robots")
-        if len(self.params["names"]) != venv.observation_space.shape[0]:
-            raise ValueError(f"the map's observation layout has {len(self.params['names'])} "
-                             f"entries, the VecEnv's {venv.observation_space.shape[0]}")
-        self._obs: np.ndarray | None = None
-
-    @property
-    def action_map(self) -> dict[str, Any]:
-        """``{"kind": "team-residual", "params": ...}``, as a numpy policy stores it."""
-        return {"kind": "team-residual", "params": dict(self.params)}
-
-    def reset(self) -> np.ndarray:
-        self._obs = self.venv.reset()
-        return self._obs
-
-    def step_async(self, actions: np.ndarray) -> None:
-        if self._obs is None:
-            raise RuntimeError("call reset() before step()")
-        self.venv.step_async(_command(self._team, float(self.params["residual"]), self._obs,
-                                      actions))
-
-    def step_wait(self):
-        obs, rewards, dones, infos = self.venv.step_wait()
-        self._obs = obs
-        return obs, rewards, dones, infos

@@ -10,7 +10,7 @@ million steps; a leak shows as a slope that does not fall with longer runs.
     python benchmarks/soak.py --steps 1000000            # about 4 minutes on 2 cores
     python benchmarks/soak.py --env goalkeeper --obs-mode perceived --steps 500000
 
-Not a timed test: the figures go in the README with the command that produced them.
+Not a timed test: the figures go in docs/results/step-rates.md with the command that produced them.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """The shipped SSL match team against the scripted team, and an Elo table.
 
-    python benchmarks/ssl_team.py                       # the README's figures
+    python benchmarks/ssl_team.py                       # the figures of docs/results/learning.md
     python benchmarks/ssl_team.py --matches 40 --round-robin 20   # a quick look
 
 1. ``--matches`` seeded 2 vs 2 matches (60 s, 30 commands a second, truth observations, the

@@ -3,27 +3,26 @@
 Everything here takes and returns numpy arrays, depends on numpy only (never on ``soccer_env``
 or ``agents``), and draws random numbers from explicit ``numpy.random.Generator`` arguments.
 
-"Xu et al. (2012)" to "Yu et al. (2010)" are the five source papers, listed with full citations in
-the
-README's "Source papers" section: 000 Xu, Xie, Wang, Ni 2012 (target localization by
-cooperative soccer robots in Hough space); 001 Guo, Li 2013 (mobile-robot localization from
-obstacle-ground corners); 002 Zhao, Wang, Li 2012 (the extended Kalman filter in robot soccer);
-003 Li, Wu, Kong 2010 (the mean-shift, feature-restricted particle filter); 004 Yu, Wei, Zhang
-2010 (person following with a monocular camera).
+"Xu et al. (2012)" to "Yu et al. (2010)" are the five source papers, cited in full in the
+README's "Source papers" section and on the documentation's "Source papers" page
+(``docs/papers.md``): Xu, Xie, Wang and Ni (2012), target localization by cooperative soccer
+robots in Hough space; Guo and Li (2013), mobile-robot localization from obstacle-ground
+corners; Zhao, Wang and Li (2012), the extended Kalman filter in robot soccer; Li, Wu and Kong
+(2010), the mean-shift, feature-restricted particle filter; Yu, Wei and Zhang (2010), person
+following with a monocular camera.
 
 Every public name is importable from here (``from estimators import BallTracker``); the
 subpackages group them:
 
 * :mod:`estimators.models`: motion and measurement models, the rolling ball, the head camera;
-* :mod:`estimators.kalman`: the Kalman filter core, the ball trackers of Zhao et al. (2012), the
-robot
-  tracker;
-* :mod:`estimators.particle`: the particle filters of Xu et al. (2012), the particle ball tracker,
-the
-  KLD-sampling localization of Guo and Li (2013);
-* :mod:`estimators.fusion`: Hough-space fusion and three-landmark triangulation (Xu et al. 2012);
-* :mod:`estimators.image`: mean shift and the trackers on weight images (Li et al. 2010 and Yu et
-al. (2010)).
+* :mod:`estimators.kalman`: the Kalman filter core, the ball trackers of Zhao et al. (2012),
+  the robot tracker;
+* :mod:`estimators.particle`: the particle filters of Xu et al. (2012), the particle ball
+  tracker, the KLD-sampling localization of Guo and Li (2013);
+* :mod:`estimators.fusion`: Hough-space fusion and three-landmark triangulation (Xu et al.
+  2012);
+* :mod:`estimators.image`: mean shift and the trackers on weight images (Li et al. 2010 and
+  Yu et al. 2010).
 
 **Time-stamped trackers** follow one protocol (:class:`Tracker`, :mod:`estimators.protocol`):
 ``update(t, z, ...)`` fuses a measurement captured at time ``t`` [s], ``estimate(t)`` predicts

@@ -1,8 +1,8 @@
 """Train the soccer match with RLlib: self-play PPO whose env runners Ray spreads over the
-machines of a cluster.
+machines of a cluster (docs/tutorials/ray-cluster.md).
 
     python examples/rllib_match.py                      # Ray on this machine
-    python examples/rllib_match.py --address HEAD:6379  # a running cluster (README)
+    python examples/rllib_match.py --address HEAD:6379  # a running cluster
     python examples/rllib_match.py --tiny               # seconds: what the tests run
 
 Blue's robots play module ``main``, which learns; yellow's play ``opponent``, a frozen copy of

@@ -1,6 +1,6 @@
 """TorchRL: the keeper by its Gymnasium id and the match through ``PettingZooWrapper``.
 
-    pip install torchrl==0.14.1        # beside torch==2.13.0 (see the README)
+    pip install torchrl==0.14.1        # beside torch==2.13.0 (see docs/guide/rl-libraries.md)
     python examples/torchrl_envs.py [--tiny]
 
 TorchRL's ``PettingZooWrapper`` turns every entry of every agent's info into a tensor, so

@@ -46,7 +46,8 @@ from stable_baselines3.common.vec_env import VecNormalize
 import soccer_env
 from agents.matches import Side, head_to_head
 from agents.multiagent import SelfPlayCallback, make_match_vec_env
-from agents.team_residual import TeamResidualVecEnv, team_residual_params
+from agents.team_residual import team_residual_params
+from agents.team_residual_vec_env import TeamResidualVecEnv
 
 #: The training match: 2 vs 2 SSL robots, Division B, truth observations, the simple referee.
 TRAIN_KWARGS: dict[str, Any] = {"blue": 2, "yellow": 2, "match_duration": 30.0,

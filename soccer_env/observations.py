@@ -97,7 +97,8 @@ class ObservationBuilder:
         field: field geometry (goal posts, bounds).
         teams: team of every robot of the belief (0 blue, 1 yellow), in robot order.
         agents: robot indices that get an observation, in the order of the output rows.
-        game_low, game_high: bounds of the task's game-state entries.
+        game_low: lower bounds of the task's game-state entries.
+        game_high: upper bounds of the task's game-state entries.
         game_names: names of the game-state entries.
         implementation: ``"auto"`` (plain Python for few agents seeing few robots, the linear
             map otherwise: see :meth:`build`), ``"python"`` or ``"arrays"``; all give the

@@ -7,7 +7,8 @@
   walk engine; what a humanoid's perception reads besides its camera frames);
 * :class:`Belief`: what a team or a robot believes, laid out like the truth (from perception;
   what the observation builder reads), with how sure it is (:class:`BeliefQuality`, when the
-  environment's belief features ask for it);
+  environment's belief features ask for it) and, for drawing, how it is spread
+  (:class:`BeliefSpread`, filled by the renderer's scene only);
 * :class:`Attention`: what a robot believes that its head controller needs (from perception;
   what the simulation's head control reads).
 """
@@ -18,8 +19,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["WorldState", "HeadState", "BodyState", "Belief", "BeliefQuality", "Attention",
-           "state_dict", "BALL_FIELDS", "ROBOT_FIELDS", "BALL_STATUSES"]
+__all__ = ["WorldState", "HeadState", "BodyState", "Belief", "BeliefQuality", "BeliefSpread",
+           "Attention", "state_dict", "BALL_FIELDS", "ROBOT_FIELDS", "BALL_STATUSES"]
 
 #: Columns of :attr:`WorldState.ball`.
 BALL_FIELDS = ("x", "y", "z", "vx", "vy", "vz")
@@ -138,16 +139,51 @@ class BeliefQuality(NamedTuple):
     ball_measured: np.ndarray | None = None
 
 
+class BeliefSpread(NamedTuple):
+    """How a belief is spread, for drawing it: the filters' position covariances and
+    particles, read without changing them (nothing an observation reads comes from here).
+
+    A 2-sigma ellipse of a covariance ``C`` has the semi-axes ``2 sqrt(lambda_k)`` along the
+    eigenvectors of ``C`` (``lambda_k`` its eigenvalues). Where a filter keeps only a scalar
+    standard deviation ``sigma`` per axis (the SSL robot filters' per-axis position filters,
+    raw detections' sensor noise, dead reckoning's grown variance) the covariance is
+    ``sigma^2 I`` and the ellipse a circle of radius ``2 sigma``.
+
+    Attributes:
+        ball: ``(2, 2)`` covariance of the believed ball position ``(x, y)`` [m^2], or None
+            when the filter has none (never seen, or no filter).
+        robots: ``(N, 2, 2)`` covariances of the believed robot positions [m^2], one per
+            robot in the belief's order; NaN where not modelled (robots never seen, a
+            humanoid's team-mates and opponents).
+        ball_particles: ``(K, 2)`` positions [m] of a particle ball tracker's particles,
+            moved by the mean's predicted displacement from the filter's time to the
+            belief's, or None.
+        pose_particles: ``(K, 3)`` particles ``x, y, theta`` [m, m, rad] of the robot's own
+            self-localization (a humanoid's KLD particle filter, at its latest camera frame),
+            or None.
+        robot: the robot whose belief this is (its index in the world), or None for a team's
+            shared belief.
+    """
+
+    ball: np.ndarray | None
+    robots: np.ndarray
+    ball_particles: np.ndarray | None = None
+    pose_particles: np.ndarray | None = None
+    robot: int | None = None
+
+
 class Belief(NamedTuple):
     """A belief laid out like :class:`~soccer_env.state.WorldState`'s arrays: ``ball`` (6,)
     ``x, y, z, vx, vy, vz`` and ``robots`` (N, 6) ``x, y, theta, vx, vy, omega``, at
     ``time``; ``quality`` says how sure it is (None unless the environment's belief features
-    ask for it)."""
+    ask for it); ``spread`` its covariances and particles (:class:`BeliefSpread`; None
+    except in what an environment hands its renderer)."""
 
     time: float
     ball: np.ndarray
     robots: np.ndarray
     quality: BeliefQuality | None = None
+    spread: BeliefSpread | None = None
 
 
 class BodyState(NamedTuple):

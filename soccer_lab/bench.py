@@ -41,7 +41,7 @@ import pymunk
 import soccer_env  # noqa: F401  (registers the environments)
 
 __all__ = ["run_benchmarks", "bench_batched", "bench_frames", "format_table", "REFERENCE",
-           "PERCEIVED_PRESETS", "main", "keeper_save_rates", "format_save_rates",
+           "PERCEIVED_PRESETS", "parser", "main", "keeper_save_rates", "format_save_rates",
            "save_rate_main", "ROLLOUT_CONFIGS", "rollout_rate", "rollout_rates",
            "format_rollout_rates", "rollout_main"]
 
@@ -51,12 +51,12 @@ PERCEIVED_PRESETS = ("realistic", "ssl-2012")
 HUMANOID, HUMANOID_CAMERA = "humanoid-2012", "kidsize-2012"
 
 #: rSoccer (ODE, Gymnasium, ground truth only) on this kind of machine, for reference, and the
-#: step rates aimed at (ten times rSoccer).
+#: target step rates (about ten times rSoccer's).
 REFERENCE = {
     "goalkeeper": {"rsoccer_task": "1-robot shooting task", "rsoccer_steps_per_s": 1700,
-                   "aim_steps_per_s": 15000},
+                   "target_steps_per_s": 15000},
     "match": {"rsoccer_task": "1 vs 6 task", "rsoccer_steps_per_s": 470,
-              "aim_steps_per_s": 3000},
+              "target_steps_per_s": 3000},
 }
 
 
@@ -394,13 +394,14 @@ def _short_path(name: str) -> str:
 
 def format_table(res: dict[str, Any]) -> str:
     """A plain-text table of :func:`run_benchmarks` results."""
-    rows = [("task", "steps/s", "bare pymunk", "env/bare", "rSoccer ref", "x rSoccer", "aim")]
+    rows = [("task", "steps/s", "bare pymunk", "env/bare", "rSoccer ref", "x rSoccer",
+             "target")]
     for key, label in (("goalkeeper", "Goalkeeper-v0 (1 robot)"),
                        ("match_6v6_div_b", "match 6 vs 6, Div B")):
         r = res[key]
         rows.append((label, f"{r['steps_per_s']:,.0f}", f"{r['bare_pymunk_steps_per_s']:,.0f}",
                      f"{r['ratio_to_bare_pymunk']:.2f}", f"{r['rsoccer_steps_per_s']:,}",
-                     f"{r['ratio_to_rsoccer']:.1f}", f"{r['aim_steps_per_s']:,}"))
+                     f"{r['ratio_to_rsoccer']:.1f}", f"{r['target_steps_per_s']:,}"))
     text = _table(rows)
     if res.get("perceived"):
         rows = [("obs_mode='perceived'", "Goalkeeper steps/s", "cost vs truth",
@@ -447,38 +448,65 @@ def _table(rows: list[tuple[str, ...]]) -> str:
     return "\n".join(lines)
 
 
-def main(argv: list[str] | None = None) -> int:
-    """Entry point of ``soccer-env bench``."""
+def parser() -> Any:
+    """The options of ``soccer-env bench`` (an ``argparse.ArgumentParser``)."""
     import argparse
 
-    p = argparse.ArgumentParser(prog="soccer-env bench",
-                                description="Step-rate benchmarks: the environments against "
-                                            "bare pymunk stepping the same bodies.")
+    from soccer_lab.cli_args import HelpFormatter, sensor_preset, sensor_presets_help
+
+    p = argparse.ArgumentParser(
+        prog="soccer-env bench", formatter_class=HelpFormatter,
+        description="Step rates of the environments against bare pymunk stepping the same "
+                    "bodies: Goalkeeper-v0 and a 6 vs 6 match on truth, the cost of "
+                    "perceived observations, humanoids; each figure the median of the timed "
+                    "runs.",
+        epilog="examples:\n"
+               "  soccer-env bench --batch 128               # also the batched environments\n"
+               "  soccer-env bench --frames                  # camera-image renderers (pixels "
+               "extra)\n"
+               "  soccer-env bench --profile humanoid-goalkeeper")
     p.add_argument("--json", action="store_true", help="print the results as JSON")
-    p.add_argument("--steps", type=int, default=20000, help="Goalkeeper steps per run")
-    p.add_argument("--match-steps", type=int, default=5000, help="match steps per run")
-    p.add_argument("--repeats", type=int, default=3, help="timed runs per figure (median)")
+    p.add_argument("--steps", type=int, default=20000,
+                   help="Goalkeeper-v0 steps per timed run")
+    p.add_argument("--match-steps", type=int, default=5000, help="match steps per timed run")
+    p.add_argument("--repeats", type=int, default=3, help="timed runs per figure (the median)")
     p.add_argument("--batch", type=int, default=0, metavar="N",
                    help="also time the batched Goalkeeper-v0 and 2 vs 2 match VecEnv with N "
-                        "environments in this process against single ones (0: skip)")
+                        "environments in this process against single ones (0: skip; needs "
+                        "the train extra)")
     p.add_argument("--frames", action="store_true",
                    help="time the camera-image renderers instead (needs the pixels extra)")
     p.add_argument("--profile", choices=sorted(PROFILE_CASES), default=None,
                    help="profile a perceived step of this case instead (cProfile: the top "
                         "functions by own time per step)")
-    p.add_argument("--perception", default=None,
-                   help="with --profile: the perception preset (default: ssl-2012, or "
-                        "kidsize-2012 for humanoids)")
+    p.add_argument("--perception", type=sensor_preset, default=None, metavar="PRESET",
+                   help=f"with --profile: the sensor preset ({sensor_presets_help()}) "
+                        f"(default: {PROFILE_CASES['goalkeeper'][2]}, or "
+                        f"{HUMANOID_CAMERA} for humanoids)")
     p.add_argument("--top", type=int, default=25,
-                   help="with --profile: how many functions to list (default: 25)")
+                   help="with --profile: how many functions to list")
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``soccer-env bench``."""
+    from soccer_lab import extras
+
+    p = parser()
     args = p.parse_args(argv)
     for name in ("steps", "match_steps", "repeats"):
         if getattr(args, name) < 1:
-            p.error(f"--{name.replace('_', '-')} must be >= 1")
+            p.error(f"--{name.replace('_', '-')} must be >= 1, got {getattr(args, name)}")
     if not 0 <= args.batch <= 65536:
         p.error(f"--batch must be in 0..65536, got {args.batch}")
     if args.top < 1:
-        p.error("--top must be >= 1")
+        p.error(f"--top must be >= 1, got {args.top}")
+    extras.require("bench")
+    # What runs: --profile, else --frames, else the step rates (with --batch, batched too).
+    if args.frames and not args.profile:
+        extras.require("bench --frames")
+    elif args.batch and not args.profile:
+        extras.require("bench --batch", f"bench --batch {args.batch}")
     if args.profile:
         steps = args.steps if args.profile.endswith("goalkeeper") else args.match_steps
         try:
@@ -531,16 +559,21 @@ def save_rate_main(argv: list[str] | None = None) -> int:
     import argparse
     import os
 
+    from soccer_env.presets import FIELDS
+    from soccer_lab.cli_args import HelpFormatter
+
     p = argparse.ArgumentParser(description="Save rate of the scripted keeper and of a keeper "
-                                            "that stands still on Goalkeeper-v0.")
-    p.add_argument("--episodes", type=int, default=300)
-    p.add_argument("--field", default="ssl-div-b")
-    p.add_argument("--workers", type=int, default=os.cpu_count() or 1,
-                   help="processes (default: all cores); the result does not depend on it")
+                                            "that stands still on Goalkeeper-v0.",
+                                formatter_class=HelpFormatter)
+    p.add_argument("--episodes", type=int, default=300, help="shots, seeds 0 onwards")
+    p.add_argument("--field", default="ssl-div-b", choices=list(FIELDS), help="field preset")
+    p.add_argument("--workers", type=int, default=None,
+                   help="processes; the result does not depend on it (default: all cores)")
     args = p.parse_args(argv)
-    if args.episodes < 1 or args.workers < 1:
+    workers = (os.cpu_count() or 1) if args.workers is None else args.workers
+    if args.episodes < 1 or workers < 1:
         p.error("--episodes and --workers must be >= 1")
-    print(format_save_rates(keeper_save_rates(args.episodes, args.field, args.workers)))
+    print(format_save_rates(keeper_save_rates(args.episodes, args.field, workers)))
     return 0
 
 
@@ -618,15 +651,23 @@ def rollout_main(argv: list[str] | None = None) -> int:
     """Entry point of ``benchmarks/rollout_rate.py``."""
     import argparse
 
+    from soccer_env.presets import VISION
+    from soccer_lab.cli_args import HelpFormatter
+
     p = argparse.ArgumentParser(description="PPO rollout collection rate on Goalkeeper-v0: "
                                             "environment steps per second while "
                                             "stable-baselines3 collects rollouts (policy "
                                             "forward passes included, gradient updates "
-                                            "excluded).")
-    p.add_argument("--obs-mode", default="perceived", choices=("truth", "raw", "perceived"))
-    p.add_argument("--perception", default="ssl-2012")
-    p.add_argument("--steps", type=int, default=40_000)
-    p.add_argument("--repeats", type=int, default=3)
+                                            "excluded).",
+                                formatter_class=HelpFormatter)
+    p.add_argument("--obs-mode", default="perceived", choices=("truth", "raw", "perceived"),
+                   help="observation mode")
+    p.add_argument("--perception", default="ssl-2012", choices=list(VISION),
+                   help="SSL vision preset")
+    p.add_argument("--steps", type=int, default=40_000,
+                   help="environment steps per timed training run, >= 4096")
+    p.add_argument("--repeats", type=int, default=3,
+                   help="timed runs per configuration, in alternation")
     args = p.parse_args(argv)
     if args.steps < 4096 or args.repeats < 1:
         p.error("--steps must be >= 4096 and --repeats >= 1")

@@ -1,5 +1,4 @@
-"""Hough-space fusion of several robots' sightings of one target (Xu et al. 2012, Xu, Xie, Wang, Ni
-2012).
+"""Hough-space fusion of several robots' sightings of one target (Xu, Xie, Wang and Ni 2012).
 
 Robot ``i`` at ``p_i`` sees the target along the direction ``psi_i`` (its estimated heading
 plus the sighting's bearing). The line ``L_i`` through ``p_i`` along ``psi_i`` maps to the point

@@ -1,5 +1,4 @@
-"""Self-localization from the bearings of three known landmarks (Xu et al. 2012, Xu, Xie, Wang, Ni
-2012).
+"""Self-localization from the bearings of three known landmarks (Xu, Xie, Wang and Ni 2012).
 
 A robot at ``R = (x, y)`` with heading ``theta`` measures the bearing ``phi_i`` of landmark
 ``P_i`` relative to its heading (counter-clockwise positive; with a panning head, the camera's

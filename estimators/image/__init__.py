@@ -3,8 +3,8 @@ table or a hue histogram, or a frame difference); numpy-only, whatever made the 
 
 * :mod:`~estimators.image.meanshift`: mean shift on a weight image (:func:`mean_shift`) and
   the batched window machinery the trackers share;
-* :mod:`~estimators.image.mspf`: the feature-restricted mean-shift particle filter of paper
-  003 (Li, Wu, Kong 2010; :class:`MeanShiftParticleFilter`) and the plain particle filter it
+* :mod:`~estimators.image.mspf`: the feature-restricted mean-shift particle filter of Li,
+  Wu and Kong (2010; :class:`MeanShiftParticleFilter`) and the plain particle filter it
   is compared with (:class:`ParticleFilterTracker`);
 * :mod:`~estimators.image.following`: the Kalman-started mean shift with ego-motion
   compensation of Yu, Wei and Zhang (2010; :class:`KalmanMeanShift`), plain mean shift

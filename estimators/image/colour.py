@@ -36,8 +36,8 @@ def _valid_hue(hsv: np.ndarray, min_saturation: int, min_value: int) -> np.ndarr
 
 def hue_histogram(image_patch: np.ndarray, bins: int = 16, mask: np.ndarray | None = None,
                   min_saturation: int = 60, min_value: int = 32) -> np.ndarray:
-    """Hue histogram ``(bins,)`` float32 of an RGB patch, scaled to a maximum of 1 (paper
-    004's target model). Pixels darker than ``min_value`` or less saturated than
+    """Hue histogram ``(bins,)`` float32 of an RGB patch, scaled to a maximum of 1 (Yu et
+    al.'s 2010 target model). Pixels darker than ``min_value`` or less saturated than
     ``min_saturation`` (0-255; OpenCV's CamShift sample uses 60 and 32) have no reliable hue
     and are left out, as are those where ``mask`` (uint8, same size) is 0."""
     if image_patch.ndim != 3 or image_patch.shape[2] != 3 or image_patch.dtype != np.uint8:

@@ -1,5 +1,5 @@
-"""The Kalman-started mean shift with ego-motion compensation of Yu et al. (2010) (Yu, Wei, Zhang
-2010), plain mean shift from the last position, and depth from a target's apparent
+"""The Kalman-started mean shift with ego-motion compensation of Yu, Wei and Zhang (2010),
+plain mean shift from the last position, and depth from a target's apparent
 size, on weight images (images, points, windows and mean shift as in
 :mod:`estimators.image.meanshift`).
 
@@ -52,6 +52,7 @@ import math
 from collections.abc import Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..kalman.core import KalmanFilter
 from .meanshift import MEAN_SHIFT_KERNELS, _count, _image, _number, _point, _window_size, _Windows
@@ -83,8 +84,8 @@ def depth_from_size(size_m: float, apparent_size_px: float, focal_px: float) -> 
 
 def apparent_height(weight_image: np.ndarray, window: Sequence[int], threshold: float = 0.5,
                     min_fraction: float = 0.2) -> float:
-    """The target's height [px] in ``window`` ``(x, y, w, h)`` by a shape histogram (paper
-    004): the foreground pixels (weight ``>= threshold``) are projected onto the vertical
+    """The target's height [px] in ``window`` ``(x, y, w, h)`` by a shape histogram (Yu et
+    al. 2010): the foreground pixels (weight ``>= threshold``) are projected onto the vertical
     axis (a count per row); the target spans the rows from the first to the last whose count
     is at least ``min_fraction`` times the largest. Returns 0 when no pixel is foreground.
     The window is clipped to the image."""
@@ -189,17 +190,23 @@ class PlainMeanShift(_MeanShiftTrack):
         position: initial ``(x, y)`` [px].
         window_size: the target's size ``(w, h)`` [px].
         window_scale: the mean-shift window is ``window_scale`` times the target size.
-        max_iter, eps, kernel: as :func:`mean_shift`.
+        max_iter: as :func:`mean_shift`.
+        eps: as :func:`mean_shift`.
+        kernel: as :func:`mean_shift`.
         min_fill: the track is lost in a frame whose converged window's mean weight is below
             this (the position then stays).
 
     Attributes:
-        position: ``(x, y)`` [px]; lost, lost_frames, fill (the last window's mean weight),
-        window (the last converged window).
+        position: ``(x, y)`` [px].
+        lost: whether the last frame lost the track.
+        lost_frames: frames in which the track was lost.
+        fill: the last converged window's mean weight.
+        window: the last converged window.
     """
 
-    def __init__(self, position, window_size, *, window_scale: float = 1.0, max_iter: int = 10,
-                 eps: float = 0.5, kernel: str = "flat", min_fill: float = 0.2) -> None:
+    def __init__(self, position: ArrayLike, window_size: ArrayLike, *,
+                 window_scale: float = 1.0, max_iter: int = 10, eps: float = 0.5,
+                 kernel: str = "flat", min_fill: float = 0.2) -> None:
         super().__init__(window_size, window_scale, max_iter, eps, kernel, min_fill)
         self.position = _point("position", position).copy()
 
@@ -215,8 +222,8 @@ class PlainMeanShift(_MeanShiftTrack):
 
 
 class KalmanMeanShift(_MeanShiftTrack):
-    """Kalman-started mean shift with ego-motion compensation, Yu et al. (2010) (Yu, Wei and Zhang
-    2010); see the module docstring for the model, the sign conventions and our readings.
+    """Kalman-started mean shift with ego-motion compensation of Yu, Wei and Zhang (2010); see
+    the module docstring for the model, the sign conventions and our readings.
 
     Args:
         position: initial ``(x, y)`` [px].
@@ -242,21 +249,27 @@ class KalmanMeanShift(_MeanShiftTrack):
             paper: 2).
         region_floor: weights below this are dropped before ``R``'s centroid
             (``order="paper"``).
-        max_iter, eps, kernel: as :func:`mean_shift`.
+        max_iter: as :func:`mean_shift`.
+        eps: as :func:`mean_shift`.
+        kernel: as :func:`mean_shift`.
         min_fill: the track is lost in a frame whose converged window's mean weight is below
             this.
 
     Attributes:
         kf: the :class:`~estimators.kalman.KalmanFilter` on ``(x, y, vx, vy)``.
-        lost, lost_frames, fill, window: as :class:`PlainMeanShift`.
+        lost: as :class:`PlainMeanShift`.
+        lost_frames: as :class:`PlainMeanShift`.
+        fill: as :class:`PlainMeanShift`.
+        window: as :class:`PlainMeanShift`.
         prediction: the last predicted ``(x, y)`` [px] (where mean shift started).
         distance: the target's current distance estimate [m] (None if unknown).
     """
 
-    def __init__(self, position, window_size, *, image_size: Sequence[int],
+    def __init__(self, position: ArrayLike, window_size: ArrayLike, *, image_size: Sequence[int],
                  fov: Sequence[float], camera_height: float = 0.0,
                  distance: float | None = None, target_height_m: float | None = None,
-                 velocity=(0.0, 0.0), accel_sigma: float = 2.0, measurement_sigma: float = 2.0,
+                 velocity: ArrayLike = (0.0, 0.0), accel_sigma: float = 2.0,
+                 measurement_sigma: float = 2.0,
                  init_sigma: Sequence[float] = (2.0, 5.0), posterior: str = "replace",
                  window_scale: float = 1.0, max_iter: int = 10, eps: float = 0.5,
                  kernel: str = "flat", min_fill: float = 0.2, order: str = "ours",

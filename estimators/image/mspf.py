@@ -61,6 +61,7 @@ import math
 from collections.abc import Callable
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..checks import MAX_PARTICLES, check_count
 from ..particle.core import systematic_resample
@@ -87,8 +88,9 @@ FeatureCheck = Callable[[np.ndarray, np.ndarray], np.ndarray]
 class _WindowParticleFilter:
     """The motion model, likelihood and bookkeeping shared by the two particle trackers."""
 
-    def __init__(self, position, window_size, rng: np.random.Generator, *, n_particles: int,
-                 velocity=(0.0, 0.0), process_sigma: float = 4.0,
+    def __init__(self, position: ArrayLike, window_size: ArrayLike, rng: np.random.Generator, *,
+                 n_particles: int,
+                 velocity: ArrayLike = (0.0, 0.0), process_sigma: float = 4.0,
                  likelihood_sigma: float = 0.15, init_sigma: float = 2.0, v_ref: float = 20.0,
                  max_motion_weight: float = 0.5) -> None:
         if not isinstance(rng, np.random.Generator):
@@ -242,8 +244,9 @@ class ParticleFilterTracker(_WindowParticleFilter):
         max_motion_weight: the saturated ``a`` (0: colour only).
     """
 
-    def __init__(self, position, window_size, rng: np.random.Generator, *,
-                 n_particles: int = 200, velocity=(0.0, 0.0), process_sigma: float = 4.0,
+    def __init__(self, position: ArrayLike, window_size: ArrayLike, rng: np.random.Generator, *,
+                 n_particles: int = 200, velocity: ArrayLike = (0.0, 0.0),
+                 process_sigma: float = 4.0,
                  likelihood_sigma: float = 0.15, init_sigma: float = 2.0, v_ref: float = 20.0,
                  max_motion_weight: float = 0.5) -> None:
         super().__init__(position, window_size, rng, n_particles=n_particles,
@@ -307,8 +310,9 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         motion_weight: the last frame's ``a``.
     """
 
-    def __init__(self, position, window_size, rng: np.random.Generator, *,
-                 n_particles: int = 20, velocity=(0.0, 0.0), process_sigma: float = 4.0,
+    def __init__(self, position: ArrayLike, window_size: ArrayLike, rng: np.random.Generator, *,
+                 n_particles: int = 20, velocity: ArrayLike = (0.0, 0.0),
+                 process_sigma: float = 4.0,
                  likelihood_sigma: float = 0.15, init_sigma: float = 2.0, v_ref: float = 20.0,
                  max_motion_weight: float = 0.5, mean_shift_iter: int = 5, eps: float = 0.5,
                  kernel: str = "flat", area: float | None = None, area_tolerance: float = 0.3,
@@ -354,8 +358,8 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
             ok &= res
         return ok
 
-    def occluded_by(self, robot_positions, robot_radius_px: float,
-                    predicted=None) -> int | None:
+    def occluded_by(self, robot_positions: ArrayLike, robot_radius_px: float,
+                    predicted: ArrayLike | None = None) -> int | None:
         """Li et al.'s (2010) ball occlusion test: the index of the robot nearest to the target's
         predicted position among those inside its search window, else None. A robot (a square
         of half-side ``robot_radius_px`` [px] around its ``(x, y)``) is inside when it
@@ -437,7 +441,7 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         return self.area
 
     def update(self, colour_image: np.ndarray, motion_image: np.ndarray | None = None,
-               robots=None, robot_radius_px: float | None = None) -> np.ndarray:
+               robots: ArrayLike | None = None, robot_radius_px: float | None = None) -> np.ndarray:
         """One frame (see the module docstring).
 
         Args:

@@ -1,6 +1,5 @@
-"""Ball trackers for delayed overhead-camera detections: the EKF of Zhao et al. (2012) (Zhao, Wang,
-Li
-2012) and its baselines.
+"""Ball trackers for delayed overhead-camera detections: the EKF of Zhao, Wang and Li (2012)
+and its baselines.
 
 Both trackers follow the tracker protocol (:class:`~estimators.protocol.Tracker`): they take
 detection frames ``update(t, detections, obstacles)`` (capture time ``t`` [s], detected ball
@@ -716,7 +715,8 @@ class BallTrackerBatch:
 
     Args:
         m: trackers (environments).
-        config, measurement: as :class:`BallTracker`'s.
+        config: as :class:`BallTracker`'s.
+        measurement: as :class:`BallTracker`'s.
 
     Attributes:
         fused, rejected, resets, maneuvers: ``(m,)`` counters, as :class:`BallTracker`'s.

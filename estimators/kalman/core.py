@@ -27,6 +27,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 __all__ = ["KalmanFilter", "check_vector", "check_matrix"]
 
@@ -89,7 +90,7 @@ class KalmanFilter:
         rejected: number of measurements rejected by the gate since the last accepted one.
     """
 
-    def __init__(self, x, P) -> None:
+    def __init__(self, x: ArrayLike, P: ArrayLike) -> None:
         x = np.asarray(x, dtype=np.float64)
         if x.ndim != 1:
             raise ValueError(f"x must be a vector, got shape {x.shape}")

@@ -234,8 +234,12 @@ class RobotTrackerBatch:
     Args:
         m: trackers (environments).
         n: robots per tracker.
-        q_xy, q_theta, sigma_xy, sigma_theta, sigma_v0, measurement: as
-            :class:`RobotTracker`'s.
+        q_xy: as :class:`RobotTracker`'s.
+        q_theta: as :class:`RobotTracker`'s.
+        sigma_xy: as :class:`RobotTracker`'s.
+        sigma_theta: as :class:`RobotTracker`'s.
+        sigma_v0: as :class:`RobotTracker`'s.
+        measurement: as :class:`RobotTracker`'s.
 
     Attributes:
         seen: ``(m, n)`` whether each robot has been detected.

@@ -6,8 +6,8 @@
   steps, and Xu et al.'s (2012) UNGM benchmark;
 * :mod:`~estimators.particle.ball`: a ball tracker on those filters for a team's fused ball
   positions (:class:`ParticleBallTracker`);
-* :mod:`~estimators.particle.localization`: adaptive self-localization by KLD-sampling, paper
-  001 (Guo, Li 2013; :class:`KLDLocalizer`).
+* :mod:`~estimators.particle.localization`: adaptive self-localization by KLD-sampling, Guo
+  and Li (2013; :class:`KLDLocalizer`).
 """
 
 from .ball import CHI2_2DOF_9999, ParticleBallTracker

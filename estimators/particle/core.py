@@ -108,7 +108,8 @@ class BootstrapPF:
 
     Args:
         particles: ``(N, d)`` initial particles, drawn from ``p(x_0)``.
-        transition, likelihood: the model (see the module docstring).
+        transition: the motion model (see the module docstring).
+        likelihood: the measurement model (see the module docstring).
         rng: the random generator of every draw.
         threshold: ``N_th / N``; resampling (or SFN) when ``N_eff`` crosses ``threshold * N``
             (``1.0``: resample every step, the classic bootstrap filter).

@@ -45,11 +45,12 @@ from soccer_env.envs.flat_info import (
     flat_common,
     flat_keys,
 )
+from soccer_env.envs.registration import GYMNASIUM
 from soccer_env.observations import ObservationBuilder
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.perception.match import MatchPerception
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
-from soccer_env.render import RENDER_MODES, RenderingMixin
+from soccer_env.render import RENDER_MODES, Banner, RenderingMixin, check_view
 from soccer_env.sim.commands import (
     OUT_OF_RANGE_MODES,
     CommandChannel,
@@ -94,7 +95,8 @@ class SoccerCore(RenderingMixin):
                perceptions: tuple[PerceptionConfig, PerceptionConfig], control_dt: float,
                physics_dt: float, out_of_range_actions: str, render_mode: str | None,
                render_width: int, head: str, policy_heads: Sequence[int],
-               belief_features: bool = False, info_mode: str = "full") -> None:
+               belief_features: bool = False, info_mode: str = "full",
+               render_view: str = "field") -> None:
         """Build the world and everything around it.
 
         ``policy_heads``: the humanoids whose head the policy aims with its action entries 4
@@ -102,6 +104,7 @@ class SoccerCore(RenderingMixin):
         control. ``belief_features``: the observations end with the belief features (see
         :mod:`soccer_env.observations`; builders made by :meth:`_observation_builder`).
         ``info_mode``: ``"full"`` or ``"flat"`` (:mod:`soccer_env.envs.flat_info`).
+        ``render_view``: ``"field"`` or ``"follow"`` (:data:`~soccer_env.render.RENDER_VIEWS`).
         """
         for mode in ([obs_mode] if isinstance(obs_mode, str) else obs_mode.values()):
             check_choice("obs_mode", mode, OBS_MODES)
@@ -110,6 +113,7 @@ class SoccerCore(RenderingMixin):
         check_choice("out_of_range_actions", out_of_range_actions, OUT_OF_RANGE_MODES)
         check_choice("head", head, HEAD_MODES)
         check_integer("render_width", render_width, *RENDER_WIDTHS, " pixels")
+        self._render_view = check_view(render_view)
         self.team_specs = team_specs
         self.field, self.ball_spec = field, ball
         self.obs_mode = obs_mode
@@ -287,7 +291,88 @@ class SoccerCore(RenderingMixin):
                 heads[i] = (body.heads.pan[i] + body.heads.sway_pan[i],
                             self._perception.cameras[i].hfov, 1.0,
                             None if lying is None else (lying, w.robot_specs[i].lying_length))
-        return state, None if belief is None or belief is state else belief, heads
+        if belief is None or belief is state or not isinstance(belief, Belief):
+            return state, None, heads
+        # The filters' covariances and particles, read for drawing only.
+        return state, belief._replace(spread=self._perception.spread(0, belief.time)), heads
+
+    # ------------------------------------------------------------------------------------
+    # What the renderer writes beside the field
+    # ------------------------------------------------------------------------------------
+
+    #: The id the title card names (the registered id of the task).
+    TASK_ID = "soccer_env"
+    #: The seed of the latest seeded reset, and the episodes begun since it (0: this one).
+    _render_seed: int | None = None
+    _render_episode = 0
+
+    def _note_reset(self, seed: int | None) -> None:
+        """Remember the episode's seed for the title card (a reset without a seed continues
+        the generator of the latest seeded one)."""
+        if seed is not None:
+            self._render_seed, self._render_episode = int(seed), 0
+        else:
+            self._render_episode += 1
+
+    def _seed_text(self) -> str:
+        if self._render_seed is None:
+            return "unseeded"
+        if self._render_episode == 0:
+            return f"seed {self._render_seed}"
+        return f"seed {self._render_seed} + {self._render_episode} episodes"
+
+    def _perception_text(self, team: int) -> str:
+        """Team ``team``'s observations and perception in words (the title card's)."""
+        modes = self._perception.obs_modes
+        mode, cfg = modes[team], self.perceptions[team]
+        if mode == "truth":
+            return "truth (no sensors)"
+        if self.team_specs[team].kind == "humanoid":
+            cams = [c for i, c in self._perception.cameras.items()
+                    if int(self.world.teams[i]) == team]
+            camera = f"camera {cams[0].name}" if cams else "head cameras"
+            if mode == "raw":
+                return f"raw: {camera}, dead reckoning, own sightings"
+            text = (f"perceived: {camera}, {cfg.localization} localization, {cfg.fusion} "
+                    f"fusion, {cfg.ball_tracker} tracker")
+        else:
+            text = f"{mode}: vision {cfg.vision.name}"
+            if mode == "perceived":
+                text += f", ball filter {cfg.ball_filter}"
+            if cfg.detector != "geometric":
+                text += f", {cfg.detector} detector"
+        return text + (", randomised" if cfg.randomize else "")
+
+    def _teams_present(self) -> list[int]:
+        w = self.world
+        return [t for t, n in ((0, w.n_blue), (1, w.n_yellow)) if n]
+
+    def _title_card(self) -> list[str]:
+        """The title card: the task and seed, the robots, the observations and perception."""
+        w = self.world
+        teams = self._teams_present()
+        robots = []
+        for t in teams:
+            n = (w.n_blue, w.n_yellow)[t]
+            robots.append(f"{('blue', 'yellow')[t]}: {n} {self.team_specs[t].name} "
+                          f"robot{'s' if n > 1 else ''}")
+        lines = [f"{self.TASK_ID}    {self._seed_text()}", ",  ".join(robots)]
+        texts = [self._perception_text(t) for t in teams]
+        if len(set(texts)) == 1:
+            lines.append(f"obs {texts[0]}")
+        else:
+            lines += [f"{('blue', 'yellow')[t]} obs {text}" for t, text in zip(teams, texts)]
+        return lines
+
+    def _belief_owner(self) -> str:
+        """Whose belief the frames draw: robot 0's (a humanoid's own, else its team's)."""
+        name = self.world.names[0]
+        if self.world.robot_specs[0].kind == "humanoid":
+            return name.replace("_", " ")
+        return f"{name.split('_')[0]} team"
+
+    def _caption(self) -> str:
+        return self.TASK_ID
 
 
 class SingleAgentTask(SoccerCore, gym.Env):
@@ -362,8 +447,12 @@ class SingleAgentTask(SoccerCore, gym.Env):
         super().reset(seed=seed)
         state = self._start(self.np_random)
         self._running, self._ended = True, None
+        self._note_reset(seed)
         obs = self._observe(self._seen)
-        return obs, self._info(state, self._zero_terms(), None)
+        info = self._info(state, self._zero_terms(), None)
+        if self.render_mode == "human":
+            self.render()
+        return obs, info
 
     def step(self, action):
         if not self._running:
@@ -397,6 +486,34 @@ class SingleAgentTask(SoccerCore, gym.Env):
         if self.render_mode == "human":
             self.render()
         return obs, reward, outcome is not None, False, info
+
+    # ------------------------------------------------------------------------------------
+    # The outcome banner
+
+    #: The banner's words for each outcome: ``{outcome: (headline, detail)}``.
+    OUTCOME_TEXT: dict[str, tuple[str, str]] = {}
+
+    def _time_limit(self) -> int | None:
+        """The registered ``max_episode_steps`` of the task this environment was made as
+        (``gymnasium.make`` by its id), or None. The banner assumes the registered limit: a
+        ``max_episode_steps`` given to ``gymnasium.make`` is the wrapper's, which the
+        environment does not see."""
+        spec = getattr(self, "spec", None)
+        task = GYMNASIUM.get(spec.id) if spec is not None else None
+        return None if task is None else task.max_episode_steps
+
+    def _banner(self) -> Banner | None:
+        """The outcome banner on frames after the episode's end: the outcome
+        (:attr:`OUTCOME_TEXT`; green for a success, red otherwise), or the time limit once the
+        registered ``max_episode_steps`` are played."""
+        if self._ended is not None:
+            head, detail = self.OUTCOME_TEXT.get(self._ended, (self._ended.upper(), ""))
+            return Banner(head, detail, "good" if self._success(self._ended) else "bad")
+        limit = self._time_limit()
+        w = self.world
+        if self._running and limit is not None and round(w.time / w.control_dt) >= limit:
+            return Banner("TIME LIMIT", f"{w.time:.1f} s played, no outcome")
+        return None
 
     def _info(self, state: WorldState, terms: dict[str, float], outcome: str | None
               ) -> dict[str, Any]:

@@ -247,12 +247,14 @@ class GoalkeeperEnv(SingleAgentTask):
     :class:`ShotDistribution` or a mapping of its fields), ``shaping`` ({term: scale}),
     ``control_dt`` (s, default 1/60), ``physics_dt`` (longest substep, s, default 1/240),
     ``out_of_range_actions`` ("clip", the default, clips actions into [-1, 1]; "raise" rejects
-    them), ``render_width`` (pixels); humanoids only: ``mates`` (0..3), ``head`` ("auto":
-    the head follows the believed ball and scans when needed; "scan"; "action": the policy's
-    entries 4 and 5); ``belief_features`` (append how sure the belief is: 11 entries, 13 for
-    humanoids; see :mod:`soccer_env.observations`); ``info_mode`` ("full", the default, or
-    "flat": numbers only, see :mod:`soccer_env.envs.flat_info`). Unknown arguments raise
-    ``TypeError``.
+    them), ``render_width`` (pixels), ``render_view`` ("field", the default: the whole field;
+    "follow": a window around the ball and the nearest robots, zoomed in at the same frame
+    size; see :meth:`~soccer_env.render.RenderingMixin.render`); humanoids only: ``mates``
+    (0..3), ``head`` ("auto": the head follows the believed ball and scans when needed;
+    "scan"; "action": the policy's entries 4 and 5); ``belief_features`` (append how sure
+    the belief is: 11 entries, 13 for humanoids; see :mod:`soccer_env.observations`);
+    ``info_mode`` ("full", the default, or "flat": numbers only, see
+    :mod:`soccer_env.envs.flat_info`). Unknown arguments raise ``TypeError``.
 
     ## Version history
     * v0: first release.
@@ -276,6 +278,7 @@ class GoalkeeperEnv(SingleAgentTask):
         head: str = "auto",
         belief_features: bool = False,
         info_mode: str = "full",
+        render_view: str = "field",
         **unknown: Any,
     ) -> None:
         reject_unknown("GoalkeeperEnv", unknown, keyword_names(GoalkeeperEnv.__init__))
@@ -299,7 +302,8 @@ class GoalkeeperEnv(SingleAgentTask):
                     control_dt=control_dt, physics_dt=physics_dt,
                     out_of_range_actions=out_of_range_actions, render_mode=render_mode,
                     render_width=render_width, head=head, policy_heads=[0],
-                    belief_features=belief_features, info_mode=info_mode)
+                    belief_features=belief_features, info_mode=info_mode,
+                    render_view=render_view)
         self.robot_model = self._models[0]
         self.action_space = self.robot_model.action_space()
         self.builder = self._observation_builder([0], teams=[0])
@@ -410,8 +414,23 @@ class GoalkeeperEnv(SingleAgentTask):
 
     # ------------------------------------------------------------------------------------
 
+    TASK_ID = "soccer_env/Goalkeeper-v0"
+    OUTCOME_TEXT = {"goal": ("GOAL", "the shot went in"),
+                    "stopped": ("SAVED", "the ball stopped"),
+                    "cleared": ("SAVED", "the ball was cleared"),
+                    "out": ("SAVED", "the ball went out, no goal")}
+
     def _hud(self) -> list[str]:
         shot = self._shot or {}
         kind = "chip" if shot.get("chip") else "flat"
-        return [f"t = {self.world.time:5.2f} s", f"shot {shot.get('speed', 0.0):.1f} m/s {kind}"]
+        target = "wide" if shot.get("wide") else "on target"
+        fired = ("" if getattr(self, "_fired", True)
+                 else f", kicked at {shot.get('delay', 0.0):.2f} s")
+        return [f"t = {self.world.time:5.2f} s",
+                f"shot {shot.get('speed', 0.0):.1f} m/s {kind}, {target}{fired}"]
+
+    def _team_labels(self) -> tuple[str, str]:
+        mates = getattr(self, "n_mates", 0)
+        return ("blue: keeper 0" + (f", team-mates 1-{mates}" if mates > 1 else
+                                     ", team-mate 1" if mates else ""), "yellow team")
 

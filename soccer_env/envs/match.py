@@ -18,7 +18,7 @@ from soccer_env.envs.flat_info import EVENT_CODES, as_float64, flat_common, flat
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.presets.rules import RuleSpec
-from soccer_env.render.renderer import RENDER_MODES
+from soccer_env.render.renderer import RENDER_MODES, Banner
 from soccer_env.sim.commands import (
     validate_actions,
 )
@@ -187,8 +187,9 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     ``perception``, ``render_mode``, ``control_dt``, ``physics_dt``,
     ``out_of_range_actions`` as in :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`;
     ``match_duration`` [s]; ``max_cycles``; ``shaping``; ``formation_jitter`` (metres of
-    uniform jitter of the kick-off formation); ``render_width``; ``head`` (humanoid agents:
-    "auto", "scan" or "action"); ``belief_features`` (every agent's observation ends with
+    uniform jitter of the kick-off formation); ``render_width``; ``render_view`` ("field" or
+    "follow", as in :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`); ``head`` (humanoid
+    agents: "auto", "scan" or "action"); ``belief_features`` (every agent's observation ends with
     how sure its belief is: 11 entries, 13 with humanoids in the match; see
     :mod:`soccer_env.observations`); ``info_mode`` ("full", the default, or "flat");
     ``game`` (see Rules).
@@ -220,6 +221,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         belief_features: bool = False,
         info_mode: str = "full",
         game: Any = None,
+        render_view: str = "field",
         **unknown: Any,
     ) -> None:
         reject_unknown("parallel_env", unknown, keyword_names(SoccerParallelEnv.__init__))
@@ -250,7 +252,8 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
                     physics_dt=physics_dt, out_of_range_actions=out_of_range_actions,
                     render_mode=render_mode, render_width=render_width, head=head,
                     policy_heads=range(blue + yellow),
-                    belief_features=belief_features, info_mode=info_mode)
+                    belief_features=belief_features, info_mode=info_mode,
+                    render_view=render_view)
         w = self.world
         # The game flow needs both teams of one robot kind (SSL rules or humanoid laws).
         kinds = {spec.kind for spec, n in zip(team_specs, (blue, yellow)) if n}
@@ -556,9 +559,13 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         if seed is not None or self._rng is None:
             self._rng = np.random.default_rng(seed)
         state = self._start(self._rng)
+        self._note_reset(seed)
+        self._end_reason = None
         obs = self._observe()
         zero = dict.fromkeys(("goal", *MATCH_SHAPING), 0.0)
         infos = self._infos(state, {a: zero for a in self.agents}, None)
+        if self.render_mode == "human":
+            self.render()
         return obs, infos
 
     def step(self, actions: Mapping[str, Any]):
@@ -582,6 +589,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         truncations = dict.fromkeys(self.agents, bool(trunc and not done))
         if done or trunc:
             self.agents = []
+            self._end_reason = "full time" if done else "time limit"
         if self.render_mode == "human":
             self.render()
         return obs, rewards, terminations, truncations, infos
@@ -600,6 +608,18 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
             team = "" if g.command_team < 0 else (" blue" if g.command_team == 0 else " yellow")
             lines.append(f"{g.command}{team}, {g.stage}")
         return lines
+
+    TASK_ID = "soccer_env/Match-v0"
+    #: Why the latest match ended (``"full time"``, ``"time limit"``), None while it runs.
+    _end_reason: str | None = None
+
+    def _banner(self) -> Banner | None:
+        """The final score once the match is over: full time (the clock or the game
+        controller ended it) or the ``max_cycles`` time limit."""
+        if self._end_reason is None:
+            return None
+        head = "FULL TIME" if self._end_reason == "full time" else "TIME LIMIT"
+        return Banner(head, f"blue {self.score[0]} : {self.score[1]} yellow")
 
     # ------------------------------------------------------------------------------------
 

@@ -179,8 +179,10 @@ class ShootoutEnv(SingleAgentTask):
     ``perception`` (as in :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`, for both
     teams), ``render_mode``, ``start`` (a :class:`ShootoutStart` or a mapping of its fields),
     ``shaping`` ({term: scale}), ``control_dt``, ``physics_dt``, ``out_of_range_actions``,
-    ``render_width``, ``head`` (humanoids: ``"auto"``, ``"scan"`` or ``"action"``, the
-    attacker's head only; the keeper's is always controlled), ``belief_features`` (as in
+    ``render_width``, ``render_view`` ("field" or "follow", as in
+    :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`), ``head`` (humanoids: ``"auto"``,
+    ``"scan"`` or ``"action"``, the attacker's head only; the keeper's is always
+    controlled), ``belief_features`` (as in
     :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`), ``info_mode`` ("full" or "flat").
     Unknown arguments raise ``TypeError``.
 
@@ -205,6 +207,7 @@ class ShootoutEnv(SingleAgentTask):
         head: str = "auto",
         belief_features: bool = False,
         info_mode: str = "full",
+        render_view: str = "field",
         **unknown: Any,
     ) -> None:
         reject_unknown("ShootoutEnv", unknown, keyword_names(ShootoutEnv.__init__))
@@ -219,7 +222,8 @@ class ShootoutEnv(SingleAgentTask):
                     physics_dt=physics_dt, out_of_range_actions=out_of_range_actions,
                     render_mode=render_mode, render_width=render_width, head=head,
                     policy_heads=[0],
-                    belief_features=belief_features, info_mode=info_mode)
+                    belief_features=belief_features, info_mode=info_mode,
+                    render_view=render_view)
         self.robot_model = self._models[0]
         self.action_space = self.robot_model.action_space()
         teams = self.world.teams
@@ -290,8 +294,16 @@ class ShootoutEnv(SingleAgentTask):
     def _flat_task_info(self, info: dict[str, float]) -> None:
         info["keeper_touched"] = 1.0 if self._keeper_touched else 0.0
 
+    TASK_ID = "soccer_env/Shootout-v0"
+    OUTCOME_TEXT = {"goal": ("GOAL", "the attacker scored"),
+                    "saved": ("SAVED", "the keeper stopped the ball"),
+                    "out": ("MISSED", "the ball went out")}
+
     def _hud(self) -> list[str]:
         return [f"t = {self.world.time:5.2f} s", "shootout"]
+
+    def _team_labels(self) -> tuple[str, str]:
+        return ("blue: attacker 0", "yellow: scripted keeper 0")
 
     # ------------------------------------------------------------------------------------
 

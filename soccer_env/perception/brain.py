@@ -18,7 +18,7 @@ from soccer_env.perception.base import ball_status, sigmas
 from soccer_env.perception.options import BALL_TRACKERS, FUSIONS, LOCALIZATIONS
 from soccer_env.sensors.headcam import HeadFrame
 from soccer_env.sensors.radio import Message
-from soccer_env.state import BeliefQuality, WorldState
+from soccer_env.state import BeliefQuality, BeliefSpread, WorldState
 
 if TYPE_CHECKING:  # the team's pipeline, which owns its robots' brains
     from soccer_env.perception.humanoid import HumanoidTeamPerception
@@ -394,6 +394,43 @@ class Brain:
              line.origin[1] + line.range * math.sin(line.angle)]))
         return BeliefQuality(sigma, sigma_v, now - self.ball_seen, status, spread, fused_age,
                              self.fused_lines if status < 3 else 0, measured)
+
+    def spread(self, t: float) -> BeliefSpread:
+        """How this robot's belief at ``t`` [s] is spread, for drawing (reads, never changes,
+        its filters):
+
+        * ball: the tracker's covariance of ``(x, y)`` predicted to ``t`` (with
+          ``ball_tracker="none"``, the latest fusion's), None before the first;
+        * its own position: the localization particles' weighted covariance (full ``2 x 2``);
+          for dead reckoning ``var I`` with its grown per-axis variance (a circle); zero for
+          the oracle; the other robots' spreads are not modelled (NaN);
+        * the tracker's particles, moved by the mean's predicted displacement from the
+          filter's time to ``t``, and the localization's particles (at its latest frame).
+        """
+        p = self.p
+        tracker = self.tracker
+        ball = particles = None
+        if tracker is not None:
+            cov = tracker.covariance(t)
+            if cov is not None:
+                ball = np.array(cov[0:2, 0:2], dtype=np.float64)
+                particles = tracker.particles[:, 0:2]
+                now, then = tracker.estimate(t), tracker.estimate(tracker.time)
+                particles += (now - then)[0:2]
+        elif self.fused_cov is not None:
+            ball = self.fused_cov.copy()
+        robots = np.full((p.n_robots, 2, 2), np.nan)
+        poses = None
+        if self.loc is not None:
+            w, xy = self.loc.weights, self.loc.particles[:, 0:2]
+            d = xy - w @ xy
+            robots[self.i] = (d * w[:, None]).T @ d
+            poses = self.loc.particles.copy()
+        elif self.kind == "truth":
+            robots[self.i] = 0.0
+        else:
+            robots[self.i] = self.odo_var[0] * np.eye(2)
+        return BeliefSpread(ball, robots, particles, poses, self.i)
 
     def belief(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         """``ball`` (6,) and ``robots`` (N, 6) as this robot believes them at ``t``."""

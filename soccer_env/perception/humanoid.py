@@ -56,7 +56,7 @@ from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.presets.sensors import HeadCameraSpec, RadioSpec
 from soccer_env.sensors.headcam import HeadFrame, field_landmarks
 from soccer_env.sensors.radio import TeamRadio
-from soccer_env.state import Attention, BodyState, WorldState
+from soccer_env.state import Attention, BeliefSpread, BodyState, WorldState
 
 __all__ = ["HumanoidTeamPerception"]
 
@@ -210,6 +210,12 @@ class HumanoidTeamPerception:
     def belief(self, i: int, t: float) -> tuple[np.ndarray, np.ndarray]:
         """Robot ``i``'s belief at ``t``: ``ball`` (6,) and ``robots`` (N, 6)."""
         return self._brains[i].belief(t)
+
+    def spread(self, i: int, t: float) -> BeliefSpread | None:
+        """How robot ``i``'s belief at ``t`` [s] is spread, for drawing (read-only; see
+        :meth:`~soccer_env.perception.brain.Brain.spread`); None before the first reset."""
+        brain = self._brains.get(i)
+        return None if brain is None else brain.spread(t)
 
     def attention(self, i: int, now: float) -> Attention:
         """What robot ``i``'s head controller needs of its belief at ``now``."""

@@ -19,7 +19,7 @@ from soccer_env.perception.overhead import (
 )
 from soccer_env.perception.randomization import check_ranges, draw
 from soccer_env.presets import BallSpec, FieldSpec, HeadCameraSpec, RobotSpec, head_camera
-from soccer_env.state import Attention, Belief, BodyState, WorldState
+from soccer_env.state import Attention, Belief, BeliefSpread, BodyState, WorldState
 
 __all__ = ["MatchPerception"]
 
@@ -251,6 +251,21 @@ class MatchPerception:
     def current(self, i: int) -> Any:
         """Robot ``i``'s belief at the present time."""
         return self._state if self._truth else self._current[i]
+
+    def spread(self, i: int, t: float) -> BeliefSpread | None:
+        """How robot ``i``'s belief at ``t`` [s] is spread, for drawing: its team's filters'
+        covariances and particles, read without changing them (see
+        :class:`~soccer_env.state.BeliefSpread`); None in truth mode and before the first
+        reset."""
+        if self._truth:
+            return None
+        if i in self._humanoid:
+            return self._humanoid[i].spread(i, t)
+        for robots, pipe, _ in self._groups:
+            if i in robots:
+                reader = getattr(pipe, "spread", None)
+                return None if reader is None or i not in self._current else reader(t)
+        return None
 
     def attention(self, i: int, now: float) -> Attention:
         """What humanoid ``i``'s head controller needs of its belief at ``now`` (in truth

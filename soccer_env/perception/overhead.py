@@ -31,7 +31,7 @@ from soccer_env.perception.base import (
 from soccer_env.perception.options import BALL_FILTERS, DETECTORS
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
 from soccer_env.sensors.overhead import DetectionFrame
-from soccer_env.state import Belief, BeliefQuality, WorldState
+from soccer_env.state import Belief, BeliefQuality, BeliefSpread, WorldState
 
 __all__ = ["TruthPerception", "RawPerception", "FilteredPerception", "make_perception"]
 
@@ -172,6 +172,30 @@ class RawPerception(_VisionPerception):
                              None if last is None else np.array(last[1:3]))
 
 
+    def spread(self, t: float) -> BeliefSpread:
+        """How the raw belief is spread, for drawing (reads, never changes, the pipeline):
+        the sensor's noise on the latest sighting. The vision's noise is one standard
+        deviation per axis, so the covariances are ``sigma^2 I`` (circles): ``ball_sigma``
+        for the ball, ``robot_sigma`` for every robot seen; None for a ball never seen, NaN
+        for robots never seen. ``t`` [s] is accepted for the pipelines' common signature
+        (a raw sighting does not grow with time)."""
+        v = self.vision_spec
+        ball = None if self._ball[1] is None else circle_covariance(v.ball_sigma)
+        robots = np.full((self.n_robots, 2, 2), np.nan)
+        for i, hist in enumerate(self._robots):
+            if hist[1] is not None:
+                robots[i] = circle_covariance(v.robot_sigma)
+        return BeliefSpread(ball, robots)
+
+
+def circle_covariance(sigma: float) -> np.ndarray:
+    """``sigma^2 I``, the ``2 x 2`` covariance of a position known to ``sigma`` [m] per axis
+    (NaN for an infinite ``sigma``: unknown)."""
+    if not math.isfinite(sigma):
+        return np.full((2, 2), np.nan)
+    return np.array([[sigma * sigma, 0.0], [0.0, sigma * sigma]])
+
+
 def _push(hist: list, item: tuple, min_gap: float) -> None:
     """Keep the last two sightings, newest last, captured at least ``min_gap`` [s] apart."""
     last = hist[1]
@@ -249,6 +273,20 @@ class FilteredPerception(_VisionPerception):
         ball = np.zeros(6) if est is None else np.array((est[0], est[1], 0.0, est[2], est[3],
                                                          0.0))
         return Belief(t, ball, self.robot_tracker.estimate(t))
+
+    def spread(self, t: float) -> BeliefSpread:
+        """How the belief at ``t`` [s] is spread, for drawing (reads, never changes, the
+        filters): the ball filter's covariance of ``(x, y)`` predicted to ``t`` (None before
+        its first detection); for each robot ``sigma^2 I`` (a circle) with ``sigma`` the
+        position standard deviation of :meth:`~estimators.RobotTracker.pose_sigma` predicted
+        to ``t``: the robot filters run one per axis with the same noise, so the two axes'
+        spreads are alike and uncorrelated (NaN for robots never seen)."""
+        cov = self.ball_tracker.covariance(t)
+        ball = None if cov is None else np.array(cov[0:2, 0:2], dtype=np.float64)
+        robots = self.robot_tracker
+        covs = np.array([circle_covariance(robots.pose_sigma(i, t)[0])
+                         for i in range(self.n_robots)]).reshape(-1, 2, 2)
+        return BeliefSpread(ball, covs)
 
     def _quality(self, t: float, now: float) -> BeliefQuality:
         """The filters' quality of the belief at ``t`` (ages at ``now``): the ball filter's

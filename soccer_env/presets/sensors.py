@@ -226,10 +226,11 @@ HEAD_CAMERAS: Registry[HeadCameraSpec] = preset_table('head_camera', {
     # 720 x 625 pixels at 25 frames/s (all from the paper). Assumptions (ours): 0.04 s from
     # capture to delivery (one frame period of embedded DSP processing), no jitter (a fixed
     # pipeline); 2 px noise on a colour blob's centroid; an orange ball found up to 5 m
-    # (a 66 mm ball is then about 10 px wide); landmarks and robots' feet up to 4 m (paper
-    # 001 ignores obstacle-ground corners beyond 4 m, where its depth error grows); detection
-    # 0.95 (ball), 0.9 (landmarks, robots); 0.2 spurious orange blobs per second (clutter
-    # beyond the field); coloured goals (blue and yellow in 2012) tell the two goals apart.
+    # (a 66 mm ball is then about 10 px wide); landmarks and robots' feet up to 4 m (Guo
+    # and Li 2013 ignore obstacle-ground corners beyond 4 m, where their depth error grows);
+    # detection 0.95 (ball), 0.9 (landmarks, robots); 0.2 spurious orange blobs per second
+    # (clutter beyond the field); coloured goals (blue and yellow in 2012) tell the two goals
+    # apart.
     "kidsize-2012": HeadCameraSpec(
         name="kidsize-2012", height=0.56, hfov=math.radians(51.0), width=720, height_px=625,
         frame_rate=25.0, latency=0.04, latency_jitter=0.0, pixel_sigma=2.0,

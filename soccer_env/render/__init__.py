@@ -4,7 +4,21 @@ pygame, imageio and matplotlib are optional (``pip install soccer-env[render]``)
 imported when first used.
 """
 
-from soccer_env.render.renderer import RENDER_MODES, TEAM_COLOURS, Renderer, RenderingMixin
-from soccer_env.render.video import write_video
+from soccer_env.render.renderer import (
+    KEYS_HELP,
+    OVERLAY_COLOURS,
+    RENDER_MODES,
+    RENDER_VIEWS,
+    TEAM_COLOURS,
+    TITLE_SECONDS,
+    Banner,
+    FrameContents,
+    Renderer,
+    RenderingMixin,
+    check_view,
+)
+from soccer_env.render.video import hold_last, write_video
 
-__all__ = ["Renderer", "RenderingMixin", "RENDER_MODES", "TEAM_COLOURS", "write_video"]
+__all__ = ["Renderer", "RenderingMixin", "Banner", "FrameContents", "RENDER_MODES",
+           "RENDER_VIEWS", "TEAM_COLOURS", "OVERLAY_COLOURS", "TITLE_SECONDS", "KEYS_HELP",
+           "check_view", "write_video", "hold_last"]

@@ -8,7 +8,10 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["write_video"]
+__all__ = ["write_video", "hold_last", "HOLD_SECONDS"]
+
+#: How long a video holds an episode's last frame (its outcome banner) [s].
+HOLD_SECONDS = 1.0
 
 
 def write_video(frames: Sequence[np.ndarray], path: Path, fps: int) -> Path:
@@ -27,6 +30,14 @@ def write_video(frames: Sequence[np.ndarray], path: Path, fps: int) -> Path:
         path = path.with_suffix(".gif")
         imageio.mimsave(path, frames[::2], duration=2.0 / fps)
     return path
+
+
+def hold_last(frames: list[np.ndarray], fps: float, seconds: float = HOLD_SECONDS) -> None:
+    """Append copies of the last of ``frames`` (in place) so that a video at ``fps`` frames
+    per second shows it ``seconds`` [s] longer: an episode's last frame, with its outcome
+    banner, before the next episode starts. Nothing happens to an empty list."""
+    if frames and frames[-1] is not None:
+        frames.extend([frames[-1]] * int(round(seconds * fps)))
 
 
 def _even(frame: np.ndarray) -> np.ndarray:

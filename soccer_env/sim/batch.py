@@ -5,10 +5,10 @@ Each world is a :class:`~soccer_env.sim.world.World` on its own patch of a grid 
 space (its arena on its own static body, so no shape of one world can touch another's), and
 one Chipmunk step per substep advances all the worlds of a space. ``benchmarks/
 batched_physics.py`` measured this against a loop over separate spaces: about half the physics
-cost per environment from 16 to a few hundred worlds (the README's "Batched simulation: the
-physics layout"). Past about a hundred worlds a space no longer stays in the processor's
-caches over its substeps, so the batch spreads its worlds over spaces of ``shard_size``
-worlds and runs each space's substeps in turn.
+cost per environment from 16 to a few hundred worlds ("Batched simulation: the physics
+layout" in ``docs/results/step-rates.md``). Past about a hundred worlds a space no longer
+stays in the processor's caches over its substeps, so the batch spreads its worlds over spaces
+of ``shard_size`` worlds and runs each space's substeps in turn.
 
 The hot path is vectorised over the batch: the commands of every robot (clipping, the
 body-to-field rotation at the mid-step heading) become the control bodies' velocities in one

@@ -13,9 +13,11 @@ from collections.abc import Sequence
 from agents.ablation import (
     DEFAULT_CHUNK_SIZE,
     DEFAULT_EPISODES,
+    DEFAULT_HUMANOID,
     ESTIMATOR_CONFIGS,
     HUMANOID_CONFIGS,
     ROBOT_KINDS,
+    RobotKind,
     parse_names,
     robot_kind,
     run_ablation,
@@ -29,71 +31,86 @@ from agents.match_ablation import (
     DEFAULT_PAIRS,
     DEFAULT_TEAM_SIZE,
     MATCH_ID,
+    parse_pairs,
     run_match_ablation,
 )
 from agents.match_ablation import write_outputs as write_match_outputs
-from soccer_env.presets.sensors import HEAD_CAMERAS, VISION
-from soccer_lab.cli_args import add_trust_argument, key_values
+from soccer_env.presets import HEAD_CAMERAS, ROBOTS, VISION
+from soccer_lab import extras
+from soccer_lab.cli_args import HelpFormatter, add_trust_argument, key_values
+from soccer_lab.cli_args import robot_kind as preset_kind
 
 __all__ = ["parser", "main"]
+
+
+def _robots_of(kind: str) -> str:
+    """The robot presets of robot kind ``kind``, comma-separated."""
+    return ", ".join(name for name in ROBOTS if preset_kind(name) == kind)
 
 
 def parser() -> argparse.ArgumentParser:
     """The options of ``soccer-env ablation``."""
     p = argparse.ArgumentParser(
-        prog="soccer-env ablation",
+        prog="soccer-env ablation", formatter_class=HelpFormatter,
         description="Evaluate one keeper policy on the same seeded shots under every estimator "
                     "configuration and sensor preset: save rate with Wilson 95 % interval, "
-                    "ball estimation RMSE and estimator compute per step. With --env "
+                    "ball estimation RMSE and estimator compute per step.\n\nWith --env "
                     f"{MATCH_ID}: two teams with the same policy, each perceiving through "
                     "its own configuration, play seeded matches (colours swapped every "
                     "other match): wins, draws and losses with Wilson 95 % intervals, goals, "
-                    "goal difference with a paired 95 % interval and each team's ball error.")
+                    "goal difference with a paired 95 % interval and each team's ball error.",
+        epilog="examples:\n"
+               "  soccer-env ablation --policy scripted --out ablation_output\n"
+               "  soccer-env ablation --robot humanoid --episodes 500 --presets "
+               "ideal,kidsize-2012\n"
+               f"  soccer-env ablation --env {MATCH_ID} --pairs ekf:raw")
     p.add_argument("--env", default=GOALKEEPER_ID, choices=(GOALKEEPER_ID, MATCH_ID),
                    help=f"{GOALKEEPER_ID}: the keeper on seeded shots; {MATCH_ID}: matches "
-                        f"between pairs of configurations (default: {GOALKEEPER_ID})")
+                        "between pairs of configurations")
     p.add_argument("--policy", default="scripted",
-                   help="policy reference: scripted, idle, baseline:NAME, a .zip/.npz file or "
-                        "a training run folder; in matches the team policy of both teams: "
-                        "scripted, idle or a .npz file (default: scripted)")
+                   help="policy reference: scripted, idle, baseline:NAME, a .zip (needs the "
+                        "train extra) or .npz file, or a training run folder; in matches the "
+                        "team policy of both teams: scripted, idle or a .npz file")
     p.add_argument("--episodes", type=int, default=None,
-                   help=f"shots per cell, seeds start-seed onwards (default: "
-                        f"{DEFAULT_EPISODES}; keeper only)")
+                   help="keeper only: shots per cell, seeds START-SEED onwards "
+                        f"(default: {DEFAULT_EPISODES})")
     p.add_argument("--robot", default="ssl", choices=list(ROBOT_KINDS),
-                   help="the keeper's robot kind: ssl (overhead vision) or humanoid (head "
-                        "cameras, localization, team fusion; robot humanoid-2012 unless "
-                        "--env-kwarg robot=... names another) (default: ssl)")
+                   help=f"robot kind: ssl (overhead vision; robot presets {_robots_of('ssl')}) "
+                        "or humanoid (head cameras, localization, team fusion; robot "
+                        f"presets {_robots_of('humanoid')}; {DEFAULT_HUMANOID} unless "
+                        "--env-kwarg robot=NAME names another)")
     p.add_argument("--presets", default=None,
-                   help=f"comma-separated sensor presets or 'all' (ssl: {','.join(VISION)}; "
-                        f"humanoid: {','.join(HEAD_CAMERAS)}) (default: all for the keeper; "
-                        f"in matches ssl: {','.join(DEFAULT_MATCH_PRESETS['ssl'])}, humanoid: "
+                   help="comma-separated sensor presets, or all; ssl: "
+                        f"{', '.join(VISION)}; humanoid: {', '.join(HEAD_CAMERAS)} (default: "
+                        "all for the keeper; in matches ssl: "
+                        f"{','.join(DEFAULT_MATCH_PRESETS['ssl'])}, humanoid: "
                         f"{','.join(DEFAULT_MATCH_PRESETS['humanoid'])})")
     p.add_argument("--configs", default=None,
-                   help="comma-separated estimator configurations (default: all; ssl: "
-                        f"{','.join(ESTIMATOR_CONFIGS)}; humanoid: "
-                        f"{','.join(HUMANOID_CONFIGS)}; keeper only)")
+                   help="keeper only: comma-separated estimator configurations, or all; ssl: "
+                        f"{', '.join(ESTIMATOR_CONFIGS)}; humanoid: "
+                        f"{', '.join(HUMANOID_CONFIGS)} (pixels needs the pixels extra) "
+                        "(default: all)")
     p.add_argument("--pairs", default=None,
                    help="matches only: comma-separated pairs A:B of estimator configurations "
                         "(default: ssl " + ",".join(f"{a}:{b}" for a, b in DEFAULT_PAIRS["ssl"])
                         + "; humanoid " + ",".join(f"{a}:{b}" for a, b in
                                                    DEFAULT_PAIRS["humanoid"]) + ")")
     p.add_argument("--matches", type=int, default=None,
-                   help="matches only: matches per pair and preset, seed start-seed + k // 2 "
+                   help="matches only: matches per pair and preset, seed START-SEED + k // 2 "
                         f"for match k, A blue when k is even (default: {DEFAULT_MATCHES})")
     p.add_argument("--team-size", type=int, default=None,
                    help=f"matches only: robots per team, 1..11 (default: {DEFAULT_TEAM_SIZE})")
     p.add_argument("--duration", type=float, default=None,
-                   help=f"matches only: match length in seconds (default: "
-                        f"{DEFAULT_DURATION:g})")
+                   help="matches only: match length in seconds "
+                        f"(default: {DEFAULT_DURATION:g})")
     p.add_argument("--workers", type=int, default=None,
-                   help="processes (default: all cores); the results do not depend on it")
-    p.add_argument("--out", default="ablation_output",
-                   help="output folder (default: ablation_output)")
+                   help="processes; the results do not depend on it (default: all cores)")
+    p.add_argument("--out", default="ablation_output", help="output folder")
     p.add_argument("--start-seed", type=int, default=0,
-                   help="seed of the first shot or match (default: 0)")
+                   help="seed of the first shot or match")
     p.add_argument("--chunk-size", type=int, default=None,
-                   help=f"consecutive seeds per job (default: {DEFAULT_CHUNK_SIZE}; keeper "
-                        "only)")
+                   help="keeper only: consecutive seeds per job "
+                        f"(default: {DEFAULT_CHUNK_SIZE})")
     p.add_argument("--env-kwarg", action="append", default=[], metavar="KEY=VALUE",
                    help="environment keyword argument shared by all cells (value parsed as "
                         "JSON), repeatable, e.g. control_dt=0.04 or field=ssl-2012; obs_mode "
@@ -101,6 +118,12 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--quiet", action="store_true", help="no progress on stderr")
     add_trust_argument(p)
     return p
+
+
+def _uses_pixels(kind: RobotKind, names: list[str]) -> bool:
+    """Whether any of the configurations ``names`` finds the ball in rendered images."""
+    return any(kind.configs[n].perception.get("detector") == "pixels" for n in names
+               if n in kind.configs)
 
 
 _KEEPER_ONLY = ("episodes", "configs", "chunk_size")
@@ -139,6 +162,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         if match:
             presets = parse_names(args.presets or ",".join(DEFAULT_MATCH_PRESETS[args.robot]),
                                   kind.presets, "sensor preset(s)")
+            configs = [name for pair in parse_pairs(args.pairs, kind.configs, args.robot)
+                       for name in pair]
         else:
             presets = parse_names(args.presets, kind.presets, "sensor preset(s)")
             configs = parse_names(args.configs or "all", kind.configs,
@@ -146,12 +171,18 @@ def main(argv: Sequence[str] | None = None) -> int:
         env_kwargs = key_values(args.env_kwarg, "--env-kwarg")
     except ValueError as exc:
         p.error(str(exc))
+    extras.require("ablation")
+    if str(args.policy).endswith(".zip"):
+        extras.require("policy .zip", f"ablation --policy {args.policy}")
+    if _uses_pixels(kind, configs):
+        extras.require("ablation pixels", "ablation with configuration pixels",
+                       hint=f"or choose {'--pairs' if match else '--configs'} without it")
     t0 = time.perf_counter()
 
     def progress(done: int, total: int) -> None:
         unit = "matches" if match else "jobs"
         if not args.quiet and (done == total or done % max(1, total // 20) == 0):
-            print(f"ablation: {done}/{total} {unit} ({time.perf_counter() - t0:.0f} s)",
+            print(f"ablation: {done} of {total} {unit} done ({time.perf_counter() - t0:.0f} s)",
                   file=sys.stderr, flush=True)
 
     try:

@@ -7,11 +7,18 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import sys
 from pathlib import Path
 
 from agents.evaluation import GOALKEEPER_ID, evaluate, record_video
 from agents.policies import make_policy
-from soccer_lab.cli_args import add_env_arguments, add_trust_argument, env_kwargs_from_args
+from soccer_lab import extras
+from soccer_lab.cli_args import (
+    HelpFormatter,
+    add_env_arguments,
+    add_trust_argument,
+    env_kwargs_from_args,
+)
 
 __all__ = ["parser", "main"]
 
@@ -19,26 +26,32 @@ __all__ = ["parser", "main"]
 def parser() -> argparse.ArgumentParser:
     """The options of ``soccer-env eval``."""
     p = argparse.ArgumentParser(
-        prog="soccer-env eval",
+        prog="soccer-env eval", formatter_class=HelpFormatter,
         description="Evaluate a keeper policy on Goalkeeper-v0's fixed shot suite (seeds "
-                    "0..N-1): save rate with a Wilson 95 % interval, outcomes, estimation "
-                    "error, and a video of the first episodes.",
-        epilog="example: soccer-env eval --policy baseline:keeper-ppo-ssl2012 --obs-mode "
-               "perceived --perception ssl-2012")
+                    "START-SEED onwards): save rate with a Wilson 95 % interval, outcomes, "
+                    "ball estimation error, and a video of the first episodes (the video "
+                    "needs the render extra and is skipped without it).",
+        epilog="example:\n  soccer-env eval --policy baseline:keeper-ppo-ssl2012 "
+               "--obs-mode perceived --perception ssl-2012")
     p.add_argument("--policy", default="scripted",
-                   help="scripted (default), idle, baseline:NAME, a .zip/.npz model or a run "
-                        "folder")
+                   help="scripted, idle, baseline:NAME, a .zip (stable-baselines3, needs the "
+                        "train extra) or .npz model, or a training run folder")
     add_env_arguments(p)
-    p.add_argument("--episodes", type=int, default=1000, help="shots (default 1000)")
-    p.add_argument("--start-seed", type=int, default=0, help="first seed of the suite")
-    p.add_argument("--workers", type=int, default=os.cpu_count() or 1,
-                   help="processes (default: all cores)")
+    p.add_argument("--episodes", type=int, default=1000, help="shots")
+    p.add_argument("--start-seed", type=int, default=0, help="seed of the first shot")
+    p.add_argument("--workers", type=int, default=None,
+                   help="processes; the result does not depend on it (default: all cores)")
     p.add_argument("--video", type=int, default=3, metavar="N",
-                   help="episodes to render into the video (default 3; 0 for none)")
+                   help="episodes to render into the video (0: none)")
     p.add_argument("--out", default="eval_output", help="folder for eval.json and the video")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     add_trust_argument(p)
     return p
+
+
+def _describe(env_kwargs: dict) -> str:
+    """The environment's settings as ``key=value`` (``truth`` if none)."""
+    return ", ".join(f"{k}={v}" for k, v in env_kwargs.items()) or "truth"
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -47,11 +60,16 @@ def main(argv: list[str] | None = None) -> int:
 
     p = parser()
     args = p.parse_args(argv)
+    if args.workers is None:
+        args.workers = os.cpu_count() or 1
     for name in ("episodes", "workers"):
         if getattr(args, name) < 1:
-            p.error(f"--{name} must be >= 1")
+            p.error(f"--{name} must be >= 1, got {getattr(args, name)}")
     if args.video < 0:
-        p.error("--video must be >= 0")
+        p.error(f"--video must be >= 0, got {args.video}")
+    extras.require("eval")
+    if str(args.policy).endswith(".zip"):
+        extras.require("policy .zip", f"eval --policy {args.policy}")
     try:
         env_kwargs = env_kwargs_from_args(args)
         # Resolve the policy once here so that a bad reference fails with its own message.
@@ -62,19 +80,25 @@ def main(argv: list[str] | None = None) -> int:
             probe.close()
     except (ValueError, TypeError, FileNotFoundError) as err:
         p.error(str(err))
+    video = args.video
+    if video:
+        why = extras.unavailable("video")
+        if why:
+            print(f"no video: {why}", file=sys.stderr)
+            video = 0
     res = evaluate(args.policy, env_kwargs, args.episodes, args.start_seed, args.workers,
                    trust=args.trust)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     record = res.to_dict()
-    if args.video:
-        seeds = range(args.start_seed, args.start_seed + min(args.video, args.episodes))
+    if video:
+        seeds = range(args.start_seed, args.start_seed + min(video, args.episodes))
         record["video"] = str(record_video(args.policy, out / "eval.mp4", env_kwargs, seeds,
                                             trust=args.trust))
     (out / "eval.json").write_text(json.dumps(record, indent=1))
     if args.json:
         print(json.dumps({k: v for k, v in record.items() if k != "saved"}, indent=1))
     else:
-        print(f"{res.policy} on {env_kwargs or 'truth'}: {res.summary()}")
-        print(f"wrote {out / 'eval.json'}" + (f" and {record['video']}" if args.video else ""))
+        print(f"{res.policy} on Goalkeeper-v0 ({_describe(env_kwargs)}): {res.summary()}")
+        print(f"wrote {out / 'eval.json'}" + (f" and {record['video']}" if video else ""))
     return 0

@@ -36,13 +36,10 @@ from typing import Any
 
 from agents.evaluation import GOALKEEPER_ID
 from agents.training import MATCH_ID, RunRefused, TrainingStopped, run_folder
+from soccer_lab import extras
 from soccer_lab.cli_args import env_kwargs_from_args, key_values
 
-__all__ = ["main", "INSTALL_HINT", "is_rllib_checkpoint", "REFUSED"]
-
-#: How to install what the backend needs.
-INSTALL_HINT = ("pip install 'soccer-env[rllib]' (install torch==2.13.0 first, as for the "
-                "train extra; `make test-rllib` builds such an environment in .venv-rllib)")
+__all__ = ["main", "is_rllib_checkpoint", "REFUSED"]
 
 #: The options of ``soccer-env train`` that the RLlib backend refuses: (attribute, the
 #: option as given, why).
@@ -159,15 +156,13 @@ def main(p: argparse.ArgumentParser, args: argparse.Namespace, argv: list[str] |
     _refuse_options(p, args)
     base = _resumed_fields(p, args.resume) if args.resume else {}
     fields = _config_fields(p, args, base)
+    extras.require("train --backend rllib")
     try:
-        import ray.rllib  # noqa: F401
-
         from agents import rllib_runs
-    except ImportError as err:
-        print(f"soccer-env train: --backend rllib needs Ray's RLlib, which cannot be imported "
-              f"here ({type(err).__name__}: {err}); install it with: {INSTALL_HINT}",
-              file=sys.stderr)
-        return 1
+    except ImportError as err:  # Ray without its RLlib part, or a broken installation
+        print(f"soccer-env train --backend rllib needs the rllib extra: "
+              f"{extras.install_command(['rllib'])} ({err})", file=sys.stderr)
+        return 2
     try:
         cfg = rllib_runs.RllibTrainConfig.from_dict(fields)
     except (ValueError, TypeError) as err:

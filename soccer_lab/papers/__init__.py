@@ -55,22 +55,17 @@ def _run_of(name: str) -> Callable[..., dict[str, Any]]:
     return run
 
 
-#: The paper reproductions: name -> its module's ``run``, and what it reproduces.
+#: The paper reproductions: name -> its module's ``run``, and what it reproduces in one short
+#: line that names the paper by its authors and year (``soccer-env paper --help`` lists them).
 PAPERS: Registry[Callable[..., dict[str, Any]]] = Registry("paper reproduction", [
-    ("ekf", _run_of("ekf"), "Zhao et al. (2012): EKF ball prediction with latency compensation "
-                            "(open and closed loop)"),
-    ("ungm", _run_of("ungm"), "Xu et al. (2012): bootstrap PF, FBPF and MFBPF on the UNGM "
-                              "benchmark"),
-    ("localization", _run_of("localization"), "Guo and Li (2013): KLD-sampling localization "
-                                              "against fixed-size filters, walking"),
-    ("hough", _run_of("hough"), "Xu et al. (2012): Hough-space fusion of several robots' sightings "
-                                "(Table 1 geometry)"),
-    ("team", _run_of("team"), "Xu et al. (2012) in the closed loop: humanoid matches and keeper, "
-                              "one robot alone against team fusion and particle tracking"),
-    ("meanshift", _run_of("meanshift"), "Li et al. (2010): the feature-restricted mean-shift PF "
-                                        "against plain PFs on robots manoeuvring in rendered "
-                                        "overhead images"),
-    ("following", _run_of("following"), "Yu et al. (2010): the Kalman-started mean shift against "
-                                        "plain mean shift on a turning humanoid's head-camera "
-                                        "images"),
+    ("ekf", _run_of("ekf"), "Zhao et al. (2012): EKF ball prediction, latency compensation"),
+    ("ungm", _run_of("ungm"), "Xu et al. (2012): bootstrap PF, FBPF and MFBPF on UNGM"),
+    ("localization", _run_of("localization"),
+     "Guo and Li (2013): KLD-sampling localization, walking"),
+    ("hough", _run_of("hough"), "Xu et al. (2012): Hough-space fusion of robots' sightings"),
+    ("team", _run_of("team"), "Xu et al. (2012): team fusion in humanoid matches and saves"),
+    ("meanshift", _run_of("meanshift"),
+     "Li et al. (2010): mean-shift particle filter, overhead images"),
+    ("following", _run_of("following"),
+     "Yu et al. (2010): Kalman-started mean shift, head camera"),
 ])

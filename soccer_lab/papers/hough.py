@@ -652,12 +652,26 @@ def _model_tables(s: Settings, res: dict[str, Any]) -> tuple[str, list[dict[str,
 
 def _plot(s: Settings, cam: dict[str, Any], paper: dict[str, Any]) -> str:
     """The mean error against the number of robots, both noise models."""
+    from soccer_env.render.plots import LABEL_SIZE, TITLE_SIZE, legend_beside
+
     plt = pyplot()
-    fig, ax = plt.subplots(figsize=(6, 4))
+    fig, ax = plt.subplots(figsize=(9.0, 4.4))
     ks = list(range(1, 6))
-    for label, res in (("head camera", cam), ("paper's reading", paper)):
-        ax.plot(ks, [res["by_count_m"][k] * _MM for k in ks], "o-", label=label)
-    ax.set(xlabel="robots", ylabel="mean error [mm]",
-           title="Hough fusion, Xu et al. (2012) Table 1")
-    ax.legend()
+    for label, res, marker in (
+            (f"head camera: {s.pixel_sigma:g} px pixel noise,\n"
+             f"{math.degrees(s.sway_sigma):g} deg tilt sway, pose "
+             f"{s.pose_sigma * _MM:g} mm / {math.degrees(s.heading_sigma):g} deg", cam, "o"),
+            ("paper's reading: 192 mm\non each robot's estimate", paper, "s")):
+        ax.plot(ks, [res["by_count_m"][k] * _MM for k in ks], ls="-", marker=marker,
+                label=label)
+    ax.set_xticks(ks)
+    ax.set_ylim(bottom=0)
+    ax.grid(alpha=0.3)
+    ax.set_xlabel("robots fused with 1/L weights (1: one robot's own estimate)",
+                  fontsize=LABEL_SIZE)
+    ax.set_ylabel("mean error of the ball position [mm]", fontsize=LABEL_SIZE)
+    ax.set_title(f"Hough fusion on Xu et al.'s (2012) Table 1 geometry\n5 humanoids on a "
+                 f"6 m x 4 m field, {s.trials} noise draws per ball position",
+                 fontsize=TITLE_SIZE)
+    legend_beside(ax, title="noise model", labelspacing=0.9)
     return save_figure(fig, s.out / "paper_hough.png")

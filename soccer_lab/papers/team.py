@@ -222,15 +222,38 @@ def _tables(s: Settings, m: dict[str, Any], k: dict[str, Any] | None
 
 
 def _plot(s: Settings, m: dict[str, Any]) -> str:
-    """The distribution of blue's ball belief error per configuration."""
+    """The distribution of blue's ball belief error per configuration (cumulative share of
+    blue robot-steps below each error), up to the error that every configuration stays
+    under."""
+    from soccer_env.render.plots import (
+        LABEL_SIZE,
+        TITLE_SIZE,
+        describe_world,
+        legend_beside,
+        style_key,
+    )
+
     plt = pyplot()
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig, ax = plt.subplots(figsize=(7.5, 4.4))
     edges = np.linspace(0, 3, 31)
+    reach = 0.0
     for name, r in m["configs"].items():
         h = np.asarray(r["error_hist"], dtype=float)
-        ax.plot(0.5 * (edges[1:] + edges[:-1]), np.cumsum(h) / h.sum(), label=name)
-    ax.set(xlabel="ball error [m] (3 m and more in the last bin)",
-           ylabel="share of blue robot-steps", title="Humanoid match: ball belief error")
+        cdf = np.concatenate([[0.0], np.cumsum(h) / h.sum()])
+        ax.plot(edges, cdf, lw=1.6, label=name)
+        reach = max(reach, edges[np.argmax(cdf >= 0.995)])
+    ax.axvline(GOOD, color="k", ls=":", lw=1.2)
+    ax.set_xlim(0, min(3.0, max(0.5, reach + 0.2)))
+    ax.set_ylim(0, 1.02)
+    ax.set_xlabel("ball belief error [m] (errors of 3 m and more counted at 3 m)",
+                  fontsize=LABEL_SIZE)
+    ax.set_ylabel("share of blue robot-steps\nwith a smaller error", fontsize=LABEL_SIZE)
+    ax.set_title(f"Blue's ball belief error in humanoid matches, {BLUE} vs {YELLOW}\n"
+                 f"{describe_world(ROBOT, FIELD)}, head camera {CAMERA}\n"
+                 f"{s.matches} match(es) of {s.duration:g} s per configuration",
+                 fontsize=TITLE_SIZE)
     ax.grid(alpha=0.3)
-    ax.legend()
+    first = legend_beside(ax, title="blue's ball estimation")
+    legend_beside(ax, [style_key(f"{GOOD:g} m: counted within", ls=":", lw=1.2, color="k")],
+                  title="line style", below=first)
     return save_figure(fig, s.out / "paper_team.png")

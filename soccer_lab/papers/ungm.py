@@ -210,14 +210,47 @@ def _tables(s: Settings, rmse: dict[str, np.ndarray], timing: dict[str, float],
 
 def _plot(s: Settings, rmse: dict[str, np.ndarray], example: dict[str, Any]) -> str:
     """Run 0's trajectory with the filters' estimates, and the RMSE per filter over runs."""
+    from soccer_env.render.plots import (
+        LABEL_SIZE,
+        TICK_SIZE,
+        TITLE_SIZE,
+        colour_key,
+        legend_beside,
+        style_key,
+    )
+
     plt = pyplot()
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4))
-    ax1.plot(example["truth"], "k-", lw=2, label="true state")
-    for name in ("bootstrap", "fbpf", "fbpf-threshold", "mfbpf"):
-        ax1.plot(example[name], lw=1, label=name)
-    ax1.set(xlabel="step k", ylabel="x_k", title="UNGM, run 0")
-    ax1.legend(fontsize=8)
-    ax2.boxplot([rmse[n] for n in FILTERS])
-    ax2.set_xticks(range(1, len(FILTERS) + 1), list(FILTERS))
-    ax2.set(ylabel="RMSE over 50 steps", title=f"{s.runs} runs, {s.particles} particles")
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12.5, 4.6),
+                                   gridspec_kw={"width_ratios": [1.4, 1.0]})
+    names = list(FILTERS)
+    colour = {n: f"C{k}" for k, n in enumerate(names)}
+    ax1.plot(example["truth"], "k-", lw=2.2, label="true state")
+    for name in names:
+        if name in example:
+            ax1.plot(example[name], lw=1.1, color=colour[name], label=name)
+    ax1.set_xlabel("step k", fontsize=LABEL_SIZE)
+    ax1.set_ylabel("state x_k (dimensionless)", fontsize=LABEL_SIZE)
+    ax1.set_title("Run 0: the true state and each filter's estimate", fontsize=TITLE_SIZE)
+    ax1.grid(alpha=0.3)
+    box = ax2.boxplot([rmse[n] for n in names], patch_artist=True,
+                      medianprops={"color": "k", "lw": 1.5},
+                      flierprops={"marker": "o", "mfc": "none", "mec": "0.2", "ms": 5})
+    for patch, name in zip(box["boxes"], names):
+        patch.set(facecolor=colour[name], alpha=0.55, edgecolor="0.2")
+    ax2.set_xticks(range(1, len(names) + 1), names, rotation=20, ha="right")
+    ax2.set_ylabel(f"RMSE of x_k over {s.steps} steps", fontsize=LABEL_SIZE)
+    ax2.set_title(f"RMSE per run: {s.runs} runs, {s.particles} particles",
+                  fontsize=TITLE_SIZE)
+    ax2.grid(axis="y", alpha=0.3)
+    for ax in (ax1, ax2):
+        ax.tick_params(labelsize=TICK_SIZE)
+    fig.suptitle("Xu et al. (2012) particle-filter benchmark: the univariate nonstationary "
+                 "growth model (UNGM)", fontsize=TITLE_SIZE)
+    first = legend_beside(ax2, [style_key("true state", lw=2.2, color="k")]
+                          + [colour_key(n, colour[n]) for n in names], title="filter")
+    legend_beside(ax2, [style_key("median", color="k"),
+                        colour_key("box: middle half of the runs", "0.75"),
+                        style_key("run beyond the whiskers\n(1.5 box heights)", ls="None",
+                                  marker="o", color="0.2", ms=5, mfc="none")],
+                  title="box plot", below=first)
     return save_figure(fig, s.out / "paper_ungm.png")

@@ -108,6 +108,26 @@ def test_outputs_are_written_and_parse(runs, tmp_path: Path):
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 5000
 
 
+def test_plot_legend_covers_no_bar_and_the_title_names_the_setting(runs):
+    from agents.ablation_report import figure
+    from soccer_env.render.plots import legend_overlaps, legends, pyplot
+
+    fig = figure(runs[1])
+    try:
+        fig.tight_layout()  # as plot() lays it out before saving
+        bars = [p for ax in fig.axes for p in ax.patches]
+        assert len(bars) == 3 * len(PRESETS) * len(CONFIGS)
+        assert legend_overlaps(fig) == []
+        labels = [t.get_text() for leg in legends(fig) for t in leg.get_texts()]
+        assert labels == CONFIGS + ["95 % Wilson interval"]
+        title = fig.get_suptitle()
+        assert "Goalkeeper-v0" in title and f"{EPISODES} shots per bar" in title
+        assert "SSL robots on the ssl-div-b field" in title
+        assert fig.axes[-1].get_xlabel() == "sensor preset (overhead vision)"
+    finally:
+        pyplot().close(fig)
+
+
 def test_registry_holds_the_required_configurations():
     for name in ("truth", "raw", "kf", "ekf", "ekf-improved"):
         assert ESTIMATOR_CONFIGS[name].name == name
@@ -224,6 +244,13 @@ def test_humanoid_ablation_runs_the_team_estimators_on_head_camera_presets(tmp_p
     assert res.command().startswith("soccer-env ablation --robot humanoid")
     files = write_outputs(res, tmp_path)
     assert "soccer_env.presets.HEAD_CAMERAS" in files["md"].read_text()
+    from agents.ablation_report import figure
+    from soccer_env.render.plots import pyplot
+
+    fig = figure(res)
+    assert "humanoid-2012 humanoids on the humanoid-2012 field" in fig.get_suptitle()
+    assert fig.axes[-1].get_xlabel() == "head-camera preset"
+    pyplot().close(fig)
     assert ablation.default_presets("humanoid") == ["ideal", "kidsize-2012", "kidsize"]
     with pytest.raises(ValueError, match="unknown sensor preset"):
         run_ablation("scripted", 1, "realistic", "own", robot="humanoid")

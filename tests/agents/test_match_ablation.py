@@ -61,6 +61,28 @@ def test_outputs_are_written_and_agree_with_the_matches(result, tmp_path: Path):
     assert files["png"].read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_plot_legends_cover_no_data_and_the_title_names_the_setting(result):
+    from agents.match_ablation import figure
+    from soccer_env.render.plots import legend_overlaps, legends, pyplot
+
+    fig = figure(result)
+    try:
+        assert legend_overlaps(fig) == []
+        labels = {t.get_text() for leg in legends(fig) for t in leg.get_texts()}
+        assert {"A wins", "draws", "B wins", "no difference"} <= labels
+        # One seed per cell (two matches, one from each side): no interval, said so.
+        assert "mean (one seed: no interval)" in labels
+        title = fig.get_suptitle()
+        assert "Match-v0" in title and "teams of 2, 3 s matches, 2 per row" in title
+        assert "SSL robots on the ssl-div-b field" in title
+        # Rows top to bottom in table order.
+        rows = sorted(fig.axes[0].get_yticklabels(), key=lambda t: -t.get_position()[1])
+        assert [t.get_text() for t in rows] == ["A truth vs B raw\npreset ideal",
+                                                "A truth vs B raw\npreset realistic"]
+    finally:
+        pyplot().close(fig)
+
+
 def test_humanoid_teams_run_their_own_fusion_and_tracking():
     res = run_match_ablation(None, None, matches=1, robot="humanoid", team_size=2,
                              duration=2.0, workers=1)

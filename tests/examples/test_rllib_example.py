@@ -1,4 +1,5 @@
-"""The RLlib example runs as the README says, at its tiny size (seconds of training)."""
+"""The RLlib example runs as docs/tutorials/ray-cluster.md says, at its tiny size (seconds of
+training)."""
 
 from __future__ import annotations
 

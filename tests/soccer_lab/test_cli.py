@@ -1,14 +1,43 @@
-"""The command line a user runs: list, bench and demo."""
+"""The command line a user runs: version, usage, list, bench, demo and the play command."""
 
+import importlib.metadata
 import json
 import shutil
 import subprocess
 import sys
+import types
 from pathlib import Path
 
 import pytest
 
-from soccer_lab.cli import main
+from soccer_env import presets
+from soccer_env.perception import options
+from soccer_lab.cli import _COMMANDS, main
+
+
+@pytest.mark.parametrize("flag", ["--version", "-V"])
+def test_version(flag, capsys):
+    assert main([flag]) == 0
+    assert capsys.readouterr().out == f"soccer-env {importlib.metadata.version('soccer-env')}\n"
+    assert importlib.metadata.version("soccer-env") == "0.1.0"
+
+
+def test_usage_lists_every_command(capsys):
+    assert main(["--help"]) == 0
+    text = capsys.readouterr().out
+    for name, (_, summary) in _COMMANDS.items():
+        assert f"  {name:8s}  {summary}" in text
+    assert "-V, --version" in text
+    assert _COMMANDS["play"][1] == "drive a robot with the keyboard against the scripted team"
+
+
+def test_play_runs_the_play_command_module(monkeypatch):
+    calls = []
+    fake = types.ModuleType("soccer_lab.commands.play")
+    fake.main = lambda argv: calls.append(argv) or 0
+    monkeypatch.setitem(sys.modules, "soccer_lab.commands.play", fake)
+    assert main(["play", "--robot", "ssl"]) == 0
+    assert calls == [["--robot", "ssl"]]
 
 
 def test_list(capsys):
@@ -17,11 +46,29 @@ def test_list(capsys):
     assert "soccer_env/Goalkeeper-v0" in info["gymnasium"]
     assert set(info["fields"]) == {"ssl-2012", "ssl-div-b", "ssl-div-a", "humanoid-2012",
                                    "humanoid-kid"}
+    assert info["vision"] == presets.VISION.descriptions()
+    assert info["ball_filters"] == options.BALL_FILTERS.descriptions()
+
+
+def test_list_groups_every_name_under_a_heading(capsys):
+    assert main(["list"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    headings = [line for line in lines if line and not line.startswith(" ")]
+    assert headings == ["Environments", "World presets (environment arguments)",
+                        "Sensor presets",
+                        "Perception options (perception={\"OPTION\": NAME, ...})"]
+    names = {line.split()[0] for line in lines if line.startswith("    ") and
+             not line.startswith("     ")}
+    for family in (presets.FIELDS, presets.ROBOTS, presets.VISION, presets.HEAD_CAMERAS,
+                   options.BALL_FILTERS, options.FUSIONS, options.DETECTORS):
+        assert set(family) <= names
 
 
 def test_unknown_command(capsys):
     assert main(["fly"]) == 2
     assert "unknown command 'fly'" in capsys.readouterr().err
+    assert main(["evl"]) == 2
+    assert "unknown command 'evl' (did you mean 'eval'?)" in capsys.readouterr().err
 
 
 def test_bench_json(capsys):
@@ -59,6 +106,8 @@ def test_console_script_installed():
     exe = shutil.which("soccer-env") or str(Path(sys.executable).parent / "soccer-env")
     out = subprocess.run([exe, "--help"], capture_output=True, text=True, check=True)
     assert "demo" in out.stdout and "bench" in out.stdout
+    out = subprocess.run([exe, "--version"], capture_output=True, text=True, check=True)
+    assert out.stdout == "soccer-env 0.1.0\n"
 
 
 def test_ruff_clean():

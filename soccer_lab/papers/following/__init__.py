@@ -201,7 +201,7 @@ def run(out: str | Path = "paper_output", episodes: int = 10, duration: float = 
     files = write_report(s.out, "paper_following", text, report.rows(res, eps[0]["labels"]),
                          report.data(s, eps, res))
     files.append(report.plot(eps, res, presets.robot(s.robot).max_turn_speed,
-                             s.out / "paper_following.png"))
+                             s.out / "paper_following.png", robot=s.robot))
     return {"text": text, "files": files, "seconds": time.perf_counter() - t0,
             "summary": res["summary"], "turn_bins": res["turn_bins"],
             "jump_bins": res["jump_bins"], "verdicts": res["verdicts"]}

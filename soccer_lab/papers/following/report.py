@@ -190,7 +190,8 @@ def pipeline_label() -> str:
 
 def _aim_lines(fast: dict[str, Any], verdicts: dict[str, Any], wmax: float) -> list[str]:
     lines = [f"Yu et al.'s (2010) claim: {PAPER['claim']}. Its results: {PAPER['results']}.", "",
-             f"Aim: {AIM}. Fast turns (>= {TURN_BINS[-1][1] * wmax:.2f} rad/s, "
+             f"Our criterion (not the paper's): {AIM}. Fast turns "
+             f"(>= {TURN_BINS[-1][1] * wmax:.2f} rad/s, "
              f"{fast['frames']} frames, both variants), Kalman against plain, judged on the "
              "share of frames off target (the lost-track rate):"]
     for key, vd in verdicts.items():
@@ -259,33 +260,54 @@ def data(s: Any, eps: list[dict[str, Any]], res: dict[str, Any]) -> dict[str, An
                                 **_series(ep_plot)}}
 
 
-def plot(eps: list[dict[str, Any]], res: dict[str, Any], wmax: float, path: Path) -> str:
+def plot(eps: list[dict[str, Any]], res: dict[str, Any], wmax: float, path: Path, *,
+         robot: str | None = None) -> str:
     """The plotted episode's pixel errors with the turn rate, the frames off target of every
-    episode and tracker, and the off-target share by turn rate."""
-    from matplotlib.colors import ListedColormap
+    episode and tracker, and the off-target share by turn rate.
+
+    Each tracker kind has a hue and each window scale a shade of it (the first scale the full
+    colour; lines of the other scales dashed): ``wmax`` is the robot's top turn rate [rad/s]
+    (the turn-rate bins are fractions of it) and ``robot`` the robot preset, named in the
+    title."""
+    from matplotlib.colors import ListedColormap, to_rgb
+
+    from soccer_env.render.plots import (
+        LABEL_SIZE,
+        TICK_SIZE,
+        TITLE_SIZE,
+        colour_key,
+        legend_beside,
+        style_key,
+    )
 
     labels = eps[0]["labels"]
     ep_plot = _plotted(res)
+    kinds = list(dict.fromkeys(lab.rsplit(" x", 1)[0] for lab in labels))
+    scales = list(dict.fromkeys(lab.rsplit(" x", 1)[1] for lab in labels))
+    styles = ("-", "--", "-.", ":")
+    colours, dashes = {}, {}
+    for lab in labels:
+        kind, scale = lab.rsplit(" x", 1)
+        light = 0.5 * scales.index(scale) / max(len(scales) - 1, 1)
+        base = np.array(to_rgb(f"C{kinds.index(kind)}"))
+        colours[lab] = tuple(base + light * (1.0 - base))
+        dashes[lab] = styles[scales.index(scale) % len(styles)]
     plt = pyplot()
-    fig, (ax, rx, bx) = plt.subplots(1, 3, figsize=(17, 4.6),
-                                     gridspec_kw={"width_ratios": [1.2, 1.0, 0.9]})
-    colours = [f"C{j}" for j in range(len(labels))]
+    fig, (ax, rx, bx) = plt.subplots(1, 3, figsize=(18, 5.2), layout="constrained",
+                                     gridspec_kw={"width_ratios": [1.25, 1.0, 0.9]})
     t = ep_plot["rec"]["t"]
-    for lab, c in zip(labels, colours):
-        ax.plot(t, np.maximum(errors(ep_plot, lab)[0], 0.05),
-                "-" if lab.startswith("kalman") else "--", color=c, lw=1, label=lab)
-    ax.plot(t, ep_plot["rec"]["radius"], ":", color="grey",
-            label="ball radius (off target above)")
-    ax.set(xlabel="time [s]", ylabel="pixel error [px] (log)", yscale="log",
-           title=f"episode `{ep_plot['variant']}` #{ep_plot['index']} (the first "
-                 f"`{ep_plot['variant']}`): pixel error")
+    for lab in labels:
+        ax.plot(t, np.maximum(errors(ep_plot, lab)[0], 0.05), ls=dashes[lab],
+                color=colours[lab], lw=1.2)
+    ax.plot(t, ep_plot["rec"]["radius"], ":", color="k", lw=1.2)
+    ax.set_yscale("log")
+    ax.set_xlabel("time since the first frame [s]", fontsize=LABEL_SIZE)
+    ax.set_ylabel("pixel error of the tracked ball [px]", fontsize=LABEL_SIZE)
+    ax.set_title(f"Episode `{ep_plot['variant']}` #{ep_plot['index']}: pixel error and turn "
+                 "rate", fontsize=LABEL_SIZE)
     ax2 = ax.twinx()
-    ax2.plot(t, ep_plot["rec"]["rotation_true"] / ep_plot["frame_dt"], color="black",
-             alpha=0.3, lw=1, label="turn rate")
-    ax2.set_ylabel("turn rate [rad/s]")
-    h1, l1 = ax.get_legend_handles_labels()
-    h2, l2 = ax2.get_legend_handles_labels()
-    ax.legend(h1 + h2, l1 + l2, fontsize=7, loc="upper left")
+    ax2.plot(t, ep_plot["rec"]["rotation_true"] / ep_plot["frame_dt"], color="0.55", lw=1.0)
+    ax2.set_ylabel("turn rate [rad/s] (grey line)", fontsize=LABEL_SIZE)
     # Every episode, every tracker: the frames off target.
     n = min(len(e["rec"]["t"]) for e in eps)
     raster = np.zeros((len(eps) * len(labels), n))
@@ -293,22 +315,46 @@ def plot(eps: list[dict[str, Any]], res: dict[str, Any], wmax: float, path: Path
         for j, lab in enumerate(labels):
             raster[i * len(labels) + j] = np.where(errors(e, lab)[1][:n], j + 1, 0)
     rx.imshow(raster, aspect="auto", interpolation="nearest",
-              cmap=ListedColormap(["white", *colours]), vmin=0, vmax=len(labels),
-              extent=(0.0, n * ep_plot["frame_dt"], len(raster), 0))
+              cmap=ListedColormap(["white", *(colours[lab] for lab in labels)]), vmin=0,
+              vmax=len(labels), extent=(0.0, n * ep_plot["frame_dt"], len(raster), 0))
+    for i in range(1, len(eps)):
+        rx.axhline(i * len(labels), color="0.7", lw=0.6)
     rx.set_yticks([(i + 0.5) * len(labels) for i in range(len(eps))],
-                  [f"{e['variant']} #{e['index']}" for e in eps], fontsize=6)
-    rx.set(xlabel="time [s]", title="frames off target, every episode (rows: "
-           + ", ".join(labels) + ")")
-    rx.title.set_fontsize(8)
+                  [f"{e['variant']} #{e['index']}" for e in eps],
+                  fontsize=TICK_SIZE if len(eps) <= 24 else 7)
+    rx.set_xlabel("time since the first frame [s]", fontsize=LABEL_SIZE)
+    rx.set_ylabel("episode (one row per tracker, in legend order)", fontsize=LABEL_SIZE)
+    rx.set_title("Frames off target (coloured), every episode", fontsize=LABEL_SIZE)
     xs = np.arange(len(TURN_BINS))
     width = 0.8 / len(labels)
     for j, lab in enumerate(labels):
         vals = [b[f"{lab} off_target_rate"] for b in res["turn_bins"]["all"]]
         bx.bar(xs + (j - 0.5 * (len(labels) - 1)) * width, np.nan_to_num(vals), width,
-               color=colours[j], label=lab)
+               color=colours[lab], edgecolor="0.3", lw=0.4)
     bx.set_xticks(xs, [f"{nm}\n{lo * wmax:.2f}-{hi * wmax:.2f} rad/s" if math.isfinite(hi)
                        else f"{nm}\n>= {lo * wmax:.2f} rad/s" for nm, lo, hi in TURN_BINS])
-    bx.set(ylabel="share of frames off target", ylim=(0, 1),
-           title="lost-track rate by turn rate (both variants)")
-    bx.legend(fontsize=8)
+    bx.set_ylim(0, 1)
+    bx.set_xlabel("turn rate", fontsize=LABEL_SIZE)
+    bx.set_ylabel("share of frames off target", fontsize=LABEL_SIZE)
+    bx.set_title("Lost-track rate by turn rate, both variants", fontsize=LABEL_SIZE)
+    for a in (ax, ax2, rx, bx):
+        a.tick_params(labelsize=TICK_SIZE)
+    ax.grid(alpha=0.3)
+    bx.grid(axis="y", alpha=0.3)
+    if robot is None:  # the preset with this top turn rate
+        from soccer_env import presets
+
+        robot = next((r for r in ROBOTS if presets.robot(r).max_turn_speed == wmax), "humanoid")
+    field, camera = ROBOTS.get(robot, ("?", "?"))
+    who = "humanoid" if robot == "humanoid" else f"{robot} humanoid"
+    fig.suptitle(f"Yu et al. (2010) ball following: a turning {who} on the {field} field, "
+                 f"head camera {camera}; {len(eps)} episodes", fontsize=TITLE_SIZE)
+    first = legend_beside(bx, [style_key(lab, ls=dashes[lab], color=colours[lab], lw=1.6)
+                               for lab in labels],
+                          title="tracker, window scale", handlelength=2.6)
+    legend_beside(bx, [style_key("ball radius\n(off target above)", ls=":", lw=1.2,
+                                 color="k"),
+                       style_key("turn rate (right axis)", color="0.55", lw=1.0),
+                       colour_key("frame off target", "0.35")],
+                  title="lines and fills", below=first, handlelength=2.6)
     return save_figure(fig, path)

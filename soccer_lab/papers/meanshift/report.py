@@ -25,9 +25,9 @@ PAPER = {"plain_pf_particles": 200, "ms_pf_particles": 20, "cycle_ms": 33.0,
                  "stays about 33 ms (Pentium 4 2.6 GHz, 640 x 480)."}
 #: The aims of the reproduction.
 AIMS = {"ms_per_robot": 5.0,
-        "text": "Aims: the 20-particle mean-shift PF at least as accurate as the "
-                "200-particle plain PF (the paper's claim); under 5 ms per tracked robot per "
-                "640 x 480 frame."}
+        "text": "Our criteria (not the paper's): the 20-particle mean-shift PF at least as "
+                "accurate as the 200-particle plain PF (the paper's claim); under 5 ms per "
+                "tracked robot per 640 x 480 frame."}
 #: Error CDF bins [mm].
 CDF_EDGES_MM = np.geomspace(0.05, 3000.0, 121)
 
@@ -270,33 +270,71 @@ def _printed_line(summary: dict[str, dict[str, Any]]) -> str:
 
 def plot(eps: list[dict[str, Any]], summary: dict[str, dict[str, Any]], path: Path) -> str:
     """The error CDF per tracker kind, one robot's errors over an episode, and the shares of
-    lost tracks."""
+    robot-frames off target, on a team-mate and reported lost; one colour per tracker kind."""
+    from soccer_env.render.plots import (
+        LABEL_SIZE,
+        TITLE_SIZE,
+        colour_key,
+        legend_beside,
+        style_key,
+    )
+    from soccer_lab.papers.meanshift.scene import FIELD
+
     mpp, radius_px = eps[0]["mpp"], eps[0]["radius_px"]
+    colour = {k: f"C{j}" for j, k in enumerate(KINDS)}
     plt = pyplot()
-    fig, axes = plt.subplots(1, 3, figsize=(14, 4))
+    fig, axes = plt.subplots(1, 3, figsize=(16, 4.6),
+                             gridspec_kw={"width_ratios": [1.0, 1.0, 0.8]})
+    radius_mm = 1e3 * mpp * radius_px
+    # The errors' range: from where the first CDF leaves 0 to where the last reaches 1 (and
+    # the robot radius), a factor of 2 either side.
+    lo, hi = CDF_EDGES_MM[-1], radius_mm
     for k, s in summary.items():
-        axes[0].plot(CDF_EDGES_MM, s["error_cdf"], label=k)
-    axes[0].axvline(1e3 * mpp * radius_px, color="grey", ls=":", label="robot radius")
-    axes[0].set(xscale="log", xlabel="position error [mm]", ylabel="share of robot-frames",
-                title="Error CDF", xlim=(CDF_EDGES_MM[0], CDF_EDGES_MM[-1]))
-    axes[0].legend()
-    axes[0].grid(alpha=0.3)
+        cdf = np.asarray(s["error_cdf"], dtype=float)
+        axes[0].plot(CDF_EDGES_MM, cdf, color=colour.get(k), lw=1.5)
+        lo = min(lo, CDF_EDGES_MM[np.argmax(cdf > 0.001)])
+        hi = max(hi, CDF_EDGES_MM[np.argmax(cdf >= 0.999)] if cdf[-1] >= 0.999
+                 else CDF_EDGES_MM[-1])
+    axes[0].axvline(radius_mm, color="0.3", ls=":", lw=1.2)
+    axes[0].set(xscale="log", ylim=(0, 1.02), xlim=(max(CDF_EDGES_MM[0], lo / 2),
+                                                    min(CDF_EDGES_MM[-1], hi * 2)))
+    axes[0].set_xlabel("position error [mm]", fontsize=LABEL_SIZE)
+    axes[0].set_ylabel("share of robot-frames\nwith a smaller error", fontsize=LABEL_SIZE)
+    axes[0].set_title("Error distribution, every robot and episode", fontsize=LABEL_SIZE)
     ex = np.asarray(eps[0]["err_px"]["ms-pf-20"])
     t = np.arange(1, ex.shape[0] + 1) / 30.0
+    top = 0.0
     for k in KINDS:
-        axes[1].plot(t, np.asarray(eps[0]["err_px"][k])[:, 0] * 1e3 * mpp, label=k, lw=0.8)
+        err = np.asarray(eps[0]["err_px"][k])[:, 0] * 1e3 * mpp
+        axes[1].plot(t, err, color=colour[k], lw=0.9)
+        top = max(top, float(np.max(err, initial=0.0)))
+    if top >= radius_mm / 2:  # the radius where the errors come near it, not squeezing them
+        axes[1].axhline(radius_mm, color="0.3", ls=":", lw=1.2)
     axes[1].set_yscale("symlog", linthresh=1.0)
-    axes[1].set(xlabel="time [s]", ylabel="error [mm]",
-                title=f"Robot blue_0, episode seed {eps[0]['seed']}")
-    axes[1].legend()
-    xs = np.arange(len(KINDS))
-    off = [100 * summary[k]["off_target_share"] for k in KINDS]
-    mates = [100 * summary[k]["on_teammate_share"] for k in KINDS]
-    lostv = [100 * (summary[k]["lost_share"] or 0.0) for k in KINDS]
-    axes[2].bar(xs - 0.27, off, 0.27, label="off target")
-    axes[2].bar(xs, mates, 0.27, label="on a team-mate")
-    axes[2].bar(xs + 0.27, lostv, 0.27, label="reported lost")
-    axes[2].set_xticks(xs, list(KINDS))
-    axes[2].set(ylabel="share of robot-frames [%]", title="Lost tracks")
-    axes[2].legend()
+    axes[1].set_xlabel("time since the episode's start [s]", fontsize=LABEL_SIZE)
+    axes[1].set_ylabel("position error [mm]\n(linear below 1 mm, log above)",
+                       fontsize=LABEL_SIZE)
+    axes[1].set_title(f"Robot blue_0, episode seed {eps[0]['seed']}", fontsize=LABEL_SIZE)
+    shares = (("off target", "off_target_share"), ("on a team-mate", "on_teammate_share"),
+              ("reported lost\n(mean-shift PFs)", "lost_share"))
+    xs = np.arange(len(shares))
+    width = 0.8 / len(KINDS)
+    for j, k in enumerate(KINDS):
+        vals = [summary[k][key] for _, key in shares]
+        axes[2].bar(xs + (j - (len(KINDS) - 1) / 2) * width,
+                    [np.nan if v is None else 100 * v for v in vals], width, color=colour[k])
+    axes[2].set_xticks(xs, [name for name, _ in shares])
+    axes[2].set_ylim(bottom=0)
+    axes[2].set_ylabel("share of robot-frames [%]", fontsize=LABEL_SIZE)
+    axes[2].set_title("Lost tracks, every robot and episode", fontsize=LABEL_SIZE)
+    for ax in axes:
+        ax.grid(alpha=0.3)
+    n = ex.shape[1] if ex.ndim == 2 else 1
+    fig.suptitle(f"Li et al. (2010) trackers on overhead images: {n} {ROBOT.upper()} robots on "
+                 f"the {FIELD.name} field ({FIELD.length:g} m x {FIELD.width:g} m), camera "
+                 f"{FRAME}, {len(eps)} episode(s)", fontsize=TITLE_SIZE)
+    first = legend_beside(axes[2], [colour_key(k, colour[k]) for k in KINDS], title="tracker")
+    legend_beside(axes[2], [style_key(f"robot radius ({radius_mm:.0f} mm):\noff target beyond",
+                                      ls=":", lw=1.2, color="0.3")],
+                  title="line style", below=first)
     return save_figure(fig, path)

@@ -112,7 +112,7 @@ def test_off_policy_algorithm_in_process(tmp_path):
     (["--env-kwarg", "obs_mod=raw"], "obs_mod"),
     (["--perception", "foggy"], "foggy"),
     (["--steps", "0"], "total_steps must be an integer >= 1"),
-    (["--env", "soccer_env/Tennis-v0"], "env_id must be"),
+    (["--env", "soccer_env/Tennis-v0"], "invalid choice: 'soccer_env/Tennis-v0'"),
     (["--hp", "n_steps"], "--hp must be key=value"),
     (["--resume", "nowhere.zip"], "no checkpoint"),
     (["--frame-stack", "0"], "frame_stack must be an integer >= 1"),

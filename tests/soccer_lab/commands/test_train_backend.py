@@ -54,8 +54,10 @@ def test_an_rllib_checkpoint_is_not_resumed_by_sb3(tmp_path, capsys):
 
 def test_missing_ray_names_the_extra(monkeypatch, capsys):
     monkeypatch.setitem(sys.modules, "ray", None)  # as if Ray were not installed
-    assert main(["train", "--backend", "rllib", "--steps", "100"]) == 1
+    with pytest.raises(SystemExit) as exc:
+        main(["train", "--backend", "rllib", "--steps", "100"])
+    assert exc.value.code == 2
     err = capsys.readouterr().err
-    assert "--backend rllib needs Ray's RLlib" in err
-    assert "pip install 'soccer-env[rllib]'" in err
-    assert "Traceback" not in err
+    assert err.startswith("soccer-env train --backend rllib needs the rllib extra: "
+                          "pip install 'soccer-env[rllib]' (missing: ray")
+    assert err.count("\n") == 1 and "Traceback" not in err

@@ -87,3 +87,33 @@ def test_the_floor_is_what_the_filter_gets_when_the_ball_moves_as_its_model_says
     assert rms_ahead == pytest.approx(floor[0.08], rel=0.08)
     with pytest.raises(ValueError, match="sigma_xy"):
         ekf.steady_state_floor(sigma_xy=0.0)
+
+
+def _saved_figures(monkeypatch, module) -> list:
+    """Every figure ``module`` saves through its ``save_figure``, laid out as written."""
+    figures = []
+    save = module.save_figure
+
+    def keep(fig, path):
+        out = save(fig, path)
+        figures.append(fig)
+        return out
+
+    monkeypatch.setattr(module, "save_figure", keep)
+    return figures
+
+
+def test_figures_legends_cover_no_data_and_titles_name_the_setting(tmp_path, monkeypatch):
+    from soccer_env.render.plots import legend_overlaps, legends
+
+    figures = _saved_figures(monkeypatch, ekf)
+    ekf.run(tmp_path, episodes=2, shots=1, workers=1)
+    trace, rates = figures
+    for fig in figures:
+        assert legends(fig) and legend_overlaps(fig) == []
+    labels = {t.get_text() for leg in legends(trace) for t in leg.get_texts()}
+    assert {"raw", "ekf", "ls", "collision (wall or robot)"} <= labels
+    assert "ssl-2012 field (6.1 m x 4.7 m)" in trace.axes[0].get_title()
+    labels = {t.get_text() for leg in legends(rates) for t in leg.get_texts()}
+    assert set(ekf.CLOSED_LOOP_MODES) | {"95 % Wilson interval"} <= labels
+    assert "ssl-div-b field (9 m x 6 m)" in rates.axes[0].get_title()

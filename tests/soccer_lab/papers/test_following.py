@@ -118,3 +118,32 @@ def test_same_seed_same_figures(tmp_path):
 def test_bad_arguments_name_the_argument(tmp_path, kwargs, name):
     with pytest.raises(ValueError, match=name):
         following.run(tmp_path, **kwargs)
+
+
+def _saved_figures(monkeypatch, module) -> list:
+    """Every figure ``module`` saves through its ``save_figure``, laid out as written."""
+    figures = []
+    save = module.save_figure
+
+    def keep(fig, path):
+        out = save(fig, path)
+        figures.append(fig)
+        return out
+
+    monkeypatch.setattr(module, "save_figure", keep)
+    return figures
+
+
+def test_figure_legends_cover_no_data_and_the_title_names_the_robot(tmp_path, monkeypatch):
+    from soccer_env.render.plots import legend_overlaps, legends
+    from soccer_lab.papers.following import report
+
+    figures = _saved_figures(monkeypatch, report)
+    following.run(tmp_path, episodes=1, duration=0.4, seed=5, workers=1)
+    (fig,) = figures
+    labels = {t.get_text() for leg in legends(fig) for t in leg.get_texts()}
+    assert {"kalman x1", "plain x2", "turn rate (right axis)"} <= labels
+    assert legend_overlaps(fig) == []
+    title = fig.get_suptitle()
+    assert "humanoid-2012 humanoid on the humanoid-2012 field" in title
+    assert "kidsize-2012" in title

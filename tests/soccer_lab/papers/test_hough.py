@@ -73,3 +73,29 @@ def test_noise_model_settings_are_checked(tmp_path):
         hough.Settings(tmp_path, seeds=0)
     with pytest.raises(ValueError, match="robot must be a humanoid robot preset"):
         hough.Settings(tmp_path, robot="ssl")
+
+
+def _saved_figures(monkeypatch, module) -> list:
+    """Every figure ``module`` saves through its ``save_figure``, laid out as written."""
+    figures = []
+    save = module.save_figure
+
+    def keep(fig, path):
+        out = save(fig, path)
+        figures.append(fig)
+        return out
+
+    monkeypatch.setattr(module, "save_figure", keep)
+    return figures
+
+
+def test_figure_legend_covers_no_data_and_the_title_names_the_geometry(tmp_path, monkeypatch):
+    from soccer_env.render.plots import legend_overlaps, legends
+
+    figures = _saved_figures(monkeypatch, hough)
+    hough.run(tmp_path, trials=1, seeds=2)
+    (fig,) = figures
+    assert len(legends(fig)) == 1 and legend_overlaps(fig) == []
+    title = fig.axes[0].get_title()
+    assert "Table 1" in title and "6 m x 4 m" in title
+    assert [t.get_text() for t in fig.axes[0].get_xticklabels()] == ["1", "2", "3", "4", "5"]

@@ -135,3 +135,29 @@ def test_identity_check_tells_team_mates_apart():
 def test_bad_arguments(tmp_path, kwargs, name):
     with pytest.raises(ValueError, match=name):
         meanshift.run(tmp_path, **kwargs)
+
+
+def _saved_figures(monkeypatch, module) -> list:
+    """Every figure ``module`` saves through its ``save_figure``, laid out as written."""
+    figures = []
+    save = module.save_figure
+
+    def keep(fig, path):
+        out = save(fig, path)
+        figures.append(fig)
+        return out
+
+    monkeypatch.setattr(module, "save_figure", keep)
+    return figures
+
+
+def test_figure_legends_cover_no_data_and_the_title_names_the_scene(tmp_path, monkeypatch):
+    from soccer_env.render.plots import legend_overlaps, legends
+    from soccer_lab.papers.meanshift import report
+
+    figures = _saved_figures(monkeypatch, report)
+    meanshift.run(tmp_path, seed=3, workers=1, episodes=1, duration=1.0)
+    (fig,) = figures
+    labels = {t.get_text() for leg in legends(fig) for t in leg.get_texts()}
+    assert set(meanshift.KINDS) <= labels and legend_overlaps(fig) == []
+    assert "mirosot-middle field (2.2 m x 1.8 m)" in fig.get_suptitle()

@@ -12,25 +12,25 @@ import pytest
 
 from soccer_lab.papers import CITATIONS, PAPERS
 
-#: The paper each reproduction is of.
-PAPER_OF = {"ekf": "002", "ungm": "000", "localization": "001", "hough": "000", "team": "000",
-            "meanshift": "003", "following": "004"}
-SHORT = {"000": "Xu et al. (2012)", "001": "Guo and Li (2013)", "002": "Zhao et al. (2012)",
-         "003": "Li et al. (2010)", "004": "Yu et al. (2010)"}
+#: The paper each reproduction is of, as the descriptions and CITATIONS name it.
+PAPER_OF = {"ekf": "Zhao et al. (2012)", "ungm": "Xu et al. (2012)",
+            "localization": "Guo and Li (2013)", "hough": "Xu et al. (2012)",
+            "team": "Xu et al. (2012)", "meanshift": "Li et al. (2010)",
+            "following": "Yu et al. (2010)"}
 #: Each paper's first author and year.
-FIRST = {"000": ("Xu", "2012"), "001": ("Guo", "2013"), "002": ("Zhao", "2012"),
-         "003": ("Li", "2010"), "004": ("Yu", "2010")}
+FIRST = {"Xu et al. (2012)": ("Xu", "2012"), "Guo and Li (2013)": ("Guo", "2013"),
+         "Zhao et al. (2012)": ("Zhao", "2012"), "Li et al. (2010)": ("Li", "2010"),
+         "Yu et al. (2010)": ("Yu", "2010")}
 PAPERS_DIR = Path(__file__).resolve().parents[3] / "soccer_lab" / "papers"
 
 
 def test_every_reproduction_is_registered_with_its_paper():
     assert list(PAPERS) == list(PAPER_OF)
-    for name, number in PAPER_OF.items():
-        assert PAPERS.description(name).startswith(SHORT[number])
+    for name, short in PAPER_OF.items():
+        assert PAPERS.description(name).startswith(short + ": ")
         assert callable(PAPERS[name])
-    assert sorted(CITATIONS) == sorted(SHORT.values())
-    for number, short in SHORT.items():
-        first, year = FIRST[number]
+    assert sorted(CITATIONS) == sorted(FIRST)
+    for short, (first, year) in FIRST.items():
         assert CITATIONS[short].startswith(first + " ") and year in CITATIONS[short]
 
 

@@ -34,3 +34,34 @@ def test_team_benchmark_rejects_bad_arguments(tmp_path: Path):
         team.run(tmp_path, matches=0)
     with pytest.raises(ValueError, match=r"duration must be in \[1, 3600\]"):
         team.run(tmp_path, duration=0.1)
+
+
+def _saved_figures(monkeypatch, module) -> list:
+    """Every figure ``module`` saves through its ``save_figure``, laid out as written."""
+    figures = []
+    save = module.save_figure
+
+    def keep(fig, path):
+        out = save(fig, path)
+        figures.append(fig)
+        return out
+
+    monkeypatch.setattr(module, "save_figure", keep)
+    return figures
+
+
+def test_figure_legends_cover_no_data_and_the_title_names_the_robots(tmp_path, monkeypatch):
+    from soccer_env.render.plots import legend_overlaps, legends
+
+    figures = _saved_figures(monkeypatch, team)
+    team.run(tmp_path, matches=1, duration=1.0, workers=1, keeper=False)
+    (fig,) = figures
+    labels = {t.get_text() for leg in legends(fig) for t in leg.get_texts()}
+    assert set(team.MATCH_CONFIGS) <= labels and legend_overlaps(fig) == []
+    title = fig.axes[0].get_title()
+    assert "humanoid-2012 humanoids on the humanoid-2012 field" in title
+    assert "kidsize-2012" in title
+    # The cumulative share starts at 0 error and is 1 where the axis ends.
+    for line in fig.axes[0].lines[:len(team.MATCH_CONFIGS)]:
+        x, y = line.get_data()
+        assert x[0] == 0.0 and y[0] == 0.0 and y[-1] == pytest.approx(1.0)

@@ -36,3 +36,29 @@ def test_command_line_and_bad_arguments(tmp_path, capsys):
         main(["paper", "ungm", "--particles", "1", "--out", str(tmp_path)])
     with pytest.raises(ValueError, match="runs"):
         ungm.run(tmp_path, runs=0)
+
+
+def _saved_figures(monkeypatch, module) -> list:
+    """Every figure ``module`` saves through its ``save_figure``, laid out as written."""
+    figures = []
+    save = module.save_figure
+
+    def keep(fig, path):
+        out = save(fig, path)
+        figures.append(fig)
+        return out
+
+    monkeypatch.setattr(module, "save_figure", keep)
+    return figures
+
+
+def test_figure_legends_cover_no_data_and_the_title_names_the_benchmark(tmp_path, monkeypatch):
+    from soccer_env.render.plots import legend_overlaps, legends
+
+    figures = _saved_figures(monkeypatch, ungm)
+    ungm.run(tmp_path, runs=3, seed=1)
+    (fig,) = figures
+    labels = {t.get_text() for leg in legends(fig) for t in leg.get_texts()}
+    assert {"true state", *ungm.FILTERS, "median"} <= labels
+    assert legend_overlaps(fig) == []
+    assert "UNGM" in fig.get_suptitle() and "3 runs, 100 particles" in fig.axes[1].get_title()
