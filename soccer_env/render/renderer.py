@@ -40,7 +40,7 @@ from soccer_env.render.geometry import (
 )
 from soccer_env.render.legend import BELIEF_KEYS, LEGEND_LABELS, flow, legend_keys
 from soccer_env.sim.ssl import robot_outline
-from soccer_env.state import WorldState
+from soccer_env.state import Belief, WorldState
 
 __all__ = ["Renderer", "RenderingMixin", "Banner", "FrameContents", "RENDER_MODES",
            "RENDER_VIEWS", "TEAM_COLOURS", "OVERLAY_COLOURS", "TITLE_SECONDS", "KEYS_HELP",
@@ -158,8 +158,9 @@ class Renderer:
     """Draws :class:`~soccer_env.state.WorldState` snapshots (see the module docstring).
 
     Args:
-        field, robot, ball: the specs of the world to draw (``robot``: one spec for all robots
-            or one per robot).
+        field: the field to draw.
+        robot: the robots' spec, one for all robots or one per robot.
+        ball: the ball's spec.
         mode: ``"rgb_array"`` or ``"human"``.
         width_px: width of the frame in pixels; the field view's height follows the field's
             aspect, and the info bar adds a fixed height below it (the same for every frame).
@@ -403,7 +404,7 @@ class Renderer:
     # ------------------------------------------------------------------------------------
     # Drawing
 
-    def draw(self, state: WorldState, hud: Sequence[str] = (), belief=None,
+    def draw(self, state: WorldState, hud: Sequence[str] = (), belief: Belief | None = None,
              heads: dict | None = None, *, title: Sequence[str] = (),
              title_alpha: float = 1.0, banner: Banner | None = None) -> np.ndarray | None:
         """Draw ``state`` and return the frame.

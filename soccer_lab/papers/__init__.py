@@ -29,7 +29,7 @@ CITATIONS = {
                         "Journal of Image and Graphics 17(6): 687-695, 2012",
     "Guo and Li (2013)": "Guo Binghua, Li Zhonghua. A method of localization for mobile robot "
                          "based on obstacle-ground-corner. Acta Scientiarum Naturalium "
-                         "Universitatis Sunyatseni 2013(5): 45-50",
+                         "Universitatis Sunyatseni 52(5): 45-50, 2013",
     "Zhao et al. (2012)": "Zhao Xiao, Wang Ming, Li Xiaoming. Application of extended Kalman "
                           "filter algorithm in intelligent robot soccer competition. Journal "
                           "of Mechanical & Electrical Engineering 2012(3): 334-338",

@@ -118,3 +118,9 @@ def test_ruff_clean():
     res = subprocess.run([ruff, "check", "soccer_env", "estimators", "agents", "soccer_lab",
                           "tests", "benchmarks"], cwd=root, capture_output=True, text=True)
     assert res.returncode == 0, res.stdout + res.stderr
+
+
+def test_the_command_line_page_documents_every_command():
+    page = (Path(__file__).resolve().parents[2] / "docs" / "guide" / "command-line.md").read_text()
+    for name in _COMMANDS:
+        assert f"`soccer-env {name}" in page, name
