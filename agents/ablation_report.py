@@ -148,6 +148,8 @@ def figure(res: AblationResult):
     width = 0.8 / n_c
     x = np.arange(n_p)
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    if len(res.configs) > len(colors):  # more estimators than the cycle's colours: no repeats
+        colors = [plt.get_cmap("tab20")((2 * k) % 20 + (2 * k) // 20) for k in range(n_c)]
     for j, name in enumerate(res.configs):
         cells = [res.cell(p, name) for p in res.presets]
         pos = x + (j - (n_c - 1) / 2) * width
