@@ -16,15 +16,13 @@ from soccer_env.perception.options import BALL_FILTERS
 
 __all__ = ["HelpFormatter", "add_env_arguments", "env_kwargs_from_args", "key_values",
            "add_trust_argument", "SENSOR_PRESETS", "sensor_preset", "check_perception",
-           "robot_kind", "robot_choices_help", "sensor_presets_help", "DEFAULT_ROBOT"]
+           "preset_kind", "robot_choices_help", "sensor_presets_help", "DEFAULT_ROBOT"]
 
 #: The robot preset of the environments unless ``robot=`` names another.
 DEFAULT_ROBOT = "ssl"
 
-#: The sensor presets that ``perception="NAME"`` selects, per robot kind: the overhead
-#: vision of SSL robots and the head cameras of humanoids.
-SENSOR_PRESETS: dict[str, Mapping[str, Any]] = {"ssl": presets.VISION,
-                                                "humanoid": presets.HEAD_CAMERAS}
+#: The sensor presets of each robot kind (:data:`soccer_env.presets.SENSOR_PRESETS`).
+SENSOR_PRESETS = presets.SENSOR_PRESETS
 
 _KIND_LABELS = {"ssl": "SSL robots (overhead vision)", "humanoid": "humanoids (head camera)"}
 
@@ -92,7 +90,7 @@ def key_values(items: list[str], what: str) -> dict[str, Any]:
     return out
 
 
-def robot_kind(robot: Any) -> str | None:
+def preset_kind(robot: Any) -> str | None:
     """The kind (``"ssl"`` or ``"humanoid"``) of robot preset ``robot`` (a name of
     :data:`soccer_env.presets.ROBOTS`); None if ``robot`` is not such a name."""
     if isinstance(robot, str) and robot in presets.ROBOTS:
@@ -105,7 +103,7 @@ def robot_choices_help() -> str:
     humanoid-2012"``."""
     groups: dict[str, list[str]] = {}
     for name in presets.ROBOTS:
-        groups.setdefault(robot_kind(name) or "other", []).append(name)
+        groups.setdefault(preset_kind(name) or "other", []).append(name)
     return "; ".join(f"{'SSL' if kind == 'ssl' else kind}: {', '.join(names)}"
                      for kind, names in groups.items())
 
@@ -137,7 +135,7 @@ def check_perception(perception: Any, robot: Any, option: str = "--perception") 
     Raises:
         ValueError: the preset is not one of the robot kind's; the message lists those.
     """
-    kind = robot_kind(DEFAULT_ROBOT if robot is None else robot)
+    kind = preset_kind(DEFAULT_ROBOT if robot is None else robot)
     if not isinstance(perception, str) or kind is None:
         return
     allowed = SENSOR_PRESETS[kind]
@@ -188,7 +186,7 @@ def env_kwargs_from_args(args: argparse.Namespace, base: Mapping[str, Any] | Non
         kwargs["perception"] = args.perception
     if args.ball_filter is not None:
         perception = kwargs.get("perception")
-        preset = "camera" if robot_kind(kwargs.get("robot", DEFAULT_ROBOT)) == "humanoid" \
+        preset = "camera" if preset_kind(kwargs.get("robot", DEFAULT_ROBOT)) == "humanoid" \
             else "vision"
         perception = (dict(perception) if isinstance(perception, Mapping)
                       else {} if perception is None else {preset: perception})

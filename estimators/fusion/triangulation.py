@@ -4,8 +4,7 @@ A robot at ``R = (x, y)`` with heading ``theta`` measures the bearing ``phi_i`` 
 ``P_i`` relative to its heading (counter-clockwise positive; with a panning head, the camera's
 bearing plus the pan angle). Any two landmarks and ``R`` lie on a circle whose inscribed angle
 at ``R`` is ``phi_j - phi_i`` (Xu et al.'s 2012 two circles through ``P1, P2`` and ``P2, P3``);
-``R``
-is the second intersection of those circles, and the heading follows from any bearing:
+``R`` is the second intersection of those circles, and the heading follows from any bearing:
 ``theta = atan2(P_i - R) - phi_i`` (averaged over the three on the circle).
 
 The intersection is computed with the ToTal algorithm (Pierlot and Van Droogenbroeck, IEEE

@@ -1,6 +1,5 @@
 """Colour operations of the image trackers: Li et al.'s (2010) colour look-up table and motion
-image,
-Yu et al.'s (2010) hue histogram and back-projection.
+image, Yu et al.'s (2010) hue histogram and back-projection.
 
 Images are ``(H, W, 3)`` ``uint8`` arrays in RGB order. These wrap OpenCV's colour conversions,
 histograms and back-projections (the ``pixels`` extra), the one part of :mod:`estimators`

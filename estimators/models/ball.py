@@ -1,6 +1,5 @@
 """The closed-form motion of a ball rolling on carpet: the ball model of Zhao et al. (2012) (Zhao,
-Wang,
-Li 2012)."""
+Wang, Li 2012)."""
 
 from __future__ import annotations
 

@@ -137,8 +137,7 @@ BALL_TRACKERS: Registry[Callable[..., ParticleBallTracker] | None] = Registry(
        for name in PARTICLE_FILTERS])
 
 #: Ball fusion: the robot's own sighting only, or Xu et al.'s (2012) Hough-space fusion of the
-# team's
-#: sightings with one of the estimators' weightings (the value: the weighting
+#: team's sightings with one of the estimators' weightings (the value: the weighting
 #: :func:`~estimators.fuse_sightings` applies; a lone own line is weighted as ``"inverse"``).
 FUSIONS: Registry[str] = Registry(
     "fusion",

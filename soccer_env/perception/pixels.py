@@ -1,6 +1,5 @@
 """Perception from rendered images: the image trackers of Li et al. (2010) and Yu et al. (2010)
-instead of
-geometric detections (``perception={"detector": "pixels", ...}``).
+instead of geometric detections (``perception={"detector": "pixels", ...}``).
 
 Overhead (:class:`OverheadPixelDetector`, SSL teams): the overhead camera
 (:class:`~soccer_env.sensors.images.cameras.OverheadImageCamera`) delivers images with the

@@ -39,6 +39,7 @@ from soccer_env.presets.rules import RULES, HumanoidRuleSpec, RuleSpec, rules
 from soccer_env.presets.sensors import (
     HEAD_CAMERAS,
     RADIO_PRESETS,
+    SENSOR_PRESETS,
     VISION,
     HeadCameraSpec,
     RadioSpec,
@@ -70,5 +71,5 @@ __all__ = [
     "VisionSpec", "VISION", "vision", "HeadCameraSpec", "HEAD_CAMERAS", "head_camera",
     "RadioSpec", "RADIO_PRESETS", "radio", "RGB", "COLOURS", "OverheadFrameSpec", "OVERHEAD_FRAMES",
     "overhead_frame", "HeadFrameSpec", "HEAD_FRAMES", "head_frame", "RuleSpec", "HumanoidRuleSpec",
-    "RULES", "rules",
+    "RULES", "rules", "SENSOR_PRESETS",
 ]

@@ -16,7 +16,7 @@ from soccer_env.validation import (
 )
 
 __all__ = ["HeadCameraSpec", "HEAD_CAMERAS", "head_camera", "RadioSpec", "RADIO_PRESETS", "radio",
-           "VisionSpec", "VISION", "vision"]
+           "VisionSpec", "VISION", "vision", "SENSOR_PRESETS"]
 
 
 @dataclass(frozen=True)
@@ -89,9 +89,8 @@ VISION: Registry[VisionSpec] = preset_table('vision', {
         camera_overlap=0.3, source="no imperfection",
     ),
     # Zhao et al. (2012): 40 ms decision cycle (25 Hz vision), 120 ms from image capture to
-    # actuation,
-    # ball position noise delta_xy = 25 mm. The paper does not split the 120 ms; we take one
-    # 40 ms cycle for command transmission and execution and 80 ms for the vision pipeline,
+    # actuation, ball position noise delta_xy = 25 mm. The paper does not split the 120 ms; we
+    # take one 40 ms cycle for command transmission and execution and 80 ms for the vision pipeline,
     # so a measurement is three cycles old when the command it leads to takes effect (the
     # paper's N = 3). Robot noise as the ball's; heading noise 0.05 rad (not in the paper).
     "ssl-2012": VisionSpec(
@@ -290,6 +289,11 @@ RADIO_PRESETS: Registry[RadioSpec] = preset_table("radio", {
                         source="our reading of a crowded 2.4 GHz ZigBee network at a RoboCup "
                                "venue: tens of milliseconds, one packet in ten lost"),
 })
+
+
+#: The sensor presets that ``perception="NAME"`` selects, per robot kind: the overhead vision
+#: of SSL robots and the head cameras of humanoids.
+SENSOR_PRESETS: dict[str, Registry] = {"ssl": VISION, "humanoid": HEAD_CAMERAS}
 
 
 def radio(spec: str | RadioSpec = "zigbee", **overrides: object) -> RadioSpec:

@@ -435,8 +435,7 @@ BALLS: Registry[BallSpec] = preset_table('ball', {
                "assumed",
     ),
     # Zhao et al. (2012): the ball of 2012 on that carpet rolls with a_f = 0.23 m/s^2 (measured);
-    # the
-    # paper does not model a sliding phase, so that keeps the current SSL values.
+    # the paper does not model a sliding phase, so that keeps the current SSL values.
     "ssl-2012": dataclasses.replace(
         _SSL_BALL, name="ssl-2012", rolling_deceleration=0.23,
         source="Zhao et al. (2012) (a_f = 0.23 m/s^2); otherwise as 'ssl'",
@@ -467,8 +466,7 @@ _SSL_ROBOT = SSLRobotSpec(
 ROBOTS: Registry[RobotSpec] = preset_table('robot', {
     "ssl": _SSL_ROBOT,
     # Zhao et al. (2012): SSL robots of 2012 reach more than 2.5 m/s with more than 2.5 m/s^2 and
-    # kick
-    # at 5.0 m/s or more; the paper's decision cycle is 40 ms. Body as 'ssl'.
+    # kick at 5.0 m/s or more; the paper's decision cycle is 40 ms. Body as 'ssl'.
     "ssl-2012": dataclasses.replace(
         _SSL_ROBOT, name="ssl-2012", max_speed=2.5, max_acceleration=2.5,
         max_angular_speed=8.0, max_angular_acceleration=40.0, kicker_max_speed=5.0,

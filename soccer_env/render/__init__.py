@@ -16,9 +16,10 @@ from soccer_env.render.renderer import (
     Renderer,
     RenderingMixin,
     check_view,
+    wrap_text,
 )
 from soccer_env.render.video import hold_last, write_video
 
 __all__ = ["Renderer", "RenderingMixin", "Banner", "FrameContents", "RENDER_MODES",
            "RENDER_VIEWS", "TEAM_COLOURS", "OVERLAY_COLOURS", "TITLE_SECONDS", "KEYS_HELP",
-           "check_view", "write_video", "hold_last"]
+           "check_view", "wrap_text", "write_video", "hold_last"]

@@ -42,9 +42,9 @@ from soccer_env.render.legend import BELIEF_KEYS, LEGEND_LABELS, flow, legend_ke
 from soccer_env.sim.ssl import robot_outline
 from soccer_env.state import Belief, WorldState
 
-__all__ = ["Renderer", "RenderingMixin", "Banner", "FrameContents", "RENDER_MODES",
-           "RENDER_VIEWS", "TEAM_COLOURS", "OVERLAY_COLOURS", "TITLE_SECONDS", "KEYS_HELP",
-           "check_view"]
+__all__ = ["Renderer", "RenderingMixin", "Banner", "FrameContents", "wrap_text",
+           "RENDER_MODES", "RENDER_VIEWS", "TEAM_COLOURS", "OVERLAY_COLOURS", "TITLE_SECONDS",
+           "KEYS_HELP", "check_view"]
 
 RENDER_MODES = ("human", "rgb_array")
 #: ``"field"``: the whole walled area; ``"follow"``: a window around the ball and the robots
@@ -113,6 +113,22 @@ def check_view(value: Any) -> str:
     if not isinstance(value, str) or value not in RENDER_VIEWS:
         raise ValueError(f"render_view must be one of {list(RENDER_VIEWS)}, got {value!r}")
     return value
+
+
+def wrap_text(face: Any, text: str, width: int) -> list[str]:
+    """``text`` broken at spaces into lines no wider than ``width`` [px] in the pygame font
+    ``face`` (a single word wider than that stays whole)."""
+    if face.size(text)[0] <= width:
+        return [text]
+    lines, line = [], ""
+    for word in text.split(" "):
+        trial = f"{line} {word}" if line else word
+        if line and face.size(trial)[0] > width:
+            lines.append(line)
+            line = word
+        else:
+            line = trial
+    return lines + [line]
 
 
 class Banner(NamedTuple):
@@ -282,6 +298,17 @@ class Renderer:
 
     def _px(self, x: float, y: float) -> tuple[int, int]:
         return (int(round(self._x0 + x * self._s)), int(round(self._y0 - y * self._s)))
+
+    def pixel(self, x: float, y: float) -> tuple[int, int]:
+        """The pixel ``(column, row)`` of the field point ``(x, y)`` [m] in the latest frame's
+        field view (which the follow view moves and zooms)."""
+        return self._px(x, y)
+
+    def drawn_radius(self, i: int) -> float:
+        """Robot ``i``'s radius as drawn in the latest frame [px]: to scale, or larger where
+        that would be under :data:`MIN_ROBOT_PX` of the frame's width."""
+        spec = self._spec(i)
+        return spec.radius * self._inflation(spec) * self._s
 
     def _px_array(self, xy: np.ndarray) -> np.ndarray:
         """``(K, 2)`` field points [m] as integer pixels."""
@@ -643,20 +670,8 @@ class Renderer:
         return box
 
     def _wrap(self, text: str, font: str, width: int) -> list[str]:
-        """``text`` broken after commas or at spaces into lines no wider than ``width`` [px]
-        in the font named ``font`` (a single word wider than that stays whole)."""
-        face = self._fonts[font]
-        if face.size(text)[0] <= width:
-            return [text]
-        lines, line = [], ""
-        for word in text.split(" "):
-            trial = f"{line} {word}" if line else word
-            if line and face.size(trial)[0] > width:
-                lines.append(line)
-                line = word
-            else:
-                line = trial
-        return lines + [line]
+        """``text`` wrapped (:func:`wrap_text`) in the font named ``font``."""
+        return wrap_text(self._fonts[font], text, width)
 
     def _draw_title(self, surf, lines: tuple, alpha: float) -> None:
         """The title card: a dark box across the top of the field view (long lines

@@ -1,5 +1,5 @@
-"""Head camera: what a humanoid robot sees through the pan/tilt camera in its head (Xu et al. 2012,
-Guo and Li (2013)).
+"""Head camera: what a humanoid robot sees through the pan/tilt camera in its head (Xu et al.
+2012; Guo and Li 2013).
 
 Geometry. The camera of observer ``i`` sits ``spec.height`` above the robot's centre
 ``(x_i, y_i)`` and looks along the robot's heading ``theta_i`` turned by the head: pan ``alpha``
@@ -109,9 +109,8 @@ def field_landmarks(field: FieldSpec, distinct_goals: bool
     In this order:
 
     * goal posts (4): the feet of the posts, Guo and Li's (2013) obstacle-ground corners, at the
-    posts'
-      centres ``(+-L/2, +-(goal_width/2 + goal_wall_thickness/2))`` (``goal_width`` is between
-      the posts' inner edges); ``"post_blue"`` at ``x = -L/2`` and ``"post_yellow"`` at
+      posts' centres ``(+-L/2, +-(goal_width/2 + goal_wall_thickness/2))`` (``goal_width`` is
+      between the posts' inner edges); ``"post_blue"`` at ``x = -L/2`` and ``"post_yellow"`` at
       ``x = +L/2`` if ``distinct_goals``, else ``"post"``;
     * ``"L"`` (8): the four field corners ``(+-L/2, +-W/2)`` and the four front corners of the
       goal areas ``(+-(L/2 - defense_depth), +-defense_width/2)``;

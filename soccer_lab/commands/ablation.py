@@ -37,8 +37,7 @@ from agents.match_ablation import (
 from agents.match_ablation import write_outputs as write_match_outputs
 from soccer_env.presets import HEAD_CAMERAS, ROBOTS, VISION
 from soccer_lab import extras
-from soccer_lab.cli_args import HelpFormatter, add_trust_argument, key_values
-from soccer_lab.cli_args import robot_kind as preset_kind
+from soccer_lab.cli_args import HelpFormatter, add_trust_argument, key_values, preset_kind
 
 __all__ = ["parser", "main"]
 

@@ -38,6 +38,7 @@ from typing import Any
 
 import numpy as np
 
+from soccer_env.render import wrap_text
 from soccer_lab.cli_args import (
     DEFAULT_ROBOT,
     HelpFormatter,
@@ -460,18 +461,11 @@ def make_game(task: str, robot: str, team_size: int = 3,
 
 class _Window:
     """The environment's frames and, beside them, the panel: the task, what the game waits
-    for, the results so far and the keys.
-
-    The person's robot is ringed: a field point ``(x, y)`` [m] is at pixel ``((x - x_0) k,
-    (y_1 - y) k)`` of the frame, with ``x_0`` and ``y_1`` the left and top edges of the part
-    of the field the frame shows and ``k`` its scale [px/m] (the renderer's
-    ``contents.window`` and ``contents.scale``; the whole walled area, ``x_0 = -o_x``,
-    ``y_1 = o_y``, ``k`` the frame's width over ``2 o_x``, for a renderer that does not say).
-    """
+    for, the results so far and the keys. The person's robot is ringed where the renderer
+    drew it (:meth:`~soccer_env.render.Renderer.pixel`,
+    :meth:`~soccer_env.render.Renderer.drawn_radius`)."""
 
     def __init__(self, pg: Any, game: _Game) -> None:
-        from soccer_env.render import renderer
-
         self.pg = pg
         frame = game.env.render()
         self.frame_size = (frame.shape[1], frame.shape[0])
@@ -481,11 +475,6 @@ class _Window:
         pg.font.init()
         self.font = pg.font.Font(None, 20)
         self.big = pg.font.Font(None, 36)
-        f = game.unwrapped.field
-        self.ox, self.oy = f.half_length + f.boundary, f.half_width + f.boundary
-        # The renderer draws small robots larger than to scale (at least a fraction of the
-        # frame's width); the ring goes round what is drawn.
-        self.least = getattr(renderer, "MIN_ROBOT_PX", 0.0) * self.frame_size[0]
         self.help = key_map(game.spec)
         self.where = ("you defend the goal on the left" if game.task == "keeper"
                       else "you attack the goal on the right")
@@ -497,18 +486,12 @@ class _Window:
         frame = game.env.render()
         self.screen.fill(_PANEL)
         self.screen.blit(pg.surfarray.make_surface(frame.swapaxes(0, 1)), (0, 0))
-        contents = getattr(getattr(game.unwrapped, "renderer", None), "contents", None)
-        if contents is not None:
-            x0, _, _, y1 = contents.window
-            k, height = contents.scale, contents.field_height
-        else:
-            k = self.frame_size[0] / (2.0 * self.ox)
-            x0, y1, height = -self.ox, self.oy, round(2.0 * self.oy * k)
+        renderer = game.unwrapped.renderer
         x, y = game.unwrapped.world.robot_array()[_USER, 0:2].tolist()
-        centre = (int(round((x - x0) * k)), int(round((y1 - y) * k)))
-        ring = int(round(max(game.spec.radius * k, self.least))) + 5
+        ring = int(round(renderer.drawn_radius(_USER))) + 5
+        height = renderer.contents.field_height
         self.screen.set_clip(pg.Rect(0, 0, self.frame_size[0], height))  # the field's part
-        pg.draw.circle(self.screen, (255, 255, 255), centre, ring, 2)
+        pg.draw.circle(self.screen, (255, 255, 255), renderer.pixel(x, y), ring, 2)
         self.screen.set_clip(None)
         self._panel(game, banner)
         pg.display.flip()
@@ -534,22 +517,10 @@ class _Window:
     def _text(self, text: str, colour: tuple[int, int, int], x: int, y: int, width: int
               ) -> int:
         """Draw ``text`` wrapped to ``width`` pixels from ``(x, y)``; the next line's y."""
-        for part in _wrap(self.font, text, width):
+        for part in wrap_text(self.font, text, width) if text else ():
             self.screen.blit(self.font.render(part, True, colour), (x, y))
             y += 18
         return y
-
-
-def _wrap(font: Any, text: str, width: int) -> list[str]:
-    """``text`` broken at spaces into lines no wider than ``width`` pixels in ``font`` (a
-    single word wider than that stays whole); no lines for an empty text."""
-    lines: list[str] = []
-    for word in text.split():
-        if lines and font.size(f"{lines[-1]} {word}")[0] <= width:
-            lines[-1] = f"{lines[-1]} {word}"
-        else:
-            lines.append(word)
-    return lines
 
 
 # ----------------------------------------------------------------------------------------

@@ -90,8 +90,7 @@ def steady_state_floor(sigma_xy: float = SIGMA, sigma_r: float = 0.1, cycle: flo
 
     Per axis the filter's model is ``x_{k+1} = x_k + T v_k``, ``v_{k+1} = v_k + w_k`` with
     ``w ~ N(0, sigma_r^2)`` per cycle ``T`` (Zhao et al. 2012: ``delta_R`` = 100 mm/s per 40 ms),
-    and
-    measures ``z = x + N(0, sigma_xy^2)`` (``delta_xy`` = 25 mm) every cycle. The posterior
+    and measures ``z = x + N(0, sigma_xy^2)`` (``delta_xy`` = 25 mm) every cycle. The posterior
     covariance converges to the fixed point ``P`` of the Riccati recursion
     ``P^- = F P F^T + Q``, ``P = P^- - P^- H^T (H P^- H^T + R)^-1 H P^-`` (iterated here to
     convergence; friction does not change it, its Jacobian along the motion is the identity);

@@ -1,6 +1,6 @@
 """Rendered camera images drawn from the world state with OpenCV (the ``pixels`` extra): the
 overhead camera of SSL / MiroSot vision (Li et al.'s 2010 setting) and a humanoid's head camera
-(Xu et al. 2012 and Yu et al. (2010)).
+(Xu et al. 2012 and Yu et al. 2010).
 
 Images are ``(H, W, 3)`` ``uint8`` arrays in **RGB** order (as every other image of the
 package, e.g. :class:`~soccer_env.render.Renderer`); convert with ``cv2.cvtColor(img,

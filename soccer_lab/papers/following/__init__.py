@@ -39,8 +39,7 @@ ball: the pixels within 0.8 of its apparent radius of its true centre, as an ope
 the target would give), all started at the ball's true pixel of the first frame. The target
 window is the ball's apparent diameter there (``2 round(r) + 1`` px); each tracker runs at each
 of ``window_scales`` times it: 1 (the target size: the bandwidth of Yu et al.'s (2010) argument)
-and 2
-(the paper's back-projection region ``R``, twice the target). A tracker reports lost when the
+and 2 (the paper's back-projection region ``R``, twice the target). A tracker reports lost when the
 mean weight in its converged window is below ``0.2 / scale^2`` (the estimators' default 0.2 for
 a target-sized window, scaled so that the same amount of target must be in any window: a round
 ball fills only ``pi / 16`` of a window twice its size, below 0.2). Otherwise the estimators'
@@ -76,8 +75,8 @@ same rates by turn-rate bin (the true body turn rate over the frame period: slow
 of the top rate, medium, fast above two thirds: 0.2 and 0.4 rad/s for the 2012 robot), with the
 ball's mean image jump between frames in its apparent radii, with and without the gait's sway
 (the pixel the ball would have had with the servo angles alone), and by that jump (a window of
-scale ``x`` has a half-width of about ``x`` radii), the quantity Yu et al.'s (2010) argument is
-about.
+scale ``x`` has a half-width of about ``x`` radii), the quantity that Yu et al.'s (2010)
+argument is about.
 
 The paper's claim and the aim ("the Kalman-started tracker losing the ball at most half
 as often as plain mean shift under fast turns") are printed beside ours, the aim judged per

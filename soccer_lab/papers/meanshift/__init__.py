@@ -20,8 +20,7 @@ has 4.4 mm per pixel, so a robot is about 41 px across, its team patch about 11 
 at 3 m/s moves about 23 px per frame: the pixel sizes and speeds of a MiroSot robot (7.5 cm, 2-3
 m/s) on a 640 x 480 image of a 1.5-2.2 m field. On the 6.1 m ``ssl-2012`` field the team patch
 would be under 5 px across. Robots: ``n`` blue and ``n`` yellow (3 + 3 by default, Li et al.'s
-(2010)
-figure 5 shows a 3 vs 3 game) of the ``ssl`` preset (3 m/s, 3 m/s^2, 10 rad/s), team-mates
+(2010) figure 5 shows a 3 vs 3 game) of the ``ssl`` preset (3 m/s, 3 m/s^2, 10 rad/s), team-mates
 sharing the team colour (the paper's "similar colours" difficulty), each team's robots numbered
 0, 1, 2, ... by their player dots (:class:`soccer_env.sensors.images.patterns.PatchPattern`).
 Every 0.2-0.5 s (uniform, seeded) each robot draws a new manoeuvre: a body-frame velocity in a
@@ -31,8 +30,7 @@ once, pointing within 60 degrees of the direction to the field's centre. Robots 
 each other, the walls and the ball (at rest at the start, placed away from the robots).
 :class:`~soccer_env.sim.world.World` steps at 1/60 s; the camera (``mirosot`` preset of
 :data:`soccer_env.presets.OVERHEAD_FRAMES`: 640 x 480 at 30 Hz, Li et al.'s (2010) 33 ms cycle;
-1/60 s
-exposure, so motion blur; 5 % gain flicker, up to 20 % brightness ramp and 5 grey levels of
+1/60 s exposure, so motion blur; 5 % gain flicker, up to 20 % brightness ramp and 5 grey levels of
 noise) renders every second step, starting with the robots at rest at time 0.
 
 **Images.** A colour look-up table (:meth:`OverheadRenderer.colour_table

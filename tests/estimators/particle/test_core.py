@@ -81,8 +81,7 @@ def test_matches_the_kalman_posterior_on_a_linear_gaussian_model(make):
 @pytest.mark.parametrize("make", FILTERS, ids=IDS)
 def test_ungm_tracks_the_simulated_state(make):
     """On Xu et al.'s (2012) benchmark (100 particles, 50 steps) every filter's RMSE is far below
-    the
-    spread of the state itself."""
+    the spread of the state itself."""
     tr, lik = ungm_model()
     rmse, spread = [], []
     for run in range(20):

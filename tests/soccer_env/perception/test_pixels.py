@@ -1,6 +1,5 @@
 """The ``pixels`` detector: rendered images tracked by Li et al.'s (2010) and Yu et al.'s (2010)
-trackers
-instead of geometric detections, the rest of the stack unchanged."""
+trackers instead of geometric detections, the rest of the stack unchanged."""
 
 from __future__ import annotations
 

@@ -4,6 +4,7 @@ import json
 from pathlib import Path
 
 import pytest
+from saved_figures import saved_figures
 
 from soccer_lab.cli import main
 from soccer_lab.papers import ekf
@@ -89,24 +90,10 @@ def test_the_floor_is_what_the_filter_gets_when_the_ball_moves_as_its_model_says
         ekf.steady_state_floor(sigma_xy=0.0)
 
 
-def _saved_figures(monkeypatch, module) -> list:
-    """Every figure ``module`` saves through its ``save_figure``, laid out as written."""
-    figures = []
-    save = module.save_figure
-
-    def keep(fig, path):
-        out = save(fig, path)
-        figures.append(fig)
-        return out
-
-    monkeypatch.setattr(module, "save_figure", keep)
-    return figures
-
-
 def test_figures_legends_cover_no_data_and_titles_name_the_setting(tmp_path, monkeypatch):
     from soccer_env.render.plots import legend_overlaps, legends
 
-    figures = _saved_figures(monkeypatch, ekf)
+    figures = saved_figures(monkeypatch, ekf)
     ekf.run(tmp_path, episodes=2, shots=1, workers=1)
     trace, rates = figures
     for fig in figures:

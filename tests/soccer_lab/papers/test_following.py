@@ -1,6 +1,5 @@
 """``soccer-env paper following``: Yu et al.'s (2010) Kalman-started mean shift against plain mean
-shift
-on a turning humanoid's head-camera frames."""
+shift on a turning humanoid's head-camera frames."""
 
 from __future__ import annotations
 
@@ -9,6 +8,7 @@ import math
 
 import numpy as np
 import pytest
+from saved_figures import saved_figures
 
 from estimators import HeadCamera
 from soccer_lab.papers import following
@@ -120,25 +120,11 @@ def test_bad_arguments_name_the_argument(tmp_path, kwargs, name):
         following.run(tmp_path, **kwargs)
 
 
-def _saved_figures(monkeypatch, module) -> list:
-    """Every figure ``module`` saves through its ``save_figure``, laid out as written."""
-    figures = []
-    save = module.save_figure
-
-    def keep(fig, path):
-        out = save(fig, path)
-        figures.append(fig)
-        return out
-
-    monkeypatch.setattr(module, "save_figure", keep)
-    return figures
-
-
 def test_figure_legends_cover_no_data_and_the_title_names_the_robot(tmp_path, monkeypatch):
     from soccer_env.render.plots import legend_overlaps, legends
     from soccer_lab.papers.following import report
 
-    figures = _saved_figures(monkeypatch, report)
+    figures = saved_figures(monkeypatch, report)
     following.run(tmp_path, episodes=1, duration=0.4, seed=5, workers=1)
     (fig,) = figures
     labels = {t.get_text() for leg in legends(fig) for t in leg.get_texts()}

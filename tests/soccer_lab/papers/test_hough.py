@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import pytest
+from saved_figures import saved_figures
 
 from soccer_lab.cli import main
 from soccer_lab.papers import hough
@@ -75,24 +76,10 @@ def test_noise_model_settings_are_checked(tmp_path):
         hough.Settings(tmp_path, robot="ssl")
 
 
-def _saved_figures(monkeypatch, module) -> list:
-    """Every figure ``module`` saves through its ``save_figure``, laid out as written."""
-    figures = []
-    save = module.save_figure
-
-    def keep(fig, path):
-        out = save(fig, path)
-        figures.append(fig)
-        return out
-
-    monkeypatch.setattr(module, "save_figure", keep)
-    return figures
-
-
 def test_figure_legend_covers_no_data_and_the_title_names_the_geometry(tmp_path, monkeypatch):
     from soccer_env.render.plots import legend_overlaps, legends
 
-    figures = _saved_figures(monkeypatch, hough)
+    figures = saved_figures(monkeypatch, hough)
     hough.run(tmp_path, trials=1, seeds=2)
     (fig,) = figures
     assert len(legends(fig)) == 1 and legend_overlaps(fig) == []

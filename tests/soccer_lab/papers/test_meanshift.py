@@ -1,7 +1,6 @@
 """``soccer-env paper meanshift``: fast-manoeuvring robots of two teams filmed by the MiroSot
 overhead camera, each tracked by Li et al.'s (2010) mean-shift PF (20 particles, identity check by
-the
-player dots) and by the plain PF with 20 and 200 particles: outputs written, every tracker
+the player dots) and by the plain PF with 20 and 200 particles: outputs written, every tracker
 kind measured with consistent figures, the identity check tells team-mates apart, the figures
 do not depend on the workers, bad arguments rejected."""
 
@@ -14,6 +13,7 @@ import math
 import cv2
 import numpy as np
 import pytest
+from saved_figures import saved_figures
 
 from soccer_env import presets
 from soccer_env.sensors.images.overhead import OverheadRenderer
@@ -137,25 +137,11 @@ def test_bad_arguments(tmp_path, kwargs, name):
         meanshift.run(tmp_path, **kwargs)
 
 
-def _saved_figures(monkeypatch, module) -> list:
-    """Every figure ``module`` saves through its ``save_figure``, laid out as written."""
-    figures = []
-    save = module.save_figure
-
-    def keep(fig, path):
-        out = save(fig, path)
-        figures.append(fig)
-        return out
-
-    monkeypatch.setattr(module, "save_figure", keep)
-    return figures
-
-
 def test_figure_legends_cover_no_data_and_the_title_names_the_scene(tmp_path, monkeypatch):
     from soccer_env.render.plots import legend_overlaps, legends
     from soccer_lab.papers.meanshift import report
 
-    figures = _saved_figures(monkeypatch, report)
+    figures = saved_figures(monkeypatch, report)
     meanshift.run(tmp_path, seed=3, workers=1, episodes=1, duration=1.0)
     (fig,) = figures
     labels = {t.get_text() for leg in legends(fig) for t in leg.get_texts()}

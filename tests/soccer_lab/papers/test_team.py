@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 import pytest
+from saved_figures import saved_figures
 
 from soccer_lab.papers import team
 
@@ -36,24 +37,10 @@ def test_team_benchmark_rejects_bad_arguments(tmp_path: Path):
         team.run(tmp_path, duration=0.1)
 
 
-def _saved_figures(monkeypatch, module) -> list:
-    """Every figure ``module`` saves through its ``save_figure``, laid out as written."""
-    figures = []
-    save = module.save_figure
-
-    def keep(fig, path):
-        out = save(fig, path)
-        figures.append(fig)
-        return out
-
-    monkeypatch.setattr(module, "save_figure", keep)
-    return figures
-
-
 def test_figure_legends_cover_no_data_and_the_title_names_the_robots(tmp_path, monkeypatch):
     from soccer_env.render.plots import legend_overlaps, legends
 
-    figures = _saved_figures(monkeypatch, team)
+    figures = saved_figures(monkeypatch, team)
     team.run(tmp_path, matches=1, duration=1.0, workers=1, keeper=False)
     (fig,) = figures
     labels = {t.get_text() for leg in legends(fig) for t in leg.get_texts()}

@@ -6,6 +6,7 @@ import json
 
 import numpy as np
 import pytest
+from saved_figures import saved_figures
 
 from soccer_lab.cli import main
 from soccer_lab.papers import ungm
@@ -38,24 +39,10 @@ def test_command_line_and_bad_arguments(tmp_path, capsys):
         ungm.run(tmp_path, runs=0)
 
 
-def _saved_figures(monkeypatch, module) -> list:
-    """Every figure ``module`` saves through its ``save_figure``, laid out as written."""
-    figures = []
-    save = module.save_figure
-
-    def keep(fig, path):
-        out = save(fig, path)
-        figures.append(fig)
-        return out
-
-    monkeypatch.setattr(module, "save_figure", keep)
-    return figures
-
-
 def test_figure_legends_cover_no_data_and_the_title_names_the_benchmark(tmp_path, monkeypatch):
     from soccer_env.render.plots import legend_overlaps, legends
 
-    figures = _saved_figures(monkeypatch, ungm)
+    figures = saved_figures(monkeypatch, ungm)
     ungm.run(tmp_path, runs=3, seed=1)
     (fig,) = figures
     labels = {t.get_text() for leg in legends(fig) for t in leg.get_texts()}
