@@ -29,7 +29,8 @@ subpackages group them:
 the state to any time ``t`` without changing the tracker (None before the first measurement),
 ``reset()`` forgets everything:
 
-* :class:`BallTracker` and :class:`LeastSquaresBall`: ``update(t, detections, obstacles=None)``
+* :class:`BallTracker`, :class:`LeastSquaresBall` and :class:`KickAwareBall`:
+  ``update(t, detections, obstacles=None)``
   (one camera frame's ball detections ``(k, 2)`` and the robots seen in it), ``estimate(t)``
   -> ``(x, y, vx, vy)``;
 * :class:`ParticleBallTracker`: ``update(t, z, sigma)`` (a fused position and its noise),
@@ -43,7 +44,7 @@ the state to any time ``t`` without changing the tracker (None before the first 
 (the filters of ``m`` environments), updated with one array operation per batch of frames and
 equal to the single trackers bit for bit.
 
-The three ball trackers also follow :class:`TrackQuality`: ``covariance(t)``, ``last_fused``
+The ball trackers also follow :class:`TrackQuality`: ``covariance(t)``, ``last_fused``
 and ``since_start`` say how sure they are (the environments' belief features); the robot
 tracker's ``pose_sigma(i, t)`` and the localization's ``pose_sigma()`` give the pose's spread.
 
@@ -101,6 +102,7 @@ from .kalman import (
     BallTracker,
     BallTrackerBatch,
     KalmanFilter,
+    KickAwareBall,
     LeastSquaresBall,
     RobotTracker,
     RobotTrackerBatch,
@@ -150,6 +152,7 @@ __all__ = [
     "BallTracker",
     "BallTrackerBatch",
     "LeastSquaresBall",
+    "KickAwareBall",
     "ParticleBallTracker",
     "RobotTracker",
     "RobotTrackerBatch",

@@ -5,6 +5,8 @@
 * :mod:`~estimators.kalman.ball`: ball trackers for delayed overhead-camera detections, the
   EKF of Zhao, Wang and Li (2012; :class:`BallTracker`, :class:`BallFilterConfig`) and
   its least-squares baseline (:class:`LeastSquaresBall`);
+* :mod:`~estimators.kalman.kick`: the kick-aware ball tracker (:class:`KickAwareBall`), each
+  motion since a kick or a collision fitted whole to the two-phase friction model;
 * :mod:`~estimators.kalman.robots`: decoupled constant-velocity pose trackers for many robots
   (:class:`RobotTracker`).
 
@@ -15,6 +17,7 @@ operation per batch of frames, equal to the single trackers bit for bit.
 
 from .ball import CHI2_2DOF_999, BallFilterConfig, BallTracker, BallTrackerBatch, LeastSquaresBall
 from .core import KalmanFilter, check_matrix, check_vector
+from .kick import KickAwareBall
 from .robots import RobotTracker, RobotTrackerBatch
 
 __all__ = [
@@ -25,6 +28,7 @@ __all__ = [
     "BallTracker",
     "BallTrackerBatch",
     "LeastSquaresBall",
+    "KickAwareBall",
     "CHI2_2DOF_999",
     "RobotTracker",
     "RobotTrackerBatch",

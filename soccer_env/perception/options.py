@@ -33,6 +33,7 @@ from estimators import (
     PARTICLE_FILTERS,
     BallFilterConfig,
     BallTracker,
+    KickAwareBall,
     KLDConfig,
     KLDLocalizer,
     LeastSquaresBall,
@@ -91,6 +92,13 @@ def _least_squares(ball: BallSpec, vision: VisionSpec, measurement: PositionMeas
     return BallFilter(LeastSquaresBall(sigma_xy=_sigma(vision)), True)
 
 
+def _kick_aware(ball: BallSpec, vision: VisionSpec, measurement: PositionMeasurement
+                ) -> BallFilter:
+    """The kick-aware tracker with the ball's two-phase friction model."""
+    return BallFilter(KickAwareBall(ball.sliding_deceleration, ball.rolling_deceleration,
+                                    ball.k_switch, sigma_xy=_sigma(vision)), True)
+
+
 #: Ball filters of ``obs_mode="perceived"`` for SSL teams.
 BALL_FILTERS: Registry[Callable[..., BallFilter]] = Registry("ball filter", [
     ("kf", functools.partial(_kalman, False),
@@ -105,6 +113,9 @@ BALL_FILTERS: Registry[Callable[..., BallFilter]] = Registry("ball filter", [
      "'ekf' with the two-phase sliding/rolling model after detected kicks"),
     ("ls", _least_squares,
      "Zhao et al.'s (2012) least-squares predictor (line fit to the last 6 detections)"),
+    ("kick", _kick_aware,
+     "kick-aware: each motion since a kick or collision fitted whole to the two-phase friction "
+     "model, started at the kick point and time"),
 ])
 
 

@@ -30,7 +30,13 @@ from typing import Any
 
 import numpy as np
 
-from estimators import BallFilterConfig, BallTracker, KalmanFilter, LeastSquaresBall
+from estimators import (
+    BallFilterConfig,
+    BallTracker,
+    KalmanFilter,
+    KickAwareBall,
+    LeastSquaresBall,
+)
 from soccer_env import presets
 from soccer_env.presets.sensors import vision
 from soccer_env.render.plots import pyplot, save_figure
@@ -80,6 +86,10 @@ ESTIMATORS: dict[str, tuple[str, Any, bool]] = {
                      lambda: BallTracker(BallFilterConfig(propagation="rk")), True),
     "ls": ("least-squares line fit to the last 6 detections", lambda: LeastSquaresBall(6),
            True),
+    # The paper's ball has no sliding phase: k_switch = 1 makes the kick-aware model roll
+    # from the kick on.
+    "kick": ("kick-aware: each motion since a kick or collision fitted whole (not the paper's)",
+             lambda: KickAwareBall(0.23, 0.23, 1.0, SIGMA), True),
 }
 
 
@@ -405,9 +415,9 @@ def _trace_figure(open_res: dict[str, Any]):
     tr = open_res["trace"]
     fig, ax = plt.subplots(figsize=(8.5, 4.6))
     # Families share a line style: plain detections and KFs solid, the EKFs dashed, the
-    # line fit dash-dotted.
+    # fits (the line fit, the kick-aware smoother) dash-dotted.
     styles = {"raw": "-", "kf": "-", "kf-comp": "-", "ekf-paper": "--",
-              "ekf-improved-paper": "--", "ekf": "--", "ls": "-."}
+              "ekf-improved-paper": "--", "ekf": "--", "ls": "-.", "kick": "-."}
     for k, name in enumerate(n for n in styles if n in tr["errors"]):
         ax.plot(tr["times"], np.asarray(tr["errors"][name]) * 1000, label=name, lw=1.3,
                 ls=styles[name], color=f"C{k}")

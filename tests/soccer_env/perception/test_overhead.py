@@ -142,7 +142,7 @@ def test_perception_config_defaults_and_forms():
 
 
 @pytest.mark.parametrize("ball_filter", ["kf", "kf-comp", "ekf", "ekf-improved",
-                                         "ekf-2phase", "ls"])
+                                         "ekf-2phase", "ls", "kick"])
 def test_every_ball_filter_runs_in_the_environment(ball_filter):
     env = gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived",
                    perception={"vision": "realistic", "ball_filter": ball_filter})
