@@ -326,7 +326,8 @@ class KickAwareBall:
             self._kick_hint = None
             if hint >= seg.tk:
                 self._previous = None
-                self._new_motion(hint, hint, t, self._nearest(seg, detections, t), known=True)
+                nearest = self._match(seg, detections, t)[1]
+                self._new_motion(hint, hint, t, nearest, known=True)
                 return
         agreeing, best, _ = self._match(seg, detections, t)
         if agreeing:
@@ -428,23 +429,31 @@ class KickAwareBall:
         s, v = _travel1(t - seg.tk, v0, seg.v_sw, self.sliding, self.rolling)
         return s / v0, v / v0
 
-    def _spread(self, seg: _Segment, t: float) -> tuple[float, float, float]:
-        """Per axis ``(var p(t), cov(p(t), v(t)), var v(t))`` of motion ``seg``."""
+    def _spread(self, seg: _Segment, t: float,
+                gains: tuple[float, float] | None = None) -> tuple[float, float, float]:
+        """Per axis ``(var p(t), cov(p(t), v(t)), var v(t))`` of motion ``seg`` (``gains``:
+        its :meth:`_gains` at ``t`` when the caller has them)."""
         a11, a12, a22 = seg.info
         s2 = self.sigma_xy ** 2
         if seg.rest:
             return s2 / a11, 0.0, 0.0
         det = a11 * a22 - a12 * a12
         c_pp, c_pw, c_ww = s2 * a22 / det, -s2 * a12 / det, s2 * a11 / det
-        g, h = self._gains(seg, t)
+        g, h = gains or self._gains(seg, t)
         return (max(c_pp + 2.0 * g * c_pw + g * g * c_ww, 0.0), h * (c_pw + g * c_ww),
                 h * h * c_ww)
 
     def _predicted(self, seg: _Segment, t: float) -> tuple[float, float, float]:
         """Motion ``seg``'s position at ``t`` and the variance of a detection about it (the
         noise plus the fit's position variance, per axis)."""
-        x, y, _, _ = self._state(seg, t)
-        return x, y, self.sigma_xy ** 2 + self._spread(seg, t)[0]
+        if seg.rest:
+            s2 = self.sigma_xy ** 2
+            return seg.p[0], seg.p[1], s2 + s2 / seg.info[0]
+        # A moving segment is at least REST_SPEED fast: one travel gives its state and gains.
+        v0 = math.hypot(*seg.w)
+        s, v = _travel1(t - seg.tk, v0, seg.v_sw, self.sliding, self.rolling)
+        var = self._spread(seg, t, (s / v0, v / v0))[0]
+        return seg.p[0] + seg.w[0] / v0 * s, seg.p[1] + seg.w[1] / v0 * s, self.sigma_xy ** 2 + var
 
     def _match(self, seg: _Segment, detections, t: float):
         """``(agreeing, nearest, d2)``: the detections within the gate of motion ``seg`` at
@@ -459,9 +468,6 @@ class KickAwareBall:
             if d < d2:
                 best, d2 = point, d
         return agreeing, best, d2
-
-    def _nearest(self, seg: _Segment, detections, t: float) -> tuple[float, float]:
-        return self._match(seg, detections, t)[1]
 
     def _refits(self, seg: _Segment, t: float, z: tuple[float, float]) -> bool:
         """Whether detection ``z`` at ``t``, outside the gate of young motion ``seg`` (whose
@@ -586,19 +592,19 @@ class KickAwareBall:
         # b^T A^-1 b - b1^2 / a11), against chi-square with 2 degrees of freedom.
         gain = ((bx1 * seg.p[0] + szxg * wx - bx1 * bx1 / a11)
                 + (by1 * seg.p[1] + szyg * wy - by1 * by1 / a11))
-        self._settle(seg, gain)
+        self._settle(seg, gain, bx1, by1)
 
-    def _settle(self, seg: _Segment, gain: float) -> None:
-        """Rest or motion from the fit's residual drop ``gain`` [m^2]; the switch speed."""
-        a11 = seg.info[0]
+    def _settle(self, seg: _Segment, gain: float, bx1: float, by1: float) -> None:
+        """Rest or motion from the drop of the residuals that the fit's velocity buys,
+        ``gain`` [m^2] (see the module docstring); a ball at rest lies at the weighted mean
+        ``(bx1, by1) / a11`` of its detections and prior. Then the switch speed."""
+        speed = math.hypot(*seg.w)
         seg.rest = ((gain < self.gate * self.sigma_xy ** 2 and not seg.known)
-                    or math.hypot(*seg.w) < REST_SPEED)
+                    or speed < REST_SPEED)
         if seg.rest:
-            lam = seg.prior[1]
-            if seg.sums is not None:
-                mx, my = seg.m
-                seg.p = ((lam * mx + seg.sums[3]) / a11, (lam * my + seg.sums[4]) / a11)
-        seg.v_sw = self._switch(seg, math.hypot(*seg.w))
+            a11 = seg.info[0]
+            seg.p = (bx1 / a11, by1 / a11)
+        seg.v_sw = self._switch(seg, speed)
 
     def _search(self, seg: _Segment) -> None:
         """Fit a young motion for ``search`` kick times at once and keep the best (see the
@@ -648,13 +654,8 @@ class KickAwareBall:
         seg.p = (float(weight @ px), float(weight @ py))
         seg.w = (float(weight @ wx), float(weight @ wy))
         seg.info = (float(a11), float(a12[j]), float(a22[j]))
-        rest_gain = float(gain[j]) - (float(bx1[j]) ** 2 + float(by1[j]) ** 2) / a11
-        if rest_gain < self.gate * self.sigma_xy ** 2 and not seg.known:
-            seg.p = (float(bx1[j]) / a11, float(by1[j]) / a11)
-            seg.rest = True
-        else:
-            seg.rest = math.hypot(*seg.w) < REST_SPEED
-        seg.v_sw = self._switch(seg, math.hypot(*seg.w))
+        bx, by = float(bx1[j]), float(by1[j])
+        self._settle(seg, float(gain[j]) - (bx * bx + by * by) / a11, bx, by)
 
 
 def _still(point: tuple[float, float]):
