@@ -175,6 +175,8 @@ ESTIMATOR_CONFIGS: Registry[EstimatorConfig] = _registry(
         _filter_config("ekf-2phase", "soccer_env (Zhao et al.'s 2012 EKF with a two-phase ball)"),
         _filter_config("ls", "Zhao et al. (2012) (least-squares baseline)"),
         _filter_config("kick", "soccer_env (kick-aware smoother over the two-phase ball)"),
+        _filter_config("imm", "soccer_env (interacting multiple model: rest, rolling, "
+                       "maneuver)"),
     ))
 
 

@@ -29,8 +29,8 @@ subpackages group them:
 the state to any time ``t`` without changing the tracker (None before the first measurement),
 ``reset()`` forgets everything:
 
-* :class:`BallTracker`, :class:`LeastSquaresBall` and :class:`KickAwareBall`:
-  ``update(t, detections, obstacles=None)``
+* :class:`BallTracker`, :class:`LeastSquaresBall`, :class:`KickAwareBall` and
+  :class:`IMMBall`: ``update(t, detections, obstacles=None)``
   (one camera frame's ball detections ``(k, 2)`` and the robots seen in it), ``estimate(t)``
   -> ``(x, y, vx, vy)``;
 * :class:`ParticleBallTracker`: ``update(t, z, sigma)`` (a fused position and its noise),
@@ -101,6 +101,7 @@ from .kalman import (
     BallFilterConfig,
     BallTracker,
     BallTrackerBatch,
+    IMMBall,
     KalmanFilter,
     KickAwareBall,
     LeastSquaresBall,
@@ -153,6 +154,7 @@ __all__ = [
     "BallTrackerBatch",
     "LeastSquaresBall",
     "KickAwareBall",
+    "IMMBall",
     "ParticleBallTracker",
     "RobotTracker",
     "RobotTrackerBatch",

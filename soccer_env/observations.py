@@ -19,7 +19,7 @@ goals (8)          own goal's left and right post, then the opponent goal's left
                    post (left/right as seen from the centre spot facing the team's ``+x``),
                    relative position [m] in body frame
 game (g)           task-specific game state (see each environment)
-belief (11 or 13)  only with ``belief_features=True``: how sure the belief is (below)
+belief (11-16)     only with ``belief_features=True``: how sure the belief is (below)
 =================  ==========================================================================
 
 Belief features (:class:`~soccer_env.state.BeliefQuality`; names ``belief.*``):
@@ -44,6 +44,9 @@ entries                    meaning
 ``ball.fused_age``         (environments with humanoids) time since the latest fusion of the
                            team's sightings [s]
 ``ball.seen_by``           (environments with humanoids) robots whose sightings went into it
+``ball.p_rest``,           (a ball filter with motion modes: ``ball_filter="imm"``) the
+``ball.p_rolling``,        probabilities that the ball lies still, rolls under friction, or is
+``ball.p_maneuver``        being kicked or bounced (:meth:`estimators.IMMBall.mode_probabilities`)
 =========================  ===================================================================
 
 Truth mode fills them with a perfect sensor's values (no spread, no age, tracking, every
@@ -104,10 +107,13 @@ class ObservationBuilder:
             map otherwise: see :meth:`build`), ``"python"`` or ``"arrays"``; all give the
             same observations.
         belief_features: append the belief features (see the module docstring): 11 entries,
-            or 13 with ``humanoid``.
+            or 13 with ``humanoid``, and one per ``ball_modes``.
         humanoid: the environment has humanoids (their team fusion's two entries).
         team_size: the most robots a team has (the bound of ``ball.seen_by``; default from
             ``teams``).
+        ball_modes: the ball filter's motion modes (with ``belief_features``: one more entry
+            per mode, ``ball.p_<mode>``, its probability; the beliefs' quality must carry
+            them).
 
     An agent's team-mates are the other robots of its team and its opponents those of the
     other team, both in robot order; every agent sees the other ``N - 1`` robots, so the rows
@@ -127,6 +133,7 @@ class ObservationBuilder:
         belief_features: bool = False,
         humanoid: bool = False,
         team_size: int | None = None,
+        ball_modes: Sequence[str] = (),
     ) -> None:
         if implementation not in ("auto", "python", "arrays"):
             raise ValueError(f"implementation must be one of ['auto', 'python', 'arrays'], "
@@ -158,8 +165,9 @@ class ObservationBuilder:
         self._base_size = len(high)
         self.belief_features = bool(belief_features)
         self._feature_names: tuple[str, ...] = ()
+        self._n_modes = 0
         if self.belief_features:
-            self._features_init(humanoid, team_size, span)
+            self._features_init(humanoid, team_size, span, tuple(ball_modes))
             low += list(self._feature_low)
             high += list(self._feature_high)
         self.size = len(high)
@@ -167,10 +175,13 @@ class ObservationBuilder:
         self.high = np.asarray(high, dtype=np.float32)
         self._compile()
 
-    def _features_init(self, humanoid: bool, team_size: int | None, span: float) -> None:
+    def _features_init(self, humanoid: bool, team_size: int | None, span: float,
+                       modes: tuple[str, ...] = ()) -> None:
         """Names, bounds and the perfect sensor's values of the belief features (``span``:
-        the bound of a measurement's offset from the belief [m])."""
-        names = BELIEF_FEATURES + (HUMANOID_BELIEF_FEATURES if humanoid else ())
+        the bound of a measurement's offset from the belief [m]; ``modes``: the ball
+        filter's motion modes)."""
+        names = (BELIEF_FEATURES + (HUMANOID_BELIEF_FEATURES if humanoid else ())
+                 + tuple(f"ball.p_{m}" for m in modes))
         self._feature_names = tuple(f"belief.{n}" for n in names)
         self._humanoid_features = humanoid
         if team_size is None:
@@ -182,6 +193,10 @@ class ObservationBuilder:
         if humanoid:
             high += [AGE_BOUND, float(team_size)]
             perfect += [0.0, float(team_size)]
+        # Mode probabilities exist only in a filter's belief (the truth's raise).
+        self._n_modes = len(modes)
+        high += [1.0] * len(modes)
+        perfect += [math.nan] * len(modes)
         self._feature_high = np.asarray(high, dtype=np.float64)
         self._feature_low = np.zeros_like(self._feature_high)
         self._measured_at = BELIEF_FEATURES.index("ball.measured_dx")
@@ -373,15 +388,23 @@ class ObservationBuilder:
         np.clip(out, self._base_low, self._base_high, out=out)
         out = out.astype(np.float32)
         if self.belief_features:
-            perfect = np.broadcast_to(self._perfect, (n_worlds, *self._perfect.shape))
+            perfect = np.broadcast_to(self._truth_features(), (n_worlds, *self._perfect.shape))
             out = np.concatenate([out, perfect], axis=-1)
         return out
+
+    def _truth_features(self) -> np.ndarray:
+        """The perfect sensor's belief features; ``ValueError`` with mode probabilities,
+        which only a filter's belief has."""
+        if self._n_modes:
+            raise ValueError("the true state has no ball mode probabilities: build the "
+                             "observations without ball_modes for obs_mode='truth'")
+        return self._perfect
 
     def _features(self, belief: Belief | WorldState) -> np.ndarray:
         """The belief features ``(len(own), F)`` of ``belief`` (a perfect sensor's for the
         truth)."""
         if isinstance(belief, WorldState):
-            return self._perfect
+            return self._truth_features()
         q = belief.quality
         if q is None:
             raise ValueError("belief features need beliefs that carry their quality: build "
@@ -401,9 +424,16 @@ class ObservationBuilder:
             c, s = np.cos(th), np.sin(th)
             rows[:, m] = c * dx + s * dy
             rows[:, m + 1] = c * dy - s * dx
+        end = len(self._feature_names) - self._n_modes
         if self._humanoid_features:
-            rows[:, -2] = q.fused_age
-            rows[:, -1] = q.seen_by
+            rows[:, end - 2] = q.fused_age
+            rows[:, end - 1] = q.seen_by
+        if self._n_modes:
+            if q.ball_modes is None or len(q.ball_modes) != self._n_modes:
+                raise ValueError(f"the belief features need the ball filter's "
+                                 f"{self._n_modes} mode probabilities; the belief's quality "
+                                 f"carries {q.ball_modes!r}")
+            rows[:, end:] = q.ball_modes
         np.minimum(rows, self._feature_high, out=rows)
         np.maximum(rows, self._feature_low, out=rows)
         return rows.astype(np.float32)

@@ -127,6 +127,9 @@ class BeliefQuality(NamedTuple):
             detection (SSL teams); None if there is none. Beside the belief it shows what the
             filter has not (yet) taken in: a kicked ball's detections that the tracker still
             rejects or smooths away.
+        ball_modes: the probabilities of the ball filter's motion modes at the belief's time
+            (an interacting multiple model filter's: rest, rolling, maneuver; see
+            :attr:`estimators.IMMBall.MODES`), or None for a filter without modes.
     """
 
     ball_sigma: float
@@ -137,6 +140,7 @@ class BeliefQuality(NamedTuple):
     fused_age: float
     seen_by: int
     ball_measured: np.ndarray | None = None
+    ball_modes: np.ndarray | None = None
 
 
 class BeliefSpread(NamedTuple):

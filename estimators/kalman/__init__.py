@@ -7,6 +7,8 @@
   its least-squares baseline (:class:`LeastSquaresBall`);
 * :mod:`~estimators.kalman.kick`: the kick-aware ball tracker (:class:`KickAwareBall`), each
   motion since a kick or a collision fitted whole to the two-phase friction model;
+* :mod:`~estimators.kalman.imm`: the interacting multiple model ball tracker (:class:`IMMBall`),
+  rest, rolling and maneuver filters weighed by how well each predicted the detections;
 * :mod:`~estimators.kalman.robots`: decoupled constant-velocity pose trackers for many robots
   (:class:`RobotTracker`).
 
@@ -17,6 +19,7 @@ operation per batch of frames, equal to the single trackers bit for bit.
 
 from .ball import CHI2_2DOF_999, BallFilterConfig, BallTracker, BallTrackerBatch, LeastSquaresBall
 from .core import KalmanFilter, check_matrix, check_vector
+from .imm import IMMBall
 from .kick import KickAwareBall
 from .robots import RobotTracker, RobotTrackerBatch
 
@@ -29,6 +32,7 @@ __all__ = [
     "BallTrackerBatch",
     "LeastSquaresBall",
     "KickAwareBall",
+    "IMMBall",
     "CHI2_2DOF_999",
     "RobotTracker",
     "RobotTrackerBatch",

@@ -175,7 +175,9 @@ class SoccerCore(RenderingMixin):
                                   game_low, game_high, game_names,
                                   belief_features=self.belief_features,
                                   humanoid=bool(w.humanoid_indices),
-                                  team_size=max(w.n_blue, w.n_yellow))
+                                  team_size=max(w.n_blue, w.n_yellow),
+                                  ball_modes=(self._perception.ball_modes
+                                              if self.belief_features else ()))
 
     # ------------------------------------------------------------------------------------
     # Hooks

@@ -206,7 +206,8 @@ class GoalkeeperEnv(SingleAgentTask):
     ## Observation space
     ``Box((19,), float32)``, the egocentric layout of
     :mod:`soccer_env.observations` with no team-mates, no opponents and no game state (with
-    ``belief_features=True``, 11 more entries, 13 for a humanoid): the
+    ``belief_features=True``, 11 more entries, 13 for a humanoid, 3 more with
+    ``ball_filter="imm"``): the
     keeper's own pose and velocity (7), the ball relative to it and its velocity (4), the four
     goal posts relative to it (8). ``obs_mode`` chooses where the values come from:
     ``"truth"``, ``"raw"`` (latest delayed camera detections) or ``"perceived"`` (the
@@ -252,7 +253,8 @@ class GoalkeeperEnv(SingleAgentTask):
     size; see :meth:`~soccer_env.render.RenderingMixin.render`); humanoids only: ``mates``
     (0..3), ``head`` ("auto": the head follows the believed ball and scans when needed;
     "scan"; "action": the policy's entries 4 and 5); ``belief_features`` (append how sure
-    the belief is: 11 entries, 13 for humanoids; see :mod:`soccer_env.observations`);
+    the belief is: 11 entries, 13 for humanoids, 3 more with the ``"imm"`` ball filter's mode
+    probabilities; see :mod:`soccer_env.observations`);
     ``info_mode`` ("full", the default, or "flat": numbers only, see
     :mod:`soccer_env.envs.flat_info`). Unknown arguments raise ``TypeError``.
 

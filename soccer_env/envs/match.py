@@ -190,7 +190,8 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     uniform jitter of the kick-off formation); ``render_width``; ``render_view`` ("field" or
     "follow", as in :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`); ``head`` (humanoid
     agents: "auto", "scan" or "action"); ``belief_features`` (every agent's observation ends with
-    how sure its belief is: 11 entries, 13 with humanoids in the match; see
+    how sure its belief is: 11 entries, 13 with humanoids in the match, 3 more when every team's
+    ball filter is ``"imm"``; see
     :mod:`soccer_env.observations`); ``info_mode`` ("full", the default, or "flat");
     ``game`` (see Rules).
     """

@@ -174,6 +174,14 @@ class MatchPerception:
         return out
 
     @property
+    def ball_modes(self) -> tuple[str, ...]:
+        """The motion modes of the ball filter of every team (an interacting multiple model
+        filter's, whose probabilities the beliefs' quality then carries: the belief features
+        ``ball.p_<mode>``); empty when a team's filter has none or the teams' differ."""
+        modes = {tuple(getattr(pipe, "ball_modes", ())) for pipe in self.pipelines}
+        return modes.pop() if len(modes) == 1 else ()
+
+    @property
     def pipelines(self) -> list[Any]:
         """The teams' pipelines (overhead vision, truth, or a humanoid team's)."""
         return [pipe for _, pipe, _ in self._groups]

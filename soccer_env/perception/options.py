@@ -33,6 +33,7 @@ from estimators import (
     PARTICLE_FILTERS,
     BallFilterConfig,
     BallTracker,
+    IMMBall,
     KickAwareBall,
     KLDConfig,
     KLDLocalizer,
@@ -99,6 +100,12 @@ def _kick_aware(ball: BallSpec, vision: VisionSpec, measurement: PositionMeasure
                                     ball.k_switch, sigma_xy=_sigma(vision)), True)
 
 
+def _imm(ball: BallSpec, vision: VisionSpec, measurement: PositionMeasurement) -> BallFilter:
+    """The interacting multiple model tracker with the ball's two-phase friction model."""
+    return BallFilter(IMMBall(ball.rolling_deceleration, ball.sliding_deceleration,
+                              ball.k_switch, sigma_xy=_sigma(vision)), True)
+
+
 #: Ball filters of ``obs_mode="perceived"`` for SSL teams.
 BALL_FILTERS: Registry[Callable[..., BallFilter]] = Registry("ball filter", [
     ("kf", functools.partial(_kalman, False),
@@ -116,6 +123,9 @@ BALL_FILTERS: Registry[Callable[..., BallFilter]] = Registry("ball filter", [
     ("kick", _kick_aware,
      "kick-aware: each motion since a kick or collision fitted whole to the two-phase friction "
      "model, started at the kick point and time"),
+    ("imm", _imm,
+     "interacting multiple model: rest, rolling (two-phase friction) and maneuver Kalman "
+     "filters mixed by their likelihoods; latency compensation, gating, restarts"),
 ])
 
 

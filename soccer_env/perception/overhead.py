@@ -236,6 +236,9 @@ class FilteredPerception(_VisionPerception):
         self.robot_tracker = RobotTracker(n_robots, measurement=self.measurements.robot_model)
         built = BALL_FILTERS.create(config.ball_filter, ball, spec, self.measurements.ball_model)
         self.ball_tracker, self._capture_times = built.tracker, built.capture_times
+        #: The ball filter's motion modes, whose probabilities the belief's quality carries
+        #: (an interacting multiple model filter's; empty for a filter without modes).
+        self.ball_modes: tuple[str, ...] = tuple(getattr(self.ball_tracker, "MODES", ()))
         # The frames are the sensor's own, checked data: a tracker with an unchecked path
         # (BallTracker.update_frame) is fed through it.
         self._feed = getattr(self.ball_tracker, "update_frame", self.ball_tracker.update)
@@ -298,8 +301,10 @@ class FilteredPerception(_VisionPerception):
         robots = self.robot_tracker
         spread = np.array([robots.pose_sigma(i, t) for i in range(self.n_robots)],
                           dtype=np.float64).reshape(-1, 2)
+        modes = ball.mode_probabilities(t) if self.ball_modes else None
         return BeliefQuality(sigma, sigma_v, age, status, spread, age,
-                             int(status < 3 and age <= self._expected_age), self._measured)
+                             int(status < 3 and age <= self._expected_age), self._measured,
+                             modes)
 
 
 def _nearest(balls: Sequence[Sequence[float]], est: Sequence[float] | None

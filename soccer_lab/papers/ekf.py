@@ -33,6 +33,7 @@ import numpy as np
 from estimators import (
     BallFilterConfig,
     BallTracker,
+    IMMBall,
     KalmanFilter,
     KickAwareBall,
     LeastSquaresBall,
@@ -90,6 +91,8 @@ ESTIMATORS: dict[str, tuple[str, Any, bool]] = {
     # from the kick on.
     "kick": ("kick-aware: each motion since a kick or collision fitted whole (not the paper's)",
              lambda: KickAwareBall(0.23, 0.23, 1.0, SIGMA), True),
+    "imm": ("interacting multiple model: rest, rolling, maneuver (not the paper's)",
+            lambda: IMMBall(0.23, None, sigma_xy=SIGMA), True),
 }
 
 
@@ -185,9 +188,11 @@ def _simulate(seed: int, duration: float = 3.0) -> _Episode:
     return _Episode(truth, np.array(times), frames, collisions)
 
 
-def _run_estimator(name: str, ep: _Episode, ahead: float) -> tuple[np.ndarray, np.ndarray]:
+def _run_estimator(name: str, ep: _Episode, ahead: float
+                   ) -> tuple[np.ndarray, np.ndarray, float]:
     """Estimates at the present time and at present + ``ahead``, per cycle (NaN before the
-    first detection arrives)."""
+    first detection arrives), and the seconds the estimator took (its updates and
+    estimates)."""
     _, factory, capture = ESTIMATORS[name]
     K = len(ep.times)
     now_est = np.full((K, 4), np.nan)
@@ -202,8 +207,9 @@ def _run_estimator(name: str, ep: _Episode, ahead: float) -> tuple[np.ndarray, n
                 v = ((last[1] - prev[1]) / (last[0] - prev[0]),
                      (last[2] - prev[2]) / (last[0] - prev[0])) if prev else (0.0, 0.0)
                 now_est[k] = ahead_est[k] = (last[1], last[2], *v)
-        return now_est, ahead_est
+        return now_est, ahead_est, 0.0
     tracker = factory()
+    start = time.perf_counter()
     for k, frames in enumerate(ep.frames):
         for f in frames:
             if f.balls:
@@ -213,7 +219,7 @@ def _run_estimator(name: str, ep: _Episode, ahead: float) -> tuple[np.ndarray, n
         if est is not None:
             now_est[k] = est
             ahead_est[k] = tracker.estimate(t + ahead)
-    return now_est, ahead_est
+    return now_est, ahead_est, time.perf_counter() - start
 
 
 def _lock_on(err: np.ndarray, start: int, stop: int, threshold: float, hold: int = 3) -> int:
@@ -237,8 +243,11 @@ def open_loop(episodes: int = 200, seed: int = 0) -> dict[str, Any]:
     for name in ESTIMATORS:
         pos_now, vel_now, pos_ahead, pos_steady, ahead_steady = [], [], [], [], []
         lock_start, lock_collision = [], []
+        seconds = cycles = 0
         for i, ep in enumerate(eps):
-            now, fut = _run_estimator(name, ep, ahead)
+            now, fut, spent = _run_estimator(name, ep, ahead)
+            seconds += spent
+            cycles += len(ep.times)
             ok = ~np.isnan(now[:, 0])
             err_now = np.hypot(*(now[:, 0:2] - ep.truth[:, 0:2]).T)
             # Truth one actuation latency later, from the next cycle (ahead = one cycle).
@@ -275,6 +284,9 @@ def open_loop(episodes: int = 200, seed: int = 0) -> dict[str, Any]:
             "lock_on_after_shot_cycles": float(np.mean(lock_start)),
             "lock_on_after_collision_cycles": float(np.mean(lock_collision))
             if lock_collision else float("nan"),
+            # Wall-clock time of a cycle's update and two estimates (noisy: compare within
+            # one run).
+            "compute_us_per_cycle": 1e6 * seconds / cycles,
         }
     collisions = sum(len(e.collisions) for e in eps)
     latency = vision("ssl-2012").latency
@@ -328,8 +340,9 @@ def _markdown_open(res: dict[str, Any]) -> str:
         f"{res['collisions']} collisions (walls and robots).",
         "",
         "| estimator | position RMSE now [mm] | steady [mm] | at actuation [mm] "
-        "| velocity RMSE now [m/s] | lock-on after shot [cycles] | after collision [cycles] |",
-        "|---|---|---|---|---|---|---|",
+        "| velocity RMSE now [m/s] | lock-on after shot [cycles] | after collision [cycles] "
+        "| compute [us/cycle] |",
+        "|---|---|---|---|---|---|---|---|",
     ]
     for name, r in res["estimators"].items():
         lines.append(
@@ -337,7 +350,7 @@ def _markdown_open(res: dict[str, Any]) -> str:
             f"{1000 * r['position_rmse_steady_m']:.1f} | "
             f"{1000 * r['position_rmse_at_actuation_m']:.1f} | "
             f"{r['velocity_rmse_now_mps']:.3f} | {r['lock_on_after_shot_cycles']:.1f} | "
-            f"{r['lock_on_after_collision_cycles']:.1f} |")
+            f"{r['lock_on_after_collision_cycles']:.1f} | {r['compute_us_per_cycle']:.0f} |")
     est = res["estimators"]
     now = est["raw"]["position_rmse_now_m"] / est["ekf"]["position_rmse_now_m"]
     steady = est["raw"]["position_rmse_steady_m"] / est["ekf"]["position_rmse_steady_m"]
@@ -415,9 +428,9 @@ def _trace_figure(open_res: dict[str, Any]):
     tr = open_res["trace"]
     fig, ax = plt.subplots(figsize=(8.5, 4.6))
     # Families share a line style: plain detections and KFs solid, the EKFs dashed, the
-    # fits (the line fit, the kick-aware smoother) dash-dotted.
+    # fits (the line fit, the kick-aware smoother) dash-dotted, the mixture (IMM) dotted.
     styles = {"raw": "-", "kf": "-", "kf-comp": "-", "ekf-paper": "--",
-              "ekf-improved-paper": "--", "ekf": "--", "ls": "-.", "kick": "-."}
+              "ekf-improved-paper": "--", "ekf": "--", "ls": "-.", "kick": "-.", "imm": ":"}
     for k, name in enumerate(n for n in styles if n in tr["errors"]):
         ax.plot(tr["times"], np.asarray(tr["errors"][name]) * 1000, label=name, lw=1.3,
                 ls=styles[name], color=f"C{k}")

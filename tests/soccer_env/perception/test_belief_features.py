@@ -15,7 +15,7 @@ from soccer_env.observations import (
     ObservationBuilder,
 )
 from soccer_env.presets import field
-from soccer_env.state import Belief
+from soccer_env.state import Belief, BeliefQuality
 
 GK = "soccer_env/Goalkeeper-v0"
 SSL_NAMES = tuple(f"belief.{n}" for n in BELIEF_FEATURES)
@@ -230,6 +230,60 @@ def test_match_and_shootout_have_them(robot):
     assert shoot.unwrapped.builder.names[-len(expected):] == expected
     obs, _ = shoot.reset(seed=0)
     assert shoot.observation_space.contains(obs)
+
+
+MODE_NAMES = ("belief.ball.p_rest", "belief.ball.p_rolling", "belief.ball.p_maneuver")
+
+
+def test_imm_mode_probabilities_are_features():
+    """With the interacting multiple model filter the features end with its mode
+    probabilities: a distribution over rest, rolling and maneuver, resting before the shot
+    and rolling half a second after it."""
+    env = gym.make(GK, obs_mode="perceived",
+                   perception={"vision": "ssl-2012", "ball_filter": "imm"}, belief_features=True)
+    names = env.unwrapped.builder.names
+    assert names[-3:] == MODE_NAMES and names[-14:-3] == SSL_NAMES
+    for seed in (0, 1, 4):  # shots fired once the resting ball has been seen for a while
+        obs, info = env.reset(seed=seed)
+        before, after, fired = [], [], None
+        for step in range(200):
+            obs, _, term, trunc, info = env.step(np.zeros(6, np.float32))
+            assert env.observation_space.contains(obs)
+            p = obs[-3:].astype(np.float64)
+            assert p.min() >= 0.0 and p.sum() == pytest.approx(1.0, abs=1e-5)
+            if fired is None and info["shot_fired"]:
+                fired = step
+            (before if fired is None else after).append(p)
+            if term or trunc:
+                break
+        assert fired is not None and fired >= 7
+        assert before[-1][0] > 0.7  # at rest, well seen
+        assert after[12][1] > 0.7  # rolling 0.5 s after the shot
+    check_env(env.unwrapped)
+
+
+def test_mode_features_need_a_filter_with_modes():
+    """Teams whose ball filters differ get no mode features (one layout for every agent); a
+    builder asked for them refuses the truth and a quality without them."""
+    penv = soccer_env.parallel_env(blue=1, yellow=1, obs_mode="perceived", belief_features=True,
+                                   perception={"blue": {"ball_filter": "imm"},
+                                               "yellow": {"ball_filter": "ekf"}})
+    assert penv.builder.names[-11:] == SSL_NAMES
+    both = soccer_env.parallel_env(blue=1, yellow=1, obs_mode="perceived",
+                                   belief_features=True, perception={"ball_filter": "imm"})
+    assert both.builder.names[-3:] == MODE_NAMES
+    obs, _ = both.reset(seed=0)
+    for agent, o in obs.items():
+        assert both.observation_space(agent).contains(o)
+    builder = ObservationBuilder(field("ssl-div-b"), [0], [0], belief_features=True,
+                                 ball_modes=("rest", "rolling", "maneuver"))
+    quality = BeliefQuality(0.01, 0.1, 0.0, 0, np.zeros((1, 2)), 0.0, 1)
+    with pytest.raises(ValueError, match="mode probabilities"):
+        builder.build(Belief(0.0, np.zeros(6), np.zeros((1, 6)), quality))
+    truth = gym.make(GK, belief_features=True).unwrapped
+    truth.reset(seed=0)
+    with pytest.raises(ValueError, match="mode probabilities"):
+        builder.build(truth.world.snapshot())
 
 
 def test_check_env_with_features():

@@ -6,6 +6,7 @@ import pytest
 
 import soccer_env
 from soccer_env.perception.base import PerceptionConfig
+from soccer_env.perception.options import BALL_FILTERS
 from soccer_env.presets.sensors import vision
 from soccer_env.sim.commands import CommandChannel
 
@@ -141,8 +142,7 @@ def test_perception_config_defaults_and_forms():
     assert cfg.vision.name == "harsh" and cfg.ball_filter == "ls"
 
 
-@pytest.mark.parametrize("ball_filter", ["kf", "kf-comp", "ekf", "ekf-improved",
-                                         "ekf-2phase", "ls", "kick"])
+@pytest.mark.parametrize("ball_filter", list(BALL_FILTERS))
 def test_every_ball_filter_runs_in_the_environment(ball_filter):
     env = gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived",
                    perception={"vision": "realistic", "ball_filter": ball_filter})
