@@ -37,7 +37,7 @@ SEEDS = (0, 1)
 GOALKEEPER_STEPS = 150
 MATCH_STEPS = 120
 VISION_PRESETS = ("ideal", "realistic", "ssl-2012", "harsh")
-BALL_FILTERS = ("kf", "kf-comp", "ekf", "ekf-improved", "ekf-2phase", "ls")
+BALL_FILTERS = ("kf", "kf-comp", "ekf", "ekf-improved", "ekf-2phase", "ls", "kick", "imm")
 
 
 def _feed(h: Any, obj: Any) -> None:

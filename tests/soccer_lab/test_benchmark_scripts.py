@@ -169,3 +169,20 @@ def test_batched_match_benchmark_reports_the_table_and_memory(tmp_path, capsys):
     assert np.isfinite(figures["bytes_per_match"])
     text = capsys.readouterr().out
     assert "ours 2 proc" in text and "bytes per match" in text
+
+
+def test_known_kick_tells_the_filter_the_true_kick_time():
+    """The kick-time bound's environment: the kick-aware filter's motion after the shot
+    starts at the shot's true kick time; a filter without ``kick()`` is refused."""
+    bounds = _script("ball_filter_bounds")
+    env = bounds.known_kick_env(obs_mode="perceived",
+                                perception={"vision": "ssl-2012", "ball_filter": "kick"})
+    _, info = env.reset(seed=3)
+    tracker = env.unwrapped.pipelines[0].ball_tracker
+    kick = info["shot"]["delay"]
+    for _ in range(int(kick / 0.04) + 12):  # past the kick and the vision's latency
+        env.step(np.zeros(6, np.float32))
+    assert tracker.kick_time == pytest.approx(kick, abs=1e-9)
+    ekf = bounds.known_kick_env(obs_mode="perceived", perception="ssl-2012")
+    with pytest.raises(ValueError, match="kick"):
+        ekf.reset(seed=3)
