@@ -518,7 +518,9 @@ class IMMBall:
         px, py, (r0, r1, _, r3) = rest
         xF, PF = roll
         xM, PM = man
-        z = dets[0] if len(dets) == 1 else self._nearest(rest, roll, man, c, dets)[0]
+        # The combined gate's distance is needed only when no mode's gate takes the
+        # detection; with several detections the nearest one's comes with the choice.
+        z, d2 = (dets[0], None) if len(dets) == 1 else self._nearest(rest, roll, man, c, dets)
         zx, zy = z[0], z[1]
         # Step 6: the innovations; the rest mode's in closed form (no velocity).
         s0, s3 = r0 + r, r3 + r
@@ -534,9 +536,10 @@ class IMMBall:
         cR, cF, cM = c
         jump = math.hypot(zx - cR * px - cF * xF[0] - cM * xM[0],
                           zy - cR * py - cF * xF[1] - cM * xM[1])
-        if jump > self.max_jump or not (
-                low <= gate and jump <= self.max_kick_speed * (t - s.t) + 3.0 * self.sigma_xy
-                or self._nearest(rest, roll, man, c, (z,))[1] <= gate):
+        kick = low <= gate and jump <= self.max_kick_speed * (t - s.t) + 3.0 * self.sigma_xy
+        if not kick and d2 is None and jump <= self.max_jump:
+            d2 = self._nearest(rest, roll, man, c, (z,))[1]
+        if jump > self.max_jump or not (kick or d2 <= gate):
             self.rejected += 1
             return self._outlier(_State(t, rest, roll, man, c, s.candidates, s.fused_at,
                                         s.since_start, self._kicked(s.kicked, roll[0], t),
