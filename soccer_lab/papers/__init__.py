@@ -1,11 +1,13 @@
 """Reproductions of the source papers' claims, run by ``soccer-env paper <name>``.
 
-Each module simulates the paper's setting, prints the paper's figures beside ours and writes
-tables (Markdown and CSV) and PNG plots to an output folder. Its ``run(out, ...)`` returns at
-least ``{"text", "files", "seconds"}``: the printed report, the files written and the wall
-time. Each is split the same way: the settings (validated), the loop (episodes or jobs,
-spread over processes by :func:`soccer_lab.papers._io.map_jobs`) and the report (tables, plots
-and the text).
+Each reproduction (a module, or a package for the larger ones) simulates the paper's setting,
+prints the paper's figures beside ours and writes tables (Markdown and CSV) and PNG plots to an
+output folder. Its ``run(out, ...)`` returns at least ``{"text", "files", "seconds"}``: the
+printed report, the files written and the wall time. Each is split the same way: the settings
+(validated), the loop (episodes or jobs, spread over processes by
+:func:`soccer_lab.papers.common.map_jobs`) and the report (tables, plots and the text); a
+package has a module for each (``episode``, ``measures``, ``report``, ...) and its ``run`` in
+its ``__init__``. :mod:`soccer_lab.papers.common` holds what they share.
 
 :data:`PAPERS` registers the reproductions (name -> ``run``, with a one-line description);
 :data:`CITATIONS` gives the source papers in full.

@@ -43,7 +43,7 @@ from soccer_env.presets.sensors import vision
 from soccer_env.render.plots import pyplot, save_figure
 from soccer_env.sensors.overhead import OverheadVision
 from soccer_env.sim.world import World, idle_commands
-from soccer_lab.papers._io import write_csv
+from soccer_lab.papers.common import write_csv
 
 __all__ = ["run", "Settings", "open_loop", "closed_loop", "PAPER_CLAIMS", "ESTIMATORS",
            "steady_state_floor"]

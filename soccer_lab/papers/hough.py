@@ -85,7 +85,7 @@ import numpy as np
 from estimators import HeadCamera, fusion_weights, hough_fuse
 from soccer_env.presets import HEAD_CAMERAS, ROBOTS, HumanoidRobotSpec
 from soccer_env.render.plots import pyplot, save_figure
-from soccer_lab.papers._io import check_count, write_report
+from soccer_lab.papers.common import check_count, write_report
 
 __all__ = ["run", "Settings", "ROBOTS_MM", "PATH_MM", "PAPER", "HARDWARE_BASELINE_READINGS",
            "NOISE_MODELS", "MODEL_WEIGHTINGS"]

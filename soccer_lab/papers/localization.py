@@ -60,7 +60,7 @@ from soccer_env.presets.sensors import RADIO_PRESETS, head_camera
 from soccer_env.render.plots import pyplot, save_figure
 from soccer_env.sim.heads import HeadController
 from soccer_env.sim.world import World
-from soccer_lab.papers._io import check_count, map_jobs, write_report
+from soccer_lab.papers.common import check_count, map_jobs, write_report
 
 __all__ = ["run", "Settings", "PAPER", "AIMS"]
 

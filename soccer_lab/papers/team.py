@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from soccer_env.render.plots import pyplot, save_figure
-from soccer_lab.papers._io import map_jobs, write_report
+from soccer_lab.papers.common import map_jobs, write_report
 
 __all__ = ["run", "Settings", "match_errors", "keeper_saves", "MATCH_CONFIGS", "KEEPER_CONFIGS",
            "PAPER"]

@@ -27,7 +27,7 @@ import numpy as np
 
 from estimators import FBPF, MFBPF, BootstrapPF, ungm_model, ungm_simulate
 from soccer_env.render.plots import pyplot, save_figure
-from soccer_lab.papers._io import write_report
+from soccer_lab.papers.common import write_report
 
 __all__ = ["run", "Settings", "FILTERS", "PAIRS", "PAPER_CLAIM", "paired_difference"]
 

@@ -98,7 +98,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from soccer_lab.papers._io import check_count, map_jobs, write_report
+from soccer_lab.papers.common import check_count, map_jobs, write_report
 from soccer_lab.papers.following import report
 from soccer_lab.papers.following.episode import ROBOTS, TRACKERS, VARIANTS, run_episode
 from soccer_lab.papers.following.measures import JUMP_BINS, TURN_BINS

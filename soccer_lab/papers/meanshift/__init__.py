@@ -86,7 +86,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from soccer_lab.papers._io import check_count, map_jobs, write_report
+from soccer_lab.papers.common import check_count, map_jobs, write_report
 from soccer_lab.papers.meanshift import report
 from soccer_lab.papers.meanshift.episode import run_episode
 from soccer_lab.papers.meanshift.report import AIMS, CDF_EDGES_MM, PAPER

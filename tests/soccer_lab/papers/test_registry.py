@@ -42,7 +42,7 @@ def test_a_registered_run_is_its_module_run(tmp_path, monkeypatch):
 
 
 def _paper_sources():
-    return sorted(p for p in PAPERS_DIR.rglob("*.py") if p.name != "_io.py")
+    return sorted(p for p in PAPERS_DIR.rglob("*.py") if p.name != "common.py")
 
 
 @pytest.mark.parametrize("path", _paper_sources(), ids=lambda p: str(p.relative_to(PAPERS_DIR)))

@@ -1,5 +1,6 @@
-"""What the paper benchmarks share: checking their settings, running their episodes over
-processes, and writing their tables (Markdown, CSV and JSON files)."""
+"""What the paper reproductions share: checking their settings (:func:`check_count`), running
+their episodes over processes (:func:`map_jobs`), and writing their tables (:func:`write_csv`,
+:func:`write_report`: Markdown, CSV and JSON files)."""
 
 from __future__ import annotations
 
