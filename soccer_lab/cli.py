@@ -2,7 +2,7 @@
 
 Each command parses its options, checks that what it imports is installed
 (:mod:`soccer_lab.extras`: one line naming the extra to install, exit status 2) and runs.
-:data:`_COMMANDS` lists the commands with their one-line summaries; :func:`parsers` builds
+:data:`COMMANDS` lists the commands with their one-line summaries; :func:`parsers` builds
 every command's option parser (for ``paper``, one per paper), which is what ``--help`` prints.
 """
 
@@ -19,7 +19,7 @@ from typing import Any, NamedTuple
 from soccer_lab import extras
 from soccer_lab.cli_args import HelpFormatter
 
-__all__ = ["main", "parsers", "version"]
+__all__ = ["main", "parsers", "paper_parser", "version", "COMMANDS"]
 
 
 def version() -> str:
@@ -288,8 +288,10 @@ _PAPER_COUNTS = {"episodes": 1, "shots": 1, "runs": 1, "trials": 1, "matches": 1
                  "keeper_shots": 1, "walks": 1, "particles": 2, "workers": 1}
 
 
-def _paper_parser() -> tuple[argparse.ArgumentParser, dict[str, argparse.ArgumentParser]]:
-    """The parser of ``soccer-env paper`` and its sub-parsers, one per paper."""
+def paper_parser() -> tuple[argparse.ArgumentParser, dict[str, argparse.ArgumentParser]]:
+    """The parser of ``soccer-env paper`` and its sub-parsers, one per paper of
+    :data:`soccer_lab.papers.PAPERS` (by name), each with ``--out`` and that paper's own
+    options."""
     from soccer_lab.papers import PAPERS
 
     width = max(len(name) for name in PAPERS)
@@ -315,7 +317,7 @@ def _paper_parser() -> tuple[argparse.ArgumentParser, dict[str, argparse.Argumen
 def _cmd_paper(argv: list[str]) -> int:
     from soccer_lab.papers import PAPERS
 
-    p, subs = _paper_parser()
+    p, subs = paper_parser()
     args, unknown = p.parse_known_args(argv)
     sub = subs[args.name]
     if unknown:
@@ -373,7 +375,10 @@ def _cmd_play(argv: list[str]) -> int:
     return play_main(argv)
 
 
-_COMMANDS = {
+#: The commands of ``soccer-env``, in the order ``soccer-env --help`` lists them: name ->
+#: (the function that runs it on the arguments after its name and returns the exit status,
+#: its one-line summary).
+COMMANDS: dict[str, tuple[Callable[[list[str]], int], str]] = {
     "demo": (_cmd_demo, "run the goalkeeper demo and write its video and figures"),
     "bench": (_cmd_bench, "measure environment step rates against bare pymunk"),
     "paper": (_cmd_paper, "reproduce a source paper's claims (tables and plots)"),
@@ -390,7 +395,7 @@ def parsers() -> dict[str, argparse.ArgumentParser]:
     from soccer_lab.bench import parser as bench_parser
     from soccer_lab.commands import ablation, evaluate, play, train
 
-    paper, papers = _paper_parser()
+    paper, papers = paper_parser()
     return {"demo": _demo_parser(), "bench": bench_parser(), "paper": paper,
             **{f"paper {name}": sub for name, sub in papers.items()},
             "train": train.parser(), "eval": evaluate.parser(), "ablation": ablation.parser(),
@@ -402,7 +407,7 @@ def _usage() -> str:
              "Robot-soccer environments (RoboCup SSL and humanoid): demo, benchmarks, "
              "training,", "evaluation and the source papers' reproductions.", "",
              "commands:"]
-    lines += [f"  {name:8s}  {help_}" for name, (_, help_) in _COMMANDS.items()]
+    lines += [f"  {name:8s}  {help_}" for name, (_, help_) in COMMANDS.items()]
     lines += ["", "options:", "  -h, --help     show this help and exit",
               "  -V, --version  print the version and exit", "",
               "run 'soccer-env <command> --help' for a command's options"]
@@ -419,15 +424,15 @@ def main(argv: list[str] | None = None) -> int:
     if not argv or argv[0] in ("-h", "--help"):
         print(_usage())
         return 0
-    if argv[0] not in _COMMANDS:
+    if argv[0] not in COMMANDS:
         from difflib import get_close_matches
 
-        close = get_close_matches(argv[0], list(_COMMANDS), n=1)
+        close = get_close_matches(argv[0], list(COMMANDS), n=1)
         guess = f" (did you mean {close[0]!r}?)" if close else ""
         print(f"soccer-env: unknown command {argv[0]!r}{guess}\n\n{_usage()}", file=sys.stderr)
         return 2
     try:
-        return _COMMANDS[argv[0]][0](argv[1:])
+        return COMMANDS[argv[0]][0](argv[1:])
     except BrokenPipeError:  # the reader went away (soccer-env list | head): stop quietly
         import os
 

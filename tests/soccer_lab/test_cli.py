@@ -12,7 +12,7 @@ import pytest
 
 from soccer_env import presets
 from soccer_env.perception import options
-from soccer_lab.cli import _COMMANDS, main
+from soccer_lab.cli import COMMANDS, main
 
 
 @pytest.mark.parametrize("flag", ["--version", "-V"])
@@ -25,10 +25,10 @@ def test_version(flag, capsys):
 def test_usage_lists_every_command(capsys):
     assert main(["--help"]) == 0
     text = capsys.readouterr().out
-    for name, (_, summary) in _COMMANDS.items():
+    for name, (_, summary) in COMMANDS.items():
         assert f"  {name:8s}  {summary}" in text
     assert "-V, --version" in text
-    assert _COMMANDS["play"][1] == "drive a robot with the keyboard against the scripted team"
+    assert COMMANDS["play"][1] == "drive a robot with the keyboard against the scripted team"
 
 
 def test_play_runs_the_play_command_module(monkeypatch):
@@ -122,5 +122,5 @@ def test_ruff_clean():
 
 def test_the_command_line_page_documents_every_command():
     page = (Path(__file__).resolve().parents[2] / "docs" / "guide" / "command-line.md").read_text()
-    for name in _COMMANDS:
+    for name in COMMANDS:
         assert f"`soccer-env {name}" in page, name

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from soccer_lab import extras
-from soccer_lab.cli import _COMMANDS, main
+from soccer_lab.cli import COMMANDS, main
 from soccer_lab.papers import PAPERS
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -33,7 +33,7 @@ def _requirement_names(specs: list[str]) -> set[str]:
 
 
 def test_every_command_and_paper_has_an_entry():
-    for name in _COMMANDS:
+    for name in COMMANDS:
         assert name in extras.REQUIREMENTS or name == "paper", name  # paper: per paper
     for name in PAPERS:
         assert f"paper {name}" in extras.REQUIREMENTS, name

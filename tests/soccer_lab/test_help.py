@@ -11,7 +11,7 @@ import pytest
 
 from soccer_env import presets
 from soccer_env.perception.options import BALL_FILTERS
-from soccer_lab.cli import _COMMANDS, _paper_parser, main, parsers
+from soccer_lab.cli import COMMANDS, main, paper_parser, parsers
 from soccer_lab.papers import PAPERS
 
 #: Options that have no default to state: what they name is only there when given.
@@ -35,7 +35,7 @@ def all_parsers() -> dict[str, argparse.ArgumentParser]:
 
 
 def test_every_command_but_play_has_a_parser(all_parsers):
-    assert set(_COMMANDS) - {"play"} <= set(all_parsers)
+    assert set(COMMANDS) - {"play"} <= set(all_parsers)
     assert {f"paper {name}" for name in PAPERS} <= set(all_parsers)
 
 
@@ -115,7 +115,7 @@ def test_paper_help_lists_every_paper_on_one_line_by_authors_and_year(capsys):
     ["paper", "following", "--episodes", "2"],
 ])
 def test_documented_paper_command_lines_still_parse(argv):
-    paper, _ = _paper_parser()
+    paper, _ = paper_parser()
     args = paper.parse_args(argv[1:])
     assert args.name == argv[1]
 
