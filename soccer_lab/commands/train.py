@@ -2,7 +2,8 @@
 or, with ``--backend rllib``, with RLlib on this machine or a Ray cluster
 (:mod:`soccer_lab.commands.train_rllib`).
 
-The options become a :class:`~agents.training.TrainConfig`; with ``--resume`` the rest of the
+The options (declared in :mod:`soccer_lab.commands.train_options`, which builds the parser)
+become a :class:`~agents.training.TrainConfig`; with ``--resume`` the rest of the
 configuration comes from the checkpoint's run folder (its ``config.json``) unless given here,
 and ``--steps`` (the total, the checkpoint's steps included) must exceed the checkpoint's
 step count. ``--resume`` of an RLlib checkpoint folder picks the rllib backend by itself.
@@ -11,7 +12,6 @@ step count. ``--resume`` of an RLlib checkpoint folder picks the rllib backend b
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import json
 import math
 import sys
@@ -19,11 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from agents.evaluation import GOALKEEPER_ID
-from agents.policies import algorithm_name
 from agents.training import (
-    CRITICS,
-    MATCH_ID,
-    OPPONENTS,
     RunRefused,
     TrainConfig,
     TrainingStopped,
@@ -32,182 +28,15 @@ from agents.training import (
     run_folder,
     train,
 )
-from agents.wrappers import ACTION_MAPS
-from soccer_env.perception.base import OBS_MODES
 from soccer_lab import extras
 from soccer_lab.cli_args import (
-    HelpFormatter,
-    add_env_arguments,
-    add_trust_argument,
     check_perception,
     env_kwargs_from_args,
     key_values,
-    sensor_preset,
 )
+from soccer_lab.commands.train_options import given_fields, parser, refuse_options
 
-__all__ = ["parser", "main"]
-
-#: Options that set a :class:`~agents.training.TrainConfig` field of the same meaning:
-#: (field, option's attribute).
-_FIELD_OPTIONS = (("env_id", "env"), ("algorithm", "algo"), ("total_steps", "steps"),
-                  ("n_envs", "n_envs"), ("n_workers", "workers"), ("seed", "seed"),
-                  ("out", "out"), ("checkpoint_every", "checkpoint_every"),
-                  ("eval_every", "eval_every"), ("eval_episodes", "eval_episodes"),
-                  ("learner", "learner"), ("actions", "actions"), ("opponent", "opponent"),
-                  ("frame_stack", "frame_stack"), ("critic", "critic"), ("batched", "batched"))
-
-#: The algorithms as the command line spells them.
-ALGORITHMS = ("ppo", "a2c", "sac", "td3", "ddpg", "recurrent-ppo")
-
-
-def _algorithm(text: str) -> str:
-    """``--algo``'s value in its canonical spelling (``ppo`` -> ``PPO``, ``recurrent-ppo`` ->
-    ``RECURRENTPPO``)."""
-    try:
-        return algorithm_name(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"invalid choice: {text!r} (choose from "
-                                         f"{', '.join(ALGORITHMS)})") from None
-
-
-def _default(name: str) -> Any:
-    """The default of :class:`~agents.training.TrainConfig` field ``name``."""
-    return next(f.default for f in dataclasses.fields(TrainConfig) if f.name == name)
-
-
-def parser() -> argparse.ArgumentParser:
-    """The options of ``soccer-env train``.
-
-    The options default to None so that ``--resume`` can tell what is given from what the
-    run's ``config.json`` sets; their help states :class:`~agents.training.TrainConfig`'s
-    defaults, which apply to a new run.
-    """
-    p = argparse.ArgumentParser(
-        prog="soccer-env train", formatter_class=HelpFormatter,
-        description="Train a policy with stable-baselines3 (the train extra) or with RLlib on "
-                    "this machine or a Ray cluster (--backend rllib, the rllib extra). The "
-                    "defaults below are a new run's; with --resume what is not given comes "
-                    "from the run's config.json.",
-        epilog="examples:\n"
-               "  soccer-env train --obs-mode perceived --perception ssl-2012 "
-               "--steps 2000000 --out runs/keeper\n"
-               "  soccer-env train --algo recurrent-ppo        # memory: an LSTM policy\n"
-               "  soccer-env train --frame-stack 4             # memory: the last 4 "
-               "observations\n"
-               "  soccer-env train --resume runs/keeper/final_model.zip --steps 3000000\n"
-               "  soccer-env train --backend rllib --num-env-runners 8 --address HEAD:6379")
-    p.add_argument("--backend", choices=("sb3", "rllib"), default=None,
-                   help="sb3: stable-baselines3 in this process and its subprocesses; rllib: "
-                        "RLlib's PPO, sampling on env runners that Ray spreads over the "
-                        "machines of a cluster (default: sb3, or rllib to resume an RLlib "
-                        "checkpoint)")
-    p.add_argument("--num-env-runners", type=int, default=None, metavar="N",
-                   help="rllib: env runners (Ray actors of one CPU each, placed on any node "
-                        "of the cluster; 0 samples in this process) (default: 2)")
-    p.add_argument("--address", default=None,
-                   help="rllib: join the running Ray cluster at ADDRESS (HEAD:6379 of `ray "
-                        "start --head --port=6379`, or auto) (default: start Ray on this "
-                        "machine)")
-    p.add_argument("--env", default=None, choices=(GOALKEEPER_ID, MATCH_ID),
-                   help=f"environment (default: {_default('env_id')})")
-    add_env_arguments(p)
-    p.add_argument("--algo", default=None, type=_algorithm,
-                   metavar="{" + ",".join(ALGORITHMS) + "}",
-                   help="algorithm; recurrent-ppo is sb3-contrib's RecurrentPPO with an LSTM "
-                        "policy (MlpLstmPolicy), whose memory carries the episode so far "
-                        f"(default: {_default('algorithm').lower()})")
-    p.add_argument("--steps", type=int, default=None,
-                   help="total environment steps; with --resume the total including the steps "
-                        "the checkpoint already trained, so it must exceed them (e.g. --resume "
-                        "model_1000000_steps.zip --steps 1500000 trains 500,000 more); rllib "
-                        "counts environment steps (match steps for the match), sb3 agent steps "
-                        f"(default: {_default('total_steps')})")
-    p.add_argument("--critic", choices=CRITICS, default=None,
-                   help="PPO and A2C on Goalkeeper-v0: shared (the critic reads the actor's "
-                        "observation) or privileged (the critic also reads the true state in "
-                        "training, the actor only the observation; the saved numpy policy is "
-                        f"the actor alone) (default: {_default('critic')})")
-    p.add_argument("--frame-stack", type=int, default=None, metavar="N",
-                   help="feed-forward algorithms, Goalkeeper-v0: the learner sees its last N "
-                        "observations concatenated, oldest first, the episode's first "
-                        "repeated to fill (1: the observation alone); the saved numpy policy "
-                        "keeps the history and acts on single observations "
-                        f"(default: {_default('frame_stack')})")
-    p.add_argument("--n-envs", type=int, default=None, metavar="N",
-                   help="parallel environments; rllib: per env runner "
-                        f"(default: {_default('n_envs')}; rllib: 8)")
-    p.add_argument("--workers", type=int, default=None, metavar="N",
-                   help="subprocesses stepping the environments (0: all in this process) "
-                        f"(default: {_default('n_workers')}; 0 with --batched)")
-    p.add_argument("--batched", action="store_true", default=None,
-                   help="step the environments as one batch (shared pymunk spaces). "
-                        "Goalkeeper-v0: the --n-envs environments in this process (native "
-                        "actions, every keeper and observation mode, each environment "
-                        "perceiving on its own). Match-v0: each process's matches, in this "
-                        "process or in each of --workers workers")
-    p.add_argument("--seed", type=int, default=None,
-                   help="seed of the environments and the learner "
-                        f"(default: {_default('seed')})")
-    p.add_argument("--out", default=None,
-                   help="run folder; one that holds another run is refused unless --force "
-                        f"(default: {_default('out')}; with --resume, the folder of the run "
-                        "it resumes)")
-    p.add_argument("--force", action="store_true",
-                   help="train into an --out that holds another run, deleting that run's "
-                        "files first (config, models, policies, statistics, checkpoints/, "
-                        "tb/; nothing else)")
-    p.add_argument("--hp", action="append", default=[], metavar="KEY=VALUE",
-                   help="algorithm hyperparameter (JSON value), repeatable, e.g. "
-                        "--hp learning_rate=1e-4 --hp policy_kwargs='{\"net_arch\": [64, 64]}' "
-                        "(policy_kwargs merge over the algorithm's defaults, e.g. "
-                        "recurrent-ppo's lstm_hidden_size 64); rllib: PPOConfig settings, "
-                        "e.g. --hp lr=1e-4 --hp train_batch_size_per_learner=8192 --hp "
-                        "model_config='{\"fcnet_hiddens\": [128, 128]}'")
-    p.add_argument("--checkpoint-every", type=int, default=None, metavar="STEPS",
-                   help="save a checkpoint (model and statistics) into checkpoints/ every "
-                        "STEPS steps (0: none) "
-                        f"(default: {_default('checkpoint_every')})")
-    p.add_argument("--eval-every", type=int, default=None, metavar="STEPS",
-                   help="sb3: evaluate on a fixed shot suite every STEPS steps and keep the "
-                        "best model as best_model.zip (0: never) "
-                        f"(default: {_default('eval_every')})")
-    p.add_argument("--eval-episodes", type=int, default=None, metavar="N",
-                   help="sb3: shots of each periodic evaluation "
-                        f"(default: {_default('eval_episodes')})")
-    p.add_argument("--eval-obs-mode", choices=OBS_MODES, default=None,
-                   help="sb3: evaluate (and select the best model) under this observation "
-                        "mode (default: the training environment's)")
-    p.add_argument("--eval-perception", type=sensor_preset, default=None, metavar="PRESET",
-                   help="sb3: evaluate under this sensor preset (as --perception) "
-                        "(default: the training environment's)")
-    p.add_argument("--actions", choices=tuple(ACTION_MAPS), default=None,
-                   help="keeper learner's actions: native (the robot's command), velocity "
-                        "(field-frame velocity and turn rate), target (where to stand, "
-                        "reached by a motion controller), guard (where to stand on the guard "
-                        "line), guard-residual (a correction to where the scripted keeper "
-                        "would stand on it) or ball-residual (a correction to the ball "
-                        "velocity the scripted keeper believes; SSL and humanoid keepers) "
-                        f"(default: {_default('actions')})")
-    p.add_argument("--learner", choices=("blue", "yellow", "both"), default=None,
-                   help="match: the learning team; rllib: both has one shared module play "
-                        "every robot, blue or yellow a module of that team against --opponent "
-                        f"(default: {_default('learner')}; rllib: both)")
-    p.add_argument("--opponent", default=None,
-                   help=f"match: {', '.join(OPPONENTS)} (self: a frozen copy of the learner, "
-                        "refreshed as it trains) or the path of a numpy policy file (.npz, "
-                        "e.g. a run's final_policy.npz); rllib: self (a frozen copy of the "
-                        "learning module, refreshed every 100,000 steps) or learning (the "
-                        f"other team learns a module of its own) (default: "
-                        f"{_default('opponent')}; rllib: self)")
-    p.add_argument("--resume", default=None, metavar="CHECKPOINT",
-                   help="continue from a checkpoint .zip, or a run's RLlib checkpoint folder "
-                        "(its final_checkpoint or checkpoints/checkpoint_<steps>_steps; "
-                        "selects --backend rllib); the rest of the configuration comes from "
-                        "its run's config.json unless given here")
-    p.add_argument("--no-progress", action="store_true",
-                   help="no progress bar (which needs tqdm and rich, of the train extra)")
-    add_trust_argument(p)
-    return p
+__all__ = ["parser", "main", "train_config"]
 
 
 def _resumed_fields(p: argparse.ArgumentParser, resume: str) -> dict[str, Any]:
@@ -228,9 +57,13 @@ def _resumed_fields(p: argparse.ArgumentParser, resume: str) -> dict[str, Any]:
     return base
 
 
-def _config(args: argparse.Namespace, base: dict[str, Any]) -> TrainConfig:
-    """The training configuration of the options over ``base`` (a resumed run's); raises
-    ``ValueError`` or ``TypeError`` for bad values."""
+def train_config(args: argparse.Namespace, base: dict[str, Any]) -> TrainConfig:
+    """The training configuration of the options ``args`` (of :func:`parser`) over ``base``
+    (a resumed run's configuration, or empty for a new run): the environment's options, the
+    evaluation's, ``--hp`` and every option of
+    :data:`~soccer_lab.commands.train_options.TRAIN_OPTIONS` that sets a field
+    (:func:`~soccer_lab.commands.train_options.given_fields`); raises ``ValueError`` or
+    ``TypeError`` for bad values."""
     env_kwargs = env_kwargs_from_args(args, base.get("env_kwargs"))
     eval_kwargs = base.get("eval_env_kwargs")
     if args.eval_obs_mode or args.eval_perception:
@@ -243,11 +76,8 @@ def _config(args: argparse.Namespace, base: dict[str, Any]) -> TrainConfig:
             eval_kwargs["perception"] = args.eval_perception
     hyper = {**base.get("hyperparams", {}), **key_values(args.hp, "--hp")}
     fields = {**base, "env_kwargs": env_kwargs, "hyperparams": hyper,
-              "eval_env_kwargs": eval_kwargs, "progress_bar": not args.no_progress}
-    for name, option in _FIELD_OPTIONS:
-        value = getattr(args, option)
-        if value is not None:
-            fields[name] = value
+              "eval_env_kwargs": eval_kwargs, "progress_bar": not args.no_progress,
+              **given_fields(args, "sb3")}
     if fields.get("batched") and args.workers is None and "n_workers" not in base and \
             fields.get("env_id", GOALKEEPER_ID) == GOALKEEPER_ID:
         fields["n_workers"] = 0  # the keeper's batch is one process
@@ -306,10 +136,7 @@ def main(argv: list[str] | None = None) -> int:
         return train_rllib.main(p, args, argv)
     if rllib_checkpoint:
         p.error(f"--resume {args.resume} is an RLlib checkpoint: resume it with --backend rllib")
-    for option, value in (("--num-env-runners", args.num_env_runners),
-                          ("--address", args.address)):
-        if value is not None:
-            p.error(f"{option} is for --backend rllib")
+    refuse_options(p, args, "sb3")
     # Before the configuration, whose checks read stable-baselines3's algorithms.
     extras.require("train")
     base = _resumed_fields(p, args.resume) if args.resume else {}
@@ -320,7 +147,7 @@ def main(argv: list[str] | None = None) -> int:
         extras.require("train progress bar", "train",
                        hint="or train without the progress bar: --no-progress")
     try:
-        cfg = _config(args, base)
+        cfg = train_config(args, base)
     except (ValueError, TypeError) as err:
         p.error(str(err))
     if args.resume:

@@ -38,31 +38,17 @@ from agents.evaluation import GOALKEEPER_ID
 from agents.training import MATCH_ID, RunRefused, TrainingStopped, run_folder
 from soccer_lab import extras
 from soccer_lab.cli_args import env_kwargs_from_args, key_values
+from soccer_lab.commands.train_options import TRAIN_OPTIONS, given_fields, refuse_options
 
 __all__ = ["main", "is_rllib_checkpoint", "REFUSED"]
 
 #: The options of ``soccer-env train`` that the RLlib backend refuses: (attribute, the
-#: option as given, why).
-REFUSED = (
-    ("workers", "--workers", "sets stable-baselines3's subprocesses; with --backend rllib "
-                             "use --num-env-runners"),
-    ("eval_every", "--eval-every", "is stable-baselines3's periodic evaluation, which the "
-                                   "rllib backend does not run (evaluate a policy with "
-                                   "soccer-env eval)"),
-    ("eval_episodes", "--eval-episodes", "is for the periodic evaluation of the sb3 backend"),
-    ("eval_obs_mode", "--eval-obs-mode", "is for the periodic evaluation of the sb3 backend"),
-    ("eval_perception", "--eval-perception", "is for the periodic evaluation of the sb3 "
-                                             "backend"),
-)
+#: option as given, why), from :data:`~soccer_lab.commands.train_options.TRAIN_OPTIONS`.
+REFUSED = tuple((o.dest, o.flag, o.refused["rllib"]) for o in TRAIN_OPTIONS
+                if "rllib" in o.refused)
 
 #: ``--opponent`` values of the RLlib backend.
 OPPONENTS = ("self", "learning")
-
-#: The configuration fields set by an option of the same meaning: (field, attribute).
-_FIELD_OPTIONS = (("env_id", "env"), ("total_steps", "steps"),
-                  ("num_env_runners", "num_env_runners"), ("n_envs", "n_envs"),
-                  ("seed", "seed"), ("out", "out"), ("checkpoint_every", "checkpoint_every"),
-                  ("actions", "actions"), ("frame_stack", "frame_stack"))
 
 
 def is_rllib_checkpoint(path: str | None) -> bool:
@@ -77,9 +63,7 @@ def _refuse_options(p: argparse.ArgumentParser, args: argparse.Namespace) -> Non
     if args.critic == "privileged":
         p.error("--critic privileged is stable-baselines3's asymmetric actor-critic; the rllib "
                 "backend trains RLlib's PPO module (a shared critic)")
-    for attr, option, why in REFUSED:
-        if getattr(args, attr) is not None:
-            p.error(f"{option} {why}")
+    refuse_options(p, args, "rllib")
 
 
 def _policy_mapping(p: argparse.ArgumentParser, args: argparse.Namespace, env_id: str,
@@ -135,11 +119,7 @@ def _config_fields(p: argparse.ArgumentParser, args: argparse.Namespace,
     except ValueError as err:
         p.error(str(err))
     fields = {**base, "env_kwargs": env_kwargs, "hyperparams": hyper,
-              "progress": not args.no_progress}
-    for name, option in _FIELD_OPTIONS:
-        value = getattr(args, option)
-        if value is not None:
-            fields[name] = value
+              "progress": not args.no_progress, **given_fields(args, "rllib")}
     env_id = fields.get("env_id", GOALKEEPER_ID)
     mapping = _policy_mapping(p, args, env_id, base)
     if base and mapping.get("policy_mapping", base.get("policy_mapping")) != base.get(

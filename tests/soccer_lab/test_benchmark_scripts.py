@@ -33,7 +33,7 @@ def test_every_recipe_is_a_valid_command(preset, tmp_path):
         train, evaluate = recipes.commands(preset, name, 1000, tmp_path)
         assert train[:2] == ["soccer-env", "train"]
         p = train_cmd.parser()
-        cfg = train_cmd._config(p.parse_args(train[2:]), {})
+        cfg = train_cmd.train_config(p.parse_args(train[2:]), {})
         assert cfg.total_steps == 1000 and cfg.seed == 0
         # The suite evaluation runs on the plain preset, with the recipe's observation.
         eargs = evaluate_cmd.parser().parse_args(evaluate[2:])

@@ -66,12 +66,12 @@ def test_train_states_the_configuration_defaults(all_parsers):
     import dataclasses
 
     from agents.training import TrainConfig
-    from soccer_lab.commands.train import _FIELD_OPTIONS
+    from soccer_lab.commands.train_options import FIELD_OPTIONS
 
     defaults = {f.name: f.default for f in dataclasses.fields(TrainConfig)}
     p = all_parsers["train"]
     by_dest = {a.dest: a for a in _options(p)}
-    for field, dest in _FIELD_OPTIONS:
+    for field, dest in FIELD_OPTIONS:
         if field in ("batched",):
             continue
         shown = str(defaults[field])
