@@ -46,6 +46,8 @@ def test_noise_models_bound_the_claim_and_leave_the_first_table_alone(tmp_path):
     prints the paper's figures, both readings of its 8.6 cm, and the answer for a team."""
     import numpy as np
 
+    from soccer_lab.papers.hough.simulation import evaluate
+
     res = hough.run(tmp_path, trials=1, seed=3, seeds=2)
     models = res["noise_models"]
     assert set(hough.NOISE_MODELS) <= set(models)
@@ -59,8 +61,8 @@ def test_noise_models_bound_the_claim_and_leave_the_first_table_alone(tmp_path):
     assert cam["best_single_m"] <= min(cam["single_m"])  # the mean of each seed's best
     assert models["recommendation"]["weighting"] in hough.MODEL_WEIGHTINGS
     rng = np.random.default_rng(3)
-    first = hough._evaluate("camera", 1, rng, pixel_sigma=2.0, pose_sigma=0.03,
-                            heading_sigma=np.radians(1.0), sway_sigma=np.radians(2.0))
+    first = evaluate("camera", 1, rng, pixel_sigma=2.0, pose_sigma=0.03,
+                     heading_sigma=np.radians(1.0), sway_sigma=np.radians(2.0))
     assert first == res["camera"]
     text = res["text"]
     for needed in ("| 118 | 87 |", "0.74", "0.52", "8.6 cm", "one robot alone",
@@ -79,7 +81,7 @@ def test_noise_model_settings_are_checked(tmp_path):
 def test_figure_legend_covers_no_data_and_the_title_names_the_geometry(tmp_path, monkeypatch):
     from soccer_env.render.plots import legend_overlaps, legends
 
-    figures = saved_figures(monkeypatch, hough)
+    figures = saved_figures(monkeypatch, hough.report)
     hough.run(tmp_path, trials=1, seeds=2)
     (fig,) = figures
     assert len(legends(fig)) == 1 and legend_overlaps(fig) == []
