@@ -11,7 +11,16 @@ from typing import Any
 
 import numpy as np
 
-from soccer_env.render.plots import pyplot, save_figure
+from soccer_env.render.plots import (
+    LABEL_SIZE,
+    TICK_SIZE,
+    TITLE_SIZE,
+    colour_key,
+    legend_beside,
+    pyplot,
+    save_figure,
+    style_key,
+)
 from soccer_lab.papers.following.episode import ROBOTS, VARIANTS
 from soccer_lab.papers.following.measures import (
     TURN_BINS,
@@ -269,74 +278,15 @@ def plot(eps: list[dict[str, Any]], res: dict[str, Any], wmax: float, path: Path
     colour; lines of the other scales dashed): ``wmax`` is the robot's top turn rate [rad/s]
     (the turn-rate bins are fractions of it) and ``robot`` the robot preset, named in the
     title."""
-    from matplotlib.colors import ListedColormap, to_rgb
-
-    from soccer_env.render.plots import (
-        LABEL_SIZE,
-        TICK_SIZE,
-        TITLE_SIZE,
-        colour_key,
-        legend_beside,
-        style_key,
-    )
-
     labels = eps[0]["labels"]
     ep_plot = _plotted(res)
-    kinds = list(dict.fromkeys(lab.rsplit(" x", 1)[0] for lab in labels))
-    scales = list(dict.fromkeys(lab.rsplit(" x", 1)[1] for lab in labels))
-    styles = ("-", "--", "-.", ":")
-    colours, dashes = {}, {}
-    for lab in labels:
-        kind, scale = lab.rsplit(" x", 1)
-        light = 0.5 * scales.index(scale) / max(len(scales) - 1, 1)
-        base = np.array(to_rgb(f"C{kinds.index(kind)}"))
-        colours[lab] = tuple(base + light * (1.0 - base))
-        dashes[lab] = styles[scales.index(scale) % len(styles)]
+    colours, dashes = _tracker_styles(labels)
     plt = pyplot()
     fig, (ax, rx, bx) = plt.subplots(1, 3, figsize=(18, 5.2), layout="constrained",
                                      gridspec_kw={"width_ratios": [1.25, 1.0, 0.9]})
-    t = ep_plot["rec"]["t"]
-    for lab in labels:
-        ax.plot(t, np.maximum(errors(ep_plot, lab)[0], 0.05), ls=dashes[lab],
-                color=colours[lab], lw=1.2)
-    ax.plot(t, ep_plot["rec"]["radius"], ":", color="k", lw=1.2)
-    ax.set_yscale("log")
-    ax.set_xlabel("time since the first frame [s]", fontsize=LABEL_SIZE)
-    ax.set_ylabel("pixel error of the tracked ball [px]", fontsize=LABEL_SIZE)
-    ax.set_title(f"Episode `{ep_plot['variant']}` #{ep_plot['index']}: pixel error and turn "
-                 "rate", fontsize=LABEL_SIZE)
-    ax2 = ax.twinx()
-    ax2.plot(t, ep_plot["rec"]["rotation_true"] / ep_plot["frame_dt"], color="0.55", lw=1.0)
-    ax2.set_ylabel("turn rate [rad/s] (grey line)", fontsize=LABEL_SIZE)
-    # Every episode, every tracker: the frames off target.
-    n = min(len(e["rec"]["t"]) for e in eps)
-    raster = np.zeros((len(eps) * len(labels), n))
-    for i, e in enumerate(eps):
-        for j, lab in enumerate(labels):
-            raster[i * len(labels) + j] = np.where(errors(e, lab)[1][:n], j + 1, 0)
-    rx.imshow(raster, aspect="auto", interpolation="nearest",
-              cmap=ListedColormap(["white", *(colours[lab] for lab in labels)]), vmin=0,
-              vmax=len(labels), extent=(0.0, n * ep_plot["frame_dt"], len(raster), 0))
-    for i in range(1, len(eps)):
-        rx.axhline(i * len(labels), color="0.7", lw=0.6)
-    rx.set_yticks([(i + 0.5) * len(labels) for i in range(len(eps))],
-                  [f"{e['variant']} #{e['index']}" for e in eps],
-                  fontsize=TICK_SIZE if len(eps) <= 24 else 7)
-    rx.set_xlabel("time since the first frame [s]", fontsize=LABEL_SIZE)
-    rx.set_ylabel("episode (one row per tracker, in legend order)", fontsize=LABEL_SIZE)
-    rx.set_title("Frames off target (coloured), every episode", fontsize=LABEL_SIZE)
-    xs = np.arange(len(TURN_BINS))
-    width = 0.8 / len(labels)
-    for j, lab in enumerate(labels):
-        vals = [b[f"{lab} off_target_rate"] for b in res["turn_bins"]["all"]]
-        bx.bar(xs + (j - 0.5 * (len(labels) - 1)) * width, np.nan_to_num(vals), width,
-               color=colours[lab], edgecolor="0.3", lw=0.4)
-    bx.set_xticks(xs, [f"{nm}\n{lo * wmax:.2f}-{hi * wmax:.2f} rad/s" if math.isfinite(hi)
-                       else f"{nm}\n>= {lo * wmax:.2f} rad/s" for nm, lo, hi in TURN_BINS])
-    bx.set_ylim(0, 1)
-    bx.set_xlabel("turn rate", fontsize=LABEL_SIZE)
-    bx.set_ylabel("share of frames off target", fontsize=LABEL_SIZE)
-    bx.set_title("Lost-track rate by turn rate, both variants", fontsize=LABEL_SIZE)
+    ax2 = _error_panel(ax, ep_plot, labels, colours, dashes)
+    _off_target_panel(rx, eps, labels, colours, ep_plot["frame_dt"])
+    _turn_rate_panel(bx, res, labels, colours, wmax)
     for a in (ax, ax2, rx, bx):
         a.tick_params(labelsize=TICK_SIZE)
     ax.grid(alpha=0.3)
@@ -358,3 +308,83 @@ def plot(eps: list[dict[str, Any]], res: dict[str, Any], wmax: float, path: Path
                        colour_key("frame off target", "0.35")],
                   title="lines and fills", below=first, handlelength=2.6)
     return save_figure(fig, path)
+
+
+def _tracker_styles(labels: list[str]) -> tuple[dict[str, Any], dict[str, str]]:
+    """Each tracker label's colour (its kind's hue, lighter for each further window scale)
+    and line style (one per window scale)."""
+    from matplotlib.colors import to_rgb
+
+    kinds = list(dict.fromkeys(lab.rsplit(" x", 1)[0] for lab in labels))
+    scales = list(dict.fromkeys(lab.rsplit(" x", 1)[1] for lab in labels))
+    styles = ("-", "--", "-.", ":")
+    colours, dashes = {}, {}
+    for lab in labels:
+        kind, scale = lab.rsplit(" x", 1)
+        light = 0.5 * scales.index(scale) / max(len(scales) - 1, 1)
+        base = np.array(to_rgb(f"C{kinds.index(kind)}"))
+        colours[lab] = tuple(base + light * (1.0 - base))
+        dashes[lab] = styles[scales.index(scale) % len(styles)]
+    return colours, dashes
+
+
+def _error_panel(ax: Any, ep_plot: dict[str, Any], labels: list[str],
+                 colours: dict[str, Any], dashes: dict[str, str]) -> Any:
+    """The plotted episode's pixel errors of every tracker and the ball's radius on ``ax``
+    (log scale), its turn rate on a twin axis, which is returned."""
+    t = ep_plot["rec"]["t"]
+    for lab in labels:
+        ax.plot(t, np.maximum(errors(ep_plot, lab)[0], 0.05), ls=dashes[lab],
+                color=colours[lab], lw=1.2)
+    ax.plot(t, ep_plot["rec"]["radius"], ":", color="k", lw=1.2)
+    ax.set_yscale("log")
+    ax.set_xlabel("time since the first frame [s]", fontsize=LABEL_SIZE)
+    ax.set_ylabel("pixel error of the tracked ball [px]", fontsize=LABEL_SIZE)
+    ax.set_title(f"Episode `{ep_plot['variant']}` #{ep_plot['index']}: pixel error and turn "
+                 "rate", fontsize=LABEL_SIZE)
+    ax2 = ax.twinx()
+    ax2.plot(t, ep_plot["rec"]["rotation_true"] / ep_plot["frame_dt"], color="0.55", lw=1.0)
+    ax2.set_ylabel("turn rate [rad/s] (grey line)", fontsize=LABEL_SIZE)
+    return ax2
+
+
+def _off_target_panel(rx: Any, eps: list[dict[str, Any]], labels: list[str],
+                      colours: dict[str, Any], frame_dt: float) -> None:
+    """Every episode, every tracker: its frames off target (one raster row per tracker, in
+    the tracker's colour) on ``rx``; ``frame_dt`` the frame period [s]."""
+    from matplotlib.colors import ListedColormap
+
+    n = min(len(e["rec"]["t"]) for e in eps)
+    raster = np.zeros((len(eps) * len(labels), n))
+    for i, e in enumerate(eps):
+        for j, lab in enumerate(labels):
+            raster[i * len(labels) + j] = np.where(errors(e, lab)[1][:n], j + 1, 0)
+    rx.imshow(raster, aspect="auto", interpolation="nearest",
+              cmap=ListedColormap(["white", *(colours[lab] for lab in labels)]), vmin=0,
+              vmax=len(labels), extent=(0.0, n * frame_dt, len(raster), 0))
+    for i in range(1, len(eps)):
+        rx.axhline(i * len(labels), color="0.7", lw=0.6)
+    rx.set_yticks([(i + 0.5) * len(labels) for i in range(len(eps))],
+                  [f"{e['variant']} #{e['index']}" for e in eps],
+                  fontsize=TICK_SIZE if len(eps) <= 24 else 7)
+    rx.set_xlabel("time since the first frame [s]", fontsize=LABEL_SIZE)
+    rx.set_ylabel("episode (one row per tracker, in legend order)", fontsize=LABEL_SIZE)
+    rx.set_title("Frames off target (coloured), every episode", fontsize=LABEL_SIZE)
+
+
+def _turn_rate_panel(bx: Any, res: dict[str, Any], labels: list[str],
+                     colours: dict[str, Any], wmax: float) -> None:
+    """Each tracker's share of frames off target per turn-rate bin, both variants, on ``bx``;
+    ``wmax`` the robot's top turn rate [rad/s]."""
+    xs = np.arange(len(TURN_BINS))
+    width = 0.8 / len(labels)
+    for j, lab in enumerate(labels):
+        vals = [b[f"{lab} off_target_rate"] for b in res["turn_bins"]["all"]]
+        bx.bar(xs + (j - 0.5 * (len(labels) - 1)) * width, np.nan_to_num(vals), width,
+               color=colours[lab], edgecolor="0.3", lw=0.4)
+    bx.set_xticks(xs, [f"{nm}\n{lo * wmax:.2f}-{hi * wmax:.2f} rad/s" if math.isfinite(hi)
+                       else f"{nm}\n>= {lo * wmax:.2f} rad/s" for nm, lo, hi in TURN_BINS])
+    bx.set_ylim(0, 1)
+    bx.set_xlabel("turn rate", fontsize=LABEL_SIZE)
+    bx.set_ylabel("share of frames off target", fontsize=LABEL_SIZE)
+    bx.set_title("Lost-track rate by turn rate, both variants", fontsize=LABEL_SIZE)
