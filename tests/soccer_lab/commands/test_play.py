@@ -332,7 +332,7 @@ def test_the_window_shows_the_environments_frame_with_robot_0_ringed_and_the_key
     try:
         game.reset(0)
         frame = game.env.render()
-        window = play._Window(pygame, game)
+        window = play.Window(pygame, game)
         window.draw(game, "READY")
         screen = pygame.surfarray.array3d(window.screen).swapaxes(0, 1)
         h, w = frame.shape[:2]
