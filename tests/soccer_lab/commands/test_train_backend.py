@@ -61,3 +61,29 @@ def test_missing_ray_names_the_extra(monkeypatch, capsys):
     assert err.startswith("soccer-env train --backend rllib needs the rllib extra: "
                           "pip install 'soccer-env[rllib]' (missing: ray")
     assert err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_the_option_table_sets_each_backends_fields():
+    """Each option of the table (:mod:`soccer_lab.commands.train_options`) names known
+    backends, one that sets a field for the sb3 backend names a ``TrainConfig`` field, and the
+    options given set their fields for the backends that take them, and only those."""
+    import dataclasses
+
+    from agents.training import TrainConfig
+    from soccer_lab.commands.train_options import (
+        BACKENDS,
+        TRAIN_OPTIONS,
+        given_fields,
+        parser,
+    )
+
+    fields = {f.name for f in dataclasses.fields(TrainConfig)}
+    for option in TRAIN_OPTIONS:
+        assert set(option.backends) <= set(BACKENDS) and set(option.refused) <= set(BACKENDS)
+        if option.field is not None and "sb3" in option.backends:
+            assert option.field in fields, option.flag
+    args = parser().parse_args(["--steps", "5", "--n-envs", "3", "--num-env-runners", "2",
+                                "--workers", "1"])
+    assert given_fields(args, "sb3") == {"total_steps": 5, "n_envs": 3, "n_workers": 1}
+    assert given_fields(args, "rllib") == {"total_steps": 5, "n_envs": 3,
+                                           "num_env_runners": 2}

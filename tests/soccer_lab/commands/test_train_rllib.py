@@ -66,3 +66,15 @@ def test_an_address_where_no_cluster_answers(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "no Ray cluster answers at 127.0.0.1:1" in err and "ray start --head" in err
     assert not (tmp_path / "run").exists()
+
+
+def test_the_options_rllib_takes_are_fields_of_its_configuration():
+    import dataclasses
+
+    from agents.rllib_runs import RllibTrainConfig
+    from soccer_lab.commands.train_options import TRAIN_OPTIONS
+
+    fields = {f.name for f in dataclasses.fields(RllibTrainConfig)}
+    for option in TRAIN_OPTIONS:
+        if option.field is not None and "rllib" in option.backends:
+            assert option.field in fields, option.flag
