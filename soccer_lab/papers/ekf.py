@@ -124,8 +124,8 @@ def steady_state_floor(sigma_xy: float = SIGMA, sigma_r: float = 0.1, cycle: flo
     kf = KalmanFilter(np.zeros(2), np.diag([sigma_xy**2, sigma_r**2]))
     for _ in range(10_000):  # the covariance's fixed point (the measurement values not used)
         before = kf.P
-        kf._predict(F, Q)
-        kf._update(np.zeros(1), H, R)
+        kf.predict(F, Q)
+        kf.update(np.zeros(1), H, R)
         if np.allclose(kf.P, before, rtol=1e-13, atol=0.0):
             break
     steady = kf.P
@@ -135,7 +135,7 @@ def steady_state_floor(sigma_xy: float = SIGMA, sigma_r: float = 0.1, cycle: flo
         # velocity noise accumulates as a random walk, its integral on the position.
         kf.P = steady
         for _ in range(int(round(a / cycle))):
-            kf._predict(F, Q)
+            kf.predict(F, Q)
         out[float(a)] = math.sqrt(2.0 * kf.P[0, 0])
     return out
 
