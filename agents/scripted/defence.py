@@ -1,12 +1,15 @@
 """The defenders of a scripted SSL team: lines between the ball and the own goal; each single
 and batched pair side by side.
 
-Defender ``rank`` of ``n_def`` stands in line ``rank // 3`` (:data:`~agents.scripted.roles.
-DEFENDERS_PER_LINE` per line), slot ``rank % 3``: on the line from the own goal's centre to
-the ball, ``max(defense_depth + r + 0.4, 0.45 d)`` from the goal plus 0.9 m per line (``d`` the
-ball's distance from the goal; never nearer the ball than 0.6 m nor nearer the goal than the
-defense area and 0.3 m), the slots of a line ``defender_spacing (1 + line)`` apart across it.
-A defender walks round the ball to its slot, keeps out of the own defense area, faces the ball
+Defender ``rank`` of ``n_def`` stands in line ``rank // 3`` (three per line:
+:data:`~agents.scripted.roles.DEFENDERS_PER_LINE`), slot ``rank % 3``. The line lies across
+the line from the own goal's centre to the ball, at
+
+    ``min(max(defense_depth + r + 0.4, 0.45 d) + 0.9 line, max(d - 0.6, defense_depth + 0.3))``
+
+from the goal centre (``d`` the ball's distance from it, ``r`` the robot radius, [m]), and the
+slots of a line are ``defender_spacing (1 + line)`` apart across it, centred on it. A
+defender walks round the ball to its slot, keeps out of the own defense area, faces the ball
 and clears it forward when it reaches its kicker while facing the opponent half.
 
 Positions are in the team frame [m], headings in radians, speeds in m/s.

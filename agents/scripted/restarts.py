@@ -285,16 +285,21 @@ class RestartPlay:
             tx = min(tx, -r.radius - MARGIN)
         if clear_kick:
             tx, ty = geo.clear_of(tx, ty, bx, by, keep)
-        corridor = kind == "placement" and not ours and o[g["game.target_set"]] > 0.5
-        if corridor:
-            gap = rules.placement_interference_distance + r.radius + MARGIN
-            qx, qy = o[g["game.target_x"]], o[g["game.target_y"]]
+        # The opponents' placement: the corridor from the ball to the designated position
+        # (qx, qy) and its half-width [m].
+        corridor = None
+        if kind == "placement" and not ours and o[g["game.target_set"]] > 0.5:
+            corridor = (o[g["game.target_x"]], o[g["game.target_y"]],
+                        rules.placement_interference_distance + r.radius + MARGIN)
+            qx, qy, gap = corridor
             tx, ty = geo.off_segment(tx, ty, bx, by, qx, qy, gap)
         tx, ty = geo.within_walls(tx, ty)
         # Inside the circle (or the placement's corridor): leave it; outside: go round it.
-        if corridor and geo.off_segment(px, py, bx, by, qx, qy, gap) != (px, py):
-            tx, ty = geo.off_segment(px, py, bx, by, qx, qy, gap + 0.05)
-            clear_kick = False  # leaving the corridor sideways leaves the circle too
+        if corridor is not None:
+            qx, qy, gap = corridor
+            if geo.off_segment(px, py, bx, by, qx, qy, gap) != (px, py):
+                tx, ty = geo.off_segment(px, py, bx, by, qx, qy, gap + 0.05)
+                clear_kick = False  # leaving the corridor sideways leaves the circle too
         if math.hypot(px - bx, py - by) < keep and clear_kick:
             tx, ty = geo.clear_of(px, py, bx, by, keep + 0.05)
         else:

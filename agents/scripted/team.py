@@ -97,9 +97,12 @@ class ScriptedTeam:
     * ``team.act_batch(obs)``: the same for ``M`` matches at once, ``(M, n, obs_dim)`` to
       ``(M, n, 6)``, computed on whole arrays.
 
-    Its parts, each with one job: :attr:`view` (:class:`~agents.scripted.view.
-    ObservationView`), :attr:`geometry`, :attr:`roles`, :attr:`open_play` (with the attack,
-    the defence and :attr:`keeper`) and, with the game flow, :attr:`restarts`.
+    Its parts, each with one job: ``view`` (:class:`~agents.scripted.view.ObservationView`),
+    ``geometry`` (:class:`~agents.scripted.geometry.TeamGeometry`), ``roles``
+    (:class:`~agents.scripted.roles.Roles`), ``open_play``
+    (:class:`~agents.scripted.open_play.OpenPlay`, with the attack, the defence and the
+    ``keeper``) and, with the game flow, ``restarts``
+    (:class:`~agents.scripted.restarts.RestartPlay`; else None).
     """
 
     def __init__(self, field: FieldSpec, ball: BallSpec, robot: SSLRobotSpec,
