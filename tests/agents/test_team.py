@@ -4,13 +4,15 @@ its batched actions are its actions."""
 from __future__ import annotations
 
 import math
+import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import soccer_env
-from agents.team import ScriptedTeam
+from agents.scripted import ScriptedTeam
 from soccer_env.envs.keeper import (
     ScriptedGoalkeeper,
     drive_command,
@@ -556,7 +558,7 @@ def test_inexact_act_batch_uses_numpys_hypot_and_agrees_to_float32():
     env = soccer_env.parallel_env(blue=2, yellow=2)
     exact = ScriptedTeam.for_env(env, "yellow")
     fast = ScriptedTeam.for_env(env, "yellow", exact=False)
-    assert fast._hypot is np.hypot and fast.keeper.hypot is np.hypot
+    assert fast.hypot is np.hypot and fast.keeper.hypot is np.hypot
     rng = np.random.default_rng(5)
     obs, _ = env.reset(seed=5)
     rows = []
@@ -565,3 +567,23 @@ def test_inexact_act_batch_uses_numpys_hypot_and_agrees_to_float32():
         obs, *_ = env.step({a: rng.uniform(-1, 1, 6) for a in env.possible_agents})
     batch = np.stack(rows)
     np.testing.assert_allclose(fast.act_batch(batch), exact.act_batch(batch), atol=1e-6)
+
+
+def test_the_scripted_package_imports_without_the_learning_libraries():
+    """agents.scripted is the numpy-only layer of agents: in a fresh interpreter where
+    stable-baselines3, torch and Ray cannot be imported, it imports and plays."""
+    code = ("import sys\n"
+            "class Block:\n"
+            "    def find_spec(self, name, path=None, target=None):\n"
+            "        if name.split('.')[0] in ('stable_baselines3', 'torch', 'ray'):\n"
+            "            raise ModuleNotFoundError(name)\n"
+            "sys.meta_path.insert(0, Block())\n"
+            "import soccer_env\n"
+            "from agents.scripted import HumanoidTeam, ScriptedTeam, team_residual_params\n"
+            "env = soccer_env.parallel_env(blue=2, yellow=2)\n"
+            "obs, _ = env.reset(seed=0)\n"
+            "print(sorted(ScriptedTeam.for_env(env, 'blue')(obs)))\n")
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         cwd=Path(__file__).resolve().parents[2], timeout=120)
+    assert res.returncode == 0, res.stderr
+    assert res.stdout == "['blue_0', 'blue_1']\n"

@@ -1,4 +1,4 @@
-"""The "team-residual" map (agents.team_residual): an action of 0 plays the scripted team
+"""The "team-residual" map (agents.scripted.residual): an action of 0 plays the scripted team
 exactly, the map's bounds and switches, a numpy policy saved with the map acts alone on the
 plain match, training through the VecEnv wrapper hands the map to self-play copies, and bad
 input is refused with the argument named."""
@@ -10,8 +10,13 @@ import soccer_env
 from agents.matches import Side, head_to_head, team_policy
 from agents.multiagent import SelfPlayCallback, make_match_vec_env
 from agents.policies import NumpyPolicy
-from agents.team import ScriptedTeam
-from agents.team_residual import team_residual_command, team_residual_params
+from agents.scripted import (
+    ScriptedTeam,
+    residual_command,
+    scripted_team_from_params,
+    team_residual_command,
+    team_residual_params,
+)
 from agents.team_residual_vec_env import TeamResidualVecEnv
 
 KWARGS = {"blue": 2, "yellow": 2, "match_duration": 6.0, "control_dt": 1.0 / 30.0}
@@ -68,6 +73,26 @@ def test_switches_and_bounds():
     np.testing.assert_array_equal(full, on)
     down = team_residual_command(rows, -np.ones((2, 6)), params)
     assert np.all(down >= -1.0) and np.all(down[:, 3:] == -1.0)
+
+
+def test_the_team_rebuilt_once_gives_the_map():
+    """scripted_team_from_params rebuilds the scripted team from the params alone (the same
+    team for the same params), and residual_command with it is team_residual_command."""
+    env = soccer_env.parallel_env(**KWARGS)
+    obs, _ = env.reset(seed=2)
+    params = team_residual_params(env, "yellow", residual=0.5)
+    team = scripted_team_from_params(params)
+    assert isinstance(team, ScriptedTeam) and team.team_size == 2
+    assert scripted_team_from_params(dict(params)) is team
+    rows = np.stack([obs["yellow_0"], obs["yellow_1"]])
+    np.testing.assert_array_equal(team.act(rows),
+                                  ScriptedTeam.for_env(env, "yellow").act(rows))
+    act = np.random.default_rng(1).uniform(-1.0, 1.0, (2, 6))
+    np.testing.assert_array_equal(residual_command(team, 0.5, rows, act),
+                                  team_residual_command(rows, act, params))
+    env.close()
+    with pytest.raises(ValueError, match=r"params lack \['team_size'\]"):
+        scripted_team_from_params({k: v for k, v in params.items() if k != "team_size"})
 
 
 def test_a_saved_team_acts_alone_on_the_plain_match(tmp_path):

@@ -1,0 +1,142 @@
+"""A learned correction to the scripted SSL team: the action map of the shipped match team.
+
+A team trained from scratch in the match has to learn to reach the ball, turn with it, aim and
+kick before it can learn anything about playing against opponents; with the scripted team's
+keeper in goal, goals are rare, and the learning signal is thin. Residual policy learning
+(Silver et al. 2018, "Residual policy learning", arXiv:1812.06298; Johannink et al. 2019,
+"Residual reinforcement learning for robot control", ICRA) starts the learner from a
+controller that already plays: the robot's command is the scripted team's command
+(:class:`~agents.scripted.team.ScriptedTeam`, from the same observation) plus the learner's
+correction,
+
+    ``u = clip(u_s + a * residual, -1, 1)``, per entry of ``(vx, vy, omega, kick, chip,
+    dribble)``,
+
+with ``a`` the learner's action in ``[-1, 1]^6``. The scripted team's "off" of a switch
+(kick ``0``, chip and dribbler ``-1``) is first moved to ``-1``, so that an action of ``0``
+plays the scripted team exactly and switching the kicker, the chip or the dribbler on takes
+a correction of more than ``+1`` (``residual = 1`` lets the learner override every entry).
+
+The map reads the robot's number in its team from the row's place in the batch: the scripted
+team's roles depend on it (robot 0 keeps goal), and an observation does not carry it. Rows
+come as whole teams, robots in order (``(M * team_size, obs_dim)``, match after match), as
+:class:`~agents.multiagent.MatchVecEnv` lays out a team's entries and as
+:func:`agents.matches.team_policy` calls a team's policy; so a team that plays through the map
+needs all its robots on the field (no game flow, whose cards send robots off).
+
+:func:`team_residual_params` records what rebuilds the scripted team (the specs as numbers, the
+observation's entry names, the team size), so a saved :class:`~agents.policies.NumpyPolicy`
+with ``action_map={"kind": "team-residual", "params": ...}`` acts on the plain match without
+the environment it was trained in (:func:`team_residual_command`). A caller that applies the
+map at every step rebuilds the team once (:func:`scripted_team_from_params`) and calls
+:func:`residual_command` with it, as :class:`~agents.team_residual_vec_env.TeamResidualVecEnv`
+does in training.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from collections.abc import Mapping
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+
+from agents.scripted.team import TEAMS, ScriptedTeam
+from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
+
+__all__ = ["TEAM_RESIDUAL", "team_residual_params", "team_residual_command",
+           "scripted_team_from_params", "residual_command"]
+
+#: The largest correction of every command entry (1: the learner can override the scripted
+#: command entirely).
+TEAM_RESIDUAL = 1.0
+
+#: The command entries that are switches (on when ``> 0``): kick, chip, dribble.
+_SWITCHES = (3, 4, 5)
+#: The keys of the map's params.
+_PARAMS = ("team_size", "residual", "names", "field", "ball", "robot")
+
+
+def team_residual_params(env: Any, team: str = "blue", residual: float = TEAM_RESIDUAL
+                         ) -> dict[str, Any]:
+    """The constants of the ``"team-residual"`` map for ``team`` of the match ``env`` (possibly
+    wrapped): the field, ball and robot specs as numbers, the observation's entry names, the
+    team size and ``residual``. Only SSL teams without the game flow."""
+    u = getattr(env, "unwrapped", env)
+    if team not in TEAMS:
+        raise ValueError(f"team must be one of {list(TEAMS)}, got {team!r}")
+    kind = u.team_specs[TEAMS.index(team)].kind
+    if kind != "ssl":
+        raise ValueError(f"the 'team-residual' map corrects the scripted SSL team; the {team} "
+                         f"team's robots are {kind!r}")
+    if getattr(u, "game_rules", None) is not None:
+        raise ValueError("the 'team-residual' map needs every robot of the team on the field: "
+                         "play it without the game flow (game=None)")
+    if not (np.isfinite(residual) and 0.0 < residual <= 2.0):
+        raise ValueError(f"residual must be in (0, 2], got {residual!r}")
+    scripted = ScriptedTeam.for_env(u, team)
+    return {"team_size": scripted.team_size, "residual": float(residual),
+            "names": list(u.builder.names_for(team)),
+            "field": dataclasses.asdict(scripted.field),
+            "ball": dataclasses.asdict(scripted.ball), "robot": dataclasses.asdict(scripted.robot)}
+
+
+def scripted_team_from_params(params: Mapping[str, Any]) -> ScriptedTeam:
+    """The scripted team of ``"team-residual"`` params (:func:`team_residual_params`),
+    rebuilt from them alone; the last few are kept, keyed by the params' sorted JSON.
+
+    Raises:
+        ValueError: params lacking one of their keys.
+    """
+    return _team_of(json.dumps(dict(params), sort_keys=True))
+
+
+@lru_cache(maxsize=8)
+def _team_of(key: str) -> ScriptedTeam:
+    """:func:`scripted_team_from_params` of the params as sorted JSON."""
+    params = json.loads(key)
+    missing = [k for k in _PARAMS if k not in params]
+    if missing:
+        raise ValueError(f"the 'team-residual' map's params lack {missing} (see "
+                         "team_residual_params)")
+
+    def spec(cls: type, d: Mapping[str, Any]) -> Any:
+        d = {k: tuple(v) if isinstance(v, list) else v for k, v in d.items()}
+        return cls(**d)
+
+    return ScriptedTeam(spec(FieldSpec, params["field"]), spec(BallSpec, params["ball"]),
+                        spec(SSLRobotSpec, params["robot"]), params["names"],
+                        int(params["team_size"]))
+
+
+def team_residual_command(obs: np.ndarray, act: np.ndarray, params: Mapping[str, Any]
+                          ) -> np.ndarray:
+    """The ``"team-residual"`` map: native commands ``(n, 6)`` float32 for observations
+    ``(n, obs_dim)`` and actions ``(n, 6)`` of whole teams, robots in order (``n`` a multiple
+    of the team size): ``clip(u_s + a * residual, -1, 1)`` with ``u_s`` the scripted team's
+    command, its switches' "off" moved to ``-1`` (see the module docstring)."""
+    return residual_command(scripted_team_from_params(params), float(params["residual"]),
+                            obs, act)
+
+
+def residual_command(team: ScriptedTeam, residual: float, obs: np.ndarray, act: np.ndarray
+                     ) -> np.ndarray:
+    """:func:`team_residual_command` with the scripted team already rebuilt
+    (:func:`scripted_team_from_params`) and its ``residual`` read from the params."""
+    obs = np.asarray(obs)
+    act = np.clip(np.asarray(act, dtype=np.float64), -1.0, 1.0)
+    if obs.ndim != 2 or act.shape != (len(obs), 6):
+        raise ValueError(f"the 'team-residual' map takes observations (n, obs_dim) and actions "
+                         f"(n, 6) of whole teams, got {obs.shape} and {act.shape}")
+    size = team.team_size
+    if len(obs) % size:
+        raise ValueError(f"the 'team-residual' map acts on whole teams of {size} robots, in "
+                         f"order (its roles depend on the robot's number); got {len(obs)} "
+                         "rows: a team with a robot off the field cannot play through it")
+    base = team.act_batch(obs.reshape(-1, size, obs.shape[1])).reshape(-1, 6)
+    base = base.astype(np.float64)
+    switches = list(_SWITCHES)
+    base[:, switches] = np.where(base[:, switches] > 0.0, base[:, switches], -1.0)
+    return np.clip(base + act * residual, -1.0, 1.0).astype(np.float32)
