@@ -45,7 +45,6 @@ from typing import Any
 from agents import ablation_report
 from agents.ablation_report import write_outputs
 from agents.evaluation import (
-    GOALKEEPER_ID,
     EvalResult,
     describe_policy,
     evaluate,
@@ -54,6 +53,7 @@ from agents.evaluation import (
     wilson,
 )
 from estimators.registry import Registry
+from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.perception.options import BALL_FILTERS
 from soccer_env.presets.sensors import HEAD_CAMERAS, VISION

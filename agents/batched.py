@@ -30,14 +30,13 @@ from agents.multiagent import MatchVecEnv
 from agents.team import TEAMS
 from soccer_env.envs.batched import GoalkeeperVectorEnv, ShootoutVectorEnv
 from soccer_env.envs.batched_match import MatchBatch
-from soccer_env.envs.registration import GYMNASIUM
+from soccer_env.envs.registration import GOALKEEPER_ID, GYMNASIUM, SHOOTOUT_ID
 
 __all__ = ["BatchedVecEnv", "BatchedMatchVecEnv", "BATCHED_TASKS"]
 
 
 #: The batched single-agent tasks by id.
-BATCHED_TASKS = {"soccer_env/Goalkeeper-v0": GoalkeeperVectorEnv,
-                 "soccer_env/Shootout-v0": ShootoutVectorEnv}
+BATCHED_TASKS = {GOALKEEPER_ID: GoalkeeperVectorEnv, SHOOTOUT_ID: ShootoutVectorEnv}
 
 
 class BatchedVecEnv(VecEnv):
@@ -55,7 +54,7 @@ class BatchedVecEnv(VecEnv):
 
     def __init__(self, num_envs: int = 16, env_kwargs: dict[str, Any] | None = None,
                  max_episode_steps: int | None = None,
-                 env_id: str = "soccer_env/Goalkeeper-v0") -> None:
+                 env_id: str = GOALKEEPER_ID) -> None:
         if env_id not in BATCHED_TASKS:
             raise ValueError(f"env_id must be one of {list(BATCHED_TASKS)}, got {env_id!r}")
         cls = BATCHED_TASKS[env_id]

@@ -29,12 +29,11 @@ import gymnasium as gym
 
 import soccer_env  # noqa: F401  (registers the environments)
 from agents.policies import make_policy, reset_policy
+from soccer_env.envs.registration import GOALKEEPER_ID
 
 __all__ = ["wilson", "EvalResult", "evaluate", "record_video", "process_context",
            "process_pool", "map_jobs", "resolve_workers", "describe_policy",
-           "ignore_interrupts", "GOALKEEPER_ID", "check_full_infos"]
-
-GOALKEEPER_ID = "soccer_env/Goalkeeper-v0"
+           "ignore_interrupts", "check_full_infos"]
 
 
 def check_full_infos(env_kwargs: Mapping[str, Any] | None, where: str) -> None:

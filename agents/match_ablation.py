@@ -35,12 +35,12 @@ from agents.ablation import DEFAULT_HUMANOID, EstimatorConfig, parse_names, robo
 from agents.ablation_report import write_files
 from agents.evaluation import describe_policy, resolve_workers
 from agents.matches import HeadToHead, Side, match_jobs, run_match_jobs
+from soccer_env.envs.registration import MATCH_ID
 
-__all__ = ["MATCH_ID", "DEFAULT_PAIRS", "DEFAULT_MATCH_PRESETS", "DEFAULT_TEAM_SIZE",
+__all__ = ["DEFAULT_PAIRS", "DEFAULT_MATCH_PRESETS", "DEFAULT_TEAM_SIZE",
            "DEFAULT_DURATION", "DEFAULT_MATCHES", "MatchAblationResult", "run_match_ablation",
            "parse_pairs", "write_outputs", "plot", "figure"]
 
-MATCH_ID = "soccer_env/Match-v0"
 #: The pairs played unless told otherwise, per robot kind: the paper's EKF against raw
 #: detections and against the KF without latency compensation; a humanoid team's Hough
 #: fusion with MFBPF tracking against each robot's own sightings.

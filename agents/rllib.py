@@ -34,7 +34,7 @@ The match's agents map to RLlib modules (networks) in one of :data:`POLICY_MAPPI
 
     from agents.rllib import ppo_config
 
-    config = ppo_config("soccer_env/Match-v0", {"blue": 2, "yellow": 2, "max_cycles": 600},
+    config = ppo_config(MATCH_ID, {"blue": 2, "yellow": 2, "max_cycles": 600},
                         policy_mapping="self-play", num_env_runners=4)
     algo = config.build_algo()
     for _ in range(100):
@@ -59,13 +59,12 @@ from ray.rllib.algorithms.ppo import PPOConfig
 from ray.rllib.callbacks.callbacks import RLlibCallback
 from ray.rllib.env.wrappers.pettingzoo_env import ParallelPettingZooEnv
 
-from agents.evaluation import GOALKEEPER_ID
 from agents.team import TEAMS
-from agents.training import MATCH_ID
 from agents.wrappers import ACTION_MAPS, wrap_learner
 from estimators.registry import Registry
+from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 
-__all__ = ["MATCH_ID", "GOALKEEPER_ID", "ENV_IDS", "TEAMS", "KEEPER_INFOS", "MATCH_INFOS",
+__all__ = ["ENV_IDS", "KEEPER_INFOS", "MATCH_INFOS",
            "POLICY_MAPPINGS", "DEFAULT_HYPERPARAMS", "register_envs", "keeper_env", "match_env",
            "MatchMultiAgentEnv", "MatchPolicies", "match_policies", "ppo_config",
            "apply_hyperparams", "hyperparameter_names", "SelfPlayCallback", "self_play_callback",

@@ -48,20 +48,19 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from agents.evaluation import GOALKEEPER_ID
 from agents.model_files import TRUST_HELP, UnsafeFileError
 from agents.rllib import (
     ENV_IDS,
-    MATCH_ID,
     POLICY_MAPPINGS,
-    TEAMS,
     hyperparameter_names,
     keeper_env,
     match_policies,
     ppo_config,
 )
+from agents.team import TEAMS
 from agents.training import RunRefused, TrainingStopped, check_counts, run_files, run_folder
 from agents.wrappers import ACTION_MAPS
+from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_env.validation import check_fields
 
 __all__ = ["RllibTrainConfig", "train", "check_env_kwargs", "sign_checkpoint",

@@ -58,7 +58,7 @@ from typing import Any
 
 import numpy as np
 
-from agents.evaluation import GOALKEEPER_ID, check_full_infos, evaluate
+from agents.evaluation import check_full_infos, evaluate
 from agents.model_files import save_vecnormalize, vecnormalize_on
 from agents.policies import (
     NumpyPolicy,
@@ -68,11 +68,12 @@ from agents.policies import (
     vecnormalize_path,
 )
 from agents.wrappers import ACTION_MAPS, wrap_actions, wrap_learner
+from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_env.validation import check_fields
 
 __all__ = ["TrainConfig", "train", "check_env_kwargs", "check_counts", "make_vec_env",
            "EVAL_SEED_START",
-           "MATCH_ID", "DEFAULT_HYPERPARAMS", "rollout_timer", "goalkeeper_env_fn",
+           "DEFAULT_HYPERPARAMS", "rollout_timer", "goalkeeper_env_fn",
            "checkpoint_steps", "CRITICS", "TrainingStopped", "RunRefused", "RUN_FILES",
            "run_files", "run_folder", "OPPONENTS", "merged_hyperparams"]
 
@@ -121,8 +122,6 @@ CRITICS = ("shared", "privileged")
 
 #: First seed of the shots used for model selection during training.
 EVAL_SEED_START = 1_000_000
-#: The match's registry id (PettingZoo registry), accepted as ``env_id``.
-MATCH_ID = "soccer_env/Match-v0"
 
 #: Per-algorithm defaults, tuned on Goalkeeper-v0 only as far as "learns in minutes". A
 #: configuration's ``policy_kwargs`` are merged key by key over the defaults' ones.

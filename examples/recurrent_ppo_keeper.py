@@ -25,13 +25,14 @@ from stable_baselines3.common.vec_env import VecNormalize
 
 import soccer_env  # noqa: F401  (registers the environments)
 from agents.wrappers import GuardActions
+from soccer_env.envs.registration import GOALKEEPER_ID
 
 ENV_KWARGS = {"obs_mode": "perceived", "perception": "ssl-2012", "control_dt": 0.04}
 
 
 def main(tiny: bool) -> None:
     torch.set_num_threads(1)
-    venv = make_vec_env("soccer_env/Goalkeeper-v0", n_envs=2 if tiny else 16, seed=0,
+    venv = make_vec_env(GOALKEEPER_ID, n_envs=2 if tiny else 16, seed=0,
                         env_kwargs={**ENV_KWARGS, "shaping": {"intercept": 2.0}},
                         wrapper_class=GuardActions)
     venv = VecNormalize(venv, norm_obs=True, norm_reward=False)
@@ -45,7 +46,7 @@ def main(tiny: bool) -> None:
 
     # Evaluate without shaping, the LSTM's state carried from step to step and reset at each
     # episode's start.
-    env = GuardActions(gym.make("soccer_env/Goalkeeper-v0", **ENV_KWARGS))
+    env = GuardActions(gym.make(GOALKEEPER_ID, **ENV_KWARGS))
     episodes, saves = 2 if tiny else 100, 0
     for seed in range(episodes):
         obs, info = env.reset(seed=seed)

@@ -22,7 +22,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-ENV_ID = "soccer_env/Goalkeeper-v0"
+from soccer_env.envs.registration import GOALKEEPER_ID
+
+ENV_ID = GOALKEEPER_ID
 HYPERPARAMS = Path(__file__).resolve().parent.parent / "hyperparams" / "ppo.yml"
 PERCEIVED = ["obs_mode:'perceived'", "perception:'ssl-2012'", "control_dt:0.04",
              "shaping:{'intercept':2.0}"]

@@ -27,7 +27,8 @@ from pathlib import Path
 import ray
 from ray.rllib.algorithms.algorithm import Algorithm
 
-from agents.rllib import MATCH_ID, ppo_config
+from agents.rllib import ppo_config
+from soccer_env.envs.registration import MATCH_ID
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -39,6 +39,7 @@ import numpy as np
 import pymunk
 
 import soccer_env  # noqa: F401  (registers the environments)
+from soccer_env.envs.registration import GOALKEEPER_ID
 
 __all__ = ["run_benchmarks", "bench_batched", "bench_frames", "format_table", "REFERENCE",
            "PERCEIVED_PRESETS", "parser", "main", "keeper_save_rates", "format_save_rates",
@@ -101,7 +102,7 @@ def _goalkeeper_runner(steps: int, seed: int = 0, obs_mode: str = "truth",
                        perception: str | None = None, robot: str = "ssl"):
     """A closure stepping ``gymnasium.make("soccer_env/Goalkeeper-v0")`` ``steps`` times with
     pre-drawn random actions (resetting when episodes end), and its environment."""
-    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode, perception=perception,
+    env = gym.make(GOALKEEPER_ID, obs_mode=obs_mode, perception=perception,
                    robot=robot)
     actions = _actions(np.random.default_rng(seed), (steps,), robot).astype(np.float32)
     env.reset(seed=seed)
@@ -243,7 +244,7 @@ def bench_batched(batch: int, steps: int, repeats: int, seed: int = 0) -> dict[s
     from agents.multiagent import make_match_vec_env
 
     rng = np.random.default_rng(seed)
-    vec = gym.make_vec("soccer_env/Goalkeeper-v0", num_envs=batch,
+    vec = gym.make_vec(GOALKEEPER_ID, num_envs=batch,
                        vectorization_mode="vector_entry_point")
     vec.reset(seed=seed)
     n_steps = max(20, steps // batch)

@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Any
 
 from agents.policies import NumpyPolicy
+from soccer_env.envs.registration import GOALKEEPER_ID
 
 __all__ = ["BASELINES", "load_baseline", "baseline_path", "baseline_env_kwargs",
            "make_baseline_env", "SSL_TEAM_2V2", "SSL_TEAM_CHECKPOINTS", "load_team"]
@@ -106,4 +107,4 @@ def make_baseline_env(name: str, **overrides: Any):
 
     import soccer_env  # noqa: F401
 
-    return gym.make("soccer_env/Goalkeeper-v0", **{**baseline_env_kwargs(name), **overrides})
+    return gym.make(GOALKEEPER_ID, **{**baseline_env_kwargs(name), **overrides})

@@ -23,18 +23,17 @@ from agents.ablation import (
     run_ablation,
     write_outputs,
 )
-from agents.evaluation import GOALKEEPER_ID
 from agents.match_ablation import (
     DEFAULT_DURATION,
     DEFAULT_MATCH_PRESETS,
     DEFAULT_MATCHES,
     DEFAULT_PAIRS,
     DEFAULT_TEAM_SIZE,
-    MATCH_ID,
     parse_pairs,
     run_match_ablation,
 )
 from agents.match_ablation import write_outputs as write_match_outputs
+from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_env.presets import HEAD_CAMERAS, ROBOTS, VISION
 from soccer_lab import extras
 from soccer_lab.cli_args import HelpFormatter, add_trust_argument, key_values, preset_kind

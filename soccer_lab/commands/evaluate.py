@@ -10,8 +10,9 @@ import os
 import sys
 from pathlib import Path
 
-from agents.evaluation import GOALKEEPER_ID, evaluate, record_video
+from agents.evaluation import evaluate, record_video
 from agents.policies import make_policy
+from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_lab import extras
 from soccer_lab.cli_args import (
     HelpFormatter,

@@ -38,6 +38,7 @@ from typing import Any
 
 import numpy as np
 
+from soccer_env.envs.registration import GOALKEEPER_ID, SHOOTOUT_ID
 from soccer_env.render import wrap_text
 from soccer_lab.cli_args import (
     DEFAULT_ROBOT,
@@ -58,7 +59,7 @@ TASKS = {
 }
 
 #: Environment ids of the single-robot tasks.
-_ENV_IDS = {"shootout": "soccer_env/Shootout-v0", "keeper": "soccer_env/Goalkeeper-v0"}
+_ENV_IDS = {"shootout": SHOOTOUT_ID, "keeper": GOALKEEPER_ID}
 
 #: The turn rate of Q and E [rad/s], or the robot's top turn rate if that is lower: an SSL
 #: robot's 10 rad/s would turn it 1 rad in a 0.1 s tap.

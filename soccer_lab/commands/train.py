@@ -18,11 +18,9 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from agents.evaluation import GOALKEEPER_ID
 from agents.policies import algorithm_name
 from agents.training import (
     CRITICS,
-    MATCH_ID,
     OPPONENTS,
     RunRefused,
     TrainConfig,
@@ -33,6 +31,7 @@ from agents.training import (
     train,
 )
 from agents.wrappers import ACTION_MAPS
+from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_env.perception.base import OBS_MODES
 from soccer_lab import extras
 from soccer_lab.cli_args import (

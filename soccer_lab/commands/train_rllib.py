@@ -34,8 +34,8 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from agents.evaluation import GOALKEEPER_ID
-from agents.training import MATCH_ID, RunRefused, TrainingStopped, run_folder
+from agents.training import RunRefused, TrainingStopped, run_folder
+from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_lab import extras
 from soccer_lab.cli_args import env_kwargs_from_args, key_values
 
