@@ -18,11 +18,11 @@ perception's cost).
 
 **Save rates** (:func:`keeper_save_rates`, ``python benchmarks/keeper_save_rate.py``): the
 scripted keeper and a keeper that stands still on Goalkeeper-v0's seeded shots
-(:func:`agents.evaluation.evaluate`).
+(:func:`agents.runs.evaluation.evaluate`).
 
 **Rollout rates** (:func:`rollout_rate`, ``python benchmarks/rollout_rate.py``): environment
 steps per second while stable-baselines3's PPO collects rollouts, in
-:class:`~agents.vec_env.WorkerVecEnv` against stable-baselines3's own vectorised environments.
+:class:`~agents.vec.workers.WorkerVecEnv` against stable-baselines3's own vectorised environments.
 """
 
 from __future__ import annotations
@@ -241,7 +241,7 @@ def bench_batched(batch: int, steps: int, repeats: int, seed: int = 0) -> dict[s
     ``gymnasium.make``), and the 2 vs 2 match VecEnv with the scripted yellow team
     (``make_match_vec_env(..., batched=True)`` against one unbatched match). Random actions
     drawn beforehand; ``steps`` env-steps per timed run (at least 20 batched steps)."""
-    from agents.multiagent import make_match_vec_env
+    from agents.vec.factories import make_match_vec_env
 
     rng = np.random.default_rng(seed)
     vec = gym.make_vec(GOALKEEPER_ID, num_envs=batch,
@@ -533,12 +533,12 @@ def main(argv: list[str] | None = None) -> int:
 
 def keeper_save_rates(episodes: int = 300, field: str = "ssl-div-b", workers: int | None = None,
                       policies: tuple[str, ...] = ("scripted", "idle")) -> dict[str, Any]:
-    """The evaluation (:class:`~agents.evaluation.EvalResult`) of each of ``policies`` on
+    """The evaluation (:class:`~agents.runs.evaluation.EvalResult`) of each of ``policies`` on
     Goalkeeper-v0's shots of seeds ``0 .. episodes - 1`` on ``field``, truth observations, in
     ``workers`` processes (default: all cores; the result does not depend on it)."""
     import os
 
-    from agents.evaluation import evaluate
+    from agents.runs.evaluation import evaluate
 
     workers = workers or os.cpu_count() or 1
     return {name: evaluate(name, {"field": field}, episodes, workers=workers)
@@ -583,7 +583,7 @@ def save_rate_main(argv: list[str] | None = None) -> int:
 # ------------------------------------------------------------------------------------------
 
 #: Vectorised environments compared by :func:`rollout_rates`: 16 environments in 2
-#: :class:`~agents.vec_env.WorkerVecEnv` processes (what ``soccer-env train`` uses), and
+#: :class:`~agents.vec.workers.WorkerVecEnv` processes (what ``soccer-env train`` uses), and
 #: stable-baselines3's ``SubprocVecEnv`` and ``DummyVecEnv`` with 2 environments.
 ROLLOUT_CONFIGS = ("worker-16x2", "subproc-2", "dummy-2")
 
@@ -591,8 +591,8 @@ ROLLOUT_CONFIGS = ("worker-16x2", "subproc-2", "dummy-2")
 def _rollout_venv(name: str, env_kwargs: dict[str, Any]) -> Any:
     from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
 
-    from agents.training import goalkeeper_env_fn
-    from agents.vec_env import WorkerVecEnv
+    from agents.vec.factories import goalkeeper_env_fn
+    from agents.vec.workers import WorkerVecEnv
 
     if name == "worker-16x2":
         return WorkerVecEnv([goalkeeper_env_fn(env_kwargs) for _ in range(16)], n_workers=2)
@@ -608,7 +608,7 @@ def rollout_rate(name: str, env_kwargs: dict[str, Any], steps: int, seed: int = 
     import torch
     from stable_baselines3 import PPO
 
-    from agents.training import rollout_timer
+    from agents.sb3.callbacks import rollout_timer
 
     torch.set_num_threads(1)
     venv = _rollout_venv(name, env_kwargs)

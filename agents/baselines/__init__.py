@@ -1,11 +1,12 @@
 """Trained policies shipped with the package.
 
-Each baseline is a :class:`~agents.policies.NumpyPolicy` (``NAME.npz``: the actor's weights
-and observation statistics, a few tens of kB, run with numpy alone) and the stable-baselines3
-model it was copied from (``NAME.zip``, with ``NAME_vecnormalize.npz``, its normalisation
-statistics, to fine-tune; both load without unpickling, see :mod:`agents.model_files`). The
-``.npz`` carries the training configuration, the command that trained it and its evaluation in
-``policy.meta``; :func:`make_baseline_env` builds the environment it was trained for.
+Each baseline is a :class:`~agents.policies.numpy_policy.NumpyPolicy` (``NAME.npz``: the
+actor's weights and observation statistics, a few tens of kB, run with numpy alone) and the
+stable-baselines3 model it was copied from (``NAME.zip``, with ``NAME_vecnormalize.npz``, its
+normalisation statistics, to fine-tune; both load without unpickling, see
+:mod:`agents.sb3.model_files`). The ``.npz`` carries the training configuration, the command
+that trained it and its evaluation in ``policy.meta``; :func:`make_baseline_env` builds the
+environment it was trained for.
 
 >>> from agents.baselines import load_baseline, make_baseline_env
 >>> keeper = load_baseline("keeper-ppo-ssl2012")
@@ -19,8 +20,8 @@ same kind that plays every robot of a team of two in
 :class:`~soccer_env.envs.match.SoccerParallelEnv`: it acts through the ``"team-residual"``
 map (:mod:`agents.team_residual`) and takes the observations of the whole team at once, robots
 in order (``team(np.stack([obs["blue_0"], obs["blue_1"]]))``), as
-:func:`agents.matches.head_to_head` calls it. Its earlier copies from the same training run lie
-in ``ssl_team_2v2_checkpoints/``.
+:func:`agents.studies.matches.head_to_head` calls it. Its earlier copies from the same training
+run lie in ``ssl_team_2v2_checkpoints/``.
 """
 
 from __future__ import annotations
@@ -75,7 +76,7 @@ BASELINES: dict[str, tuple[str, str]] = {
 def baseline_path(name: str, kind: str = "npz") -> Path:
     """The file of baseline ``name``: ``kind="npz"`` (numpy policy), ``"zip"`` (the
     stable-baselines3 model) or ``"stats"`` (its ``VecNormalize`` statistics, an ``.npz``
-    for :func:`agents.model_files.read_vecnormalize`)."""
+    for :func:`agents.sb3.normalization.read_vecnormalize`)."""
     if name not in BASELINES:
         raise ValueError(f"unknown baseline {name!r}; shipped: {sorted(BASELINES)}")
     if kind not in ("npz", "zip", "stats"):

@@ -8,7 +8,7 @@ panel beside the frames shows the keys and the results.
 
 * ``--task match``: the person plays ``blue_0`` of Match-v0 (the keeper slot of the kick-off
   formation); the other blue robots and the yellow team are the scripted teams of
-  :func:`agents.matches.team_policy` (:class:`~agents.team.ScriptedTeam`,
+  :func:`agents.studies.matches.team_policy` (:class:`~agents.team.ScriptedTeam`,
   :class:`~agents.humanoid_team.HumanoidTeam` for humanoids);
 * ``--task shootout``: the striker of Shootout-v0 against its scripted keeper;
 * ``--task keeper``: the keeper of Goalkeeper-v0 facing its seeded shots.
@@ -322,7 +322,7 @@ class _MatchGame(_Game):
 
     def __init__(self, robot: str, team_size: int, env_kwargs: dict[str, Any]) -> None:
         import soccer_env
-        from agents.matches import team_policy
+        from agents.studies.matches import team_policy
 
         super().__init__()
         self.env = soccer_env.parallel_env(blue=team_size, yellow=team_size, robot=robot,

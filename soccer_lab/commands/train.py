@@ -1,8 +1,8 @@
-"""``soccer-env train``: train a policy with stable-baselines3 (:func:`agents.training.train`)
+"""``soccer-env train``: train a policy with stable-baselines3 (:func:`agents.runs.training.train`)
 or, with ``--backend rllib``, with RLlib on this machine or a Ray cluster
 (:mod:`soccer_lab.commands.train_rllib`).
 
-The options become a :class:`~agents.training.TrainConfig`; with ``--resume`` the rest of the
+The options become a :class:`~agents.runs.training.TrainConfig`; with ``--resume`` the rest of the
 configuration comes from the checkpoint's run folder (its ``config.json``) unless given here,
 and ``--steps`` (the total, the checkpoint's steps included) must exceed the checkpoint's
 step count. ``--resume`` of an RLlib checkpoint folder picks the rllib backend by itself.
@@ -18,19 +18,17 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from agents.policies import algorithm_name
-from agents.training import (
+from agents.policies.action_maps import ACTION_MAPS
+from agents.runs.folders import RunRefused, TrainingStopped, run_folder
+from agents.runs.training import (
     CRITICS,
     OPPONENTS,
-    RunRefused,
     TrainConfig,
-    TrainingStopped,
     check_env_kwargs,
     checkpoint_steps,
-    run_folder,
     train,
 )
-from agents.wrappers import ACTION_MAPS
+from agents.sb3.algorithms import algorithm_name
 from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_env.perception.base import OBS_MODES
 from soccer_lab import extras
@@ -46,7 +44,7 @@ from soccer_lab.cli_args import (
 
 __all__ = ["parser", "main"]
 
-#: Options that set a :class:`~agents.training.TrainConfig` field of the same meaning:
+#: Options that set a :class:`~agents.runs.training.TrainConfig` field of the same meaning:
 #: (field, option's attribute).
 _FIELD_OPTIONS = (("env_id", "env"), ("algorithm", "algo"), ("total_steps", "steps"),
                   ("n_envs", "n_envs"), ("n_workers", "workers"), ("seed", "seed"),
@@ -70,7 +68,7 @@ def _algorithm(text: str) -> str:
 
 
 def _default(name: str) -> Any:
-    """The default of :class:`~agents.training.TrainConfig` field ``name``."""
+    """The default of :class:`~agents.runs.training.TrainConfig` field ``name``."""
     return next(f.default for f in dataclasses.fields(TrainConfig) if f.name == name)
 
 
@@ -78,7 +76,7 @@ def parser() -> argparse.ArgumentParser:
     """The options of ``soccer-env train``.
 
     The options default to None so that ``--resume`` can tell what is given from what the
-    run's ``config.json`` sets; their help states :class:`~agents.training.TrainConfig`'s
+    run's ``config.json`` sets; their help states :class:`~agents.runs.training.TrainConfig`'s
     defaults, which apply to a new run.
     """
     p = argparse.ArgumentParser(

@@ -1,5 +1,5 @@
 """``soccer-env train --backend rllib``: train with RLlib on this machine or a Ray cluster
-(:func:`agents.rllib_runs.train`).
+(:func:`agents.runs.rllib_runs.train`).
 
 The options of ``soccer-env train`` keep their meaning where RLlib has one: ``--env``, the
 environment options, ``--steps`` (environment steps; for the match, match steps however many
@@ -7,7 +7,7 @@ robots play), ``--n-envs`` (environments per env runner), ``--seed``, ``--out``,
 ``--hp`` (RLlib ``PPOConfig`` settings), ``--checkpoint-every``, ``--actions`` and
 ``--frame-stack`` (the keeper), ``--resume`` (an RLlib checkpoint folder of a run), ``--trust``
 and ``--no-progress``. The match's ``--learner`` and ``--opponent`` choose the policy mapping
-(:data:`agents.rllib.POLICY_MAPPINGS`):
+(:data:`agents.runs.rllib.POLICY_MAPPINGS`):
 
 =================================================  ===========  =============================
 options                                            mapping      modules
@@ -34,7 +34,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from agents.training import RunRefused, TrainingStopped, run_folder
+from agents.runs.folders import RunRefused, TrainingStopped, run_folder
 from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_lab import extras
 from soccer_lab.cli_args import env_kwargs_from_args, key_values
@@ -158,7 +158,7 @@ def main(p: argparse.ArgumentParser, args: argparse.Namespace, argv: list[str] |
     fields = _config_fields(p, args, base)
     extras.require("train --backend rllib")
     try:
-        from agents import rllib_runs
+        from agents.runs import rllib_runs
     except ImportError as err:  # Ray without its RLlib part, or a broken installation
         print(f"soccer-env train --backend rllib needs the rllib extra: "
               f"{extras.install_command(['rllib'])} ({err})", file=sys.stderr)

@@ -15,8 +15,8 @@ pytest.importorskip("ray.rllib")
 
 import torch  # noqa: E402
 
-from agents.model_files import UnsafeFileError  # noqa: E402
-from agents.rllib import (  # noqa: E402
+from agents.policies.files import UnsafeFileError  # noqa: E402
+from agents.runs.rllib import (  # noqa: E402
     DEFAULT_HYPERPARAMS,
     KEEPER_INFOS,
     MATCH_INFOS,
@@ -30,7 +30,7 @@ from agents.rllib import (  # noqa: E402
     ppo_config,
     self_play_callback,
 )
-from agents.rllib_runs import (  # noqa: E402
+from agents.runs.rllib_runs import (  # noqa: E402
     CHECKPOINT_INFO,
     SIGNATURE_FILE,
     RllibTrainConfig,

@@ -1,23 +1,106 @@
 """The estimator ablation's report (:func:`write_outputs`): the tables of ``ablation.md``, one
 row per cell in ``ablation.csv``, settings and every number in ``ablation.json`` and the bars
 of ``ablation.png`` (save rates with their intervals, ball RMSE and estimator compute per
-preset and configuration), from an :class:`~agents.ablation.AblationResult`."""
+preset and configuration), from an :class:`AblationResult`, the outcome of
+:func:`~agents.studies.ablation.run_ablation`."""
 
 from __future__ import annotations
 
 import csv
 import json
 import os
-from collections.abc import Callable
+import shlex
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-if TYPE_CHECKING:
-    from agents.ablation import AblationResult
-    from agents.evaluation import EvalResult
+from agents.runs.evaluation import EvalResult
+from agents.studies.ablation_settings import (
+    DEFAULT_CHUNK_SIZE,
+    DEFAULT_HUMANOID,
+    EstimatorConfig,
+    robot_kind,
+)
+from soccer_env.envs.registration import GOALKEEPER_ID
 
-__all__ = ["write_outputs", "write_files", "markdown", "rows", "data", "plot", "figure",
-           "rate_text"]
+__all__ = ["AblationResult", "write_outputs", "write_files", "markdown", "rows", "data", "plot",
+           "figure", "rate_text"]
+
+
+@dataclass
+class AblationResult:
+    """The outcome of :func:`run_ablation`.
+
+    Attributes:
+        policy: the policy reference.
+        episodes, start_seed: the shot suite (seeds ``start_seed .. start_seed + episodes -
+            1``).
+        presets, configs: the sensor presets and configuration names, in table order.
+        cells: ``(preset, config) -> EvalResult``.
+        config_specs: the configurations as they were run.
+        env_id, env_kwargs: the environment and the keyword arguments shared by all cells.
+        workers, chunk_size: how the work was split (the numbers do not depend on them).
+        seconds: wall time [s].
+        robot: the robot kind (``"ssl"`` or ``"humanoid"``).
+    """
+
+    policy: str
+    episodes: int
+    start_seed: int
+    presets: list[str]
+    configs: list[str]
+    cells: dict[tuple[str, str], EvalResult]
+    config_specs: dict[str, EstimatorConfig]
+    env_id: str
+    env_kwargs: dict[str, Any]
+    workers: int
+    chunk_size: int
+    seconds: float
+    robot: str = "ssl"
+
+    @property
+    def preset_table(self) -> Mapping[str, Any]:
+        """The sensor presets of the robot kind (their specs have a ``source``)."""
+        return robot_kind(self.robot).presets
+
+    @property
+    def preset_table_name(self) -> str:
+        """Where the robot kind's sensor presets live (``soccer_env.presets.VISION`` or
+        ``soccer_env.presets.HEAD_CAMERAS``)."""
+        return robot_kind(self.robot).presets_name
+
+    def cell(self, preset: str, config: str) -> EvalResult:
+        """The evaluation of ``config`` under ``preset``."""
+        return self.cells[(preset, config)]
+
+    def command(self) -> str:
+        """A ``soccer-env ablation`` command line that reruns this ablation."""
+        args = ["soccer-env", "ablation"] + (["--robot", self.robot] if self.robot != "ssl"
+                                             else []) + ["--policy", self.policy, "--episodes",
+                str(self.episodes), "--start-seed", str(self.start_seed), "--presets",
+                ",".join(self.presets), "--configs", ",".join(self.configs), "--workers",
+                str(self.workers)]
+        if self.chunk_size != DEFAULT_CHUNK_SIZE:
+            args += ["--chunk-size", str(self.chunk_size)]
+        for key, value in self.env_kwargs.items():
+            args += ["--env-kwarg", f"{key}={json.dumps(value)}"]
+        text = shlex.join(args)
+        if self.env_id != GOALKEEPER_ID:
+            text += f"  (API only: env_id={self.env_id!r})"
+        return text
+
+    def rows(self) -> list[dict[str, Any]]:
+        """One flat row per cell (preset-major), as in ``ablation.csv``."""
+        return rows(self)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Settings, configurations and every number (``ablation.json``)."""
+        return data(self)
+
+    def markdown(self) -> str:
+        """The tables of ``ablation.md``."""
+        return markdown(self)
 
 
 def markdown(res: AblationResult) -> str:
@@ -121,7 +204,7 @@ def plot(res: AblationResult, path: Path) -> str:
     return save_figure(figure(res), path)
 
 
-def figure(res: AblationResult):
+def figure(res: AblationResult) -> Any:
     """Grouped bars per preset: save rate with its interval, ball RMSE, compute per step; the
     legend of the configurations beside the bars, the title naming the environment, the robots,
     the field and the policy.
@@ -131,7 +214,6 @@ def figure(res: AblationResult):
     """
     import numpy as np
 
-    from agents.ablation import DEFAULT_HUMANOID
     from soccer_env.render.plots import (
         LABEL_SIZE,
         TITLE_SIZE,

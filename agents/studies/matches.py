@@ -7,7 +7,7 @@ seeded matches of :class:`~soccer_env.envs.match.SoccerParallelEnv` between side
 ``b``, swapping colours every other match: match ``k`` is reset with seed ``start_seed + k //
 2`` and ``a`` plays blue when ``k`` is even, so each seed (the kick-off formation, the kick-off
 team, the sensors' noise) is played once from each side and a field or kick-off advantage
-cancels. The estimator match ablation (:mod:`agents.match_ablation`) and playing-strength
+cancels. The estimator match ablation (:mod:`agents.studies.match_ablation`) and playing-strength
 ratings are built on it.
 
 Each match is one job; jobs run over worker processes and come back in job order, so every
@@ -36,7 +36,13 @@ from typing import Any
 
 import numpy as np
 
-from agents.evaluation import check_full_infos, map_jobs, wilson
+import soccer_env
+from agents.common.checks import check_full_infos
+from agents.common.processes import map_jobs
+from agents.common.stats import t975, wilson
+from agents.humanoid_team import HumanoidTeam
+from agents.policies.numpy_policy import NumpyPolicy
+from agents.team import TEAMS, ScriptedTeam
 from soccer_env.perception.base import OBS_MODES
 
 __all__ = ["Side", "MatchRecord", "HeadToHead", "head_to_head", "match_jobs",
@@ -58,7 +64,7 @@ class Side:
     Attributes:
         policy: ``"scripted"`` (:class:`~agents.team.ScriptedTeam` for SSL robots,
             :class:`~agents.humanoid_team.HumanoidTeam` for humanoids), ``"idle"`` (zero
-            actions), a numpy policy file (``.npz``, :class:`~agents.policies.NumpyPolicy`:
+            actions), a numpy policy file (``.npz``, :class:`NumpyPolicy`:
             arrays only, nothing unpickled) acting for every robot of the team on its own
             observation, or a callable taking observations ``(k, obs_dim)`` and returning
             actions ``(k, 6)`` (it must pickle to run in worker processes).
@@ -122,10 +128,6 @@ def team_policy(policy: Any, env: Any, team: str
                 ) -> Callable[[Mapping[str, np.ndarray]], dict[str, np.ndarray]]:
     """A function from the match's observations to the actions of ``team``'s live agents,
     playing ``policy`` (a :class:`Side` policy) in ``env``."""
-    from agents.humanoid_team import HumanoidTeam
-    from agents.policies import NumpyPolicy
-    from agents.team import TEAMS, ScriptedTeam
-
     if team not in TEAMS:
         raise ValueError(f"team must be one of {list(TEAMS)}, got {team!r}")
     u = getattr(env, "unwrapped", env)
@@ -194,8 +196,6 @@ def play_match(env_kwargs: Mapping[str, Any], blue: Side, yellow: Side, seed: in
                ) -> dict[str, Any]:
     """Play one match reset with ``seed``: blue's and yellow's goals, the steps, and each
     team's ball-belief error sums (see :class:`MatchRecord`)."""
-    import soccer_env
-
     t0 = time.perf_counter()
     env = soccer_env.parallel_env(**match_env_kwargs(env_kwargs, blue, yellow))
     try:
@@ -276,7 +276,8 @@ class HeadToHead:
     side.
 
     Attributes:
-        a, b: the sides.
+        a: one side (the results are from its point of view).
+        b: the other side.
         records: one per match, in match order.
         env_kwargs: the keyword arguments shared by both teams.
     """
@@ -330,7 +331,7 @@ class HeadToHead:
         mean = float(units.mean())
         if len(units) < 2:
             return mean, -math.inf, math.inf
-        half = _t975(len(units) - 1) * float(units.std(ddof=1)) / math.sqrt(len(units))
+        half = t975(len(units) - 1) * float(units.std(ddof=1)) / math.sqrt(len(units))
         return mean, mean - half, mean + half
 
     def ball_error(self, side: int) -> tuple[float, float]:
@@ -372,22 +373,6 @@ class HeadToHead:
         }
 
 
-def _t975(dof: int) -> float:
-    """The 97.5 % quantile of Student's t with ``dof`` degrees of freedom: exact values for
-    ``dof <= 4``, above that the Cornish-Fisher expansion in ``1/dof`` around the normal
-    quantile (Abramowitz and Stegun 26.7.5; within 3e-4 of the exact value at ``dof = 5``,
-    1e-5 at 10)."""
-    exact = {1: 12.706204736174707, 2: 4.302652729911275, 3: 3.182446305284263,
-             4: 2.776445105197793}
-    if dof in exact:
-        return exact[dof]
-    z = 1.959963984540054
-    g = [(z ** 3 + z) / 4, (5 * z ** 5 + 16 * z ** 3 + 3 * z) / 96,
-         (3 * z ** 7 + 19 * z ** 5 + 17 * z ** 3 - 15 * z) / 384,
-         (79 * z ** 9 + 776 * z ** 7 + 1482 * z ** 5 - 1920 * z ** 3 - 945 * z) / 92160]
-    return z + sum(gi / dof ** (i + 1) for i, gi in enumerate(g))
-
-
 def head_to_head(a: Side, b: Side, matches: int = 20, start_seed: int = 0,
                  env_kwargs: Mapping[str, Any] | None = None, workers: int | None = None,
                  progress: Callable[[int, int], None] | None = None) -> HeadToHead:
@@ -395,7 +380,8 @@ def head_to_head(a: Side, b: Side, matches: int = 20, start_seed: int = 0,
     match; see the module docstring).
 
     Args:
-        a, b: the sides.
+        a: one side (the results are from its point of view).
+        b: the other side.
         matches: how many (>= 1); an even number plays every seed from both sides.
         start_seed: the first seed.
         env_kwargs: keyword arguments of :func:`soccer_env.parallel_env` shared by both teams

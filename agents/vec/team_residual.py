@@ -17,12 +17,12 @@ __all__ = ["TeamResidualVecEnv"]
 
 
 class TeamResidualVecEnv(VecEnvWrapper):
-    """A match VecEnv (:func:`~agents.multiagent.make_match_vec_env`) whose learning team acts
+    """A match VecEnv (:func:`~agents.vec.factories.make_match_vec_env`) whose learning team acts
     through the ``"team-residual"`` map: the learner's action ``a`` in ``[-1, 1]^6`` becomes
     the scripted team's command from the entry's last observation plus ``a * residual``.
 
     Wrap it inside ``VecNormalize`` (the map reads the plain observations). ``params`` is
-    what a :class:`~agents.policies.NumpyPolicy` copy of the learner needs as its
+    what a :class:`~agents.policies.numpy_policy.NumpyPolicy` copy of the learner needs as its
     ``action_map`` (:attr:`action_map`).
     """
 

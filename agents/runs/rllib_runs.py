@@ -21,7 +21,7 @@ an HMAC of them under a key kept in the user's configuration folder
 (:func:`checkpoint_key_path`, created on first use, readable by the user only), and
 :func:`check_checkpoint` loads (resumes from) only checkpoints signed with that key and not
 changed since: the user's own runs. Any other checkpoint (someone else's, one from another
-machine or account, or one edited since) raises :class:`~agents.model_files.UnsafeFileError`
+machine or account, or one edited since) raises :class:`~agents.policies.files.UnsafeFileError`
 unless ``trust=True`` (``--trust``), as the stable-baselines3 files that need unpickling do.
 
 ``resume`` continues from a checkpoint: the network, optimiser, observation statistics,
@@ -48,8 +48,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from agents.model_files import TRUST_HELP, UnsafeFileError
-from agents.rllib import (
+from agents.common.checks import check_counts
+from agents.policies.action_maps import ACTION_MAPS
+from agents.policies.files import TRUST_HELP, UnsafeFileError
+from agents.runs.folders import RunRefused, TrainingStopped, run_files, run_folder
+from agents.runs.rllib import (
     ENV_IDS,
     POLICY_MAPPINGS,
     hyperparameter_names,
@@ -58,8 +61,6 @@ from agents.rllib import (
     ppo_config,
 )
 from agents.team import TEAMS
-from agents.training import RunRefused, TrainingStopped, check_counts, run_files, run_folder
-from agents.wrappers import ACTION_MAPS
 from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_env.validation import check_fields
 
@@ -92,16 +93,16 @@ class RllibTrainConfig:
         n_envs: environments per env runner.
         seed: seeds the environments, the networks and the sampling.
         out: the run's folder.
-        hyperparams: RLlib PPO settings over :data:`agents.rllib.DEFAULT_HYPERPARAMS`
-            (:func:`agents.rllib.apply_hyperparams`), e.g. ``{"lr": 1e-4, "model_config":
+        hyperparams: RLlib PPO settings over :data:`agents.runs.rllib.DEFAULT_HYPERPARAMS`
+            (:func:`agents.runs.rllib.apply_hyperparams`), e.g. ``{"lr": 1e-4, "model_config":
             {"fcnet_hiddens": [128, 128]}}``.
         checkpoint_every: environment steps between checkpoints (0: the final one only).
-        policy_mapping: the match's modules (:data:`agents.rllib.POLICY_MAPPINGS`).
+        policy_mapping: the match's modules (:data:`agents.runs.rllib.POLICY_MAPPINGS`).
         learner: the team of ``"self-play"``'s learning module.
         self_play_every: environment steps between copies of the learning module into the
             frozen opponent (``"self-play"``).
         actions, frame_stack: the keeper learner's action map and stacked observations, as
-            in :class:`~agents.training.TrainConfig` (Goalkeeper-v0 only).
+            in :class:`~agents.runs.training.config.TrainConfig` (Goalkeeper-v0 only).
         normalize_obs: observations pass through RLlib's ``MeanStdFilter``.
         torch_threads: torch's threads in the driver (the learner).
         progress: print a line per training iteration.
@@ -156,13 +157,13 @@ class RllibTrainConfig:
         return dataclasses.asdict(self)
 
     def env_config(self) -> dict[str, Any]:
-        """The ``env_config`` of the registered environment (:mod:`agents.rllib`)."""
+        """The ``env_config`` of the registered environment (:mod:`agents.runs.rllib`)."""
         if self.env_id == GOALKEEPER_ID:
             return {**self.env_kwargs, "actions": self.actions, "frame_stack": self.frame_stack}
         return dict(self.env_kwargs)
 
     def ppo_config(self) -> Any:
-        """This run's RLlib ``PPOConfig`` (:func:`agents.rllib.ppo_config`)."""
+        """This run's RLlib ``PPOConfig`` (:func:`agents.runs.rllib.ppo_config`)."""
         return ppo_config(self.env_id, self.env_config(), policy_mapping=self.policy_mapping,
                           learner=self.learner, num_env_runners=self.num_env_runners,
                           n_envs=self.n_envs, seed=self.seed, hyperparams=self.hyperparams,
@@ -173,7 +174,7 @@ class RllibTrainConfig:
 def check_env_kwargs(cfg: RllibTrainConfig) -> None:
     """Build one environment of ``cfg`` here, so that bad keyword arguments fail before Ray
     starts, with the environment's own message (``TypeError`` or ``ValueError``); for the
-    match also its policy mapping (:func:`agents.rllib.match_policies`)."""
+    match also its policy mapping (:func:`agents.runs.rllib.match_policies`)."""
     if cfg.env_id == MATCH_ID:
         match_policies(cfg.env_kwargs, cfg.policy_mapping, cfg.learner)
     else:
@@ -249,7 +250,7 @@ def is_rllib_checkpoint(path: str | os.PathLike) -> bool:
 def check_checkpoint(folder: str | os.PathLike, trust: bool = False) -> dict[str, Any]:
     """The :data:`CHECKPOINT_INFO` of checkpoint ``folder`` (``{"steps", "agent_steps",
     "iteration", ...}``), after checking that loading it is safe: signed with this user's
-    key and unchanged since. Raises :class:`~agents.model_files.UnsafeFileError` for any
+    key and unchanged since. Raises :class:`~agents.policies.files.UnsafeFileError` for any
     other checkpoint unless ``trust``, and ``ValueError`` for a folder that is not an RLlib
     checkpoint of this package."""
     folder = Path(folder)
@@ -307,7 +308,7 @@ def load_checkpoint(folder: str | os.PathLike, trust: bool = False) -> Any:
     :func:`check_checkpoint` finds it safe to load. Needs Ray running (``ray.init``)."""
     from ray.rllib.algorithms.algorithm import Algorithm
 
-    from agents.rllib import register_envs
+    from agents.runs.rllib import register_envs
 
     check_checkpoint(folder, trust)
     register_envs()
@@ -423,13 +424,13 @@ def train(cfg: RllibTrainConfig, resume: str | os.PathLike | None = None,
     on Ray (this machine's, or the cluster at ``address``), writing the run folder
     ``cfg.out`` (see the module docstring). Returns the summary.
 
-    Before anything is written :class:`~agents.training.RunRefused` is raised when
+    Before anything is written :class:`~agents.runs.folders.RunRefused` is raised when
     ``cfg.out`` holds another run and ``overwrite`` is false (continuing a run in its own
     folder needs no ``overwrite``), when ``resume`` cannot be loaded safely (see
     :func:`check_checkpoint`; ``trust`` loads it anyway) or has already trained
     ``cfg.total_steps``, or when RLlib refuses the configuration.
 
-    Ctrl-C ends training with :class:`~agents.training.TrainingStopped`, naming the last
+    Ctrl-C ends training with :class:`~agents.runs.folders.TrainingStopped`, naming the last
     checkpoint and the command that continues from it."""
     out = Path(cfg.out)
     continuing = resume is not None and run_folder(resume).resolve() == out.resolve()

@@ -1,6 +1,6 @@
 """Match collection over several processes: :class:`MatchWorkerVecEnv`.
 
-:class:`~agents.multiagent.MatchVecEnv` steps its matches one after the other in one process,
+:class:`~agents.vec.match.MatchVecEnv` steps its matches one after the other in one process,
 so match training uses one core. :class:`MatchWorkerVecEnv` is the same VecEnv (the same
 batch layout, opponents, self-play and info dicts) with its matches split over worker
 processes in contiguous blocks; each worker runs a :class:`MatchVecEnv` over its block,
@@ -22,9 +22,9 @@ numbers of workers agree to about 1e-12 m, until a contact amplifies the differe
 to agree on every event and end over a few hundred steps); a run is reproducible bit for bit
 with the same number of workers.
 
-Failures are those of :class:`~agents.vec_env.WorkerVecEnv` (whose process handling this
+Failures are those of :class:`~agents.vec.workers.WorkerVecEnv` (whose process handling this
 class shares): a worker whose match raises, or that dies, raises
-:class:`~agents.vec_env.WorkerError` naming it and its batch entries, after stopping the
+:class:`~agents.vec.workers.WorkerError` naming it and its batch entries, after stopping the
 others; workers ignore Ctrl-C.
 """
 
@@ -43,14 +43,17 @@ from stable_baselines3.common.vec_env.base_vec_env import (
 )
 
 import soccer_env
-from agents.multiagent import MatchVecEnv, _is_sb3_model, base_seed
-from agents.policies import NumpyPolicy, SB3Policy
-from agents.vec_env import _OK, WorkerVecEnv, mp_context, start_worker, worker_frame
+from agents.common.processes import process_context
+from agents.sb3.algorithms import is_sb3_model
+from agents.sb3.policies import SB3Policy, numpy_copy
+from agents.vec.batched import BatchedMatchVecEnv
+from agents.vec.match import MatchVecEnv, base_seed
+from agents.vec.workers import REPLY_OK, WorkerVecEnv, start_worker, worker_frame
 
 __all__ = ["MatchWorkerVecEnv"]
 
 _LIVE_MODEL = ("an opponent that follows a live stable-baselines3 model cannot be shared with "
-               "worker processes: pass a frozen copy (NumpyPolicy.from_sb3(model)) or use "
+               "worker processes: pass a frozen copy (numpy_copy(model)) or use "
                "workers=0")
 
 
@@ -85,8 +88,8 @@ class _Layout:
 def _match_worker(remote: Any, parent: Any, spec: CloudpickleWrapper, buffer: Any,
                   layout: _Layout, rows: range, cpu: int | None) -> None:
     """Run a :class:`MatchVecEnv` (or, batched, a
-    :class:`~agents.batched.BatchedMatchVecEnv`) over one block of matches and serve the
-    parent's commands (replies as :mod:`agents.vec_env`'s workers give them) until told to
+    :class:`~agents.vec.batched.BatchedMatchVecEnv`) over one block of matches and serve the
+    parent's commands (replies as :mod:`agents.vec.workers`'s workers give them) until told to
     close; with ``cpu``, on that CPU only."""
     def body(current: list[int | None]) -> None:
         if cpu is not None:
@@ -94,15 +97,13 @@ def _match_worker(remote: Any, parent: Any, spec: CloudpickleWrapper, buffer: An
         kwargs = dict(spec.var)
         batched = kwargs.pop("batched")
         if batched:
-            from agents.batched import BatchedMatchVecEnv
-
             venv: Any = BatchedMatchVecEnv(**kwargs)
         else:
             venv = MatchVecEnv(**kwargs)
         views = layout.views(buffer, rows)
         actions, obs, rewards, dones = (views["actions"], views["obs"], views["rewards"],
                                         views["dones"])
-        remote.send((_OK, None))
+        remote.send((REPLY_OK, None))
         while True:
             try:
                 cmd, data = remote.recv()
@@ -111,7 +112,7 @@ def _match_worker(remote: Any, parent: Any, spec: CloudpickleWrapper, buffer: An
             if cmd == "step":
                 venv.step_async(actions)
                 # A batch sends its infos compactly; the parent expands them.
-                o, r, d, infos = venv._step_arrays() if batched else venv.step_wait()
+                o, r, d, infos = venv.step_arrays() if batched else venv.step_wait()
                 obs[:] = o
                 rewards[:] = r
                 dones[:] = d
@@ -133,18 +134,19 @@ def _match_worker(remote: Any, parent: Any, spec: CloudpickleWrapper, buffer: An
                 return
             else:  # pragma: no cover - programming error
                 raise ValueError(f"unknown command {cmd!r}")
-            remote.send((_OK, result))
+            remote.send((REPLY_OK, result))
 
     worker_frame(remote, parent, body)
 
 
 class MatchWorkerVecEnv(WorkerVecEnv):
-    """:class:`~agents.multiagent.MatchVecEnv` with its matches run by ``workers`` processes.
+    """:class:`~agents.vec.match.MatchVecEnv` with its matches run by ``workers`` processes.
+
+    ``env_kwargs``, ``n_matches``, ``learner`` and ``opponent`` are :class:`MatchVecEnv`'s (an
+    opponent is checked and, if it is a model, copied here, then sent to the workers: it must
+    pickle; a live model that numpy cannot copy is refused).
 
     Args:
-        env_kwargs, n_matches, learner, opponent: as :class:`MatchVecEnv` takes them (an
-            opponent is checked and, if it is a model, copied here, then sent to the
-            workers: it must pickle; a live model that numpy cannot copy is refused).
         workers: processes (at most one per match; ``n_matches`` is split in contiguous
             blocks as evenly as possible).
         pin: keep worker ``w`` on the ``w``-th CPU this process may use
@@ -159,7 +161,7 @@ class MatchWorkerVecEnv(WorkerVecEnv):
         start_method: multiprocessing start method (default ``"forkserver"`` where available,
             else ``"spawn"``).
         batched: each worker steps its block of matches as one batch
-            (:class:`~agents.batched.BatchedMatchVecEnv`, for the matches it runs) instead of
+            (:class:`~agents.vec.batched.BatchedMatchVecEnv`, for the matches it runs) instead of
             one after the other.
 
     The batch layout, spaces, infos and methods are :class:`MatchVecEnv`'s:
@@ -178,8 +180,6 @@ class MatchWorkerVecEnv(WorkerVecEnv):
         # A probe in this process checks every argument (and gives the spaces) before any
         # worker starts, so that bad input fails here with the constructor's own message.
         if batched:
-            from agents.batched import BatchedMatchVecEnv
-
             probe: MatchVecEnv = BatchedMatchVecEnv(env_kwargs, n_matches=1, learner=learner,
                                                     opponent=opponent)
         else:
@@ -199,14 +199,14 @@ class MatchWorkerVecEnv(WorkerVecEnv):
         self.entry_agents = [(k, a) for k in range(self.n_matches) for a in self.learner_agents]
         self._entry_names = [f"{a} of match {k} (batch entry {i})"
                              for i, (k, a) in enumerate(self.entry_agents)]
-        self._out_of_range = probe._out_of_range
+        self.out_of_range_actions = probe.out_of_range_actions
         obs_space, act_space = probe.observation_space, probe.action_space
         metadata, render_mode = probe.metadata, probe.render_mode
         probe.close()
         opponent = self._portable(opponent)
 
         workers = min(int(workers), self.n_matches)
-        ctx = mp_context(start_method)
+        ctx = process_context(start_method)
         n = self.n_matches * L
         self._layout = _Layout(n, obs_space.shape[0])
         self._buffer = ctx.RawArray("b", self._layout.nbytes)
@@ -245,9 +245,9 @@ class MatchWorkerVecEnv(WorkerVecEnv):
     def _portable(opponent: Any) -> Any:
         """``opponent`` in a form that can be sent to the workers (a model becomes its frozen
         numpy copy, as :class:`MatchVecEnv` would make it)."""
-        if _is_sb3_model(opponent):
+        if is_sb3_model(opponent):
             try:
-                return NumpyPolicy.from_sb3(opponent)
+                return numpy_copy(opponent)
             except ValueError:
                 raise ValueError(_LIVE_MODEL) from None
         if isinstance(opponent, SB3Policy):
@@ -287,7 +287,7 @@ class MatchWorkerVecEnv(WorkerVecEnv):
             raise ValueError(f"actions must have shape ({self.num_envs}, 6) (one row of vx, "
                              f"vy, omega, kick, chip, dribble per batch entry), got {a.shape}")
         self._shared["actions"][:] = soccer_env.validate_actions(a, self._entry_names,
-                                                                 self._out_of_range)
+                                                                 self.out_of_range_actions)
         for w in range(len(self.remotes)):
             self._send(w, ("step", None))
         self.waiting = True
@@ -296,8 +296,6 @@ class MatchWorkerVecEnv(WorkerVecEnv):
         if not self.waiting:
             raise RuntimeError("call step_async(actions) before step_wait()")
         if self.batched:
-            from agents.batched import BatchedMatchVecEnv
-
             infos = []
             for w in range(len(self.remotes)):  # finished entries by their worker's index
                 infos += BatchedMatchVecEnv.expand_infos(self._recv(w), self.agents_per_match)

@@ -8,7 +8,7 @@ the registry travels to every node). :func:`register_envs` registers:
 * ``"soccer_env/Goalkeeper-v0"`` (:func:`keeper_env`): the keeper task, ``env_config`` holding
   its keyword arguments (``obs_mode``, ``perception``, ``shaping``, ...) and, optionally, the
   learner's ``"actions"`` map and ``"frame_stack"`` as ``soccer-env train`` has them
-  (:func:`~agents.wrappers.wrap_learner`);
+  (:func:`~agents.policies.wrappers.wrap_learner`);
 * ``"soccer_env/Match-v0"`` (:func:`match_env`): the PettingZoo match
   (:func:`soccer_env.parallel_env`, ``env_config`` its keyword arguments) as an RLlib
   ``MultiAgentEnv`` through RLlib's ``ParallelPettingZooEnv`` (:class:`MatchMultiAgentEnv`
@@ -32,7 +32,7 @@ The match's agents map to RLlib modules (networks) in one of :data:`POLICY_MAPPI
 
 :func:`ppo_config` puts it together (RLlib's new API stack)::
 
-    from agents.rllib import ppo_config
+    from agents.runs.rllib import ppo_config
 
     config = ppo_config(MATCH_ID, {"blue": 2, "yellow": 2, "max_cycles": 600},
                         policy_mapping="self-play", num_env_runners=4)
@@ -41,7 +41,7 @@ The match's agents map to RLlib modules (networks) in one of :data:`POLICY_MAPPI
         result = algo.train()
     algo.save_to_path("/path/to/checkpoint")
 
-:mod:`agents.rllib_runs` trains into a run folder (``soccer-env train --backend rllib``).
+:mod:`agents.runs.rllib_runs` trains into a run folder (``soccer-env train --backend rllib``).
 
 Every env runner also reports how many environment steps it sampled under the id of the Ray
 node it runs on (:class:`NodeStepsCallback`: ``result["env_runners"]["steps_by_node"]``), and
@@ -59,8 +59,9 @@ from ray.rllib.algorithms.ppo import PPOConfig
 from ray.rllib.callbacks.callbacks import RLlibCallback
 from ray.rllib.env.wrappers.pettingzoo_env import ParallelPettingZooEnv
 
+from agents.policies.action_maps import ACTION_MAPS
+from agents.policies.wrappers import wrap_learner
 from agents.team import TEAMS
-from agents.wrappers import ACTION_MAPS, wrap_learner
 from estimators.registry import Registry
 from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 
@@ -78,7 +79,7 @@ KEEPER_INFOS = ("outcome", "reward_terms", "shot_fired", "keeper_touched")
 MATCH_INFOS = ("score", "event", "reward_terms")
 
 #: PPO settings over RLlib's defaults, chosen as stable-baselines3's PPO defaults that
-#: :mod:`agents.training` uses (16 environments x 256 steps per update, minibatches of 512,
+#: :mod:`agents.runs.training` uses (16 environments x 256 steps per update, minibatches of 512,
 #: 10 epochs, two hidden layers of 64 tanh units, separate actor and critic networks).
 #: ``model_config`` entries merge key by key with given ones.
 DEFAULT_HYPERPARAMS: dict[str, Any] = {
@@ -93,7 +94,7 @@ _RESERVED = {"env": "env_id", "env_config": "env_config", "policies": "policy_ma
              "policy_mapping_fn": "policy_mapping", "policies_to_train": "policy_mapping",
              "num_env_runners": "num_env_runners", "num_rollout_workers": "num_env_runners",
              "num_envs_per_env_runner": "n_envs", "num_envs_per_worker": "n_envs",
-             "seed": "seed", "callbacks_class": "the callbacks of agents.rllib",
+             "seed": "seed", "callbacks_class": "the callbacks of agents.runs.rllib",
              "env_to_module_connector": "normalize_obs"}
 #: The configuration methods whose keyword arguments are hyperparameters.
 _HP_METHODS = ("training", "env_runners", "learners", "reporting", "fault_tolerance",
@@ -137,8 +138,8 @@ class _SlimMatchInfos(BaseParallelWrapper):
 
 def keeper_env(env_config: Mapping[str, Any] | None = None) -> gym.Env:
     """Goalkeeper-v0 for RLlib: ``env_config`` holds its keyword arguments and, optionally,
-    ``"actions"`` (the learner's action map, :data:`~agents.wrappers.ACTION_MAPS`, default
-    ``"native"``) and ``"frame_stack"`` (the last N observations side by side, default 1).
+    ``"actions"`` (the learner's action map, :data:`~agents.policies.action_maps.ACTION_MAPS`,
+    default ``"native"``) and ``"frame_stack"`` (the last N observations side by side, default 1).
     Infos hold :data:`KEEPER_INFOS` only."""
     import soccer_env  # noqa: F401  (registers the environments in this process)
 
@@ -391,7 +392,7 @@ class NodeStepsCallback(RLlibCallback):
 class SoccerMetricsCallback(RLlibCallback):
     """Episode metrics in ``result["env_runners"]``: for the keeper ``save_rate`` (the share of
     the last 100 episodes that ended saved; a time limit counts as not saved, as
-    :func:`~agents.evaluation.evaluate` counts it); for the match ``blue_goals`` and
+    :func:`~agents.runs.evaluation.evaluate` counts it); for the match ``blue_goals`` and
     ``yellow_goals`` (mean over the last 100 matches)."""
 
     def on_episode_end(self, *, episode: Any, metrics_logger: Any = None, **kwargs: Any

@@ -27,7 +27,6 @@ large infos dominate. :class:`WorkerVecEnv` instead
 
 from __future__ import annotations
 
-import multiprocessing as mp
 import signal
 import traceback
 from collections.abc import Callable, Sequence
@@ -43,15 +42,19 @@ from stable_baselines3.common.vec_env.base_vec_env import (
     VecEnvStepReturn,
 )
 
-__all__ = ["WorkerVecEnv", "WorkerError", "DEFAULT_INFO_KEYS", "POLL_SECONDS"]
+from agents.common.processes import ignore_interrupts, process_context
+
+__all__ = ["WorkerVecEnv", "WorkerError", "DEFAULT_INFO_KEYS", "POLL_SECONDS",
+           "CLOSE_SECONDS", "REPLY_OK", "REPLY_ERROR", "worker_frame", "start_worker"]
 
 #: How often a waiting parent checks that the worker it waits on is still alive (seconds).
 POLL_SECONDS = 0.5
 #: How long ``close()`` waits for a worker to finish before terminating it (seconds).
 CLOSE_SECONDS = 5.0
 
-#: The tags of a worker's replies.
-_OK, _ERROR = "ok", "error"
+#: The tags of a worker's replies: ``(REPLY_OK, result)`` or ``(REPLY_ERROR, (local
+#: environment index or None, traceback))`` (:func:`worker_frame`).
+REPLY_OK, REPLY_ERROR = "ok", "error"
 
 
 class WorkerError(RuntimeError):
@@ -96,11 +99,11 @@ def _concatenate(blocks: list) -> Any:
 
 def worker_frame(remote: Any, parent: Any, body: Callable[[list[int | None]], None]) -> None:
     """The frame of every rollout worker process: ignore Ctrl-C (the parent handles it and
-    closes the workers), run ``body(current)``, and if it raises, reply ``(_ERROR, (local
+    closes the workers), run ``body(current)``, and if it raises, reply ``(REPLY_ERROR, (local
     environment index or None, traceback))`` (``current[0]``: the environment being built or
     stepped, set by ``body``) and stop; a parent that has gone gets no reply."""
     # Ctrl-C reaches the whole process group: the parent handles it and closes the workers.
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    ignore_interrupts()
     parent.close()
     current: list[int | None] = [None]
     try:
@@ -109,7 +112,7 @@ def worker_frame(remote: Any, parent: Any, body: Callable[[list[int | None]], No
         pass  # the parent has gone: nothing to report to
     except BaseException:
         try:
-            remote.send((_ERROR, (current[0], traceback.format_exc())))
+            remote.send((REPLY_ERROR, (current[0], traceback.format_exc())))
         except (BrokenPipeError, ConnectionResetError, OSError):
             pass
     finally:
@@ -126,19 +129,12 @@ def start_worker(ctx: Any, target: Callable[..., None], *args: Any) -> tuple[Any
     return remote, proc
 
 
-def mp_context(start_method: str | None) -> Any:
-    """The multiprocessing context of ``start_method`` (default ``"forkserver"`` where
-    available, as stable-baselines3 does, else ``"spawn"``)."""
-    if start_method is None:
-        start_method = "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
-    return mp.get_context(start_method)
-
-
 def _worker(remote: Any, parent: Any, fns: CloudpickleWrapper, info_keys: tuple | None
             ) -> None:
     """Serve commands for a block of environments until told to close. Every reply is
-    ``(_OK, result)``, or ``(_ERROR, (local environment index or None, traceback))`` after
-    which the worker stops (its environments may be left in any state)."""
+    ``(REPLY_OK, result)``, or ``(REPLY_ERROR, (local environment index or None,
+    traceback))`` after which the worker stops (its environments may be left in any
+    state)."""
     def body(current: list[int | None]) -> None:
         envs = []
         for i, fn in enumerate(fns.var):
@@ -228,7 +224,7 @@ def _serve(remote: Any, envs: list[gym.Env], info_keys: tuple | None,
             return
         else:  # pragma: no cover - programming error
             raise ValueError(f"unknown command {cmd!r}")
-        remote.send((_OK, result))
+        remote.send((REPLY_OK, result))
 
 
 class WorkerVecEnv(VecEnv):
@@ -252,7 +248,7 @@ class WorkerVecEnv(VecEnv):
         if not isinstance(n_workers, int) or n_workers < 1:
             raise ValueError(f"n_workers must be an integer >= 1, got {n_workers!r}")
         n_workers = min(n_workers, n)
-        ctx = mp_context(start_method)
+        ctx = process_context(start_method)
         bounds = [w * n // n_workers for w in range(n_workers + 1)]
         self._blocks = [range(bounds[w], bounds[w + 1]) for w in range(n_workers)]
         self._owner = [(w, i - blk.start) for w, blk in enumerate(self._blocks) for i in blk]
@@ -295,7 +291,7 @@ class WorkerVecEnv(VecEnv):
             tag, payload = remote.recv()
         except (EOFError, ConnectionResetError, OSError):
             self._fail(w, None)
-        if tag == _ERROR:
+        if tag == REPLY_ERROR:
             self._fail(w, payload)
         return payload
 

@@ -2,13 +2,14 @@
 (``soccer-env ablation --env soccer_env/Match-v0``).
 
 For each pair ``A:B`` of estimator configurations (names of
-:data:`agents.ablation.ESTIMATOR_CONFIGS`, or for humanoids of
-:data:`agents.ablation.HUMANOID_CONFIGS`) and each sensor preset, two teams with the same
-policy (the scripted team unless told otherwise) play ``matches`` seeded matches, one team
-perceiving through configuration ``A``, the other through ``B``, under the same preset (for
-SSL teams the same camera frames, filtered each team its own way). Colours swap every other
-match, so every seed is played from both sides (:func:`agents.matches.head_to_head`). The
-same seeds are used for every pair and preset.
+:data:`agents.studies.ablation_settings.ESTIMATOR_CONFIGS`, or for humanoids of
+:data:`agents.studies.ablation_settings.HUMANOID_CONFIGS`) and each sensor preset, two teams
+with the same policy (the scripted team unless told otherwise) play ``matches`` seeded
+matches, one team perceiving through configuration ``A``, the other through ``B``, under the
+same preset (for SSL teams the same camera frames, filtered each team its own way). Colours
+swap every other match, so every seed is played from both sides
+(:func:`agents.studies.matches.head_to_head`). The same seeds are used for every pair and
+preset.
 
 Each cell reports ``A``'s wins, draws and losses with Wilson 95 % intervals of their rates,
 goals for and against, the goal difference per match with its paired 95 % interval, and each
@@ -31,10 +32,24 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from agents.ablation import DEFAULT_HUMANOID, EstimatorConfig, parse_names, robot_kind
-from agents.ablation_report import write_files
-from agents.evaluation import describe_policy, resolve_workers
-from agents.matches import HeadToHead, Side, match_jobs, run_match_jobs
+import soccer_env
+from agents.common.processes import resolve_workers
+from agents.policies.base import describe_policy
+from agents.studies.ablation_report import write_files
+from agents.studies.ablation_settings import (
+    DEFAULT_HUMANOID,
+    EstimatorConfig,
+    parse_names,
+    robot_kind,
+)
+from agents.studies.matches import (
+    HeadToHead,
+    Side,
+    match_env_kwargs,
+    match_jobs,
+    run_match_jobs,
+    team_policy,
+)
 from soccer_env.envs.registration import MATCH_ID
 
 __all__ = ["DEFAULT_PAIRS", "DEFAULT_MATCH_PRESETS", "DEFAULT_TEAM_SIZE",
@@ -266,7 +281,7 @@ def run_match_ablation(pairs: str | Iterable[Any] | None = None,
         duration: match length [s] (> 0).
         start_seed: the first seed.
         workers: processes (None: all cores); the numbers do not depend on it.
-        policy: the team policy of both sides (a :class:`~agents.matches.Side` policy).
+        policy: the team policy of both sides (a :class:`~agents.studies.matches.Side` policy).
         env_kwargs: further match keyword arguments shared by every match (e.g. ``field``,
             ``formation_jitter``); not the team sizes, ``match_duration``, ``obs_mode`` or
             ``perception``.
@@ -321,9 +336,6 @@ def run_match_ablation(pairs: str | Iterable[Any] | None = None,
 def _probe(job: tuple) -> None:
     """Build the first match and its team policies here, so that bad input fails before any
     work starts, with the environment's own message."""
-    import soccer_env
-    from agents.matches import match_env_kwargs, team_policy
-
     env_kwargs, a, b, _, _ = job
     env = soccer_env.parallel_env(**match_env_kwargs(env_kwargs, a, b))
     try:
@@ -344,7 +356,7 @@ def plot(res: MatchAblationResult, path: Path) -> str:
     return save_figure(figure(res), path)
 
 
-def figure(res: MatchAblationResult):
+def figure(res: MatchAblationResult) -> Any:
     """Per cell (a row: pair and preset): A's goal difference per match with its interval,
     and the W/D/L shares; legends above the panels, the title naming the teams, the robots and
     the field.

@@ -1,7 +1,7 @@
 """Elo-style playing-strength ratings from seeded matches.
 
-:func:`round_robin` plays :func:`~agents.matches.head_to_head` between every pair of a list of
-sides (each pair on the same seeds, colours swapped every other match), and
+:func:`round_robin` plays :func:`~agents.studies.matches.head_to_head` between every pair of a
+list of sides (each pair on the same seeds, colours swapped every other match), and
 :func:`fit_ratings` fits one rating per side to all those matches at once, so a side that met
 only some of the others is still placed on the common scale.
 
@@ -16,7 +16,7 @@ BayesElo uses the same prior). The anchor side is held at ``anchor_rating``; the
 solved by Newton's method on the others (the log-likelihood is concave).
 
 The 95 % intervals come from the bootstrap over seeds: every pair's seeds (each played from
-both sides, the paired unit of :mod:`agents.matches`) are drawn with replacement, the
+both sides, the paired unit of :mod:`agents.studies.matches`) are drawn with replacement, the
 ratings refitted, and the 2.5 and 97.5 percentiles of each rating taken (the anchor's interval
 is a point; the others' widths include the anchor's own uncertainty).
 """
@@ -31,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-from agents.matches import HeadToHead, Side, head_to_head
+from agents.studies.matches import HeadToHead, Side, head_to_head
 
 __all__ = ["Rating", "fit_ratings", "rate", "round_robin", "rating_table", "expected_score",
            "ELO_SCALE"]
@@ -224,7 +224,7 @@ def round_robin(sides: Sequence[Side], matches: int = 100, start_seed: int = 0,
                 env_kwargs: Mapping[str, Any] | None = None, workers: int | None = None,
                 progress: Callable[[str], None] | None = None,
                 pairs: Sequence[tuple[Side, Side]] | None = None) -> list[HeadToHead]:
-    """:func:`~agents.matches.head_to_head` between every pair of ``sides`` (labels must
+    """:func:`~agents.studies.matches.head_to_head` between every pair of ``sides`` (labels must
     differ), or only between the ``pairs`` given (sides of ``sides``), ``matches`` seeded
     matches each, every pair on the same seeds; ``progress`` is called with each pair's
     summary line."""

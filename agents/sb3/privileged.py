@@ -1,5 +1,5 @@
-"""Asymmetric actor-critic: in training the critic reads the true state, the actor only what
-the robot perceives.
+"""The privileged critic's policy: an asymmetric actor-critic whose critic reads the true
+state in training while the actor reads only what the robot perceives.
 
 Under noisy, delayed perception the value of a state is hard to learn from the belief alone:
 two beliefs that look alike may hide a shot that is about to go in and one that is going wide.
@@ -7,17 +7,17 @@ A critic is only needed in training, so it may read the truth (Pinto et al. 2018
 actor critic for image-based robot learning"); the actor, which is all that is shipped, still
 acts on the perceived observation alone.
 
-* :class:`PrivilegedObservation` turns a single-agent environment's observation into a
-  ``Dict`` with ``"actor"`` (the environment's own observation) and ``"critic"`` (the same
-  layout built from the true state, followed by the actor's observation, so that the critic
-  knows both the truth and what the actor believes).
+* :class:`~agents.policies.wrappers.PrivilegedObservation` turns a single-agent environment's
+  observation into a ``Dict`` with ``"actor"`` (the environment's own observation) and
+  ``"critic"`` (the same layout built from the true state, followed by the actor's
+  observation, so that the critic knows both the truth and what the actor believes).
 * :class:`PrivilegedActorCriticPolicy` is a stable-baselines3 ``MultiInputActorCriticPolicy``
   whose actor network reads only ``"actor"`` and whose critic network reads only ``"critic"``
   (separate feature extractors and networks; nothing shared between them).
 
 ``soccer-env train --critic privileged`` trains PPO or A2C this way; the numpy copy of the
-actor (:meth:`agents.policies.NumpyPolicy.from_sb3`) takes the plain perceived observation, so
-the shipped policy needs no truth. ``tests/agents/test_privileged.py`` checks that the actor's
+actor (:func:`agents.sb3.policies.numpy_copy`) takes the plain perceived observation, so the
+shipped policy needs no truth. ``tests/agents/test_privileged.py`` checks that the actor's
 output does not change when the critic's input does.
 
 Imports torch and stable-baselines3 (the ``train`` extra).
@@ -27,7 +27,6 @@ from __future__ import annotations
 
 from typing import Any
 
-import gymnasium as gym
 import numpy as np
 import torch as th
 from gymnasium import spaces
@@ -35,43 +34,9 @@ from stable_baselines3.common.policies import MultiInputActorCriticPolicy
 from stable_baselines3.common.torch_layers import BaseFeaturesExtractor, MlpExtractor
 from torch import nn
 
-__all__ = ["ACTOR_KEY", "CRITIC_KEY", "PrivilegedObservation", "PrivilegedActorCriticPolicy",
-           "KeyExtractor", "SplitMlpExtractor"]
+from agents.policies.wrappers import ACTOR_KEY, CRITIC_KEY
 
-#: The actor's part of the observation.
-ACTOR_KEY = "actor"
-#: The critic's part.
-CRITIC_KEY = "critic"
-
-
-class PrivilegedObservation(gym.ObservationWrapper):
-    """The observation as ``Dict(actor=..., critic=...)`` (see the module docstring).
-
-    The critic's part is ``[truth (n), actor (n)]``: the environment's observation builder
-    applied to the world's true state (a truth-mode observation of the same layout, belief
-    features reading a perfect sensor) and the actor's observation. Works on the
-    single-agent tasks (``Goalkeeper-v0``, ``Shootout-v0``), whose ``builder`` lays out robot
-    0's observation.
-    """
-
-    def __init__(self, env: gym.Env) -> None:
-        super().__init__(env)
-        base = env.unwrapped
-        if not (hasattr(base, "builder") and hasattr(base, "world")):
-            raise TypeError(f"a privileged critic needs a single-agent soccer_env task (with "
-                            f"a builder and a world), got {type(base).__name__}")
-        box = env.observation_space
-        if not isinstance(box, spaces.Box) or len(box.shape) != 1:
-            raise TypeError(f"a privileged critic needs a flat Box observation, got {box}")
-        self._builder, self._world = base.builder, base.world
-        critic = spaces.Box(np.concatenate([self._builder.low, box.low]),
-                            np.concatenate([self._builder.high, box.high]), dtype=np.float32)
-        self.observation_space = spaces.Dict({ACTOR_KEY: box, CRITIC_KEY: critic})
-
-    def observation(self, observation: np.ndarray) -> dict[str, np.ndarray]:
-        truth = self._builder.build(self._world.snapshot())[0]
-        return {ACTOR_KEY: observation,
-                CRITIC_KEY: np.concatenate([truth, observation]).astype(np.float32)}
+__all__ = ["PrivilegedActorCriticPolicy", "KeyExtractor", "SplitMlpExtractor"]
 
 
 class KeyExtractor(BaseFeaturesExtractor):

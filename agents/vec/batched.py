@@ -26,8 +26,8 @@ from stable_baselines3.common.vec_env.base_vec_env import (
     VecEnvStepReturn,
 )
 
-from agents.multiagent import MatchVecEnv
 from agents.team import TEAMS
+from agents.vec.match import MatchVecEnv
 from soccer_env.envs.batched import GoalkeeperVectorEnv, ShootoutVectorEnv
 from soccer_env.envs.batched_match import MatchBatch
 from soccer_env.envs.registration import GOALKEEPER_ID, GYMNASIUM, SHOOTOUT_ID
@@ -141,18 +141,17 @@ def _rows(agents: list[str], some: list[str]) -> slice | list[int]:
 
 
 class BatchedMatchVecEnv(MatchVecEnv):
-    """:class:`~agents.multiagent.MatchVecEnv` with its matches stepped as one batch
+    """:class:`~agents.vec.match.MatchVecEnv` with its matches stepped as one batch
     (:class:`~soccer_env.envs.batched_match.MatchBatch`): the same batch layout (entry
     ``k * L + j`` is learning agent ``j`` of match ``k``), opponents, self-play, seeds and
     info dicts, with the per-match Python work of a step reduced to what happens rarely.
 
-    Args:
-        env_kwargs, n_matches, learner, opponent, first_match: as :class:`MatchVecEnv` takes
-            them; the matches must be ones the batch runs (the geometric detector, no
-            rendering; otherwise :class:`~soccer_env.envs.batched.NotBatchable` says what is
-            refused). Raw and perceived observations and humanoids run each match's own
-            perception, walk engines and heads (as a single match's), so they gain little
-            from the batch.
+    The arguments (``env_kwargs``, ``n_matches``, ``learner``, ``opponent``, ``first_match``)
+    are :class:`MatchVecEnv`'s; the matches must be ones the batch runs (the geometric
+    detector, no rendering; otherwise :class:`~soccer_env.envs.batched.NotBatchable` says what
+    is refused). Raw and perceived observations and humanoids run each match's own
+    perception, walk engines and heads (as a single match's), so they gain little from the
+    batch.
 
     Opponents run over the whole batch at once: a network (a numpy copy of a model) on every
     opponent row in one call, the scripted team through
@@ -244,10 +243,10 @@ class BatchedMatchVecEnv(MatchVecEnv):
 
     def step_wait(self) -> VecEnvStepReturn:
         """Step every match once; finished matches are reset (see :class:`MatchVecEnv`)."""
-        obs, rewards, dones, compact = self._step_arrays()
+        obs, rewards, dones, compact = self.step_arrays()
         return obs, rewards, dones, self.expand_infos(compact, self.agents_per_match)
 
-    def _step_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple]:
+    def step_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple]:
         """:meth:`step_wait` with the infos in the compact form :meth:`expand_infos` reads
         (what a worker process sends: a few lists instead of a dict per entry)."""
         if not self._started:
@@ -292,7 +291,7 @@ class BatchedMatchVecEnv(MatchVecEnv):
 
     @staticmethod
     def expand_infos(compact: tuple, agents_per_match: int) -> list[dict[str, Any]]:
-        """One info dict per entry (:class:`MatchVecEnv`'s) from :meth:`_step_arrays`'s
+        """One info dict per entry (:class:`MatchVecEnv`'s) from :meth:`step_arrays`'s
         compact infos: each match's event, score and truncation flag, and the finished
         entries' extras by entry index."""
         events, scores, truncs, finished = compact

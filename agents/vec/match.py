@@ -1,10 +1,11 @@
 """The PettingZoo match as a stable-baselines3 ``VecEnv`` with parameter sharing.
 
-:class:`MatchVecEnv` steps ``n_matches`` matches (:class:`~soccer_env.envs.match.SoccerParallelEnv`)
-in one process (:class:`~agents.match_workers.MatchWorkerVecEnv` splits them over worker
-processes, with the same batches: ``make_match_vec_env(..., workers=N)``) and exposes every
-learning agent of every match as one entry of the batch, so that one policy controls them all
-(parameter sharing). The other team is played by a frozen
+:class:`MatchVecEnv` steps ``n_matches`` matches
+(:class:`~soccer_env.envs.match.SoccerParallelEnv`) in one process
+(:class:`~agents.vec.match_workers.MatchWorkerVecEnv` splits them over worker processes, with
+the same batches: :func:`~agents.vec.factories.make_match_vec_env` with ``workers=N``) and
+exposes every learning agent of every match as one entry of the batch, so that one policy
+controls them all (parameter sharing). The other team is played by a frozen
 ``opponent``, or, with ``learner="both"``, by the same policy: observations are in each team's
 own frame, so a policy that learned to play blue can play yellow.
 
@@ -28,7 +29,8 @@ agent's team won), ``"goals_for"`` and ``"goals_against"``.
 Training against a fixed opponent and self-play::
 
     from stable_baselines3 import PPO
-    from agents.multiagent import SelfPlayCallback, make_match_vec_env
+    from agents.vec.factories import make_match_vec_env
+    from agents.vec.self_play import SelfPlayCallback
 
     venv = make_match_vec_env({"blue": 2, "yellow": 2, "match_duration": 60.0}, n_matches=4,
                               learner="blue", opponent="scripted", seed=0)
@@ -41,23 +43,23 @@ from __future__ import annotations
 
 import time
 import warnings
-from collections import deque
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import gymnasium as gym
 import numpy as np
-from stable_baselines3.common.callbacks import BaseCallback
-from stable_baselines3.common.vec_env import VecEnv, VecEnvWrapper, VecNormalize
+from stable_baselines3.common.vec_env import VecEnv
 from stable_baselines3.common.vec_env.base_vec_env import VecEnvIndices, VecEnvStepReturn
 
 import soccer_env
-from agents.evaluation import check_full_infos
-from agents.policies import IdlePolicy, NumpyPolicy, SB3Policy
+from agents.common.checks import check_full_infos
+from agents.policies.base import IdlePolicy
+from agents.policies.numpy_policy import NumpyPolicy
+from agents.sb3.algorithms import is_recurrent, is_sb3_model
+from agents.sb3.policies import SB3Policy, numpy_copy
 from agents.team import TEAMS, ScriptedTeam
 
-__all__ = ["MatchVecEnv", "SelfPlayCallback", "make_match_vec_env", "LEARNERS",
-           "OPPONENT_NAMES"]
+__all__ = ["MatchVecEnv", "LEARNERS", "OPPONENT_NAMES", "base_seed"]
 
 #: Allowed values of ``learner``.
 LEARNERS = ("blue", "yellow", "both")
@@ -103,12 +105,6 @@ class _Opponent:
         return f"<opponent {self.label}>"
 
 
-def _is_sb3_model(obj: Any) -> bool:
-    from stable_baselines3.common.base_class import BaseAlgorithm
-
-    return isinstance(obj, BaseAlgorithm)
-
-
 class MatchVecEnv(VecEnv):
     """``n_matches`` soccer matches as one stable-baselines3 ``VecEnv``, one batch entry per
     learning agent (parameter sharing).
@@ -123,13 +119,13 @@ class MatchVecEnv(VecEnv):
             (:class:`~agents.team.ScriptedTeam`, the default), ``"idle"`` (all-zero actions),
             the path of a numpy policy file (``.npz``, :meth:`NumpyPolicy.save`; loaded
             without pickle), a stable-baselines3 model (copied into a frozen
-            :class:`~agents.policies.NumpyPolicy` when possible), a
-            :class:`~agents.policies.NumpyPolicy`, or any callable ``obs (k, obs_dim) ->
-            actions (k, 6)``, called with one match's team at a time (rows in robot order).
-            Must be None with ``learner="both"``. Policies with memory (recurrent models,
-            frame-stacked numpy policies) are refused.
+            :class:`NumpyPolicy` when possible), a :class:`NumpyPolicy`, or any callable
+            ``obs (k, obs_dim) -> actions (k, 6)``, called with one match's team at a time
+            (rows in robot order). Must be None with ``learner="both"``. Policies with memory
+            (recurrent models, frame-stacked numpy policies) are refused.
         first_match: the global index of this VecEnv's first match, when the matches of one
-            batch are split over processes (:class:`~agents.match_workers.MatchWorkerVecEnv`):
+            batch are split over processes
+            (:class:`~agents.vec.match_workers.MatchWorkerVecEnv`):
             match ``k`` here is seeded as match ``first_match + k`` would be, so results do
             not depend on how the matches are split.
 
@@ -194,7 +190,7 @@ class MatchVecEnv(VecEnv):
         self._teams_of_entries = [a.split("_")[0] for a in self.learner_agents]
         self._entry_names = [f"{a} of match {k} (batch entry {i})"
                              for i, (k, a) in enumerate(self.entry_agents)]
-        self._out_of_range = m0.out_of_range_actions
+        self.out_of_range_actions = m0.out_of_range_actions  # "clip" or "raise" outside [-1, 1]
         self._obs_size = m0.observation_space(agents[0]).shape[0]
 
         self.num_envs = self.n_matches * self.agents_per_match  # before VecEnv.__init__
@@ -248,11 +244,11 @@ class MatchVecEnv(VecEnv):
             else:
                 raise ValueError(f"opponent must be {_OPPONENT_HELP}; got the string "
                                  f"{opponent!r} (names: {list(OPPONENT_NAMES)})")
-        if _is_sb3_model(opponent):
-            if hasattr(opponent.policy, "lstm_actor"):
+        if is_sb3_model(opponent):
+            if is_recurrent(opponent):
                 raise ValueError(_NO_MEMORY)
             try:
-                policy: Any = NumpyPolicy.from_sb3(opponent)
+                policy: Any = numpy_copy(opponent)
             except ValueError:  # a network numpy cannot copy: it follows the live model
                 return _Opponent(SB3Policy(opponent), True, type(opponent).__name__)
             self._check_policy_size(policy)
@@ -407,7 +403,7 @@ class MatchVecEnv(VecEnv):
                              f"vy, omega, kick, chip, dribble per batch entry), got {a.shape}")
         # Check every row before any match moves, so that a bad row leaves all matches as
         # they were (the matches check again, at no cost for valid actions).
-        self._actions = soccer_env.validate_actions(a, self._entry_names, self._out_of_range)
+        self._actions = soccer_env.validate_actions(a, self._entry_names, self.out_of_range_actions)
 
     def step_wait(self) -> VecEnvStepReturn:
         """Step every match once; finished matches are reset (see the module docstring)."""
@@ -509,141 +505,3 @@ class MatchVecEnv(VecEnv):
                           "is `rgb_array` to obtain images.", stacklevel=2)
             return [None for _ in self.matches]
         return [m.render() for m in self.matches]
-
-
-def make_match_vec_env(env_kwargs: Mapping[str, Any] | None = None, n_matches: int = 1,
-                       learner: str = "blue", opponent: Any = None, seed: int | None = None,
-                       workers: int = 0, pin: bool | None = None, batched: bool = False
-                       ) -> VecEnv:
-    """A :class:`MatchVecEnv` (``workers=0``: every match in this process) or a
-    :class:`~agents.match_workers.MatchWorkerVecEnv` (its matches split over ``workers``
-    processes; ``pin`` as that class takes it), seeded so that its first ``reset()`` is
-    reproducible (match ``k`` gets ``seed + k``, whatever the number of workers). With
-    ``batched``, the matches of each process are stepped as one batch
-    (:class:`~agents.batched.BatchedMatchVecEnv`)."""
-    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 0:
-        raise ValueError(f"workers must be an integer >= 0, got {workers!r}")
-    if not isinstance(batched, (bool, np.bool_)):
-        raise TypeError(f"batched must be True or False, got {batched!r}")
-    if workers:
-        from agents.match_workers import MatchWorkerVecEnv
-
-        venv: VecEnv = MatchWorkerVecEnv(env_kwargs, n_matches=n_matches, learner=learner,
-                                         opponent=opponent, workers=int(workers), pin=pin,
-                                         batched=bool(batched))
-        if seed is not None:
-            venv.seed(seed)
-        return venv
-    if batched:
-        from agents.batched import BatchedMatchVecEnv
-
-        venv = BatchedMatchVecEnv(env_kwargs, n_matches=n_matches, learner=learner,
-                                  opponent=opponent)
-    else:
-        venv = MatchVecEnv(env_kwargs, n_matches=n_matches, learner=learner,
-                           opponent=opponent)
-    if seed is not None:
-        venv.seed(seed)
-    return venv
-
-
-def _find_match_vec_env(env: VecEnv) -> tuple[Any, VecNormalize | None, dict | None]:
-    """The :class:`MatchVecEnv` under ``env``'s wrappers, the outermost ``VecNormalize``
-    that normalises observations, if any, and the action map of the outermost wrapper that
-    maps the learner's actions (:class:`~agents.team_residual_vec_env.TeamResidualVecEnv`), if
-    any."""
-    norm = action_map = None
-    while isinstance(env, VecEnvWrapper):
-        if norm is None and isinstance(env, VecNormalize) and env.norm_obs:
-            norm = env
-        if action_map is None and hasattr(env, "action_map"):
-            action_map = env.action_map
-        env = env.venv
-    from agents.match_workers import MatchWorkerVecEnv
-
-    if not isinstance(env, (MatchVecEnv, MatchWorkerVecEnv)):
-        raise ValueError(f"SelfPlayCallback needs a model trained on a MatchVecEnv (possibly "
-                         f"wrapped), got {type(env).__name__}")
-    return env, norm, action_map
-
-
-class SelfPlayCallback(BaseCallback):
-    """Self-play: every ``update_every`` timesteps, copy the learner's current policy into
-    the opponent team of the :class:`MatchVecEnv` it trains on.
-
-    The copy is a frozen :class:`~agents.policies.NumpyPolicy` (the deterministic action; it
-    does not change while the learner trains). If the observations pass through
-    ``VecNormalize``, the copy carries a frozen copy of its statistics; if the learner acts
-    through an action map (:class:`~agents.team_residual_vec_env.TeamResidualVecEnv`), the copy
-    acts through the same map. With
-    ``pool_size > 1`` the callback keeps the last ``pool_size`` copies and each match draws
-    one of them whenever it resets; with ``pool_size == 1`` the newest copy replaces the
-    opponent of every match at once.
-
-    Args:
-        update_every: timesteps between copies, as SB3 counts them (``num_timesteps``: one
-            per batch entry and step).
-        pool_size: how many past copies to keep (>= 1).
-        copy_at_start: also copy the initial policy when training starts (otherwise the
-            VecEnv's own opponent plays until the first update).
-        verbose: 1 prints a line at each copy.
-
-    Attributes:
-        n_updates: copies made so far.
-        pool: the copies kept, oldest first.
-    """
-
-    def __init__(self, update_every: int = 10_000, pool_size: int = 1,
-                 copy_at_start: bool = True, verbose: int = 0) -> None:
-        super().__init__(verbose)
-        if isinstance(update_every, bool) or not isinstance(update_every, (int, np.integer)) \
-                or update_every < 1:
-            raise ValueError(f"update_every must be an integer >= 1, got {update_every!r}")
-        if isinstance(pool_size, bool) or not isinstance(pool_size, (int, np.integer)) \
-                or pool_size < 1:
-            raise ValueError(f"pool_size must be an integer >= 1, got {pool_size!r}")
-        self.update_every = int(update_every)
-        self.pool_size = int(pool_size)
-        self.copy_at_start = bool(copy_at_start)
-        self.pool: deque[Any] = deque(maxlen=self.pool_size)
-        self.n_updates = 0
-        self._last_update = 0
-
-    def _init_callback(self) -> None:
-        self._venv, self._norm, self._action_map = _find_match_vec_env(self.training_env)
-        if self._venv.learner == "both":
-            raise ValueError("SelfPlayCallback needs learner='blue' or 'yellow': with "
-                             "learner='both' both teams already play the learning policy")
-        if not self._venv.opponent_agents:
-            raise ValueError("SelfPlayCallback: the match has no opponent team")
-
-    def _on_training_start(self) -> None:
-        self._last_update = self.num_timesteps
-        if self.copy_at_start:
-            self.update_opponent()
-
-    def _on_step(self) -> bool:
-        if self.num_timesteps - self._last_update >= self.update_every:
-            self._last_update = self.num_timesteps
-            self.update_opponent()
-        return True
-
-    def snapshot(self) -> Any:
-        """A frozen copy of the learner's current deterministic policy."""
-        return NumpyPolicy.from_sb3(self.model, {"timesteps": self.num_timesteps}, self._norm,
-                                    action_map=self._action_map)
-
-    def update_opponent(self) -> None:
-        """Copy the learner now and hand the copy (or the pool) to the VecEnv."""
-        self.pool.append(self.snapshot())
-        if self.pool_size == 1:
-            self._venv.set_opponent(self.pool[-1])
-        else:
-            # The first copy replaces the VecEnv's own opponent at once; later ones join the
-            # pool that matches draw from when they reset.
-            self._venv.set_opponent_pool(list(self.pool), redraw_now=self.n_updates == 0)
-        self.n_updates += 1
-        if self.verbose:
-            print(f"SelfPlayCallback: opponent updated at {self.num_timesteps} timesteps "
-                  f"({len(self.pool)} in the pool)")
-

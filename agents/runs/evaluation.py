@@ -18,9 +18,7 @@ import math
 import os
 import time
 from collections import Counter
-from collections.abc import Callable, Iterator, Mapping, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
-from contextlib import contextmanager
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
@@ -28,33 +26,14 @@ from typing import Any
 import gymnasium as gym
 
 import soccer_env  # noqa: F401  (registers the environments)
-from agents.policies import make_policy, reset_policy
+from agents.common.checks import check_full_infos
+from agents.common.processes import map_jobs
+from agents.common.stats import wilson
+from agents.policies.base import describe_policy, reset_policy
+from agents.runs.resolve import make_policy, policy_for_jobs, saved_model
 from soccer_env.envs.registration import GOALKEEPER_ID
 
-__all__ = ["wilson", "EvalResult", "evaluate", "record_video", "process_context",
-           "process_pool", "map_jobs", "resolve_workers", "describe_policy",
-           "ignore_interrupts", "check_full_infos"]
-
-
-def check_full_infos(env_kwargs: Mapping[str, Any] | None, where: str) -> None:
-    """Raise ``ValueError`` if ``env_kwargs`` ask for flat infos: the package's evaluation,
-    training and match adapter read the full infos (truth, estimate, outcome names)."""
-    mode = (env_kwargs or {}).get("info_mode", "full")
-    if mode != "full":
-        raise ValueError(f"{where} reads the environments' full infos: info_mode must be "
-                         f"'full' (the default) there, got {mode!r} (info_mode='flat' is for "
-                         "other RL libraries)")
-
-
-def wilson(successes: int, n: int, z: float = 1.96) -> tuple[float, float]:
-    """Wilson score interval of a binomial proportion ``successes / n`` (95 % for
-    ``z = 1.96``)."""
-    if n <= 0 or not 0 <= successes <= n:
-        raise ValueError(f"need 0 <= successes <= n and n >= 1, got {successes} of {n}")
-    p = successes / n
-    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
-    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
-    return max(0.0, centre - half), min(1.0, centre + half)
+__all__ = ["EvalResult", "evaluate", "record_video"]
 
 
 @dataclass
@@ -170,18 +149,18 @@ def evaluate(policy: str | os.PathLike | Callable = "scripted",
     """Run ``policy`` on ``episodes`` seeded episodes of ``env_id`` (Goalkeeper-v0 by default).
 
     Args:
-        policy: a policy reference for :func:`~agents.policies.make_policy` (``"scripted"``,
+        policy: a policy reference for :func:`~agents.runs.resolve.make_policy` (``"scripted"``,
             ``"idle"``, ``"baseline:NAME"``, a ``.zip``/``.npz`` path) or a callable; a
             callable runs in this process only (``workers`` must be 1 unless it pickles).
             A policy with memory is reset (its ``reset()``, see
-            :func:`~agents.policies.reset_policy`) at the start of every episode.
+            :func:`~agents.policies.base.reset_policy`) at the start of every episode.
         env_kwargs: keyword arguments of ``gymnasium.make`` (``obs_mode``, ``perception``,
             ...).
         episodes: number of shots; seeds ``start_seed`` onwards.
         workers: processes to spread the episodes over (the result does not depend on it).
         measure_estimator: time the perception's filters (adds a little overhead).
         trust: load a stable-baselines3 file's pickled entries (see
-            :mod:`agents.model_files`; only for files from a source you trust).
+            :mod:`agents.sb3.model_files`; only for files from a source you trust).
     """
     if int(episodes) < 1:
         raise ValueError(f"episodes must be >= 1, got {episodes!r}")
@@ -192,15 +171,10 @@ def evaluate(policy: str | os.PathLike | Callable = "scripted",
     seeds = list(range(int(start_seed), int(start_seed) + int(episodes)))
     workers = min(int(workers), len(seeds))
     name = describe_policy(policy)
-    if isinstance(policy, (str, os.PathLike)) and (
-            os.fspath(policy).endswith(".zip") or Path(policy).is_dir()):
+    if saved_model(policy):
         # Load a saved model once here (its numpy copy pickles cheaply) rather than import
         # torch and load it again in every worker; the workers never open the file.
-        probe = gym.make(env_id, **env_kwargs)
-        try:
-            policy = make_policy(policy, probe, trust=trust)
-        finally:
-            probe.close()
+        policy = policy_for_jobs(policy, env_id, env_kwargs, trust)
     chunks = [seeds[i::workers] for i in range(workers)]
     jobs = [(policy, env_id, env_kwargs, c, measure_estimator) for c in chunks]
     parts = map_jobs(_run_episodes, jobs, workers)
@@ -222,87 +196,6 @@ def evaluate(policy: str | os.PathLike | Callable = "scripted",
         ball_rmse_m=math.sqrt(sum(p["sq_err"] for p in parts) / max(steps, 1)),
         estimator_us_per_step=None if est is None else 1e6 * sum(est) / max(steps, 1),
         seconds=sum(p["seconds"] for p in parts), saved=saved)
-
-
-def process_context() -> Any:
-    """The :mod:`multiprocessing` context for process pools of evaluation work (give it to
-    ``ProcessPoolExecutor(mp_context=...)``): ``"forkserver"`` where the platform has it, else
-    ``"spawn"``; never ``"fork"``, since a parent that has used torch deadlocks forked
-    children. Workers import what they need afresh, so jobs must carry everything they use
-    (functions at module level, picklable arguments)."""
-    import multiprocessing as mp
-
-    return mp.get_context("forkserver" if "forkserver" in mp.get_all_start_methods()
-                          else "spawn")
-
-
-def ignore_interrupts() -> None:
-    """Make this process ignore Ctrl-C (``SIGINT``): the initializer of worker processes,
-    whose parent handles the interrupt (a terminal sends it to the whole process group, and
-    every worker would otherwise print its own traceback)."""
-    import signal
-
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-
-
-@contextmanager
-def process_pool(workers: int) -> Iterator[ProcessPoolExecutor]:
-    """A ``ProcessPoolExecutor`` of ``workers`` processes (:func:`process_context`) that
-    leave Ctrl-C to this process. When the block raises (Ctrl-C included), queued jobs are
-    cancelled and the workers terminated at once instead of running on to the end of every
-    submitted job (what leaving an executor's ``with`` block does)."""
-    pool = ProcessPoolExecutor(workers, mp_context=process_context(),
-                               initializer=ignore_interrupts)
-    try:
-        yield pool
-    except BaseException:
-        pool.shutdown(wait=False, cancel_futures=True)
-        # No public way to stop running jobs before Python 3.14's terminate_workers().
-        for proc in list((getattr(pool, "_processes", None) or {}).values()):
-            proc.terminate()
-        raise
-    pool.shutdown(wait=True)
-
-
-def resolve_workers(workers: Any) -> int:
-    """``workers`` as a process count: None for every core, else an integer >= 1
-    (``ValueError`` otherwise)."""
-    workers = (os.cpu_count() or 1) if workers is None else int(workers)
-    if workers < 1:
-        raise ValueError(f"workers must be >= 1, got {workers!r}")
-    return workers
-
-
-def map_jobs(fn: Callable[[Any], Any], jobs: Sequence[Any], workers: int | None = None,
-             progress: Callable[[int, int], None] | None = None) -> list[Any]:
-    """``[fn(job) for job in jobs]``, in job order, over ``workers`` processes (None: every
-    core; with one, or a single job, in this process). ``fn`` must be a module-level
-    function and the jobs must pickle (they reach fresh processes, see
-    :func:`process_context`). ``progress(done, total)`` is called after each job."""
-    workers = min(resolve_workers(workers), len(jobs))
-    if workers <= 1:
-        outs = []
-        for job in jobs:
-            outs.append(fn(job))
-            if progress:
-                progress(len(outs), len(jobs))
-        return outs
-    results: list[Any] = [None] * len(jobs)
-    with process_pool(workers) as pool:
-        futures = {pool.submit(fn, job): i for i, job in enumerate(jobs)}
-        for done, fut in enumerate(as_completed(futures), 1):
-            results[futures[fut]] = fut.result()
-            if progress:
-                progress(done, len(jobs))
-    return results
-
-
-def describe_policy(policy: Any) -> str:
-    """A policy reference as text for tables: the path or name given, else the callable's
-    name."""
-    if isinstance(policy, (str, os.PathLike)):
-        return os.fspath(policy)
-    return getattr(policy, "__name__", type(policy).__name__)
 
 
 def record_video(policy: str | os.PathLike | Callable, path: str | os.PathLike,

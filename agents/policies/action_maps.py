@@ -1,4 +1,4 @@
-"""Action spaces for learning keepers.
+"""The learners' action maps: a learner's action as the robot's native command.
 
 Goalkeeper-v0 takes the SSL robot's native command: a body-frame velocity, a turn rate and the
 kicker, chip and dribbler (6 numbers), sent 60 times a second. That is a hard space to learn a
@@ -8,47 +8,44 @@ rotated through a heading the exploration keeps changing. PPO on the native comm
 nothing in millions of steps here (its deterministic actions ended saturated at +-1 while the
 keeper spun). RoboCup teams' software does not command wheels either: the decision layer picks
 where a robot should be and a motion controller gets it there. The keeper's learner gets the
-same split:
+same split, as these maps from a learner's action to the native command (the wrappers of
+:mod:`agents.policies.wrappers` put them in front of an environment):
 
 * ``"native"``: the environment's own 6-number command;
-* ``"velocity"``: :class:`FieldVelocityActions`, ``(vx, vy, omega)`` with the velocity in the
-  team frame, kicker off;
-* ``"target"``: :class:`TargetActions`, a point ``(x, y)`` in front of the goal that a
-  braking-profile controller (:func:`soccer_env.envs.keeper.drive_command`) drives the keeper to,
-  facing the field, kicker off;
-* ``"guard"``: :class:`GuardActions`, the same with the point on the scripted keeper's guard
-  line (5 cm in front of the goal line, beyond the robot's radius): only ``y`` is chosen;
-* ``"guard-residual"``: :class:`GuardResidualActions`, the point on the guard line the
-  scripted keeper would choose from the same observation
-  (:meth:`~soccer_env.envs.keeper.ScriptedGoalkeeper.guard_y`) plus the learner's correction
-  ``a * residual`` (0.3 m): an action of 0 plays the scripted keeper's positioning, and the
-  learner only has to learn where to differ from it (residual policy learning, Silver et al.
-  2018; Johannink et al. 2019);
-* ``"ball-residual"``: :class:`BallResidualActions`, for SSL and humanoid keepers alike: the
-  scripted keeper (:class:`~soccer_env.envs.keeper.ScriptedGoalkeeper`, walking and diving
-  for a humanoid) acting on the observation with the believed ball velocity corrected by
+* ``"velocity"``: ``(vx, vy, omega)`` with the velocity in the team frame, kicker off
+  (:class:`~agents.policies.wrappers.FieldVelocityActions`);
+* ``"target"``: a point ``(x, y)`` in front of the goal that a braking-profile controller
+  (:func:`soccer_env.envs.keeper.drive_command`) drives the keeper to, facing the field, kicker
+  off (:class:`~agents.policies.wrappers.TargetActions`);
+* ``"guard"``: the same with the point on the scripted keeper's guard line (5 cm in front of
+  the goal line, beyond the robot's radius): only ``y`` is chosen
+  (:class:`~agents.policies.wrappers.GuardActions`);
+* ``"guard-residual"``: the point on the guard line the scripted keeper would choose from the
+  same observation (:meth:`~soccer_env.envs.keeper.ScriptedGoalkeeper.guard_y`) plus the
+  learner's correction ``a * residual`` (0.3 m): an action of 0 plays the scripted keeper's
+  positioning, and the learner only has to learn where to differ from it (residual policy
+  learning, Silver et al. 2018; Johannink et al. 2019;
+  :class:`~agents.policies.wrappers.GuardResidualActions`);
+* ``"ball-residual"``: for SSL and humanoid keepers alike, the scripted keeper
+  (:class:`~soccer_env.envs.keeper.ScriptedGoalkeeper`, walking and diving for a humanoid)
+  acting on the observation with the believed ball velocity corrected by
   ``a * ball_residual`` (2 numbers, team frame, 3 m/s at most): an action of 0 plays the
-  scripted keeper, and the learner learns how the belief it is given misleads that keeper
-  (a particle filter that learns a kick's speed over several frames makes the scripted
-  humanoid dive late or not at all).
+  scripted keeper, and the learner learns how the belief it is given misleads that keeper (a
+  particle filter that learns a kick's speed over several frames makes the scripted humanoid
+  dive late or not at all; :class:`~agents.policies.wrappers.BallResidualActions`).
 
 The first four maps drive an SSL robot's native command and refuse a humanoid.
 
 Each map reads the keeper's pose **from the agent's own observation** (``self.x``, ``self.y``,
 ``self.ax``, ``self.ay``), so under perceived observations it uses the estimated pose, as on a
-real robot, never the truth. :func:`action_to_command` is the same map as a function of
-``(obs, action)``; :class:`~agents.policies.NumpyPolicy` applies it, so a policy trained
-through a wrapper acts on the plain environment.
-
-:func:`stack_frames` gives a feed-forward learner a short memory: it sees its last ``n``
-observations at once (``soccer-env train --frame-stack N``), and the exported numpy policy
-keeps that history itself.
+real robot, never the truth. :func:`action_to_command` is the map as a function of
+``(obs, action)``; :class:`~agents.policies.numpy_policy.NumpyPolicy` applies it, so a policy
+trained through a wrapper acts on the plain environment.
 """
 
 from __future__ import annotations
 
-import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from functools import lru_cache
 from types import SimpleNamespace
 from typing import Any
@@ -56,12 +53,12 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
+from agents.team_residual import team_residual_command
 from soccer_env.envs.keeper import TURN_GAIN, ScriptedGoalkeeper
 
-__all__ = ["ACTION_MAPS", "POLICY_MAPS", "FieldVelocityActions", "TargetActions", "GuardActions",
-           "GuardResidualActions", "BallResidualActions", "action_to_command",
+__all__ = ["ACTION_MAPS", "POLICY_MAPS", "SSL_MAPS", "RESIDUAL", "BALL_RESIDUAL",
            "target_params", "residual_params", "ball_residual_params", "scripted_guard_y",
-           "wrap_actions", "stack_frames", "wrap_learner"]
+           "action_to_command", "check_observation_layout"]
 
 #: Action spaces of a learning keeper (see the module docstring) and their sizes.
 ACTION_MAPS = {"native": 6, "velocity": 3, "target": 2, "guard": 1,
@@ -264,8 +261,6 @@ def action_to_command(kind: str, obs: np.ndarray, action: np.ndarray,
         if params is None:
             raise ValueError("the 'team-residual' map needs its params (see "
                              "agents.team_residual.team_residual_params)")
-        from agents.team_residual import team_residual_command
-
         return team_residual_command(obs, action, params)
     obs = np.asarray(obs, dtype=np.float64)
     act = np.clip(np.asarray(action, dtype=np.float64), -1.0, 1.0)
@@ -312,152 +307,10 @@ def action_to_command(kind: str, obs: np.ndarray, action: np.ndarray,
     return out
 
 
-class _MappedActions(gym.Wrapper):
-    """Goalkeeper-v0 with a learner's action space (see the module docstring); the
-    observation, rewards and episode are the wrapped environment's."""
-
-    kind = ""
-
-    def __init__(self, env: gym.Env, params: Mapping[str, float] | None = None) -> None:
-        super().__init__(env)
-        native = env.action_space
-        if not (isinstance(native, gym.spaces.Box) and native.shape == (6,)):
-            raise ValueError(f"{type(self).__name__} wraps an environment with the SSL "
-                             f"robot's (6,) action space, got {native}")
-        if self.kind in SSL_MAPS and env.unwrapped.robot_spec.kind == "humanoid":
-            raise ValueError(f"the {self.kind!r} actions drive an SSL robot; a humanoid keeper "
-                             "takes 'native' or 'ball-residual' actions")
-        names = env.unwrapped.builder.names
-        if tuple(names[i] for i in _POSE + _BALL) != _ENTRIES:
-            raise ValueError(f"the observation must have {', '.join(_ENTRIES)} at indices "
-                             f"{_POSE + _BALL}")
-        self.params = dict(params) if params is not None else None
-        self.action_space = gym.spaces.Box(-1.0, 1.0, (ACTION_MAPS[self.kind],), np.float32)
-        self._obs: np.ndarray | None = None
-
-    def reset(self, **kwargs: Any):
-        obs, info = self.env.reset(**kwargs)
-        self._obs = obs
-        return obs, info
-
-    def step(self, action: Any):
-        if self._obs is None:
-            raise RuntimeError("call reset() before step()")
-        act = np.asarray(action, dtype=np.float32)
-        size = ACTION_MAPS[self.kind]
-        if act.shape != (size,):
-            raise ValueError(f"action must have shape ({size},), got {act.shape}")
-        if not np.all(np.isfinite(act)):
-            raise ValueError(f"action must be finite, got {act}")
-        native = action_to_command(self.kind, self._obs, act, self.params)
-        obs, reward, terminated, truncated, info = self.env.step(native)
-        self._obs = obs
-        return obs, reward, terminated, truncated, info
-
-
-class FieldVelocityActions(_MappedActions):
-    """``Box(-1, 1, (3,))``: field-frame ``(vx, vy)`` scaled to the top speed, and the turn
-    rate; kicker off."""
-
-    kind = "velocity"
-
-
-class TargetActions(_MappedActions):
-    """``Box(-1, 1, (2,))``: the point in front of the goal to drive to (see
-    :func:`action_to_command` and :func:`target_params`); facing the field, kicker off."""
-
-    kind = "target"
-
-    def __init__(self, env: gym.Env, depth: float = 0.5) -> None:
-        if not (math.isfinite(depth) and 0.0 <= depth <= 2.0):
-            raise ValueError(f"depth must be in [0, 2] m, got {depth!r}")
-        super().__init__(env, target_params(env, depth))
-
-
-class GuardActions(_MappedActions):
-    """``Box(-1, 1, (1,))``: where to stand on the guard line, ``y = a y_max`` (see
-    :func:`action_to_command` and :func:`target_params`); facing the field, kicker off."""
-
-    kind = "guard"
-
-    def __init__(self, env: gym.Env) -> None:
-        super().__init__(env, target_params(env))
-
-
-class GuardResidualActions(_MappedActions):
-    """``Box(-1, 1, (1,))``: a correction ``a * residual`` to the point on the guard line the
-    scripted keeper would choose (see :func:`scripted_guard_y` and :func:`residual_params`);
-    facing the field, kicker off."""
-
-    kind = "guard-residual"
-
-    def __init__(self, env: gym.Env) -> None:
-        super().__init__(env, residual_params(env))
-
-
-class BallResidualActions(_MappedActions):
-    """``Box(-1, 1, (2,))``: a correction ``a * residual`` (team frame, m/s) to the ball
-    velocity the scripted keeper believes, which then acts (see :func:`action_to_command`
-    and :func:`ball_residual_params`); for SSL and humanoid keepers."""
-
-    kind = "ball-residual"
-
-    def __init__(self, env: gym.Env) -> None:
-        super().__init__(env, ball_residual_params(env))
-
-
-def wrap_actions(env: gym.Env, kind: str) -> gym.Env:
-    """``env`` with the learner's action space ``kind`` (``"native"`` returns it as is)."""
-    if kind == "native":
-        return env
-    if kind == "velocity":
-        return FieldVelocityActions(env)
-    if kind == "target":
-        return TargetActions(env)
-    if kind == "guard":
-        return GuardActions(env)
-    if kind == "guard-residual":
-        return GuardResidualActions(env)
-    if kind == "ball-residual":
-        return BallResidualActions(env)
-    raise ValueError(f"actions must be one of {list(ACTION_MAPS)}, got {kind!r}")
-
-
-def stack_frames(env: gym.Env, n: int) -> gym.Env:
-    """``env`` whose observation is its last ``n`` observations concatenated, oldest first
-    (``Box`` of ``n`` times the size); after a reset the episode's first observation fills
-    the stack (``n = 1`` returns ``env`` as it is).
-
-    Gymnasium's ``FrameStackObservation`` (with ``padding_type="reset"``: the first
-    observation repeated, not zeros, so that a stacked observation never shows a state that
-    did not happen) followed by ``FlattenObservation`` (the ``(n, k)`` stack as one vector,
-    as stable-baselines3's MLP policies take it). Wrap it outside any action map of
-    :func:`wrap_actions`, which reads the pose from the plain observation.
-    :class:`~agents.policies.NumpyPolicy` with ``frame_stack=n`` does the same stacking
-    itself, so a policy trained on stacked frames acts on the plain environment.
-    """
-    from gymnasium.wrappers import FlattenObservation, FrameStackObservation
-
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-        raise ValueError(f"n must be an integer >= 1, got {n!r}")
-    if n == 1:
-        return env
-    space = env.observation_space
-    if not (isinstance(space, gym.spaces.Box) and len(space.shape) == 1):
-        raise ValueError(f"stack_frames takes a flat Box observation, got {space}")
-    return FlattenObservation(FrameStackObservation(env, int(n), padding_type="reset"))
-
-
-def wrap_learner(env: gym.Env, actions: str = "native", frame_stack: int = 1,
-                 critic: str = "shared") -> gym.Env:
-    """``env`` as a keeper learner of ``soccer-env train`` sees it: behind the action map
-    ``actions`` (:func:`wrap_actions`; inside, since the maps read the pose from the plain
-    observation), with the true state beside the observation for a ``"privileged"`` critic
-    (:class:`~agents.privileged.PrivilegedObservation`) and the last ``frame_stack``
-    observations stacked (:func:`stack_frames`)."""
-    env = wrap_actions(env, actions)
-    if critic == "privileged":
-        from agents.privileged import PrivilegedObservation
-
-        env = PrivilegedObservation(env)
-    return stack_frames(env, frame_stack)
+def check_observation_layout(names: Sequence[str]) -> None:
+    """Raise ``ValueError`` unless the observation entry ``names`` have what the maps read,
+    ``self.x, self.y, self.ax, self.ay, ball.dx, ball.dy, ball.vx, ball.vy``, at the indices
+    of every layout of :mod:`soccer_env.observations`."""
+    if tuple(names[i] for i in _POSE + _BALL) != _ENTRIES:
+        raise ValueError(f"the observation must have {', '.join(_ENTRIES)} at indices "
+                         f"{_POSE + _BALL}")
