@@ -35,7 +35,7 @@ from typing import Any
 import gymnasium as gym
 
 import soccer_env  # noqa: F401
-from agents.evaluation import evaluate
+from agents.runs.evaluation import evaluate
 from soccer_env.presets import vision
 
 GK = "soccer_env/Goalkeeper-v0"
@@ -60,7 +60,7 @@ def known_kick_env(**kwargs: Any) -> gym.Env:
     return KnownKick(gym.make(GK, **kwargs))
 
 
-#: The known-kick environment's id, registered here for :func:`agents.evaluation.evaluate`
+#: The known-kick environment's id, registered here for :func:`agents.runs.evaluation.evaluate`
 #: (which runs it in this process with one worker).
 KNOWN_KICK_ID = "soccer_env_bench/KnownKick-v0"
 if KNOWN_KICK_ID not in gym.registry:

@@ -8,10 +8,10 @@ Usage: ``python benchmarks/batched_match.py [--size 2] [--batches 1 16 64 128 25
 Ours: ``N`` vs ``N`` SSL robots on truth observations (``--size``, default 2 vs 2; or
 ``--obs-mode`` and ``--perception``), the blue
 team learning, the yellow team the scripted opponent, as
-:func:`agents.multiagent.make_match_vec_env` steps them for training with ``batched=True``:
+:func:`agents.vec.factories.make_match_vec_env` steps them for training with ``batched=True``:
 ``1 process`` is every match in one batch in this process, ``2 processes`` the matches
 split over two worker processes (each stepping its half as one batch, pinned to its CPU).
-``unbatched 1`` is one match stepped alone (:class:`~agents.multiagent.MatchVecEnv`), the
+``unbatched 1`` is one match stepped alone (:class:`~agents.vec.match.MatchVecEnv`), the
 single-environment rate. Learner actions are uniform random, made before the clock starts.
 
 VMAS (``--vmas-python``, a Python with ``vmas`` and torch installed: ``pip install
@@ -48,7 +48,7 @@ def _steps(batch: int, target: int) -> int:
 
 def _ours(size: int, batch: int, processes: int, target: int, batched: bool = True,
           extra: dict | None = None) -> float:
-    from agents.multiagent import make_match_vec_env
+    from agents.vec.factories import make_match_vec_env
 
     venv = make_match_vec_env({"blue": size, "yellow": size, **(extra or {})}, n_matches=batch,
                               learner="blue",

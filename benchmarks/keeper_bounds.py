@@ -31,7 +31,7 @@ import gymnasium as gym
 import numpy as np
 
 import soccer_env  # noqa: F401
-from agents.evaluation import evaluate
+from agents.runs.evaluation import evaluate
 from soccer_env.presets import HEAD_CAMERAS, head_camera, vision
 from soccer_env.state import Belief
 
@@ -96,7 +96,7 @@ def true_velocity_env(**kwargs: Any) -> gym.Env:
     return TrueBallVelocity(gym.make(GK, obs_mode="perceived", **kwargs))
 
 
-#: The oracle environment's id, registered here for :func:`agents.evaluation.evaluate` (which
+#: The oracle environment's id, registered here for :func:`agents.runs.evaluation.evaluate` (which
 #: runs it in this process with one worker).
 ORACLE_ID = "soccer_env_bench/FirstFrameOracle-v0"
 if ORACLE_ID not in gym.registry:

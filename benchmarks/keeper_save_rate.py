@@ -3,7 +3,7 @@
 Usage: ``python benchmarks/keeper_save_rate.py [--episodes N] [--field F] [--workers W]``.
 Episodes use seeds 0..N-1 of the default shot distribution and truth observations; the
 interval is Wilson's 95 % score interval. The benchmark is
-:func:`soccer_lab.bench.keeper_save_rates`, an :func:`agents.evaluation.evaluate` per keeper
+:func:`soccer_lab.bench.keeper_save_rates`, an :func:`agents.runs.evaluation.evaluate` per keeper
 (``soccer-env ablation`` compares observation and estimator configurations the same way).
 """
 

@@ -1,6 +1,6 @@
 """Match collection over processes: env-steps/s of the match VecEnv with its matches in this
-process (:class:`agents.multiagent.MatchVecEnv`) and in worker processes
-(:class:`agents.match_workers.MatchWorkerVecEnv`).
+process (:class:`agents.vec.match.MatchVecEnv`) and in worker processes
+(:class:`agents.vec.match_workers.MatchWorkerVecEnv`).
 
 Usage: ``python benchmarks/match_workers.py [--matches 64] [--steps 300] [--rounds 3]
 [--sizes 2 6] [--workers 0 2] [--opponent scripted] [--vmas-python PATH] [--json FILE]``.
@@ -36,7 +36,7 @@ import numpy as np
 
 
 def _rate(size: int, workers: str, matches: int, steps: int, opponent: str) -> float:
-    from agents.multiagent import make_match_vec_env
+    from agents.vec.factories import make_match_vec_env
 
     count, _, option = workers.partition(":")
     venv = make_match_vec_env({"blue": size, "yellow": size}, n_matches=matches,

@@ -7,7 +7,7 @@ Usage: ``python benchmarks/rollout_rate.py [--obs-mode perceived] [--perception 
 Compares, in one run and in alternation (so that the machine's drift cancels in the ratios),
 the configurations of :data:`soccer_lab.bench.ROLLOUT_CONFIGS`:
 
-* :class:`agents.vec_env.WorkerVecEnv`, 16 environments in 2 worker processes (what
+* :class:`agents.vec.workers.WorkerVecEnv`, 16 environments in 2 worker processes (what
   ``soccer-env train`` uses by default);
 * stable-baselines3's ``SubprocVecEnv`` with 2 environments (one per process);
 * stable-baselines3's ``DummyVecEnv`` with 2 environments (in the learner's process).

@@ -5,13 +5,13 @@
 
 1. ``--matches`` seeded 2 vs 2 matches (60 s, 30 commands a second, truth observations, the
    simple referee) between the shipped team (``agents/baselines/ssl_team_2v2.npz``) and the
-   scripted team, colours swapped every other match (:func:`agents.matches.head_to_head`):
+   scripted team, colours swapped every other match (:func:`agents.studies.matches.head_to_head`):
    wins, draws and losses with Wilson 95 % intervals, goals, and the goal difference per
    match with its paired 95 % interval.
 2. ``--round-robin`` matches per pair between the scripted team, the idle team (zero
    actions), the shipped team and the copies its training saved on the way
    (``agents/baselines/ssl_team_2v2_checkpoints/``), and their Elo ratings with bootstrap
-   95 % intervals, the scripted team held at 1000 (:mod:`agents.rating`). The idle team
+   95 % intervals, the scripted team held at 1000 (:mod:`agents.studies.rating`). The idle team
    meets only the scripted and the shipped teams (it loses every match against either,
    which places it below them as far as the prior of one virtual draw lets), and the shipped
    team's matches against the scripted team are those of 1.
@@ -28,8 +28,8 @@ import time
 from pathlib import Path
 
 from agents.baselines import SSL_TEAM_2V2, SSL_TEAM_CHECKPOINTS, load_team
-from agents.matches import Side, head_to_head
-from agents.rating import fit_ratings, rating_table, round_robin
+from agents.studies.matches import Side, head_to_head
+from agents.studies.rating import fit_ratings, rating_table, round_robin
 
 
 def _steps(path: Path) -> int:

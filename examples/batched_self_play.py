@@ -4,7 +4,7 @@
 
 ``make_match_vec_env(..., batched=True, workers=2)`` splits the matches over two worker
 processes, each stepping its half as one batch (shared pymunk spaces, numpy over the batch;
-``agents.batched.BatchedMatchVecEnv``), and exposes every blue robot of every match as one
+``agents.vec.batched.BatchedMatchVecEnv``), and exposes every blue robot of every match as one
 entry of stable-baselines3's ``VecEnv`` (parameter sharing). The yellow team starts as the
 scripted team and ``SelfPlayCallback`` replaces it with frozen copies of the learner as
 training goes on, each match drawing one from a pool when it restarts. The same run from the
@@ -22,7 +22,8 @@ from stable_baselines3 import PPO
 from stable_baselines3.common.vec_env import VecMonitor
 
 import soccer_env
-from agents.multiagent import SelfPlayCallback, make_match_vec_env
+from agents.vec.factories import make_match_vec_env
+from agents.vec.self_play import SelfPlayCallback
 
 
 def main(tiny: bool) -> None:
@@ -45,7 +46,7 @@ def main(tiny: bool) -> None:
     venv.close()
 
     # The shared policy plays blue against the scripted yellow team in one match.
-    from agents.team import ScriptedTeam
+    from agents.scripted import ScriptedTeam
 
     env = soccer_env.parallel_env(blue=2, yellow=2, match_duration=2.0 if tiny else 60.0)
     yellow = ScriptedTeam.for_env(env, "yellow")

@@ -6,7 +6,7 @@
 Under ``obs_mode="perceived"`` the keeper sees the estimation stack's belief, late, noisy and
 sometimes stale (``ssl-2012``: 25 Hz cameras, 80 ms latency); the LSTM gives the policy a
 memory of the past frames. The keeper chooses where to stand on its guard line
-(``agents.wrappers.GuardActions``), 25 times a second, with normalised observations: the
+(``agents.policies.wrappers.GuardActions``), 25 times a second, with normalised observations: the
 recipe of ``soccer-env train --algo recurrent-ppo`` (which adds worker processes, periodic
 evaluation, checkpoints and a numpy export).
 """
@@ -24,14 +24,15 @@ from stable_baselines3.common.env_util import make_vec_env
 from stable_baselines3.common.vec_env import VecNormalize
 
 import soccer_env  # noqa: F401  (registers the environments)
-from agents.wrappers import GuardActions
+from agents.policies.wrappers import GuardActions
+from soccer_env.envs.registration import GOALKEEPER_ID
 
 ENV_KWARGS = {"obs_mode": "perceived", "perception": "ssl-2012", "control_dt": 0.04}
 
 
 def main(tiny: bool) -> None:
     torch.set_num_threads(1)
-    venv = make_vec_env("soccer_env/Goalkeeper-v0", n_envs=2 if tiny else 16, seed=0,
+    venv = make_vec_env(GOALKEEPER_ID, n_envs=2 if tiny else 16, seed=0,
                         env_kwargs={**ENV_KWARGS, "shaping": {"intercept": 2.0}},
                         wrapper_class=GuardActions)
     venv = VecNormalize(venv, norm_obs=True, norm_reward=False)
@@ -45,7 +46,7 @@ def main(tiny: bool) -> None:
 
     # Evaluate without shaping, the LSTM's state carried from step to step and reset at each
     # episode's start.
-    env = GuardActions(gym.make("soccer_env/Goalkeeper-v0", **ENV_KWARGS))
+    env = GuardActions(gym.make(GOALKEEPER_ID, **ENV_KWARGS))
     episodes, saves = 2 if tiny else 100, 0
     for seed in range(episodes):
         obs, info = env.reset(seed=seed)

@@ -5,11 +5,12 @@
 
 Two runs of ``python -m rl_zoo3.train``, as the shipped keeper ``keeper-ppo-ssl2012`` was
 trained (``soccer-env train``; agents/baselines): 1 M steps on true observations with the
-hyperparameters, action map (``agents.wrappers.GuardActions``), observation normalisation and
-environment arguments of ``hyperparams/ppo.yml``, then 5 M more on perceived observations
-(``ssl-2012`` vision, the EKF) with an entropy bonus, continuing from the first run's model and
-normalisation statistics (``-i``). ``--tiny`` runs one rollout of each (4,096 steps). The
-commands are printed; run them yourself to change anything (``-params key:value``).
+hyperparameters, action map (``agents.policies.wrappers.GuardActions``), observation
+normalisation and environment arguments of ``hyperparams/ppo.yml``, then 5 M more on perceived
+observations (``ssl-2012`` vision, the EKF) with an entropy bonus, continuing from the first
+run's model and normalisation statistics (``-i``). ``--tiny`` runs one rollout of each (4,096
+steps). The commands are printed; run them yourself to change anything (``-params
+key:value``).
 """
 
 from __future__ import annotations
@@ -22,7 +23,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-ENV_ID = "soccer_env/Goalkeeper-v0"
+from soccer_env.envs.registration import GOALKEEPER_ID
+
+ENV_ID = GOALKEEPER_ID
 HYPERPARAMS = Path(__file__).resolve().parent.parent / "hyperparams" / "ppo.yml"
 PERCEIVED = ["obs_mode:'perceived'", "perception:'ssl-2012'", "control_dt:0.04",
              "shaping:{'intercept':2.0}"]

@@ -6,7 +6,7 @@ machines of a cluster (docs/tutorials/ray-cluster.md).
     python examples/rllib_match.py --tiny               # seconds: what the tests run
 
 Blue's robots play module ``main``, which learns; yellow's play ``opponent``, a frozen copy of
-``main`` that :class:`agents.rllib.SelfPlayCallback` refreshes as it trains. After training,
+``main`` that :class:`agents.runs.rllib.SelfPlayCallback` refreshes as it trains. After training,
 the example saves a checkpoint, builds the algorithm again from it
 (``Algorithm.from_checkpoint``) and evaluates the learner deterministically against its
 copy. ``SOCCER_ENV_EXAMPLE_TINY=1`` is the same as ``--tiny``.
@@ -27,7 +27,8 @@ from pathlib import Path
 import ray
 from ray.rllib.algorithms.algorithm import Algorithm
 
-from agents.rllib import MATCH_ID, ppo_config
+from agents.runs.rllib import ppo_config
+from soccer_env.envs.registration import MATCH_ID
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -8,7 +8,7 @@ vector environment, ``concat_vec_envs_v1`` stacks several matches (in worker pro
 environments are picklable) and gives stable-baselines3's ``VecEnv``. Both teams' robots are
 learners of the same policy (self-play by parameter sharing; yellow sees the field in its own
 frame). ``info_mode="flat"`` keeps the infos that cross the process boundary small.
-The package's own adapter, ``agents.multiagent.MatchVecEnv``, does the same with a fixed
+The package's own adapter, ``agents.vec.match.MatchVecEnv``, does the same with a fixed
 opponent or self-play against a frozen copy (``soccer-env train --env soccer_env/Match-v0``).
 """
 

@@ -21,13 +21,14 @@ from torchrl.envs.utils import check_env_specs
 
 import soccer_env
 from soccer_env.envs.flat_info import OUTCOME_CODES
+from soccer_env.envs.registration import GOALKEEPER_ID
 
 
 def main(tiny: bool) -> None:
     torch.set_num_threads(1)
     # The keeper by id. GymEnv tries optional keywords (frameskip) that the environment
     # refuses with Python's standard TypeError, which TorchRL takes to mean "not supported".
-    keeper = GymEnv("soccer_env/Goalkeeper-v0", obs_mode="perceived", perception="ssl-2012",
+    keeper = GymEnv(GOALKEEPER_ID, obs_mode="perceived", perception="ssl-2012",
                     info_mode="flat")
     keeper.auto_register_info_dict()
     check_env_specs(keeper)

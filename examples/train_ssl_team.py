@@ -5,9 +5,9 @@ scripted team, self-play against a pool of past copies and the scripted team.
     python examples/train_ssl_team.py --tiny                       # seconds: what CI runs
 
 Every blue robot of every match is one entry of stable-baselines3's batch
-(:func:`agents.multiagent.make_match_vec_env`, the matches stepped as one batch in each of two
+(:func:`agents.vec.factories.make_match_vec_env`, the matches stepped as one batch in each of two
 worker processes), so one policy plays both robots, whichever role it takes. The robots act
-through the ``"team-residual"`` map (:mod:`agents.team_residual`): the learner's action is a
+through the ``"team-residual"`` map (:mod:`agents.scripted.residual`): the learner's action is a
 correction to the scripted team's command from the same observation, so training starts from
 a team that already plays, and the exploration noise starts small (``log_std_init=-2``: a
 standard deviation of 0.14 on each command entry).
@@ -24,7 +24,7 @@ Rewards: +1 for a goal scored, -1 for a goal conceded (shared by the team), and
 Each copy is written to ``OUT/checkpoints/team_<steps>.npz`` (a numpy policy with the map and
 the observation statistics: arrays only), and the last one to ``OUT/final_team.npz``; with
 ``--eval N`` each copy also plays N seeded matches against the scripted team
-(:func:`agents.matches.head_to_head`), and the line is printed and appended to
+(:func:`agents.studies.matches.head_to_head`), and the line is printed and appended to
 ``OUT/progress.jsonl``.
 """
 
@@ -44,10 +44,11 @@ from stable_baselines3 import PPO
 from stable_baselines3.common.vec_env import VecNormalize
 
 import soccer_env
-from agents.matches import Side, head_to_head
-from agents.multiagent import SelfPlayCallback, make_match_vec_env
-from agents.team_residual import team_residual_params
-from agents.team_residual_vec_env import TeamResidualVecEnv
+from agents.scripted import team_residual_params
+from agents.studies.matches import Side, head_to_head
+from agents.vec.factories import make_match_vec_env
+from agents.vec.self_play import SelfPlayCallback
+from agents.vec.team_residual import TeamResidualVecEnv
 
 #: The training match: 2 vs 2 SSL robots, Division B, truth observations, the simple referee.
 TRAIN_KWARGS: dict[str, Any] = {"blue": 2, "yellow": 2, "match_duration": 30.0,
@@ -62,7 +63,7 @@ PPO_KWARGS: dict[str, Any] = {"n_steps": 128, "batch_size": 4096, "n_epochs": 5,
 
 
 class PoolSelfPlay(SelfPlayCallback):
-    """:class:`~agents.multiagent.SelfPlayCallback` whose pool keeps the scripted team beside
+    """:class:`~agents.vec.self_play.SelfPlayCallback` whose pool keeps the scripted team beside
     the copies (as often as all of them together), after ``warmup`` steps against the scripted
     team alone; each copy saved as a numpy policy file and, with ``eval_matches``, played
     against the scripted team."""

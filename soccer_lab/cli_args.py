@@ -63,7 +63,7 @@ class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
 
 def add_trust_argument(p: argparse.ArgumentParser) -> None:
     """``--trust``: load the pickled parts of stable-baselines3 files (see
-    :mod:`agents.model_files`)."""
+    :mod:`agents.sb3.model_files`)."""
     p.add_argument("--trust", action="store_true",
                    help="also load what only unpickling can read (a stable-baselines3 .zip's "
                         "serialized entries, *_vecnormalize.pkl statistics): unpickling runs "

@@ -26,6 +26,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
+from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_env.render.plots import (
     EPISODE_COLOURS,
     LABEL_SIZE,
@@ -55,7 +56,7 @@ def run_demo(out: str | Path = "demo_output", episodes: int = 3, seed: int = 0,
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode, robot=robot,
+    env = gym.make(GOALKEEPER_ID, obs_mode=obs_mode, robot=robot,
                    perception=None if obs_mode == "truth" else perception,
                    render_mode="rgb_array" if video else None, render_width=640)
     policy = ScriptedGoalkeeper.for_env(env)

@@ -95,7 +95,7 @@ def test_rl_zoo3_example_trains_with_the_shipped_hyperparameters(tmp_path):
         assert data["ent_coef"] == ent_coef
         assert data["policy_kwargs"] == {"log_std_init": -0.5}
         assert data["learning_rate"]["val"] == shipped["learning_rate"]
-        assert data["action_space"]["_shape"] == [1]  # agents.wrappers.GuardActions
+        assert data["action_space"]["_shape"] == [1]  # agents.policies.wrappers.GuardActions
 
 
 def test_zoo_hyperparameters_are_the_shipped_keepers():
@@ -103,9 +103,10 @@ def test_zoo_hyperparameters_are_the_shipped_keepers():
     (soccer-env train's PPO defaults and the baseline's recorded arguments)."""
     _needs("yaml")
     import yaml
+    from agents.runs.training import TrainConfig
 
     from agents.baselines import load_baseline
-    from agents.training import DEFAULT_HYPERPARAMS, TrainConfig
+    from agents.sb3.algorithms import DEFAULT_HYPERPARAMS
 
     zoo = yaml.safe_load(ZOO_HYPERPARAMS.read_text())["soccer_env/Goalkeeper-v0"]
     meta = load_baseline("keeper-ppo-ssl2012").meta
@@ -115,7 +116,8 @@ def test_zoo_hyperparameters_are_the_shipped_keepers():
     assert zoo["n_envs"] == cfg.n_envs
     assert zoo["normalize"] == f"{{'norm_obs': {cfg.normalize_obs}, " \
                                f"'norm_reward': {cfg.normalize_reward}}}"
-    assert meta["actions"] == "guard" and zoo["env_wrapper"] == "agents.wrappers.GuardActions"
+    assert meta["actions"] == "guard"
+    assert zoo["env_wrapper"] == "agents.policies.wrappers.GuardActions"
     assert zoo["policy_kwargs"] == "dict(log_std_init={})".format(
         meta["hyperparams"]["policy_kwargs"]["log_std_init"])
     stage1 = {k: v for k, v in meta["env_kwargs"].items()}

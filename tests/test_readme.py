@@ -74,7 +74,7 @@ def _registries() -> list[Registry]:
 def restore_registries():
     """Remove what a page registers (a ball filter, an ablation configuration, a Gymnasium
     id) once it has run, so that no other test sees it."""
-    import agents.ablation  # noqa: F401  (the registries a page may add to, loaded first)
+    import agents.studies.ablation  # noqa: F401  (the registries a page may add to, loaded first)
     import soccer_env  # noqa: F401
 
     before = {id(r): set(r) for r in _registries()}

@@ -1,11 +1,12 @@
 """Trained policies shipped with the package.
 
-Each baseline is a :class:`~agents.policies.NumpyPolicy` (``NAME.npz``: the actor's weights
-and observation statistics, a few tens of kB, run with numpy alone) and the stable-baselines3
-model it was copied from (``NAME.zip``, with ``NAME_vecnormalize.npz``, its normalisation
-statistics, to fine-tune; both load without unpickling, see :mod:`agents.model_files`). The
-``.npz`` carries the training configuration, the command that trained it and its evaluation in
-``policy.meta``; :func:`make_baseline_env` builds the environment it was trained for.
+Each baseline is a :class:`~agents.policies.numpy_policy.NumpyPolicy` (``NAME.npz``: the
+actor's weights and observation statistics, a few tens of kB, run with numpy alone) and the
+stable-baselines3 model it was copied from (``NAME.zip``, with ``NAME_vecnormalize.npz``, its
+normalisation statistics, to fine-tune; both load without unpickling, see
+:mod:`agents.sb3.model_files`). The ``.npz`` carries the training configuration, the command
+that trained it and its evaluation in ``policy.meta``; :func:`make_baseline_env` builds the
+environment it was trained for.
 
 >>> from agents.baselines import load_baseline, make_baseline_env
 >>> keeper = load_baseline("keeper-ppo-ssl2012")
@@ -17,10 +18,10 @@ statistics, to fine-tune; both load without unpickling, see :mod:`agents.model_f
 The shipped SSL match team (:data:`SSL_TEAM_2V2`, :func:`load_team`) is a numpy policy of the
 same kind that plays every robot of a team of two in
 :class:`~soccer_env.envs.match.SoccerParallelEnv`: it acts through the ``"team-residual"``
-map (:mod:`agents.team_residual`) and takes the observations of the whole team at once, robots
+map (:mod:`agents.scripted.residual`) and takes the observations of the whole team at once, robots
 in order (``team(np.stack([obs["blue_0"], obs["blue_1"]]))``), as
-:func:`agents.matches.head_to_head` calls it. Its earlier copies from the same training run lie
-in ``ssl_team_2v2_checkpoints/``.
+:func:`agents.studies.matches.head_to_head` calls it. Its earlier copies from the same training
+run lie in ``ssl_team_2v2_checkpoints/``.
 """
 
 from __future__ import annotations
@@ -29,6 +30,7 @@ from pathlib import Path
 from typing import Any
 
 from agents.policies import NumpyPolicy
+from soccer_env.envs.registration import GOALKEEPER_ID
 
 __all__ = ["BASELINES", "load_baseline", "baseline_path", "baseline_env_kwargs",
            "make_baseline_env", "SSL_TEAM_2V2", "SSL_TEAM_CHECKPOINTS", "load_team"]
@@ -74,7 +76,7 @@ BASELINES: dict[str, tuple[str, str]] = {
 def baseline_path(name: str, kind: str = "npz") -> Path:
     """The file of baseline ``name``: ``kind="npz"`` (numpy policy), ``"zip"`` (the
     stable-baselines3 model) or ``"stats"`` (its ``VecNormalize`` statistics, an ``.npz``
-    for :func:`agents.model_files.read_vecnormalize`)."""
+    for :func:`agents.sb3.normalization.read_vecnormalize`)."""
     if name not in BASELINES:
         raise ValueError(f"unknown baseline {name!r}; shipped: {sorted(BASELINES)}")
     if kind not in ("npz", "zip", "stats"):
@@ -106,4 +108,4 @@ def make_baseline_env(name: str, **overrides: Any):
 
     import soccer_env  # noqa: F401
 
-    return gym.make("soccer_env/Goalkeeper-v0", **{**baseline_env_kwargs(name), **overrides})
+    return gym.make(GOALKEEPER_ID, **{**baseline_env_kwargs(name), **overrides})

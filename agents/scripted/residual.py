@@ -20,16 +20,17 @@ a correction of more than ``+1`` (``residual = 1`` lets the learner override eve
 The map reads the robot's number in its team from the row's place in the batch: the scripted
 team's roles depend on it (robot 0 keeps goal), and an observation does not carry it. Rows
 come as whole teams, robots in order (``(M * team_size, obs_dim)``, match after match), as
-:class:`~agents.multiagent.MatchVecEnv` lays out a team's entries and as
-:func:`agents.matches.team_policy` calls a team's policy; so a team that plays through the map
-needs all its robots on the field (no game flow, whose cards send robots off).
+:class:`~agents.vec.match.MatchVecEnv` lays out a team's entries and as
+:func:`agents.studies.matches.team_policy` calls a team's policy; so a team that plays
+through the map needs all its robots on the field (no game flow, whose cards send robots
+off).
 
 :func:`team_residual_params` records what rebuilds the scripted team (the specs as numbers, the
 observation's entry names, the team size), so a saved :class:`~agents.policies.NumpyPolicy`
 with ``action_map={"kind": "team-residual", "params": ...}`` acts on the plain match without
 the environment it was trained in (:func:`team_residual_command`). A caller that applies the
 map at every step rebuilds the team once (:func:`scripted_team_from_params`) and calls
-:func:`residual_command` with it, as :class:`~agents.team_residual_vec_env.TeamResidualVecEnv`
+:func:`residual_command` with it, as :class:`~agents.vec.team_residual.TeamResidualVecEnv`
 does in training.
 """
 

@@ -93,7 +93,7 @@ class ScriptedTeam:
       ``{agent: action}`` for this team's agents in it;
     * ``team.act(obs_batch)``: ``(n, obs_dim)`` observations of robots ``0..n-1`` of the team
       (``n = team_size``) to ``(n, 6)`` float32 actions; what
-      :class:`~agents.multiagent.MatchVecEnv` uses for an opponent;
+      :class:`~agents.vec.match.MatchVecEnv` uses for an opponent;
     * ``team.act_batch(obs)``: the same for ``M`` matches at once, ``(M, n, obs_dim)`` to
       ``(M, n, 6)``, computed on whole arrays.
 

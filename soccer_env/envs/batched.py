@@ -41,7 +41,7 @@ Scope: the geometric detector (not ``pixels``), no rendering. Other arguments ar
 
 With ``autoreset_mode=AutoresetMode.SAME_STEP`` (``"SameStep"``) finished environments reset
 within the step that ends them, as stable-baselines3 expects
-(:class:`agents.batched.BatchedVecEnv` adapts it).
+(:class:`agents.vec.batched.BatchedVecEnv` adapts it).
 
 Infos: at an episode's end, ``info["outcome"]`` (the task's outcome: the Goalkeeper's
 ``"goal"``, ``"out"``, ``"stopped"``, ``"cleared"``, the Shootout's ``"goal"``, ``"saved"``,

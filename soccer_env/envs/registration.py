@@ -2,7 +2,8 @@
 ``pettingzoo.make`` can build from this package.
 
 Adding a task is one line here (its id, entry point, episode limit and a one-line
-description) plus its module.
+description) plus its module. The ids are defined here once (:data:`GOALKEEPER_ID`,
+:data:`SHOOTOUT_ID`, :data:`MATCH_ID`); code that names an environment imports them.
 """
 
 from __future__ import annotations
@@ -11,7 +12,16 @@ from typing import NamedTuple
 
 from estimators.registry import Registry
 
-__all__ = ["GymTask", "GYMNASIUM", "PETTINGZOO", "register_all"]
+__all__ = ["GOALKEEPER_ID", "SHOOTOUT_ID", "MATCH_ID", "GymTask", "GYMNASIUM", "PETTINGZOO",
+           "register_all"]
+
+#: The keeper task's id (``gymnasium.make(GOALKEEPER_ID)``).
+GOALKEEPER_ID = "soccer_env/Goalkeeper-v0"
+#: The attacker task's id (``gymnasium.make(SHOOTOUT_ID)``).
+SHOOTOUT_ID = "soccer_env/Shootout-v0"
+#: The match's id (``pettingzoo.make("parallel", MATCH_ID)``; ``soccer_env.parallel_env`` builds
+#: the same match directly).
+MATCH_ID = "soccer_env/Match-v0"
 
 
 class GymTask(NamedTuple):
@@ -26,18 +36,18 @@ class GymTask(NamedTuple):
 
 #: The Gymnasium tasks (``gymnasium.make(id)``).
 GYMNASIUM: Registry[GymTask] = Registry("Gymnasium environment", [
-    ("soccer_env/Goalkeeper-v0", GymTask("soccer_env.envs.goalkeeper:GoalkeeperEnv", 480,
-                                         "soccer_env.envs.batched:make_vector"),
+    (GOALKEEPER_ID, GymTask("soccer_env.envs.goalkeeper:GoalkeeperEnv", 480,
+                            "soccer_env.envs.batched:make_vector"),
      "a keeper robot (SSL or humanoid) defends its goal against one seeded shot"),
-    ("soccer_env/Shootout-v0", GymTask("soccer_env.envs.shootout:ShootoutEnv", 600,
-                                       "soccer_env.envs.batched:make_shootout_vector"),
+    (SHOOTOUT_ID, GymTask("soccer_env.envs.shootout:ShootoutEnv", 600,
+                          "soccer_env.envs.batched:make_shootout_vector"),
      "an attacker (SSL or humanoid) must score past the scripted keeper from a seeded start"),
 ])
 
 #: The PettingZoo environments (``pettingzoo.make("parallel" | "aec", id)``): their parallel
 #: and AEC entry points.
 PETTINGZOO: Registry[tuple[str, str]] = Registry("PettingZoo environment", [
-    ("soccer_env/Match-v0", ("soccer_env.envs.match:parallel_env", "soccer_env.envs.match:env"),
+    (MATCH_ID, ("soccer_env.envs.match:parallel_env", "soccer_env.envs.match:env"),
      "a match between two teams of SSL robots, humanoids or one of each"),
 ])
 

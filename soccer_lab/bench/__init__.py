@@ -18,11 +18,11 @@ perception's cost).
 
 **Save rates** (:func:`keeper_save_rates`, ``python benchmarks/keeper_save_rate.py``): the
 scripted keeper and a keeper that stands still on Goalkeeper-v0's seeded shots
-(:func:`agents.evaluation.evaluate`).
+(:func:`agents.runs.evaluation.evaluate`).
 
 **Rollout rates** (:func:`rollout_rate`, ``python benchmarks/rollout_rate.py``): environment
 steps per second while stable-baselines3's PPO collects rollouts, in
-:class:`~agents.vec_env.WorkerVecEnv` against stable-baselines3's own vectorised environments.
+:class:`~agents.vec.workers.WorkerVecEnv` against stable-baselines3's own vectorised environments.
 
 **Code.** :mod:`.runners` (what is timed and how: the environments stepped with random actions,
 bare pymunk, rates, memory), :mod:`.steps` (the step rates), :mod:`.profiling` (``--profile``),

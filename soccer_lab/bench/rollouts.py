@@ -1,6 +1,6 @@
 """The rollout collection rate of training (``python benchmarks/rollout_rate.py``):
 environment steps per second while stable-baselines3's PPO collects rollouts, in
-:class:`~agents.vec_env.WorkerVecEnv` against stable-baselines3's own vectorised
+:class:`~agents.vec.workers.WorkerVecEnv` against stable-baselines3's own vectorised
 environments."""
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ __all__ = ["ROLLOUT_CONFIGS", "rollout_rate", "rollout_rates", "format_rollout_r
            "rollout_main"]
 
 #: Vectorised environments compared by :func:`rollout_rates`: 16 environments in 2
-#: :class:`~agents.vec_env.WorkerVecEnv` processes (what ``soccer-env train`` uses), and
+#: :class:`~agents.vec.workers.WorkerVecEnv` processes (what ``soccer-env train`` uses), and
 #: stable-baselines3's ``SubprocVecEnv`` and ``DummyVecEnv`` with 2 environments.
 ROLLOUT_CONFIGS = ("worker-16x2", "subproc-2", "dummy-2")
 
@@ -20,8 +20,8 @@ ROLLOUT_CONFIGS = ("worker-16x2", "subproc-2", "dummy-2")
 def _rollout_venv(name: str, env_kwargs: dict[str, Any]) -> Any:
     from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
 
-    from agents.training import goalkeeper_env_fn
-    from agents.vec_env import WorkerVecEnv
+    from agents.vec.factories import goalkeeper_env_fn
+    from agents.vec.workers import WorkerVecEnv
 
     if name == "worker-16x2":
         return WorkerVecEnv([goalkeeper_env_fn(env_kwargs) for _ in range(16)], n_workers=2)
@@ -37,7 +37,7 @@ def rollout_rate(name: str, env_kwargs: dict[str, Any], steps: int, seed: int = 
     import torch
     from stable_baselines3 import PPO
 
-    from agents.training import rollout_timer
+    from agents.sb3.callbacks import rollout_timer
 
     torch.set_num_threads(1)
     venv = _rollout_venv(name, env_kwargs)

@@ -1,6 +1,6 @@
 """The keepers' save rates (``python benchmarks/keeper_save_rate.py``): the scripted keeper
 and a keeper that stands still on Goalkeeper-v0's seeded shots
-(:func:`agents.evaluation.evaluate`)."""
+(:func:`agents.runs.evaluation.evaluate`)."""
 
 from __future__ import annotations
 
@@ -11,12 +11,12 @@ __all__ = ["keeper_save_rates", "format_save_rates", "save_rate_main"]
 
 def keeper_save_rates(episodes: int = 300, field: str = "ssl-div-b", workers: int | None = None,
                       policies: tuple[str, ...] = ("scripted", "idle")) -> dict[str, Any]:
-    """The evaluation (:class:`~agents.evaluation.EvalResult`) of each of ``policies`` on
+    """The evaluation (:class:`~agents.runs.evaluation.EvalResult`) of each of ``policies`` on
     Goalkeeper-v0's shots of seeds ``0 .. episodes - 1`` on ``field``, truth observations, in
     ``workers`` processes (default: all cores; the result does not depend on it)."""
     import os
 
-    from agents.evaluation import evaluate
+    from agents.runs.evaluation import evaluate
 
     workers = workers or os.cpu_count() or 1
     return {name: evaluate(name, {"field": field}, episodes, workers=workers)

@@ -125,7 +125,7 @@ def bench_batched(batch: int, steps: int, repeats: int, seed: int = 0) -> dict[s
     ``gymnasium.make``), and the 2 vs 2 match VecEnv with the scripted yellow team
     (``make_match_vec_env(..., batched=True)`` against one unbatched match). Random actions
     drawn beforehand; ``steps`` env-steps per timed run (at least 20 batched steps)."""
-    from agents.multiagent import make_match_vec_env
+    from agents.vec.factories import make_match_vec_env
 
     rng = np.random.default_rng(seed)
     vec = gym.make_vec("soccer_env/Goalkeeper-v0", num_envs=batch,

@@ -1,7 +1,7 @@
 """``soccer-env ablation``: one keeper policy on the same seeded shots under every estimator
-configuration and sensor preset (:func:`agents.ablation.run_ablation`), or with ``--env
+configuration and sensor preset (:func:`agents.studies.ablation.run_ablation`), or with ``--env
 soccer_env/Match-v0`` pairs of configurations playing seeded matches against each other
-(:func:`agents.match_ablation.run_match_ablation`); the tables printed and written."""
+(:func:`agents.studies.match_ablation.run_match_ablation`); the tables printed and written."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import sys
 import time
 from collections.abc import Sequence
 
-from agents.ablation import (
+from agents.studies.ablation import (
     DEFAULT_CHUNK_SIZE,
     DEFAULT_EPISODES,
     DEFAULT_HUMANOID,
@@ -23,18 +23,17 @@ from agents.ablation import (
     run_ablation,
     write_outputs,
 )
-from agents.evaluation import GOALKEEPER_ID
-from agents.match_ablation import (
+from agents.studies.match_ablation import (
     DEFAULT_DURATION,
     DEFAULT_MATCH_PRESETS,
     DEFAULT_MATCHES,
     DEFAULT_PAIRS,
     DEFAULT_TEAM_SIZE,
-    MATCH_ID,
     parse_pairs,
     run_match_ablation,
 )
-from agents.match_ablation import write_outputs as write_match_outputs
+from agents.studies.match_ablation import write_outputs as write_match_outputs
+from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_env.presets import HEAD_CAMERAS, ROBOTS, VISION
 from soccer_lab import extras
 from soccer_lab.cli_args import HelpFormatter, add_trust_argument, key_values, preset_kind

@@ -1,6 +1,6 @@
 """``soccer-env eval``: a keeper policy on Goalkeeper-v0's fixed shot suite
-(:func:`agents.evaluation.evaluate`), with a video of the first episodes
-(:func:`agents.evaluation.record_video`)."""
+(:func:`agents.runs.evaluation.evaluate`), with a video of the first episodes
+(:func:`agents.runs.evaluation.record_video`)."""
 
 from __future__ import annotations
 
@@ -10,8 +10,10 @@ import os
 import sys
 from pathlib import Path
 
-from agents.evaluation import GOALKEEPER_ID, evaluate, record_video
-from agents.policies import make_policy
+from agents.runs.resolve import make_policy
+
+from agents.runs.evaluation import evaluate, record_video
+from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_lab import extras
 from soccer_lab.cli_args import (
     HelpFormatter,

@@ -1,9 +1,9 @@
-"""``soccer-env train``: train a policy with stable-baselines3 (:func:`agents.training.train`)
+"""``soccer-env train``: train a policy with stable-baselines3 (:func:`agents.runs.training.train`)
 or, with ``--backend rllib``, with RLlib on this machine or a Ray cluster
 (:mod:`soccer_lab.commands.train_rllib`).
 
 The options (declared in :mod:`soccer_lab.commands.train_options`, which builds the parser)
-become a :class:`~agents.training.TrainConfig`; with ``--resume`` the rest of the
+become a :class:`~agents.runs.training.TrainConfig`; with ``--resume`` the rest of the
 configuration comes from the checkpoint's run folder (its ``config.json``) unless given here,
 and ``--steps`` (the total, the checkpoint's steps included) must exceed the checkpoint's
 step count. ``--resume`` of an RLlib checkpoint folder picks the rllib backend by itself.
@@ -18,16 +18,10 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from agents.evaluation import GOALKEEPER_ID
-from agents.training import (
-    RunRefused,
-    TrainConfig,
-    TrainingStopped,
-    check_env_kwargs,
-    checkpoint_steps,
-    run_folder,
-    train,
-)
+from agents.runs.folders import RunRefused, TrainingStopped, run_folder
+from agents.runs.training import TrainConfig, check_env_kwargs, checkpoint_steps, train
+
+from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_lab import extras
 from soccer_lab.cli_args import (
     check_perception,

@@ -5,13 +5,13 @@ does with it.
 From the one table come the parser (:func:`parser`, in the table's order, the environment's
 options of :func:`~soccer_lab.cli_args.add_env_arguments` after ``--env``), the help's
 defaults (``{default}`` in a help is the field's default in
-:class:`~agents.training.TrainConfig`, a new run's), the configuration fields that the given
-options set for each backend (:func:`given_fields`: :class:`~agents.training.TrainConfig`
-for ``sb3``, :class:`~agents.rllib_runs.RllibTrainConfig` for ``rllib``) and the options a
+:class:`~agents.runs.training.TrainConfig`, a new run's), the configuration fields that the given
+options set for each backend (:func:`given_fields`: :class:`~agents.runs.training.TrainConfig`
+for ``sb3``, :class:`~agents.runs.rllib_runs.RllibTrainConfig` for ``rllib``) and the options a
 backend refuses (:func:`refuse_options`).
 
-Adding a training option: a field of :class:`~agents.training.TrainConfig` (and of
-:class:`~agents.rllib_runs.RllibTrainConfig` when RLlib takes it) and one
+Adding a training option: a field of :class:`~agents.runs.training.TrainConfig` (and of
+:class:`~agents.runs.rllib_runs.RllibTrainConfig` when RLlib takes it) and one
 :class:`TrainOption` here; nothing else in the command line names it.
 """
 
@@ -23,15 +23,11 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from agents.evaluation import GOALKEEPER_ID
-from agents.policies import algorithm_name
-from agents.training import (
-    CRITICS,
-    MATCH_ID,
-    OPPONENTS,
-    TrainConfig,
-)
-from agents.wrappers import ACTION_MAPS
+from agents.runs.training import CRITICS, OPPONENTS, TrainConfig
+
+from agents.policies.action_maps import ACTION_MAPS
+from agents.sb3.algorithms import algorithm_name
+from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_env.perception.base import OBS_MODES
 from soccer_lab.cli_args import (
     HelpFormatter,
@@ -56,7 +52,7 @@ SB3_EVALUATION = "is for the periodic evaluation of the sb3 backend"
 
 
 def config_default(name: str) -> Any:
-    """The default of :class:`~agents.training.TrainConfig` field ``name``."""
+    """The default of :class:`~agents.runs.training.TrainConfig` field ``name``."""
     return next(f.default for f in dataclasses.fields(TrainConfig) if f.name == name)
 
 
@@ -78,12 +74,12 @@ class TrainOption:
         flag: the option string (``"--steps"``); its attribute in the parsed arguments is
             :attr:`dest`.
         help: what it does; ``{default}`` in it stands for :attr:`field`'s default in
-            :class:`~agents.training.TrainConfig`, written by :attr:`show`.
+            :class:`~agents.runs.training.TrainConfig`, written by :attr:`show`.
         field: the configuration field its value sets, or None for an option that steers the
             command (``--backend``, ``--resume``, ...).
         backends: the backends whose configuration :attr:`field` is set on (``sb3``:
-            :class:`~agents.training.TrainConfig`, ``rllib``:
-            :class:`~agents.rllib_runs.RllibTrainConfig`); a backend not named leaves the
+            :class:`~agents.runs.training.TrainConfig`, ``rllib``:
+            :class:`~agents.runs.rllib_runs.RllibTrainConfig`); a backend not named leaves the
             field alone unless it refuses the option.
         refused: backend -> why that backend refuses the option when it is given (the error
             reads ``"{flag} {why}"``).
@@ -222,7 +218,7 @@ TRAIN_OPTIONS: tuple[TrainOption, ...] = (
                 "extra)", settings={"action": "store_true", "default": False}),
 )
 
-#: The options that set a :class:`~agents.training.TrainConfig` field: (field, the option's
+#: The options that set a :class:`~agents.runs.training.TrainConfig` field: (field, the option's
 #: attribute in the parsed arguments).
 FIELD_OPTIONS = tuple((o.field, o.dest) for o in TRAIN_OPTIONS
                       if o.field is not None and "sb3" in o.backends)
@@ -233,7 +229,7 @@ def parser() -> argparse.ArgumentParser:
     after ``--env`` and ``--trust`` last.
 
     The options default to None so that ``--resume`` can tell what is given from what the
-    run's ``config.json`` sets; their help states :class:`~agents.training.TrainConfig`'s
+    run's ``config.json`` sets; their help states :class:`~agents.runs.training.TrainConfig`'s
     defaults, which apply to a new run.
     """
     p = argparse.ArgumentParser(

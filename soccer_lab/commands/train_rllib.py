@@ -1,5 +1,5 @@
 """``soccer-env train --backend rllib``: train with RLlib on this machine or a Ray cluster
-(:func:`agents.rllib_runs.train`).
+(:func:`agents.runs.rllib_runs.train`).
 
 The options of ``soccer-env train`` keep their meaning where RLlib has one: ``--env``, the
 environment options, ``--steps`` (environment steps; for the match, match steps however many
@@ -7,7 +7,7 @@ robots play), ``--n-envs`` (environments per env runner), ``--seed``, ``--out``,
 ``--hp`` (RLlib ``PPOConfig`` settings), ``--checkpoint-every``, ``--actions`` and
 ``--frame-stack`` (the keeper), ``--resume`` (an RLlib checkpoint folder of a run), ``--trust``
 and ``--no-progress``. The match's ``--learner`` and ``--opponent`` choose the policy mapping
-(:data:`agents.rllib.POLICY_MAPPINGS`):
+(:data:`agents.runs.rllib.POLICY_MAPPINGS`):
 
 =================================================  ===========  =============================
 options                                            mapping      modules
@@ -34,8 +34,9 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from agents.evaluation import GOALKEEPER_ID
-from agents.training import MATCH_ID, RunRefused, TrainingStopped, run_folder
+from agents.runs.folders import RunRefused, TrainingStopped, run_folder
+
+from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_lab import extras
 from soccer_lab.cli_args import env_kwargs_from_args, key_values
 from soccer_lab.commands.train_options import TRAIN_OPTIONS, given_fields, refuse_options
@@ -138,7 +139,7 @@ def main(p: argparse.ArgumentParser, args: argparse.Namespace, argv: list[str] |
     fields = _config_fields(p, args, base)
     extras.require("train --backend rllib")
     try:
-        from agents import rllib_runs
+        from agents.runs import rllib_runs
     except ImportError as err:  # Ray without its RLlib part, or a broken installation
         print(f"soccer-env train --backend rllib needs the rllib extra: "
               f"{extras.install_command(['rllib'])} ({err})", file=sys.stderr)

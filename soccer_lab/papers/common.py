@@ -27,7 +27,7 @@ def check_count(name: str, value: Any, lo: int, hi: int) -> int:
 def map_jobs(fn: Callable[[Any], Any], jobs: Sequence[Any], workers: int | None) -> list[Any]:
     """``[fn(job) for job in jobs]``, in order, over ``workers`` processes (None: every core;
     one, or a single job: in this process). ``fn`` must be a module-level function."""
-    from agents.evaluation import map_jobs as run
+    from agents.common.processes import map_jobs as run
 
     return run(fn, jobs, workers or None)
 

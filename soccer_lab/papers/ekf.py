@@ -16,7 +16,7 @@ how many cycles it needs to lock on (present-time position error below 3 sigma =
 (Division B, 60 Hz) against the same seeded shots under truth, raw detections, the
 constant-velocity KF without latency compensation and the EKF, for every sensor preset: save
 rate with a Wilson 95 % interval. This is part of the estimator ablation
-(:mod:`agents.ablation`, ``soccer-env ablation``), which runs it.
+(:mod:`agents.studies.ablation`, ``soccer-env ablation``), which runs it.
 """
 
 from __future__ import annotations
@@ -303,8 +303,8 @@ def open_loop(episodes: int = 200, seed: int = 0) -> dict[str, Any]:
 # ------------------------------------------------------------------------------------------
 
 #: Estimator configurations of the closed-loop comparison: names in
-#: :data:`agents.ablation.ESTIMATOR_CONFIGS` (truth, raw detections, the constant-velocity KF
-#: without latency compensation, the EKF).
+#: :data:`agents.studies.ablation_settings.ESTIMATOR_CONFIGS` (truth, raw detections, the
+#: constant-velocity KF without latency compensation, the EKF).
 CLOSED_LOOP_MODES = ("truth", "raw", "kf", "ekf")
 
 
@@ -313,10 +313,10 @@ def closed_loop(shots: int = 1000, workers: int | None = None,
                 ) -> dict[str, Any]:
     """Save rates of the scripted keeper for every preset and observation configuration.
 
-    A subset of the estimator ablation (:func:`agents.ablation.run_ablation`): seeds
+    A subset of the estimator ablation (:func:`agents.studies.ablation.run_ablation`): seeds
     ``0 .. shots - 1``, a save is an episode that ends without a goal, Wilson 95 % intervals.
     """
-    from agents.ablation import run_ablation
+    from agents.studies.ablation import run_ablation
 
     res = run_ablation("scripted", shots, presets_, CLOSED_LOOP_MODES, start_seed=0,
                        workers=workers)

@@ -6,7 +6,7 @@ the ball, alone or together.
 * **Match.** Humanoid matches on Xu et al.'s (2012) 6 m x 4 m field (robot ``humanoid-2012``, head
   camera ``kidsize-2012``: 25 Hz, 51 degrees, 0.56 m, the ZigBee-like team radio): four blue
   robots (a keeper and three field players, Xu et al.'s (2012) hardware team size) against three
-  yellow ones, both teams scripted (:class:`agents.humanoid_team.HumanoidTeam`) and acting on
+  yellow ones, both teams scripted (:class:`agents.scripted.humanoid.HumanoidTeam`) and acting on
   their own perception. For each blue ball-estimation configuration (the robot's own
   sightings alone, with and without particle tracking; the team's Hough fusion, with and
   without tracking), the same seeded matches are played and the blue robots' beliefs about
@@ -41,7 +41,8 @@ from soccer_lab.papers.common import map_jobs, write_report
 __all__ = ["run", "Settings", "match_errors", "keeper_saves", "MATCH_CONFIGS", "KEEPER_CONFIGS",
            "PAPER"]
 
-#: Blue's ball estimation in the match: names of :data:`agents.ablation.HUMANOID_CONFIGS`.
+#: Blue's ball estimation in the match: names of
+#: :data:`agents.studies.ablation_settings.HUMANOID_CONFIGS`.
 MATCH_CONFIGS = ("own", "own-mfbpf", "fusion", "fusion-mfbpf", "fusion-ivar-mfbpf")
 #: The keeper's configurations (the same plus the truth).
 KEEPER_CONFIGS = ("truth", *MATCH_CONFIGS)
@@ -56,8 +57,8 @@ GOOD = 0.3
 
 def _match(args: tuple[str, int, float]) -> dict[str, Any]:
     """One seeded match with blue's configuration ``name``; blue's errors."""
-    from agents.ablation import HUMANOID_CONFIGS
-    from agents.humanoid_team import HumanoidTeam
+    from agents.scripted import HumanoidTeam
+    from agents.studies.ablation_settings import HUMANOID_CONFIGS
     from soccer_env.envs.match import SoccerParallelEnv
 
     name, seed, duration = args
@@ -123,7 +124,7 @@ def match_errors(matches: int = 4, duration: float = 60.0, workers: int | None =
 def keeper_saves(shots: int = 500, workers: int | None = None,
                  configs: tuple[str, ...] = KEEPER_CONFIGS) -> dict[str, Any]:
     """The humanoid keeper's save rates (a subset of the humanoid ablation)."""
-    from agents.ablation import run_ablation
+    from agents.studies.ablation import run_ablation
 
     res = run_ablation("scripted", shots, [CAMERA], list(configs), workers=workers,
                        robot="humanoid", env_kwargs={"robot": ROBOT})

@@ -1,4 +1,4 @@
-"""The estimator ablation (agents.ablation): numbers that do not depend on how the work is
+"""The estimator ablation (agents.studies.ablation): numbers that do not depend on how the work is
 split, outputs that parse, the oracle's zero error and cost, an extensible registry, and clear
 errors for bad input."""
 
@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from agents import ablation
-from agents.ablation import (
+from agents.studies import ablation_settings as ablation
+from agents.studies.ablation import (
     ESTIMATOR_CONFIGS,
     HUMANOID_CONFIGS,
     EstimatorConfig,
@@ -60,7 +60,7 @@ def test_chunking_only_splits_the_work(runs):
 
 def test_same_shots_in_every_cell(runs):
     # Truth observations with ideal vision are the plain evaluation of the scripted keeper.
-    from agents.evaluation import evaluate
+    from agents.runs.evaluation import evaluate
 
     ref = evaluate("scripted", {"obs_mode": "truth", "perception": {"vision": "ideal"}},
                    episodes=EPISODES, start_seed=3)
@@ -109,7 +109,7 @@ def test_outputs_are_written_and_parse(runs, tmp_path: Path):
 
 
 def test_plot_legend_covers_no_bar_and_the_title_names_the_setting(runs):
-    from agents.ablation_report import figure
+    from agents.studies.ablation_report import figure
     from soccer_env.render.plots import legend_overlaps, legends, pyplot
 
     fig = figure(runs[1])
@@ -244,7 +244,7 @@ def test_humanoid_ablation_runs_the_team_estimators_on_head_camera_presets(tmp_p
     assert res.command().startswith("soccer-env ablation --robot humanoid")
     files = write_outputs(res, tmp_path)
     assert "soccer_env.presets.HEAD_CAMERAS" in files["md"].read_text()
-    from agents.ablation_report import figure
+    from agents.studies.ablation_report import figure
     from soccer_env.render.plots import pyplot
 
     fig = figure(res)

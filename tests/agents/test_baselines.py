@@ -13,8 +13,8 @@ from agents.baselines import (
     load_baseline,
     make_baseline_env,
 )
-from agents.evaluation import evaluate
-from agents.wrappers import ACTION_MAPS
+from agents.policies.action_maps import ACTION_MAPS
+from agents.runs.evaluation import evaluate
 
 
 @pytest.mark.parametrize("name", sorted(BASELINES))
@@ -42,9 +42,11 @@ def test_shipped_model_is_the_numpy_policy(name):
     """The stable-baselines3 model behind the numpy copy, with its normalisation statistics
     and the action map, gives the same commands."""
     pytest.importorskip("stable_baselines3")
-    from agents.model_files import read_vecnormalize, serialized_entries
-    from agents.policies import learner_spaces, load_sb3
-    from agents.wrappers import action_to_command
+    from agents.runs.resolve import learner_spaces, load_sb3
+
+    from agents.policies.action_maps import action_to_command
+    from agents.sb3.model_files import serialized_entries
+    from agents.sb3.normalization import read_vecnormalize
 
     keeper = load_baseline(name)
     env = make_baseline_env(name)
@@ -81,7 +83,7 @@ def test_unknown_baseline_names_what_is_shipped():
 def test_the_shipped_team_plays_a_match_from_its_own_files():
     import soccer_env
     from agents.baselines import SSL_TEAM_2V2, SSL_TEAM_CHECKPOINTS, load_team
-    from agents.matches import team_policy
+    from agents.studies.matches import team_policy
 
     team = load_team()
     assert SSL_TEAM_2V2.stat().st_size < 200_000

@@ -16,8 +16,10 @@ from stable_baselines3.common.monitor import Monitor  # noqa: E402
 from stable_baselines3.common.vec_env import DummyVecEnv  # noqa: E402
 
 import soccer_env  # noqa: E402,F401
-from agents.batched import BatchedMatchVecEnv, BatchedVecEnv  # noqa: E402
-from agents.multiagent import MatchVecEnv, SelfPlayCallback, make_match_vec_env  # noqa: E402
+from agents.vec.batched import BatchedMatchVecEnv, BatchedVecEnv  # noqa: E402
+from agents.vec.factories import make_match_vec_env  # noqa: E402
+from agents.vec.match import MatchVecEnv  # noqa: E402
+from agents.vec.self_play import SelfPlayCallback  # noqa: E402
 from soccer_env.envs.batched import NotBatchable  # noqa: E402
 
 

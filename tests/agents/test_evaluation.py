@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from agents.evaluation import evaluate, wilson
+from agents.common.stats import wilson
+from agents.runs.evaluation import evaluate
 
 
 def test_wilson_interval():
@@ -77,7 +78,7 @@ def test_policies_with_memory_are_reset_at_every_episode_start(tmp_path):
     policy.reset()
     assert len(policy.episodes) == 3 and sum(policy.episodes) == res.steps
 
-    from agents.evaluation import record_video
+    from agents.runs.evaluation import record_video
 
     video = _EpisodeCounter()
     record_video(video, tmp_path / "v.mp4", seeds=(0, 1), width=160)

@@ -16,11 +16,13 @@ import numpy as np
 import pytest
 
 pytest.importorskip("stable_baselines3")
+from agents.runs.resolve import load_sb3, make_policy  # noqa: E402
 from stable_baselines3 import PPO  # noqa: E402
 
 import soccer_env  # noqa: E402,F401
-from agents.model_files import UnsafeFileError, check_npz, read_vecnormalize  # noqa: E402
-from agents.policies import NumpyPolicy, load_sb3, make_policy  # noqa: E402
+from agents.policies import NumpyPolicy  # noqa: E402
+from agents.policies.files import UnsafeFileError, check_npz  # noqa: E402
+from agents.sb3.normalization import read_vecnormalize  # noqa: E402
 from soccer_lab.cli import main  # noqa: E402
 
 GK = "soccer_env/Goalkeeper-v0"
@@ -182,9 +184,9 @@ def test_an_array_larger_than_its_bytes_is_refused(tmp_path):
 def test_an_archive_that_unpacks_beyond_the_limit_is_refused(tmp_path, monkeypatch):
     """A zip bomb (small file, large unpacked members): refused from the archive's
     directory (the limit lowered here so that the test stays small)."""
-    import agents.model_files as model_files
+    import agents.policies.files as files
 
-    monkeypatch.setattr(model_files, "MAX_FILE_BYTES", 1_000_000)
+    monkeypatch.setattr(files, "MAX_FILE_BYTES", 1_000_000)
     path = tmp_path / "bomb.npz"
     with zipfile.ZipFile(path, "w", compression=zipfile.ZIP_DEFLATED) as archive:
         archive.writestr("W0.npy", _npy_bytes({"descr": "<f8", "fortran_order": False,
@@ -272,7 +274,7 @@ def test_damaged_statistics_name_themselves(tmp_path, damage):
 def test_a_damaged_trusted_pickle_names_itself(tmp_path, honest_model):
     """Even trusted, a truncated statistics pickle gives an error naming the file, not an
     UnpicklingError or EOFError from deep inside pickle."""
-    from agents.policies import load_vecnormalize
+    from agents.sb3.normalization import load_vecnormalize
 
     run = _run_folder(tmp_path, honest_model)
     (run / "final_vecnormalize.pkl").write_bytes(pickle.dumps({"a": list(range(100))})[:40])

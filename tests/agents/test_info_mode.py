@@ -2,10 +2,10 @@
 refused at once, with the argument named."""
 
 import pytest
+from agents.runs.training import TrainConfig, check_env_kwargs
 
-from agents.evaluation import evaluate
-from agents.multiagent import MatchVecEnv
-from agents.training import TrainConfig, check_env_kwargs
+from agents.runs.evaluation import evaluate
+from agents.vec.match import MatchVecEnv
 
 
 def test_evaluate_refuses_flat_infos():

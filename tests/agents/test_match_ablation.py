@@ -1,6 +1,6 @@
-"""The estimator ablation in matches (agents.match_ablation): each team perceives through its
-own configuration under the cell's preset, the outputs parse and agree with the matches, the
-command reruns it, and bad input is refused before any match."""
+"""The estimator ablation in matches (agents.studies.match_ablation): each team perceives
+through its own configuration under the cell's preset, the outputs parse and agree with the
+matches, the command reruns it, and bad input is refused before any match."""
 
 import csv
 import json
@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from agents.match_ablation import (
+from agents.studies.match_ablation import (
     DEFAULT_PAIRS,
     parse_pairs,
     run_match_ablation,
@@ -62,7 +62,7 @@ def test_outputs_are_written_and_agree_with_the_matches(result, tmp_path: Path):
 
 
 def test_plot_legends_cover_no_data_and_the_title_names_the_setting(result):
-    from agents.match_ablation import figure
+    from agents.studies.match_ablation import figure
     from soccer_env.render.plots import legend_overlaps, legends, pyplot
 
     fig = figure(result)

@@ -14,10 +14,13 @@ pytest.importorskip("stable_baselines3")
 
 from stable_baselines3 import PPO  # noqa: E402
 
-from agents.match_workers import MatchWorkerVecEnv  # noqa: E402
-from agents.multiagent import MatchVecEnv, SelfPlayCallback, make_match_vec_env  # noqa: E402
-from agents.policies import NumpyPolicy, SB3Policy  # noqa: E402
-from agents.vec_env import WorkerError  # noqa: E402
+from agents.policies import NumpyPolicy  # noqa: E402
+from agents.sb3.policies import SB3Policy  # noqa: E402
+from agents.vec.factories import make_match_vec_env  # noqa: E402
+from agents.vec.match import MatchVecEnv  # noqa: E402
+from agents.vec.match_workers import MatchWorkerVecEnv  # noqa: E402
+from agents.vec.self_play import SelfPlayCallback  # noqa: E402
+from agents.vec.workers import WorkerError  # noqa: E402
 
 #: Short 2 vs 2 matches (24 control steps), so that runs cross match ends and resets.
 SHORT = {"blue": 2, "yellow": 2, "match_duration": 0.4}

@@ -1,4 +1,4 @@
-"""Head-to-head matches (agents.matches): outcomes counted from the right side whatever the
+"""Head-to-head matches (agents.studies.matches): outcomes counted from the right side whatever the
 colour, a side against itself is a perfect mirror, a team that plays beats one that does not,
 each team's ball error comes from its own belief, the numbers do not depend on the workers,
 and bad input is refused before any match."""
@@ -8,17 +8,17 @@ import math
 import numpy as np
 import pytest
 
-from agents.matches import (
+from agents.common.stats import t975
+from agents.policies import NumpyPolicy
+from agents.studies.matches import (
     HeadToHead,
     MatchRecord,
     Side,
-    _t975,
     head_to_head,
     match_jobs,
     play_match,
     team_policy,
 )
-from agents.policies import NumpyPolicy
 
 ONE_V_ONE = {"blue": 1, "yellow": 1, "match_duration": 12.0}
 
@@ -133,7 +133,7 @@ def test_goal_difference_interval_is_paired_by_seed():
                                         (5, 2.570581835636314), (10, 2.228138851986274),
                                         (30, 2.042272456301238), (1000, 1.962339)])
 def test_student_t_quantile(dof, exact):
-    assert _t975(dof) == pytest.approx(exact, abs=3e-4)
+    assert t975(dof) == pytest.approx(exact, abs=3e-4)
 
 
 @pytest.mark.parametrize("make, match", [

@@ -14,13 +14,12 @@ from stable_baselines3.common.utils import check_for_correct_spaces  # noqa: E40
 from stable_baselines3.common.vec_env import VecCheckNan, VecMonitor, VecNormalize  # noqa: E402
 
 import soccer_env  # noqa: E402
-from agents.multiagent import (  # noqa: E402
-    MatchVecEnv,
-    SelfPlayCallback,
-    make_match_vec_env,
-)
 from agents.policies import NumpyPolicy  # noqa: E402
-from agents.team import ScriptedTeam  # noqa: E402
+from agents.sb3.policies import numpy_copy  # noqa: E402
+from agents.scripted import ScriptedTeam  # noqa: E402
+from agents.vec.factories import make_match_vec_env  # noqa: E402
+from agents.vec.match import MatchVecEnv  # noqa: E402
+from agents.vec.self_play import SelfPlayCallback  # noqa: E402
 
 #: A short 1 vs 1 match: 30 control steps.
 SHORT = {"blue": 1, "yellow": 1, "match_duration": 0.5}
@@ -349,7 +348,7 @@ def test_self_play_callback_copies_the_learner_into_the_opponent(pool_size):
     venv = make_match_vec_env(SHORT, n_matches=2, learner="blue", opponent="idle", seed=0)
     model = PPO("MlpPolicy", venv, n_steps=32, batch_size=64, n_epochs=1, seed=0)
     callback = SelfPlayCallback(update_every=64, pool_size=pool_size)
-    initial = NumpyPolicy.from_sb3(model)
+    initial = numpy_copy(model)
     model.learn(320, callback=callback)
     assert callback.n_updates >= 5  # at the start, then every 64 timesteps
     pool = list(callback.pool)
@@ -382,7 +381,7 @@ def test_self_play_callback_carries_frozen_vec_normalize_statistics():
     opp = venv.opponents[0]
     obs = venv.reset()
     out = opp(obs)
-    raw = NumpyPolicy.from_sb3(model)
+    raw = numpy_copy(model)
     assert not np.allclose(out, raw(obs))  # it normalises before the network
     norm.obs_rms.mean += 1.0  # later statistics do not leak into the copy
     np.testing.assert_array_equal(opp(obs), out)

@@ -5,12 +5,15 @@ from __future__ import annotations
 import gymnasium as gym
 import numpy as np
 import pytest
+from agents.runs.resolve import make_policy
 
 import soccer_env  # noqa: F401
 from agents import ScriptedGoalkeeper
-from agents.policies import IdlePolicy, NumpyPolicy, SB3Policy, make_policy
+from agents.policies import IdlePolicy, NumpyPolicy
 
 sb3 = pytest.importorskip("stable_baselines3")
+
+from agents.sb3.policies import SB3Policy, numpy_copy  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -47,7 +50,7 @@ def test_numpy_copy_acts_as_the_model(env, algo, kwargs):
     training, so that the weights are not at their initial values)."""
     model = getattr(sb3, algo)("MlpPolicy", env, seed=0, device="cpu", **kwargs)
     model.learn(128)
-    policy = NumpyPolicy.from_sb3(model)
+    policy = numpy_copy(model)
     obs = _observations(env)
     expected = model.predict(obs, deterministic=True)[0]
     np.testing.assert_allclose(policy(obs), expected, atol=2e-5)
@@ -58,7 +61,7 @@ def test_numpy_copy_acts_as_the_model(env, algo, kwargs):
 def test_save_and_load_round_trip(env, tmp_path):
     model = sb3.PPO("MlpPolicy", env, seed=1, device="cpu",
                     policy_kwargs={"net_arch": [32, 16]})
-    policy = NumpyPolicy.from_sb3(model, {"note": "round trip"})
+    policy = numpy_copy(model, {"note": "round trip"})
     path = policy.save(tmp_path / "p.npz")
     loaded = NumpyPolicy.load(path)
     obs = _observations(env, 8)
@@ -118,7 +121,7 @@ def test_copy_is_frozen_and_carries_observation_normalisation(env, tmp_path):
     venv = VecNormalize(DummyVecEnv([lambda: gym.make("soccer_env/Goalkeeper-v0")]))
     model = sb3.PPO("MlpPolicy", venv, n_steps=64, batch_size=64, seed=0, device="cpu")
     model.learn(64)
-    policy = NumpyPolicy.from_sb3(model, vec_normalize=venv)
+    policy = numpy_copy(model, vec_normalize=venv)
     obs = _observations(env, 16)
     before = policy(obs)
     np.testing.assert_allclose(before, model.predict(venv.normalize_obs(obs),
@@ -174,7 +177,7 @@ def test_recurrent_numpy_copy_acts_as_the_model_over_episodes(env, recurrent_mod
     from agents.policies import NumpyRecurrentPolicy
 
     model, venv = recurrent_model
-    copy = NumpyPolicy.from_sb3(model, {"note": "lstm"}, vec_normalize=venv)
+    copy = numpy_copy(model, {"note": "lstm"}, vec_normalize=venv)
     assert isinstance(copy, NumpyRecurrentPolicy) and copy.stateful
     assert (copy.obs_size, copy.hidden_size, copy.n_lstm_layers) == (19, 16, 2)
     policy = NumpyPolicy.load(copy.save(tmp_path / "lstm.npz"))
@@ -196,7 +199,7 @@ def test_recurrent_numpy_copy_acts_as_the_model_over_episodes(env, recurrent_mod
 
 def test_recurrent_numpy_copy_takes_batches_of_separate_episodes(env, recurrent_model):
     model, venv = recurrent_model
-    policy = NumpyPolicy.from_sb3(model, vec_normalize=venv)
+    policy = numpy_copy(model, vec_normalize=venv)
     obs = _observations(env, 12)[:12].reshape(4, 3, 19)  # 4 steps of 3 environments
     state = None
     for t in range(4):
@@ -212,8 +215,10 @@ def test_recurrent_model_loads_by_file_and_as_sb3_policy(env, recurrent_model, t
     """A RecurrentPPO .zip without a run's config.json is recognised as RecurrentPPO (not
     opened as PPO, which would drop the LSTM); make_policy gives its numpy copy; SB3Policy
     carries the state too."""
-    from agents.model_files import UnsafeFileError
-    from agents.policies import NumpyRecurrentPolicy, load_sb3
+    from agents.runs.resolve import load_sb3
+
+    from agents.policies import NumpyRecurrentPolicy
+    from agents.policies.files import UnsafeFileError
 
     model, _ = recurrent_model
     model.save(tmp_path / "final_model.zip")
@@ -240,14 +245,14 @@ def test_numpy_policy_with_a_stack_acts_as_the_model_on_the_stacked_env(env, tmp
     ones over whole episodes."""
     from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
 
-    from agents.wrappers import stack_frames
+    from agents.policies.wrappers import stack_frames
 
     n = 3
     make = lambda: stack_frames(gym.make("soccer_env/Goalkeeper-v0"), n)  # noqa: E731
     venv = VecNormalize(DummyVecEnv([make] * 2))
     model = sb3.PPO("MlpPolicy", venv, n_steps=64, batch_size=128, seed=0, device="cpu")
     model.learn(256)
-    policy = NumpyPolicy.load(NumpyPolicy.from_sb3(model, vec_normalize=venv, frame_stack=n)
+    policy = NumpyPolicy.load(numpy_copy(model, vec_normalize=venv, frame_stack=n)
                               .save(tmp_path / "stack.npz"))
     assert policy.frame_stack == n and policy.obs_size == 19 and policy.input_size == 57
     stacked = make()

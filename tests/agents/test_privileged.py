@@ -12,12 +12,8 @@ import torch as th  # noqa: E402
 from stable_baselines3 import PPO  # noqa: E402
 
 import soccer_env  # noqa: E402, F401
-from agents.privileged import (  # noqa: E402
-    ACTOR_KEY,
-    CRITIC_KEY,
-    PrivilegedActorCriticPolicy,
-    PrivilegedObservation,
-)
+from agents.policies.wrappers import ACTOR_KEY, CRITIC_KEY, PrivilegedObservation  # noqa: E402
+from agents.sb3.privileged import PrivilegedActorCriticPolicy  # noqa: E402
 
 GK = "soccer_env/Goalkeeper-v0"
 KW = dict(obs_mode="perceived", perception="ssl-2012", belief_features=True)
@@ -99,8 +95,9 @@ def test_training_ships_an_actor_for_the_plain_environment(tmp_path):
     """``train(critic="privileged")``: the numpy copy of the actor takes the plain perceived
     observation and acts as the trained model does on the actor's part (normalised with the
     actor entry's statistics)."""
+    from agents.runs.training import TrainConfig, train
+
     from agents.policies import NumpyPolicy
-    from agents.training import TrainConfig, train
 
     cfg = TrainConfig(env_kwargs=dict(KW), critic="privileged", total_steps=512, n_envs=2,
                       n_workers=0, out=str(tmp_path / "run"), checkpoint_every=0,
@@ -112,10 +109,10 @@ def test_training_ships_an_actor_for_the_plain_environment(tmp_path):
     plain = gym.make(GK, **KW)
     obs, _ = plain.reset(seed=0)
     assert policy.obs_size == plain.observation_space.shape[0]
+    from agents.runs.resolve import load_sb3
     from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
 
-    from agents.model_files import read_vecnormalize, vecnormalize_on
-    from agents.policies import load_sb3
+    from agents.sb3.normalization import read_vecnormalize, vecnormalize_on
 
     # Loaded without unpickling: the spaces and the privileged policy class from the run.
     model = load_sb3(tmp_path / "run" / "final_model.zip")
@@ -131,7 +128,7 @@ def test_training_ships_an_actor_for_the_plain_environment(tmp_path):
 
 
 def test_config_refuses_what_it_cannot_do():
-    from agents.training import TrainConfig
+    from agents.runs.training import TrainConfig
 
     for bad in (dict(critic="oracle"), dict(critic="privileged", algorithm="SAC"),
                 dict(critic="privileged", frame_stack=4),
@@ -143,9 +140,8 @@ def test_config_refuses_what_it_cannot_do():
 def test_worker_processes_carry_dict_observations():
     """The training VecEnv in worker processes batches the ``Dict`` observations as
     stable-baselines3 expects (a dict of arrays), also through ``VecNormalize``."""
+    from agents.runs.training import TrainConfig, make_vec_env
     from stable_baselines3.common.vec_env import VecNormalize
-
-    from agents.training import TrainConfig, make_vec_env
 
     cfg = TrainConfig(env_kwargs=dict(KW), critic="privileged", n_envs=4, n_workers=2,
                       actions="guard")

@@ -1,5 +1,5 @@
-"""Elo-style ratings (agents.rating): the fitted difference is Elo's for a known score, the fit
-is the likelihood's maximum (scipy as the oracle), ratings chain through sides that never
+"""Elo-style ratings (agents.studies.rating): the fitted difference is Elo's for a known score, the
+fit is the likelihood's maximum (scipy as the oracle), ratings chain through sides that never
 met, the anchor holds, a clean sweep stays finite under the prior, the bootstrap interval is
 reproducible and brackets the estimate, and a real round robin orders scripted above idle."""
 
@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize
 
-from agents.matches import HeadToHead, MatchRecord, Side
-from agents.rating import (
+from agents.studies.matches import HeadToHead, MatchRecord, Side
+from agents.studies.rating import (
     expected_score,
     fit_ratings,
     rate,

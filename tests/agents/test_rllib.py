@@ -15,12 +15,10 @@ pytest.importorskip("ray.rllib")
 
 import torch  # noqa: E402
 
-from agents.model_files import UnsafeFileError  # noqa: E402
-from agents.rllib import (  # noqa: E402
+from agents.policies.files import UnsafeFileError  # noqa: E402
+from agents.runs.rllib import (  # noqa: E402
     DEFAULT_HYPERPARAMS,
-    GOALKEEPER_ID,
     KEEPER_INFOS,
-    MATCH_ID,
     MATCH_INFOS,
     POLICY_MAPPINGS,
     SelfPlayCallback,
@@ -32,7 +30,7 @@ from agents.rllib import (  # noqa: E402
     ppo_config,
     self_play_callback,
 )
-from agents.rllib_runs import (  # noqa: E402
+from agents.runs.rllib_runs import (  # noqa: E402
     CHECKPOINT_INFO,
     SIGNATURE_FILE,
     RllibTrainConfig,
@@ -42,6 +40,7 @@ from agents.rllib_runs import (  # noqa: E402
     save_checkpoint,
     sign_checkpoint,
 )
+from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID  # noqa: E402
 
 #: A match small and short enough for a few training iterations in seconds.
 TINY_MATCH = {"blue": 1, "yellow": 1, "max_cycles": 40, "formation_jitter": 0.0}

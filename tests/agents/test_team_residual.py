@@ -7,8 +7,6 @@ import numpy as np
 import pytest
 
 import soccer_env
-from agents.matches import Side, head_to_head, team_policy
-from agents.multiagent import SelfPlayCallback, make_match_vec_env
 from agents.policies import NumpyPolicy
 from agents.scripted import (
     ScriptedTeam,
@@ -17,7 +15,10 @@ from agents.scripted import (
     team_residual_command,
     team_residual_params,
 )
-from agents.team_residual_vec_env import TeamResidualVecEnv
+from agents.studies.matches import Side, head_to_head, team_policy
+from agents.vec.factories import make_match_vec_env
+from agents.vec.self_play import SelfPlayCallback
+from agents.vec.team_residual import TeamResidualVecEnv
 
 KWARGS = {"blue": 2, "yellow": 2, "match_duration": 6.0, "control_dt": 1.0 / 30.0}
 

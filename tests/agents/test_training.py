@@ -6,7 +6,7 @@ import pytest
 
 pytest.importorskip("stable_baselines3")
 
-from agents.training import TrainConfig  # noqa: E402
+from agents.runs.training import TrainConfig  # noqa: E402
 
 
 def test_config_round_trip():
@@ -43,19 +43,20 @@ def test_recurrent_ppo_and_frame_stack_are_validated():
 
 def test_default_policy_kwargs_merge_with_the_configuration():
     pytest.importorskip("sb3_contrib")
-    from agents.training import _training_env
+    from agents.runs.training.environments import training_env
 
     cfg = TrainConfig(algorithm="recurrent-ppo", n_envs=1, n_workers=0, normalize_obs=False,
                       hyperparams={"policy_kwargs": {"net_arch": [16]}, "n_steps": 64})
-    venv, params = _training_env(cfg, None)
+    venv, params = training_env(cfg, None)
     venv.close()
     assert params["policy_kwargs"] == {"lstm_hidden_size": 64, "net_arch": [16]}
     assert params["n_steps"] == 64 and params["batch_size"] == 64  # one rollout at most
 
 
 def test_checkpoint_steps_reads_the_model_file_without_loading_it(tmp_path):
+    from agents.runs.training import checkpoint_steps
+
     from agents.baselines import baseline_path
-    from agents.training import checkpoint_steps
 
     assert checkpoint_steps(baseline_path("keeper-ppo-truth", "zip")) == 1_000_000
     (tmp_path / "bad.zip").write_text("not a zip")

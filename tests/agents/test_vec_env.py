@@ -18,7 +18,7 @@ from stable_baselines3.common.vec_env import (  # noqa: E402
 )
 
 import soccer_env  # noqa: E402,F401
-from agents.vec_env import DEFAULT_INFO_KEYS, WorkerVecEnv  # noqa: E402
+from agents.vec.workers import DEFAULT_INFO_KEYS, WorkerVecEnv  # noqa: E402
 
 
 def make_keeper():
@@ -117,7 +117,7 @@ def test_a_killed_worker_ends_the_run_naming_it(victim, no_hang):
     import os
     import signal
 
-    from agents.vec_env import WorkerError
+    from agents.vec.workers import WorkerError
 
     venv = WorkerVecEnv([make_keeper] * 4, n_workers=2)
     venv.reset()
@@ -134,7 +134,7 @@ def test_a_killed_worker_ends_the_run_naming_it(victim, no_hang):
 def test_an_environment_error_in_a_later_worker_carries_its_traceback(no_hang):
     """An exception inside an environment of worker 1 (not the first) ends the step with a
     WorkerError holding the environment's traceback; close() does not hang on worker 0."""
-    from agents.vec_env import WorkerError
+    from agents.vec.workers import WorkerError
 
     fns = [make_keeper, make_keeper, make_keeper, FailingAfter(make_keeper, after=3)]
     venv = WorkerVecEnv(fns, n_workers=2)

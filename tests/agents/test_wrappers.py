@@ -12,13 +12,11 @@ import pytest
 
 import soccer_env  # noqa: F401
 from agents.policies import NumpyPolicy
-from agents.wrappers import (
-    ACTION_MAPS,
+from agents.policies.action_maps import ACTION_MAPS, action_to_command, target_params
+from agents.policies.wrappers import (
     FieldVelocityActions,
     TargetActions,
-    action_to_command,
     stack_frames,
-    target_params,
     wrap_actions,
 )
 from soccer_env.envs.keeper import drive_command
@@ -232,7 +230,7 @@ def test_guard_residual_starts_from_the_scripted_keeper():
     it by the residual."""
     import gymnasium as gym
 
-    from agents.wrappers import RESIDUAL, residual_params, scripted_guard_y
+    from agents.policies.action_maps import RESIDUAL, residual_params, scripted_guard_y
     from soccer_env.envs.keeper import ScriptedGoalkeeper
 
     env = wrap_actions(gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived",
@@ -267,7 +265,7 @@ def test_ball_residual_starts_from_the_scripted_keeper(robot, preset, tmp_path):
     diving) on the same perceived observation, step for step; a correction is the scripted
     keeper on the observation whose ball velocity is corrected (team frame, rotated into the
     body frame); a saved numpy policy rebuilds the keeper from its params alone."""
-    from agents.wrappers import BALL_RESIDUAL, ball_residual_params
+    from agents.policies.action_maps import BALL_RESIDUAL, ball_residual_params
     from soccer_env.envs.keeper import ScriptedGoalkeeper
 
     env = wrap_actions(gym.make(ID, robot=robot, obs_mode="perceived", perception=preset,
@@ -308,7 +306,7 @@ def test_ball_residual_starts_from_the_scripted_keeper(robot, preset, tmp_path):
 
 
 def test_humanoid_refuses_the_ssl_maps_and_incomplete_params():
-    from agents.wrappers import ball_residual_params
+    from agents.policies.action_maps import ball_residual_params
 
     env = gym.make(ID, robot="humanoid")
     for kind in ("velocity", "target", "guard", "guard-residual"):

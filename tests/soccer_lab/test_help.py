@@ -65,7 +65,8 @@ def test_every_option_has_help_that_states_its_default(all_parsers):
 def test_train_states_the_configuration_defaults(all_parsers):
     import dataclasses
 
-    from agents.training import TrainConfig
+    from agents.runs.training import TrainConfig
+
     from soccer_lab.commands.train_options import FIELD_OPTIONS
 
     defaults = {f.name: f.default for f in dataclasses.fields(TrainConfig)}

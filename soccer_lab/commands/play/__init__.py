@@ -8,8 +8,8 @@ panel beside the frames shows the keys and the results.
 
 * ``--task match``: the person plays ``blue_0`` of Match-v0 (the keeper slot of the kick-off
   formation); the other blue robots and the yellow team are the scripted teams of
-  :func:`agents.matches.team_policy` (:class:`~agents.team.ScriptedTeam`,
-  :class:`~agents.humanoid_team.HumanoidTeam` for humanoids);
+  :func:`agents.studies.matches.team_policy` (:class:`~agents.scripted.team.ScriptedTeam`,
+  :class:`~agents.scripted.humanoid.HumanoidTeam` for humanoids);
 * ``--task shootout``: the striker of Shootout-v0 against its scripted keeper;
 * ``--task keeper``: the keeper of Goalkeeper-v0 facing its seeded shots.
 

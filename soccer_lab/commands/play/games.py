@@ -93,7 +93,7 @@ class MatchGame(Game):
 
     def __init__(self, robot: str, team_size: int, env_kwargs: dict[str, Any]) -> None:
         import soccer_env
-        from agents.matches import team_policy
+        from agents.studies.matches import team_policy
 
         super().__init__()
         self.env = soccer_env.parallel_env(blue=team_size, yellow=team_size, robot=robot,

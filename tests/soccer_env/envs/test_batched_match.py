@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import soccer_env
-from agents.team import ScriptedTeam
+from agents.scripted import ScriptedTeam
 from soccer_env.envs.batched import NotBatchable
 from soccer_env.envs.batched_match import MatchBatch
 

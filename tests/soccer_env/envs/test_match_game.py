@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from pettingzoo.test import parallel_api_test
 
-from agents.team import ScriptedTeam
+from agents.scripted import ScriptedTeam
 from soccer_env import presets
 from soccer_env.envs.batched import NotBatchable
 from soccer_env.envs.batched_match import MatchBatch
@@ -372,7 +372,7 @@ def test_scripted_robots_leave_the_ball_to_the_placing_opponents():
 
 
 def test_scripted_humanoids_keep_away_from_the_opponents_throw_in():
-    from agents.humanoid_team import HumanoidTeam
+    from agents.scripted import HumanoidTeam
 
     env = SoccerParallelEnv(blue=2, yellow=2, robot="humanoid", game=True)
     obs, _ = env.reset(seed=0)

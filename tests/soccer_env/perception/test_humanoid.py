@@ -347,7 +347,7 @@ def test_match_beliefs_of_the_ball_stay_inside_the_walls():
     """However wrong a robot's ball belief gets (lost balls, outliers, a tracker restarted on
     a kick), it never leaves the walled area, where no ball can be."""
     import soccer_env
-    from agents.humanoid_team import HumanoidTeam
+    from agents.scripted import HumanoidTeam
 
     env = soccer_env.parallel_env(blue=3, yellow=2, robot="humanoid-2012", obs_mode="perceived",
                                   max_cycles=900)

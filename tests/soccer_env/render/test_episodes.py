@@ -282,7 +282,7 @@ def test_videos_hold_the_last_frame(tmp_path, monkeypatch):
     longer before the next episode's title card."""
     import soccer_env.render.video as video
     import soccer_lab.demo as demo
-    from agents.evaluation import record_video
+    from agents.runs.evaluation import record_video
 
     written = {}
 

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from agents import ablation
+from agents.studies import ablation
 from soccer_lab.cli import main as cli_main
 from soccer_lab.commands.ablation import main
 

@@ -9,7 +9,9 @@ import pytest
 
 pytest.importorskip("stable_baselines3")
 
-from agents.policies import NumpyPolicy, load_sb3, make_policy  # noqa: E402
+from agents.runs.resolve import load_sb3, make_policy  # noqa: E402
+
+from agents.policies import NumpyPolicy  # noqa: E402
 from soccer_lab.cli import main  # noqa: E402
 
 pytestmark = pytest.mark.slow
@@ -147,9 +149,9 @@ def test_recurrent_ppo_run_resumes_and_refuses_a_resume_with_nothing_to_train(tm
     checkpoint has."""
     pytest.importorskip("sb3_contrib")
     import gymnasium as gym
+    from agents.runs.training import TrainConfig, train
 
     from agents.policies import NumpyRecurrentPolicy
-    from agents.training import TrainConfig, train
 
     run = tmp_path / "lstm"
     assert main(["train", "--algo", "recurrent-ppo", "--steps", "256", "--n-envs", "2",
@@ -213,9 +215,9 @@ def test_frame_stack_run_exports_a_policy_that_keeps_the_stack(tmp_path):
     # and VecNormalize): the same commands, step by step.
     from stable_baselines3.common.vec_env import DummyVecEnv
 
-    from agents.model_files import read_vecnormalize, vecnormalize_on
-    from agents.training import goalkeeper_env_fn
-    from agents.wrappers import action_to_command
+    from agents.policies.action_maps import action_to_command
+    from agents.sb3.normalization import read_vecnormalize, vecnormalize_on
+    from agents.vec.factories import goalkeeper_env_fn
 
     make = goalkeeper_env_fn({}, "guard", 3)
     norm = vecnormalize_on(read_vecnormalize(run / "final_vecnormalize.npz"),

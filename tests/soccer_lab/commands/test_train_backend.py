@@ -69,7 +69,8 @@ def test_the_option_table_sets_each_backends_fields():
     options given set their fields for the backends that take them, and only those."""
     import dataclasses
 
-    from agents.training import TrainConfig
+    from agents.runs.training import TrainConfig
+
     from soccer_lab.commands.train_options import (
         BACKENDS,
         TRAIN_OPTIONS,

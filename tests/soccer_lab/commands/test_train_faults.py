@@ -117,13 +117,14 @@ def test_a_failing_worker_ends_training_with_a_checkpoint(tmp_path, monkeypatch,
     """An environment that raises in the second rollout worker: training ends within
     seconds, naming the worker and carrying the environment's traceback; the model of the
     last completed update is saved and the message says how to resume."""
+    from agents.runs.folders import TrainingStopped
+    from agents.runs.training import TrainConfig, train
     from faulty_envs import FailingAfter
 
-    import agents.training as training
-    from agents.training import TrainConfig, TrainingStopped, train
+    import agents.vec.factories as factories
 
-    real = training.goalkeeper_env_fn
-    monkeypatch.setattr(training, "goalkeeper_env_fn",
+    real = factories.goalkeeper_env_fn
+    monkeypatch.setattr(factories, "goalkeeper_env_fn",
                         lambda *a, **k: FailingAfter(real(*a, **k), after=200))
     cfg = TrainConfig(total_steps=10_000, n_envs=2, n_workers=2, out=str(tmp_path / "run"),
                       hyperparams={"n_steps": 64}, eval_every=0, checkpoint_every=0,

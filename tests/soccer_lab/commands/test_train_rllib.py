@@ -71,7 +71,7 @@ def test_an_address_where_no_cluster_answers(tmp_path, capsys):
 def test_the_options_rllib_takes_are_fields_of_its_configuration():
     import dataclasses
 
-    from agents.rllib_runs import RllibTrainConfig
+    from agents.runs.rllib_runs import RllibTrainConfig
     from soccer_lab.commands.train_options import TRAIN_OPTIONS
 
     fields = {f.name for f in dataclasses.fields(RllibTrainConfig)}

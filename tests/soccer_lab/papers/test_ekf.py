@@ -33,8 +33,8 @@ def test_closed_loop_structure():
 
 
 def test_wilson_interval():
-    # The closed loop's intervals come from agents.evaluation.
-    from agents.evaluation import wilson
+    # The closed loop's intervals come from agents.common.stats.
+    from agents.common.stats import wilson
 
     lo, hi = wilson(90, 100)
     assert lo == pytest.approx(0.8256, abs=1e-3) and hi == pytest.approx(0.9448, abs=1e-3)

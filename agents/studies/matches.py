@@ -1,0 +1,393 @@
+"""Seeded matches between two sides, each side a team policy and what that team perceives.
+
+A :class:`Side` is who plays a team (``"scripted"``, ``"idle"``, a numpy policy file shared by
+the team's robots, or a callable) and how the team perceives (its observation mode and
+perception options, the sensor preset included). :func:`head_to_head` plays ``matches``
+seeded matches of :class:`~soccer_env.envs.match.SoccerParallelEnv` between sides ``a`` and
+``b``, swapping colours every other match: match ``k`` is reset with seed ``start_seed + k //
+2`` and ``a`` plays blue when ``k`` is even, so each seed (the kick-off formation, the kick-off
+team, the sensors' noise) is played once from each side and a field or kick-off advantage
+cancels. The estimator match ablation (:mod:`agents.studies.match_ablation`) and playing-strength
+ratings are built on it.
+
+Each match is one job; jobs run over worker processes and come back in job order, so every
+number but the timings is the same for any number of workers.
+
+What a :class:`HeadToHead` reports, from ``a``'s side:
+
+* goals for and against; wins, draws and losses with Wilson's 95 % intervals of their rates;
+* the goal difference per match with a 95 % interval, the unit being the seed (the mean of
+  its two matches), so the interval is the paired one;
+* each side's ball-belief error: the distance between what the team believes about the ball
+  at present time (``info[agent]["estimate"]``, one belief per SSL team, one per humanoid) and
+  the true ball, over every robot-step (mean and RMS, metres; 0 for a team that sees the
+  truth).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+import soccer_env
+from agents.common.checks import check_full_infos
+from agents.common.processes import map_jobs
+from agents.common.stats import t975, wilson
+from agents.policies.numpy_policy import NumpyPolicy
+from agents.scripted import TEAMS, HumanoidTeam, ScriptedTeam
+from soccer_env.perception.base import OBS_MODES
+
+__all__ = ["Side", "MatchRecord", "HeadToHead", "head_to_head", "match_jobs",
+           "run_match_jobs", "play_match", "team_policy", "TEAM_POLICIES", "SIDE_KEYS"]
+
+#: Team policies given by name (besides a ``.npz`` numpy policy file or a callable).
+TEAM_POLICIES = ("scripted", "idle")
+#: Environment keyword arguments a side sets for its team (refused in the shared ones).
+SIDE_KEYS = ("obs_mode", "perception")
+
+_POLICY_HELP = ("'scripted', 'idle', a numpy policy file (.npz) shared by the team's robots, "
+                "or a callable batch policy obs (k, obs_dim) -> actions (k, 6)")
+
+
+@dataclass(frozen=True)
+class Side:
+    """One team's set-up: who plays it and what it perceives.
+
+    Attributes:
+        policy: ``"scripted"`` (:class:`~agents.scripted.team.ScriptedTeam` for SSL robots,
+            :class:`~agents.scripted.humanoid.HumanoidTeam` for humanoids), ``"idle"`` (zero
+            actions), a numpy policy file (``.npz``, :class:`NumpyPolicy`:
+            arrays only, nothing unpickled) acting for every robot of the team on its own
+            observation, or a callable taking observations ``(k, obs_dim)`` and returning
+            actions ``(k, 6)`` (it must pickle to run in worker processes).
+        obs_mode: the team's observation mode (:data:`~soccer_env.perception.base.OBS_MODES`).
+        perception: the team's perception options (:class:`~soccer_env.perception.base.
+            PerceptionConfig` keys, the sensor preset included), or None for the defaults.
+        label: the side's name in tables (default: the policy, and the observation mode
+            unless it is ``"perceived"``).
+    """
+
+    policy: Any = "scripted"
+    obs_mode: str = "perceived"
+    perception: Mapping[str, Any] | None = None
+    label: str = ""
+
+    def __post_init__(self) -> None:
+        p = self.policy
+        if isinstance(p, os.PathLike):
+            p = os.fspath(p)
+            object.__setattr__(self, "policy", p)
+        if isinstance(p, str):
+            if p not in TEAM_POLICIES and not p.endswith(".npz"):
+                raise ValueError(f"policy must be {_POLICY_HELP}; got {p!r}")
+        elif not callable(p):
+            raise ValueError(f"policy must be {_POLICY_HELP}; got {type(p).__name__}")
+        if self.obs_mode not in OBS_MODES:
+            raise ValueError(f"obs_mode must be one of {list(OBS_MODES)}, got "
+                             f"{self.obs_mode!r}")
+        if self.perception is not None:
+            if not isinstance(self.perception, Mapping):
+                raise ValueError(f"perception must be a mapping of perception options or None, "
+                                 f"got {type(self.perception).__name__}")
+            object.__setattr__(self, "perception", dict(self.perception))
+        if not self.label:
+            name = p if isinstance(p, str) else getattr(p, "__name__", type(p).__name__)
+            if isinstance(p, str) and p.endswith(".npz"):
+                name = Path(p).stem
+            object.__setattr__(self, "label", name if self.obs_mode == "perceived"
+                               else f"{name} ({self.obs_mode})")
+
+    def to_dict(self) -> dict[str, Any]:
+        policy = self.policy if isinstance(self.policy, str) else self.label
+        return {"label": self.label, "policy": policy, "obs_mode": self.obs_mode,
+                "perception": self.perception}
+
+
+def match_env_kwargs(base: Mapping[str, Any] | None, blue: Side, yellow: Side
+                     ) -> dict[str, Any]:
+    """The match's keyword arguments: ``base`` (shared by both teams) with each side's
+    observation mode and perception for its team."""
+    base = dict(base or {})
+    clash = sorted(set(SIDE_KEYS) & set(base))
+    if clash:
+        raise ValueError(f"env_kwargs must not set {clash}: each side sets them for its team")
+    check_full_infos(base, "a head-to-head")
+    return {**base, "obs_mode": {"blue": blue.obs_mode, "yellow": yellow.obs_mode},
+            "perception": {"blue": blue.perception, "yellow": yellow.perception}}
+
+
+def team_policy(policy: Any, env: Any, team: str
+                ) -> Callable[[Mapping[str, np.ndarray]], dict[str, np.ndarray]]:
+    """A function from the match's observations to the actions of ``team``'s live agents,
+    playing ``policy`` (a :class:`Side` policy) in ``env``."""
+    if team not in TEAMS:
+        raise ValueError(f"team must be one of {list(TEAMS)}, got {team!r}")
+    u = getattr(env, "unwrapped", env)
+    agents = [a for a in u.possible_agents if a.startswith(f"{team}_")]
+    if policy == "scripted":
+        if u.team_specs[TEAMS.index(team)].kind == "humanoid":
+            return HumanoidTeam.for_env(u, team)
+        return ScriptedTeam.for_env(u, team)
+    if policy == "idle":
+        zero = np.zeros(6, dtype=np.float32)
+        return lambda obs: {a: zero for a in agents if a in obs}
+    if isinstance(policy, str):
+        policy = NumpyPolicy.load(policy)
+        if policy.stateful:
+            raise ValueError("a team policy with memory (recurrent or frame-stacked) is not "
+                             "supported in head-to-head matches")
+    size = getattr(policy, "obs_size", None)
+    obs_dim = u.observation_space(agents[0]).shape[0]
+    if size is not None and size != obs_dim:
+        raise ValueError(f"the {team} team's policy takes observations of size {size}, the "
+                         f"match gives {obs_dim}")
+
+    def act(obs: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+        live = [a for a in agents if a in obs]
+        if not live:
+            return {}
+        out = np.asarray(policy(np.stack([obs[a] for a in live])), dtype=np.float32)
+        if out.shape != (len(live), 6):
+            raise ValueError(f"the {team} team's policy returned actions of shape {out.shape} "
+                             f"for {len(live)} robots; expected ({len(live)}, 6)")
+        return dict(zip(live, out))
+
+    return act
+
+
+@dataclass(frozen=True)
+class MatchRecord:
+    """One match of a head-to-head, from side ``a``'s point of view.
+
+    Attributes:
+        seed: the match's reset seed.
+        a_blue: whether ``a`` played blue.
+        goals_a, goals_b: the final score.
+        steps: parallel steps played.
+        err_sum, err_sq_sum, err_count: per side (``a``, ``b``), the sums of the ball-belief
+            error [m] and of its square over the side's beliefs and steps, and how many.
+        seconds: wall time of the match [s].
+    """
+
+    seed: int
+    a_blue: bool
+    goals_a: int
+    goals_b: int
+    steps: int
+    err_sum: tuple[float, float]
+    err_sq_sum: tuple[float, float]
+    err_count: tuple[int, int]
+    seconds: float
+
+    @property
+    def goal_difference(self) -> int:
+        return self.goals_a - self.goals_b
+
+
+def play_match(env_kwargs: Mapping[str, Any], blue: Side, yellow: Side, seed: int
+               ) -> dict[str, Any]:
+    """Play one match reset with ``seed``: blue's and yellow's goals, the steps, and each
+    team's ball-belief error sums (see :class:`MatchRecord`)."""
+    t0 = time.perf_counter()
+    env = soccer_env.parallel_env(**match_env_kwargs(env_kwargs, blue, yellow))
+    try:
+        obs, infos = env.reset(seed=seed)
+        teams = [team_policy(blue.policy, env, "blue"), team_policy(yellow.policy, env,
+                                                                     "yellow")]
+        members = [[a for a in env.possible_agents if a.startswith(p)]
+                   for p in ("blue_", "yellow_")]
+        err = [0.0, 0.0]
+        sq = [0.0, 0.0]
+        count = [0, 0]
+        steps = 0
+        while env.agents:
+            actions: dict[str, np.ndarray] = {}
+            for team in teams:
+                actions.update(team(obs))
+            obs, _, _, _, infos = env.step(actions)
+            steps += 1
+            info = next(iter(infos.values()))
+            bx, by = info["truth"]["ball_position"][:2]
+            for t, names in enumerate(members):
+                seen: set[int] = set()  # an SSL team's robots share one belief
+                for a in names:
+                    est = infos[a]["estimate"]
+                    if id(est) in seen:
+                        continue
+                    seen.add(id(est))
+                    ex, ey = est["ball_position"][:2]
+                    e = math.hypot(float(ex) - float(bx), float(ey) - float(by))
+                    err[t] += e
+                    sq[t] += e * e
+                    count[t] += 1
+        score = info["score"]
+    finally:
+        env.close()
+    return {"goals": (int(score["blue"]), int(score["yellow"])), "steps": steps,
+            "err_sum": tuple(err), "err_sq_sum": tuple(sq), "err_count": tuple(count),
+            "seconds": time.perf_counter() - t0}
+
+
+def _play_job(job: tuple) -> dict[str, Any]:
+    env_kwargs, a, b, seed, a_blue = job
+    return play_match(env_kwargs, a if a_blue else b, b if a_blue else a, seed)
+
+
+def match_jobs(a: Side, b: Side, matches: int, start_seed: int = 0,
+               env_kwargs: Mapping[str, Any] | None = None) -> list[tuple]:
+    """The jobs of a head-to-head: match ``k`` with seed ``start_seed + k // 2``, ``a`` blue
+    when ``k`` is even."""
+    if isinstance(matches, bool) or int(matches) != matches or matches < 1:
+        raise ValueError(f"matches must be an integer >= 1, got {matches!r}")
+    base = dict(env_kwargs or {})
+    match_env_kwargs(base, a, b)  # checks the shared keyword arguments
+    return [(base, a, b, int(start_seed) + k // 2, k % 2 == 0) for k in range(int(matches))]
+
+
+def _record(job: tuple, out: Mapping[str, Any]) -> MatchRecord:
+    """The match's outcome from ``a``'s point of view."""
+    _, _, _, seed, a_blue = job
+    i, j = (0, 1) if a_blue else (1, 0)
+    return MatchRecord(seed, a_blue, out["goals"][i], out["goals"][j], out["steps"],
+                       (out["err_sum"][i], out["err_sum"][j]),
+                       (out["err_sq_sum"][i], out["err_sq_sum"][j]),
+                       (out["err_count"][i], out["err_count"][j]), out["seconds"])
+
+
+def run_match_jobs(jobs: Sequence[tuple], workers: int | None = None,
+                   progress: Callable[[int, int], None] | None = None) -> list[MatchRecord]:
+    """Every job's :class:`MatchRecord`, in job order, over ``workers`` processes (None: all
+    cores; one: here). ``progress(done, total)`` is called after each match."""
+    outs = map_jobs(_play_job, jobs, workers, progress)
+    return [_record(job, out) for job, out in zip(jobs, outs)]
+
+
+@dataclass
+class HeadToHead:
+    """The matches between sides ``a`` and ``b`` (see the module docstring), from ``a``'s
+    side.
+
+    Attributes:
+        a: one side (the results are from its point of view).
+        b: the other side.
+        records: one per match, in match order.
+        env_kwargs: the keyword arguments shared by both teams.
+    """
+
+    a: Side
+    b: Side
+    records: list[MatchRecord]
+    env_kwargs: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def matches(self) -> int:
+        return len(self.records)
+
+    @property
+    def wins(self) -> int:
+        return sum(r.goals_a > r.goals_b for r in self.records)
+
+    @property
+    def draws(self) -> int:
+        return sum(r.goals_a == r.goals_b for r in self.records)
+
+    @property
+    def losses(self) -> int:
+        return sum(r.goals_a < r.goals_b for r in self.records)
+
+    def rate(self, outcome: str) -> tuple[float, float, float]:
+        """The share of ``"wins"``, ``"draws"`` or ``"losses"`` with its Wilson 95 %
+        interval: ``(rate, low, high)``."""
+        if outcome not in ("wins", "draws", "losses"):
+            raise ValueError(f"outcome must be 'wins', 'draws' or 'losses', got {outcome!r}")
+        k = getattr(self, outcome)
+        return (k / self.matches, *wilson(k, self.matches))
+
+    @property
+    def goals_for(self) -> int:
+        return sum(r.goals_a for r in self.records)
+
+    @property
+    def goals_against(self) -> int:
+        return sum(r.goals_b for r in self.records)
+
+    def goal_difference(self) -> tuple[float, float, float]:
+        """Mean goal difference per match (``a`` minus ``b``) and its 95 % interval
+        ``(mean, low, high)``: the mean over seeds of each seed's mean difference, with a
+        Student-t interval over seeds (a seed played from both sides is one paired unit).
+        With one seed the interval is unbounded."""
+        by_seed: dict[int, list[int]] = {}
+        for r in self.records:
+            by_seed.setdefault(r.seed, []).append(r.goal_difference)
+        units = np.array([np.mean(v) for v in by_seed.values()])
+        mean = float(units.mean())
+        if len(units) < 2:
+            return mean, -math.inf, math.inf
+        half = t975(len(units) - 1) * float(units.std(ddof=1)) / math.sqrt(len(units))
+        return mean, mean - half, mean + half
+
+    def ball_error(self, side: int) -> tuple[float, float]:
+        """Side ``0`` (``a``) or ``1`` (``b``)'s ball-belief error: ``(mean, rms)`` [m]."""
+        n = sum(r.err_count[side] for r in self.records)
+        if n == 0:
+            return math.nan, math.nan
+        s = sum(r.err_sum[side] for r in self.records)
+        sq = sum(r.err_sq_sum[side] for r in self.records)
+        return s / n, math.sqrt(sq / n)
+
+    @property
+    def steps(self) -> int:
+        return sum(r.steps for r in self.records)
+
+    @property
+    def seconds(self) -> float:
+        return sum(r.seconds for r in self.records)
+
+    def summary(self) -> str:
+        """One line: W/D/L, goals and the goal difference with its interval."""
+        gd, lo, hi = self.goal_difference()
+        return (f"{self.a.label} vs {self.b.label}: {self.wins} W {self.draws} D "
+                f"{self.losses} L in {self.matches} matches, goals {self.goals_for}:"
+                f"{self.goals_against}, goal difference per match {gd:+.2f} "
+                f"(95 % CI {lo:+.2f} to {hi:+.2f})")
+
+    def to_dict(self) -> dict[str, Any]:
+        gd = self.goal_difference()
+        return {
+            "a": self.a.to_dict(), "b": self.b.to_dict(), "matches": self.matches,
+            "wins": self.wins, "draws": self.draws, "losses": self.losses,
+            **{f"{o}_rate": list(self.rate(o)) for o in ("wins", "draws", "losses")},
+            "goals_for": self.goals_for, "goals_against": self.goals_against,
+            "goal_difference": [x if math.isfinite(x) else None for x in gd],
+            "ball_error_m": {"a": list(self.ball_error(0)), "b": list(self.ball_error(1))},
+            "steps": self.steps, "seconds": self.seconds,
+            "records": [asdict(r) for r in self.records],
+        }
+
+
+def head_to_head(a: Side, b: Side, matches: int = 20, start_seed: int = 0,
+                 env_kwargs: Mapping[str, Any] | None = None, workers: int | None = None,
+                 progress: Callable[[int, int], None] | None = None) -> HeadToHead:
+    """Play ``matches`` seeded matches between ``a`` and ``b`` (colours swapped every other
+    match; see the module docstring).
+
+    Args:
+        a: one side (the results are from its point of view).
+        b: the other side.
+        matches: how many (>= 1); an even number plays every seed from both sides.
+        start_seed: the first seed.
+        env_kwargs: keyword arguments of :func:`soccer_env.parallel_env` shared by both teams
+            (team sizes, robots, field, ``match_duration``, ...); not ``obs_mode`` or
+            ``perception``, which each side sets for its team.
+        workers: processes (None: all cores); the numbers do not depend on it.
+        progress: called as ``progress(done, total)`` after each match.
+    """
+    jobs = match_jobs(a, b, matches, start_seed, env_kwargs)
+    return HeadToHead(a, b, run_match_jobs(jobs, workers, progress), dict(env_kwargs or {}))
