@@ -13,12 +13,12 @@ from pettingzoo.utils.conversions import parallel_to_aec_wrapper
 from pettingzoo.utils.wrappers import OrderEnforcingWrapper
 
 from soccer_env import presets
-from soccer_env.envs.base import SoccerCore, resolve_world
+from soccer_env.envs.base import SoccerCore
 from soccer_env.envs.flat_info import EVENT_CODES, as_float64, flat_common, flat_keys
+from soccer_env.envs.settings import EnvSettings, per_team, settings_keywords
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
-from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.presets.rules import RuleSpec
-from soccer_env.render.renderer import RENDER_MODES, Banner
+from soccer_env.render import RENDER_MODES, Banner
 from soccer_env.sim.commands import (
     validate_actions,
 )
@@ -38,9 +38,7 @@ from soccer_env.validation import (
     check_int,
     check_range,
     check_seed,
-    keyword_names,
     parse_scales,
-    reject_unknown,
 )
 
 __all__ = ["SoccerParallelEnv", "parallel_env", "env", "MATCH_SHAPING", "GAME_NAMES",
@@ -87,16 +85,6 @@ def _situation_column(kind: str, ours: bool) -> int:
     if kind in ("stop", "running"):
         return _FLOW[f"game.{kind}"]
     return _FLOW[f"game.{kind}_{'ours' if ours else 'theirs'}"]
-
-
-def _per_team(name: str, value: Any) -> tuple[Any, Any]:
-    """``value`` for both teams, or ``{"blue": ..., "yellow": ...}`` (both keys needed)."""
-    if isinstance(value, Mapping) and set(value) & {"blue", "yellow"}:
-        if set(value) != {"blue", "yellow"}:
-            raise ValueError(f"{name} per team must have exactly the keys 'blue' and "
-                             f"'yellow', got {sorted(value)}")
-        return value["blue"], value["yellow"]
-    return value, value
 
 
 class SoccerParallelEnv(SoccerCore, ParallelEnv):
@@ -200,38 +188,20 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     metadata = {"name": "soccer_env/Match-v0", "render_modes": list(RENDER_MODES),
                 "render_fps": 60, "is_parallelizable": True}
 
-    def __init__(
-        self,
-        blue: int = 6,
-        yellow: int = 6,
-        robot: str | RobotSpec | Mapping[str, str | RobotSpec] = "ssl",
-        field: str | FieldSpec | None = None,
-        ball: str | BallSpec | None = None,
-        obs_mode: str | Mapping[str, str] = "truth",
-        perception: Any = None,
-        render_mode: str | None = None,
-        match_duration: float = 300.0,
-        max_cycles: int | None = None,
-        shaping: Mapping[str, float] | None = None,
-        control_dt: float = 1.0 / 60.0,
-        physics_dt: float = 1.0 / 240.0,
-        out_of_range_actions: str = "clip",
-        formation_jitter: float = 0.1,
-        render_width: int = 960,
-        head: str = "auto",
-        belief_features: bool = False,
-        info_mode: str = "full",
-        game: Any = None,
-        render_view: str = "field",
-        **unknown: Any,
-    ) -> None:
-        reject_unknown("parallel_env", unknown, keyword_names(SoccerParallelEnv.__init__))
+    TASK_ID = "soccer_env/Match-v0"
+    SHAPING = MATCH_SHAPING
+
+    @settings_keywords
+    def __init__(self, *, blue: int = 6, yellow: int = 6, match_duration: float = 300.0,
+                 max_cycles: int | None = None, formation_jitter: float = 0.1,
+                 game: Any = None, **settings: Any) -> None:
+        s = EnvSettings.from_keywords("parallel_env", settings, SoccerParallelEnv.__init__)
         blue = check_int("blue", blue, 0, MAX_TEAM_SIZE)
         yellow = check_int("yellow", yellow, 0, MAX_TEAM_SIZE)
         if blue + yellow < 1:
             raise ValueError(f"a match needs at least one robot: blue + yellow must be >= 1, "
                              f"got {blue} + {yellow}")
-        modes = _per_team("obs_mode", obs_mode)
+        modes = per_team("obs_mode", s.obs_mode)
         for team, mode in zip(("blue", "yellow"), modes):
             # before it picks the default perception
             check_choice("obs_mode" if modes[0] == modes[1] else f"obs_mode of {team}", mode,
@@ -242,19 +212,15 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
                                    10**12)
         self.max_cycles = max_cycles
         self.formation_jitter = check_range("formation_jitter", formation_jitter, 0.0, 1.0)
-        team_specs = tuple(presets.robot(r) for r in _per_team("robot", robot))
-        _, fld, bl = resolve_world(team_specs[0] if blue else team_specs[1], field, ball)
-        self.shaping = parse_scales("shaping", shaping, MATCH_SHAPING)
-        perceptions = tuple(PerceptionConfig.create(p, m, s.kind) for p, m, s in
-                            zip(_per_team("perception", perception), modes, team_specs))
+        team_specs = tuple(presets.robot(r) for r in per_team("robot", s.robot))
+        _, fld, bl = s.presets(team_specs[0] if blue else team_specs[1])
+        self.shaping = parse_scales("shaping", s.shaping, self.SHAPING)
+        perceptions = tuple(PerceptionConfig.create(p, m, spec.kind) for p, m, spec in
+                            zip(per_team("perception", s.perception), modes, team_specs))
         both = modes[0] if modes[0] == modes[1] else {"blue": modes[0], "yellow": modes[1]}
-        self._build(team_specs=team_specs, n_blue=blue, n_yellow=yellow, field=fld, ball=bl,
-                    obs_mode=both, perceptions=perceptions, control_dt=control_dt,
-                    physics_dt=physics_dt, out_of_range_actions=out_of_range_actions,
-                    render_mode=render_mode, render_width=render_width, head=head,
-                    policy_heads=range(blue + yellow),
-                    belief_features=belief_features, info_mode=info_mode,
-                    render_view=render_view)
+        self._build(s, team_specs=team_specs, n_blue=blue, n_yellow=yellow, field=fld,
+                    ball=bl, obs_mode=both, perceptions=perceptions,
+                    policy_heads=range(blue + yellow))
         w = self.world
         # The game flow needs both teams of one robot kind (SSL rules or humanoid laws).
         kinds = {spec.kind for spec, n in zip(team_specs, (blue, yellow)) if n}
@@ -610,7 +576,6 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
             lines.append(f"{g.command}{team}, {g.stage}")
         return lines
 
-    TASK_ID = "soccer_env/Match-v0"
     #: Why the latest match ended (``"full time"``, ``"time limit"``), None while it runs.
     _end_reason: str | None = None
 
