@@ -29,8 +29,8 @@ class SingleAgentTask(SoccerCore, gym.Env):
     """A Gymnasium task on :class:`SoccerCore`: robot 0 (blue) is the learner.
 
     ``reset`` and ``step`` are fixed. A task implements :meth:`_place`, :meth:`_outcome`,
-    :meth:`_success` and :meth:`_reward_terms` (abstract), and optionally the other hooks of
-    the module docstring. Its constructor takes the settings
+    :meth:`_success` and :meth:`_reward_terms` (abstract), and optionally the other hooks
+    listed in :mod:`soccer_env.envs.base`. Its constructor takes the settings
     (:class:`~soccer_env.envs.settings.EnvSettings`) and builds itself with
     :meth:`_build_learner`, then sets :attr:`builder` and ``observation_space``.
 
