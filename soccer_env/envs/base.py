@@ -1,4 +1,4 @@
-"""The fixed part of every environment, and the hooks a task fills in.
+"""The task seam: the fixed part of every environment, and the hooks a task fills in.
 
 Data flows one way through a step (the README's "Layout" section has the layers)::
 
@@ -9,138 +9,226 @@ Data flows one way through a step (the README's "Layout" section has the layers)
 
 :class:`SoccerCore` owns that loop: the world and its robots' action models, the perception of
 both teams (:class:`~soccer_env.perception.match.MatchPerception`), the command channels with
-each team's actuation latency and command loss, the humanoids' head control, and rendering. A
-task builds it once (:meth:`SoccerCore._build`) and implements the hooks:
+each team's actuation latency and command loss, the humanoids' head control, and rendering
+(:class:`~soccer_env.render.RenderingMixin`). :class:`~soccer_env.envs.task.SingleAgentTask`
+is its Gymnasium side (robot 0 learns; ``reset`` and ``step`` are fixed); the PettingZoo match
+(:class:`~soccer_env.envs.match.SoccerParallelEnv`) is the other. A task's constructor takes its
+own arguments and the common settings (:class:`~soccer_env.envs.settings.EnvSettings`, declared
+once), and builds the core once with :meth:`SoccerCore._build`.
 
-* :meth:`~SoccerCore._place` (required): where the robots and the ball start an episode;
-* :meth:`~SoccerCore._streams`: the random streams of the world and of the sensors (default:
-  seeded from the episode's generator, the world's first);
-* :meth:`~SoccerCore._begin`: the task's own state at the start (counters, a shot to fire);
-* :meth:`~SoccerCore._after_physics`: what happens between the physics and the snapshot (a
-  shot is fired, the referee restarts play); returns the step's event;
-* the outcome, reward terms and info of the task, in the Gymnasium or PettingZoo wrapper's
-  terms (:class:`SingleAgentTask` for Gymnasium tasks, the match for PettingZoo).
+Every hook, in one place. The required ones are abstract methods: a task class without one of
+them cannot be instantiated (``TypeError`` naming it).
 
-:class:`SingleAgentTask` is the Gymnasium side: robot 0 is the learner, every other robot acts
-through :meth:`SingleAgentTask._others` (standing team-mates, a scripted keeper), and
-``reset``/``step`` are fixed; a task adds :meth:`~SingleAgentTask._observe`,
-:meth:`~SingleAgentTask._outcome`, :meth:`~SingleAgentTask._reward_terms` and
-:meth:`~SingleAgentTask._task_info`. ``soccer_env/envs/shootout.py`` is a complete task in one
-file.
+The core's (:class:`SoccerCore`, both kinds of task):
+
+=============================  ========  =====================================================
+hook                           required  what it gives
+=============================  ========  =====================================================
+``_place(rng)``                yes       the robots' poses and the ball's position at the
+                                         start of an episode
+``_streams(rng)``                        the random streams of the world and of the sensors
+                                         (default: seeded from the episode's generator, the
+                                         world's first)
+``_begin(rng)``                          the task's own state at the start (counters, a shot)
+``_after_physics()``                     what happens between the physics and the snapshot
+                                         (a shot is fired, the referee restarts play); returns
+                                         the step's event (default None)
+=============================  ========  =====================================================
+
+A Gymnasium task's (:class:`~soccer_env.envs.task.SingleAgentTask`):
+
+=============================  ========  =====================================================
+hook                           required  what it gives
+=============================  ========  =====================================================
+``_outcome(state, event)``     yes       the episode's outcome (None while it goes on)
+``_success(outcome)``          yes       whether an outcome is a success (``is_success``)
+``_reward_terms(state,``       yes       the step's named reward terms (the reward is their
+``action, outcome)``                     sum)
+``_observe(belief)``                     the learner's observation (default: row 0 of
+                                         :attr:`~SoccerCore.builder`'s)
+``_others(actions)``                     the other robots' actions (default: standing still)
+``_task_info(info)``                     the task's own entries of the full info
+``_flat_task_info(info)``                its own flat entries
+                                         (:attr:`~soccer_env.envs.task.SingleAgentTask.FLAT_TASK_KEYS`)
+``_zero_terms()``                        the reward terms of the first observation (default:
+                                         ``"outcome"`` and every shaping term)
+=============================  ========  =====================================================
+
+Rendering's (:class:`~soccer_env.render.RenderingMixin`), every one optional:
+
+=============================  ========  =====================================================
+hook                           required  what it gives
+=============================  ========  =====================================================
+``_hud()``                               the info bar's lines of text (time, shot, score)
+``_banner()``                            the outcome banner on frames after the episode's end
+                                         (a Gymnasium task's: from
+                                         :attr:`~soccer_env.envs.task.SingleAgentTask.OUTCOME_TEXT`)
+``_team_labels()``                       the legend's words for the two teams
+``_title_card()``                        the title card's lines (the core's: from
+                                         :attr:`~SoccerCore.TASK_ID`, the seed, the robots
+                                         and the perception)
+``_belief_owner()``                      whose belief the frames draw (the core's: robot 0's)
+=============================  ========  =====================================================
+
+The attributes the seam reads are declared (annotated) on the classes: those that
+:meth:`SoccerCore._build` sets from the settings, and those a task's constructor sets
+(:attr:`~SoccerCore.builder`; :attr:`~SoccerCore.shaping`, which
+:meth:`~soccer_env.envs.task.SingleAgentTask._build_learner` parses from the class's
+:attr:`~SoccerCore.SHAPING`), beside the class constants a task overrides
+(:attr:`~SoccerCore.TASK_ID`, :attr:`~SoccerCore.SHAPING`,
+:attr:`~soccer_env.envs.task.SingleAgentTask.FLAT_TASK_KEYS`,
+:attr:`~soccer_env.envs.task.SingleAgentTask.OUTCOME_TEXT`). ``soccer_env/envs/shootout.py``
+is a complete task in one file.
 """
 
 from __future__ import annotations
 
+import abc
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import Any, ClassVar
 
-import gymnasium as gym
 import numpy as np
 
-from soccer_env import presets
-from soccer_env.envs.flat_info import (
-    INFO_MODES,
-    OUTCOME_CODES,
-    as_float64,
-    flat_common,
-    flat_keys,
-)
-from soccer_env.envs.registration import GYMNASIUM
+from soccer_env.envs.flat_info import INFO_MODES
+from soccer_env.envs.settings import EnvSettings
 from soccer_env.observations import ObservationBuilder
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.perception.match import MatchPerception
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
-from soccer_env.render import RENDER_MODES, Banner, RenderingMixin, check_view
+from soccer_env.render import RENDER_MODES, RenderingMixin, check_view
+from soccer_env.render.title import TeamCard, belief_owner, perception_text, title_card
 from soccer_env.sim.commands import (
     OUT_OF_RANGE_MODES,
     CommandChannel,
     HumanoidRobot,
     SSLRobot,
     robot_model,
-    validate_actions,
 )
 from soccer_env.sim.heads import HEAD_MODES, HeadControl, aim_heads
 from soccer_env.sim.world import World
 from soccer_env.state import Belief, WorldState, state_dict
-from soccer_env.validation import check_choice, check_integer, check_seed
+from soccer_env.validation import check_choice, check_integer
 
-__all__ = ["SoccerCore", "SingleAgentTask", "resolve_world", "action_cost", "RENDER_WIDTHS"]
+__all__ = ["SoccerCore", "RENDER_WIDTHS"]
 
 #: The frame widths a renderer draws, pixels (a 4K frame at most: a frame is width x 2/3
 #: width x 3 bytes).
 RENDER_WIDTHS = (64, 3840)
 
 
-class SoccerCore(RenderingMixin):
+class SoccerCore(RenderingMixin, abc.ABC):
     """The world, perception, command channels, head control and rendering of an
-    environment, and the fixed parts of its reset and step (see the module docstring).
+    environment, and the fixed parts of its reset and step (the module docstring lists the
+    hooks).
 
-    Attributes set by :meth:`_build`: ``field``, ``ball_spec``, ``team_specs`` (blue's and
-    yellow's robot model), ``robot_spec`` (the first robot's), ``world``, ``obs_mode`` (a
-    string, or ``{"blue": ..., "yellow": ...}`` when the teams' modes differ),
-    ``perceptions`` (both teams' :class:`~soccer_env.perception.base.PerceptionConfig`),
-    ``perception`` (blue's), ``render_mode``, ``out_of_range_actions``, ``head``,
-    ``info_mode`` (``"full"``: nested dicts; ``"flat"``: numbers under fixed keys, see
-    :mod:`soccer_env.envs.flat_info`).
+    Attributes set by :meth:`_build`: ``settings`` (as given), ``field``, ``ball_spec``,
+    ``team_specs`` (blue's and yellow's robot model), ``robot_spec`` (the first robot's),
+    ``world``, ``obs_mode`` (a string, or ``{"blue": ..., "yellow": ...}`` when the teams'
+    modes differ), ``perceptions`` (both teams'
+    :class:`~soccer_env.perception.base.PerceptionConfig`), ``perception`` (blue's),
+    ``render_mode``, ``out_of_range_actions``, ``head``, ``info_mode`` (``"full"``: nested
+    dicts; ``"flat"``: numbers under fixed keys, see :mod:`soccer_env.envs.flat_info`),
+    ``belief_features``. Set by the task's constructor: ``shaping`` and ``builder``.
     """
 
     metadata: dict[str, Any] = {"render_modes": list(RENDER_MODES), "render_fps": 60}
+    #: The registered id of the task (the title card and the window's caption name it).
+    TASK_ID: ClassVar[str] = "soccer_env"
+    #: The task's shaping terms, name -> description (``shaping={name: scale}`` turns them
+    #: on; all off by default).
+    SHAPING: ClassVar[Mapping[str, str]] = {}
+
+    # Set by _build.
+    settings: EnvSettings
+    field: FieldSpec
+    ball_spec: BallSpec
+    team_specs: tuple[RobotSpec, RobotSpec]
+    robot_spec: RobotSpec
+    world: World
+    obs_mode: str | dict[str, str]
+    perceptions: tuple[PerceptionConfig, PerceptionConfig]
+    perception: PerceptionConfig
+    render_mode: str | None
+    out_of_range_actions: str
+    head: str
+    info_mode: str
+    belief_features: bool
+    # Set by the task's constructor.
+    #: The scales of the task's shaping terms (:attr:`SHAPING`; 0: off).
+    shaping: dict[str, float]
+    #: The observation builder of the task's learners (its ``names`` name the entries).
+    builder: ObservationBuilder
 
     # ------------------------------------------------------------------------------------
     # Construction
     # ------------------------------------------------------------------------------------
 
-    def _build(self, *, team_specs: tuple[RobotSpec, RobotSpec], n_blue: int, n_yellow: int,
-               field: FieldSpec, ball: BallSpec, obs_mode: str | Mapping[str, str],
-               perceptions: tuple[PerceptionConfig, PerceptionConfig], control_dt: float,
-               physics_dt: float, out_of_range_actions: str, render_mode: str | None,
-               render_width: int, head: str, policy_heads: Sequence[int],
-               belief_features: bool = False, info_mode: str = "full",
-               render_view: str = "field") -> None:
-        """Build the world and everything around it.
+    def _build(self, settings: EnvSettings, *, team_specs: tuple[RobotSpec, RobotSpec],
+               n_blue: int, n_yellow: int, field: FieldSpec, ball: BallSpec,
+               obs_mode: str | Mapping[str, str],
+               perceptions: tuple[PerceptionConfig, PerceptionConfig],
+               policy_heads: Sequence[int]) -> None:
+        """Build the world and everything around it from the ``settings`` and what the task
+        made of them: the teams (``team_specs``, ``n_blue``, ``n_yellow``), the ``field``
+        and ``ball`` presets, each team's observation mode (``obs_mode``: one, or
+        ``{"blue": ..., "yellow": ...}``) and ``perceptions``.
 
         ``policy_heads``: the humanoids whose head the policy aims with its action entries 4
         and 5 (with ``head="action"``); every other humanoid's head is aimed by the head
-        control. ``belief_features``: the observations end with the belief features (see
-        :mod:`soccer_env.observations`; builders made by :meth:`_observation_builder`).
-        ``info_mode``: ``"full"`` or ``"flat"`` (:mod:`soccer_env.envs.flat_info`).
-        ``render_view``: ``"field"`` or ``"follow"`` (:data:`~soccer_env.render.RENDER_VIEWS`).
+        control. The settings' choices are checked here (``ValueError`` naming the setting).
         """
+        s = settings
         for mode in ([obs_mode] if isinstance(obs_mode, str) else obs_mode.values()):
             check_choice("obs_mode", mode, OBS_MODES)
-        check_choice("info_mode", info_mode, INFO_MODES)
-        check_choice("render_mode", render_mode, [None, *RENDER_MODES])
-        check_choice("out_of_range_actions", out_of_range_actions, OUT_OF_RANGE_MODES)
-        check_choice("head", head, HEAD_MODES)
-        check_integer("render_width", render_width, *RENDER_WIDTHS, " pixels")
-        self._render_view = check_view(render_view)
+        check_choice("info_mode", s.info_mode, INFO_MODES)
+        check_choice("render_mode", s.render_mode, [None, *RENDER_MODES])
+        check_choice("out_of_range_actions", s.out_of_range_actions, OUT_OF_RANGE_MODES)
+        check_choice("head", s.head, HEAD_MODES)
+        check_integer("render_width", s.render_width, *RENDER_WIDTHS, " pixels")
+        self._render_view = check_view(s.render_view)
+        self.settings = s
         self.team_specs = team_specs
         self.field, self.ball_spec = field, ball
         self.obs_mode = obs_mode
-        self.render_mode = render_mode
-        self.out_of_range_actions = out_of_range_actions
-        self.head = head
-        self.info_mode = info_mode
-        self._flat = info_mode == "flat"
-        if not isinstance(belief_features, (bool, np.bool_)):
-            raise TypeError(f"belief_features must be True or False, got {belief_features!r}")
-        self.belief_features = bool(belief_features)
+        self.render_mode = s.render_mode
+        self.out_of_range_actions = s.out_of_range_actions
+        self.head = s.head
+        self.info_mode = s.info_mode
+        self._flat = s.info_mode == "flat"
+        if not isinstance(s.belief_features, (bool, np.bool_)):
+            raise TypeError(f"belief_features must be True or False, got {s.belief_features!r}")
+        self.belief_features = bool(s.belief_features)
         self.world = World(field, ball, [team_specs[0]] * n_blue + [team_specs[1]] * n_yellow,
-                           n_blue, n_yellow, control_dt, physics_dt)
+                           n_blue, n_yellow, s.control_dt, s.physics_dt)
         w = self.world
         self._learner = w.names[:1]  # robot 0, named as validate_actions names it
         #: The first robot's model (every robot's when the teams play the same robot).
         self.robot_spec = w.robot_spec
         self.metadata = {**self.metadata, "render_fps": round(1.0 / w.control_dt)}
-        self._models: list[SSLRobot | HumanoidRobot] = [robot_model(s) for s in team_specs]
+        self._models: list[SSLRobot | HumanoidRobot] = [robot_model(spec)
+                                                         for spec in team_specs]
         self.perceptions = perceptions
         #: Blue's perception configuration (the match's, when both teams share one).
         self.perception = perceptions[0]
         self._perception = MatchPerception(obs_mode, perceptions, field, ball, w.robot_specs,
                                            w.teams.tolist(), w.names, w.control_dt,
                                            self.belief_features)
-        # Commands reach each team's robots with its actuation latency, in whole control
-        # steps, and its command loss (none for humanoids, whose walk engine is on board).
+        self._build_channels(n_blue, n_yellow)
+        free = set(policy_heads) if s.head == "action" else set()
+        auto = [i for i in w.humanoid_indices if i not in free]
+        self._heads = (HeadControl(w.robot_specs, auto,
+                                   [self._perception.cameras[i].height for i in auto], s.head)
+                       if auto else None)
+        self._render_width = int(s.render_width)
+        #: Robot 0's beliefs: for its observation, and at the present time (shown and
+        #: reported in ``info["estimate"]``).
+        self._seen: Any = None
+        self._shown_belief: Any = None
+
+    def _build_channels(self, n_blue: int, n_yellow: int) -> None:
+        """The command channels: commands reach each team's robots with its actuation latency,
+        in whole control steps, and its command loss (none for humanoids, whose walk engine
+        is on board)."""
         self._slices = [slice(0, n_blue), slice(n_blue, n_blue + n_yellow)]
         self._channels = [CommandChannel(n, d, loss) for n, d, loss in
                           zip((n_blue, n_yellow), self._perception.delays,
@@ -153,16 +241,6 @@ class SoccerCore(RenderingMixin):
         self._one_team = self._teams_in_play[0] if len(self._teams_in_play) == 1 else None
         #: Whether the perception reads the robots' bodies (humanoid teams' pipelines do).
         self._reads_bodies = self._perception.reads_bodies
-        free = set(policy_heads) if head == "action" else set()
-        auto = [i for i in w.humanoid_indices if i not in free]
-        self._heads = (HeadControl(w.robot_specs, auto,
-                                   [self._perception.cameras[i].height for i in auto], head)
-                       if auto else None)
-        self._render_width = int(render_width)
-        #: Robot 0's beliefs: for its observation, and at the present time (shown and
-        #: reported in ``info["estimate"]``).
-        self._seen: Any = None
-        self._shown_belief: Any = None
 
     def _observation_builder(self, agents: Sequence[int], game_low: Sequence[float] = (),
                              game_high: Sequence[float] = (), game_names: Sequence[str] = (),
@@ -183,10 +261,10 @@ class SoccerCore(RenderingMixin):
     # Hooks
     # ------------------------------------------------------------------------------------
 
+    @abc.abstractmethod
     def _place(self, rng: np.random.Generator) -> tuple[np.ndarray, tuple[float, float]]:
         """The robots' poses ``(N, 3)`` and the ball's position at the start of an episode,
         drawn from the episode's generator ``rng``."""
-        raise NotImplementedError
 
     def _streams(self, rng: np.random.Generator
                  ) -> tuple[np.random.Generator, np.random.Generator]:
@@ -279,6 +357,10 @@ class SoccerCore(RenderingMixin):
             return False
         return bool(walk.fallen[walk.indices.index(robot)])
 
+    # ------------------------------------------------------------------------------------
+    # What rendering draws: the scene, and the facts of the title card
+    # ------------------------------------------------------------------------------------
+
     def _scene(self) -> tuple[WorldState, Belief | None, dict[int, tuple]]:
         """What :meth:`render` draws: the truth, the shown belief (None when it is the truth)
         and every humanoid's camera view (see :meth:`~soccer_env.render.Renderer.draw`)."""
@@ -298,254 +380,23 @@ class SoccerCore(RenderingMixin):
         # The filters' covariances and particles, read for drawing only.
         return state, belief._replace(spread=self._perception.spread(0, belief.time)), heads
 
-    # ------------------------------------------------------------------------------------
-    # What the renderer writes beside the field
-    # ------------------------------------------------------------------------------------
-
-    #: The id the title card names (the registered id of the task).
-    TASK_ID = "soccer_env"
-    #: The seed of the latest seeded reset, and the episodes begun since it (0: this one).
-    _render_seed: int | None = None
-    _render_episode = 0
-
-    def _note_reset(self, seed: int | None) -> None:
-        """Remember the episode's seed for the title card (a reset without a seed continues
-        the generator of the latest seeded one)."""
-        if seed is not None:
-            self._render_seed, self._render_episode = int(seed), 0
-        else:
-            self._render_episode += 1
-
-    def _seed_text(self) -> str:
-        if self._render_seed is None:
-            return "unseeded"
-        if self._render_episode == 0:
-            return f"seed {self._render_seed}"
-        return f"seed {self._render_seed} + {self._render_episode} episodes"
-
-    def _perception_text(self, team: int) -> str:
-        """Team ``team``'s observations and perception in words (the title card's)."""
-        modes = self._perception.obs_modes
-        mode, cfg = modes[team], self.perceptions[team]
-        if mode == "truth":
-            return "truth (no sensors)"
-        if self.team_specs[team].kind == "humanoid":
-            cams = [c for i, c in self._perception.cameras.items()
-                    if int(self.world.teams[i]) == team]
-            camera = f"camera {cams[0].name}" if cams else "head cameras"
-            if mode == "raw":
-                return f"raw: {camera}, dead reckoning, own sightings"
-            text = (f"perceived: {camera}, {cfg.localization} localization, {cfg.fusion} "
-                    f"fusion, {cfg.ball_tracker} tracker")
-        else:
-            text = f"{mode}: vision {cfg.vision.name}"
-            if mode == "perceived":
-                text += f", ball filter {cfg.ball_filter}"
-            if cfg.detector != "geometric":
-                text += f", {cfg.detector} detector"
-        return text + (", randomised" if cfg.randomize else "")
-
-    def _teams_present(self) -> list[int]:
-        w = self.world
-        return [t for t, n in ((0, w.n_blue), (1, w.n_yellow)) if n]
-
     def _title_card(self) -> list[str]:
-        """The title card: the task and seed, the robots, the observations and perception."""
-        w = self.world
-        teams = self._teams_present()
-        robots = []
-        for t in teams:
-            n = (w.n_blue, w.n_yellow)[t]
-            robots.append(f"{('blue', 'yellow')[t]}: {n} {self.team_specs[t].name} "
-                          f"robot{'s' if n > 1 else ''}")
-        lines = [f"{self.TASK_ID}    {self._seed_text()}", ",  ".join(robots)]
-        texts = [self._perception_text(t) for t in teams]
-        if len(set(texts)) == 1:
-            lines.append(f"obs {texts[0]}")
-        else:
-            lines += [f"{('blue', 'yellow')[t]} obs {text}" for t, text in zip(teams, texts)]
-        return lines
+        """The title card (:func:`~soccer_env.render.title.title_card`): the task and seed,
+        and every team with robots, its robot preset and its perception."""
+        w, p = self.world, self._perception
+        cards = []
+        for t, n in ((0, w.n_blue), (1, w.n_yellow)):
+            if n:
+                spec = self.team_specs[t]
+                cams = [c.name for i, c in p.cameras.items() if int(w.teams[i]) == t]
+                words = perception_text(p.obs_modes[t], self.perceptions[t],
+                                        spec.kind == "humanoid", cams[0] if cams else None)
+                cards.append(TeamCard(t, n, spec.name, words))
+        return title_card(self.TASK_ID, self._seed_text(), cards)
 
     def _belief_owner(self) -> str:
         """Whose belief the frames draw: robot 0's (a humanoid's own, else its team's)."""
-        name = self.world.names[0]
-        if self.world.robot_specs[0].kind == "humanoid":
-            return name.replace("_", " ")
-        return f"{name.split('_')[0]} team"
+        return belief_owner(self.world.names[0], self.world.robot_specs[0].kind == "humanoid")
 
     def _caption(self) -> str:
         return self.TASK_ID
-
-
-class SingleAgentTask(SoccerCore, gym.Env):
-    """A Gymnasium task on :class:`SoccerCore`: robot 0 (blue) is the learner.
-
-    ``reset`` and ``step`` are fixed. A task implements :meth:`_place`, :meth:`_observe`,
-    :meth:`_outcome`, :meth:`_reward_terms`, :meth:`_task_info` and, when it has other
-    robots, :meth:`_others`; optionally :meth:`_streams`, :meth:`_begin` and
-    :meth:`_after_physics` (see :class:`SoccerCore`).
-
-    The episode ends (terminated) when :meth:`_outcome` names an outcome; ``info["outcome"]``
-    names it and ``info["is_success"]`` says whether it is a success (:meth:`_success`).
-    Truncation is left to the registration's ``max_episode_steps``.
-
-    With ``info_mode="flat"`` the info is :func:`~soccer_env.envs.flat_info.flat_common`'s
-    entries for robot 0, then ``outcome`` and ``is_success`` as numbers and the task's own
-    numbers (:attr:`FLAT_TASK_KEYS`, filled by :meth:`_flat_task_info`).
-    """
-
-    #: The task's own flat info keys, after ``outcome`` and ``is_success``.
-    FLAT_TASK_KEYS: tuple[str, ...] = ()
-
-    def _observe(self, belief: Any) -> np.ndarray:
-        """The learner's observation from its ``belief`` (default: the task's
-        ``builder``, an :class:`~soccer_env.observations.ObservationBuilder` for robot 0)."""
-        return self.builder.build(belief)[0]
-
-    def _others(self, actions: np.ndarray) -> None:
-        """Fill the rows of the other robots in ``actions`` ``(N, 6)`` (row 0 is the
-        learner's; the others are zeros: standing still)."""
-
-    def _outcome(self, state: WorldState, event: Any) -> str | None:
-        """The episode's outcome at ``state`` (None while it goes on)."""
-        raise NotImplementedError
-
-    def _success(self, outcome: str) -> bool:
-        """Whether ``outcome`` is a success (``info["is_success"]``)."""
-        raise NotImplementedError
-
-    def _reward_terms(self, state: WorldState, action: np.ndarray, outcome: str | None
-                      ) -> dict[str, float]:
-        """The step's named reward terms (the reward is their sum)."""
-        raise NotImplementedError
-
-    def _task_info(self, info: dict[str, Any]) -> None:
-        """Add the task's own entries to ``info`` (in place)."""
-
-    def _flat_task_info(self, info: dict[str, float]) -> None:
-        """Add the task's own flat entries, :attr:`FLAT_TASK_KEYS`, to ``info`` (in place;
-        floats)."""
-
-    @property
-    def flat_info_keys(self) -> tuple[str, ...]:
-        """The keys of this environment's flat infos (``info_mode="flat"``), in order: the
-        same at every reset and step."""
-        return flat_keys(self._zero_terms(), ("outcome", "is_success", *self.FLAT_TASK_KEYS))
-
-    def _zero_terms(self) -> dict[str, float]:
-        """The reward terms of the first observation, all zero (default: ``"outcome"`` and
-        every term of the task's ``shaping`` scales)."""
-        return dict.fromkeys(("outcome", *self.shaping), 0.0)
-
-    # ------------------------------------------------------------------------------------
-
-    #: Whether an episode runs (set by :meth:`reset`, cleared when it terminates).
-    _running = False
-    #: How the last episode ended (its outcome), None while one runs or before the first.
-    _ended: str | None = None
-
-    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
-        check_seed(seed)
-        super().reset(seed=seed)
-        state = self._start(self.np_random)
-        self._running, self._ended = True, None
-        self._note_reset(seed)
-        obs = self._observe(self._seen)
-        info = self._info(state, self._zero_terms(), None)
-        if self.render_mode == "human":
-            self.render()
-        return obs, info
-
-    def step(self, action):
-        if not self._running:
-            if self._ended is not None:
-                raise RuntimeError(f"the episode has ended ({self._ended!r}): call reset() "
-                                   "before stepping again")
-            raise RuntimeError("call reset() before step()")
-        try:
-            act = np.asarray(action, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ValueError(f"action must be 6 numbers, got {action!r}") from None
-        if act.shape != (6,):
-            names = ", ".join(self._models[0].action_names)
-            raise ValueError(f"action must have shape (6,) ({names}), got {act.shape}")
-        act = validate_actions(act[None], self._learner, self.out_of_range_actions)
-        n = self.world.n_robots
-        if n > 1:
-            full = np.zeros((n, 6))
-            full[0] = act[0]
-            self._others(full)
-        else:
-            full = act
-        state, event = self._advance(full)
-        outcome = self._outcome(state, event)
-        terms = self._reward_terms(state, act[0], outcome)
-        reward = float(sum(terms.values()))
-        obs = self._observe(self._seen)
-        info = self._info(state, terms, outcome)
-        if outcome is not None:  # terminated: a further step would act on a finished shot
-            self._running, self._ended = False, outcome
-        if self.render_mode == "human":
-            self.render()
-        return obs, reward, outcome is not None, False, info
-
-    # ------------------------------------------------------------------------------------
-    # The outcome banner
-
-    #: The banner's words for each outcome: ``{outcome: (headline, detail)}``.
-    OUTCOME_TEXT: dict[str, tuple[str, str]] = {}
-
-    def _time_limit(self) -> int | None:
-        """The registered ``max_episode_steps`` of the task this environment was made as
-        (``gymnasium.make`` by its id), or None. The banner assumes the registered limit: a
-        ``max_episode_steps`` given to ``gymnasium.make`` is the wrapper's, which the
-        environment does not see."""
-        spec = getattr(self, "spec", None)
-        task = GYMNASIUM.get(spec.id) if spec is not None else None
-        return None if task is None else task.max_episode_steps
-
-    def _banner(self) -> Banner | None:
-        """The outcome banner on frames after the episode's end: the outcome
-        (:attr:`OUTCOME_TEXT`; green for a success, red otherwise), or the time limit once the
-        registered ``max_episode_steps`` are played."""
-        if self._ended is not None:
-            head, detail = self.OUTCOME_TEXT.get(self._ended, (self._ended.upper(), ""))
-            return Banner(head, detail, "good" if self._success(self._ended) else "bad")
-        limit = self._time_limit()
-        w = self.world
-        if self._running and limit is not None and round(w.time / w.control_dt) >= limit:
-            return Banner("TIME LIMIT", f"{w.time:.1f} s played, no outcome")
-        return None
-
-    def _info(self, state: WorldState, terms: dict[str, float], outcome: str | None
-              ) -> dict[str, Any]:
-        if self._flat:
-            flat = flat_common(state, self._shown_belief, 0, self._fallen(0), terms)
-            flat["outcome"] = float(OUTCOME_CODES[outcome])
-            flat["is_success"] = 1.0 if outcome is not None and self._success(outcome) else 0.0
-            self._flat_task_info(flat)
-            return as_float64(flat)
-        truth = state.truth_dict()
-        info = {"truth": truth,
-                "estimate": self._estimate(state, self._shown_belief, truth),
-                "reward_terms": terms, "outcome": outcome}
-        self._task_info(info)
-        if self.world.walk is not None:
-            info["robot_state"] = self.world.humanoid_state()
-        if outcome is not None:
-            info["is_success"] = self._success(outcome)
-        return info
-
-
-def action_cost(action: np.ndarray, scale: float, dt: float) -> float:
-    """The ``action_cost`` shaping term of a step of ``dt`` seconds: ``-scale (vx^2 + vy^2 +
-    omega^2) / 3`` of the normalised ``action`` per second."""
-    return -scale * float(action[0:3] @ action[0:3]) / 3.0 * dt
-
-
-def resolve_world(robot: Any, field: Any, ball: Any) -> tuple[RobotSpec, FieldSpec, BallSpec]:
-    """The robot, field and ball presets of an environment's arguments: the field defaults to
-    the robot preset's, the ball to the field's."""
-    spec = presets.robot(robot)
-    fld = presets.field(field if field is not None else presets.default_field(spec))
-    return spec, fld, presets.ball(ball if ball is not None else fld.ball)

@@ -34,8 +34,8 @@ Goalkeeper-v0 adds ``outcome`` (code below), ``is_success`` (1.0 at the last ste
 else 0.0), ``shot_fired``, ``keeper_touched``, ``shot_speed`` [m/s] and ``shot_chip``;
 Shootout-v0 adds ``outcome``, ``is_success`` (1.0 at the last step of a goal) and
 ``keeper_touched``; the match adds ``event`` (code below), ``score_blue`` and
-``score_yellow``, and with the game flow its referee state
-(:data:`~soccer_env.envs.match.FLAT_GAME_KEYS`). ``env.flat_info_keys``
+``score_yellow`` (:data:`MATCH_KEYS`, :func:`flat_match`), and with the game flow its referee
+state (:data:`FLAT_GAME_KEYS`). ``env.flat_info_keys``
 (``env.unwrapped.flat_info_keys`` through Gymnasium's wrappers) lists an environment's keys.
 
 :data:`OUTCOME_CODES` (``outcome``: 0 while the episode goes on) and :data:`EVENT_CODES`
@@ -61,8 +61,10 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["INFO_MODES", "OUTCOME_CODES", "EVENT_CODES", "COMMON_KEYS", "flat_keys",
-           "flat_common", "as_float64"]
+from soccer_env.sim.game import COMMANDS
+
+__all__ = ["INFO_MODES", "OUTCOME_CODES", "EVENT_CODES", "COMMON_KEYS", "MATCH_KEYS",
+           "FLAT_GAME_KEYS", "flat_keys", "flat_common", "flat_match", "as_float64"]
 
 #: The values of ``info_mode``: the rich default (nested dicts, strings) or flat numbers.
 INFO_MODES = ("full", "flat")
@@ -83,6 +85,17 @@ COMMON_KEYS = (
     "estimate_robot_x", "estimate_robot_y", "estimate_robot_theta",
     "ball_error", "robot_fallen",
 )
+
+#: The match's own keys, after the reward terms: the step's event (:data:`EVENT_CODES`) and
+#: the score.
+MATCH_KEYS = ("event", "score_blue", "score_yellow")
+#: The flat info's keys of the game flow (``info_mode="flat"`` with ``game=...``), after
+#: :data:`MATCH_KEYS`: the command (its index in :data:`~soccer_env.sim.game.COMMANDS`), its
+#: team (-1 none, 0 blue, 1 yellow), whether the ball is in play, the stage's playing time
+#: left [s], and per team the fouls, running yellow cards and red cards.
+FLAT_GAME_KEYS = ("game_command", "game_command_team", "game_in_play", "game_stage_time_left",
+                  "game_fouls_blue", "game_yellow_cards_blue", "game_red_cards_blue",
+                  "game_fouls_yellow", "game_yellow_cards_yellow", "game_red_cards_yellow")
 
 
 def flat_keys(reward_terms: Iterable[str], task_keys: Iterable[str]) -> tuple[str, ...]:
@@ -118,6 +131,25 @@ def flat_common(state: Any, belief: Any, robot: int, fallen: bool,
     for name, value in terms.items():
         info[f"reward_{name}"] = float(value)
     return info
+
+
+def flat_match(event: str | None, score: list[int], game: Any) -> dict[str, float]:
+    """The match's own flat entries, the same for every agent: :data:`MATCH_KEYS` for the
+    step's ``event`` and the ``score`` (blue's, yellow's goals) and, with a ``game``
+    controller (None: the simple referee), :data:`FLAT_GAME_KEYS`."""
+    out = {"event": float(EVENT_CODES[event]), "score_blue": float(score[0]),
+           "score_yellow": float(score[1])}
+    if game is not None:
+        out.update(game_command=float(COMMANDS.index(game.command)),
+                   game_command_team=float(game.command_team),
+                   game_in_play=float(game.in_play),
+                   game_stage_time_left=float(game.stage_time_left))
+        for t, name in enumerate(("blue", "yellow")):
+            info = game.team_info[t]
+            out[f"game_fouls_{name}"] = float(info.fouls)
+            out[f"game_yellow_cards_{name}"] = float(len(info.yellow_cards))
+            out[f"game_red_cards_{name}"] = float(info.red_cards)
+    return out
 
 
 def as_float64(info: dict[str, float]) -> dict[str, float]:

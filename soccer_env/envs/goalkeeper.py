@@ -10,21 +10,12 @@ from typing import Any
 import numpy as np
 
 from soccer_env import presets
-from soccer_env.envs.base import SingleAgentTask, action_cost, resolve_world
-from soccer_env.perception.base import OBS_MODES, PerceptionConfig
+from soccer_env.envs.settings import settings_keywords
+from soccer_env.envs.task import SingleAgentTask, action_cost
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.sim.referee import classify_exit
 from soccer_env.state import WorldState
-from soccer_env.validation import (
-    check_choice,
-    check_int,
-    check_number,
-    check_pair,
-    from_mapping,
-    keyword_names,
-    parse_scales,
-    reject_unknown,
-)
+from soccer_env.validation import check_int, check_number, check_pair, from_mapping
 
 __all__ = ["GoalkeeperEnv", "ShotDistribution", "place_episode", "fire_shot",
            "GOALKEEPER_SHAPING", "STOP_SPEED",
@@ -262,30 +253,18 @@ class GoalkeeperEnv(SingleAgentTask):
     * v0: first release.
     """
 
-    def __init__(
-        self,
-        robot: str | RobotSpec = "ssl",
-        field: str | FieldSpec | None = None,
-        ball: str | BallSpec | None = None,
-        obs_mode: str = "truth",
-        perception: Any = None,
-        render_mode: str | None = None,
-        shots: ShotDistribution | Mapping[str, Any] | None = None,
-        shaping: Mapping[str, float] | None = None,
-        control_dt: float = 1.0 / 60.0,
-        physics_dt: float = 1.0 / 240.0,
-        out_of_range_actions: str = "clip",
-        render_width: int = 960,
-        mates: int | None = None,
-        head: str = "auto",
-        belief_features: bool = False,
-        info_mode: str = "full",
-        render_view: str = "field",
-        **unknown: Any,
-    ) -> None:
-        reject_unknown("GoalkeeperEnv", unknown, keyword_names(GoalkeeperEnv.__init__))
-        check_choice("obs_mode", obs_mode, OBS_MODES)  # before it picks the default perception
-        spec, fld, bl = resolve_world(robot, field, ball)
+    TASK_ID = "soccer_env/Goalkeeper-v0"
+    SHAPING = GOALKEEPER_SHAPING
+    FLAT_TASK_KEYS = ("shot_fired", "keeper_touched", "shot_speed", "shot_chip")
+    OUTCOME_TEXT = {"goal": ("GOAL", "the shot went in"),
+                    "stopped": ("SAVED", "the ball stopped"),
+                    "cleared": ("SAVED", "the ball was cleared"),
+                    "out": ("SAVED", "the ball went out, no goal")}
+
+    @settings_keywords
+    def __init__(self, *, shots: ShotDistribution | Mapping[str, Any] | None = None,
+                 mates: int | None = None, **settings: Any) -> None:
+        s, spec, fld, bl = self._take_settings(settings)
         humanoid = spec.kind == "humanoid"
         if mates is None:
             mates = MAX_MATES if humanoid else 0
@@ -295,19 +274,9 @@ class GoalkeeperEnv(SingleAgentTask):
         self.shots = ShotDistribution.create(HUMANOID_SHOTS if humanoid and shots is None
                                              else shots)
         self.shots.check_field(fld)
-        self.shaping = parse_scales("shaping", shaping, GOALKEEPER_SHAPING)
+        self._build_learner(s, spec, fld, bl, n_blue=1 + self.n_mates, n_yellow=0)
         self._shaping_on = any(self.shaping.values())
         self._zero_shaping = dict.fromkeys(GOALKEEPER_SHAPING, 0.0)
-        config = PerceptionConfig.create(perception, obs_mode, spec.kind)
-        self._build(team_specs=(spec, spec), n_blue=1 + self.n_mates, n_yellow=0, field=fld,
-                    ball=bl, obs_mode=obs_mode, perceptions=(config, config),
-                    control_dt=control_dt, physics_dt=physics_dt,
-                    out_of_range_actions=out_of_range_actions, render_mode=render_mode,
-                    render_width=render_width, head=head, policy_heads=[0],
-                    belief_features=belief_features, info_mode=info_mode,
-                    render_view=render_view)
-        self.robot_model = self._models[0]
-        self.action_space = self.robot_model.action_space()
         self.builder = self._observation_builder([0], teams=[0])
         self.observation_space = self.builder.space()
         # Half-width of the goal mouth the intercept shaping limits its crossing point to [m].
@@ -349,8 +318,6 @@ class GoalkeeperEnv(SingleAgentTask):
         info["shot"] = dict(self._shot)
         info["shot_fired"] = self._fired
         info["keeper_touched"] = self._touched
-
-    FLAT_TASK_KEYS = ("shot_fired", "keeper_touched", "shot_speed", "shot_chip")
 
     def _flat_task_info(self, info: dict[str, float]) -> None:
         info["shot_fired"] = 1.0 if self._fired else 0.0
@@ -415,12 +382,6 @@ class GoalkeeperEnv(SingleAgentTask):
         return terms
 
     # ------------------------------------------------------------------------------------
-
-    TASK_ID = "soccer_env/Goalkeeper-v0"
-    OUTCOME_TEXT = {"goal": ("GOAL", "the shot went in"),
-                    "stopped": ("SAVED", "the ball stopped"),
-                    "cleared": ("SAVED", "the ball was cleared"),
-                    "out": ("SAVED", "the ball went out, no goal")}
 
     def _hud(self) -> list[str]:
         shot = self._shot or {}

@@ -1,4 +1,10 @@
-"""The PettingZoo match: two teams of SSL or humanoid robots (or one of each) on one field."""
+"""The PettingZoo match: two teams of SSL or humanoid robots (or one of each) on one field.
+
+:class:`SoccerParallelEnv` is the PettingZoo API on the core (:mod:`soccer_env.envs.base`);
+what the game flow asks of the world is :class:`~soccer_env.envs.game_flow.GameFlow`'s, the
+game block of the observations :class:`~soccer_env.envs.game_rows.GameRows`', and the match's
+flat infos :func:`~soccer_env.envs.flat_info.flat_match`'s.
+"""
 
 from __future__ import annotations
 
@@ -13,35 +19,28 @@ from pettingzoo.utils.conversions import parallel_to_aec_wrapper
 from pettingzoo.utils.wrappers import OrderEnforcingWrapper
 
 from soccer_env import presets
-from soccer_env.envs.base import SoccerCore, resolve_world
-from soccer_env.envs.flat_info import EVENT_CODES, as_float64, flat_common, flat_keys
+from soccer_env.envs.base import SoccerCore
+from soccer_env.envs.flat_info import (
+    FLAT_GAME_KEYS,
+    MATCH_KEYS,
+    as_float64,
+    flat_common,
+    flat_keys,
+    flat_match,
+)
+from soccer_env.envs.game_flow import GameFlow
+from soccer_env.envs.game_rows import GAME_FLOW_NAMES, GAME_NAMES, GameRows, game_bounds
+from soccer_env.envs.settings import EnvSettings, per_team, settings_keywords
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
-from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
-from soccer_env.presets.rules import RuleSpec
-from soccer_env.render.renderer import RENDER_MODES, Banner
-from soccer_env.sim.commands import (
-    validate_actions,
-)
-from soccer_env.sim.game import (
-    COMMANDS,
-    Decision,
-    Frame,
-    GameController,
-    GameEvent,
-    game_config,
-)
+from soccer_env.presets import RobotSpec
+from soccer_env.presets.rules import HumanoidRuleSpec, RuleSpec
+from soccer_env.render import RENDER_MODES, Banner
+from soccer_env.sim.commands import validate_actions
+from soccer_env.sim.game import GameController, GameOptions, game_config
 from soccer_env.sim.humanoid_game import HumanoidGameController
-from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff, place_penalty
+from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff
 from soccer_env.sim.world import MAX_TEAM_SIZE
-from soccer_env.validation import (
-    check_choice,
-    check_int,
-    check_range,
-    check_seed,
-    keyword_names,
-    parse_scales,
-    reject_unknown,
-)
+from soccer_env.validation import check_choice, check_int, check_range, check_seed, parse_scales
 
 __all__ = ["SoccerParallelEnv", "parallel_env", "env", "MATCH_SHAPING", "GAME_NAMES",
            "GAME_FLOW_NAMES", "FLAT_GAME_KEYS"]
@@ -53,50 +52,6 @@ MATCH_SHAPING = {
                      "team (zero-sum between the teams)",
     "ball_distance": "-distance from the agent to the ball [m] per second",
 }
-
-#: Game-state entries at the end of every match observation.
-GAME_NAMES = ("game.time_left", "game.goals_for", "game.goals_against", "game.restart")
-
-#: The referee state after :data:`GAME_NAMES` when the match plays the game flow
-#: (``game=...``), in the team frame, "ours" being the agent's team: the situation as a
-#: one-hot (:data:`~soccer_env.sim.game.SITUATIONS`, with the team taking the restart or
-#: placing the ball), whether the free kick is indirect, the team of the command that follows
-#: the stop or the placement (+1 ours, -1 theirs, 0 none), the designated position (a flag,
-#: then ``x, y`` [m], 0 when none), the second half flag, the stage's playing time left as a
-#: fraction of the stage, running yellow cards, red cards, fouls and robots allowed on the
-#: field of both teams, whether the team may place the ball, which of the team's robots may
-#: not touch the ball again before another robot has (its number in the team plus one, 0 for
-#: none: the kicker of a restart, SSL rules 8.2), and whether the agent's robot is on the
-#: field (0 while a card or a removal penalty keeps it off).
-GAME_FLOW_NAMES = (
-    "game.stop", "game.placement_ours", "game.placement_theirs", "game.kickoff_ours",
-    "game.kickoff_theirs", "game.penalty_ours", "game.penalty_theirs", "game.free_kick_ours",
-    "game.free_kick_theirs", "game.running", "game.indirect", "game.next_team",
-    "game.target_set", "game.target_x", "game.target_y", "game.second_half",
-    "game.stage_time_left", "game.yellow_ours", "game.yellow_theirs", "game.red_ours",
-    "game.red_theirs", "game.fouls_ours", "game.fouls_theirs", "game.allowed_ours",
-    "game.allowed_theirs", "game.can_place", "game.barred", "game.on_field",
-)
-#: Column of each entry of :data:`GAME_FLOW_NAMES`.
-_FLOW = {name: k for k, name in enumerate(GAME_FLOW_NAMES)}
-
-
-def _situation_column(kind: str, ours: bool) -> int:
-    """The column of the situation ``kind`` (:data:`~soccer_env.sim.game.SITUATIONS`) of
-    the own team (``ours``) or the opponents in :data:`GAME_FLOW_NAMES`."""
-    if kind in ("stop", "running"):
-        return _FLOW[f"game.{kind}"]
-    return _FLOW[f"game.{kind}_{'ours' if ours else 'theirs'}"]
-
-
-def _per_team(name: str, value: Any) -> tuple[Any, Any]:
-    """``value`` for both teams, or ``{"blue": ..., "yellow": ...}`` (both keys needed)."""
-    if isinstance(value, Mapping) and set(value) & {"blue", "yellow"}:
-        if set(value) != {"blue", "yellow"}:
-            raise ValueError(f"{name} per team must have exactly the keys 'blue' and "
-                             f"'yellow', got {sorted(value)}")
-        return value["blue"], value["yellow"]
-    return value, value
 
 
 class SoccerParallelEnv(SoccerCore, ParallelEnv):
@@ -199,39 +154,40 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     #: ``name`` is the registered id (``pettingzoo.make``'s and ``soccer_env.PETTINGZOO``'s).
     metadata = {"name": "soccer_env/Match-v0", "render_modes": list(RENDER_MODES),
                 "render_fps": 60, "is_parallelizable": True}
+    TASK_ID = metadata["name"]
+    SHAPING = MATCH_SHAPING
 
-    def __init__(
-        self,
-        blue: int = 6,
-        yellow: int = 6,
-        robot: str | RobotSpec | Mapping[str, str | RobotSpec] = "ssl",
-        field: str | FieldSpec | None = None,
-        ball: str | BallSpec | None = None,
-        obs_mode: str | Mapping[str, str] = "truth",
-        perception: Any = None,
-        render_mode: str | None = None,
-        match_duration: float = 300.0,
-        max_cycles: int | None = None,
-        shaping: Mapping[str, float] | None = None,
-        control_dt: float = 1.0 / 60.0,
-        physics_dt: float = 1.0 / 240.0,
-        out_of_range_actions: str = "clip",
-        formation_jitter: float = 0.1,
-        render_width: int = 960,
-        head: str = "auto",
-        belief_features: bool = False,
-        info_mode: str = "full",
-        game: Any = None,
-        render_view: str = "field",
-        **unknown: Any,
-    ) -> None:
-        reject_unknown("parallel_env", unknown, keyword_names(SoccerParallelEnv.__init__))
+    #: The match's length [s] (playing time with the game flow).
+    match_duration: float
+    #: Parallel steps after which every agent is truncated (None: no limit).
+    max_cycles: int | None
+    #: Metres of uniform jitter of the kick-off formation.
+    formation_jitter: float
+    #: The game flow's rule preset and options (None: the simple referee).
+    game_rules: RuleSpec | HumanoidRuleSpec | None
+    game_options: GameOptions | None
+    #: The first robot's action mapping.
+    robot_model: Any
+    #: The bounds of :meth:`state`.
+    state_space: gymnasium.spaces.Box
+    #: Goals of blue and yellow in the running match.
+    score: list[int]
+    #: The team whose restart waits for its first touch (-1: none).
+    restart_team: int
+    #: Parallel steps of the running match.
+    cycles: int
+
+    @settings_keywords
+    def __init__(self, *, blue: int = 6, yellow: int = 6, match_duration: float = 300.0,
+                 max_cycles: int | None = None, formation_jitter: float = 0.1,
+                 game: Any = None, **settings: Any) -> None:
+        s = EnvSettings.from_keywords("parallel_env", settings, SoccerParallelEnv.__init__)
         blue = check_int("blue", blue, 0, MAX_TEAM_SIZE)
         yellow = check_int("yellow", yellow, 0, MAX_TEAM_SIZE)
         if blue + yellow < 1:
             raise ValueError(f"a match needs at least one robot: blue + yellow must be >= 1, "
                              f"got {blue} + {yellow}")
-        modes = _per_team("obs_mode", obs_mode)
+        modes = per_team("obs_mode", s.obs_mode)
         for team, mode in zip(("blue", "yellow"), modes):
             # before it picks the default perception
             check_choice("obs_mode" if modes[0] == modes[1] else f"obs_mode of {team}", mode,
@@ -242,49 +198,40 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
                                    10**12)
         self.max_cycles = max_cycles
         self.formation_jitter = check_range("formation_jitter", formation_jitter, 0.0, 1.0)
-        team_specs = tuple(presets.robot(r) for r in _per_team("robot", robot))
-        _, fld, bl = resolve_world(team_specs[0] if blue else team_specs[1], field, ball)
-        self.shaping = parse_scales("shaping", shaping, MATCH_SHAPING)
-        perceptions = tuple(PerceptionConfig.create(p, m, s.kind) for p, m, s in
-                            zip(_per_team("perception", perception), modes, team_specs))
+        team_specs = tuple(presets.robot(r) for r in per_team("robot", s.robot))
+        _, fld, bl = s.presets(team_specs[0] if blue else team_specs[1])
+        self.shaping = parse_scales("shaping", s.shaping, self.SHAPING)
+        perceptions = tuple(PerceptionConfig.create(p, m, spec.kind) for p, m, spec in
+                            zip(per_team("perception", s.perception), modes, team_specs))
         both = modes[0] if modes[0] == modes[1] else {"blue": modes[0], "yellow": modes[1]}
-        self._build(team_specs=team_specs, n_blue=blue, n_yellow=yellow, field=fld, ball=bl,
-                    obs_mode=both, perceptions=perceptions, control_dt=control_dt,
-                    physics_dt=physics_dt, out_of_range_actions=out_of_range_actions,
-                    render_mode=render_mode, render_width=render_width, head=head,
-                    policy_heads=range(blue + yellow),
-                    belief_features=belief_features, info_mode=info_mode,
-                    render_view=render_view)
-        w = self.world
-        # The game flow needs both teams of one robot kind (SSL rules or humanoid laws).
+        self._build(s, team_specs=team_specs, n_blue=blue, n_yellow=yellow, field=fld,
+                    ball=bl, obs_mode=both, perceptions=perceptions,
+                    policy_heads=range(blue + yellow))
+        self._build_game(game, team_specs, blue, yellow)
+        self._build_agents(blue)
+
+    def _build_game(self, game: Any, team_specs: tuple[RobotSpec, RobotSpec], blue: int,
+                    yellow: int) -> None:
+        """The game flow of the ``game`` argument (None: the simple referee). It needs both
+        teams of one robot kind (SSL rules or humanoid laws)."""
         kinds = {spec.kind for spec, n in zip(team_specs, (blue, yellow)) if n}
         cfg = game_config(game, "ssl-2025-div-b" if kinds == {"ssl"} else "humanoid-2025-kid")
         if cfg is not None and kinds != {cfg[0].kind}:
             raise ValueError(f"game rules {cfg[0].name!r} are for matches of {cfg[0].kind} "
                              f"robots; this match plays {sorted(kinds)} (the game flow needs "
                              "both teams of one robot kind)")
-        #: The game flow's rule preset and options (None: the simple referee).
         self.game_rules, self.game_options = cfg if cfg is not None else (None, None)
-        #: The episode's game controller (None without the game flow).
-        self.game: GameController | HumanoidGameController | None = None
-        #: The robots off the field (by cards or removal penalties), in the order they left.
-        self.off_field: list[int] = []
-        #: The game controller's decision of the last step (or of the start).
-        self._decision: Decision | None = None
-        #: The first robot's action mapping.
+        self._flow = (None if cfg is None else
+                      GameFlow(self.world, cfg[0], cfg[1], self.match_duration,
+                               self.formation_jitter))
+
+    def _build_agents(self, blue: int) -> None:
+        """The agents, their spaces and observation builders, and the match's state."""
+        w = self.world
         self.robot_model = self._models[0] if blue else self._models[1]
         self.possible_agents = list(w.names)
         self.agents: list[str] = []
-        game_low, game_high = (0.0, 0.0, 0.0, -1.0), (1.0, 1000.0, 1000.0, 1.0)
-        game_names = GAME_NAMES
-        if cfg is not None:
-            lx = self.field.half_length + self.field.boundary
-            ly = self.field.half_width + self.field.boundary
-            flow_low = [0.0] * 11 + [-1.0, 0.0, -lx, -ly, 0.0, 0.0] + [0.0] * 11
-            flow_high = [1.0] * 11 + [1.0, 1.0, lx, ly, 1.0, 1.0] + [1000.0] * 4 + \
-                [1e6, 1e6] + [float(MAX_TEAM_SIZE)] * 2 + [1.0, float(MAX_TEAM_SIZE), 1.0]
-            game_low, game_high = game_low + tuple(flow_low), game_high + tuple(flow_high)
-            game_names = GAME_NAMES + GAME_FLOW_NAMES
+        game_low, game_high, game_names = game_bounds(self.field, self.game_rules is not None)
         self.builder = self._observation_builder(range(w.n_robots), game_low, game_high,
                                                  game_names)
         self._teams = w.teams.tolist()
@@ -296,11 +243,24 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         # One observation builder per group of robots that share a belief.
         self._builders = [(g, self._observation_builder(g, game_low, game_high, game_names))
                           for g in self._perception.groups]
+        self._rows = GameRows(self._teams, w.n_blue, self.match_duration)
         self.state_space = _state_space(self.field, w.n_robots)
         self.score = [0, 0]
         self.restart_team = -1
         self.cycles = 0
         self._rng: np.random.Generator | None = None
+
+    @property
+    def game(self) -> GameController | HumanoidGameController | None:
+        """The episode's game controller (None without the game flow, or before the first
+        reset)."""
+        return None if self._flow is None else self._flow.game
+
+    @property
+    def off_field(self) -> list[int]:
+        """The robots off the field (by cards or removal penalties), in the order they
+        left."""
+        return [] if self._flow is None else self._flow.off_field
 
     # ------------------------------------------------------------------------------------
     # Task hooks
@@ -315,30 +275,18 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         self.score = [0, 0]
         self.restart_team = self._kickoff
         self.cycles = 0
-        self.off_field = []
-        self._decision = None
-        if self.game_rules is not None:
-            w = self.world
-            game_rng = np.random.default_rng(rng.integers(2**63))
-            if isinstance(self.game_rules, RuleSpec):
-                self.game = GameController(self.field, self.ball_spec, w.teams, w.radii,
-                                           self.game_rules, self.game_options,
-                                           self.match_duration, game_rng)
-            else:
-                self.game = HumanoidGameController(self.field, self.ball_spec, w.teams,
-                                                   w.radii, self.game_rules,
-                                                   self.match_duration, game_rng)
-            self._decision = self.game.start(self._kickoff)
-            self.restart_team = self.game.restart_team
+        if self._flow is not None:
+            self._flow.start(self._kickoff, rng)
+            self.restart_team = self._flow.game.restart_team
 
     def _after_physics(self) -> tuple[str | None, int]:
         """The referee: the step's event (None, ``"goal"``, ``"touch"``, ``"goal_line"``,
         ``"over_bar"``, with the game flow also ``"invalid_goal"``) and the scoring team (-1
         if none)."""
-        if self.game is not None:
+        self.cycles += 1
+        if self._flow is not None:
             return self._referee_game()
         w = self.world
-        self.cycles += 1
         if any(w.touched):
             self.restart_team = -1
         event, scorer = None, -1
@@ -355,195 +303,17 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
             w.clear_exit()
         return event, scorer
 
-    # ------------------------------------------------------------------------------------
-    # The game flow
-    # ------------------------------------------------------------------------------------
-
     def _referee_game(self) -> tuple[str | None, int]:
-        """One step of the game controller on the truth, and what it asks of the world."""
-        w, g = self.world, self.game
-        self.cycles += 1
-        for i in self.off_field:  # delayed commands may have moved it
-            x, y = self._bench_spot(i)
-            pose = w.robot_array()[i]
-            if math.hypot(pose[0] - x, pose[1] - y) > 0.01:
-                w.set_robot(i, x, y, float(pose[2]))
-        d = g.step(Frame(w.time, w.ball_array(), w.robot_array(), w.touched, w.ball_exit))
-        if w.ball_exit is not None:
-            w.clear_exit()
-        self._apply(d)
-        self._decision = d
-        self.restart_team = g.restart_team
+        """One step of the game flow (:meth:`~soccer_env.envs.game_flow.GameFlow.step`): the
+        step's event and the scoring team (-1 if none)."""
+        d = self._flow.step(self._rng)
+        self.restart_team = self._flow.game.restart_team
         if d.scorer >= 0:
             self.score[d.scorer] += 1
         event = d.exit_kind
         if event == "goal" and d.scorer < 0:
             event = "invalid_goal"
         return event, d.scorer
-
-    def _apply(self, d: Decision) -> None:
-        """Do in the world what the game controller asks: robots off and back on, the
-        teams lined up, the ball placed, robots cleared from around it."""
-        w, g = self.world, self.game
-        for i in d.send_off:
-            if i not in self.off_field:
-                self.off_field.append(i)
-        for i in d.bring_on:
-            if i in self.off_field:
-                self.off_field.remove(i)
-                x, y = self._entry_spot(i)
-                w.set_robot(i, x, y, 0.0 if w.teams[i] == 0 else math.pi)
-        if d.line_up is not None:
-            kind, team = d.line_up
-            if kind == "kickoff":
-                poses, ball = place_kickoff(w, team, self._rng, self.formation_jitter), (0.0, 0.0)
-            else:
-                ball = g.designated
-                poses = place_penalty(w, team, ball, self.game_rules.penalty_behind)
-            for i in self.off_field:
-                poses[i, 0:2] = self._bench_spot(i)
-            w.place_all(poses, ball)
-        elif d.place_ball is not None:
-            w.set_ball(*d.place_ball)
-        for i in d.send_off:
-            pose = w.robot_array()[i]
-            w.set_robot(i, *self._bench_spot(i), float(pose[2]))
-        if d.place_ball is not None or d.clear is not None:
-            keep, team = d.clear if d.clear is not None else (0.0, -1)
-            self._clear_ball(keep, team)
-
-    def _clear_ball(self, keep: float, team: int) -> None:
-        """Move robots not of ``team`` (-1: all) whose centres lie within ``keep`` metres of
-        the ball (and any robot overlapping it) radially out to that distance, at rest."""
-        w = self.world
-        bx, by = (float(v) for v in w.ball_array()[0:2])
-        lim_x = w.field.half_length + w.field.boundary
-        lim_y = w.field.half_width + w.field.boundary
-        for i, (x, y, th) in enumerate(w.robot_array()[:, 0:3].tolist()):
-            if i in self.off_field:
-                continue
-            r = float(w.radii[i])
-            need = r + self.ball_spec.radius + 0.01
-            if team < 0 or int(w.teams[i]) != team:
-                need = max(need, keep)
-            dx, dy = x - bx, y - by
-            dist = math.hypot(dx, dy)
-            if dist >= need:
-                continue
-            if dist < 1e-9:  # on the ball: away from the centre spot, or along -x
-                dx, dy, dist = (-bx, -by, math.hypot(bx, by)) if math.hypot(bx, by) > 1e-9 \
-                    else (-1.0, 0.0, 1.0)
-            nx = float(np.clip(bx + dx / dist * need, -lim_x + r, lim_x - r))
-            ny = float(np.clip(by + dy / dist * need, -lim_y + r, lim_y - r))
-            w.set_robot(i, nx, ny, th)
-
-    def _bench_spot(self, robot: int) -> tuple[float, float]:
-        """Where a robot off the field waits [m]: beyond the touch line at ``y < 0``, in the
-        middle of the run-off area, in its own half, the team's robots side by side."""
-        w = self.world
-        t = int(w.teams[robot])
-        r = float(w.radii[robot])
-        k = [i for i in self.off_field if int(w.teams[i]) == t].index(robot)
-        f = self.field
-        x = (0.5 + k * (2.0 * r + 0.1)) * (-1.0 if t == 0 else 1.0)
-        y = -min(f.half_width + 0.5 * f.boundary, f.half_width + f.boundary - r - 0.01)
-        return x, y
-
-    def _entry_spot(self, robot: int) -> tuple[float, float]:
-        """Where a robot comes back on [m]: on its side of the halfway line, on the touch
-        line nearer the bench (the other one if the ball lies within a metre, beyond the
-        distance either rule book asks robots to keep at restarts)."""
-        w = self.world
-        t = int(w.teams[robot])
-        r = float(w.radii[robot])
-        x = (r + 0.1) * (-1.0 if t == 0 else 1.0)
-        y = -(self.field.half_width - r - 0.05)
-        ball = w.ball_array()
-        if math.hypot(ball[0] - x, ball[1] - y) < r + 1.0:
-            y = -y
-        return x, y
-
-    def _game_rows(self) -> np.ndarray:
-        """``(N, G)`` game-state entries of every robot (:data:`GAME_NAMES`, then with the
-        game flow :data:`GAME_FLOW_NAMES`), each in its team's frame."""
-        w, g = self.world, self.game
-        blue, yellow = self.score
-        restart = self.restart_team
-        flag = 0.0 if restart < 0 else (1.0 if restart == 0 else -1.0)
-        if g is None:
-            time_left = max(0.0, 1.0 - w.time / self.match_duration)
-            per_team = np.array([(time_left, blue, yellow, flag),
-                                 (time_left, yellow, blue, -flag)])
-            return per_team[self._teams]
-        time_left = min(1.0, max(0.0, g.playing_time_left / self.match_duration))
-        kind, team = g.situation()
-        nxt = g.next_command[1] if g.next_command is not None else -1
-        target = g.designated
-        stage_length = g.stage_duration
-        infos = g.team_info
-        rows = np.zeros((2, len(GAME_NAMES) + len(GAME_FLOW_NAMES)))
-        barred = g.barred_robot
-        for t in (0, 1):
-            sign = 1.0 if t == 0 else -1.0  # the team frame turns yellow's half a turn
-            ours, theirs = infos[t], infos[1 - t]
-            rows[t, 0:len(GAME_NAMES)] = (time_left, self.score[t], self.score[1 - t],
-                                         flag * sign)
-            flow = dict.fromkeys(GAME_FLOW_NAMES, 0.0)
-            flow[GAME_FLOW_NAMES[_situation_column(kind, team == t)]] = 1.0
-            flow["game.indirect"] = float(g.indirect)
-            flow["game.next_team"] = 0.0 if nxt < 0 else (1.0 if nxt == t else -1.0)
-            if target is not None:
-                flow["game.target_set"] = 1.0
-                flow["game.target_x"], flow["game.target_y"] = sign * target[0], \
-                    sign * target[1]
-            flow["game.second_half"] = float(g.stage == "second_half")
-            flow["game.stage_time_left"] = min(1.0, max(0.0, g.stage_time_left / stage_length))
-            flow["game.yellow_ours"] = len(ours.yellow_cards)
-            flow["game.yellow_theirs"] = len(theirs.yellow_cards)
-            flow["game.red_ours"], flow["game.red_theirs"] = ours.red_cards, theirs.red_cards
-            flow["game.fouls_ours"], flow["game.fouls_theirs"] = ours.fouls, theirs.fouls
-            flow["game.allowed_ours"] = g.robots_allowed(t)
-            flow["game.allowed_theirs"] = g.robots_allowed(1 - t)
-            flow["game.can_place"] = float(ours.can_place)
-            if barred >= 0 and int(w.teams[barred]) == t:
-                flow["game.barred"] = 1 + barred - (0 if t == 0 else w.n_blue)
-            rows[t, len(GAME_NAMES):] = list(flow.values())
-        out = rows[self._teams]
-        out[:, -1] = 1.0  # game.on_field
-        out[self.off_field, -1] = 0.0
-        return out
-
-    def _game_info(self) -> dict[str, Any]:
-        """``info["game"]``: the referee state and the step's game events."""
-        g, w = self.game, self.world
-        teams = ("blue", "yellow")
-
-        def team_name(t: int) -> str | None:
-            return teams[t] if t >= 0 else None
-
-        events = [] if self._decision is None else self._decision.events
-        kind, team = g.situation()
-        out: dict[str, Any] = {
-            "command": g.command, "command_team": team_name(g.command_team),
-            "situation": kind, "situation_team": team_name(team),
-            "next_command": (None if g.next_command is None else
-                             (g.next_command[0], team_name(g.next_command[1]))),
-            "designated": g.designated, "in_play": bool(g.in_play), "stage": g.stage,
-            "stage_time_left": float(g.stage_time_left),
-            "playing_time_left": float(g.playing_time_left),
-            "events": [_event_dict(e, w.names) for e in events],
-        }
-        for t, name in enumerate(teams):
-            info = g.team_info[t]
-            out[name] = {"goals": self.score[t], "fouls": info.fouls,
-                         "yellow_cards": [float(c) for c in info.yellow_cards],
-                         "red_cards": info.red_cards,
-                         "placement_failures": info.placement_failures,
-                         "can_place": bool(info.can_place),
-                         "robots_allowed": g.robots_allowed(t),
-                         "off_field": [w.names[i] for i in self.off_field
-                                       if int(w.teams[i]) == t]}
-        return out
 
     # ------------------------------------------------------------------------------------
     # PettingZoo API
@@ -573,15 +343,17 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         if not self.agents:
             raise RuntimeError("the match is over (no live agents); call reset()")
         act = self._gather(actions)
-        if self.off_field:  # robots off the field stand still
-            act[self.off_field] = 0.0
+        off_field = self.off_field
+        if off_field:  # robots off the field stand still
+            act[off_field] = 0.0
         w = self.world
         ball_x_before = float(w.ball_array()[0]) if self.shaping["ball_progress"] else 0.0
         state, (event, scorer) = self._advance(act)
         rewards, terms = self._rewards(state, event, scorer, ball_x_before)
         obs = self._observe()
-        if self.game is not None:
-            done = self._decision is not None and self._decision.over
+        if self._flow is not None:
+            decision = self._flow.decision
+            done = decision is not None and decision.over
         else:
             done = w.time >= self.match_duration - 1e-9
         trunc = self.max_cycles is not None and self.cycles >= self.max_cycles
@@ -610,7 +382,6 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
             lines.append(f"{g.command}{team}, {g.stage}")
         return lines
 
-    TASK_ID = "soccer_env/Match-v0"
     #: Why the latest match ended (``"full time"``, ``"time limit"``), None while it runs.
     _end_reason: str | None = None
 
@@ -622,6 +393,8 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         head = "FULL TIME" if self._end_reason == "full time" else "TIME LIMIT"
         return Banner(head, f"blue {self.score[0]} : {self.score[1]} yellow")
 
+    # ------------------------------------------------------------------------------------
+    # Actions
     # ------------------------------------------------------------------------------------
 
     def check_action(self, agent: str, action: Any) -> np.ndarray:
@@ -638,10 +411,14 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         except (TypeError, ValueError):
             act = None
         if act is None or act.shape != (6,):
-            model = self._models[self._teams[self.possible_agents.index(agent)]]
             raise ValueError(f"action for agent {agent!r} must have shape (6,) "
-                             f"({', '.join(model.action_names)}), got {np.shape(action)}")
+                             f"({self._action_names(agent)}), got {np.shape(action)}")
         return validate_actions(act[None], [agent], self.out_of_range_actions)[0]
+
+    def _action_names(self, agent: str) -> str:
+        """The names of the action entries of ``agent``'s robot model, in words."""
+        model = self._models[self._teams[self.possible_agents.index(agent)]]
+        return ", ".join(model.action_names)
 
     def _gather(self, actions: Mapping[str, Any]) -> np.ndarray:
         """Stack the live agents' actions into ``(N, 6)``; validate before touching the world."""
@@ -665,14 +442,21 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
             for a in agents:
                 shape = np.shape(actions[a])
                 if shape != (6,):
-                    names = self._models[self._teams[self.possible_agents.index(a)]]
                     raise ValueError(f"action for agent {a!r} must have shape (6,) "
-                                     f"({', '.join(names.action_names)}), got {shape}")
+                                     f"({self._action_names(a)}), got {shape}")
             raise ValueError("actions must be numeric arrays of shape (6,)")
         return validate_actions(act, agents, self.out_of_range_actions)
 
+    # ------------------------------------------------------------------------------------
+    # Observations, rewards, infos
+    # ------------------------------------------------------------------------------------
+
     def _observe(self) -> dict[str, np.ndarray]:
-        game = self._game_rows()
+        g = self.game
+        if g is None:
+            game = self._rows.simple(self.world.time, self.score, self.restart_team)
+        else:
+            game = self._rows.flow(g, self.score, self.restart_team, self._flow.off_field)
         if len(self._builders) == 1:
             rows = self.builder.build(self._perception.belief(0), game)
             return dict(zip(self.possible_agents, rows))
@@ -690,8 +474,9 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         n = len(teams)
         goal = [0.0] * n if scorer < 0 else [1.0 if t == scorer else -1.0 for t in teams]
         progress = [0.0] * n
-        moved = self._decision is not None and (self._decision.line_up is not None or
-                                                self._decision.place_ball is not None)
+        decision = None if self._flow is None else self._flow.decision
+        moved = decision is not None and (decision.line_up is not None
+                                          or decision.place_ball is not None)
         if sc["ball_progress"] and event is None and not moved:
             # Ball displacement towards the opponent goal this step: velocity times dt.
             dx = sc["ball_progress"] * (float(state.ball[0]) - ball_x_before)
@@ -710,7 +495,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     def flat_info_keys(self) -> tuple[str, ...]:
         """The keys of every agent's flat info (``info_mode="flat"``), in order: the same for
         every agent at every reset and step."""
-        extra = ("event", "score_blue", "score_yellow")
+        extra = MATCH_KEYS
         if self.game_rules is not None:
             extra += FLAT_GAME_KEYS
         return flat_keys(("goal", *MATCH_SHAPING), extra)
@@ -721,7 +506,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
             return self._flat_infos(state, terms, event)
         truth = state.truth_dict()
         robot_state = self.world.humanoid_state() if self.world.walk is not None else None
-        game = self._game_info() if self.game is not None else None
+        game = self._flow.info(self.score) if self.game is not None else None
         estimates: dict[int, dict] = {}
         infos = {}
         for a in self.agents:
@@ -730,7 +515,9 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
             key = id(belief)
             if key not in estimates:
                 estimates[key] = self._estimate(state, belief, truth)
-            infos[a] = self._agent_info(truth, estimates[key], terms[a], event)
+            infos[a] = {"truth": truth, "estimate": estimates[key], "reward_terms": terms[a],
+                        "score": {"blue": self.score[0], "yellow": self.score[1]},
+                        "event": event}
             if robot_state is not None:
                 infos[a]["robot_state"] = robot_state
             if game is not None:
@@ -739,18 +526,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
 
     def _flat_infos(self, state, terms: dict, event: str | None) -> dict[str, dict]:
         """Every live agent's flat info (:mod:`soccer_env.envs.flat_info`)."""
-        game = {"event": float(EVENT_CODES[event]), "score_blue": float(self.score[0]),
-                "score_yellow": float(self.score[1])}
-        g = self.game
-        if g is not None:
-            game.update(game_command=float(COMMANDS.index(g.command)),
-                        game_command_team=float(g.command_team), game_in_play=float(g.in_play),
-                        game_stage_time_left=float(g.stage_time_left))
-            for t, name in enumerate(("blue", "yellow")):
-                info = g.team_info[t]
-                game[f"game_fouls_{name}"] = float(info.fouls)
-                game[f"game_yellow_cards_{name}"] = float(len(info.yellow_cards))
-                game[f"game_red_cards_{name}"] = float(info.red_cards)
+        game = flat_match(event, self.score, self.game)
         names = self.world.names
         infos = {}
         for a in self.agents:
@@ -759,28 +535,6 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
             info.update(game)
             infos[a] = as_float64(info)
         return infos
-
-    def _agent_info(self, truth: dict, estimate: dict, terms: dict, event: str | None
-                    ) -> dict[str, Any]:
-        return {"truth": truth, "estimate": estimate, "reward_terms": terms,
-                "score": {"blue": self.score[0], "yellow": self.score[1]}, "event": event}
-
-
-#: The flat info's keys of the game flow (``info_mode="flat"`` with ``game=...``): the command
-#: (its index in :data:`~soccer_env.sim.game.COMMANDS`), its team (-1 none, 0 blue, 1 yellow),
-#: whether the ball is in play, the stage's playing time left [s], and per team the fouls,
-#: running yellow cards and red cards.
-FLAT_GAME_KEYS = ("game_command", "game_command_team", "game_in_play", "game_stage_time_left",
-                  "game_fouls_blue", "game_yellow_cards_blue", "game_red_cards_blue",
-                  "game_fouls_yellow", "game_yellow_cards_yellow", "game_red_cards_yellow")
-
-
-def _event_dict(event: GameEvent, names: list[str]) -> dict[str, Any]:
-    """A game event as ``info["game"]["events"]`` holds it (team and robot by name)."""
-    return {"kind": event.kind,
-            "team": None if event.team < 0 else ("blue", "yellow")[event.team],
-            "robot": None if event.robot < 0 else names[event.robot],
-            "x": event.x, "y": event.y}
 
 
 #: Bounds of :meth:`SoccerParallelEnv.state` beyond the walls' and the robots' own limits:
@@ -826,4 +580,3 @@ def env(**kwargs: Any):
     """The match as a PettingZoo AEC environment (agents act in turn; the physics steps
     once every agent has acted; each action is checked when its agent acts)."""
     return OrderEnforcingWrapper(_CheckedAEC(SoccerParallelEnv(**kwargs)))
-

@@ -9,22 +9,14 @@ from typing import Any
 
 import numpy as np
 
-from soccer_env.envs.base import SingleAgentTask, action_cost, resolve_world
 from soccer_env.envs.keeper import ScriptedGoalkeeper
+from soccer_env.envs.settings import settings_keywords
+from soccer_env.envs.task import SingleAgentTask, action_cost
 from soccer_env.observations import ObservationBuilder
-from soccer_env.perception.base import OBS_MODES, PerceptionConfig
-from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
+from soccer_env.presets import FieldSpec
 from soccer_env.sim.referee import classify_exit
 from soccer_env.state import WorldState
-from soccer_env.validation import (
-    check_choice,
-    check_number,
-    check_pair,
-    from_mapping,
-    keyword_names,
-    parse_scales,
-    reject_unknown,
-)
+from soccer_env.validation import check_number, check_pair, from_mapping
 
 __all__ = ["ShootoutEnv", "ShootoutStart", "SHOOTOUT_SHAPING", "CLEAR_SPEED", "STOP_SPEED"]
 
@@ -190,42 +182,20 @@ class ShootoutEnv(SingleAgentTask):
     * v0: first release.
     """
 
-    def __init__(
-        self,
-        robot: str | RobotSpec = "ssl",
-        field: str | FieldSpec | None = None,
-        ball: str | BallSpec | None = None,
-        obs_mode: str = "truth",
-        perception: Any = None,
-        render_mode: str | None = None,
-        start: ShootoutStart | Mapping[str, Any] | None = None,
-        shaping: Mapping[str, float] | None = None,
-        control_dt: float = 1.0 / 60.0,
-        physics_dt: float = 1.0 / 240.0,
-        out_of_range_actions: str = "clip",
-        render_width: int = 960,
-        head: str = "auto",
-        belief_features: bool = False,
-        info_mode: str = "full",
-        render_view: str = "field",
-        **unknown: Any,
-    ) -> None:
-        reject_unknown("ShootoutEnv", unknown, keyword_names(ShootoutEnv.__init__))
-        check_choice("obs_mode", obs_mode, OBS_MODES)  # before it picks the default perception
-        spec, fld, bl = resolve_world(robot, field, ball)
+    TASK_ID = "soccer_env/Shootout-v0"
+    SHAPING = SHOOTOUT_SHAPING
+    FLAT_TASK_KEYS = ("keeper_touched",)
+    OUTCOME_TEXT = {"goal": ("GOAL", "the attacker scored"),
+                    "saved": ("SAVED", "the keeper stopped the ball"),
+                    "out": ("MISSED", "the ball went out")}
+
+    @settings_keywords
+    def __init__(self, *, start: ShootoutStart | Mapping[str, Any] | None = None,
+                 **settings: Any) -> None:
+        s, spec, fld, bl = self._take_settings(settings)
         self.start = ShootoutStart.create(start)
         self.start.check_field(fld, spec.radius)
-        self.shaping = parse_scales("shaping", shaping, SHOOTOUT_SHAPING)
-        config = PerceptionConfig.create(perception, obs_mode, spec.kind)
-        self._build(team_specs=(spec, spec), n_blue=1, n_yellow=1, field=fld, ball=bl,
-                    obs_mode=obs_mode, perceptions=(config, config), control_dt=control_dt,
-                    physics_dt=physics_dt, out_of_range_actions=out_of_range_actions,
-                    render_mode=render_mode, render_width=render_width, head=head,
-                    policy_heads=[0],
-                    belief_features=belief_features, info_mode=info_mode,
-                    render_view=render_view)
-        self.robot_model = self._models[0]
-        self.action_space = self.robot_model.action_space()
+        self._build_learner(s, spec, fld, bl, n_blue=1, n_yellow=1)
         teams = self.world.teams
         self.builder = self._observation_builder([0])
         self.observation_space = self.builder.space()
@@ -289,15 +259,8 @@ class ShootoutEnv(SingleAgentTask):
         info["start"] = dict(self._start_draw)
         info["keeper_touched"] = self._keeper_touched
 
-    FLAT_TASK_KEYS = ("keeper_touched",)
-
     def _flat_task_info(self, info: dict[str, float]) -> None:
         info["keeper_touched"] = 1.0 if self._keeper_touched else 0.0
-
-    TASK_ID = "soccer_env/Shootout-v0"
-    OUTCOME_TEXT = {"goal": ("GOAL", "the attacker scored"),
-                    "saved": ("SAVED", "the keeper stopped the ball"),
-                    "out": ("MISSED", "the ball went out")}
 
     def _hud(self) -> list[str]:
         return [f"t = {self.world.time:5.2f} s", "shootout"]

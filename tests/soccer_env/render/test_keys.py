@@ -80,6 +80,6 @@ def test_q_closes_the_window_for_good(window):
     press(pygame.K_q)
     window.step(STILL)
     shown = r.frames_shown
-    assert r._window is None
+    assert not r.window_open
     window.step(STILL)
     assert window.render() is None and r.frames_shown == shown

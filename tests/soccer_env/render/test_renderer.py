@@ -57,7 +57,7 @@ def test_two_sigma_ellipse_is_drawn_to_scale():
     frame = r.draw(state, belief=_belief(state, np.diag([0.2**2, 0.1**2])))
     assert "ellipses" in r.contents.legend
     ys, xs = np.nonzero(_mask(frame, OVERLAY_COLOURS["ellipses"], r.contents.field_height))
-    cx, cy = r._px(1.0, 0.5)
+    cx, cy = r.pixel(1.0, 0.5)
     s = r.contents.scale
     assert abs(0.5 * (xs.max() - xs.min()) - 0.4 * s) <= 1.5
     assert abs(0.5 * (ys.max() - ys.min()) - 0.2 * s) <= 1.5
@@ -77,7 +77,7 @@ def test_rotated_ellipse_points_along_its_major_axis():
     state = _state(robots=(), teams=())
     frame = r.draw(state, belief=_belief(state, cov))
     ys, xs = np.nonzero(_mask(frame, OVERLAY_COLOURS["ellipses"], r.contents.field_height))
-    cx, cy = r._px(1.0, 0.5)
+    cx, cy = r.pixel(1.0, 0.5)
     d = np.hypot(xs - cx, ys - cy)
     far = np.argmax(d)
     s = r.contents.scale
@@ -95,7 +95,7 @@ def test_a_scalar_sigma_is_a_circle_and_unknown_spreads_are_not_drawn():
     covs = [sigma**2 * np.eye(2), np.full((2, 2), np.nan)]
     frame = r.draw(state, belief=_belief(state, robot_covs=covs))
     ys, xs = np.nonzero(_mask(frame, OVERLAY_COLOURS["ellipses"], r.contents.field_height))
-    cx, cy = r._px(-2.0, 1.0)
+    cx, cy = r.pixel(-2.0, 1.0)
     d = np.hypot(xs - cx, ys - cy)
     assert len(d) and abs(np.median(d) - 2 * sigma * r.contents.scale) <= 1.0
     assert abs((xs.max() - xs.min()) - (ys.max() - ys.min())) <= 1  # a circle
@@ -147,7 +147,7 @@ def test_particle_clouds_are_faint_and_listed():
     poses = np.column_stack([rng.normal((-4.0, 0.0), 0.25, (300, 2)), np.zeros(300)])
     frame = r.draw(state, belief=_belief(state, ball_particles=ball, pose_particles=poses))
     assert {"ball_particles", "pose_particles"} <= set(r.contents.legend)
-    px, py = r._px(2.0, 1.5)
+    px, py = r.pixel(2.0, 1.5)
     patch = frame[py - 40:py + 40, px - 40:px + 40].reshape(-1, 3).astype(int)
     carpet = np.array([24, 120, 48])
     tinted = patch[np.abs(patch - carpet).sum(axis=1) > 30]
@@ -160,7 +160,7 @@ def test_robots_are_drawn_at_least_their_minimum_size_with_a_readable_number():
     r = _renderer(640)
     state = _state(robots=((1.5, 1.0, 0.0),), teams=(0,), ball=(3.0, 2.0, 0.0))
     frame = r.draw(state)
-    cx, cy = r._px(1.5, 1.0)
+    cx, cy = r.pixel(1.5, 1.0)
     column = frame[:, cx].astype(int)  # across the robot, beside its flat front
     carpet = np.abs(column - (24, 120, 48)).sum(axis=1) < 10
     top, bottom = cy, cy
