@@ -36,9 +36,10 @@ import gymnasium as gym
 
 import soccer_env  # noqa: F401
 from agents.runs.evaluation import evaluate
+from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_env.presets import vision
 
-GK = "soccer_env/Goalkeeper-v0"
+GK = GOALKEEPER_ID
 
 
 class KnownKick(gym.Wrapper):

@@ -29,15 +29,13 @@ import time
 
 import numpy as np
 
-GK = "soccer_env/Goalkeeper-v0"
-
 
 def _single(steps: int, kwargs: dict) -> float:
     import gymnasium as gym
 
-    import soccer_env  # noqa: F401
+    from soccer_env.envs.registration import GOALKEEPER_ID
 
-    env = gym.make(GK, **kwargs)
+    env = gym.make(GOALKEEPER_ID, **kwargs)
     env.reset(seed=0)
     actions = np.random.default_rng(0).uniform(-1, 1, (steps, 6)).astype(np.float32)
     t0 = time.perf_counter()
@@ -54,9 +52,10 @@ def _batch(n: int, steps: int, kwargs: dict) -> tuple[float, float]:
     cost nothing."""
     import gymnasium as gym
 
-    import soccer_env  # noqa: F401
+    from soccer_env.envs.registration import GOALKEEPER_ID
 
-    env = gym.make_vec(GK, num_envs=n, vectorization_mode="vector_entry_point", **kwargs)
+    env = gym.make_vec(GOALKEEPER_ID, num_envs=n, vectorization_mode="vector_entry_point",
+                       **kwargs)
     env.reset(seed=0)
     actions = np.random.default_rng(0).uniform(-1, 1, (steps, n, 6)).astype(np.float32)
     env.step(actions[0])

@@ -32,10 +32,11 @@ import numpy as np
 
 import soccer_env  # noqa: F401
 from agents.runs.evaluation import evaluate
+from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_env.presets import HEAD_CAMERAS, head_camera, vision
 from soccer_env.state import Belief
 
-GK = "soccer_env/Goalkeeper-v0"
+GK = GOALKEEPER_ID
 
 
 class FirstFrameOracle(gym.ObservationWrapper):

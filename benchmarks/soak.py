@@ -64,9 +64,9 @@ def _match(args: argparse.Namespace):
 def _goalkeeper(args: argparse.Namespace):
     import gymnasium as gym
 
-    import soccer_env  # noqa: F401
+    from soccer_env.envs.registration import GOALKEEPER_ID
 
-    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=args.obs_mode).unwrapped
+    env = gym.make(GOALKEEPER_ID, obs_mode=args.obs_mode).unwrapped
     rng = np.random.default_rng(args.seed)
     env.reset(seed=args.seed)
 

@@ -68,7 +68,7 @@ from soccer_env.envs.goalkeeper import (
     fire_shot,
     place_episode,
 )
-from soccer_env.envs.registration import GYMNASIUM
+from soccer_env.envs.registration import GOALKEEPER_ID, GYMNASIUM, SHOOTOUT_ID
 from soccer_env.envs.senses import Senses
 from soccer_env.envs.shootout import CLEAR_SPEED as SHOOTOUT_CLEAR_SPEED
 from soccer_env.envs.shootout import STOP_SPEED as SHOOTOUT_STOP_SPEED
@@ -83,8 +83,8 @@ __all__ = ["BatchedTask", "GoalkeeperVectorEnv", "ShootoutVectorEnv", "NotBatcha
            "make_vector", "make_shootout_vector"]
 
 #: Goalkeeper-v0's and Shootout-v0's time limits (their registrations' ``max_episode_steps``).
-DEFAULT_MAX_STEPS = GYMNASIUM["soccer_env/Goalkeeper-v0"].max_episode_steps
-SHOOTOUT_MAX_STEPS = GYMNASIUM["soccer_env/Shootout-v0"].max_episode_steps
+DEFAULT_MAX_STEPS = GYMNASIUM[GOALKEEPER_ID].max_episode_steps
+SHOOTOUT_MAX_STEPS = GYMNASIUM[SHOOTOUT_ID].max_episode_steps
 
 
 class NotBatchable(ValueError):
@@ -97,7 +97,7 @@ def make_vector(num_envs: int = 16, max_episode_steps: int | None = DEFAULT_MAX_
     arguments the batch does not run yet (the pixels detector, rendering), Gymnasium's
     ``SyncVectorEnv`` of single environments with a warning saying why, so that
     ``gymnasium.make_vec(id, num_envs=N)`` works for every configuration."""
-    return _vector_or_sync(GoalkeeperVectorEnv, "soccer_env/Goalkeeper-v0", num_envs,
+    return _vector_or_sync(GoalkeeperVectorEnv, GOALKEEPER_ID, num_envs,
                            max_episode_steps, kwargs)
 
 
@@ -137,7 +137,7 @@ class BatchedTask(VectorEnv):
     metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
     #: The single environment the batch plays and its registered id.
     TASK: type = GoalkeeperEnv
-    TASK_ID = "soccer_env/Goalkeeper-v0"
+    TASK_ID = GOALKEEPER_ID
 
     def __init__(self, num_envs: int = 16, max_episode_steps: int | None = DEFAULT_MAX_STEPS,
                  autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
@@ -392,7 +392,7 @@ class GoalkeeperVectorEnv(BatchedTask):
     :class:`~soccer_env.envs.goalkeeper.GoalkeeperEnv`'s)."""
 
     TASK = GoalkeeperEnv
-    TASK_ID = "soccer_env/Goalkeeper-v0"
+    TASK_ID = GOALKEEPER_ID
 
     def _setup(self) -> None:
         probe = self.probe
@@ -496,7 +496,7 @@ class ShootoutVectorEnv(BatchedTask):
     """
 
     TASK = ShootoutEnv
-    TASK_ID = "soccer_env/Shootout-v0"
+    TASK_ID = SHOOTOUT_ID
 
     def _setup(self) -> None:
         probe = self.probe
@@ -575,5 +575,5 @@ def make_shootout_vector(num_envs: int = 16,
     """Shootout-v0's ``vector_entry_point``: a :class:`ShootoutVectorEnv`, or Gymnasium's
     ``SyncVectorEnv`` of single environments (with a warning saying why) for arguments the
     batch does not run yet."""
-    return _vector_or_sync(ShootoutVectorEnv, "soccer_env/Shootout-v0", num_envs,
+    return _vector_or_sync(ShootoutVectorEnv, SHOOTOUT_ID, num_envs,
                            max_episode_steps, kwargs)

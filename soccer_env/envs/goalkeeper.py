@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from soccer_env import presets
+from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_env.envs.settings import settings_keywords
 from soccer_env.envs.task import SingleAgentTask, action_cost
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
@@ -253,7 +254,7 @@ class GoalkeeperEnv(SingleAgentTask):
     * v0: first release.
     """
 
-    TASK_ID = "soccer_env/Goalkeeper-v0"
+    TASK_ID = GOALKEEPER_ID
     SHAPING = GOALKEEPER_SHAPING
     FLAT_TASK_KEYS = ("shot_fired", "keeper_touched", "shot_speed", "shot_chip")
     OUTCOME_TEXT = {"goal": ("GOAL", "the shot went in"),

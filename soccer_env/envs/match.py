@@ -30,6 +30,7 @@ from soccer_env.envs.flat_info import (
 )
 from soccer_env.envs.game_flow import GameFlow
 from soccer_env.envs.game_rows import GAME_FLOW_NAMES, GAME_NAMES, GameRows, game_bounds
+from soccer_env.envs.registration import MATCH_ID
 from soccer_env.envs.settings import EnvSettings, per_team, settings_keywords
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.presets import RobotSpec
@@ -152,7 +153,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     """
 
     #: ``name`` is the registered id (``pettingzoo.make``'s and ``soccer_env.PETTINGZOO``'s).
-    metadata = {"name": "soccer_env/Match-v0", "render_modes": list(RENDER_MODES),
+    metadata = {"name": MATCH_ID, "render_modes": list(RENDER_MODES),
                 "render_fps": 60, "is_parallelizable": True}
     TASK_ID = metadata["name"]
     SHAPING = MATCH_SHAPING

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from soccer_env.envs.keeper import ScriptedGoalkeeper
+from soccer_env.envs.registration import SHOOTOUT_ID
 from soccer_env.envs.settings import settings_keywords
 from soccer_env.envs.task import SingleAgentTask, action_cost
 from soccer_env.observations import ObservationBuilder
@@ -182,7 +183,7 @@ class ShootoutEnv(SingleAgentTask):
     * v0: first release.
     """
 
-    TASK_ID = "soccer_env/Shootout-v0"
+    TASK_ID = SHOOTOUT_ID
     SHAPING = SHOOTOUT_SHAPING
     FLAT_TASK_KEYS = ("keeper_touched",)
     OUTCOME_TEXT = {"goal": ("GOAL", "the attacker scored"),

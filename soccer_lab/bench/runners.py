@@ -13,6 +13,7 @@ import gymnasium as gym
 import numpy as np
 
 import soccer_env  # noqa: F401  (registers the environments)
+from soccer_env.envs.registration import GOALKEEPER_ID
 
 __all__ = ["HUMANOID", "HUMANOID_CAMERA", "memory_per_item", "run_rate", "median_rate",
            "random_actions", "goalkeeper_runner", "match_runner", "bare_rate"]
@@ -64,7 +65,7 @@ def goalkeeper_runner(steps: int, seed: int = 0, obs_mode: str = "truth",
                       perception: str | None = None, robot: str = "ssl"):
     """A closure stepping ``gymnasium.make("soccer_env/Goalkeeper-v0")`` ``steps`` times with
     pre-drawn random actions (resetting when episodes end), and its environment."""
-    env = gym.make("soccer_env/Goalkeeper-v0", obs_mode=obs_mode, perception=perception,
+    env = gym.make(GOALKEEPER_ID, obs_mode=obs_mode, perception=perception,
                    robot=robot)
     actions = random_actions(np.random.default_rng(seed), (steps,), robot).astype(np.float32)
     env.reset(seed=seed)

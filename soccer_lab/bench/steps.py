@@ -15,6 +15,7 @@ import numpy as np
 import pymunk
 
 import soccer_env  # noqa: F401  (registers the environments)
+from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_lab.bench.runners import (
     HUMANOID,
     HUMANOID_CAMERA,
@@ -128,7 +129,7 @@ def bench_batched(batch: int, steps: int, repeats: int, seed: int = 0) -> dict[s
     from agents.vec.factories import make_match_vec_env
 
     rng = np.random.default_rng(seed)
-    vec = gym.make_vec("soccer_env/Goalkeeper-v0", num_envs=batch,
+    vec = gym.make_vec(GOALKEEPER_ID, num_envs=batch,
                        vectorization_mode="vector_entry_point")
     vec.reset(seed=seed)
     n_steps = max(20, steps // batch)

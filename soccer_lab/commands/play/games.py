@@ -9,6 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from soccer_env.envs.registration import GOALKEEPER_ID, SHOOTOUT_ID
+
 __all__ = ["TASKS", "ENV_IDS", "USER_AGENT", "USER", "observed_heading", "Game", "MatchGame",
            "TaskGame", "make_game"]
 
@@ -20,7 +22,7 @@ TASKS = {
 }
 
 #: Environment ids of the single-robot tasks.
-ENV_IDS = {"shootout": "soccer_env/Shootout-v0", "keeper": "soccer_env/Goalkeeper-v0"}
+ENV_IDS = {"shootout": SHOOTOUT_ID, "keeper": GOALKEEPER_ID}
 
 #: The agent the person plays in the match, and its robot index in every task.
 USER_AGENT, USER = "blue_0", 0
