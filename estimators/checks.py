@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["MAX_PARTICLES", "check_count", "check_real", "check_points"]
+__all__ = ["MAX_PARTICLES", "check_count", "check_real", "check_sigma", "check_points"]
 
 #: The most particles a filter takes: a million 4-D particles are 32 MB, and each update
 #: touches every one (10^10 asked for 298 GiB before failing).
@@ -36,6 +36,15 @@ def check_real(name: str, value: Any, low: float = -math.inf, high: float = math
         bracket = "(" if low_open else "["
         raise ValueError(f"{name} must be a finite number in {bracket}{low:g}, {high:g}]"
                          f"{unit}, got {value!r}")
+    return v
+
+
+def check_sigma(name: str, value: float) -> float:
+    """``value`` as a float if it is finite and >= 0 (a standard deviation that may be zero),
+    else ``ValueError`` naming ``name``."""
+    v = float(value)
+    if not (math.isfinite(v) and v >= 0.0):
+        raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
     return v
 
 
