@@ -339,7 +339,7 @@ class KalmanMeanShift(_MeanShiftTrack):
                                  self.camera_height, d)
         x_pred = self.F @ self.kf.x
         x_pred[:2] += shift
-        self.kf._predict(self.F, self.Q, x_pred)
+        self.kf.predict_unchecked(self.F, self.Q, x_pred)
         if d is not None:
             self.distance = max(d - float(advance), 1e-3)
         self.prediction = self.kf.x[:2].copy()
@@ -368,11 +368,11 @@ class KalmanMeanShift(_MeanShiftTrack):
             # is forgotten (extrapolating it would carry the window away for good), while
             # the robot's own motion still moves it in the image.
             self.lost_frames += 1
-            self.kf._update(None, self.H, self.R)
+            self.kf.update_unchecked(None, self.H, self.R)
             self.kf.x[2:] = 0.0
             return self.state
         if self.order == "ours":
-            self.kf._update(z, self.H, self.R)
+            self.kf.update_unchecked(z, self.H, self.R)
         if self.posterior == "replace":
             self.kf.x[:2] = z
         if self.target_height_m is not None:
@@ -406,7 +406,7 @@ class KalmanMeanShift(_MeanShiftTrack):
         z = np.array([x1 + float(patch.sum(axis=0) @ np.arange(x2 - x1)) / mass,
                       y1 + float(patch.sum(axis=1) @ np.arange(y2 - y1)) / mass])
         x, P = self.kf.x.copy(), self.kf.P.copy()
-        self.kf._update(z, self.H, self.R)
+        self.kf.update_unchecked(z, self.H, self.R)
         moved, _ = self._shift_from(img, self.kf.x[:2])
         if moved is None:
             self.kf.x, self.kf.P = x, P  # lost: back to the prediction

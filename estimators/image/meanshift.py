@@ -127,7 +127,8 @@ class MeanShiftWindows:
     :mod:`estimators.image.following`) run.
 
     Args:
-        w, h: the window size [px], each at most the image's.
+        w: the window's width [px], at most the image's.
+        h: the window's height [px], at most the image's.
         shape: the images' ``(H, W)``.
         kernel: a name in :data:`MEAN_SHIFT_KERNELS`.
         opencv: compare the centroid with ``(w / 2, h / 2)`` as OpenCV does.

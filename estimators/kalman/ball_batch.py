@@ -121,7 +121,7 @@ class BallTrackerBatch:
         return out, A, B
 
     def _sigma_v(self, x: np.ndarray, obstacles: np.ndarray, seen: np.ndarray) -> np.ndarray:
-        """Eq. 19 for every row (``BallTracker._sigma_v``)."""
+        """Eq. 19 for every row (:meth:`BallTracker.velocity_sigma`)."""
         c = self.config
         sigma = np.full(len(x), c.sigma_r)
         near = seen.any(axis=1) if c.collision_noise else np.zeros(len(x), dtype=bool)

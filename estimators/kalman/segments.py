@@ -178,7 +178,8 @@ class SegmentFit:
     :class:`~estimators.KickAwareBall`).
 
     Args:
-        sliding, rolling: the decelerations ``a_s``, ``a_r`` [m/s^2].
+        sliding: the sliding deceleration ``a_s`` [m/s^2].
+        rolling: the rolling deceleration ``a_r`` [m/s^2].
         k_switch: the switch speed as a fraction of the kick speed.
         sigma_xy: the detections' noise per axis [m].
         gate: the chi-square quantile that tells motion from rest (in units of

@@ -391,7 +391,7 @@ class ParticleBallTracker(TrackQualityMixin):
                 return
         self._misses = 0
         if kf is not None:
-            kf._update(z, H, R)
+            kf.update_unchecked(z, H, R)
             self._x = kf.x.copy()
         else:
             det = R[0, 0] * R[1, 1] - R[0, 1] * R[1, 0]
@@ -450,7 +450,7 @@ class ParticleBallTracker(TrackQualityMixin):
             else:
                 F, B = _cv_matrices(dt)
                 # x' = drift(x) (exactly A x without deceleration), P' = A P A^T + s^2 B B^T
-                kf._predict(F, self.accel_sigma**2 * (B @ B.T),
+                kf.predict_unchecked(F, self.accel_sigma**2 * (B @ B.T),
                            _drift(kf.x[None, :], dt, self.deceleration)[0])
                 self._x = kf.x.copy()
             self._t = t
