@@ -144,10 +144,10 @@ class BallTrack(NamedTuple):
     since_start: int = 0
 
 
-class BallTracker(TrackQualityMixin):
+class BallTracker(ReplayBuffer, TrackQualityMixin):
     """Kalman / extended Kalman ball tracker with latency compensation (Zhao et al. 2012).
 
-    Built from the shared parts of :mod:`estimators.tracking`: frames go through a
+    Built from the shared parts of :mod:`estimators.tracking`: frames go through the
     :class:`~estimators.tracking.ReplayBuffer` (``config.history``) to :meth:`process`,
     which predicts with the friction model (:class:`~estimators.models.FrictionBallMotion`,
     eq. 19's collision-aware velocity noise, the optional two-phase model), takes the
@@ -163,8 +163,9 @@ class BallTracker(TrackQualityMixin):
             object that simulates the detections); by default one with ``config.sigma_xy``.
 
     Attributes:
-        fused, rejected, resets, maneuvers: counters of detections fused, gated out, track
-            resets and maneuvers (see ``maneuver_radius``).
+        fused, rejected, resets, maneuvers, late: counters of detections fused, gated out,
+            track resets, maneuvers (see ``maneuver_radius``) and frames too old to replay
+            (older than ``history``).
     """
 
     def __init__(self, config: BallFilterConfig | None = None,
@@ -179,19 +180,15 @@ class BallTracker(TrackQualityMixin):
         self._gate = Gate(c.gate)
         self._initiator = (None if c.reset_after is None
                            else TrackInitiator(c.sigma_xy, c.reset_after))
-        self._replay = ReplayBuffer(c.history, self.process)
+        #: Seconds of frames kept to replay out-of-order arrivals (``config.history``).
+        self.history = c.history
         self.reset()
 
     def reset(self) -> None:
         """Forget everything (a new episode)."""
         self._track = BallTrack()
-        self._replay.reset(self._track)
+        self.reset_replay()
         self.fused = self.rejected = self.resets = self.maneuvers = 0
-
-    @property
-    def late(self) -> int:
-        """Frames too old to replay (older than ``history``)."""
-        return self._replay.late
 
     # ------------------------------------------------------------------------------------
 
@@ -205,15 +202,6 @@ class BallTracker(TrackQualityMixin):
         obs = (check_points("obstacles", obstacles, exact=False) if obstacles is not None
                else [])
         self.update_frame(t, dets, obs)
-
-    def update_frame(self, t: float, detections: Sequence[Sequence[float]],
-                     obstacles: Sequence[Sequence[float]]) -> None:
-        """:meth:`update` without its checks, for a pipeline whose frames are checked already
-        (a sensor's own: ``t`` a finite float, ``detections`` a sequence of finite ``(x, y)``
-        and ``obstacles`` of finite rows whose first two entries are a position, neither
-        None, ``t`` no older than the latest frame by more than
-        :data:`~estimators.protocol.MAX_REWIND`)."""
-        self._track = self._replay.push(self._track, t, detections, obstacles)
 
     def estimate(self, t: float) -> np.ndarray | None:
         """State ``(x, y, vx, vy)`` predicted to time ``t`` (None before the first frame)."""
@@ -309,11 +297,11 @@ class BallTracker(TrackQualityMixin):
             return BallTrack(t, x, P, track.candidates, track.v_switch, track.fused_at,
                              track.since_start)
         # The detection nearest the prediction (Mahalanobis) is this frame's ball.
+        gate = self._gate
         P11 = P[0]
-        z, d2, Si = self._gate.nearest(x[0], x[1], (P11[0] + r, P11[1], P11[3] + r),
-                                       detections)
+        z, d2, Si = gate.nearest(x[0], x[1], (P11[0] + r, P11[1], P11[3] + r), detections)
         y = (z[0] - x[0], z[1] - x[1])
-        if self._gate.admits(d2):
+        if d2 <= gate.limit:
             self.fused += 1
             x, P = update(x, P, y, Si, r)
             return BallTrack(t, x, P, (), track.v_switch, t, track.since_start + 1)
@@ -321,7 +309,7 @@ class BallTracker(TrackQualityMixin):
         # most MAX_SPEED_CHANGE over the time since the last frame, plus noise.
         jump = math.hypot(*y)
         if (c.maneuver_radius is not None and jump <= c.maneuver_radius
-                and self._gate.reaches(jump, dt, c.sigma_xy)):
+                and gate.reaches(jump, dt, c.sigma_xy)):
             return self._maneuver(track, t, x, P, A, B, q_step, z)
         self.rejected += 1
         return self._outlier(BallTrack(t, x, P, track.candidates, track.v_switch,

@@ -64,7 +64,7 @@ class _State(NamedTuple):
     maneuver: tuple | None = None  # the current maneuver's start time and the speed before
 
 
-class IMMBall(TrackQualityMixin):
+class IMMBall(ReplayBuffer, TrackQualityMixin):
     r"""Interacting multiple model ball tracker for delayed overhead-camera detections.
 
     **Modes.** Three Kalman filters on the state ``x = (x, y, vx, vy)`` [m, m/s], each with the
@@ -229,8 +229,9 @@ class IMMBall(TrackQualityMixin):
                                         low_open=True, unit=" m/s")
         self.maneuver_noise = check_real("maneuver_noise", maneuver_noise, 0.0, 100.0,
                                          low_open=True, unit=" m/s")
-        self._chain = ModeChain(rates)
-        self.rates = self._chain.rates
+        chain = ModeChain(rates)
+        self.rates = chain.rates
+        self._products = chain.products  # mu_i Pi_ij(dt), see ModeChain.products
         self.gate = check_real("gate", gate, 0.0, low_open=True)
         self.max_jump = check_real("max_jump", max_jump, 0.0, 10.0, low_open=True, unit=" m")
         self.max_kick_speed = check_real("max_kick_speed", max_kick_speed, 0.0,
@@ -244,19 +245,13 @@ class IMMBall(TrackQualityMixin):
         self._man_q = self.maneuver_noise ** 2
         self._gate = Gate(self.gate, self.max_kick_speed)
         self._initiator = TrackInitiator(self.sigma_xy)
-        self._replay = ReplayBuffer(self.history, self._process)
         self.reset()
 
     def reset(self) -> None:
         """Forget everything (a new episode)."""
         self._track = _State()
-        self._replay.reset(self._track)
+        self.reset_replay()
         self.fused = self.rejected = self.resets = 0
-
-    @property
-    def late(self) -> int:
-        """Frames too old to replay (older than ``history``)."""
-        return self._replay.late
 
     # ------------------------------------------------------------------------------------
     # Protocol
@@ -278,14 +273,6 @@ class IMMBall(TrackQualityMixin):
         if obstacles is not None:
             check_points("obstacles", obstacles, exact=False)
         self.update_frame(t, dets, ())
-
-    def update_frame(self, t: float, detections: Sequence[Sequence[float]],
-                     obstacles: Sequence[Sequence[float]] = ()) -> None:
-        """:meth:`update` without its checks, for a pipeline whose frames are checked already
-        (a sensor's own: ``t`` a finite float, ``detections`` a sequence of finite ``(x, y)``,
-        ``t`` no older than the latest frame by more than
-        :data:`~estimators.protocol.MAX_REWIND`)."""
-        self._track = self._replay.push(self._track, t, detections)
 
     def estimate(self, t: float) -> np.ndarray | None:
         """The combined state ``(x, y, vx, vy)`` [m, m/s] predicted to time ``t`` [s] (None
@@ -337,7 +324,7 @@ class IMMBall(TrackQualityMixin):
         if t is not None:
             t = check_time(t)
             if s.rest is not None and t > s.t:
-                w = self._chain.products(mu, t - s.t)
+                w = self._products(mu, t - s.t)
                 mu = (w[0] + w[1] + w[2], w[3] + w[4] + w[5], w[6] + w[7] + w[8])
         return np.array(mu)
 
@@ -363,7 +350,7 @@ class IMMBall(TrackQualityMixin):
     def _predicted_mean(self, s: _State, dt: float) -> tuple[float, float, float, float]:
         """The combined mean predicted ``dt`` > 0 seconds ahead (steps 1-4, means only):
         ``c_j x0_j = sum_i mu_i Pi_ij x_i`` needs no division for the linear modes."""
-        aR, aF, aM, bR, bF, bM, eR, eF, eM = self._chain.products(s.mu, dt)
+        aR, aF, aM, bR, bF, bM, eR, eF, eM = self._products(s.mu, dt)
         px, py = s.rest[0], s.rest[1]
         xF, xM = s.roll[0], s.man[0]
         fx, fy, fu, fv = xF
@@ -394,7 +381,7 @@ class IMMBall(TrackQualityMixin):
         The mixtures are taken about the rolling mode's mean: with ``e_i = x_i - x_F``
         (``e_F = 0``) and ``S_i = P_i + e_i e_i^T``, ``x0_j = x_F + m_j`` and
         ``P0_j = sum_i mu_{i|j} S_i - m_j m_j^T``, ``m_j = sum_i mu_{i|j} e_i``."""
-        aR, aF, aM, bR, bF, bM, eR, eF, eM = self._chain.products(s.mu, dt)
+        aR, aF, aM, bR, bF, bM, eR, eF, eM = self._products(s.mu, dt)
         px, py, (r0, r1, _, r3) = s.rest
         xF, PF = s.roll
         xM, PM = s.man
@@ -446,8 +433,10 @@ class IMMBall(TrackQualityMixin):
         man = predict_jump(*man, dt, self._man_q)
         return rest, roll, man, (cR, cF, cM)
 
-    def _process(self, s: _State, t: float, dets: Sequence) -> _State:
-        """One frame captured at ``t`` (no earlier than ``s.t``): steps 1-7."""
+    def process(self, s: _State, t: float, dets: Sequence, obstacles: Sequence = ()) -> _State:
+        """The state after one frame captured at ``t`` (no earlier than ``s.t``): steps 1-7
+        of the class docstring (``obstacles`` not used); what :meth:`update_frame`
+        replays."""
         if s.rest is None:
             if not dets:
                 return s
@@ -484,10 +473,10 @@ class IMMBall(TrackQualityMixin):
         cR, cF, cM = c
         jump = math.hypot(zx - cR * px - cF * xF[0] - cM * xM[0],
                           zy - cR * py - cF * xF[1] - cM * xM[1])
-        kick = gate.admits(low) and gate.reaches(jump, t - s.t, self.sigma_xy)
+        kick = low <= gate.limit and gate.reaches(jump, t - s.t, self.sigma_xy)
         if not kick and d2 is None and jump <= self.max_jump:
             d2 = self._nearest(rest, roll, man, c, (z,))[1]
-        if jump > self.max_jump or not (kick or gate.admits(d2)):
+        if jump > self.max_jump or not (kick or d2 <= gate.limit):
             self.rejected += 1
             return self._outlier(_State(t, rest, roll, man, c, s.candidates, s.fused_at,
                                         s.since_start, self._kicked(s.kicked, roll[0], t),

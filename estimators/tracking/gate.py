@@ -35,11 +35,15 @@ class Gate:
             :meth:`reaches`.
     """
 
-    __slots__ = ("threshold", "kick_speed")
+    __slots__ = ("threshold", "kick_speed", "limit")
 
     def __init__(self, threshold: float | None, kick_speed: float = MAX_SPEED_CHANGE) -> None:
         self.threshold = threshold
         self.kick_speed = kick_speed
+        #: The largest squared Mahalanobis distance admitted: ``threshold``, or ``inf``
+        #: without one (a hot path may compare ``d2 <= limit`` instead of calling
+        #: :meth:`admits`).
+        self.limit = math.inf if threshold is None else threshold
 
     @staticmethod
     def nearest(px: float, py: float, S: tuple[float, float, float],
@@ -63,8 +67,8 @@ class Gate:
 
     def admits(self, d2: float) -> bool:
         """Whether a detection at squared Mahalanobis distance ``d2`` is the tracked ball:
-        ``d2 <= threshold`` (always without a threshold)."""
-        return self.threshold is None or d2 <= self.threshold
+        ``d2 <= limit`` (``threshold``; always without one)."""
+        return d2 <= self.limit
 
     def reaches(self, distance: float, dt: float, sigma: float) -> bool:
         """Whether a detection ``distance`` [m] from the predicted position is near enough to

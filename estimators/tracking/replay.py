@@ -11,67 +11,76 @@ than the window is dropped and counted (``late``).
 from __future__ import annotations
 
 import bisect
-from collections.abc import Callable
+from abc import ABC, abstractmethod
+from collections.abc import Sequence
 from typing import Any
 
 __all__ = ["ReplayBuffer"]
 
 
-class ReplayBuffer:
-    """Frames of the last ``history`` seconds and the track state after each (see the module
-    docstring).
+class ReplayBuffer(ABC):
+    """A ball tracker's frames of the last ``history`` seconds and the track state after each
+    (see the module docstring): the tracker's :meth:`update_frame`.
 
-    The tracker's step ``process(state, t, *frame) -> state`` must leave ``state`` unchanged
-    and return a new one (an immutable state, such as a ``NamedTuple``, needs no copies), and
-    every state has ``t``, the capture time of the latest frame in it (``-inf`` for the empty
-    track).
+    A base class of the tracker rather than a member, so that a frame in capture order costs
+    no call beyond the tracker's own step (this runs for every camera frame). The tracker
 
-    Args:
-        history: seconds of frames kept for replay [s], >= 0.
-        process: the tracker's step.
+    * keeps its current state in ``_track``: immutable (a ``NamedTuple``, so that the log
+      needs no copies), with ``t``, the capture time of the latest frame in it (``-inf`` for
+      the empty track);
+    * sets ``history``, the seconds of frames kept for replay [s];
+    * implements :meth:`process`, its step;
+    * calls :meth:`reset_replay` when it resets, after setting ``_track`` to the empty state.
 
     Attributes:
         late: frames dropped as older than the window.
     """
 
-    __slots__ = ("history", "late", "_process", "_log", "_base")
+    __slots__ = ()
+    _track: Any
+    history: float
+    late: int
 
-    def __init__(self, history: float, process: Callable[..., Any]) -> None:
-        self.history = history
-        self._process = process
+    @abstractmethod
+    def process(self, state: Any, t: float, detections: Sequence[Sequence[float]],
+                obstacles: Sequence[Sequence[float]]) -> Any:
+        """The state after one frame captured at ``t`` [s], no earlier than ``state.t``, with
+        ball ``detections`` and the robots seen (``obstacles``); ``state`` is not changed."""
+
+    def reset_replay(self) -> None:
+        """Forget every frame; the current ``_track`` is the state before the next."""
+        self._base = self._track  # the state before the oldest frame still in the log
+        self._log: list[tuple[float, Any, Any, Any]] = []
         self.late = 0
-        self._log: list[tuple[float, tuple, Any]] = []
-        self._base: Any = None
 
-    def reset(self, empty: Any) -> None:
-        """Forget every frame; ``empty`` is the state before the first."""
-        self._base = empty  # the state before the oldest frame still in the log
-        self._log = []
-        self.late = 0
-
-    def push(self, state: Any, t: float, *frame: Any) -> Any:
-        """The track state after the frame ``frame`` captured at ``t`` [s], given the current
-        ``state`` (after every frame pushed so far): processed at once when ``t`` is no
-        earlier than ``state.t``, replayed in capture-time order when it is within the window,
-        dropped (``late``; ``state`` is returned) when it is older."""
+    def update_frame(self, t: float, detections: Sequence[Sequence[float]],
+                     obstacles: Sequence[Sequence[float]] = ()) -> None:
+        """The tracker's ``update`` without its checks, for a pipeline whose frames are checked
+        already (a sensor's own: ``t`` a finite float, ``detections`` a sequence of finite
+        ``(x, y)`` and ``obstacles`` of finite rows whose first two entries are a position,
+        ``t`` no older than the latest frame by more than
+        :data:`~estimators.protocol.MAX_REWIND`): processed at once when ``t`` is no earlier
+        than the track's time, replayed in capture-time order when it is within the window,
+        dropped (``late``) when it is older."""
+        state = self._track
         log = self._log
         if t >= state.t:
-            state = self._process(state, t, *frame)
-            log.append((t, frame, state))
+            self._track = state = self.process(state, t, detections, obstacles)
+            log.append((t, detections, obstacles, state))
         elif t < self._base.t:
             self.late += 1
-            return state
+            return
         else:  # out of order: rewind to the state before t and replay
             i = bisect.bisect_right([entry[0] for entry in log], t)
-            state = log[i - 1][2] if i > 0 else self._base
-            log.insert(i, (t, frame, state))
-            process = self._process
+            state = log[i - 1][3] if i > 0 else self._base
+            log.insert(i, (t, detections, obstacles, state))
+            process = self.process
             for j in range(i, len(log)):
-                tj, fj, _ = log[j]
-                state = process(state, tj, *fj)
-                log[j] = (tj, fj, state)
+                tj, dj, oj, _ = log[j]
+                state = process(state, tj, dj, oj)
+                log[j] = (tj, dj, oj, state)
+            self._track = state
         # Drop what is older than the replay window.
         horizon = log[-1][0] - self.history
         while len(log) > 1 and log[0][0] < horizon:
-            self._base = log.pop(0)[2]
-        return state
+            self._base = log.pop(0)[3]

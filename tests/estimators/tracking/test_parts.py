@@ -118,24 +118,31 @@ def test_initiator_restarts_on_agreeing_detections():
     assert prior_gain(init.prior_var, 0.0) == 1.0
 
 
-def test_replay_buffer_processes_late_frames_in_capture_order():
-    def process(state, t, value):
+class _Digits(ReplayBuffer):
+    """A tracker whose state is the digits of the frames it processed, in order."""
+
+    def __init__(self, history: float) -> None:
+        self.history = history
+        self._track = TrackTimes()
+        self.reset_replay()
+
+    def process(self, state, t, value, obstacles):
         return TrackTimes(t, t, state.since_start * 10 + value)
 
-    in_order = ReplayBuffer(0.15, process)
-    in_order.reset(TrackTimes())
-    shuffled = ReplayBuffer(0.15, process)
-    shuffled.reset(TrackTimes())
-    a = b = TrackTimes()
+
+def test_replay_buffer_processes_late_frames_in_capture_order():
+    in_order, shuffled = _Digits(0.15), _Digits(0.15)
     frames = [(0.1, 1), (0.2, 2), (0.3, 3), (0.4, 4)]
     for t, v in frames:
-        a = in_order.push(a, t, v)
+        in_order.update_frame(t, v, ())
     for t, v in (frames[0], frames[2], frames[3], frames[1]):
-        b = shuffled.push(b, t, v)
-    assert a == b == TrackTimes(0.4, 0.4, 1234)
+        shuffled.update_frame(t, v, ())
+    assert in_order._track == shuffled._track == TrackTimes(0.4, 0.4, 1234)
     # Older than the window (0.15 s before the latest, 0.4 s): dropped, counted.
-    assert shuffled.push(b, 0.15, 9) is b and shuffled.late == 1
-    shuffled.reset(TrackTimes())
+    shuffled.update_frame(0.15, 9, ())
+    assert shuffled._track == TrackTimes(0.4, 0.4, 1234) and shuffled.late == 1
+    shuffled._track = TrackTimes()
+    shuffled.reset_replay()
     assert shuffled.late == 0
 
 
