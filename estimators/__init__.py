@@ -15,8 +15,10 @@ Every public name is importable from here (``from estimators import BallTracker`
 subpackages group them:
 
 * :mod:`estimators.models`: motion and measurement models, the rolling ball, the head camera;
-* :mod:`estimators.kalman`: the Kalman filter core, the ball trackers of Zhao et al. (2012),
-  the robot tracker;
+* :mod:`estimators.tracking`: the parts the ball trackers are built from (gate, track
+  initiator, replay buffer for latency compensation, track quality);
+* :mod:`estimators.kalman`: the Kalman filter core and its blocks, the ball trackers of Zhao
+  et al. (2012) and others, the robot tracker;
 * :mod:`estimators.particle`: the particle filters of Xu et al. (2012), the particle ball
   tracker, the KLD-sampling localization of Guo and Li (2013);
 * :mod:`estimators.fusion`: Hough-space fusion and three-landmark triangulation (Xu et al.
@@ -45,7 +47,8 @@ the state to any time ``t`` without changing the tracker (None before the first 
 equal to the single trackers bit for bit.
 
 The ball trackers also follow :class:`TrackQuality`: ``covariance(t)``, ``last_fused``
-and ``since_start`` say how sure they are (the environments' belief features); the robot
+and ``since_start`` say how sure they are (the environments' belief features; one
+implementation, :class:`~estimators.tracking.TrackQualityMixin`); the robot
 tracker's ``pose_sigma(i, t)`` and the localization's ``pose_sigma()`` give the pose's spread.
 
 **Frame-synchronous image trackers** step once per image, the frame being the time step:

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["MAX_PARTICLES", "check_count", "check_real"]
+__all__ = ["MAX_PARTICLES", "check_count", "check_real", "check_sigma", "check_points"]
 
 #: The most particles a filter takes: a million 4-D particles are 32 MB, and each update
 #: touches every one (10^10 asked for 298 GiB before failing).
@@ -37,3 +37,39 @@ def check_real(name: str, value: Any, low: float = -math.inf, high: float = math
         raise ValueError(f"{name} must be a finite number in {bracket}{low:g}, {high:g}]"
                          f"{unit}, got {value!r}")
     return v
+
+
+def check_sigma(name: str, value: float) -> float:
+    """``value`` as a float if it is finite and >= 0 (a standard deviation that may be zero),
+    else ``ValueError`` naming ``name``."""
+    v = float(value)
+    if not (math.isfinite(v) and v >= 0.0):
+        raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
+    return v
+
+
+def check_points(name: str, value: Any, exact: bool = True) -> list:
+    """``value`` (``k`` points, k may be 0: an array ``(k, 2)`` or a sequence of ``(x, y)``
+    sequences; with ``exact=False`` longer rows whose first two entries are ``x, y``, such as
+    poses) as a list of rows; ``ValueError`` for other shapes or non-finite values,
+    ``TypeError`` for what is neither an array nor a sequence."""
+    if isinstance(value, np.ndarray):
+        if value.size == 0:
+            return []
+        if value.ndim != 2 or value.shape[1] < 2 or (exact and value.shape[1] != 2):
+            raise ValueError(f"{name} must have shape (k, 2), got {value.shape}")
+        rows = value.tolist()
+    elif isinstance(value, (list, tuple)):
+        rows = value
+    else:
+        raise TypeError(f"{name} must be an array or a sequence of points, got "
+                        f"{type(value).__name__}")
+    total = 0.0
+    for p in rows:
+        n = len(p)
+        if n < 2 or (exact and n != 2):
+            raise ValueError(f"{name} must have shape (k, 2); got a point of length {n}")
+        total += p[0] + p[1]
+    if not math.isfinite(total):
+        raise ValueError(f"{name} must be finite (NaN measurements are refused)")
+    return rows

@@ -2,9 +2,10 @@
 
 * :mod:`~estimators.fusion.hough`: Hough-space fusion of several robots' sighting lines of one
   target (:func:`hough_fuse`, :func:`fusion_weights`, :func:`line_offset_variance` for the
-  inverse-variance weighting), and of a team's timestamped sightings
-  with an error covariance for a tracker (:func:`fuse_sightings`, and :func:`fuse_lines`
-  without its checks);
+  inverse-variance weighting);
+* :mod:`~estimators.fusion.sightings`: the fusion of a team's timestamped sightings with an
+  error covariance for a tracker (:func:`fuse_sightings`, and :func:`fuse_lines` without its
+  checks);
 * :mod:`~estimators.fusion.triangulation`: a robot's pose from the bearings of three known
   landmarks (:func:`triangulate`), and pose hypotheses from sightings of landmarks known by
   kind only, gathered over several frames (:func:`triangulate_sightings`,
@@ -15,15 +16,13 @@ from .hough import (
     FUSION_WEIGHTINGS,
     INVERSE_VARIANCE,
     WEIGHTING_NAMES,
-    FusedSighting,
-    fuse_lines,
-    fuse_sightings,
     fusion_weights,
     hough_fuse,
     hough_lines,
     line_offset_variance,
     weighting_power,
 )
+from .sightings import FusedSighting, fuse_lines, fuse_sightings
 from .triangulation import (
     SEED_FAILURES,
     Fix,

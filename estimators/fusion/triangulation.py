@@ -236,6 +236,35 @@ def triangulate_sightings(kinds: Sequence[Hashable], points: np.ndarray | Sequen
     Raises ``ValueError`` for malformed input; a scene with no determinable pose gives a
     result with no poses and a ``reason`` of :data:`SEED_FAILURES`.
     """
+    P, kinds, sr = _check_sightings(kinds, points, table, range_sigma, bearing_sigma,
+                                    max_sigma, max_sightings, max_triples, margin, floor,
+                                    max_hypotheses)
+    keep = _distinct(kinds, P, sr, bearing_sigma)
+    n_distinct = len(keep)
+    if n_distinct < 3:
+        return _no_pose("too_few", n_distinct)
+    n_use = len(keep[:max_sightings])
+    cands = [np.asarray(table[kinds[j]], dtype=np.float64).reshape(-1, 2) for j in keep]
+    rng_all = np.hypot(P[keep, 0], P[keep, 1])
+    brg_all = np.arctan2(P[keep, 1], P[keep, 0])
+    sr_all = sr[keep]
+    scores = _SightingScores(cands, rng_all, brg_all, sr_all, bearing_sigma, floor)
+    found = _assignments(P, keep, cands, brg_all, sr_all, n_use, max_triples)
+    if found is None:
+        return _no_pose("no_fit", n_distinct)
+    poses, sigmas = _conditioned_poses(*found, bearing_sigma, max_sigma)
+    if not len(poses):
+        return _no_pose("degenerate", n_distinct)
+    return _best_poses(poses, sigmas, scores, n_use, n_distinct, bounds, margin,
+                       max_hypotheses)
+
+
+def _check_sightings(kinds: Sequence[Hashable], points, table: Mapping[Hashable, np.ndarray],
+                     range_sigma, bearing_sigma: float, max_sigma: float, max_sightings: int,
+                     max_triples: int, margin: float, floor: float, max_hypotheses: int
+                     ) -> tuple[np.ndarray, tuple, np.ndarray]:
+    """:func:`triangulate_sightings`'s arguments checked: ``(points (m, 2), kinds,
+    range sigmas (m,))``; ``ValueError`` naming what is wrong."""
     P = np.asarray(points, dtype=np.float64).reshape(-1, 2)
     kinds = tuple(kinds)
     m = len(kinds)
@@ -258,8 +287,14 @@ def triangulate_sightings(kinds: Sequence[Hashable], points: np.ndarray | Sequen
         if k not in table:
             raise ValueError(f"unknown landmark kind {k!r}; the table has "
                              f"{sorted(map(str, table))}")
-    # Distinct sightings, newest first: a later sighting of the same kind within 3 bearing
-    # sigmas and 2 range sigmas of an older one replaces it (one landmark seen twice).
+    return P, kinds, sr
+
+
+def _distinct(kinds: tuple, P: np.ndarray, sr: np.ndarray, bearing_sigma: float) -> list[int]:
+    """The distinct sightings, newest first: a later sighting of the same kind within 3
+    bearing sigmas and 2 range sigmas of an older one replaces it (one landmark seen
+    twice)."""
+    m = len(kinds)
     rng_in, brg_in = np.hypot(P[:, 0], P[:, 1]), np.arctan2(P[:, 1], P[:, 0])
     index: dict[Hashable, int] = {}
     codes = np.array([index.setdefault(k, len(index)) for k in kinds])
@@ -271,38 +306,48 @@ def triangulate_sightings(kinds: Sequence[Hashable], points: np.ndarray | Sequen
     for j in range(m - 1, -1, -1):
         if not same[j, keep].any():
             keep.append(j)
-    n_distinct = len(keep)
-    if n_distinct < 3:
-        return _no_pose("too_few", n_distinct)
-    use = keep[:max_sightings]
-    cands = [np.asarray(table[kinds[j]], dtype=np.float64).reshape(-1, 2) for j in keep]
-    rng_all = np.hypot(P[keep, 0], P[keep, 1])
-    brg_all = np.arctan2(P[keep, 1], P[keep, 0])
-    sr_all = sr[keep]
-    # Every candidate of every distinct sighting, contiguous per sighting (for the scores).
-    counts = np.array([len(c) for c in cands])
-    flat = np.concatenate(cands)
-    starts = np.cumsum(counts) - counts
-    r_flat, b_flat = np.repeat(rng_all, counts), np.repeat(brg_all, counts)
-    s_flat = np.repeat(sr_all, counts)
+    return keep
 
-    def score(poses: np.ndarray, upto: int) -> tuple[np.ndarray, np.ndarray]:
+
+class _SightingScores:
+    """How well poses fit the distinct sightings (ranges ``r`` [m], bearings ``b`` [rad], range
+    sigmas, newest first) given their candidates ``cands``: per sighting the best candidate's
+    log-likelihood, floored at ``-floor^2 / 2``, summed."""
+
+    def __init__(self, cands: list[np.ndarray], r: np.ndarray, b: np.ndarray,
+                 sr: np.ndarray, bearing_sigma: float, floor: float) -> None:
+        # Every candidate of every distinct sighting, contiguous per sighting.
+        self.counts = counts = np.array([len(c) for c in cands])
+        self.flat = np.concatenate(cands)
+        self.starts = np.cumsum(counts) - counts
+        self.r, self.b = np.repeat(r, counts), np.repeat(b, counts)
+        self.s = np.repeat(sr, counts)
+        self.bearing_sigma, self.floor = bearing_sigma, floor
+
+    def __call__(self, poses: np.ndarray, upto: int) -> tuple[np.ndarray, np.ndarray]:
         """Fit of ``(A, 3)`` poses to the ``upto`` most recent distinct sightings, and how
         many of them each explains."""
+        starts, counts, floor = self.starts, self.counts, self.floor
         n = int(starts[upto - 1] + counts[upto - 1])
-        F, r, b, sg = flat[:n], r_flat[:n], b_flat[:n], s_flat[:n]
+        F, r, b, sg = self.flat[:n], self.r[:n], self.b[:n], self.s[:n]
         c, s = np.cos(poses[:, 2:3]), np.sin(poses[:, 2:3])
         dx, dy = F[None, :, 0] - poses[:, 0:1], F[None, :, 1] - poses[:, 1:2]
         g = np.hypot(dx, dy)
         a = np.arctan2(-s * dx + c * dy, c * dx + s * dy)
-        lik = -0.5 * ((g - r) / sg) ** 2 - 0.5 * (_wrap(a - b) / bearing_sigma) ** 2
+        lik = -0.5 * ((g - r) / sg) ** 2 - 0.5 * (_wrap(a - b) / self.bearing_sigma) ** 2
         best = np.maximum.reduceat(lik, starts[:upto], axis=1)  # (A, upto)
         return (np.maximum(best, -0.5 * floor * floor).sum(axis=1),
                 (best >= -4.5).sum(axis=1))
 
-    # Triples of the most recent distinct sightings, the best-spread bearings first (the
-    # smallest |sin| of their bearing differences largest).
-    triples = list(itertools.combinations(range(len(use)), 3))
+
+def _assignments(P: np.ndarray, keep: list[int], cands: list[np.ndarray], brg_all: np.ndarray,
+                 sr_all: np.ndarray, n_use: int, max_triples: int
+                 ) -> tuple[np.ndarray, np.ndarray] | None:
+    """Triples of the ``n_use`` most recent distinct sightings, the best-spread bearings first
+    (the smallest |sin| of their bearing differences largest), and for each the candidate
+    assignments whose pairwise landmark distances match the sightings' distances: the
+    landmarks ``(A, 3, 2)`` [m] and bearings ``(A, 3)`` [rad], or None when none match."""
+    triples = list(itertools.combinations(range(n_use), 3))
     spread = [min(abs(math.sin(brg_all[a] - brg_all[b])) for a, b in
                   ((t[0], t[1]), (t[1], t[2]), (t[0], t[2]))) for t in triples]
     order = sorted(range(len(triples)), key=lambda i: -spread[i])[:max_triples]
@@ -312,7 +357,6 @@ def triangulate_sightings(kinds: Sequence[Hashable], points: np.ndarray | Sequen
         t = triples[ti]
         C = [cands[i] for i in t]
         p = P[[keep[i] for i in t]]
-        # Assignments whose pairwise landmark distances match the sightings' distances.
         ok = np.ones((len(C[0]), len(C[1]), len(C[2])), dtype=bool)
         for a, b, axis in ((0, 1, 2), (1, 2, 0), (0, 2, 1)):  # axis: the one left out
             d_obs = math.hypot(*(p[a] - p[b]))
@@ -325,10 +369,16 @@ def triangulate_sightings(kinds: Sequence[Hashable], points: np.ndarray | Sequen
             Ls.append(np.stack([C[0][i0], C[1][i1], C[2][i2]], axis=1))  # (A, 3, 2)
             phis.append(np.broadcast_to(brg_all[list(t)], (len(i0), 3)))
     if not Ls:
-        return _no_pose("no_fit", n_distinct)
-    L = np.concatenate(Ls)
-    phi = np.concatenate(phis)
-    # The poses, and for the conditioning each with one bearing moved by one sigma.
+        return None
+    return np.concatenate(Ls), np.concatenate(phis)
+
+
+def _conditioned_poses(L: np.ndarray, phi: np.ndarray, bearing_sigma: float, max_sigma: float
+                       ) -> tuple[np.ndarray, np.ndarray]:
+    """The poses ``(k, 3)`` triangulated from landmarks ``L`` and bearings ``phi`` that are
+    determined and well-conditioned (each with one bearing moved by one sigma, the position
+    moves by at most ``max_sigma``), and their position and heading standard deviations
+    ``(k, 2)``."""
     eye = np.vstack([np.zeros(3), np.eye(3)]) * bearing_sigma
     pos, head, code = _total(np.repeat(L, 4, axis=0),
                              (phi[:, None, :] + eye[None, :, :]).reshape(-1, 3))
@@ -337,17 +387,25 @@ def triangulate_sightings(kinds: Sequence[Hashable], points: np.ndarray | Sequen
     sig_pos = np.where(fine.all(axis=1), np.sqrt(0.5 * d2), np.inf)
     well = sig_pos <= max_sigma  # determined and well-conditioned
     if not well.any():
-        return _no_pose("degenerate", n_distinct)
+        return np.zeros((0, 3)), np.zeros((0, 2))
     sig_head = np.sqrt(np.sum(_wrap(head[well, 1:] - head[well, :1]) ** 2, axis=1))
     sig_pos = sig_pos[well]
     poses = np.column_stack([pos[well, 0], head[well, 0]])
+    return poses, np.column_stack([sig_pos, sig_head])
+
+
+def _best_poses(poses: np.ndarray, sigmas: np.ndarray, score: _SightingScores, n_use: int,
+                n_distinct: int, bounds: tuple[float, float, float, float] | None,
+                margin: float, max_hypotheses: int) -> PoseHypotheses:
+    """Of the candidate ``poses`` (with ``sigmas``), those within ``bounds`` scored against
+    the triples' sightings first, then the best few against all; those within ``margin`` of
+    the best kept, at most ``max_hypotheses``, none twice."""
     good = np.ones(len(poses), dtype=bool)
     if bounds is not None:
         good &= ((bounds[0] <= poses[:, 0]) & (poses[:, 0] <= bounds[1])
                  & (bounds[2] <= poses[:, 1]) & (poses[:, 1] <= bounds[3]))
-    # Scored against the triples' sightings first, then the best few against all.
     sc = np.full(len(poses), -np.inf)
-    sc_use, explained = score(poses[good], len(use))
+    sc_use, explained = score(poses[good], n_use)
     sc[good] = np.where(explained >= 3, sc_use, -np.inf)
     short = np.argsort(-sc, kind="stable")[:_SHORTLIST]
     short = short[np.isfinite(sc[short])]
@@ -367,8 +425,7 @@ def triangulate_sightings(kinds: Sequence[Hashable], points: np.ndarray | Sequen
                for k in kept):
             continue
         kept.append(int(i))
-    return PoseHypotheses(poses[kept], np.column_stack([sig_pos[kept], sig_head[kept]]),
-                          sc[kept], "", n_distinct)
+    return PoseHypotheses(poses[kept], sigmas[kept], sc[kept], "", n_distinct)
 
 
 class SightingMemory:

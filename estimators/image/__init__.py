@@ -2,7 +2,8 @@
 table or a hue histogram, or a frame difference); numpy-only, whatever made the images.
 
 * :mod:`~estimators.image.meanshift`: mean shift on a weight image (:func:`mean_shift`) and
-  the batched window machinery the trackers share;
+  the batched window machinery the trackers share (:class:`MeanShiftWindows`);
+* :mod:`~estimators.image.checks`: the image trackers' argument checks;
 * :mod:`~estimators.image.mspf`: the feature-restricted mean-shift particle filter of Li,
   Wu and Kong (2010; :class:`MeanShiftParticleFilter`) and the plain particle filter it
   is compared with (:class:`ParticleFilterTracker`);
@@ -20,12 +21,13 @@ from .following import (
     ego_motion_shift,
     focal_length_px,
 )
-from .meanshift import MEAN_SHIFT_KERNELS, mean_shift
+from .meanshift import MEAN_SHIFT_KERNELS, MeanShiftWindows, mean_shift
 from .mspf import MeanShiftParticleFilter, ParticleFilterTracker
 
 __all__ = [
     "mean_shift",
     "MEAN_SHIFT_KERNELS",
+    "MeanShiftWindows",
     "MeanShiftParticleFilter",
     "ParticleFilterTracker",
     "KalmanMeanShift",

@@ -55,7 +55,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..kalman.core import KalmanFilter
-from .meanshift import MEAN_SHIFT_KERNELS, _count, _image, _number, _point, _window_size, _Windows
+from .checks import check_image, check_int, check_number, check_point, check_window_size
+from .meanshift import MEAN_SHIFT_KERNELS, MeanShiftWindows
 
 __all__ = ["KalmanMeanShift", "PlainMeanShift", "depth_from_size", "focal_length_px",
            "apparent_height", "ego_motion_shift"]
@@ -68,8 +69,8 @@ __all__ = ["KalmanMeanShift", "PlainMeanShift", "depth_from_size", "focal_length
 def focal_length_px(pixels: float, fov: float) -> float:
     """Pinhole focal length [px] of ``pixels`` across a field of view ``fov`` [rad]:
     ``f = (pixels / 2) / tan(fov / 2)``."""
-    n = _number("pixels", pixels)
-    a = _number("fov", fov)
+    n = check_number("pixels", pixels)
+    a = check_number("fov", fov)
     if a >= math.pi:
         raise ValueError(f"fov must be < pi rad, got {fov!r}")
     return 0.5 * n / math.tan(0.5 * a)
@@ -78,8 +79,8 @@ def focal_length_px(pixels: float, fov: float) -> float:
 def depth_from_size(size_m: float, apparent_size_px: float, focal_px: float) -> float:
     """Distance [m] of a target of known size ``size_m`` [m] that appears ``apparent_size_px``
     [px] large (pinhole): ``d = f * size / apparent_size``, ``f = focal_px`` [px]."""
-    return (_number("focal_px", focal_px) * _number("size_m", size_m)
-            / _number("apparent_size_px", apparent_size_px))
+    return (check_number("focal_px", focal_px) * check_number("size_m", size_m)
+            / check_number("apparent_size_px", apparent_size_px))
 
 
 def apparent_height(weight_image: np.ndarray, window: Sequence[int], threshold: float = 0.5,
@@ -89,15 +90,15 @@ def apparent_height(weight_image: np.ndarray, window: Sequence[int], threshold: 
     axis (a count per row); the target spans the rows from the first to the last whose count
     is at least ``min_fraction`` times the largest. Returns 0 when no pixel is foreground.
     The window is clipped to the image."""
-    img = _image("weight_image", weight_image)
+    img = check_image("weight_image", weight_image)
     try:
         x, y, w, h = (int(v) for v in window)
     except (TypeError, ValueError):
         raise ValueError(f"window must be four integers (x, y, w, h), got {window!r}") from None
-    _count("window w", w)
-    _count("window h", h)
-    _number("threshold", threshold, allow_low=True)
-    _number("min_fraction", min_fraction, allow_low=True, high=1.0)
+    check_int("window w", w)
+    check_int("window h", h)
+    check_number("threshold", threshold, allow_low=True)
+    check_number("min_fraction", min_fraction, allow_low=True, high=1.0)
     x1, y1 = max(x, 0), max(y, 0)
     x2, y2 = min(x + w, img.shape[1]), min(y + h, img.shape[0])
     if x2 <= x1 or y2 <= y1:
@@ -125,19 +126,19 @@ def ego_motion_shift(rotation: float, advance: float, image_size: Sequence[int],
     s = float(advance)
     if not (math.isfinite(theta) and math.isfinite(s)):
         raise ValueError(f"rotation and advance must be finite, got {rotation!r}, {advance!r}")
-    xb, yb = _window_size("image_size", image_size)
+    xb, yb = check_window_size("image_size", image_size)
     try:
         gx, gy = (float(a) for a in fov)
     except (TypeError, ValueError):
         raise ValueError(f"fov must be (gamma_x, gamma_y) [rad], got {fov!r}") from None
-    _number("fov[0] (gamma_x)", gx)
-    _number("fov[1] (gamma_y)", gy)
+    check_number("fov[0] (gamma_x)", gx)
+    check_number("fov[1] (gamma_y)", gy)
     dx = theta * xb / gx
     dy = 0.0
     if s != 0.0:
         if distance is None:
             raise ValueError("distance is needed when advance != 0")
-        d = _number("distance", distance)
+        d = check_number("distance", distance)
         h = float(camera_height)
         if not math.isfinite(h):
             raise ValueError(f"camera_height must be finite, got {camera_height!r}")
@@ -151,17 +152,17 @@ class _MeanShiftTrack:
 
     def __init__(self, window_size, window_scale: float, max_iter: int, eps: float,
                  kernel: str, min_fill: float) -> None:
-        w, h = _window_size("window_size", window_size)
-        self.window_scale = _number("window_scale", window_scale)
+        w, h = check_window_size("window_size", window_size)
+        self.window_scale = check_number("window_scale", window_scale)
         self.target_size = (w, h)
         self.window_size = (max(int(round(w * self.window_scale)), 1),
                             max(int(round(h * self.window_scale)), 1))
-        self.max_iter = _count("max_iter", max_iter)
-        self.eps = _number("eps", eps, allow_low=True)
+        self.max_iter = check_int("max_iter", max_iter)
+        self.eps = check_number("eps", eps, allow_low=True)
         MEAN_SHIFT_KERNELS.check(kernel, "kernel")
         self.kernel = kernel
-        self.min_fill = _number("min_fill", min_fill, allow_low=True, high=1.0)
-        self._win: _Windows | None = None
+        self.min_fill = check_number("min_fill", min_fill, allow_low=True, high=1.0)
+        self._win: MeanShiftWindows | None = None
         self.lost = False
         self.lost_frames = 0
         self.fill = 0.0
@@ -170,9 +171,9 @@ class _MeanShiftTrack:
     def _shift_from(self, image, start: np.ndarray) -> tuple[np.ndarray | None, np.ndarray]:
         """Mean shift from the window centred at ``start``; returns the centroid (None if
         the converged window's mean weight is below ``min_fill``) and the flat image."""
-        img = _image("weight_image", image)
+        img = check_image("weight_image", image)
         if self._win is None or (self._win.height, self._win.width) != img.shape:
-            self._win = _Windows(*self.window_size, img.shape, self.kernel)
+            self._win = MeanShiftWindows(*self.window_size, img.shape, self.kernel)
         win = self._win
         x0, y0 = win.corner(start[None, :])
         x0, y0, _, mom = win.shift([(img.ravel(), 1.0)], x0, y0, self.max_iter, self.eps)
@@ -208,7 +209,7 @@ class PlainMeanShift(_MeanShiftTrack):
                  window_scale: float = 1.0, max_iter: int = 10, eps: float = 0.5,
                  kernel: str = "flat", min_fill: float = 0.2) -> None:
         super().__init__(window_size, window_scale, max_iter, eps, kernel, min_fill)
-        self.position = _point("position", position).copy()
+        self.position = check_point("position", position).copy()
 
     def update(self, weight_image: np.ndarray) -> np.ndarray:
         """One frame on the weight image ``(H, W)``; returns the position ``(x, y)`` [px]."""
@@ -282,34 +283,34 @@ class KalmanMeanShift(_MeanShiftTrack):
                              f"replaces the posterior by mean shift's position), got "
                              f"{posterior!r}")
         self.order = order
-        self.region_scale = _number("region_scale", region_scale)
-        self.region_floor = _number("region_floor", region_floor, allow_low=True, high=1.0)
+        self.region_scale = check_number("region_scale", region_scale)
+        self.region_floor = check_number("region_floor", region_floor, allow_low=True, high=1.0)
         tw, th = self.target_size
         self.region_size = (max(int(round(tw * self.region_scale)), 1),
                             max(int(round(th * self.region_scale)), 1))
-        self.image_size = _window_size("image_size", image_size)
+        self.image_size = check_window_size("image_size", image_size)
         ego_motion_shift(0.0, 0.0, self.image_size, fov)  # validates fov
         self.fov = (float(fov[0]), float(fov[1]))
         self.camera_height = float(camera_height)
         if not math.isfinite(self.camera_height):
             raise ValueError(f"camera_height must be finite, got {camera_height!r}")
-        self.distance = None if distance is None else _number("distance", distance)
+        self.distance = None if distance is None else check_number("distance", distance)
         self.target_height_m = (None if target_height_m is None
-                                else _number("target_height_m", target_height_m))
+                                else check_number("target_height_m", target_height_m))
         self.focal_y = focal_length_px(self.image_size[1], self.fov[1])
         if posterior not in ("replace", "update"):
             raise ValueError(f"posterior must be 'replace' or 'update', got {posterior!r}")
         self.posterior = posterior
-        sa = _number("accel_sigma", accel_sigma, allow_low=True)
-        sm = _number("measurement_sigma", measurement_sigma)
+        sa = check_number("accel_sigma", accel_sigma, allow_low=True)
+        sm = check_number("measurement_sigma", measurement_sigma)
         try:
             sp, sv = (float(v) for v in init_sigma)
         except (TypeError, ValueError):
             raise ValueError(f"init_sigma must be (position, velocity) standard deviations, "
                              f"got {init_sigma!r}") from None
-        _number("init_sigma[0]", sp)
-        _number("init_sigma[1]", sv)
-        x = np.concatenate([_point("position", position), _point("velocity", velocity)])
+        check_number("init_sigma[0]", sp)
+        check_number("init_sigma[1]", sv)
+        x = np.concatenate([check_point("position", position), check_point("velocity", velocity)])
         self.kf = KalmanFilter(x, np.diag([sp * sp, sp * sp, sv * sv, sv * sv]))
         self.F = np.array([[1.0, 0, 1, 0], [0, 1, 0, 1], [0, 0, 1, 0], [0, 0, 0, 1]])
         G = np.array([[0.5, 0], [0, 0.5], [1, 0], [0, 1]])
@@ -333,12 +334,12 @@ class KalmanMeanShift(_MeanShiftTrack):
         (:func:`ego_motion_shift`), ``P = A P A^T + Q``. ``distance`` [m] overrides the
         tracker's distance estimate (needed when ``advance != 0``). Returns the predicted
         ``(x, y)`` [px]."""
-        d = self.distance if distance is None else _number("distance", distance)
+        d = self.distance if distance is None else check_number("distance", distance)
         shift = ego_motion_shift(rotation, advance, self.image_size, self.fov,
                                  self.camera_height, d)
         x_pred = self.F @ self.kf.x
         x_pred[:2] += shift
-        self.kf._predict(self.F, self.Q, x_pred)
+        self.kf.predict_unchecked(self.F, self.Q, x_pred)
         if d is not None:
             self.distance = max(d - float(advance), 1e-3)
         self.prediction = self.kf.x[:2].copy()
@@ -367,11 +368,11 @@ class KalmanMeanShift(_MeanShiftTrack):
             # is forgotten (extrapolating it would carry the window away for good), while
             # the robot's own motion still moves it in the image.
             self.lost_frames += 1
-            self.kf._update(None, self.H, self.R)
+            self.kf.update_unchecked(None, self.H, self.R)
             self.kf.x[2:] = 0.0
             return self.state
         if self.order == "ours":
-            self.kf._update(z, self.H, self.R)
+            self.kf.update_unchecked(z, self.H, self.R)
         if self.posterior == "replace":
             self.kf.x[:2] = z
         if self.target_height_m is not None:
@@ -390,7 +391,7 @@ class KalmanMeanShift(_MeanShiftTrack):
         converged centroid (None when ``R`` holds no weight or the converged window's mean
         weight is below ``min_fill``; the Kalman filter is then left at the prediction) and
         the image."""
-        img = _image("weight_image", weight_image)
+        img = check_image("weight_image", weight_image)
         rw, rh = self.region_size
         x1 = max(int(round(start[0] - 0.5 * (rw - 1))), 0)
         y1 = max(int(round(start[1] - 0.5 * (rh - 1))), 0)
@@ -405,7 +406,7 @@ class KalmanMeanShift(_MeanShiftTrack):
         z = np.array([x1 + float(patch.sum(axis=0) @ np.arange(x2 - x1)) / mass,
                       y1 + float(patch.sum(axis=1) @ np.arange(y2 - y1)) / mass])
         x, P = self.kf.x.copy(), self.kf.P.copy()
-        self.kf._update(z, self.H, self.R)
+        self.kf.update_unchecked(z, self.H, self.R)
         moved, _ = self._shift_from(img, self.kf.x[:2])
         if moved is None:
             self.kf.x, self.kf.P = x, P  # lost: back to the prediction

@@ -41,8 +41,9 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..registry import Registry
+from .checks import check_image, check_int, check_number
 
-__all__ = ["mean_shift", "MEAN_SHIFT_KERNELS", "RegionImage"]
+__all__ = ["mean_shift", "MEAN_SHIFT_KERNELS", "RegionImage", "MeanShiftWindows"]
 
 
 def _flat(xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
@@ -68,63 +69,6 @@ MEAN_SHIFT_KERNELS = Registry("mean-shift kernel", [
      "Epanechnikov kernel (Comaniciu et al.): pixels weighted by 1 - r^2 on the ellipse "
      "inscribed in the window, so those near its centre count most"),
 ])
-
-
-# ------------------------------------------------------------------------------------------
-# Argument checks
-# ------------------------------------------------------------------------------------------
-
-def _number(name: str, value, low: float = 0.0, allow_low: bool = False,
-            high: float | None = None) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
-    if not math.isfinite(v) or v < low or (v == low and not allow_low) or (
-            high is not None and v > high):
-        rng = f"{'>=' if allow_low else '>'} {low}" + ("" if high is None else f", <= {high}")
-        raise ValueError(f"{name} must be finite and {rng}, got {value!r}")
-    return v
-
-
-def _count(name: str, value, low: int = 1) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
-        raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
-    return int(value)
-
-
-def _image(name: str, image, shape: tuple[int, int] | None = None,
-           scan: bool = False) -> np.ndarray:
-    """``image`` as a C-contiguous float32/float64 2-D array (a copy only if needed). Values
-    are scanned (finite, non-negative) only when ``scan``: a per-frame scan of a 640 x 480
-    image would cost as much as the tracking."""
-    arr = np.asarray(image)
-    if arr.ndim != 2 or arr.shape[0] < 1 or arr.shape[1] < 1:
-        raise ValueError(f"{name} must be a 2-D image, got shape {arr.shape}")
-    if arr.dtype not in (np.float32, np.float64):
-        if not (np.issubdtype(arr.dtype, np.number) and not np.iscomplexobj(arr)):
-            raise ValueError(f"{name} must be a real-valued image, got dtype {arr.dtype}")
-        arr = arr.astype(np.float32)
-    if shape is not None and arr.shape != shape:
-        raise ValueError(f"{name} must have shape {shape}, got {arr.shape}")
-    if scan and not (np.all(np.isfinite(arr)) and arr.min() >= 0.0):
-        raise ValueError(f"{name} must be finite and non-negative")
-    return np.ascontiguousarray(arr)
-
-
-def _window_size(name: str, value) -> tuple[int, int]:
-    try:
-        w, h = value
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be (w, h) in pixels, got {value!r}") from None
-    return _count(f"{name}[0] (w)", w), _count(f"{name}[1] (h)", h)
-
-
-def _point(name: str, value) -> np.ndarray:
-    arr = np.asarray(value, dtype=np.float64)
-    if arr.shape != (2,) or not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be a finite (x, y) pair, got {value!r}")
-    return arr
 
 
 class RegionImage:
@@ -175,9 +119,20 @@ class RegionImage:
 # Batched mean shift on windows of one size
 # ------------------------------------------------------------------------------------------
 
-class _Windows:
-    """Windows of one size ``(w, h)`` in images of one shape: flat pixel offsets and the
-    moment matrix ``[k, k x, k y, 1]`` ((h w, 4), local coordinates) of the kernel ``k``."""
+class MeanShiftWindows:
+    """Windows of one size ``(w, h)`` [px] in images of one shape ``(H, W)``: flat pixel
+    offsets and the moment matrix ``[k, k x, k y, 1]`` ((h w, 4), local coordinates) of the
+    kernel ``k``, and mean shift on many windows at once (see the module docstring): what
+    :func:`mean_shift` and the image trackers (:mod:`estimators.image.mspf`,
+    :mod:`estimators.image.following`) run.
+
+    Args:
+        w: the window's width [px], at most the image's.
+        h: the window's height [px], at most the image's.
+        shape: the images' ``(H, W)``.
+        kernel: a name in :data:`MEAN_SHIFT_KERNELS`.
+        opencv: compare the centroid with ``(w / 2, h / 2)`` as OpenCV does.
+    """
 
     def __init__(self, w: int, h: int, shape: tuple[int, int], kernel: str = "flat",
                  opencv: bool = False) -> None:
@@ -282,18 +237,18 @@ def mean_shift(weight_image: np.ndarray, window: Sequence[int], max_iter: int = 
         converged window ``(x, y, w, h)``, the number of steps taken and the sum of the
         weights inside the converged window.
     """
-    img = _image("weight_image", weight_image, scan=True)
+    img = check_image("weight_image", weight_image, scan=True)
     try:
         x, y, w, h = (int(v) for v in window)
         if any(float(a) != int(a) for a in window):
             raise TypeError
     except (TypeError, ValueError):
         raise ValueError(f"window must be four integers (x, y, w, h), got {window!r}") from None
-    _count("window w", w)
-    _count("window h", h)
-    max_iter = _count("max_iter", max_iter)
-    eps = _number("eps", eps, allow_low=True)
-    win = _Windows(w, h, img.shape, kernel, bool(opencv_compatible))
+    check_int("window w", w)
+    check_int("window h", h)
+    max_iter = check_int("max_iter", max_iter)
+    eps = check_number("eps", eps, allow_low=True)
+    win = MeanShiftWindows(w, h, img.shape, kernel, bool(opencv_compatible))
     x0 = np.clip(np.array([x], dtype=np.intp), 0, img.shape[1] - w)
     y0 = np.clip(np.array([y], dtype=np.intp), 0, img.shape[0] - h)
     x0, y0, iters, mom = win.shift([(img.ravel(), 1.0)], x0, y0, max_iter, eps)

@@ -65,16 +65,8 @@ from numpy.typing import ArrayLike
 
 from ..checks import MAX_PARTICLES, check_count
 from ..particle.core import systematic_resample
-from .meanshift import (
-    MEAN_SHIFT_KERNELS,
-    RegionImage,
-    _count,
-    _image,
-    _number,
-    _point,
-    _window_size,
-    _Windows,
-)
+from .checks import check_image, check_int, check_number, check_point, check_window_size
+from .meanshift import MEAN_SHIFT_KERNELS, MeanShiftWindows, RegionImage
 
 __all__ = ["MeanShiftParticleFilter", "ParticleFilterTracker"]
 
@@ -96,21 +88,21 @@ class _WindowParticleFilter:
         if not isinstance(rng, np.random.Generator):
             raise ValueError(f"rng must be a numpy.random.Generator, got {type(rng).__name__}")
         self.rng = rng
-        p = _point("position", position)
-        v = _point("velocity", velocity)
-        self.window_size = _window_size("window_size", window_size)
+        p = check_point("position", position)
+        v = check_point("velocity", velocity)
+        self.window_size = check_window_size("window_size", window_size)
         self.n = check_count("n_particles", n_particles, 2, MAX_PARTICLES)
-        self.process_sigma = _number("process_sigma", process_sigma, allow_low=True)
-        self.likelihood_sigma = _number("likelihood_sigma", likelihood_sigma)
-        self.init_sigma = _number("init_sigma", init_sigma, allow_low=True)
-        self.v_ref = _number("v_ref", v_ref)
-        self.max_motion_weight = _number("max_motion_weight", max_motion_weight,
+        self.process_sigma = check_number("process_sigma", process_sigma, allow_low=True)
+        self.likelihood_sigma = check_number("likelihood_sigma", likelihood_sigma)
+        self.init_sigma = check_number("init_sigma", init_sigma, allow_low=True)
+        self.v_ref = check_number("v_ref", v_ref)
+        self.max_motion_weight = check_number("max_motion_weight", max_motion_weight,
                                          allow_low=True, high=1.0)
         self.estimate = np.concatenate([p, v])
         self._seed(p, v)
         self.frame = 0
         self.motion_weight = 0.0
-        self._win: _Windows | None = None
+        self._win: MeanShiftWindows | None = None
 
     def _seed(self, p: np.ndarray, v: np.ndarray) -> None:
         """Particles ``N(p, init_sigma^2 I)`` with velocity ``v``, equal weights."""
@@ -131,21 +123,21 @@ class _WindowParticleFilter:
         self._motion_source = (motion_image if isinstance(motion_image, RegionImage)
                                else None)
         colour = (colour_image.array if self._source is not None
-                  else _image("colour_image", colour_image))
+                  else check_image("colour_image", colour_image))
         if self._motion_source is not None:
             if self._motion_source.shape != colour.shape:
                 raise ValueError(f"motion_image must have shape {colour.shape}, got "
                                  f"{self._motion_source.shape}")
             motion = self._motion_source.array
         else:
-            motion = None if motion_image is None else _image("motion_image", motion_image,
+            motion = None if motion_image is None else check_image("motion_image", motion_image,
                                                               colour.shape)
         if self._win is None or (self._win.height, self._win.width) != colour.shape:
             self._win = self._make_windows(colour.shape)
         return colour, motion
 
-    def _make_windows(self, shape: tuple[int, int]) -> _Windows:
-        return _Windows(*self.window_size, shape)
+    def _make_windows(self, shape: tuple[int, int]) -> MeanShiftWindows:
+        return MeanShiftWindows(*self.window_size, shape)
 
     def _reach(self, x0: np.ndarray, y0: np.ndarray, steps: int) -> None:
         """Have :class:`RegionImage` colour and motion images computed wherever windows with
@@ -321,12 +313,12 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
                          velocity=velocity, process_sigma=process_sigma,
                          likelihood_sigma=likelihood_sigma, init_sigma=init_sigma,
                          v_ref=v_ref, max_motion_weight=max_motion_weight)
-        self.mean_shift_iter = _count("mean_shift_iter", mean_shift_iter, 0)
-        self.eps = _number("eps", eps, allow_low=True)
+        self.mean_shift_iter = check_int("mean_shift_iter", mean_shift_iter, 0)
+        self.eps = check_number("eps", eps, allow_low=True)
         MEAN_SHIFT_KERNELS.check(kernel, "kernel")
         self.kernel = kernel
-        self.area = None if area is None else _number("area", area)
-        self.area_tolerance = _number("area_tolerance", area_tolerance)
+        self.area = None if area is None else check_number("area", area)
+        self.area_tolerance = check_number("area_tolerance", area_tolerance)
         if feature_check is not None and not callable(feature_check):
             raise ValueError("feature_check must be callable or None")
         self.feature_check = feature_check
@@ -341,8 +333,8 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
     #: Step 4's choices (see the module docstring).
     MEANS = ("weighted", "paper")
 
-    def _make_windows(self, shape: tuple[int, int]) -> _Windows:
-        return _Windows(*self.window_size, shape, self.kernel)
+    def _make_windows(self, shape: tuple[int, int]) -> MeanShiftWindows:
+        return MeanShiftWindows(*self.window_size, shape, self.kernel)
 
     def _allowed(self, colour_mass: np.ndarray, x0: np.ndarray, y0: np.ndarray,
                  colour: np.ndarray) -> np.ndarray:
@@ -372,13 +364,13 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
             predicted: the target's predicted ``(x, y)`` [px]; default: the estimate moved by
                 its velocity (the AR model's mean prediction).
         """
-        r = _number("robot_radius_px", robot_radius_px, allow_low=True)
+        r = check_number("robot_radius_px", robot_radius_px, allow_low=True)
         robots = np.asarray(robot_positions, dtype=np.float64).reshape(-1, 2) \
             if np.size(robot_positions) else np.empty((0, 2))
         if not np.all(np.isfinite(robots)):
             raise ValueError("robot_positions must be finite (x, y) rows")
         p = (self.estimate[:2] + self.estimate[2:] if predicted is None
-             else _point("predicted", predicted))
+             else check_point("predicted", predicted))
         if len(robots) == 0:
             return None
         w, h = self.window_size

@@ -1,26 +1,38 @@
-"""Kalman filters: the filter core and the trackers built on its equations.
+"""Kalman filters: the filter core, its blocks, and the trackers built on its equations.
 
 * :mod:`~estimators.kalman.core`: :class:`KalmanFilter`, one set of equations for the linear
   filter and the EKF (a building block: ``predict`` / ``update`` / ``innovation``);
-* :mod:`~estimators.kalman.ball`: ball trackers for delayed overhead-camera detections, the
-  EKF of Zhao, Wang and Li (2012; :class:`BallTracker`, :class:`BallFilterConfig`) and
-  its least-squares baseline (:class:`LeastSquaresBall`);
+* :mod:`~estimators.kalman.blocks`: the same steps as functions in plain floats for the ball
+  state (``predict_covariance``, ``innovation``, ``update``, ...), and on rows for many balls,
+  what the ball trackers' updates are written in;
+* :mod:`~estimators.kalman.ball`: the EKF of Zhao, Wang and Li (2012) for delayed
+  overhead-camera detections (:class:`BallTracker`, :class:`BallFilterConfig`);
+  :mod:`~estimators.kalman.least_squares`: its least-squares baseline
+  (:class:`LeastSquaresBall`); :mod:`~estimators.kalman.ball_batch`: the EKF of many
+  environments as arrays (:class:`BallTrackerBatch`);
 * :mod:`~estimators.kalman.kick`: the kick-aware ball tracker (:class:`KickAwareBall`), each
-  motion since a kick or a collision fitted whole to the two-phase friction model;
+  motion since a kick or a collision fitted whole to the two-phase friction model
+  (:mod:`~estimators.kalman.segments`);
 * :mod:`~estimators.kalman.imm`: the interacting multiple model ball tracker (:class:`IMMBall`),
-  rest, rolling and maneuver filters weighed by how well each predicted the detections;
+  rest, rolling and maneuver filters weighed by how well each predicted the detections, their
+  switching a Markov chain (:mod:`~estimators.kalman.modes`);
 * :mod:`~estimators.kalman.robots`: decoupled constant-velocity pose trackers for many robots
   (:class:`RobotTracker`).
 
-The ball and robot trackers have batched twins (:class:`BallTrackerBatch`,
+The ball trackers are built from the shared parts of :mod:`estimators.tracking` (gate, track
+initiator, replay buffer, track quality) and differ in their motion models and updates. The
+ball and robot trackers have batched twins (:class:`BallTrackerBatch`,
 :class:`RobotTrackerBatch`): many independent trackers as arrays, updated by one array
 operation per batch of frames, equal to the single trackers bit for bit.
 """
 
-from .ball import CHI2_2DOF_999, BallFilterConfig, BallTracker, BallTrackerBatch, LeastSquaresBall
+from ..tracking import CHI2_2DOF_999
+from .ball import BallFilterConfig, BallTrack, BallTracker
+from .ball_batch import BallTrackerBatch
 from .core import KalmanFilter, check_matrix, check_vector
 from .imm import IMMBall
 from .kick import KickAwareBall
+from .least_squares import LeastSquaresBall
 from .robots import RobotTracker, RobotTrackerBatch
 
 __all__ = [
@@ -28,6 +40,7 @@ __all__ = [
     "check_vector",
     "check_matrix",
     "BallFilterConfig",
+    "BallTrack",
     "BallTracker",
     "BallTrackerBatch",
     "LeastSquaresBall",

@@ -112,10 +112,11 @@ class KalmanFilter:
         semi-definite, ``x_pred`` a finite ``(n,)``; otherwise ``ValueError`` naming the
         argument, with the filter unchanged."""
         n = self.dim
-        self._predict(check_matrix("F", F, n), _check_covariance("Q", Q, n),
-                      None if x_pred is None else check_vector("x_pred", x_pred, n))
+        self.predict_unchecked(check_matrix("F", F, n), _check_covariance("Q", Q, n),
+                               None if x_pred is None else check_vector("x_pred", x_pred, n))
 
-    def _predict(self, F: np.ndarray, Q: np.ndarray, x_pred: np.ndarray | None = None) -> None:
+    def predict_unchecked(self, F: np.ndarray, Q: np.ndarray,
+                          x_pred: np.ndarray | None = None) -> None:
         """:meth:`predict` without checking ``F``, ``Q`` and ``x_pred``: for this package's
         trackers, whose matrices come from their own validated settings (the checks cost
         eight times the prediction itself)."""
@@ -168,12 +169,12 @@ class KalmanFilter:
             raise ValueError(f"gate must be None or a finite number >= 0, got {gate!r}")
         if z_pred is not None:
             z_pred = check_vector("z_pred", z_pred, m)
-        return self._update(z, H, R, z_pred, residual, gate)
+        return self.update_unchecked(z, H, R, z_pred, residual, gate)
 
-    def _update(self, z: np.ndarray | None, H: np.ndarray, R: np.ndarray,
-                z_pred: np.ndarray | None = None,
-                residual: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
-                gate: float | None = None) -> bool:
+    def update_unchecked(self, z: np.ndarray | None, H: np.ndarray, R: np.ndarray,
+                         z_pred: np.ndarray | None = None,
+                         residual: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+                         gate: float | None = None) -> bool:
         """:meth:`update` checking only ``z``: for this package's trackers, whose ``H`` and
         ``R`` come from their own validated settings."""
         if z is None:
@@ -202,3 +203,7 @@ class KalmanFilter:
         other.x = self.x.copy()
         other.P = self.P.copy()
         return other
+
+    # The former private spellings of the unchecked steps, for callers not yet moved to them.
+    _predict = predict_unchecked
+    _update = update_unchecked

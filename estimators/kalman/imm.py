@@ -10,34 +10,29 @@ state ``(x, y, vx, vy)`` [m, m/s] and weighs them by how well each predicted the
 
 from __future__ import annotations
 
-import bisect
 import math
 from collections.abc import Sequence
 from typing import NamedTuple
 
 import numpy as np
 
-from ..checks import check_real
+from ..checks import check_points, check_real
 from ..models.motion import PAPER_CYCLE, FrictionBallMotion
 from ..protocol import check_order, check_time
-from .ball import CHI2_2DOF_999, MAX_SPEED_CHANGE, _innovation, _points, _predict
+from ..tracking import (
+    CHI2_2DOF_999,
+    MAX_SPEED_CHANGE,
+    Candidates,
+    Gate,
+    ReplayBuffer,
+    TrackInitiator,
+    TrackQualityMixin,
+    prior_gain,
+)
+from .blocks import innovation, predict_covariance, predict_jump, update_closed_form
+from .modes import DEFAULT_RATES, MIN_PROBABILITY, ModeChain
 
 __all__ = ["IMMBall", "DEFAULT_RATES"]
-
-#: Default mode transition rates [1/s], ``DEFAULT_RATES[i][j]`` from mode ``i`` to mode ``j``
-#: (rest, rolling, maneuver; the diagonal is unused): a resting ball is kicked about every two
-#: seconds and pushed into a slow roll more rarely; a rolling ball comes to rest about every
-#: two seconds and is hit about every five; a maneuver is over within about 0.1 s, mostly into
-#: a roll. A kick shows in the likelihoods at once whatever its prior rate, while every
-#: transition into the maneuver mode mixes its wide covariance into the others: rates into it
-#: are kept low (chosen on simulated two-phase kicks at 25 and 60 Hz).
-DEFAULT_RATES = ((0.0, 0.1, 0.5),
-                 (0.5, 0.0, 0.2),
-                 (1.0, 10.0, 0.0))
-
-#: Floor of a mode probability after an update: no mode is ever ruled out for good, and the
-#: mixing weights ``mu_i Pi_ij / c_j`` stay defined.
-MIN_PROBABILITY = 1e-12
 
 #: Speed [m/s] above which a maneuver counts as a kick (two-phase model).
 KICK_SPEED = 1.0
@@ -54,7 +49,7 @@ class _State(NamedTuple):
     ``rest`` is ``(x, y, P11)`` with ``P11`` the row-major 2 x 2 position covariance (the rest
     filter's velocity is zero with the fixed variance ``IMMBall._rest_var_v``, uncorrelated
     with the position); ``roll`` and ``man`` are ``(x, P)`` with ``x`` the 4-tuple state and
-    ``P`` the three 2 x 2 blocks ``(P11, P12, P22)`` of :mod:`estimators.kalman.ball`.
+    ``P`` the three 2 x 2 blocks ``(P11, P12, P22)`` of :mod:`estimators.kalman.blocks`.
     """
 
     t: float = -math.inf
@@ -62,14 +57,14 @@ class _State(NamedTuple):
     roll: tuple | None = None
     man: tuple | None = None
     mu: tuple = _EQUAL
-    candidates: tuple = ()
+    candidates: Candidates = ()
     fused_at: float = -math.inf
     since_start: int = 0
     kicked: float | None = None  # two-phase model: when the sliding ball was kicked
     maneuver: tuple | None = None  # the current maneuver's start time and the speed before
 
 
-class IMMBall:
+class IMMBall(ReplayBuffer, TrackQualityMixin):
     r"""Interacting multiple model ball tracker for delayed overhead-camera detections.
 
     **Modes.** Three Kalman filters on the state ``x = (x, y, vx, vy)`` [m, m/s], each with the
@@ -99,7 +94,7 @@ class IMMBall:
     ``Pi_ij = (1 - exp(-lambda_i T)) lambda_ij / lambda_i``: the exact probability of leaving
     mode ``i`` within ``T``, sent where the first jump goes (this leaves out two or more jumps
     within one step, ``O((lambda T)^2)``, and costs three exponentials instead of a matrix
-    exponential). Each row sums to 1.
+    exponential). Each row sums to 1 (:class:`~estimators.kalman.modes.ModeChain`).
 
     **One cycle** (a frame captured ``T`` seconds after the previous one; ``mu_i`` the mode
     probabilities and ``x_i``, ``P_i`` the mode-matched estimates after the previous frame):
@@ -128,7 +123,8 @@ class IMMBall:
        symmetric and positive definite by construction);
     7. mode probabilities: likelihood
        ``L_j = exp(-y_j^T S_j^-1 y_j / 2) / (2 pi sqrt(det S_j))`` [1/m^2],
-       ``mu_j = c_j L_j / sum_k c_k L_k`` (floored at :data:`MIN_PROBABILITY`);
+       ``mu_j = c_j L_j / sum_k c_k L_k`` (floored at
+       :data:`~estimators.kalman.modes.MIN_PROBABILITY`);
     8. output: ``x = sum_j mu_j x_j``, ``P = sum_j mu_j (P_j + (x_j - x)(x_j - x)^T)``.
 
     A frame without a detection, or whose nearest detection is gated out, ends after step 3
@@ -163,16 +159,24 @@ class IMMBall:
 
     **Latency compensation** (Zhao et al. 2012): ``update`` takes capture times; a detection
     corrects the state at its capture time and :meth:`estimate` predicts to any later time.
-    Frames that arrive out of capture order (several cameras, jittering latency) are replayed:
-    the tracker keeps the frames of the last ``history`` seconds with the state before each,
-    rewinds to the state before a late frame and processes the frames from there in
-    capture-time order; a frame older than that window is dropped and counted in ``late``.
+    Frames that arrive out of capture order (several cameras, jittering latency) are replayed
+    (:class:`~estimators.tracking.ReplayBuffer`): the tracker keeps the frames of the last
+    ``history`` seconds with the state after each, rewinds to the state before a late frame
+    and processes the frames from there in capture-time order; a frame older than that window
+    is dropped and counted in ``late``.
 
     ``obstacles`` (the robots seen in a frame) are accepted for the protocol's sake and not
     used: the maneuver mode covers collisions wherever they happen.
 
-    Cost: plain-float arithmetic on 2 x 2 blocks (the block prediction and innovation of
-    :mod:`estimators.kalman.ball`, the closed-form update above, the mixtures written out):
+    **Parts.** The gate (:class:`~estimators.tracking.Gate`: the nearest detection, the
+    reach of a kick), the restarts (:class:`~estimators.tracking.TrackInitiator`), the replay
+    and the track quality (:class:`~estimators.tracking.TrackQualityMixin`) are the shared
+    parts of :mod:`estimators.tracking`; what is this tracker's own is its three motion
+    models, the mixing and the mode-matched updates above.
+
+    Cost: plain-float arithmetic on 2 x 2 blocks (:func:`~estimators.kalman.blocks.innovation`,
+    :func:`~estimators.kalman.blocks.predict_covariance`, the closed-form update
+    :func:`~estimators.kalman.blocks.update_closed_form`, the mixtures written out):
     a frame and two :meth:`estimate` calls take 1.7 to 1.9 times what they take
     :class:`~estimators.BallTracker`; :meth:`covariance` costs about one frame.
 
@@ -225,7 +229,9 @@ class IMMBall:
                                         low_open=True, unit=" m/s")
         self.maneuver_noise = check_real("maneuver_noise", maneuver_noise, 0.0, 100.0,
                                          low_open=True, unit=" m/s")
-        self.rates = _rates(rates)
+        chain = ModeChain(rates)
+        self.rates = chain.rates
+        self._products = chain.products  # mu_i Pi_ij(dt), see ModeChain.products
         self.gate = check_real("gate", gate, 0.0, low_open=True)
         self.max_jump = check_real("max_jump", max_jump, 0.0, 10.0, low_open=True, unit=" m")
         self.max_kick_speed = check_real("max_kick_speed", max_kick_speed, 0.0,
@@ -237,43 +243,18 @@ class IMMBall:
         self._rest_var_v = (self.rest_noise / PAPER_CYCLE) ** 2
         self._roll_q = self.rolling_noise ** 2 / PAPER_CYCLE  # velocity variance per second
         self._man_q = self.maneuver_noise ** 2
-        # Leaving rates and where the first jump goes: lambda_i, lambda_ij / lambda_i.
-        self._leave = tuple(sum(row[j] for j in range(3) if j != i)
-                            for i, row in enumerate(self.rates))
-        self._jump = tuple(0.0 if self._leave[i] == 0.0 else self.rates[i][j] / self._leave[i]
-                           for i in range(3) for j in range(3) if j != i)
+        self._gate = Gate(self.gate, self.max_kick_speed)
+        self._initiator = TrackInitiator(self.sigma_xy)
         self.reset()
 
     def reset(self) -> None:
         """Forget everything (a new episode)."""
-        self._state = _State()
-        self._base = _State()  # state before the oldest frame still in the log
-        self._log: list[tuple[float, Sequence, _State]] = []
-        self.fused = self.rejected = self.resets = self.late = 0
+        self._track = _State()
+        self.reset_replay()
+        self.fused = self.rejected = self.resets = 0
 
     # ------------------------------------------------------------------------------------
     # Protocol
-
-    @property
-    def initialized(self) -> bool:
-        return self._state.rest is not None
-
-    @property
-    def time(self) -> float:
-        """Capture time of the latest processed frame (``-inf`` before the first) [s]."""
-        return self._state.t
-
-    @property
-    def last_fused(self) -> float:
-        """Capture time of the latest detection fused into the track, the one that started
-        it included (``-inf`` before the first) [s]."""
-        return self._state.fused_at
-
-    @property
-    def since_start(self) -> int:
-        """Detections fused since the track's latest (re)start, the starting one included (0
-        before the first)."""
-        return self._state.since_start
 
     def update(self, t: float, detections, obstacles=None) -> None:
         """Process one frame captured at ``t`` [s] with ball detections ``(k, 2)`` [m] (k may
@@ -287,48 +268,18 @@ class IMMBall:
                 finite numbers.
         """
         t = check_time(t)
-        check_order(t, self._state.t)
-        dets = _points("detections", detections)
+        check_order(t, self._track.t)
+        dets = check_points("detections", detections)
         if obstacles is not None:
-            _points("obstacles", obstacles, exact=False)
+            check_points("obstacles", obstacles, exact=False)
         self.update_frame(t, dets, ())
-
-    def update_frame(self, t: float, detections: Sequence[Sequence[float]],
-                     obstacles: Sequence[Sequence[float]] = ()) -> None:
-        """:meth:`update` without its checks, for a pipeline whose frames are checked already
-        (a sensor's own: ``t`` a finite float, ``detections`` a sequence of finite ``(x, y)``,
-        ``t`` no older than the latest frame by more than
-        :data:`~estimators.protocol.MAX_REWIND`)."""
-        dets = detections
-        state = self._state
-        if t >= state.t:
-            self._state = state = self._process(state, t, dets)
-            self._log.append((t, dets, state))
-        elif t < self._base.t:
-            self.late += 1
-            return
-        else:  # out of order: rewind to the state before t and replay
-            log = self._log
-            i = bisect.bisect_right([entry[0] for entry in log], t)
-            state = log[i - 1][2] if i > 0 else self._base
-            log.insert(i, (t, dets, state))
-            for j in range(i, len(log)):
-                tj, dj, _ = log[j]
-                state = self._process(state, tj, dj)
-                log[j] = (tj, dj, state)
-            self._state = state
-        # Drop what is older than the replay window.
-        log = self._log
-        horizon = log[-1][0] - self.history
-        while len(log) > 1 and log[0][0] < horizon:
-            self._base = log.pop(0)[2]
 
     def estimate(self, t: float) -> np.ndarray | None:
         """The combined state ``(x, y, vx, vy)`` [m, m/s] predicted to time ``t`` [s] (None
         before the first detection): ``sum_j c_j f_j(x0_j)``, steps 1-4 of the class
         docstring over ``t - time`` (the latest estimate for ``t <= time``)."""
         t = check_time(t)
-        s = self._state
+        s = self._track
         if s.rest is None:
             return None
         dt = t - s.t
@@ -336,13 +287,10 @@ class IMMBall:
             return np.array(self._combined_mean(s.rest, s.roll, s.man, s.mu))
         return np.array(self._predicted_mean(s, dt))
 
-    def covariance(self, t: float) -> np.ndarray | None:
+    def _covariance(self, t: float) -> np.ndarray:
         """The ``4 x 4`` covariance [m^2, m^2/s, m^2/s^2] of the combined estimate of
-        ``(x, y, vx, vy)`` predicted to ``t`` [s] (None before the first detection)."""
-        t = check_time(t)
-        s = self._state
-        if s.rest is None:
-            return None
+        ``(x, y, vx, vy)`` predicted to ``t`` [s] (see :meth:`covariance`)."""
+        s = self._track
         dt = t - s.t
         if dt > 0.0:
             rest, roll, man, mu = self._predict(s, dt)
@@ -371,7 +319,7 @@ class IMMBall:
         the latest frame, or predicted to ``t`` [s] by the mode transitions
         (``c_j = sum_i Pi_ij(t - time) mu_i``; the latest for ``t <= time``). Before the
         first detection: equal."""
-        s = self._state
+        s = self._track
         mu = s.mu
         if t is not None:
             t = check_time(t)
@@ -382,19 +330,6 @@ class IMMBall:
 
     # ------------------------------------------------------------------------------------
     # The filter
-
-    def _products(self, mu: tuple, dt: float) -> tuple[float, ...]:
-        """``mu_i Pi_ij(dt)`` for the targets rest, rolling and maneuver in turn (9 floats:
-        ``i`` = rest, rolling, maneuver within each target); their sums over ``i`` are the
-        ``c_j``."""
-        mR, mF, mM = mu
-        lR, lF, lM = self._leave
-        jRF, jRM, jFR, jFM, jMR, jMF = self._jump
-        sR, sF, sM = math.exp(-lR * dt), math.exp(-lF * dt), math.exp(-lM * dt)
-        gR, gF, gM = mR - mR * sR, mF - mF * sF, mM - mM * sM  # mu_i (1 - Pi_ii)
-        return (mR * sR, gF * jFR, gM * jMR,
-                gR * jRF, mF * sF, gM * jMF,
-                gR * jRM, gF * jFM, mM * sM)
 
     def _decel(self, x: tuple, kicked: float | None, t: float) -> float:
         """The rolling mode's deceleration from state ``x`` at time ``t``: sliding while the
@@ -493,13 +428,15 @@ class IMMBall:
         cF, (x, P), cM, man = full
         # Rolling: the friction model (analytic Jacobian), velocity random walk.
         xn, A, B = self.motion.step(*x, dt, self._decel(x, s.kicked, s.t))
-        roll = (xn, _predict(x, P, A, B, self._roll_q * dt))
+        roll = (xn, predict_covariance(P, A, B, self._roll_q * dt))
         # Maneuver: constant velocity, a velocity jump within the step.
-        man = _jump_predict(*man, dt, self._man_q)
+        man = predict_jump(*man, dt, self._man_q)
         return rest, roll, man, (cR, cF, cM)
 
-    def _process(self, s: _State, t: float, dets: Sequence) -> _State:
-        """One frame captured at ``t`` (no earlier than ``s.t``): steps 1-7."""
+    def process(self, s: _State, t: float, dets: Sequence, obstacles: Sequence = ()) -> _State:
+        """The state after one frame captured at ``t`` (no earlier than ``s.t``): steps 1-7
+        of the class docstring (``obstacles`` not used); what :meth:`update_frame`
+        replays."""
         if s.rest is None:
             if not dets:
                 return s
@@ -514,7 +451,7 @@ class IMMBall:
         if not dets:
             return _State(t, rest, roll, man, c, s.candidates, s.fused_at, s.since_start,
                           self._kicked(s.kicked, roll[0], t), s.maneuver)
-        r, gate = self._r, self.gate
+        r, gate = self._r, self._gate
         px, py, (r0, r1, _, r3) = rest
         xF, PF = roll
         xM, PM = man
@@ -528,18 +465,18 @@ class IMMBall:
         j0, j1, j3 = s3 / det, -r1 / det, s0 / det
         y0, y1 = zx - px, zy - py
         dR = y0 * (j0 * y0 + j1 * y1) + y1 * (j1 * y0 + j3 * y1)
-        yF, SF, dF = _innovation(xF, PF, z, r)
-        yM, SM, dM = _innovation(xM, PM, z, r)
+        yF, SF, dF = innovation(xF, PF, z, r)
+        yM, SM, dM = innovation(xM, PM, z, r)
         low = min(dR, dF, dM)
         # Step 5: within max_jump of the combined prediction, and inside its gate or inside a
         # mode's and near enough for a kick where the ball is.
         cR, cF, cM = c
         jump = math.hypot(zx - cR * px - cF * xF[0] - cM * xM[0],
                           zy - cR * py - cF * xF[1] - cM * xM[1])
-        kick = low <= gate and jump <= self.max_kick_speed * (t - s.t) + 3.0 * self.sigma_xy
+        kick = low <= gate.limit and gate.reaches(jump, t - s.t, self.sigma_xy)
         if not kick and d2 is None and jump <= self.max_jump:
             d2 = self._nearest(rest, roll, man, c, (z,))[1]
-        if jump > self.max_jump or not (kick or d2 <= gate):
+        if jump > self.max_jump or not (kick or d2 <= gate.limit):
             self.rejected += 1
             return self._outlier(_State(t, rest, roll, man, c, s.candidates, s.fused_at,
                                         s.since_start, self._kicked(s.kicked, roll[0], t),
@@ -561,8 +498,8 @@ class IMMBall:
         rr = r * r
         rest = (zx - r * (j0 * y0 + j1 * y1), zy - r * (j1 * y0 + j3 * y1),
                 (r - rr * j0, -rr * j1, -rr * j1, r - rr * j3))
-        roll = _fuse(xF, PF, z, yF, SF, r)
-        man = _fuse(xM, PM, z, yM, SM, r)
+        roll = update_closed_form(xF, PF, z, yF, SF, r)
+        man = update_closed_form(xM, PM, z, yM, SM, r)
         kicked, maneuver = self._kicked(s.kicked, roll[0], t), None
         if self.sliding is not None and mu[2] >= mu[0] and mu[2] >= mu[1]:
             # A maneuver: a kick if it made the ball faster by more than KICK_SPEED.
@@ -591,14 +528,7 @@ class IMMBall:
         s0 = cR * (r0 + ax * ax) + cF * (f0 + bx * bx) + cM * (k0 + ex * ex) + r
         s1 = cR * (r1 + ax * ay) + cF * (f1 + bx * by) + cM * (k1 + ex * ey)
         s3 = cR * (r3 + ay * ay) + cF * (f3 + by * by) + cM * (k3 + ey * ey) + r
-        det = s0 * s3 - s1 * s1
-        i0, i1, i3 = s3 / det, -s1 / det, s0 / det
-        best, d2 = dets[0], math.inf
-        for z in dets:
-            y0, y1 = z[0] - gx, z[1] - gy
-            d = y0 * (i0 * y0 + i1 * y1) + y1 * (i1 * y0 + i3 * y1)
-            if d < d2:
-                best, d2 = z, d
+        best, d2, _ = self._gate.nearest(gx, gy, (s0, s1, s3), dets)
         return best, d2
 
     def _start(self, t: float, zx: float, zy: float, vx: float, vy: float, var_v: float,
@@ -617,28 +547,21 @@ class IMMBall:
         return _State(t, (zx, zy, P11), (x, P), (x, P), mu, (), t, 1, kicked, None)
 
     def _outlier(self, s: _State, t: float, zx: float, zy: float) -> _State:
-        """Keep a gated-out detection; restart the track when two agree (as
-        :class:`~estimators.BallTracker` does with ``reset_after=2``)."""
-        sigma = self.sigma_xy
-        candidates = s.candidates
-        if candidates:
-            t0, (x0, y0) = candidates[-1]
-            # One moving ball if a ball at most 10 m/s fast could connect them (plus noise);
-            # otherwise the older one was spurious.
-            if math.hypot(zx - x0, zy - y0) > MAX_SPEED_CHANGE * (t - t0) + 5.0 * sigma:
-                candidates = ()
-            elif t <= t0:  # a second camera's view of the same instant: no new information
-                return s
-        if not candidates:
-            return s._replace(candidates=((t, (float(zx), float(zy))),))
-        t0, (x0, y0) = candidates[-1]
+        """Keep a gated-out detection; restart the track when two agree (the
+        :class:`~estimators.tracking.TrackInitiator` of :class:`~estimators.BallTracker` with
+        ``reset_after=2``)."""
+        initiator = self._initiator
+        candidates = initiator.offer(s.candidates, t, (float(zx), float(zy)))
+        if not initiator.ready(candidates):
+            return s._replace(candidates=candidates)
+        t0, (x0, y0) = candidates[0]
         span = t - t0
+        sigma = self.sigma_xy
         # The finite-difference velocity, combined with the prior that a ball moves at most
-        # MAX_SPEED_CHANGE (v ~ N(0, s0^2), s0 a third of it): v = g v_fd, var = g var_fd,
-        # g = s0^2 / (s0^2 + var_fd) (BallTracker's restart).
-        s0_2 = (MAX_SPEED_CHANGE / 3.0) ** 2
+        # MAX_SPEED_CHANGE (v ~ N(0, s0^2), s0 a third of it): v = g v_fd, var = g var_fd.
+        s0_2 = initiator.prior_var
         var_fd = 2.0 * sigma * sigma / (span * span)
-        g = s0_2 / (s0_2 + var_fd)
+        g = prior_gain(s0_2, var_fd)
         ux, uy = (zx - x0) / span, (zy - y0) / span
         # At rest or moving: the finite-difference velocity's likelihood under each, per axis
         # N(0, var_fd + v_r) and N(0, var_fd + s0^2), sets the rest mode's probability; the
@@ -652,52 +575,3 @@ class IMMBall:
         return self._start(t, float(zx), float(zy), g * ux, g * uy,
                            g * var_fd + self.rolling_noise ** 2,
                            (p, 0.5 * (1.0 - p), 0.5 * (1.0 - p)), t0)
-
-
-def _jump_predict(x, P, dt: float, q: float):
-    """The maneuver mode's step 3: constant velocity over ``dt`` seconds plus a velocity
-    jump of variance ``q`` per axis at a uniform time within the step:
-    ``P11' = P11 + dt (P12 + P21) + dt^2 P22 + q dt^2 / 3 I``,
-    ``P12' = P12 + dt P22 + q dt / 2 I``, ``P22' = P22 + q I``."""
-    (p0, p1, _, p3), (m0, m1, m2, m3), (n0, n1, _, n3) = P
-    qp, qc = q * dt * dt / 3.0, 0.5 * q * dt
-    w0, w1, w2, w3 = m0 + dt * n0, m1 + dt * n1, m2 + dt * n1, m3 + dt * n3
-    c01 = p1 + dt * (m1 + m2 + dt * n1)
-    return ((x[0] + x[2] * dt, x[1] + x[3] * dt, x[2], x[3]),
-            ((p0 + dt * (m0 + w0) + qp, c01, c01, p3 + dt * (m3 + w3) + qp),
-             (w0 + qc, w1, w2, w3 + qc), (n0 + q, n1, n1, n3 + q)))
-
-
-def _fuse(x, P, z, y, Si, r: float):
-    """Step 6 for ``H = [I 0]``, ``R = r I`` in closed form (the result of
-    :func:`~estimators.kalman.ball._update` with fewer operations): ``S = P11 + r I`` commutes
-    with ``P11``, so ``K1 = P11 S^-1 = I - r S^-1`` and, with ``K2 = P21 S^-1``,
-    ``x = (z - r S^-1 y, v + K2 y)``, ``P11' = r (I - r S^-1)``, ``P12' = r S^-1 P12``,
-    ``P22' = P22 - K2 P12`` (``(I - K H) P``, symmetric by construction)."""
-    (p0, p1, _, p3), (m0, m1, m2, m3), (n0, n1, _, n3) = P
-    i0, i1, _, i3 = Si
-    y0, y1 = y
-    t0, t1 = i0 * y0 + i1 * y1, i1 * y0 + i3 * y1  # S^-1 y
-    # K2 = P21 S^-1 with P21 = (m0, m2, m1, m3)
-    b0, b1, b2, b3 = m0 * i0 + m2 * i1, m0 * i1 + m2 * i3, m1 * i0 + m3 * i1, m1 * i1 + m3 * i3
-    c01 = n1 - 0.5 * (b0 * m1 + b1 * m3 + b2 * m0 + b3 * m2)
-    return ((z[0] - r * t0, z[1] - r * t1, x[2] + b0 * y0 + b1 * y1, x[3] + b2 * y0 + b3 * y1),
-            ((r - r * r * i0, -r * r * i1, -r * r * i1, r - r * r * i3),
-             (r * (i0 * m0 + i1 * m2), r * (i0 * m1 + i1 * m3),
-              r * (i1 * m0 + i3 * m2), r * (i1 * m1 + i3 * m3)),
-             (n0 - b0 * m0 - b1 * m2, c01, c01, n3 - b2 * m1 - b3 * m3)))
-
-
-def _rates(rates) -> tuple[tuple[float, float, float], ...]:
-    """``rates`` as a 3 x 3 tuple of floats; ``ValueError`` naming the entry otherwise."""
-    try:
-        rows = [list(row) for row in rates]
-    except TypeError:
-        raise ValueError(f"rates must be a 3 x 3 matrix of transition rates [1/s], got "
-                         f"{rates!r}") from None
-    if len(rows) != 3 or any(len(row) != 3 for row in rows):
-        raise ValueError(f"rates must be a 3 x 3 matrix of transition rates [1/s], got "
-                         f"{rates!r}")
-    return tuple(tuple(0.0 if i == j else check_real(f"rates[{i}][{j}]", rows[i][j], 0.0,
-                                                     1000.0, unit=" 1/s")
-                       for j in range(3)) for i in range(3))

@@ -7,7 +7,9 @@
 * :mod:`~estimators.particle.ball`: a ball tracker on those filters for a team's fused ball
   positions (:class:`ParticleBallTracker`);
 * :mod:`~estimators.particle.localization`: adaptive self-localization by KLD-sampling, Guo
-  and Li (2013; :class:`KLDLocalizer`).
+  and Li (2013; :class:`KLDLocalizer`), with KLD-sampling's sample size
+  (:mod:`~estimators.particle.kld`) and the landmark table of ambiguous sightings
+  (:mod:`~estimators.particle.landmarks`).
 """
 
 from .ball import CHI2_2DOF_9999, ParticleBallTracker
@@ -21,15 +23,9 @@ from .core import (
     ungm_model,
     ungm_simulate,
 )
-from .localization import (
-    RECOVERIES,
-    KLDConfig,
-    KLDLocalizer,
-    LandmarkTable,
-    kld_sample_size,
-    normal_quantile,
-    seed_poses,
-)
+from .kld import kld_sample_size, normal_quantile
+from .landmarks import LandmarkTable
+from .localization import RECOVERIES, KLDConfig, KLDLocalizer, seed_poses
 
 __all__ = [
     "BootstrapPF",

@@ -68,6 +68,7 @@ import numpy as np
 from ..checks import MAX_PARTICLES, check_count
 from ..kalman.core import KalmanFilter
 from ..protocol import check_order, check_time
+from ..tracking import TrackQualityMixin, TrackTimes, prior_gain
 from .core import FBPF, PARTICLE_FILTERS, BootstrapPF
 
 __all__ = ["ParticleBallTracker", "CHI2_2DOF_9999"]
@@ -127,8 +128,14 @@ def _floats(value) -> np.ndarray | None:
         return None
 
 
-class ParticleBallTracker:
+class ParticleBallTracker(TrackQualityMixin):
     """Ball tracker on Xu et al.'s (2012) particle filters (see the module docstring).
+
+    Its :meth:`covariance` at ``t`` is the Kalman start's ``P`` or the particles' weighted
+    covariance at the filter's time, predicted to a later ``t`` by the constant-velocity model
+    with the acceleration noise, ``P' = A P A^T + s^2 B B^T`` (``A = [[I, dt I], [0, I]]``,
+    ``B = [dt^2/2 I; dt I]``); the deceleration, which :meth:`estimate` applies to the mean,
+    is left out of the spread.
 
     Args:
         rng: the generator of every random draw.
@@ -266,13 +273,11 @@ class ParticleBallTracker:
     # ------------------------------------------------------------------------------------
 
     @property
-    def initialized(self) -> bool:
-        return self._pf is not None
-
-    @property
-    def time(self) -> float:
-        """The filter's time [s] (``-inf`` before the first measurement)."""
-        return self._t
+    def _track(self) -> TrackTimes:
+        """The track's times: the filter's time (its latest measurement's or prediction's),
+        the latest fused measurement's, and the measurements fused since the latest
+        (re)start."""
+        return TrackTimes(self._t, self._t_fused, self._since_start)
 
     @property
     def particles(self) -> np.ndarray:
@@ -297,28 +302,9 @@ class ParticleBallTracker:
         d = p - w @ p
         return math.sqrt(float(w @ np.sum(d * d, axis=1)))
 
-    @property
-    def last_fused(self) -> float:
-        """Time of the latest fused measurement, the one that started the filter included
-        (``-inf`` before the first) [s]."""
-        return self._t_fused
-
-    @property
-    def since_start(self) -> int:
-        """Measurements fused since the latest (re)start, the starting one included (0 before
-        the first)."""
-        return self._since_start
-
-    def covariance(self, t: float) -> np.ndarray | None:
-        """The ``4 x 4`` covariance of ``(px, py, vx, vy)`` [m, m/s] at time ``t``: the Kalman
-        start's ``P`` or the particles' weighted covariance at the filter's time, predicted to
-        a later ``t`` by the constant-velocity model with the acceleration noise,
-        ``P' = A P A^T + s^2 B B^T`` (``A = [[I, dt I], [0, I]]``, ``B = [dt^2/2 I; dt I]``);
-        the deceleration, which :meth:`estimate` applies to the mean, is left out of the
-        spread. None before the first measurement."""
-        t = check_time(t)
-        if self._pf is None:
-            return None
+    def _covariance(self, t: float) -> np.ndarray:
+        """The Kalman start's ``P`` or the particles' weighted covariance at the filter's
+        time, predicted to a later ``t`` (see the class docstring)."""
         if self._kf is not None:
             P = self._kf.P.copy()
         else:
@@ -405,7 +391,7 @@ class ParticleBallTracker:
                 return
         self._misses = 0
         if kf is not None:
-            kf._update(z, H, R)
+            kf.update_unchecked(z, H, R)
             self._x = kf.x.copy()
         else:
             det = R[0, 0] * R[1, 1] - R[0, 1] * R[1, 0]
@@ -464,7 +450,7 @@ class ParticleBallTracker:
             else:
                 F, B = _cv_matrices(dt)
                 # x' = drift(x) (exactly A x without deceleration), P' = A P A^T + s^2 B B^T
-                kf._predict(F, self.accel_sigma**2 * (B @ B.T),
+                kf.predict_unchecked(F, self.accel_sigma**2 * (B @ B.T),
                            _drift(kf.x[None, :], dt, self.deceleration)[0])
                 self._x = kf.x.copy()
             self._t = t
@@ -512,7 +498,7 @@ class ParticleBallTracker:
             dx, dy = (z[0] - z0[0]) / span, (z[1] - z0[1]) / span
             if dx * dx + dy * dy <= self.max_speed**2:
                 var_fd = 0.5 * float(np.trace(R) + np.trace(R0)) / span**2
-                g = s0_2 / (s0_2 + var_fd)
+                g = prior_gain(s0_2, var_fd)
                 v0, var_v = (g * dx, g * dy), g * var_fd
         P0 = np.zeros((4, 4))
         P0[:2, :2] = R

@@ -65,18 +65,18 @@ paper's method, not a library's; vectorised numpy; every draw from the given gen
 
 from __future__ import annotations
 
-import functools
 import math
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..checks import MAX_PARTICLES, check_count, check_real
 from ..fusion.triangulation import PoseHypotheses, SightingMemory, triangulate_sightings
+from .kld import BIN_PACK, kld_table
+from .landmarks import LandmarkTable
 
-__all__ = ["KLDConfig", "KLDLocalizer", "LandmarkTable", "RECOVERIES", "kld_sample_size",
-           "normal_quantile", "seed_poses"]
+__all__ = ["KLDConfig", "KLDLocalizer", "RECOVERIES", "seed_poses"]
 
 #: How :class:`KLDLocalizer` draws the particles it injects when it is lost: uniformly over
 #: the bounds (augmented MCL), or partly around poses triangulated from recent sightings.
@@ -99,113 +99,6 @@ def seed_poses(kinds: Sequence[str], points: np.ndarray, table: Mapping[str, np.
                else _SEED_BEARING_SIGMA)
     return triangulate_sightings(kinds, pts, table, config.range_sigmas(np.hypot(
         pts[:, 0], pts[:, 1])), sigma_b, bounds)
-
-
-def normal_quantile(p: float) -> float:
-    """The standard normal quantile (Acklam's rational approximation, |error| < 1.2e-9),
-    to keep the module numpy-only."""
-    if not 0.0 < p < 1.0:
-        raise ValueError(f"p must be in (0, 1), got {p!r}")
-    a = (-3.969683028665376e01, 2.209460984245205e02, -2.759285104469687e02,
-         1.383577518672690e02, -3.066479806614716e01, 2.506628277459239e00)
-    b = (-5.447609879822406e01, 1.615858368580409e02, -1.556989798598866e02,
-         6.680131188771972e01, -1.328068155288572e01)
-    c = (-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e00,
-         -2.549732539343734e00, 4.374664141464968e00, 2.938163982698783e00)
-    d = (7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e00,
-         3.754408661907416e00)
-    if p < 0.02425:
-        q = math.sqrt(-2.0 * math.log(p))
-        return (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) / \
-            ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0)
-    if p > 1.0 - 0.02425:
-        return -normal_quantile(1.0 - p)
-    q = p - 0.5
-    r = q * q
-    return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q / \
-        (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0)
-
-
-def kld_sample_size(k: int | np.ndarray, epsilon: float, delta: float) -> np.ndarray:
-    """Fox's KLD bound: the number of particles that keeps the Kullback-Leibler distance
-    between the sample-based and the true (binned) posterior below ``epsilon`` with
-    probability ``1 - delta``, for ``k`` occupied bins (1 for ``k <= 1``)."""
-    k = np.asarray(k, dtype=np.float64)
-    z = normal_quantile(1.0 - delta)
-    km1 = np.maximum(k - 1.0, 1.0)
-    a = 2.0 / (9.0 * km1)
-    n = km1 / (2.0 * epsilon) * (1.0 - a + np.sqrt(a) * z) ** 3
-    return np.where(k <= 1.0, 1.0, np.ceil(n))
-
-
-@functools.lru_cache(maxsize=16)
-def _kld_table(epsilon: float, delta: float, max_particles: int) -> list[float]:
-    """:func:`kld_sample_size` for ``k = 0 .. max_particles``, as a list (looked up draw by
-    draw while resampling)."""
-    return kld_sample_size(np.arange(max_particles + 1), epsilon, delta).tolist()
-
-
-#: Bin keys are packed into one integer, ``ix * 2^42 + iy * 2^21 + itheta``: distinct for
-#: bin indices within +-2^20 (200 km at 0.2 m bins), far beyond any field.
-_BIN_PACK = np.array([1 << 42, 1 << 21, 1], dtype=np.int64)
-
-
-class LandmarkTable(Mapping[str, np.ndarray]):
-    """Landmark positions by kind [m] (a read-only mapping), validated once, with the layout
-    of the candidates of a sequence of observed kinds cached (a robot sees the same few
-    combinations of kinds again and again), for :meth:`KLDLocalizer.update_kinds`.
-
-    Args:
-        table: kind -> ``(M_k, 2)`` positions of the landmarks of that kind [m] (one or more
-            finite positions each).
-    """
-
-    def __init__(self, table: Mapping[str, np.ndarray]) -> None:
-        positions: dict[str, np.ndarray] = {}
-        for kind, value in table.items():
-            pos = np.array(value, dtype=np.float64).reshape(-1, 2)
-            if len(pos) == 0 or not np.isfinite(pos).all():
-                raise ValueError(f"table[{kind!r}] must hold one or more finite (x, y) "
-                                 f"positions")
-            pos.flags.writeable = False
-            positions[kind] = pos
-        self.positions = positions
-        self._layouts: dict[tuple[str, ...], tuple] = {}
-
-    def __getitem__(self, kind: str) -> np.ndarray:
-        return self.positions[kind]
-
-    def __iter__(self) -> Iterator[str]:
-        return iter(self.positions)
-
-    def __len__(self) -> int:
-        return len(self.positions)
-
-    def layout(self, kinds: tuple[str, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray,
-                                                      np.ndarray]:
-        """For observations of ``kinds``: the candidates' ``x`` and ``y`` ((C,), every
-        observation's candidates in turn), how many each observation has ((m,)) and a gather
-        index ((m * K,), ``K`` the most candidates of an observation) that lays the ``C``
-        columns out as ``m`` blocks of ``K``, short blocks padded with their first candidate
-        (which leaves each block's maximum as it is)."""
-        lay = self._layouts.get(kinds)
-        if lay is None:
-            for kind in kinds:
-                if kind not in self.positions:
-                    raise ValueError(f"unknown landmark kind {kind!r}; the table has "
-                                     f"{sorted(self.positions)}")
-            cands = [self.positions[k] for k in kinds]
-            counts = np.array([len(c) for c in cands])
-            width = int(counts.max())
-            starts = (np.cumsum(counts) - counts)[:, None]
-            j = np.arange(width)[None, :]
-            gather = np.where(j < counts[:, None], starts + j, starts)
-            L = np.concatenate(cands)
-            lay = (np.ascontiguousarray(L[:, 0]), np.ascontiguousarray(L[:, 1]), counts,
-                   gather.reshape(-1))
-            if len(self._layouts) < 4096:
-                self._layouts[kinds] = lay
-        return lay
 
 
 @dataclass(frozen=True)
@@ -597,7 +490,7 @@ class KLDLocalizer:
         if c.alpha_fast > 0.0 and self.w_slow > 0.0:
             inject = max(0.0, 1.0 - self.w_fast / (c.recovery_ratio * self.w_slow))
         size = np.asarray(c.bin_size)
-        bound = _kld_table(c.epsilon, c.delta, c.max_particles)
+        bound = kld_table(c.epsilon, c.delta, c.max_particles)
         low = c.min_particles
         cumulative = np.cumsum(self.weights)
         cumulative /= cumulative[-1]
@@ -626,7 +519,7 @@ class KLDLocalizer:
             parts.append(new)
             # k(n): the distinct bins among the first n draws; the first n with
             # n >= bound(k(n)) and n >= min_particles is the sample size.
-            keys = (np.floor(new / size).astype(np.int64) @ _BIN_PACK).tolist()
+            keys = (np.floor(new / size).astype(np.int64) @ BIN_PACK).tolist()
             head = min(take, low - 1 - drawn)
             if head > 0:
                 seen.update(keys[:head])

@@ -8,15 +8,9 @@ import math
 import numpy as np
 import pytest
 
-from estimators.particle.localization import (
-    RECOVERIES,
-    KLDConfig,
-    KLDLocalizer,
-    LandmarkTable,
-    _kld_table,
-    kld_sample_size,
-    normal_quantile,
-)
+from estimators.particle.kld import kld_sample_size, kld_table, normal_quantile
+from estimators.particle.landmarks import LandmarkTable
+from estimators.particle.localization import RECOVERIES, KLDConfig, KLDLocalizer
 
 # Goal posts, corners and the centre-line ends of a 6 m x 4 m field.
 LANDMARKS = np.array([[3, 0.7], [3, -0.7], [-3, 0.7], [-3, -0.7], [3, 2], [3, -2], [-3, 2],
@@ -213,7 +207,7 @@ def _reference_kld_resample(loc: KLDLocalizer, rng: np.random.Generator,
     drawn particle is first moved by the motion model, and the bin of the *predicted* sample
     is counted."""
     c = loc.cfg
-    bound = _kld_table(c.epsilon, c.delta, c.max_particles)
+    bound = kld_table(c.epsilon, c.delta, c.max_particles)
     cumulative = np.cumsum(loc.weights)
     cumulative /= cumulative[-1]
     batch = min(c.max_particles, max(c.min_particles, 2 * loc.n))
