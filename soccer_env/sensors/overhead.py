@@ -104,8 +104,9 @@ class OverheadVision:
 
     Args:
         spec: sensor characteristics.
-        field, robot, ball: the world's specs (camera layout, robot footprint and height, ball
-            radius).
+        field: the world's field (the camera layout).
+        robot: the common robot model (footprint, height, dribbler).
+        ball: the world's ball (its radius).
         n_robots: number of robots in the world.
         cameras: override :func:`default_cameras`.
         robots: every robot's spec, in world order (its radius and height for occlusion,

@@ -87,8 +87,13 @@ class OverheadVisionBatch:
     ``tests/soccer_env/sensors/test_overhead.py`` compares them.
 
     Args:
-        spec, field, robot, ball, n_robots, cameras: as :class:`OverheadVision`'s.
+        spec: sensor characteristics, as :class:`OverheadVision`'s.
+        field: the fields' geometry, as :class:`OverheadVision`'s.
+        robot: the common robot model, as :class:`OverheadVision`'s.
+        ball: the ball, as :class:`OverheadVision`'s.
+        n_robots: number of robots on each field.
         m: fields.
+        cameras: as :class:`OverheadVision`'s.
     """
 
     def __init__(self, spec: VisionSpec, field: FieldSpec, robot: SSLRobotSpec, ball: BallSpec,

@@ -125,7 +125,8 @@ class HumanoidGameController(RefereeState):
     """The autonomous referee of one Humanoid League match (see the module docstring).
 
     Args:
-        field, ball: the match's specs.
+        field: the match's field.
+        ball: the match's ball.
         teams: ``(N,)`` team of each robot (0 blue, 1 yellow), blue first.
         radii: ``(N,)`` robot footprint radii [m].
         rules: the rule preset (:class:`~soccer_env.presets.rules.HumanoidRuleSpec`).

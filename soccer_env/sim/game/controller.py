@@ -46,7 +46,8 @@ class GameController(FoulRules, RestartRules):
     :mod:`soccer_env.sim.game`).
 
     Args:
-        field, ball: the match's specs.
+        field: the match's field.
+        ball: the match's ball.
         teams: ``(N,)`` team of each robot (0 blue, 1 yellow), blue first.
         radii: ``(N,)`` robot radii [m].
         rules: the rule preset.
