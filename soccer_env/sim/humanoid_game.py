@@ -103,10 +103,10 @@ import numpy as np
 
 from soccer_env.presets import BallSpec, FieldSpec
 from soccer_env.presets.rules import HumanoidRuleSpec
+from soccer_env.sim.ball import BallExit
 from soccer_env.sim.game.state import RefereeState
 from soccer_env.sim.game.types import SITUATIONS, STAGES, Decision, Frame, GameEvent
 from soccer_env.sim.referee import ExitKind, classify_exit, defending_team, exit_end, exit_side
-from soccer_env.sim.world import BallExit
 
 __all__ = ["HumanoidGameController", "HUMANOID_COMMANDS", "HUMANOID_FOULS", "RESTARTS"]
 

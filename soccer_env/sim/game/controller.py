@@ -15,6 +15,7 @@ import numpy as np
 
 from soccer_env.presets import BallSpec, FieldSpec
 from soccer_env.presets.rules import RuleSpec
+from soccer_env.sim.ball import BallExit
 from soccer_env.sim.game.fouls import FoulRules
 from soccer_env.sim.game.geometry import valid_free_kick
 from soccer_env.sim.game.restarts import RestartRules
@@ -36,7 +37,6 @@ from soccer_env.sim.referee import (
     exit_side,
     free_kick_spot,
 )
-from soccer_env.sim.world import BallExit
 
 __all__ = ["GameController"]
 

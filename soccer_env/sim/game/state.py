@@ -12,8 +12,8 @@ from collections.abc import Sequence
 import numpy as np
 
 from soccer_env.presets import BallSpec, FieldSpec
+from soccer_env.sim.ball import BallExit
 from soccer_env.sim.game.types import Decision, GameEvent, TeamInfo
-from soccer_env.sim.world import BallExit
 
 __all__ = ["RefereeState"]
 
