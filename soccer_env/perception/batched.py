@@ -3,7 +3,7 @@
 FilteredPerception`) for ``m`` environments as arrays.
 
 The overhead cameras of every field capture in one array pass
-(:class:`~soccer_env.sensors.overhead.OverheadVisionBatch`), and the robot and ball filters of
+(:class:`~soccer_env.sensors.overhead_batch.OverheadVisionBatch`), and the robot and ball filters of
 every environment update together, one array operation per round of frames
 (:class:`~estimators.RobotTrackerBatch`, :class:`~estimators.BallTrackerBatch`): round ``j``
 takes every environment's ``j``-th frame of the step in capture-time order, as the single
@@ -24,7 +24,8 @@ import numpy as np
 from estimators import BallTracker, BallTrackerBatch, RobotTrackerBatch
 from soccer_env.perception.match import MatchPerception
 from soccer_env.perception.overhead import FilteredPerception
-from soccer_env.sensors.overhead import FrameBatch, OverheadVision, OverheadVisionBatch
+from soccer_env.sensors.overhead import OverheadVision
+from soccer_env.sensors.overhead_batch import FrameBatch, OverheadVisionBatch
 
 __all__ = ["FilteredPerceptionBatch", "batch_refusal", "MIN_BATCH"]
 

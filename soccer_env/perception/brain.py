@@ -1,34 +1,33 @@
 """One humanoid's estimation stack (:class:`Brain`): odometry, its head-camera frames, the
 team-mates' radio messages, Hough fusion and ball tracking, as described in
 :mod:`soccer_env.perception.humanoid`.
+
+A brain reads nothing of the team's pipeline that owns it but a :class:`BrainContext`: the
+figures of the team, its sensors and its noise models, fixed for an episode, which
+:class:`~soccer_env.perception.humanoid.HumanoidTeamPerception` hands to each of its brains.
 """
 
 from __future__ import annotations
 
 import math
 from collections import deque
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
-from estimators import INVERSE_VARIANCE, fuse_lines, weighting_power
+from estimators import INVERSE_VARIANCE, KLDConfig, LandmarkTable, fuse_lines, weighting_power
 from estimators.fusion.hough import MIN_CROSSING_ANGLE
 from soccer_env.perception.base import ball_status, sigmas
 from soccer_env.perception.options import BALL_TRACKERS, FUSIONS, LOCALIZATIONS
+from soccer_env.presets import BallSpec, RobotSpec
+from soccer_env.presets.sensors import HeadCameraSpec
 from soccer_env.sensors.headcam import HeadFrame
 from soccer_env.sensors.radio import Message
 from soccer_env.state import BeliefQuality, BeliefSpread, WorldState
 
-if TYPE_CHECKING:  # the team's pipeline, which owns its robots' brains
-    from soccer_env.perception.humanoid import HumanoidTeamPerception
-
-__all__ = ["Brain", "landmark_sightings"]
-
-#: Fused sightings older than this many frame periods are not fused with a new one.
-_FUSION_WINDOW_FRAMES = 1.5
-
-
+__all__ = ["Brain", "BrainContext", "landmark_sightings"]
 #: Measurement standard deviation floor of the ball tracker [m].
 _MIN_SIGMA = 0.02
 
@@ -76,34 +75,97 @@ class _Line:
     range: float
 
 
-class Brain:
-    """One humanoid's estimation stack (see the module docstring)."""
+@dataclass(frozen=True)
+class BrainContext:
+    """What a :class:`Brain` reads of its team's perception: the options, the world's robots
+    and the team's sensor and noise figures, fixed for an episode (built by
+    :meth:`~soccer_env.perception.humanoid.HumanoidTeamPerception.reset`).
 
-    def __init__(self, index: int, name: str, team: int, perception: HumanoidTeamPerception,
+    Attributes:
+        localization, fusion, ball_tracker: the options of the
+            :class:`~soccer_env.perception.base.PerceptionConfig`.
+        specs: every robot's model (a brain reads its own odometry noise figures).
+        teams: every robot's team (0 blue, 1 yellow).
+        index_of: robot index by name (the radio's senders).
+        team_members: per team, the humanoids whose beliefs are modelled.
+        ball_spec: the ball (its rolling deceleration, for the tracker).
+        camera: the robots' head camera (for the ball finder).
+        ball_finder: builds a robot's ball finder for its frame images
+            (``ball_finder(camera, ball)``), or None: the frames carry ball detections.
+        bounds: the walled area ``(x_min, x_max, y_min, y_max)`` [m].
+        landmark_table: the field's landmarks by kind, for the localization.
+        kld_config: the localization filter's configuration.
+        pose_sigmas: the observers' pose errors the inverse-variance fusion weighs lines by,
+            ``(position per axis [m], heading [rad])``.
+        fusion_window: team-mates' sightings captured within this time of a frame [s] are
+            fused with it.
+        frame_gap: without an own frame for this long [s], team-mates' sightings are fused as
+            they arrive.
+        bearing_sigma: the sightings' bearing error [rad].
+        range_per_metre: the sightings' relative range error per metre of range [1/m].
+        coast_age: the oldest the latest fused sighting is while the ball is seen in every
+            frame [s].
+    """
+
+    localization: str
+    fusion: str
+    ball_tracker: str
+    specs: Sequence[RobotSpec]
+    teams: Sequence[int]
+    index_of: Mapping[str, int]
+    team_members: Mapping[int, Sequence[int]]
+    ball_spec: BallSpec
+    camera: HeadCameraSpec
+    ball_finder: Callable[..., Any] | None
+    bounds: tuple[float, float, float, float]
+    landmark_table: LandmarkTable
+    kld_config: KLDConfig
+    pose_sigmas: tuple[float, float]
+    fusion_window: float
+    frame_gap: float
+    bearing_sigma: float
+    range_per_metre: float
+    coast_age: float
+
+    @property
+    def n_robots(self) -> int:
+        """The number of robots of the world."""
+        return len(self.teams)
+
+
+class Brain:
+    """One humanoid's estimation stack (see the module docstring).
+
+    Args:
+        index, name, team: the robot's index, name and team.
+        context: what it reads of its team's perception.
+        rng: its generator (localization, tracker, the turns of getting up).
+    """
+
+    def __init__(self, index: int, name: str, team: int, context: BrainContext,
                  rng: np.random.Generator) -> None:
         self.i, self.name, self.team = index, name, team
-        self.p = perception
+        self.context = context
         self.rng = rng
-        cfg = perception.config
-        self.kind = cfg.localization
-        self.fusion = cfg.fusion
-        weighting = FUSIONS[cfg.fusion]
+        self.kind = context.localization
+        self.fusion = context.fusion
+        weighting = FUSIONS[context.fusion]
         #: The fusion's weighting power (``K = 1 / L^power``; the inverse-variance weighting
         #: starts from ``1 / L``) and, for the inverse-variance weighting, the observers'
         #: pose errors ``(position [m], heading [rad])`` (else None).
         self.power = weighting_power(weighting)
-        self.pose_sigmas = (perception.pose_sigmas if weighting == INVERSE_VARIANCE
+        self.pose_sigmas = (context.pose_sigmas if weighting == INVERSE_VARIANCE
                             else None)
-        finder = perception.ball_finder
-        self.finder: Any = None if finder is None else finder(perception.camera,
-                                                               perception.ball_spec)
-        tracker = BALL_TRACKERS[cfg.ball_tracker]
+        finder = context.ball_finder
+        self.finder: Any = None if finder is None else finder(context.camera,
+                                                               context.ball_spec)
+        tracker = BALL_TRACKERS[context.ball_tracker]
         self.tracker = (None if tracker is None else tracker(
-            rng, perception.ball_spec.rolling_deceleration, _MAX_BALL_SPEED))
+            rng, context.ball_spec.rolling_deceleration, _MAX_BALL_SPEED))
         self._localizer = LOCALIZATIONS[self.kind]
 
     def reset(self, state: WorldState) -> None:
-        p = self.p
+        p = self.context
         start = state.robots[self.i, 0:3].copy()  # placed at a known pose
         self.pose = start.copy()
         self.loc = (None if self._localizer is None
@@ -159,7 +221,7 @@ class Brain:
         ``var_theta |d_xy|^2 / 2`` from the heading already wrong; heading
         ``(s_r d_theta)^2``. Errors drawn per gait step are treated as drawn per control step
         (the same variance per metre walked)."""
-        spec = self.p.specs[self.i]
+        spec = self.context.specs[self.i]
         dist2 = d[0] * d[0] + d[1] * d[1]
         var_xy, var_th = self.odo_var
         var_xy += 0.5 * (spec.odometry_trans_sigma**2 * dist2
@@ -215,7 +277,7 @@ class Brain:
 
     def frame(self, f: HeadFrame) -> Message:
         """Process one of the robot's frames; return its broadcast."""
-        p = self.p
+        p = self.context
         self.last_frame = f.t_delivered
         if self.loc is not None:
             self.move_localization(self.odometry_until(f.t_capture))
@@ -257,7 +319,7 @@ class Brain:
 
     def message(self, m: Message, now: float) -> None:
         """A team-mate's broadcast arrived."""
-        j = self.p.index_of[m.sender]
+        j = self.context.index_of[m.sender]
         prev = self.mate_poses.get(j)
         pose = np.array(m.pose)
         vel = np.zeros(3)
@@ -271,7 +333,7 @@ class Brain:
             x0, y0, angle, rng_ = m.sighting
             self.mate_lines[m.sender] = _Line(m.stamp, (x0, y0), angle, rng_)
             self.ball_heard = max(self.ball_heard, m.stamp)
-            if now - self.last_frame > self.p.frame_gap:
+            if now - self.last_frame > self.context.frame_gap:
                 # No frames of its own (fallen, or its camera is late): the team's sightings
                 # alone keep the belief going.
                 self._fuse(m.stamp)
@@ -296,7 +358,7 @@ class Brain:
 
     def _fuse(self, t: float) -> None:
         """Fuse the lines available at the frame captured at ``t`` and feed the tracker."""
-        window = self.p.fusion_window
+        window = self.context.fusion_window
         lines = []
         if self.own_line is not None and self.own_line.stamp == t:
             lines.append(self.own_line)
@@ -316,7 +378,7 @@ class Brain:
         known = [r for r in ranges if math.isfinite(r)]
         if min(known, default=1.0) <= 0.0:
             return  # a sighting at the camera's foot: no line to weigh
-        p = self.p
+        p = self.context
         rel = max(0.05, p.range_per_metre * (max(known) if known else 1.0))
         try:
             fused = fuse_lines(
@@ -346,7 +408,7 @@ class Brain:
             est = self.tracker.estimate(t)
             if est is None:
                 return None
-            x0, x1, y0, y1 = self.p.bounds
+            x0, x1, y0, y1 = self.context.bounds
             if not (x0 <= est[0] <= x1 and y0 <= est[1] <= y1):
                 est = np.array([min(x1, max(x0, est[0])), min(y1, max(y0, est[1])), 0.0, 0.0])
             return est
@@ -364,7 +426,7 @@ class Brain:
         the velocity of two fused points ``gap`` apart, ``sqrt(2) sigma / gap``), the own
         pose's spread (the localization's particles, dead reckoning's grown variance, 0 for
         the oracle); other robots' spreads are not modelled (``inf``)."""
-        p = self.p
+        p = self.context
         tracker = self.tracker
         if tracker is not None:
             sigma, sigma_v = sigmas(tracker.covariance(t))
@@ -407,7 +469,7 @@ class Brain:
         * the tracker's particles, moved by the mean's predicted displacement from the
           filter's time to ``t``, and the localization's particles (at its latest frame).
         """
-        p = self.p
+        p = self.context
         tracker = self.tracker
         ball = particles = None
         if tracker is not None:
@@ -434,7 +496,7 @@ class Brain:
 
     def belief(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         """``ball`` (6,) and ``robots`` (N, 6) as this robot believes them at ``t``."""
-        p = self.p
+        p = self.context
         ball = np.zeros(6)
         b = self.ball_point(t)
         if b is not None:

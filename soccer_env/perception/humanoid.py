@@ -50,7 +50,7 @@ import numpy as np
 
 from estimators import KLDConfig, KLDLocalizer, LandmarkTable, ParticleBallTracker
 from soccer_env.perception.base import expected_age
-from soccer_env.perception.brain import _FUSION_WINDOW_FRAMES, Brain
+from soccer_env.perception.brain import Brain, BrainContext
 from soccer_env.perception.options import DETECTORS
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.presets.sensors import HeadCameraSpec, RadioSpec
@@ -63,6 +63,9 @@ __all__ = ["HumanoidTeamPerception"]
 #: The localization's pose errors the inverse-variance fusion assumes (see
 #: :attr:`HumanoidTeamPerception.pose_sigmas`): position per axis [m], heading [rad].
 _POSE_SIGMAS = (0.05, math.radians(2.5))
+
+#: Fused sightings older than this many frame periods are not fused with a new one.
+_FUSION_WINDOW_FRAMES = 1.5
 
 
 class HumanoidTeamPerception:
@@ -158,11 +161,26 @@ class HumanoidTeamPerception:
 
     # ------------------------------------------------------------------------------------
 
+    def context(self) -> BrainContext:
+        """What each robot's :class:`~soccer_env.perception.brain.Brain` reads of this
+        pipeline (its present figures)."""
+        cfg = self.config
+        return BrainContext(
+            localization=cfg.localization, fusion=cfg.fusion, ball_tracker=cfg.ball_tracker,
+            specs=tuple(self.specs), teams=tuple(self.teams), index_of=dict(self.index_of),
+            team_members={t: tuple(m) for t, m in self.team_members.items()},
+            ball_spec=self.ball_spec, camera=self.camera, ball_finder=self.ball_finder,
+            bounds=self.bounds, landmark_table=self.landmark_table, kld_config=self.kld_config,
+            pose_sigmas=self.pose_sigmas, fusion_window=self.fusion_window,
+            frame_gap=self.frame_gap, bearing_sigma=self.bearing_sigma,
+            range_per_metre=self.range_per_metre, coast_age=self.coast_age)
+
     def reset(self, state: WorldState, body: BodyState, rng: np.random.Generator) -> None:
         """Start an episode at ``state`` (the robots' poses at the start are known; ``body``
         gives their heads)."""
         self._rngs = rng.spawn(len(self.observers) + 2)
-        self._brains = {i: Brain(i, self.names[i], self.teams[i], self, r)
+        context = self.context()
+        self._brains = {i: Brain(i, self.names[i], self.teams[i], context, r)
                         for i, r in zip(self.observers, self._rngs)}
         self._radios = {}
         for t, members in self.team_members.items():

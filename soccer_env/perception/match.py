@@ -14,7 +14,7 @@ from soccer_env.perception.base import PerceptionConfig
 from soccer_env.perception.humanoid import HumanoidTeamPerception
 from soccer_env.perception.overhead import (
     TruthPerception,
-    _VisionPerception,
+    VisionPerception,
     make_perception,
 )
 from soccer_env.perception.randomization import check_ranges, draw
@@ -91,31 +91,55 @@ class MatchPerception:
         #: preset's spec, the randomisation, what builds the group's pipeline from a drawn
         #: spec).
         self._randomized: dict[int, tuple[Any, Any, Any]] = {}
+        self._add_ssl_teams(configs, modes, field, ball, specs, teams, members, kinds,
+                            control_dt)
+        self._add_humanoid_teams(configs, modes, field, ball, specs, teams, names, members,
+                                 kinds)
+        self._index_humanoids()
+        self._beliefs: dict[int, Any] = {}
+        self._current: dict[int, Any] = {}
+
+    def _add_ssl_teams(self, configs: tuple[PerceptionConfig, PerceptionConfig],
+                       modes: tuple[str, str], field: FieldSpec, ball: BallSpec,
+                       specs: list[RobotSpec], teams: list[int], members: list[list[int]],
+                       kinds: list[str | None], control_dt: float) -> None:
+        """The SSL teams' groups: one pipeline shared by both teams, or one each (on shared
+        camera frames where they can be; :meth:`_share_frames`)."""
+        n, features = len(specs), self.features
         ssl_teams = [t for t in (0, 1) if kinds[t] == "ssl"]
-        if ssl_teams:
-            shared = (len(ssl_teams) == 2 and configs[0] == configs[1]
-                      and modes[0] == modes[1])
-            for t in ([ssl_teams[0]] if shared else ssl_teams):
-                cfg = configs[t]
-                mode = modes[t]
-                group = members[0] + members[1] if shared else members[t]
-                tts = ssl_teams if shared else [t]
+        if not ssl_teams:
+            return
+        shared = (len(ssl_teams) == 2 and configs[0] == configs[1]
+                  and modes[0] == modes[1])
+        for t in ([ssl_teams[0]] if shared else ssl_teams):
+            cfg = configs[t]
+            mode = modes[t]
+            group = members[0] + members[1] if shared else members[t]
+            tts = ssl_teams if shared else [t]
 
-                def build(spec, cfg=cfg, t=t, tts=tts, mode=mode):
-                    # The commands' latency in whole control steps and their loss follow the
-                    # (drawn) spec; the filters predict to when the commands take effect.
-                    delay = round(spec.actuation_latency / control_dt)
-                    for tt in tts:
-                        self.delays[tt], self.losses[tt] = delay, spec.command_loss
-                    return make_perception(mode, dataclasses.replace(cfg, vision=spec),
-                                           field, specs[members[t][0]], ball, n,
-                                           delay * control_dt, teams, specs, features)
+            def build(spec, cfg=cfg, t=t, tts=tts, mode=mode):
+                # The commands' latency in whole control steps and their loss follow the
+                # (drawn) spec; the filters predict to when the commands take effect.
+                delay = round(spec.actuation_latency / control_dt)
+                for tt in tts:
+                    self.delays[tt], self.losses[tt] = delay, spec.command_loss
+                return make_perception(mode, dataclasses.replace(cfg, vision=spec),
+                                       field, specs[members[t][0]], ball, n,
+                                       delay * control_dt, teams, specs, features)
 
-                if cfg.randomize and mode != "truth":
-                    check_ranges(cfg.vision, cfg.randomize, "ssl")
-                    self._randomized[len(self._groups)] = (cfg.vision, cfg.randomize, build)
-                self._groups.append((group, build(cfg.vision), False))
-            self._share_frames()
+            if cfg.randomize and mode != "truth":
+                check_ranges(cfg.vision, cfg.randomize, "ssl")
+                self._randomized[len(self._groups)] = (cfg.vision, cfg.randomize, build)
+            self._groups.append((group, build(cfg.vision), False))
+        self._share_frames()
+
+    def _add_humanoid_teams(self, configs: tuple[PerceptionConfig, PerceptionConfig],
+                            modes: tuple[str, str], field: FieldSpec, ball: BallSpec,
+                            specs: list[RobotSpec], teams: list[int], names: Sequence[str],
+                            members: list[list[int]], kinds: list[str | None]) -> None:
+        """The humanoid teams' groups: the truth, or a
+        :class:`~soccer_env.perception.humanoid.HumanoidTeamPerception` per team (with the
+        filters off in raw mode)."""
         for t in (0, 1):
             if kinds[t] != "humanoid":
                 continue
@@ -138,16 +162,13 @@ class MatchPerception:
                 check_ranges(camera, cfg.randomize, "humanoid")
                 self._randomized[len(self._groups)] = (camera, cfg.randomize, build_team)
             self._groups.append((members[t], build_team(camera), True))
-        self._index_humanoids()
-        self._beliefs: dict[int, Any] = {}
-        self._current: dict[int, Any] = {}
 
     def _share_frames(self) -> None:
         """Two SSL teams' own pipelines on the same camera frames: the second takes the
         first's frames when both read the same geometric vision (one preset, no
         randomisation)."""
         vision = [(g, pipe) for g, (_, pipe, _) in enumerate(self._groups)
-                  if isinstance(pipe, _VisionPerception)]
+                  if isinstance(pipe, VisionPerception)]
         if len(vision) != 2 or self._randomized:
             return
         (_, a), (_, b) = vision

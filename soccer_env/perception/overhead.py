@@ -33,7 +33,8 @@ from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
 from soccer_env.sensors.overhead import DetectionFrame
 from soccer_env.state import Belief, BeliefQuality, BeliefSpread, WorldState
 
-__all__ = ["TruthPerception", "RawPerception", "FilteredPerception", "make_perception"]
+__all__ = ["TruthPerception", "VisionPerception", "RawPerception", "FilteredPerception",
+           "make_perception"]
 
 
 class TruthPerception:
@@ -49,8 +50,16 @@ class TruthPerception:
         return state, state
 
 
-class _VisionPerception:
-    """Shared part of the pipelines fed by the overhead vision."""
+class VisionPerception:
+    """What the pipelines fed by the overhead vision share (the base of
+    :class:`RawPerception` and :class:`FilteredPerception`): the sensor and its detector as
+    the ``detector`` option builds them, the frames of each reset and update (taken from
+    another team's pipeline instead when :attr:`frames_from` is set), and the step that feeds
+    them to the estimation.
+
+    A subclass supplies ``_clear`` (forget the episode), :meth:`consume` (take a step's
+    frames) and :meth:`beliefs` (the beliefs at a time).
+    """
 
     def __init__(self, config: PerceptionConfig, field: FieldSpec, robot: SSLRobotSpec,
                  ball: BallSpec, n_robots: int, teams: Sequence[int] | None = None,
@@ -68,7 +77,7 @@ class _VisionPerception:
         #: Another team's pipeline whose camera frames this one takes instead of its own
         #: sensor's (:class:`~soccer_env.perception.match.MatchPerception` sets it for two SSL
         #: teams on the same vision; that pipeline is reset and updated first).
-        self.frames_from: _VisionPerception | None = None
+        self.frames_from: VisionPerception | None = None
         #: The frames of the latest reset or update.
         self.last_frames: list[DetectionFrame] = []
         #: Whether the beliefs carry their :class:`~soccer_env.state.BeliefQuality` (the
@@ -78,6 +87,8 @@ class _VisionPerception:
         self._expected_age = expected_age(v.frame_rate, v.latency, v.latency_jitter)
 
     def reset(self, state: WorldState, rng: np.random.Generator):
+        """Start an episode at ``state``: the sensor's warm-up frames consumed; returns
+        :meth:`beliefs` at its time."""
         self._clear()
         if self.frames_from is not None:
             frames = self.frames_from.last_frames
@@ -94,6 +105,8 @@ class _VisionPerception:
         return self.beliefs(state.time)
 
     def update(self, state: WorldState):
+        """Advance to ``state``: the frames delivered by its time consumed; returns
+        :meth:`beliefs` at its time."""
         if self.frames_from is not None:
             frames = self.frames_from.last_frames
         else:
@@ -116,7 +129,7 @@ class _VisionPerception:
         raise NotImplementedError
 
 
-class RawPerception(_VisionPerception):
+class RawPerception(VisionPerception):
     """``obs_mode="raw"``: the latest delayed detections, no filtering.
 
     The ball is its most recent detection (of several in a frame, the one nearest the previous
@@ -219,7 +232,7 @@ def _last_and_rate(hist: list, dims: int) -> tuple[list, list]:
     return list(last[1:]), rate
 
 
-class FilteredPerception(_VisionPerception):
+class FilteredPerception(VisionPerception):
     """``obs_mode="perceived"``: batched robot pose filters and a ball tracker.
 
     Frames are processed in capture-time order: the robots first (their detections in the same
@@ -334,7 +347,7 @@ def make_perception(obs_mode: str, config: PerceptionConfig, field: FieldSpec,
     if obs_mode == "truth":
         return TruthPerception(config)
     if obs_mode == "raw":
-        p: _VisionPerception = RawPerception(config, field, robot, ball, n_robots, teams,
+        p: VisionPerception = RawPerception(config, field, robot, ball, n_robots, teams,
                                              robots)
     elif obs_mode == "perceived":
         p = FilteredPerception(config, field, robot, ball, n_robots, teams, robots)

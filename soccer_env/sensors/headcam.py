@@ -329,16 +329,15 @@ class HeadCameraSensor:
         order. ``interval``: the frame period for the spurious-ball probability (None: the time
         since each observer's previous frame).
 
-        The visibility test runs as one array pass over every (frame, object) pair of the step
-        (the frames due in one step share the truth); the few objects that pass it (a handful
-        per frame) are finished in plain Python, where numpy's per-call overhead would cost
-        more than the arithmetic. One function on purpose (it is longer than the package's
-        80-line guide): it is the hot path of humanoid perception, and the array pass and the
-        loop that finishes its candidates share a dozen intermediate arrays that helpers
-        would have to pass back and forth.
+        The steps: the frame's random numbers, drawn in fixed-size blocks; the visibility
+        test as one array pass over every (frame, object) pair of the step (the frames due
+        in one step share the truth; :meth:`_visible`); the few objects that pass it (a
+        handful per frame) finished in plain Python, where numpy's per-call overhead would
+        cost more than the arithmetic: the occlusion test and the back-projection
+        (:meth:`_detections`); the spurious balls and the delivery times.
         """
         spec = self.spec
-        m, p = self._m, self._p
+        p = self._p
         now = state.time
         F = len(due)
         rng = self._rng
@@ -347,6 +346,43 @@ class HeadCameraSensor:
         U = rng.random((F, p + 4))
         Z = rng.standard_normal((F, 2, p))
         obs = np.array([self.observers[j] for j in due])
+        fr, sl, du, dv, dx, dy, ox, oy, pan, tilt = self._visible(state, heads, obs, U)
+        cand = zip(fr.tolist(), sl.tolist(), du[fr, sl].tolist(), dv[fr, sl].tolist(),
+                   dx[fr, sl].tolist(), dy[fr, sl].tolist(),
+                   (spec.pixel_sigma * Z[fr, 0, sl]).tolist(),
+                   (spec.pixel_sigma * Z[fr, 1, sl]).tolist())
+        pans, tilts, ids = pan.tolist(), tilt.tolist(), obs.tolist()
+        # Per frame: believed head angles, and the other robots as possible occluders.
+        heads_b = [(math.cos(a), math.sin(a), math.cos(b), math.sin(b))
+                   for a, b in zip(pans, tilts)]
+        occluders: list[list] = [[] for _ in range(F)]
+        if spec.occlusion and len(fr):
+            r2 = self._r2.tolist()
+            for k, (oxk, oyk) in enumerate(zip(ox.tolist(), oy.tolist())):
+                me = ids[k]
+                occluders[k] = [(qx, qy, rr, j) for j, (qx, qy, rr) in
+                                enumerate(zip(oxk, oyk, r2)) if j != me]
+        balls, lms, rbs = self._detections(cand, occluders, heads_b, F)
+        # Spurious balls after the true one.
+        r_ball = self.ball_spec.radius
+        for k, u, v in self._spurious(U[:, p:p + 3].tolist(), due, tilts, interval, now):
+            balls[k].append((u, v) + self._back_project(u, v, heads_b[k], r_ball))
+        delays = (spec.latency + spec.latency_jitter * U[:, p + 3]).tolist()
+        return [HeadFrame(ids[k], now, now + delays[k], pans[k], tilts[k], tuple(balls[k]),
+                          tuple(lms[k]), tuple(rbs[k])) for k in range(F)]
+
+    def _visible(self, state: WorldState, heads: HeadState, obs: np.ndarray, U: np.ndarray
+                 ) -> tuple[np.ndarray, ...]:
+        """The visibility test of every (frame, object) pair, one array pass: the objects'
+        offsets from each observer ``obs`` (its camera foot) and their pixel offsets with
+        the TRUE orientation (module docstring), tested against the image, the ranges and
+        the detection uniforms ``U``. Returns the candidates' frames and slots ``fr, sl``,
+        the ``(F, p)`` pixel offsets ``du, dv`` (``dv`` upwards) and ground offsets
+        ``dx, dy``, the ``(F, N)`` offsets of every robot's centre ``ox, oy``, and the
+        observers' pan and tilt."""
+        spec = self.spec
+        m, p = self._m, self._p
+        F = len(obs)
         rows = np.arange(F)
         robots = state.robots
         X, Y = robots[:, 0], robots[:, 1]
@@ -386,21 +422,17 @@ class HeadCameraSensor:
               & (dx * dx + dy * dy <= self._range2) & (U[:, :p] < self._p_detect))
         ok[rows, 1 + m + obs] = False  # not oneself
         fr, sl = np.nonzero(ok)
-        cand = zip(fr.tolist(), sl.tolist(), du[fr, sl].tolist(), dv[fr, sl].tolist(),
-                   dx[fr, sl].tolist(), dy[fr, sl].tolist(),
-                   (spec.pixel_sigma * Z[fr, 0, sl]).tolist(),
-                   (spec.pixel_sigma * Z[fr, 1, sl]).tolist())
-        pans, tilts, ids = pan.tolist(), tilt.tolist(), obs.tolist()
-        # Per frame: believed head angles, and the other robots as possible occluders.
-        heads_b = [(math.cos(a), math.sin(a), math.cos(b), math.sin(b))
-                   for a, b in zip(pans, tilts)]
-        occluders: list[list] = [[] for _ in range(F)]
-        if spec.occlusion and len(fr):
-            r2 = self._r2.tolist()
-            for k, (oxk, oyk) in enumerate(zip(ox.tolist(), oy.tolist())):
-                me = ids[k]
-                occluders[k] = [(qx, qy, rr, j) for j, (qx, qy, rr) in
-                                enumerate(zip(oxk, oyk, r2)) if j != me]
+        return fr, sl, du, dv, dx, dy, ox, oy, pan, tilt
+
+    def _detections(self, cand: Any, occluders: list[list], heads_b: list, F: int
+                    ) -> tuple[list[list], list[list], list[list]]:
+        """The candidates ``cand`` (frame, slot, pixel and ground offsets, pixel noise) that
+        no other robot hides, back-projected with the believed head ``heads_b`` of their
+        frame: per frame its balls, landmarks and robots, as :class:`HeadFrame` lists
+        them."""
+        m = self._m
+        u0, v0 = self._u0, self._v0
+        r_ball = self.ball_spec.radius
         balls: list[list] = [[] for _ in range(F)]
         lms: list[list] = [[] for _ in range(F)]
         rbs: list[list] = [[] for _ in range(F)]
@@ -433,12 +465,7 @@ class HeadCameraSensor:
                 lms[k].append((kinds[slot - 1], u, v, x, y, b))
             else:
                 rbs[k].append((teams[target], u, v, x, y, b))
-        # Spurious balls after the true one.
-        for k, u, v in self._spurious(U[:, p:p + 3].tolist(), due, tilts, interval, now):
-            balls[k].append((u, v) + self._back_project(u, v, heads_b[k], r_ball))
-        delays = (spec.latency + spec.latency_jitter * U[:, p + 3]).tolist()
-        return [HeadFrame(ids[k], now, now + delays[k], pans[k], tilts[k], tuple(balls[k]),
-                          tuple(lms[k]), tuple(rbs[k])) for k in range(F)]
+        return balls, lms, rbs
 
     def _back_project(self, u: float, v: float, head: tuple[float, float, float, float],
                       plane: float) -> tuple[float, float, float]:

@@ -35,6 +35,12 @@ import math
 import numpy as np
 import pymunk
 import pymunk.batch as pbatch
+
+# Chipmunk's C functions: ``cpSpaceStep`` on a space's handle steps it without the 3
+# microseconds of Python housekeeping of ``Space.step`` per substep, and ``cpBodyGetVelocity``
+# reads one ball's velocity at a third of the cost of ``Body.velocity``; pymunk 7's public
+# ``pymunk.batch`` reads and writes whole spaces, which costs more per substep than these
+# calls for the few balls that slide. The package pins pymunk 7, whose internals these are.
 from pymunk._chipmunk import lib as _cp
 
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
@@ -289,6 +295,14 @@ class WorldBatch:
     def step(self, commands: np.ndarray) -> None:
         """Advance every world by one control step.
 
+        The steps: the commands become the control bodies' velocities (clipped and turned to
+        the field frame at the mid-step heading, :meth:`_field_velocities`; the humanoids'
+        from their walk engines, :meth:`_walk`), written in one batch per space
+        (:meth:`_write_velocities`); the kickers that may fire at a ball already in their
+        mouth and the dribblers that may hold it are found on the whole batch
+        (:meth:`_kicks_and_dribbles`); each space runs its substeps (:meth:`_substeps`);
+        then the clocks, the humanoids' events and the state read back.
+
         Args:
             commands: ``(n_worlds, N, 6)``: each world's command rows as
                 :meth:`World.step <soccer_env.sim.world.World.step>` takes them (``vx, vy``
@@ -300,17 +314,7 @@ class WorldBatch:
         if c.shape != (self.n_worlds, self.n_robots, 6):
             raise ValueError(f"commands must have shape ({self.n_worlds}, {self.n_robots}, 6), "
                              f"got {c.shape}")
-        vx, vy, w = c[..., 0], c[..., 1], c[..., 2]
-        speed = np.hypot(vx, vy)
-        fast = speed > self._vmax
-        if fast.any():  # as World.step rounds it: v * vmax / speed
-            safe = np.where(fast, speed, 1.0)
-            vx = np.where(fast, vx * self._vmax / safe, vx)
-            vy = np.where(fast, vy * self._vmax / safe, vy)
-        w = np.clip(w, -self._wmax, self._wmax)
-        heading = self.state[:, 1:, 2] + 0.5 * self.control_dt * w
-        cos, sin = np.cos(heading), np.sin(heading)
-        field_vx, field_vy = cos * vx - sin * vy, sin * vx + cos * vy
+        field_vx, field_vy, w = self._field_velocities(c)
         kick = c[..., 3]
         ssl = self._ssl_mask
         armed = np.where(ssl & (kick > 0.0), np.minimum(kick, self._cap), 0.0)
@@ -326,21 +330,61 @@ class WorldBatch:
         self._pending = []
         t0s = self._times.tolist()
         if self.humanoid_indices:
-            # The humanoids' walk engines, world by world (as World.step drives them), and
-            # every world entered for its humanoids' events.
-            hum = self.humanoid_indices
-            rows, headings = c.tolist(), self.state[:, 1:, 2].tolist()
-            field_vx, field_vy, w = field_vx.copy(), field_vy.copy(), w.copy()
-            for k, world in enumerate(self.worlds):
-                self._enter(k)
-                moves = world.walk.command([rows[k][i] for i in hum],
-                                           [headings[k][i] for i in hum], t0s[k])
-                for i, (mx, my, mw) in zip(hum, moves):
-                    field_vx[k, i], field_vy[k, i], w[k, i] = mx, my, mw
-        # Velocities only: the balls' and robots' are those of :attr:`state` (read at the end
-        # of the last step; every change between steps, a teleport or a shot, goes through
-        # the worlds' ``set_robot`` and ``set_ball``, which write it there too), so the step
-        # needs no read of the space before its write, and positions are left alone.
+            field_vx, field_vy, w = self._walk(c, field_vx, field_vy, w, t0s)
+        self._write_velocities(field_vx, field_vy, w)
+        dribbling = self._kicks_and_dribbles(armed, dribble_on)
+        self._substeps(dribbling)
+        worlds = self.worlds
+        for world, t in zip(worlds, self._times.tolist()):
+            world.time = t
+        if self.humanoid_indices:
+            for world, t0 in zip(worlds, t0s):
+                world._humanoid_events(t0)
+        self.read_state()
+
+    def _field_velocities(self, c: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The control bodies' field-frame velocities ``vx, vy`` [m/s] and turn rates
+        ``omega`` [rad/s], ``(n_worlds, N)`` each, of the commands ``c``: the speed clipped
+        to ``max_speed`` (as :meth:`World.step <soccer_env.sim.world.World.step>` rounds
+        it: ``v * vmax / speed``), the turn rate to ``max_angular_speed``, the body frame
+        turned by the heading expected at mid-step."""
+        vx, vy, w = c[..., 0], c[..., 1], c[..., 2]
+        speed = np.hypot(vx, vy)
+        fast = speed > self._vmax
+        if fast.any():  # as World.step rounds it: v * vmax / speed
+            safe = np.where(fast, speed, 1.0)
+            vx = np.where(fast, vx * self._vmax / safe, vx)
+            vy = np.where(fast, vy * self._vmax / safe, vy)
+        w = np.clip(w, -self._wmax, self._wmax)
+        heading = self.state[:, 1:, 2] + 0.5 * self.control_dt * w
+        cos, sin = np.cos(heading), np.sin(heading)
+        return cos * vx - sin * vy, sin * vx + cos * vy, w
+
+    def _walk(self, c: np.ndarray, field_vx: np.ndarray, field_vy: np.ndarray,
+              w: np.ndarray, t0s: list[float]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The humanoids' walk engines, world by world (as World.step drives them), and
+        every world entered for its humanoids' events: copies of the velocities
+        ``field_vx, field_vy, w`` with the humanoids' columns from their engines."""
+        hum = self.humanoid_indices
+        rows, headings = c.tolist(), self.state[:, 1:, 2].tolist()
+        field_vx, field_vy, w = field_vx.copy(), field_vy.copy(), w.copy()
+        for k, world in enumerate(self.worlds):
+            self._enter(k)
+            moves = world.walk.command([rows[k][i] for i in hum],
+                                       [headings[k][i] for i in hum], t0s[k])
+            for i, (mx, my, mw) in zip(hum, moves):
+                field_vx[k, i], field_vy[k, i], w[k, i] = mx, my, mw
+        return field_vx, field_vy, w
+
+    def _write_velocities(self, field_vx: np.ndarray, field_vy: np.ndarray, w: np.ndarray
+                          ) -> None:
+        """Write every body's velocity, one :mod:`pymunk.batch` call per space: the control
+        bodies' commands, the others' present ones.
+
+        Velocities only: the balls' and robots' are those of :attr:`state` (read at the end
+        of the last step; every change between steps, a teleport or a shot, goes through
+        the worlds' ``set_robot`` and ``set_ball``, which write it there too), so the step
+        needs no read of the space before its write, and positions are left alone."""
         state = self.state
         for shard in self._shards:
             bodies = shard.commands
@@ -351,10 +395,14 @@ class WorldBatch:
             bodies[rows, 1] = field_vy[sl]
             bodies[rows, 2] = w[sl]
             pbatch.set_space_bodies(shard.space, _VELOCITIES, shard.write)
-        # Which worlds may fire a kicker at a ball already in its mouth, or dribble: the
-        # worlds' own first tests (the ball within reach of an armed kicker; of a running
-        # dribbler within this step), on the whole batch at once, with the same arithmetic,
-        # so that only those worlds run their full checks.
+
+    def _kicks_and_dribbles(self, armed: np.ndarray, dribble_on: np.ndarray
+                            ) -> dict[int, list[tuple[World, list[int]]]]:
+        """Which worlds may fire a kicker at a ball already in its mouth, or dribble: the
+        worlds' own first tests (the ball within reach of an armed kicker; of a running
+        dribbler within this step), on the whole batch at once, with the same arithmetic,
+        so that only those worlds run their full checks. Fires the resting balls' kicks;
+        returns the dribbling robots by space: ``{shard: [(world, robots)]}``."""
         state = self.state
         dx = state[:, :1, 0] - state[:, 1:, 0]
         dy = state[:, :1, 1] - state[:, 1:, 1]
@@ -372,7 +420,12 @@ class WorldBatch:
                     dribbling.setdefault(k // self.shard_size, []).append((world, candidates))
         for k in resting:
             self._enter(k)._kick_resting_ball()
+        return dribbling
 
+    def _substeps(self, dribbling: dict[int, list[tuple[World, list[int]]]]) -> None:
+        """Each space's substeps in turn: the dribblers' holds, one Chipmunk step for all
+        its worlds, the clocks, the kicks fired in the substep, and the flights and the
+        sliding-to-rolling switches of the worlds whose ball moves so."""
         h = self.substep_dt
         step, worlds, times = self._step_space, self.worlds, self._times
         get_velocity = _cp.cpBodyGetVelocity
@@ -406,12 +459,6 @@ class WorldBatch:
                         v = get_velocity(world._ball_handle)
                         if v.x * v.x + v.y * v.y <= world._v_switch * world._v_switch:
                             world._set_sliding(False, 0.0)
-        for world, t in zip(worlds, times.tolist()):
-            world.time = t
-        if self.humanoid_indices:
-            for world, t0 in zip(worlds, t0s):
-                world._humanoid_events(t0)
-        self.read_state()
 
     @property
     def times(self) -> np.ndarray:

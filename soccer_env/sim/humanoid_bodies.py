@@ -5,7 +5,7 @@
 robot's body lying on the ground and its getting up, the timed kick's foot strike, and what
 the humanoids' bodies report (:meth:`head_state`, :meth:`body_state`). They read and write the
 world's own state; they live in their own module so that the world's module keeps to the
-bodies, the stepping and the reading.
+episodes, the stepping and the reading.
 """
 
 from __future__ import annotations

@@ -103,9 +103,10 @@ import numpy as np
 
 from soccer_env.presets import BallSpec, FieldSpec
 from soccer_env.presets.rules import HumanoidRuleSpec
-from soccer_env.sim.game import SITUATIONS, STAGES, Decision, Frame, GameEvent, RefereeState
-from soccer_env.sim.referee import ExitKind, classify_exit
-from soccer_env.sim.world import BallExit
+from soccer_env.sim.ball import BallExit
+from soccer_env.sim.game.state import RefereeState
+from soccer_env.sim.game.types import SITUATIONS, STAGES, Decision, Frame, GameEvent
+from soccer_env.sim.referee import ExitKind, classify_exit, defending_team, exit_end, exit_side
 
 __all__ = ["HumanoidGameController", "HUMANOID_COMMANDS", "HUMANOID_FOULS", "RESTARTS"]
 
@@ -124,7 +125,8 @@ class HumanoidGameController(RefereeState):
     """The autonomous referee of one Humanoid League match (see the module docstring).
 
     Args:
-        field, ball: the match's specs.
+        field: the match's field.
+        ball: the match's ball.
         teams: ``(N,)`` team of each robot (0 blue, 1 yellow), blue first.
         radii: ``(N,)`` robot footprint radii [m].
         rules: the rule preset (:class:`~soccer_env.presets.rules.HumanoidRuleSpec`).
@@ -286,10 +288,7 @@ class HumanoidGameController(RefereeState):
             d.events.append(GameEvent("stage_changed"))
             self._kickoff(1 - self.first_kickoff, d, line_up=True)
             return
-        self.stage = "post_game"
-        self.command, self.command_team = "stop", -1
-        self.in_play = False
-        d.over = True
+        self._end_match(d)
 
     def _remove(self, i: int, kind: str, x: float, y: float, d: Decision) -> None:
         """A removal penalty for robot ``i`` (Law 13; Section II, removal penalty)."""
@@ -300,9 +299,6 @@ class HumanoidGameController(RefereeState):
         info.off.append(i)
         self._removed[i] = self.rules.removal_time
         d.send_off.append(i)
-
-    def _on_field(self, i: int) -> bool:
-        return i not in self._removed
 
     # ------------------------------------------------------------------------------------
     # Restarts
@@ -328,7 +324,7 @@ class HumanoidGameController(RefereeState):
     def _kickoff(self, team: int, d: Decision, line_up: bool) -> None:
         """A kick-off for ``team`` (Law 8); the teams lined up by the simulation."""
         self._new_restart("kickoff", team, (0.0, 0.0))
-        self.command, self.command_team = "normal_start", team
+        self._set_command("normal_start", team)
         self.in_play = False
         if line_up:
             d.line_up = ("kickoff", team)
@@ -339,7 +335,7 @@ class HumanoidGameController(RefereeState):
         the ball placed there, the opponents moved out to the distance they must keep
         (Section II, game interruption procedure)."""
         self._new_restart(kind, team, spot)
-        self.command, self.command_team = "direct_free", team
+        self._set_command("direct_free", team)
         self.in_play = False
         d.place_ball = spot
         d.clear = (self.rules.opponent_distance + self._robot_reach, team)
@@ -348,7 +344,7 @@ class HumanoidGameController(RefereeState):
         """A dropped ball (Law 8): on the centre mark, every robot out of the centre circle,
         in play at once."""
         self._new_restart("drop_ball", -1, (0.0, 0.0))
-        self.command, self.command_team = "force_start", -1
+        self._set_command("force_start", -1)
         d.place_ball = (0.0, 0.0)
         d.clear = (self.field.center_circle_radius + self._robot_reach, -1)
         self.in_play = True
@@ -432,7 +428,7 @@ class HumanoidGameController(RefereeState):
         hx, hy = f.half_length - inset, f.half_width - inset
         last = self._last_touch
         last_team = int(self.teams[last]) if last >= 0 else -1
-        side = math.copysign(1.0, ex.y) if ex.y != 0.0 else 1.0
+        side = exit_side(ex)
         if kind.kind == "goal":
             s = kind.scorer
             kt = self._kick_team
@@ -454,8 +450,8 @@ class HumanoidGameController(RefereeState):
             self._interrupt("throw_in", team, (x, side * hy), d)
             return
         # Over a goal line outside the goal, or over the crossbar.
-        end = kind.end if kind.end else (1 if ex.x > 0 else -1)
-        defender = 1 if end > 0 else 0  # blue defends x < 0
+        end = exit_end(ex, kind)
+        defender = defending_team(end)
         d.events.append(GameEvent("ball_left_field_goal_line", last_team, last, ex.x, ex.y))
         if last_team == defender:
             self._interrupt("corner_kick", 1 - defender, (end * hx, side * hy), d)
@@ -464,7 +460,5 @@ class HumanoidGameController(RefereeState):
 
     def _goal(self, scorer: int, last: int, ex: BallExit, d: Decision) -> None:
         """A valid goal (Law 10): the team that conceded kicks off (Law 8)."""
-        self.team_info[scorer].goals += 1
-        d.scorer = scorer
-        d.events.append(GameEvent("goal", scorer, last, ex.x, ex.y))
+        self._score(scorer, last, ex, d)
         self._kickoff(1 - scorer, d, line_up=True)

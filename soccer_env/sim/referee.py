@@ -31,8 +31,9 @@ from soccer_env.presets import BallSpec, FieldSpec
 from soccer_env.presets.rules import RULES
 from soccer_env.sim.world import BallExit, World
 
-__all__ = ["ExitKind", "classify_exit", "formation", "place_free_kick", "place_kickoff",
-           "place_penalty", "FREE_KICK_INSET", "STOP_DISTANCE"]
+__all__ = ["ExitKind", "classify_exit", "exit_end", "exit_side", "defending_team", "formation",
+           "free_kick_spot", "place_free_kick", "place_kickoff", "place_penalty",
+           "FREE_KICK_INSET", "STOP_DISTANCE"]
 
 #: Distance [m] from the lines at which a ball out of play is placed back (the SSL rules'
 #: free-kick margin).
@@ -74,6 +75,25 @@ def classify_exit(exit: BallExit, field: FieldSpec, ball: BallSpec) -> ExitKind:
     if beyond_goal_line:
         return ExitKind("goal_line", end, -1)
     return ExitKind("touch", 0, -1)
+
+
+def exit_end(exit: BallExit, kind: ExitKind) -> int:
+    """The end of the field the ball left by: ``kind.end`` over a goal line (+1 at
+    ``x > 0``, -1 at ``x < 0``), over a touch line the end of the half it left from."""
+    return kind.end if kind.end else (1 if exit.x > 0 else -1)
+
+
+def exit_side(exit: BallExit) -> float:
+    """The side of the field the ball left on: +1 (``y >= 0``, the touch line at
+    ``y > 0`` and the corners beside it) or -1; a restart on a touch line is taken on this
+    side."""
+    return math.copysign(1.0, exit.y) if exit.y != 0.0 else 1.0
+
+
+def defending_team(end: int) -> int:
+    """The team that defends the goal at ``end`` (+1: ``x > 0``); blue (0) defends
+    ``x < 0``."""
+    return 1 if end > 0 else 0
 
 
 def formation(field: FieldSpec, team: int, n: int, kickoff: bool, robot_radius: float,
@@ -188,8 +208,7 @@ def free_kick_spot(exit: BallExit, kind: ExitKind, field: FieldSpec,
     if kind.kind == "touch":
         x = float(np.clip(exit.x, -hx + inset, hx - inset))
         return x, math.copysign(hy - inset, exit.y)
-    side = math.copysign(1.0, exit.y) if exit.y != 0.0 else 1.0
-    return kind.end * (hx - inset), side * (hy - inset)
+    return kind.end * (hx - inset), exit_side(exit) * (hy - inset)
 
 
 def place_free_kick(world: World, exit: BallExit, kind: ExitKind) -> int:
@@ -201,9 +220,8 @@ def place_free_kick(world: World, exit: BallExit, kind: ExitKind) -> int:
     if world.last_touch >= 0:
         team = 1 - int(world.teams[world.last_touch])
     else:
-        # Nobody touched it: the team defending that end (blue defends x < 0).
-        end = kind.end if kind.end else (1 if exit.x > 0 else -1)
-        team = 1 if end > 0 else 0
+        # Nobody touched it: the team defending that end.
+        team = defending_team(exit_end(exit, kind))
     bx, by = free_kick_spot(exit, kind, world.field)
     world.set_ball(bx, by)
     robots = world.robot_array().copy()

@@ -4,7 +4,7 @@
 robots (see :class:`~soccer_env.presets.SSLRobotSpec`): the contact handler that arms a kick
 or damps the ball's bounce, the mouth test (the kicker's light barrier), firing a flat or chip
 kick, and the dribbler's hold. They read and write the world's own state; they live in their
-own module so that the world's module keeps to the bodies, the stepping and the reading.
+own module so that the world's module keeps to the episodes, the stepping and the reading.
 """
 
 from __future__ import annotations

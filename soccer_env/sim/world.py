@@ -26,14 +26,19 @@ lacks:
 The control step (``control_dt``) is split into equal physics substeps no longer than
 ``physics_dt``. Positions and velocities are read back in one batch per control step
 (:mod:`pymunk.batch`), which keeps per-body Python calls out of the hot loop.
+
+The world's methods are grouped by what they act on: :class:`~soccer_env.sim.space.SpaceBodies`
+(building the bodies in a space, their contacts' memory, copying),
+:class:`~soccer_env.sim.placement.Placement` (teleporting robots and the ball),
+:class:`~soccer_env.sim.ball.BallPhysics` (friction phases, flight, touches and exits),
+:class:`~soccer_env.sim.ssl.KickerDribbler` and
+:class:`~soccer_env.sim.humanoid_bodies.HumanoidBodies`; this module keeps the world's
+configuration, the start of an episode, the step and the reading of the state.
 """
 
 from __future__ import annotations
 
-import copy
-import functools
 import math
-from dataclasses import dataclass
 
 import numpy as np
 import pymunk
@@ -41,20 +46,24 @@ import pymunk.batch as pbatch
 
 # Chipmunk's C functions, called directly in the hot loop: pymunk's property wrappers cost
 # 0.6-0.8 microseconds per access against 0.2-0.3 for the C call, and a Goalkeeper step makes
-# a dozen such accesses. The package pins pymunk 7, whose internals these are.
+# a dozen such accesses; ``pymunk.batch`` reads and writes whole spaces, which costs more than
+# these calls for the few bodies of a world. The package pins pymunk 7, whose internals these
+# are.
 from pymunk._chipmunk import lib as _cp
 
 from soccer_env.presets import (
-    GRAVITY,
     BallSpec,
     FieldSpec,
     HumanoidRobotSpec,
     RobotSpec,
     SSLRobotSpec,
 )
-from soccer_env.sim.arena import BALL, HUMANOID, OUT, ROBOT, WALL, add_walls
+from soccer_env.sim.arena import BALL, HUMANOID, OUT, ROBOT, WALL
+from soccer_env.sim.ball import BallExit, BallPhysics
 from soccer_env.sim.humanoid_bodies import HumanoidBodies
-from soccer_env.sim.ssl import MOUTH_TOLERANCE, KickerDribbler, robot_outline
+from soccer_env.sim.placement import Placement
+from soccer_env.sim.space import SpaceBodies
+from soccer_env.sim.ssl import MOUTH_TOLERANCE, KickerDribbler
 from soccer_env.sim.walk import WalkEngine
 from soccer_env.state import WorldState
 from soccer_env.validation import check_int, check_range
@@ -74,10 +83,6 @@ COLLISION_SLOP = 5e-4
 DIRECT_READ_MAX_ROBOTS = 3
 #: Largest team size (SSL Division A plays 11 vs 11).
 MAX_TEAM_SIZE = 11
-#: Attributes of :class:`World` that are raw Chipmunk handles or hold them: never pickled,
-#: rebuilt from the space by :meth:`World._bind_handles`.
-_HANDLE_ATTRIBUTES = ("_buffer", "_space_step", "_ball_handle", "_control_handles",
-                      "_body_handles")
 
 
 #: Columns of the ``(N, 6)`` command array of :meth:`World.step`: body-frame velocity ``vx, vy``
@@ -92,22 +97,7 @@ def idle_commands(n: int) -> np.ndarray:
     return np.zeros((n, len(COMMAND_FIELDS)))
 
 
-@dataclass(frozen=True)
-class BallExit:
-    """First moment since :meth:`World.clear_exit` at which the whole ball was past a line.
-
-    ``x, y`` [m] is the ball centre, ``z`` [m] its height and ``time`` [s] the instant, at the
-    physics substep where the ball's centre first lay more than one radius beyond a goal line
-    or a touch line.
-    """
-
-    x: float
-    y: float
-    z: float
-    time: float
-
-
-class World(KickerDribbler, HumanoidBodies):
+class World(KickerDribbler, HumanoidBodies, BallPhysics, SpaceBodies, Placement):
     """Physics of one field with a ball and ``n_blue + n_yellow`` robots (SSL, humanoid or
     both).
 
@@ -202,7 +192,7 @@ class World(KickerDribbler, HumanoidBodies):
         self.time = 0.0
 
     # ------------------------------------------------------------------------------------
-    # Construction
+    # Episodes
     # ------------------------------------------------------------------------------------
 
     def reset(self, robot_poses: np.ndarray, ball_position: tuple[float, float] = (0.0, 0.0),
@@ -230,25 +220,6 @@ class World(KickerDribbler, HumanoidBodies):
                 space.on_collision(HUMANOID, other, begin=self._humanoid_impact)
         self._restart(poses, ball_position, rng)
 
-    def _populate(self, space: pymunk.Space, static: pymunk.Body,
-                  origin: tuple[float, float]) -> None:
-        """Build this world's arena, ball and robots in ``space``: the arena on ``static``
-        (the space's static body, or a static body of this world's own at ``origin`` when
-        several worlds share the space), every position offset by ``origin``. The collision
-        handlers are the space owner's to register."""
-        self.space = space
-        self.origin = (float(origin[0]), float(origin[1]))
-        self._shifted = self.origin != (0.0, 0.0)
-        self._static = static
-        add_walls(space, self.field, self.ball_spec.radius, static)
-        self._add_ball(space)
-        self._add_robots(space)
-        # ``Space.step`` spends about 3 microseconds per call on Python housekeeping (deferred
-        # adds and removals, post-step callbacks) that this world never needs, because it
-        # never adds or removes objects while stepping; Chipmunk's own step is equivalent
-        # (the tests check that both give identical trajectories).
-        self._bind_handles()
-
     def restart(self, robot_poses: np.ndarray,
                 ball_position: tuple[float, float] = (0.0, 0.0),
                 rng: np.random.Generator | None = None) -> None:
@@ -260,42 +231,6 @@ class World(KickerDribbler, HumanoidBodies):
         poses = self._validated_poses(robot_poses)
         self._check_inside("ball", *ball_position, self.ball_spec.radius)
         self._restart(poses, ball_position, rng)
-
-    def _forget_contacts(self) -> None:
-        """Drop what the space remembers of this world's past, as a fresh space would not
-        have it: the bodies' bias velocities, the cached contacts of its ball and robots
-        (Chipmunk's arbiters, whose accumulated impulses warm-start the next solve) and the
-        accumulated impulses of its joints (the ball's carpet friction, the drives). Shapes
-        are taken out and put back (which drops their arbiters); joints, whose impulses
-        pymunk cannot reset, are replaced by fresh ones with the same parameters, in the
-        order they were made.
-        :class:`~soccer_env.sim.batch.WorldBatch` calls it when a world restarts in a shared
-        space; a world on its own builds a fresh space instead (:meth:`reset`)."""
-        space = self.space
-        # Chipmunk moves a body at the start of a step by its velocity plus the bias
-        # velocity the last contact solve left (position correction), which pymunk cannot
-        # set; integrating the position over zero seconds clears it and moves nothing.
-        for body in (self._ball, *self._bodies):
-            pymunk.Body.update_position(body, 0.0)
-        shapes = [*self._ball.shapes, *self._shape_index]
-        space.remove(*shapes)
-        space.add(*shapes)
-
-        def fresh(joint: pymunk.Constraint) -> pymunk.Constraint:
-            if isinstance(joint, pymunk.PivotJoint):
-                new: pymunk.Constraint = pymunk.PivotJoint(joint.a, joint.b, joint.anchor_a,
-                                                           joint.anchor_b)
-            else:
-                new = pymunk.GearJoint(joint.a, joint.b, joint.phase, joint.ratio)
-            new.max_force, new.max_bias = joint.max_force, joint.max_bias
-            new.error_bias, new.collide_bodies = joint.error_bias, joint.collide_bodies
-            return new
-
-        old = [self._friction, *(j for pair in self._drives for j in pair)]
-        space.remove(*old)
-        self._friction = fresh(self._friction)
-        self._drives = [(fresh(d), fresh(t)) for d, t in self._drives]
-        space.add(self._friction, *(j for pair in self._drives for j in pair))
 
     def _restart(self, poses: np.ndarray, ball_position: tuple[float, float],
                  rng: np.random.Generator | None) -> None:
@@ -325,202 +260,6 @@ class World(KickerDribbler, HumanoidBodies):
         self.last_touch = -1
         self.ball_exit: BallExit | None = None
         self.place_all(poses, ball_position)
-
-    def _bind_handles(self) -> None:
-        """Take the raw Chipmunk handles of the hot loop from the present space."""
-        space = self.space
-        self._space_step = (functools.partial(_cp.cpSpaceStep, space._space)
-                            if self.direct_step else space.step)
-        self._ball_handle = self._ball._body
-        self._control_handles = [c._body for c in self._controls]
-        self._body_handles = [self._ball._body] + [b._body for b in self._bodies]
-
-    # ------------------------------------------------------------------------------------
-    # Copying
-    # ------------------------------------------------------------------------------------
-
-    def __getstate__(self) -> dict:
-        """The world's state for :mod:`pickle` and :mod:`copy` (the raw Chipmunk handles
-        left out; pymunk pickles the space with its bodies, joints and cached contacts).
-
-        A space rebuilt from its pickled state is not bit for bit the space it came from:
-        Chipmunk's dynamic bounding-box tree (whose shape depends on the whole history of
-        motion, and sets the order in which the solver visits contacts) is rebuilt from
-        scratch, and the joints' accumulated impulses (the solver's warm start, which pymunk
-        cannot read) start at zero. Both change the next steps in the last bits, and contacts
-        amplify such differences. So that a copy's future is exactly the original's, the
-        original first replaces its own space with one rebuilt the same way: copying a world
-        perturbs its trajectory in the last bits (a world that is never copied is not
-        affected), and from then on the original and every copy taken at that moment step
-        identically under the same commands.
-        """
-        if self.space is not None:
-            self._rebuild_space()
-        return self._plain_state()
-
-    def _plain_state(self) -> dict:
-        return {k: v for k, v in self.__dict__.items() if k not in _HANDLE_ATTRIBUTES}
-
-    def __setstate__(self, state: dict) -> None:
-        self.__dict__.update(state)
-        self._buffer = pbatch.Buffer()
-        if self.space is not None:
-            self._bind_handles()
-
-    def _rebuild_space(self) -> None:
-        """Replace the space (and every object in it) with a copy rebuilt from its state."""
-        # The memo maps this world to itself, so the collision handlers (bound methods of
-        # this world) stay bound to it instead of copying it.
-        fresh = copy.deepcopy(self._plain_state(), {id(self): self})
-        self.__dict__.update(fresh)
-        self._bind_handles()
-
-    def _add_ball(self, space: pymunk.Space) -> None:
-        """The ball and its carpet friction (a pivot joint to the static body)."""
-        bs = self.ball_spec
-        ball = pymunk.Body(bs.mass, math.inf)
-        ball_shape = pymunk.Circle(ball, bs.radius)
-        ball_shape.elasticity = 1.0
-        ball_shape.friction = bs.surface_friction
-        ball_shape.collision_type = BALL
-        space.add(ball, ball_shape)
-        friction = pymunk.PivotJoint(self._static, ball, (0.0, 0.0), (0.0, 0.0))
-        friction.max_bias = 0.0
-        friction.max_force = self._roll_force
-        space.add(friction)
-        self._ball, self._friction = ball, friction
-
-    def _add_robots(self, space: pymunk.Space) -> None:
-        """Every robot's body and shape (SSL: the flat-front polygon; humanoid: a disc), then
-        its kinematic control body with the drive joints (pivot and gear, bounded force)."""
-        self._bodies: list[pymunk.Body] = []
-        self._controls: list[pymunk.Body] = []
-        self._drives: list[tuple[pymunk.PivotJoint, pymunk.GearJoint]] = []
-        self._shape_index: dict[pymunk.Shape, int] = {}
-        outlines: dict[int, list[tuple[float, float]]] = {}
-        for i, rs in enumerate(self.robot_specs):
-            body = pymunk.Body(rs.mass, rs.moment_of_inertia)
-            if rs.kind == "ssl":
-                outline = outlines.setdefault(id(rs), robot_outline(rs))
-                shape = pymunk.Poly(body, outline)
-                shape.collision_type = ROBOT
-            else:
-                shape = pymunk.Circle(body, rs.radius)
-                shape.collision_type = HUMANOID
-            shape.elasticity = rs.restitution
-            shape.friction = rs.surface_friction
-            space.add(body, shape)
-            self._bodies.append(body)
-            self._shape_index[shape] = i
-        for rs, body in zip(self.robot_specs, self._bodies):
-            control = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
-            drive = pymunk.PivotJoint(control, body, (0.0, 0.0), (0.0, 0.0))
-            drive.max_bias = 0.0
-            drive.max_force = rs.mass * rs.max_acceleration
-            turn = pymunk.GearJoint(control, body, 0.0, 1.0)
-            turn.max_bias = 0.0
-            turn.max_force = rs.moment_of_inertia * rs.max_angular_acceleration
-            space.add(control, drive, turn)
-            self._controls.append(control)
-            self._drives.append((drive, turn))
-
-    def _validated_poses(self, robot_poses: np.ndarray) -> np.ndarray:
-        poses = np.asarray(robot_poses, dtype=np.float64)
-        if poses.shape != (self.n_robots, 3):
-            raise ValueError(f"robot_poses must have shape ({self.n_robots}, 3), got {poses.shape}")
-        for i, (x, y, th) in enumerate(poses):
-            self._check_inside(f"robot {self.names[i]}", x, y, self.robot_specs[i].radius)
-            if not math.isfinite(th):
-                raise ValueError(f"robot {self.names[i]} heading must be finite, got {th!r}")
-        return poses
-
-    # ------------------------------------------------------------------------------------
-    # Placement
-    # ------------------------------------------------------------------------------------
-
-    def _check_inside(self, what: str, x: float, y: float, margin: float) -> None:
-        lx, ly = self._walls_x - margin, self._walls_y - margin
-        if not (math.isfinite(x) and math.isfinite(y) and abs(x) <= lx and abs(y) <= ly):
-            raise ValueError(
-                f"{what} position must be finite and inside the walls, |x| <= {lx:.3f} and "
-                f"|y| <= {ly:.3f} m, got ({x!r}, {y!r})"
-            )
-
-    def _require_space(self) -> None:
-        if self.space is None:
-            raise RuntimeError("call World.reset() before placing or stepping")
-
-    def set_robot(self, i: int, x: float, y: float, theta: float,
-                  vx: float = 0.0, vy: float = 0.0, omega: float = 0.0) -> None:
-        """Teleport robot ``i`` to pose ``(x, y, theta)`` with velocity ``(vx, vy, omega)``."""
-        self._require_space()
-        self._check_inside(f"robot {self.names[i]}", x, y, self.robot_specs[i].radius)
-        vals = (theta, vx, vy, omega)
-        if not all(math.isfinite(v) for v in vals):
-            raise ValueError(f"robot {self.names[i]} state must be finite, got {vals}")
-        body = self._bodies[i]
-        ox, oy = self.origin
-        body.position = (float(x) + ox, float(y) + oy)
-        body.angle = float(theta)
-        body.velocity = (float(vx), float(vy))
-        body.angular_velocity = float(omega)
-        self._controls[i].velocity = (float(vx), float(vy))
-        self._controls[i].angular_velocity = float(omega)
-        self._state[1 + i] = (x, y, math.remainder(theta, 2.0 * math.pi), vx, vy, omega)
-        self.space.reindex_shapes_for_body(body)
-
-    def set_ball(self, x: float, y: float, vx: float = 0.0, vy: float = 0.0,
-                 z: float = 0.0, vz: float = 0.0, sliding: bool = False) -> None:
-        """Teleport the ball.
-
-        Args:
-            x, y: position [m].
-            vx, vy: horizontal velocity [m/s].
-            z: height of the ball's lowest point [m] (0 on the carpet).
-            vz: vertical velocity [m/s]; with ``z > 0`` or ``vz > 0`` the ball is in flight.
-            sliding: start in the sliding phase (as right after a kick), switching to rolling
-                at ``k_switch`` times the current speed.
-        """
-        self._require_space()
-        self._check_inside("ball", x, y, self.ball_spec.radius)
-        if not all(math.isfinite(v) for v in (vx, vy, z, vz)) or z < 0.0:
-            raise ValueError(f"ball velocity and height must be finite with z >= 0, got "
-                             f"{(vx, vy, z, vz)}")
-        ball = self._ball
-        ox, oy = self.origin
-        ball.position = (float(x) + ox, float(y) + oy)
-        ball.velocity = (float(vx), float(vy))
-        self.space.reindex_shapes_for_body(ball)
-        self._z, self._vz, self._hops = float(z), float(vz), 0
-        self._airborne = z > 0.0 or vz > 0.0
-        if self._airborne:
-            self._sliding = False
-            self._friction.max_force = 0.0
-        else:
-            self._z = self._vz = 0.0
-            self._set_sliding(sliding, math.hypot(vx, vy))
-        self._state[0] = (x, y, 0.0, vx, vy, 0.0)
-
-    def place_all(self, robot_poses: np.ndarray, ball_position: tuple[float, float] = (0.0, 0.0)
-                  ) -> None:
-        """Teleport every robot (at rest) and the ball (at rest) without resetting the clock."""
-        poses = self._validated_poses(robot_poses)
-        self._check_inside("ball", *ball_position, self.ball_spec.radius)
-        for i in range(self.n_robots):
-            self.set_robot(i, *poses[i])
-        self.set_ball(*ball_position)
-
-    def _set_sliding(self, sliding: bool, speed: float) -> None:
-        self._sliding = bool(sliding) and speed > 0.0
-        if self._sliding:
-            self._v_switch = self.ball_spec.k_switch * speed
-            self._friction.max_force = self._slide_force
-        else:
-            self._friction.max_force = self._roll_force
-
-    def clear_exit(self) -> None:
-        """Forget the recorded :attr:`ball_exit` (after the referee has handled it)."""
-        self.ball_exit = None
 
     # ------------------------------------------------------------------------------------
     # Stepping
@@ -602,19 +341,6 @@ class World(KickerDribbler, HumanoidBodies):
             self._humanoid_events(t0)
         self.read_state()
 
-    def _ball_touch(self, arbiter: pymunk.Arbiter, space: pymunk.Space = None, data=None
-                    ) -> int:
-        """pre_solve for ball-humanoid contacts (and the first part of the SSL robots'): a
-        ball in flight above the robot passes over it; otherwise record the touch. Returns
-        the robot's index, or -1 when the ball passes over."""
-        i = self._shape_index[arbiter.shapes[1]]
-        if self._z > self._heights[i]:
-            arbiter.process_collision = False
-            return -1
-        self.touched[i] = True
-        self.last_touch = i
-        return i
-
     def read_state(self, batch: bool | None = None) -> None:
         """Read the ball's and robots' positions and velocities from the physics (every step
         does at its end; the arrays of :meth:`robot_array` and :meth:`snapshot` come from
@@ -651,65 +377,13 @@ class World(KickerDribbler, HumanoidBodies):
                 self._bodies[i].angle = th
                 state[1 + i, 2] = th
 
-    def _ball_out(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data) -> None:
-        """``begin`` of the ball with a sensor beyond a line: record the first exit."""
-        if self.ball_exit is None:
-            x, y = self._ball.position
-            x, y = x - self.origin[0], y - self.origin[1]
-            # The callback runs inside the substep, before ``time`` is advanced past it.
-            self.ball_exit = BallExit(x, y, self._z, self.time + self.substep_dt)
-
-    def _fly(self, h: float) -> None:
-        """Ballistic height update over one substep, with fixed-loss bounces."""
-        z = self._z + self._vz * h - 0.5 * GRAVITY * h * h
-        vz = self._vz - GRAVITY * h
-        if z > 0.0:
-            self._z, self._vz = z, vz
-            return
-        # Touchdown inside this substep: bounce with the vertical speed at impact.
-        bs = self.ball_spec
-        impact = math.sqrt(self._vz * self._vz + 2.0 * GRAVITY * self._z)
-        damp = bs.chip_damping_xy_first if self._hops == 0 else bs.chip_damping_xy_other
-        self._hops += 1
-        vx, vy = self._ball.velocity
-        self._ball.velocity = (vx * damp, vy * damp)
-        vz = impact * bs.chip_damping_z
-        if vz * vz / (2.0 * GRAVITY) < bs.min_hop_height:
-            self._z = self._vz = 0.0
-            self._airborne = False
-            self._set_sliding(False, 0.0)
-        else:
-            self._z, self._vz = 0.0, vz
-
     # ------------------------------------------------------------------------------------
     # Reading
     # ------------------------------------------------------------------------------------
 
-    @property
-    def ball_height(self) -> float:
-        """Height of the ball's lowest point above the carpet [m]."""
-        return self._z
-
-    @property
-    def ball_airborne(self) -> bool:
-        """Whether the ball is in flight after a chip."""
-        return self._airborne
-
-    @property
-    def ball_sliding(self) -> bool:
-        """Whether the ball is in its sliding phase."""
-        return self._sliding
-
     def robot_array(self) -> np.ndarray:
         """``(N, 6)`` view of the robots' ``x, y, theta, vx, vy, omega`` (do not modify)."""
         return self._state[1:]
-
-    def ball_array(self) -> np.ndarray:
-        """``(6,)`` copy of the ball's ``x, y, z, vx, vy, vz``."""
-        b = self._state[0].copy()
-        b[2] = self._z
-        b[5] = self._vz
-        return b
 
     def snapshot(self) -> WorldState:
         """An immutable :class:`WorldState` of the present truth."""

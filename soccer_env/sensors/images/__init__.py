@@ -15,7 +15,8 @@ centre is ``(W / 2, H / 2)``: the convention of :class:`estimators.HeadCamera`.
 * :mod:`~soccer_env.sensors.images.patterns`: the coloured markers on the robots' tops;
 * :mod:`~soccer_env.sensors.images.overhead`: overhead frames;
 * :mod:`~soccer_env.sensors.images.head`: head-camera frames;
-* :mod:`~soccer_env.sensors.images.common`: lighting and noise shared by both;
+* :mod:`~soccer_env.sensors.images.common`: the drawing units, lighting and noise
+  (:class:`~soccer_env.sensors.images.common.Photometry`) and per-robot lists shared by both;
 * :mod:`~soccer_env.sensors.images.cameras`: cameras that deliver these images with a
   sensor's timing.
 

@@ -1,4 +1,9 @@
-"""What both renderers share: lighting and noise, and the per-robot lists.
+"""What both renderers share: the fixed-point drawing units, lighting and noise
+(:class:`Photometry`), and the per-robot lists (:func:`robot_markers`,
+:func:`check_robot_count`).
+
+Drawing: OpenCV draws with :data:`DRAW_SHIFT` fractional bits, so a pixel coordinate ``u``
+is passed as the integer ``round(u * DRAW_ONE)``.
 
 Lighting and noise: per frame a global gain ``g = 1 + gain_sigma * N(0, 1)`` (clipped to [0.3,
 2]) and a linear brightness ramp of amplitude ``a ~ U(0, gradient)`` in a random direction ``phi
@@ -24,16 +29,26 @@ from soccer_env.presets import RobotSpec
 from soccer_env.sensors.images.patterns import PATTERN_IDS
 from soccer_env.state import WorldState
 
-__all__ = []
+__all__ = ["DRAW_SHIFT", "DRAW_ONE", "Photometry", "robot_markers", "check_robot_count"]
 
-_SHIFT = 4  # cv2 drawing with 4 fractional bits
+#: Fractional bits of the pixel coordinates given to OpenCV's drawing functions.
+DRAW_SHIFT = 4
+#: One pixel in those fixed-point units (``2 ** DRAW_SHIFT``).
+DRAW_ONE = 1 << DRAW_SHIFT
 
 
-_ONE = 1 << _SHIFT
+class Photometry:
+    """Per-frame lighting and noise of an image of ``(height, width)`` pixels (see the module
+    docstring): a global gain ``1 + gain_sigma N(0, 1)``, a linear brightness ramp of
+    amplitude up to ``gradient`` in a random direction, then Gaussian noise of
+    ``noise_sigma`` grey levels read from a fixed bank at a random offset.
 
-
-class _Photometry:
-    """Per-frame lighting and noise of an image of ``(height, width)`` (module docstring)."""
+    Args:
+        width, height: the image's size [px].
+        gain_sigma: standard deviation of the global gain.
+        gradient: largest amplitude of the brightness ramp across the image.
+        noise_sigma: standard deviation of the pixel noise [grey levels].
+    """
 
     def __init__(self, width: int, height: int, gain_sigma: float, gradient: float,
                  noise_sigma: float) -> None:
@@ -51,6 +66,8 @@ class _Photometry:
                 (2 * height, 2 * width, 3), dtype=np.float32)).astype(np.int16)
 
     def apply(self, img: np.ndarray, rng: np.random.Generator | None) -> np.ndarray:
+        """``img`` (``(height, width, 3)`` ``uint8``) with this frame's lighting and noise
+        drawn from ``rng`` (the image itself when there is none; then ``rng`` may be None)."""
         if not self.active:
             return img
         if rng is None:
@@ -78,8 +95,13 @@ class _Photometry:
         return out
 
 
-def _per_robot(robot_specs: RobotSpec | Sequence[RobotSpec], teams: Sequence[int]
-               ) -> tuple[list[RobotSpec], list[int], list[int]]:
+def robot_markers(robot_specs: RobotSpec | Sequence[RobotSpec], teams: Sequence[int]
+                  ) -> tuple[list[RobotSpec], list[int], list[int]]:
+    """Every robot's spec (``robot_specs``: one for all or one per robot), team (0 blue, 1
+    yellow) and number within its team, which picks the marker pattern it wears
+    (:data:`~soccer_env.sensors.images.patterns.PATTERN_IDS`); raises ``ValueError`` for a
+    team other than 0 or 1, a list of the wrong length or more robots in a team than there
+    are patterns."""
     team_list = [int(t) for t in teams]
     if any(t not in (0, 1) for t in team_list):
         raise ValueError(f"teams must hold 0 (blue) or 1 (yellow) per robot, got {list(teams)}")
@@ -101,6 +123,7 @@ def _per_robot(robot_specs: RobotSpec | Sequence[RobotSpec], teams: Sequence[int
     return specs, team_list, index
 
 
-def _check_state(state: WorldState, n: int) -> None:
+def check_robot_count(state: WorldState, n: int) -> None:
+    """Raise ``ValueError`` unless ``state`` holds the ``n`` robots a renderer draws."""
     if state.robots.shape[0] != n:
         raise ValueError(f"state has {state.robots.shape[0]} robots, the renderer {n}")

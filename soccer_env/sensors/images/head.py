@@ -24,7 +24,13 @@ from estimators import HeadCamera
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.presets.images import COLOURS, RGB, HeadFrameSpec, head_frame
 from soccer_env.presets.sensors import HeadCameraSpec
-from soccer_env.sensors.images.common import _ONE, _SHIFT, _check_state, _per_robot, _Photometry
+from soccer_env.sensors.images.common import (
+    DRAW_ONE,
+    DRAW_SHIFT,
+    Photometry,
+    check_robot_count,
+    robot_markers,
+)
 from soccer_env.state import HeadState, WorldState
 
 __all__ = ["HeadFrameRenderer"]
@@ -78,7 +84,7 @@ class HeadFrameRenderer:
                              f"got {size!r}")
         self.spec, self.camera_spec, self.field, self.ball_spec = spec, camera_spec, field, \
             ball_spec
-        self.robot_specs, self.teams, _ = _per_robot(robot_specs, teams)
+        self.robot_specs, self.teams, _ = robot_markers(robot_specs, teams)
         self.n_robots = len(self.teams)
         self.camera = HeadCamera(height=camera_spec.height, hfov=camera_spec.hfov,
                                  width=int(size[0]), height_px=int(size[1]))
@@ -86,7 +92,7 @@ class HeadFrameRenderer:
         self._f = self.camera.focal_px
         self._u0, self._v0 = self.camera.centre
         self._line_type = cv2.LINE_AA if spec.antialias else cv2.LINE_8
-        self._photo = _Photometry(self.width, self.height, spec.gain_sigma, spec.gradient,
+        self._photo = Photometry(self.width, self.height, spec.gain_sigma, spec.gradient,
                                   spec.noise_sigma)
         self._quads = self._line_quads()
         self._sky_img = np.empty((self.height, self.width, 3), np.uint8)
@@ -144,11 +150,11 @@ class HeadFrameRenderer:
 
     def _fixed(self, cam: np.ndarray) -> np.ndarray:
         """Fixed-point drawing coordinates of camera-frame points in front of the camera."""
-        f = self._f * _ONE
+        f = self._f * DRAW_ONE
         d = cam[..., 1]
         out = np.empty(cam.shape[:-1] + (2,), np.int32)
-        out[..., 0] = np.rint((self._u0 - 0.5) * _ONE + f * cam[..., 0] / d)
-        out[..., 1] = np.rint((self._v0 - 0.5) * _ONE - f * cam[..., 2] / d)
+        out[..., 0] = np.rint((self._u0 - 0.5) * DRAW_ONE + f * cam[..., 0] / d)
+        out[..., 1] = np.rint((self._v0 - 0.5) * DRAW_ONE - f * cam[..., 2] / d)
         return out
 
     def _polygons(self, cam: np.ndarray) -> list[np.ndarray]:
@@ -168,7 +174,7 @@ class HeadFrameRenderer:
         several polygons with the even-odd rule: overlaps would become holes)."""
         lt = self._line_type
         for poly in self._polygons(cam_polys):
-            cv2.fillConvexPoly(img, poly, rgb, lt, _SHIFT)
+            cv2.fillConvexPoly(img, poly, rgb, lt, DRAW_SHIFT)
 
     def _cylinder(self, img: np.ndarray, x: float, y: float, radius: float, z0: float,
                   z1: float, rgb: RGB) -> None:
@@ -184,7 +190,7 @@ class HeadFrameRenderer:
         cam = self._to_camera(pts)
         if (cam[:, 1] >= _NEAR).all():
             hull = cv2.convexHull(self._fixed(cam))
-            cv2.fillConvexPoly(img, hull, rgb, self._line_type, _SHIFT)
+            cv2.fillConvexPoly(img, hull, rgb, self._line_type, DRAW_SHIFT)
             return
         dx, dy = x - cx, y - cy
         d = math.hypot(dx, dy)
@@ -205,7 +211,7 @@ class HeadFrameRenderer:
                rng: np.random.Generator | None = None) -> np.ndarray:
         """The image seen by robot ``observer``'s head camera in ``state`` with the TRUE head
         orientation of ``heads`` (servo plus sway): ``(height, width, 3)`` uint8 RGB."""
-        _check_state(state, self.n_robots)
+        check_robot_count(state, self.n_robots)
         if not 0 <= observer < self.n_robots:
             raise ValueError(f"observer must be a robot index in [0, {self.n_robots - 1}], "
                              f"got {observer!r}")
@@ -278,8 +284,8 @@ class HeadFrameRenderer:
         radius = self._f * r / depth
         centre = self._fixed(cam)
         u, v = centre.tolist()
-        lim = 4 * _ONE * (self.width + self.height)
+        lim = 4 * DRAW_ONE * (self.width + self.height)
         if abs(u) > lim or abs(v) > lim:
             return
-        cv2.circle(img, (u, v), max(1, int(round(radius * _ONE))), COLOURS["orange"], -1,
-                   self._line_type, _SHIFT)
+        cv2.circle(img, (u, v), max(1, int(round(radius * DRAW_ONE))), COLOURS["orange"], -1,
+                   self._line_type, DRAW_SHIFT)

@@ -46,7 +46,13 @@ from soccer_env.presets.images import (
     OverheadFrameSpec,
     overhead_frame,
 )
-from soccer_env.sensors.images.common import _ONE, _SHIFT, _check_state, _per_robot, _Photometry
+from soccer_env.sensors.images.common import (
+    DRAW_ONE,
+    DRAW_SHIFT,
+    Photometry,
+    check_robot_count,
+    robot_markers,
+)
 from soccer_env.sensors.images.patterns import PATTERN
 from soccer_env.sensors.overhead import Camera
 from soccer_env.sim.ssl import robot_outline
@@ -97,7 +103,7 @@ class OverheadRenderer:
         if isinstance(spec, str):
             spec = overhead_frame(spec)
         self.spec, self.field, self.ball_spec = spec, field, ball_spec
-        self.robot_specs, self.teams, self.numbers = _per_robot(robot_specs, teams)
+        self.robot_specs, self.teams, self.numbers = robot_markers(robot_specs, teams)
         self.n_robots = len(self.teams)
         W, H = spec.width, spec.height
         if camera is not None:
@@ -118,7 +124,7 @@ class OverheadRenderer:
         self._cx, self._cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
         self._k = 1.0 / self.metres_per_pixel
         self._line_type = cv2.LINE_AA if spec.antialias else cv2.LINE_8
-        self._photo = _Photometry(W, H, spec.gain_sigma, spec.gradient, spec.noise_sigma)
+        self._photo = Photometry(W, H, spec.gain_sigma, spec.gradient, spec.noise_sigma)
         # Per robot: body outline (body frame) and patches (centres, radii, colours).
         outlines, patches = [], []
         for rs, team, num in zip(self.robot_specs, self.teams, self.numbers):
@@ -131,7 +137,7 @@ class OverheadRenderer:
             patches.append(PATTERN.patches(team, num, rs.radius))
         self._outlines = outlines
         self._patch_xy = [np.array([(p.x, p.y) for p in ps]) for ps in patches]
-        self._patch_r = [[p.radius * self._k * _ONE for p in ps] for ps in patches]
+        self._patch_r = [[p.radius * self._k * DRAW_ONE for p in ps] for ps in patches]
         self._patch_rgb = [[p.rgb for p in ps] for ps in patches]
         self._radii = np.array([rs.radius for rs in self.robot_specs])
         self._max_height = max((rs.height for rs in self.robot_specs), default=0.0)
@@ -160,8 +166,8 @@ class OverheadRenderer:
         """Fixed-point drawing coordinates (``shift = 4``) of field points, minus a pixel
         offset ``(ox, oy)``: cv2 puts integer coordinates at pixel centres."""
         u, v = self.to_pixel(x, y)
-        return np.column_stack([np.rint((u - 0.5 - ox) * _ONE), np.rint((v - 0.5 - oy) * _ONE)]
-                               ).astype(np.int32)
+        return np.column_stack([np.rint((u - 0.5 - ox) * DRAW_ONE),
+                                np.rint((v - 0.5 - oy) * DRAW_ONE)]).astype(np.int32)
 
     def colour_table(self, tolerance: float = 30.0, bits: int = 5) -> ColourTable:
         """A :class:`ColourTable` of this renderer's colours, with a gain range that covers its
@@ -191,14 +197,14 @@ class OverheadRenderer:
         hx, hy = f.half_length, f.half_width
         wx, wy = hx + f.boundary, hy + f.boundary
         cv2.fillPoly(img, [np.array([pt(-wx, wy), pt(wx, wy), pt(wx, -wy), pt(-wx, -wy)])],
-                     s.carpet, lt, _SHIFT)
+                     s.carpet, lt, DRAW_SHIFT)
         lw = thick(f.line_width)
         corners = np.array([pt(-hx, hy), pt(hx, hy), pt(hx, -hy), pt(-hx, -hy)])
-        cv2.polylines(img, [corners], True, s.line, lw, lt, _SHIFT)
-        cv2.line(img, pt(0.0, hy), pt(0.0, -hy), s.line, lw, lt, _SHIFT)
+        cv2.polylines(img, [corners], True, s.line, lw, lt, DRAW_SHIFT)
+        cv2.line(img, pt(0.0, hy), pt(0.0, -hy), s.line, lw, lt, DRAW_SHIFT)
         if f.center_circle_radius > 0.0:
-            cv2.circle(img, pt(0.0, 0.0), int(round(f.center_circle_radius * k * _ONE)), s.line,
-                       lw, lt, _SHIFT)
+            cv2.circle(img, pt(0.0, 0.0), int(round(f.center_circle_radius * k * DRAW_ONE)), s.line,
+                       lw, lt, DRAW_SHIFT)
         dw, dd = 0.5 * f.defense_width, f.defense_depth
         gw, gd = 0.5 * f.goal_width, f.goal_depth
         gt = thick(f.goal_wall_thickness)
@@ -206,15 +212,15 @@ class OverheadRenderer:
             if dw > 0.0 and dd > 0.0:
                 xa, xb = sgn * hx, sgn * (hx - dd)
                 cv2.polylines(img, [np.array([pt(xa, dw), pt(xb, dw), pt(xb, -dw),
-                                              pt(xa, -dw)])], False, s.line, lw, lt, _SHIFT)
+                                              pt(xa, -dw)])], False, s.line, lw, lt, DRAW_SHIFT)
             # Goal walls: outside the goal line, wall_thickness beyond the goal's inside.
             e = 0.5 * f.goal_wall_thickness
             gx = sgn * (hx + gd + e)
             cv2.polylines(img, [np.array([pt(sgn * hx, gw + e), pt(gx, gw + e), pt(gx, -gw - e),
                                           pt(sgn * hx, -gw - e)])], False, COLOURS["goal"], gt,
-                          lt, _SHIFT)
+                          lt, DRAW_SHIFT)
         cv2.polylines(img, [np.array([pt(-wx, wy), pt(wx, wy), pt(wx, -wy), pt(-wx, -wy)])],
-                      True, COLOURS["wall"], thick(0.02), lt, _SHIFT)
+                      True, COLOURS["wall"], thick(0.02), lt, DRAW_SHIFT)
         img.flags.writeable = False
         return img
 
@@ -226,12 +232,12 @@ class OverheadRenderer:
         lt = self._line_type
         o = self._outlines[i]
         pts = self._fixed(x + c * o[:, 0] - s * o[:, 1], y + s * o[:, 0] + c * o[:, 1], ox, oy)
-        cv2.fillPoly(img, [pts], COLOURS["body"], lt, _SHIFT)
+        cv2.fillPoly(img, [pts], COLOURS["body"], lt, DRAW_SHIFT)
         p = self._patch_xy[i]
         centres = self._fixed(x + c * p[:, 0] - s * p[:, 1], y + s * p[:, 0] + c * p[:, 1],
                               ox, oy).tolist()
         for centre, r, rgb in zip(centres, self._patch_r[i], self._patch_rgb[i]):
-            cv2.circle(img, centre, int(round(r)), rgb, -1, lt, _SHIFT)
+            cv2.circle(img, centre, int(round(r)), rgb, -1, lt, DRAW_SHIFT)
 
     def _ball_view(self, bx: float, by: float, bz: float) -> tuple[float, float, float]:
         """Where the ball appears (as a point of the field plane) and its apparent radius [m]
@@ -250,8 +256,8 @@ class OverheadRenderer:
                    oy: float = 0.0) -> None:
         x, y, r = self._ball_view(bx, by, bz)
         centre = self._fixed(np.array([x]), np.array([y]), ox, oy)[0].tolist()
-        cv2.circle(img, centre, max(1, int(round(r * self._k * _ONE))), COLOURS["orange"], -1,
-                   self._line_type, _SHIFT)
+        cv2.circle(img, centre, max(1, int(round(r * self._k * DRAW_ONE))), COLOURS["orange"], -1,
+                   self._line_type, DRAW_SHIFT)
 
     def _smeared(self, img: np.ndarray, draw, poses: list[tuple[float, ...]], reach: float
                  ) -> None:
@@ -280,7 +286,7 @@ class OverheadRenderer:
     def render(self, state: WorldState, rng: np.random.Generator | None = None) -> np.ndarray:
         """The camera image of ``state``: ``(height, width, 3)`` uint8 RGB. ``rng`` draws the
         lighting and noise (needed only if the spec has any)."""
-        _check_state(state, self.n_robots)
+        check_robot_count(state, self.n_robots)
         img = self._background.copy()
         T = self.spec.exposure
         k = self._k

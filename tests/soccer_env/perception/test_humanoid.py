@@ -297,6 +297,25 @@ def test_per_team_humanoid_perception_in_a_match():
             assert env.observation_space(a).contains(o) and np.all(np.isfinite(o))
 
 
+def test_each_brain_reads_a_frozen_context_of_its_team_not_the_team_itself():
+    import dataclasses
+
+    from soccer_env.perception.brain import BrainContext
+
+    env = keeper(mates=1)
+    env.reset(seed=0)
+    team = env._perception.humanoid_team(0)
+    brain = team.brain(0)
+    assert isinstance(brain.context, BrainContext)
+    assert not any(v is team for v in vars(brain).values())
+    ctx = brain.context
+    assert (ctx.fusion_window, ctx.bounds, ctx.n_robots) == (
+        team.fusion_window, team.bounds, team.n_robots)
+    assert team.brain(1).context is ctx  # one context per team and episode
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        ctx.frame_gap = 0.0
+
+
 # ----------------------------------------------------------------------------------------
 # Bad settings
 # ----------------------------------------------------------------------------------------

@@ -289,7 +289,7 @@ def test_batched_vision_equals_single_sensors_bit_for_bit(preset, field, n_robot
     from soccer_env.presets import ball as ball_spec
     from soccer_env.presets import field as field_spec
     from soccer_env.presets import robot as robot_spec
-    from soccer_env.sensors.overhead import OverheadVisionBatch
+    from soccer_env.sensors.overhead_batch import OverheadVisionBatch
 
     spec = (dataclasses.replace(vision("harsh"), latency_jitter=0.0, dribbler_false_rate=3.0,
                                 random_false_rate=4.0, ball_detection=0.8, frame_rate=75.0)

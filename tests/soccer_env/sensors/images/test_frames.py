@@ -436,9 +436,9 @@ def test_photometry_saturates_as_opencv_does(lighting):
     OpenCV's saturating add into 8 bits gives (dark and bright pixels included)."""
     import cv2
 
-    from soccer_env.sensors.images.common import _Photometry
+    from soccer_env.sensors.images.common import Photometry
 
-    photo = _Photometry(64, 48, 0.2 if lighting else 0.0, 0.3 if lighting else 0.0, 6.0)
+    photo = Photometry(64, 48, 0.2 if lighting else 0.0, 0.3 if lighting else 0.0, 6.0)
     img = np.random.default_rng(0).integers(0, 256, (48, 64, 3), dtype=np.uint8)
     img[:8], img[-8:] = 0, 255
     for seed in range(5):
