@@ -9,16 +9,12 @@ of its own (its subpackages), and its optional libraries follow them: the layers
 
 from __future__ import annotations
 
-import ast
 import os
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
-
-ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("estimators", "soccer_env", "agents", "soccer_lab")
+from source_tree import ROOT, imports_in, imports_of, module_name, source_files
 
 #: The layers, lowest first: (name, module prefixes). The package root ``soccer_env`` registers
 #: the environments, so it belongs to their layer. ``agents`` is layered by subpackage: what
@@ -64,48 +60,6 @@ DEFERRED_LIBRARIES = ("agents.sb3", "agents.sb3.algorithms", "agents.sb3.model_f
                       "agents.runs.evaluation", "agents.runs.training", "agents.studies")
 
 
-def module_name(path: Path) -> str:
-    parts = list(path.relative_to(ROOT).with_suffix("").parts)
-    if parts[-1] == "__init__":
-        parts.pop()
-    return ".".join(parts)
-
-
-def is_module(name: str) -> bool:
-    base = ROOT.joinpath(*name.split("."))
-    return base.with_suffix(".py").exists() or (base / "__init__.py").exists()
-
-
-def imports_of(path: Path) -> list[tuple[int, str]]:
-    """``(line, module)`` of every import in ``path`` (relative ones resolved; ``from p
-    import m`` counts as ``p.m`` when ``m`` is a module)."""
-    me = module_name(path)
-    return imports_in(path.read_text(), me if path.name == "__init__.py"
-                      else me.rpartition(".")[0])
-
-
-def imports_in(source: str, package: str) -> list[tuple[int, str]]:
-    """:func:`imports_of` for the ``source`` of a module of ``package``."""
-    out = []
-    for node in ast.walk(ast.parse(source)):
-        if isinstance(node, ast.Import):
-            out += [(node.lineno, alias.name) for alias in node.names]
-        elif isinstance(node, ast.ImportFrom):
-            base = node.module or ""
-            if node.level:
-                parent = package.split(".")[: len(package.split(".")) - node.level + 1]
-                base = ".".join(parent + ([base] if base else []))
-            for alias in node.names:
-                sub = f"{base}.{alias.name}"
-                out.append((node.lineno, sub if is_module(sub) else base))
-        elif (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
-              and node.func.attr == "import_module" and node.args
-              and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str)
-              and not node.args[0].value.startswith(".")):
-            out.append((node.lineno, node.args[0].value))
-    return out
-
-
 def layer_of(module: str) -> int | None:
     """Index of the layer of ``module`` (the longest matching prefix), None outside the
     package's code."""
@@ -115,10 +69,6 @@ def layer_of(module: str) -> int | None:
             if (module == p or module.startswith(p + ".")) and len(p) > best_len:
                 best, best_len = i, len(p)
     return best
-
-
-def source_files() -> list[Path]:
-    return sorted(p for pkg in PACKAGES for p in (ROOT / pkg).rglob("*.py"))
 
 
 def test_every_module_has_a_layer():
@@ -131,7 +81,8 @@ def test_imports_point_down(path):
     me = module_name(path)
     mine = layer_of(me)
     wrong = []
-    for line, target in imports_of(path):
+    for imp in imports_of(path):
+        line, target = imp.line, imp.module
         theirs = layer_of(target)
         if theirs is not None and theirs > mine:
             wrong.append(f"line {line}: {target} ({LAYERS[theirs][0]})")
@@ -145,7 +96,8 @@ def test_estimators_need_numpy_only(path):
 
     me = module_name(path)
     third_party = []
-    for line, target in imports_of(path):
+    for imp in imports_of(path):
+        line, target = imp.line, imp.module
         top = target.split(".")[0]
         if top in sys.stdlib_module_names or top == "estimators" or top == "__future__":
             continue
@@ -163,7 +115,8 @@ def test_the_checker_sees_imports_inside_functions():
               "    from ..envs import goalkeeper\n"
               "    import importlib\n    importlib.import_module('soccer_lab.cli')\n")
     sim = layer_of("soccer_env.sim")
-    found = [t for _, t in imports_in(source, "soccer_env.sim") if (layer_of(t) or 0) > sim]
+    found = [i.module for i in imports_in(source, "soccer_env.sim")
+             if (layer_of(i.module) or 0) > sim]
     assert found == ["agents", "soccer_env.envs.goalkeeper", "soccer_lab.cli"]
 
 
