@@ -4,7 +4,7 @@
 Adding a training option is a field here (with its documentation and its check in
 :meth:`TrainConfig.__post_init__`), its use where the run needs it
 (:mod:`~agents.runs.training.environments`, :mod:`~agents.runs.training.callbacks` or
-:mod:`~agents.runs.training.loop`) and its option in :mod:`soccer_lab.commands.train`.
+:mod:`~agents.runs.training.loop`) and its option in :mod:`soccer_lab.commands.train_options`.
 """
 
 from __future__ import annotations
