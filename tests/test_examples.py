@@ -103,9 +103,9 @@ def test_zoo_hyperparameters_are_the_shipped_keepers():
     (soccer-env train's PPO defaults and the baseline's recorded arguments)."""
     _needs("yaml")
     import yaml
-    from agents.runs.training import TrainConfig
 
     from agents.baselines import load_baseline
+    from agents.runs.training import TrainConfig
     from agents.sb3.algorithms import DEFAULT_HYPERPARAMS
 
     zoo = yaml.safe_load(ZOO_HYPERPARAMS.read_text())["soccer_env/Goalkeeper-v0"]

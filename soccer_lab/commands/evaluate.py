@@ -10,9 +10,8 @@ import os
 import sys
 from pathlib import Path
 
-from agents.runs.resolve import make_policy
-
 from agents.runs.evaluation import evaluate, record_video
+from agents.runs.resolve import make_policy
 from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_lab import extras
 from soccer_lab.cli_args import (

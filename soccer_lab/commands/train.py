@@ -20,7 +20,6 @@ from typing import Any
 
 from agents.runs.folders import RunRefused, TrainingStopped, run_folder
 from agents.runs.training import TrainConfig, check_env_kwargs, checkpoint_steps, train
-
 from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_lab import extras
 from soccer_lab.cli_args import (

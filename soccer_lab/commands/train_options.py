@@ -23,9 +23,8 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from agents.runs.training import CRITICS, OPPONENTS, TrainConfig
-
 from agents.policies.action_maps import ACTION_MAPS
+from agents.runs.training import CRITICS, OPPONENTS, TrainConfig
 from agents.sb3.algorithms import algorithm_name
 from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_env.perception.base import OBS_MODES

@@ -35,7 +35,6 @@ from pathlib import Path
 from typing import Any
 
 from agents.runs.folders import RunRefused, TrainingStopped, run_folder
-
 from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_lab import extras
 from soccer_lab.cli_args import env_kwargs_from_args, key_values

@@ -42,9 +42,8 @@ def test_shipped_model_is_the_numpy_policy(name):
     """The stable-baselines3 model behind the numpy copy, with its normalisation statistics
     and the action map, gives the same commands."""
     pytest.importorskip("stable_baselines3")
-    from agents.runs.resolve import learner_spaces, load_sb3
-
     from agents.policies.action_maps import action_to_command
+    from agents.runs.resolve import learner_spaces, load_sb3
     from agents.sb3.model_files import serialized_entries
     from agents.sb3.normalization import read_vecnormalize
 

@@ -16,12 +16,12 @@ import numpy as np
 import pytest
 
 pytest.importorskip("stable_baselines3")
-from agents.runs.resolve import load_sb3, make_policy  # noqa: E402
 from stable_baselines3 import PPO  # noqa: E402
 
 import soccer_env  # noqa: E402,F401
 from agents.policies import NumpyPolicy  # noqa: E402
 from agents.policies.files import UnsafeFileError, check_npz  # noqa: E402
+from agents.runs.resolve import load_sb3, make_policy  # noqa: E402
 from agents.sb3.normalization import read_vecnormalize  # noqa: E402
 from soccer_lab.cli import main  # noqa: E402
 

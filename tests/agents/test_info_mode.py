@@ -2,9 +2,9 @@
 refused at once, with the argument named."""
 
 import pytest
-from agents.runs.training import TrainConfig, check_env_kwargs
 
 from agents.runs.evaluation import evaluate
+from agents.runs.training import TrainConfig, check_env_kwargs
 from agents.vec.match import MatchVecEnv
 
 

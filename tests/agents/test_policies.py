@@ -5,11 +5,11 @@ from __future__ import annotations
 import gymnasium as gym
 import numpy as np
 import pytest
-from agents.runs.resolve import make_policy
 
 import soccer_env  # noqa: F401
 from agents import ScriptedGoalkeeper
 from agents.policies import IdlePolicy, NumpyPolicy
+from agents.runs.resolve import make_policy
 
 sb3 = pytest.importorskip("stable_baselines3")
 
@@ -215,10 +215,9 @@ def test_recurrent_model_loads_by_file_and_as_sb3_policy(env, recurrent_model, t
     """A RecurrentPPO .zip without a run's config.json is recognised as RecurrentPPO (not
     opened as PPO, which would drop the LSTM); make_policy gives its numpy copy; SB3Policy
     carries the state too."""
-    from agents.runs.resolve import load_sb3
-
     from agents.policies import NumpyRecurrentPolicy
     from agents.policies.files import UnsafeFileError
+    from agents.runs.resolve import load_sb3
 
     model, _ = recurrent_model
     model.save(tmp_path / "final_model.zip")

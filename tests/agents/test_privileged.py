@@ -95,9 +95,8 @@ def test_training_ships_an_actor_for_the_plain_environment(tmp_path):
     """``train(critic="privileged")``: the numpy copy of the actor takes the plain perceived
     observation and acts as the trained model does on the actor's part (normalised with the
     actor entry's statistics)."""
-    from agents.runs.training import TrainConfig, train
-
     from agents.policies import NumpyPolicy
+    from agents.runs.training import TrainConfig, train
 
     cfg = TrainConfig(env_kwargs=dict(KW), critic="privileged", total_steps=512, n_envs=2,
                       n_workers=0, out=str(tmp_path / "run"), checkpoint_every=0,
@@ -109,9 +108,9 @@ def test_training_ships_an_actor_for_the_plain_environment(tmp_path):
     plain = gym.make(GK, **KW)
     obs, _ = plain.reset(seed=0)
     assert policy.obs_size == plain.observation_space.shape[0]
-    from agents.runs.resolve import load_sb3
     from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
 
+    from agents.runs.resolve import load_sb3
     from agents.sb3.normalization import read_vecnormalize, vecnormalize_on
 
     # Loaded without unpickling: the spaces and the privileged policy class from the run.
@@ -140,8 +139,9 @@ def test_config_refuses_what_it_cannot_do():
 def test_worker_processes_carry_dict_observations():
     """The training VecEnv in worker processes batches the ``Dict`` observations as
     stable-baselines3 expects (a dict of arrays), also through ``VecNormalize``."""
-    from agents.runs.training import TrainConfig, make_vec_env
     from stable_baselines3.common.vec_env import VecNormalize
+
+    from agents.runs.training import TrainConfig, make_vec_env
 
     cfg = TrainConfig(env_kwargs=dict(KW), critic="privileged", n_envs=4, n_workers=2,
                       actions="guard")

@@ -54,11 +54,27 @@ def test_default_policy_kwargs_merge_with_the_configuration():
 
 
 def test_checkpoint_steps_reads_the_model_file_without_loading_it(tmp_path):
-    from agents.runs.training import checkpoint_steps
-
     from agents.baselines import baseline_path
+    from agents.runs.training import checkpoint_steps
 
     assert checkpoint_steps(baseline_path("keeper-ppo-truth", "zip")) == 1_000_000
     (tmp_path / "bad.zip").write_text("not a zip")
     with pytest.raises(ValueError, match="not a stable-baselines3 model file"):
         checkpoint_steps(tmp_path / "bad.zip")
+
+
+def test_checkpoint_steps_reads_within_the_file_budget(tmp_path, monkeypatch):
+    """A model file whose JSON unpacks to more than the budget is refused before it is read."""
+    import zipfile
+
+    from agents.policies import files
+    from agents.policies.files import UnsafeFileError
+    from agents.runs.training import checkpoint_steps
+
+    path = tmp_path / "big.zip"
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as archive:
+        archive.writestr("data", '{"num_timesteps": 5, "pad": "' + "x" * 4000 + '"}')
+    assert checkpoint_steps(path) == 5
+    monkeypatch.setattr(files, "MAX_FILE_BYTES", 1000)
+    with pytest.raises(UnsafeFileError, match="unpacks to"):
+        checkpoint_steps(path)

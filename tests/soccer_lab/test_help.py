@@ -66,7 +66,6 @@ def test_train_states_the_configuration_defaults(all_parsers):
     import dataclasses
 
     from agents.runs.training import TrainConfig
-
     from soccer_lab.commands.train_options import FIELD_OPTIONS
 
     defaults = {f.name: f.default for f in dataclasses.fields(TrainConfig)}

@@ -13,17 +13,18 @@ import os
 import platform
 import shutil
 import time
-import zipfile
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from agents.policies.files import UnsafeFileError
 from agents.runs.folders import RunRefused, TrainingStopped, run_files, run_folder
 from agents.runs.resolve import load_sb3
 from agents.runs.training.config import TrainConfig
 from agents.runs.training.environments import check_env_kwargs, learner_action_map, training_env
 from agents.sb3.algorithms import algorithm_class
+from agents.sb3.model_files import model_data
 from agents.sb3.normalization import save_vecnormalize, vecnormalize_path
 from agents.sb3.policies import numpy_copy
 
@@ -234,14 +235,16 @@ def _save_final(cfg: TrainConfig, model: Any, out: Path, evaluator: Any,
 def checkpoint_steps(path: str | os.PathLike) -> int:
     """The environment steps a saved stable-baselines3 model has trained (its
     ``num_timesteps``), read from the JSON part of the ``.zip`` without loading (unpickling)
-    anything. Raises ``ValueError`` for a file that is not such a model."""
+    anything, within the size budget of :func:`~agents.sb3.model_files.model_data`. Raises
+    ``ValueError`` for a file that is not such a model,
+    :class:`~agents.policies.files.UnsafeFileError` for one too large to read."""
     try:
-        with zipfile.ZipFile(path) as archive:
-            data = json.loads(archive.read("data"))
-        return int(data["num_timesteps"])
-    except (zipfile.BadZipFile, KeyError, ValueError, TypeError) as err:
-        raise ValueError(f"{os.fspath(path)} is not a stable-baselines3 model file ({err})"
-                         ) from None
+        return int(model_data(Path(path))["num_timesteps"])
+    except UnsafeFileError:
+        raise
+    except (KeyError, ValueError, TypeError) as err:
+        raise ValueError(f"{os.fspath(path)} is not a stable-baselines3 model file with its "
+                         f"trained steps ({err})") from None
 
 
 def _versions() -> dict[str, str]:

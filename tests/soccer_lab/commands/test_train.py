@@ -9,9 +9,8 @@ import pytest
 
 pytest.importorskip("stable_baselines3")
 
-from agents.runs.resolve import load_sb3, make_policy  # noqa: E402
-
 from agents.policies import NumpyPolicy  # noqa: E402
+from agents.runs.resolve import load_sb3, make_policy  # noqa: E402
 from soccer_lab.cli import main  # noqa: E402
 
 pytestmark = pytest.mark.slow
@@ -149,9 +148,9 @@ def test_recurrent_ppo_run_resumes_and_refuses_a_resume_with_nothing_to_train(tm
     checkpoint has."""
     pytest.importorskip("sb3_contrib")
     import gymnasium as gym
-    from agents.runs.training import TrainConfig, train
 
     from agents.policies import NumpyRecurrentPolicy
+    from agents.runs.training import TrainConfig, train
 
     run = tmp_path / "lstm"
     assert main(["train", "--algo", "recurrent-ppo", "--steps", "256", "--n-envs", "2",

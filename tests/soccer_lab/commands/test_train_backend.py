@@ -70,7 +70,6 @@ def test_the_option_table_sets_each_backends_fields():
     import dataclasses
 
     from agents.runs.training import TrainConfig
-
     from soccer_lab.commands.train_options import (
         BACKENDS,
         TRAIN_OPTIONS,

@@ -117,11 +117,11 @@ def test_a_failing_worker_ends_training_with_a_checkpoint(tmp_path, monkeypatch,
     """An environment that raises in the second rollout worker: training ends within
     seconds, naming the worker and carrying the environment's traceback; the model of the
     last completed update is saved and the message says how to resume."""
-    from agents.runs.folders import TrainingStopped
-    from agents.runs.training import TrainConfig, train
     from faulty_envs import FailingAfter
 
     import agents.vec.factories as factories
+    from agents.runs.folders import TrainingStopped
+    from agents.runs.training import TrainConfig, train
 
     real = factories.goalkeeper_env_fn
     monkeypatch.setattr(factories, "goalkeeper_env_fn",
