@@ -1,7 +1,8 @@
 """Estimators and models for robot soccer, usable without the environment.
 
-Everything here takes and returns numpy arrays, depends on numpy only (never on ``soccer_env``
-or ``agents``), and draws random numbers from explicit ``numpy.random.Generator`` arguments.
+Everything here takes and returns numpy arrays, depends on numpy and numba only (its hot paths
+are compiled kernels; never on ``soccer_env`` or ``agents``), and draws random numbers from
+explicit ``numpy.random.Generator`` arguments.
 
 "Xu et al. (2012)" to "Yu et al. (2010)" are the five source papers, cited in full in the
 README's "Source papers" section and on the documentation's "Source papers" page

@@ -42,9 +42,9 @@ LAYERS = (
     ("agents: front", ("agents",)),
     ("application", ("soccer_lab",)),
 )
-#: What the estimators may import besides the standard library and themselves: numpy, and
-#: OpenCV in the colour operations of the image trackers only.
-ESTIMATOR_LIBRARIES = {"numpy": None, "cv2": ("estimators.image.colour",)}
+#: What the estimators may import besides the standard library and themselves: numpy, numba
+#: (their compiled kernels), and OpenCV in the colour operations of the image trackers only.
+ESTIMATOR_LIBRARIES = {"numpy": None, "numba": None, "cv2": ("estimators.image.colour",)}
 
 #: The layers of ``agents`` that run without the learning libraries (numpy and gymnasium
 #: only), and those libraries.

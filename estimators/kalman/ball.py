@@ -300,6 +300,7 @@ class BallTracker(ReplayBuffer, TrackQualityMixin):
         gate = self._gate
         P11 = P[0]
         z, d2, Si = gate.nearest(x[0], x[1], (P11[0] + r, P11[1], P11[3] + r), detections)
+        z = (float(z[0]), float(z[1]))  # (a float pair: the compiled blocks take one type)
         y = (z[0] - x[0], z[1] - x[1])
         if d2 <= gate.limit:
             self.fused += 1

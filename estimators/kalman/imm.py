@@ -458,7 +458,8 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
         # The combined gate's distance is needed only when no mode's gate takes the
         # detection; with several detections the nearest one's comes with the choice.
         z, d2 = (dets[0], None) if len(dets) == 1 else self._nearest(rest, roll, man, c, dets)
-        zx, zy = z[0], z[1]
+        zx, zy = float(z[0]), float(z[1])
+        z = (zx, zy)  # (a float pair: the compiled blocks take one type)
         # Step 6: the innovations; the rest mode's in closed form (no velocity).
         s0, s3 = r0 + r, r3 + r
         det = s0 * s3 - r1 * r1
