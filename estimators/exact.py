@@ -11,9 +11,10 @@ from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
 
-__all__ = ["hypots", "wrap_angles"]
+__all__ = ["hypots", "wrap_angles", "wrap_angle"]
 
 #: The full turn that :func:`wrap_angles` wraps by [rad].
 _TWO_PI = 2.0 * math.pi
@@ -90,3 +91,19 @@ def wrap_angles(angle: np.ndarray | float) -> np.ndarray:
     c = _TWO_PI - m
     half = m - 2.0 * np.fmod(0.5 * (ax - m), _TWO_PI)
     return np.copysign(1.0, x) * np.where(m < c, m, np.where(m > c, -c, half))
+
+
+@numba.njit(cache=True)
+def wrap_angle(x: float) -> float:
+    """``math.remainder(x, 2 pi)`` for one angle ``x`` [rad] in compiled kernels, which have no
+    ``math.remainder``: :func:`wrap_angles`' steps on a float, bit for bit."""
+    ax = abs(x)
+    m = np.fmod(ax, _TWO_PI)
+    c = _TWO_PI - m
+    if m < c:
+        r = m
+    elif m > c:
+        r = -c
+    else:
+        r = m - 2.0 * np.fmod(0.5 * (ax - m), _TWO_PI)
+    return math.copysign(1.0, x) * r

@@ -16,9 +16,12 @@ and updating with ``z`` of variance ``r``: ``y = z - p``, ``S = P00 + r``, ``K =
     ``P00' = (1 - K0)^2 P00 + K0^2 r``;  ``P01' = (1 - K0)(P01 - K1 P00) + K0 K1 r``;
     ``P11' = P11 - 2 K1 P01 + K1^2 (P00 + r)``   (Joseph form).
 
-These are a dozen multiply-adds per axis, so they run in plain Python floats: a camera frame
-brings a handful of detections, sizes at which numpy's per-call overhead would cost more than
-the arithmetic. ``tests/estimators/kalman/test_robots.py`` checks them against the 6-state
+These are a dozen multiply-adds per axis, written once as compiled ``numba`` kernels over
+rows of poses (:func:`update_pose`, :func:`update_poses`, :func:`predict_poses`): a camera
+frame brings a handful of detections per environment, sizes at which numpy's per-call overhead
+would cost more than the arithmetic. :class:`RobotTracker` is one tracker of them and
+:class:`RobotTrackerBatch` ``m``, so the two agree bit for bit.
+``tests/estimators/kalman/test_robots.py`` checks them against the 6-state
 :class:`~estimators.kalman.KalmanFilter` to 1e-9.
 
 Measurements carry their capture time; a robot is predicted to it before the update, so
@@ -36,14 +39,16 @@ from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
 
 from ..checks import check_count
-from ..exact import wrap_angles
+from ..exact import wrap_angle
 from ..models.measurement import MIN_SIGMA_THETA, MIN_SIGMA_XY, PoseMeasurement
 from ..protocol import check_order, check_time
 
-__all__ = ["RobotTracker", "RobotTrackerBatch", "MAX_ROBOTS"]
+__all__ = ["RobotTracker", "RobotTrackerBatch", "MAX_ROBOTS", "update_pose", "update_poses",
+           "predict_poses"]
 
 #: The most robots one tracker follows (a whole league's worth).
 MAX_ROBOTS = 10_000
@@ -51,26 +56,86 @@ MAX_ROBOTS = 10_000
 _TWO_PI = 2.0 * math.pi
 
 
-def _predict_update(axis: list, z: float, T: float, q: float, r: float, angle: bool) -> None:
-    """One axis ``[p, v, P00, P01, P11]``: predict over ``T``, fuse ``z`` (in place)."""
-    p, v, P00, P01, P11 = axis
+@numba.njit(cache=True)
+def _axis(state: np.ndarray, a: int, z: float, T: float, q: float, r: float) -> None:
+    """Axis ``a`` of one robot's ``state`` ``(5, 3)`` (rows ``p, v, P00, P01, P11``): predict
+    over ``T`` [s], fuse ``z`` (in place); the heading (``a == 2``) wraps."""
+    p, v, P00, P01, P11 = state[0, a], state[1, a], state[2, a], state[3, a], state[4, a]
     qT = q * T
     P00 += T * (2.0 * P01 + T * (P11 + qT / 3.0))
     P01 += T * (P11 + 0.5 * qT)
     P11 += qT
     p += v * T
     y = z - p
-    if angle:
-        y = math.remainder(y, _TWO_PI)
+    if a == 2:
+        y = wrap_angle(y)
     S = P00 + r
     K0, K1 = P00 / S, P01 / S
     p += K0 * y
-    axis[0] = math.remainder(p, _TWO_PI) if angle else p
-    axis[1] = v + K1 * y
+    state[0, a] = wrap_angle(p) if a == 2 else p
+    state[1, a] = v + K1 * y
     c = 1.0 - K0
-    axis[2] = c * c * P00 + K0 * K0 * r
-    axis[3] = c * (P01 - K1 * P00) + K0 * K1 * r
-    axis[4] = P11 - 2.0 * K1 * P01 + K1 * K1 * S
+    state[2, a] = c * c * P00 + K0 * K0 * r
+    state[3, a] = c * (P01 - K1 * P00) + K0 * K1 * r
+    state[4, a] = P11 - 2.0 * K1 * P01 + K1 * K1 * S
+
+
+@numba.njit(cache=True)
+def update_pose(state: np.ndarray, times: np.ndarray, seen: np.ndarray, k: int, i: int,
+                t: float, z0: float, z1: float, z2: float, q: np.ndarray, r: np.ndarray,
+                var_v0: float) -> bool:
+    """Fuse the pose ``(z0, z1, z2)`` [m, m, rad] of robot ``i`` of tracker ``k`` captured at
+    ``t`` [s] into ``state`` ``(m, n, 5, 3)``, ``times`` and ``seen`` ``(m, n)`` (in place):
+    a first detection starts the robot at rest with variances ``r`` and ``var_v0``, a later
+    one is predicted to and fused per axis (noise densities ``q``). Returns whether the
+    detection was dropped (older than the robot's latest)."""
+    z = (z0, z1, z2)
+    if not seen[k, i]:
+        for a in range(3):
+            state[k, i, 0, a], state[k, i, 1, a] = z[a], 0.0
+            state[k, i, 2, a], state[k, i, 3, a], state[k, i, 4, a] = r[a], 0.0, var_v0
+        times[k, i] = t
+        seen[k, i] = True
+        return False
+    T = t - times[k, i]
+    if T < 0.0:
+        return True
+    times[k, i] = t
+    for a in range(3):
+        _axis(state[k, i], a, z[a], T, q[a], r[a])
+    return False
+
+
+@numba.njit(cache=True)
+def update_poses(state: np.ndarray, times: np.ndarray, seen: np.ndarray, dropped: np.ndarray,
+                 k: np.ndarray, i: np.ndarray, t: np.ndarray, z: np.ndarray, q: np.ndarray,
+                 r: np.ndarray, var_v0: float) -> None:
+    """:func:`update_pose` of each detection in order: trackers ``k``, robots ``i``, times
+    ``t`` ``(d,)``, poses ``z`` ``(d, 3)``; ``dropped`` ``(m,)`` counts the dropped ones."""
+    for j in range(k.shape[0]):
+        if update_pose(state, times, seen, k[j], i[j], t[j], z[j, 0], z[j, 1], z[j, 2], q, r,
+                       var_v0):
+            dropped[k[j]] += 1
+
+
+@numba.njit(cache=True)
+def predict_poses(state: np.ndarray, times: np.ndarray, seen: np.ndarray, t: np.ndarray
+                  ) -> np.ndarray:
+    """``(m, n, 6)`` rows ``x, y, theta, vx, vy, omega`` of every robot predicted to its
+    tracker's time ``t`` ``(m,)`` [s] at constant velocity (never backwards; robots never seen
+    read as zeros)."""
+    m, n = seen.shape
+    out = np.zeros((m, n, 6))
+    for k in range(m):
+        for i in range(n):
+            if not seen[k, i]:
+                continue
+            dt = t[k] - times[k, i] if t[k] > times[k, i] else 0.0
+            for a in range(3):
+                out[k, i, a] = state[k, i, 0, a] + state[k, i, 1, a] * dt
+                out[k, i, 3 + a] = state[k, i, 1, a]
+            out[k, i, 2] = wrap_angle(out[k, i, 2])
+    return out
 
 
 class RobotTracker:
@@ -112,15 +177,18 @@ class RobotTracker:
     def reset(self) -> None:
         """Forget all robots."""
         n = self.n
-        # Per robot: 3 axes of (p, v, P00, P01, P11), and the time of the last update.
-        self._axes: list[list[list[float]] | None] = [None] * n
-        self._t = [-math.inf] * n
+        # Per robot: 3 axes (columns) of (p, v, P00, P01, P11), the time of the last update,
+        # whether it was seen: one tracker of the kernels' (m, n, ...) arrays.
+        self._q, self._r = np.array(self.q), np.array(self.r)
+        self._state = np.zeros((1, n, 5, 3))
+        self._times = np.full((1, n), -math.inf)
+        self._seen = np.zeros((1, n), dtype=bool)
         self.dropped = 0
 
     @property
     def seen(self) -> np.ndarray:
         """``(n,)`` whether each robot has been detected."""
-        return np.array([a is not None for a in self._axes], dtype=bool)
+        return self._seen[0].copy()
 
     def update(self, t, z, index) -> None:
         """Fuse pose detections ``z`` ``(k, 3)`` of robots ``index`` ``(k,)`` captured at
@@ -148,7 +216,7 @@ class RobotTracker:
                              f"{t!r}") from None
         if not np.isfinite(z).all():
             raise ValueError("z must be finite (NaN measurements are refused)")
-        latest = max(self._t, default=-math.inf)
+        latest = float(self._times.max(initial=-math.inf))
         for ti in np.unique(t).tolist():
             check_order(check_time(ti), latest)
         if k and (index.min() < 0 or index.max() >= self.n):
@@ -160,65 +228,46 @@ class RobotTracker:
         """Fuse one pose detection ``z = (x, y, theta)`` of robot ``i`` captured at ``t``
         (unchecked: the fast path for callers with validated data, one call per detection
         without the array round trip of :meth:`update`)."""
-        axes = self._axes[i]
-        if axes is None:
-            self._axes[i] = [[z[a], 0.0, self.r[a], 0.0, self.var_v0] for a in range(3)]
-            self._t[i] = t
-            return
-        T = t - self._t[i]
-        if T < 0.0:
+        if update_pose(self._state, self._times, self._seen, 0, i, t, z[0], z[1], z[2],
+                       self._q, self._r, self.var_v0):
             self.dropped += 1
-            return
-        self._t[i] = t
-        for a in (0, 1, 2):
-            _predict_update(axes[a], z[a], T, self.q[a], self.r[a], a == 2)
 
     def estimate(self, t: float) -> np.ndarray:
         """``(n, 6)`` rows ``x, y, theta, vx, vy, omega`` predicted to time ``t`` (robots never
         seen read as zeros; see :attr:`seen`)."""
         t = check_time(t)
-        rows = []
-        for axes, ti in zip(self._axes, self._t):
-            if axes is None:
-                rows.append((0.0, 0.0, 0.0, 0.0, 0.0, 0.0))
-                continue
-            dt = t - ti if t > ti else 0.0
-            (px, vx, *_), (py, vy, *_), (pt, vt, *_) = axes
-            rows.append((px + vx * dt, py + vy * dt, math.remainder(pt + vt * dt, _TWO_PI),
-                         vx, vy, vt))
-        return np.array(rows).reshape(-1, 6)
+        return predict_poses(self._state, self._times, self._seen, np.array([t]))[0]
 
     @property
     def p(self) -> np.ndarray:
         """``(n, 3)`` poses at each robot's latest update."""
-        return np.array([[a[0] for a in axes] if axes else [0.0] * 3
-                         for axes in self._axes]).reshape(-1, 3)
+        return self._state[0, :, 0].copy()
 
     @property
     def v(self) -> np.ndarray:
         """``(n, 3)`` velocities at each robot's latest update."""
-        return np.array([[a[1] for a in axes] if axes else [0.0] * 3
-                         for axes in self._axes]).reshape(-1, 3)
+        return self._state[0, :, 1].copy()
 
     def pose_sigma(self, i: int, t: float) -> tuple[float, float]:
         """Standard deviations of robot ``i``'s pose predicted to ``t``: position
         ``sqrt((var x + var y) / 2)`` [m] and heading [rad], each axis's ``P00`` predicted as
         in the module docstring; ``(inf, inf)`` for a robot never seen."""
-        axes = self._axes[i]
-        if axes is None:
+        if not self._seen[0, i]:
             return math.inf, math.inf
-        T = max(0.0, t - self._t[i])
+        T = max(0.0, t - float(self._times[0, i]))
+        axes = self._state[0, i, 2:5].T.tolist()
         var = [P00 + T * (2.0 * P01 + T * (P11 + q * T / 3.0))
-               for (_, _, P00, P01, P11), q in zip(axes, self.q)]
+               for (P00, P01, P11), q in zip(axes, self.q)]
         return math.sqrt(0.5 * (var[0] + var[1])), math.sqrt(var[2])
 
     def covariance(self, i: int) -> np.ndarray:
         """The 6 x 6 covariance of robot ``i`` (order ``x, y, theta, vx, vy, omega``)."""
         P = np.zeros((6, 6))
-        for ax, (_, _, P00, P01, P11) in enumerate(self._axes[i] or []):
-            P[ax, ax] = P00
-            P[ax, ax + 3] = P[ax + 3, ax] = P01
-            P[ax + 3, ax + 3] = P11
+        if self._seen[0, i]:
+            for ax, (P00, P01, P11) in enumerate(self._state[0, i, 2:5].T.tolist()):
+                P[ax, ax] = P00
+                P[ax, ax + 3] = P[ax + 3, ax] = P01
+                P[ax + 3, ax + 3] = P11
         return P
 
 
@@ -226,10 +275,9 @@ class RobotTrackerBatch:
     """``m`` independent :class:`RobotTracker` of ``n`` robots each, as arrays: the pose
     filters of ``m`` environments updated in one array operation per batch of detections.
 
-    The arithmetic is :class:`RobotTracker`'s, operation for operation (the heading's
-    ``math.remainder`` by :func:`~estimators.exact.wrap_angles`), so that tracker ``k`` of the
-    batch gives what a :class:`RobotTracker` fed the same detections gives, bit for bit
-    (``tests/estimators/kalman/test_robots.py``).
+    The kernels are :class:`RobotTracker`'s (:func:`update_pose`, :func:`predict_poses`), so
+    that tracker ``k`` of the batch gives what a :class:`RobotTracker` fed the same detections
+    gives, bit for bit (``tests/estimators/kalman/test_robots.py``).
 
     Args:
         m: trackers (environments).
@@ -270,71 +318,19 @@ class RobotTrackerBatch:
 
     def update(self, k, i, t, z) -> None:
         """Fuse pose detections ``z`` ``(d, 3)`` of robots ``i`` ``(d,)`` of trackers ``k``
-        ``(d,)``, captured at ``t`` ``(d,)`` [s]. The pairs ``(k, i)`` must be distinct (each
-        is one :meth:`RobotTracker.update_robot` call; a robot's successive detections go in
-        successive calls). Unchecked, like ``update_robot``."""
-        k = np.asarray(k, dtype=np.int64)
-        i = np.asarray(i, dtype=np.int64)
-        t = np.asarray(t, dtype=np.float64)
-        z = np.asarray(z, dtype=np.float64)
+        ``(d,)``, captured at ``t`` ``(d,)`` [s], in order (each is one
+        :meth:`RobotTracker.update_robot` call). Unchecked, like ``update_robot``."""
+        k = np.ascontiguousarray(k, dtype=np.int64).reshape(-1)
         if not len(k):
             return
-        seen = self.seen[k, i]
-        new = ~seen
-        if new.any():
-            kn, in_ = k[new], i[new]
-            rows = np.zeros((len(kn), 5, 3))
-            rows[:, 0] = z[new]
-            rows[:, 2] = self.r
-            rows[:, 4] = self.var_v0
-            self._state[kn, in_] = rows
-            self._t[kn, in_] = t[new]
-            self.seen[kn, in_] = True
-        if not seen.any():
-            return
-        k, i, t, z = k[seen], i[seen], t[seen], z[seen]
-        T = t - self._t[k, i]
-        late = T < 0.0
-        if late.any():
-            np.add.at(self.dropped, k[late], 1)
-            keep = ~late
-            k, i, t, z, T = k[keep], i[keep], t[keep], z[keep], T[keep]
-        self._t[k, i] = t
-        s = self._state[k, i]  # (d, 5, 3)
-        p, v, P00, P01, P11 = s[:, 0], s[:, 1], s[:, 2], s[:, 3], s[:, 4]
-        T = T[:, None]
-        q, r = self.q, self.r
-        # RobotTracker's _predict_update, axis by axis in columns.
-        qT = q * T
-        P00 = P00 + T * (2.0 * P01 + T * (P11 + qT / 3.0))
-        P01 = P01 + T * (P11 + 0.5 * qT)
-        P11 = P11 + qT
-        p = p + v * T
-        y = z - p
-        y[:, 2] = wrap_angles(y[:, 2])
-        S = P00 + r
-        K0, K1 = P00 / S, P01 / S
-        p = p + K0 * y
-        p[:, 2] = wrap_angles(p[:, 2])
-        c = 1.0 - K0
-        out = np.empty_like(s)
-        out[:, 0] = p
-        out[:, 1] = v + K1 * y
-        out[:, 2] = c * c * P00 + K0 * K0 * r
-        out[:, 3] = c * (P01 - K1 * P00) + K0 * K1 * r
-        out[:, 4] = P11 - 2.0 * K1 * P01 + K1 * K1 * S
-        self._state[k, i] = out
+        update_poses(self._state, self._t, self.seen, self.dropped, k,
+                     np.ascontiguousarray(i, dtype=np.int64).reshape(-1),
+                     np.ascontiguousarray(t, dtype=np.float64).reshape(-1),
+                     np.ascontiguousarray(z, dtype=np.float64).reshape(-1, 3),
+                     self.q, self.r, self.var_v0)
 
     def estimate(self, t) -> np.ndarray:
         """``(m, n, 6)`` rows ``x, y, theta, vx, vy, omega`` of every tracker predicted to its
         time ``t`` (``(m,)`` [s], or one time for all); robots never seen read as zeros."""
-        t = np.broadcast_to(np.asarray(t, dtype=np.float64), (self.m,))
-        later = self.seen & (t[:, None] > self._t)
-        dt = np.where(later, t[:, None] - np.where(later, self._t, 0.0), 0.0)[..., None]
-        p, v = self._state[:, :, 0], self._state[:, :, 1]
-        out = np.empty((self.m, self.n, 6))
-        out[..., 0:3] = p + v * dt
-        out[..., 2] = wrap_angles(out[..., 2])
-        out[..., 3:6] = v
-        out[~self.seen] = 0.0
-        return out
+        t = np.ascontiguousarray(np.broadcast_to(np.asarray(t, dtype=np.float64), (self.m,)))
+        return predict_poses(self._state, self._t, self.seen, t)
