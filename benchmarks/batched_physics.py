@@ -30,9 +30,9 @@ import time
 import numpy as np
 import pymunk
 import pymunk.batch as pbatch
-from pymunk._chipmunk import lib as _cp
 
 from soccer_env.presets import BALLS, FIELDS, ROBOTS
+from soccer_env.sim.chipmunk import lib as cp
 from soccer_env.sim.ssl import robot_outline
 
 FIELD, BALL, ROBOT = FIELDS["ssl-div-b"], BALLS["ssl"], ROBOTS["ssl"]
@@ -114,20 +114,20 @@ class Spaces:
 
     def kick(self, v: np.ndarray) -> None:
         for ball, (vx, vy) in zip(self.balls, v.tolist()):
-            _cp.cpBodySetVelocity(ball, (vx, vy))
+            cp.cpBodySetVelocity(ball, (vx, vy))
 
     def step(self, commands: np.ndarray) -> np.ndarray:
-        set_v, set_w = _cp.cpBodySetVelocity, _cp.cpBodySetAngularVelocity
+        set_v, set_w = cp.cpBodySetVelocity, cp.cpBodySetAngularVelocity
         for controls, rows in zip(self.controls, commands.tolist()):
             for c, (vx, vy, w) in zip(controls, rows):
                 set_v(c, (vx, vy))
                 set_w(c, w)
-        step = _cp.cpSpaceStep
+        step = cp.cpSpaceStep
         for handle in self.handles:
             for _ in range(SUBSTEPS):
                 step(handle, DT)
-        pos, vel = _cp.cpBodyGetPosition, _cp.cpBodyGetVelocity
-        ang, spin = _cp.cpBodyGetAngle, _cp.cpBodyGetAngularVelocity
+        pos, vel = cp.cpBodyGetPosition, cp.cpBodyGetVelocity
+        ang, spin = cp.cpBodyGetAngle, cp.cpBodyGetAngularVelocity
         rows = []
         for ball, bodies in zip(self.balls, self.bodies):
             for h in [ball, *bodies]:
@@ -178,7 +178,7 @@ class Shared:
         state[self.control_rows, 3:5] = commands[:, :, :2].reshape(-1, 2)
         state[self.control_rows, 5] = commands[:, :, 2].ravel()
         self._write(state)
-        step, handle = _cp.cpSpaceStep, self.space._space
+        step, handle = cp.cpSpaceStep, self.space._space
         for _ in range(SUBSTEPS):
             step(handle, DT)
         state = self._read()

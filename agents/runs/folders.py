@@ -11,7 +11,8 @@ import os
 from pathlib import Path
 from typing import Any
 
-__all__ = ["RUN_FILES", "run_files", "run_folder", "run_config", "RunRefused",
+__all__ = ["RUN_FILES", "run_files", "run_folder", "run_config", "occupied_run_files",
+           "check_steps_left", "RunRefused",
            "TrainingStopped"]
 
 #: What a training run writes into its folder: a folder holding any of these holds a run,
@@ -63,6 +64,29 @@ def run_files(folder: str | os.PathLike) -> list[str]:
     """The names of :data:`RUN_FILES` present in ``folder`` (empty: it holds no run)."""
     folder = Path(folder)
     return [name for name in RUN_FILES if (folder / name).exists()]
+
+
+def occupied_run_files(out: str | os.PathLike, resume: str | os.PathLike | None,
+                       overwrite: bool) -> list[str]:
+    """The run files of ``out`` that a new run would replace: none when ``resume`` continues
+    the run in ``out``; :class:`RunRefused` when there are some and ``overwrite`` is false."""
+    out = Path(out)
+    continuing = resume is not None and run_folder(resume).resolve() == out.resolve()
+    existing = [] if continuing else run_files(out)
+    if existing and not overwrite:
+        raise RunRefused(f"out {os.fspath(out)} already holds a training run "
+                         f"({', '.join(existing)}); choose another folder, or overwrite "
+                         "it (--force; its run files are deleted first)")
+    return existing
+
+
+def check_steps_left(total_steps: int, done: int, resume: str | os.PathLike) -> None:
+    """:class:`RunRefused` when the checkpoint ``resume`` has trained ``done`` steps of
+    ``total_steps`` (which count them) or more: nothing is left to train."""
+    if total_steps <= done:
+        raise RunRefused(f"total_steps {total_steps:,} leaves nothing to train: the "
+                         f"checkpoint {os.fspath(resume)} has trained {done:,} steps and "
+                         "total_steps counts them too")
 
 
 def run_config(model_path: Path) -> dict[str, Any]:

@@ -51,7 +51,13 @@ from typing import Any
 from agents.common.checks import check_counts
 from agents.policies.action_maps import ACTION_MAPS
 from agents.policies.files import TRUST_HELP, UnsafeFileError
-from agents.runs.folders import RunRefused, TrainingStopped, run_files, run_folder
+from agents.runs.folders import (
+    RunRefused,
+    TrainingStopped,
+    check_steps_left,
+    occupied_run_files,
+    run_folder,
+)
 from agents.runs.rllib import (
     ENV_IDS,
     POLICY_MAPPINGS,
@@ -433,22 +439,14 @@ def train(cfg: RllibTrainConfig, resume: str | os.PathLike | None = None,
     Ctrl-C ends training with :class:`~agents.runs.folders.TrainingStopped`, naming the last
     checkpoint and the command that continues from it."""
     out = Path(cfg.out)
-    continuing = resume is not None and run_folder(resume).resolve() == out.resolve()
-    existing = [] if continuing else run_files(out)
-    if existing and not overwrite:
-        raise RunRefused(f"out {os.fspath(out)} already holds a training run "
-                         f"({', '.join(existing)}); choose another folder, or overwrite "
-                         "it (--force; its run files are deleted first)")
+    existing = occupied_run_files(out, resume, overwrite)
     done = 0
     if resume is not None:
         try:
             done = checkpoint_steps(resume, trust)
         except ValueError as err:  # UnsafeFileError included
             raise RunRefused(f"resume: {err}") from None
-        if cfg.total_steps <= done:
-            raise RunRefused(f"total_steps {cfg.total_steps:,} leaves nothing to train: the "
-                             f"checkpoint {os.fspath(resume)} has trained {done:,} steps and "
-                             "total_steps counts them too")
+        check_steps_left(cfg.total_steps, done, resume)
     try:
         check_env_kwargs(cfg)
         config = cfg.ppo_config()

@@ -36,15 +36,9 @@ import numpy as np
 import pymunk
 import pymunk.batch as pbatch
 
-# Chipmunk's C functions: ``cpSpaceStep`` on a space's handle steps it without the 3
-# microseconds of Python housekeeping of ``Space.step`` per substep, and ``cpBodyGetVelocity``
-# reads one ball's velocity at a third of the cost of ``Body.velocity``; pymunk 7's public
-# ``pymunk.batch`` reads and writes whole spaces, which costs more per substep than these
-# calls for the few balls that slide. The package pins pymunk 7, whose internals these are.
-from pymunk._chipmunk import lib as _cp
-
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.sim.arena import BALL, HUMANOID, OUT, ROBOT, WALL
+from soccer_env.sim.chipmunk import lib as cp
 from soccer_env.sim.ssl import MOUTH_TOLERANCE
 from soccer_env.sim.world import COLLISION_SLOP, BallExit, World
 from soccer_env.validation import check_int
@@ -233,7 +227,7 @@ class WorldBatch:
             np.zeros((self.n_worlds, n)), np.zeros((self.n_worlds, n), dtype=bool),
             np.zeros((self.n_worlds, n), dtype=bool))
         self._pending: list[int] = []
-        self._step_space = _cp.cpSpaceStep
+        self._step_space = cp.cpSpaceStep
         self._shards = shards
         # ``state`` already holds every world's start exactly (the worlds' restarts write it
         # through their views); a read from the space would round it through the offsets.
@@ -428,7 +422,7 @@ class WorldBatch:
         sliding-to-rolling switches of the worlds whose ball moves so."""
         h = self.substep_dt
         step, worlds, times = self._step_space, self.worlds, self._times
-        get_velocity = _cp.cpBodyGetVelocity
+        get_velocity = cp.cpBodyGetVelocity
         for index, shard in enumerate(self._shards):
             handle, sl = shard.handle, slice(shard.start, shard.stop)
             shard_times = times[sl]

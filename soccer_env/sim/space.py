@@ -15,13 +15,8 @@ import math
 import pymunk
 import pymunk.batch as pbatch
 
-# Chipmunk's C functions, called directly in the hot loop: pymunk 7's public API has no
-# equivalent at the same cost (``Space.step`` adds about 3 microseconds of Python
-# housekeeping per call; see :meth:`SpaceBodies._populate`). The package pins pymunk 7,
-# whose internals these are.
-from pymunk._chipmunk import lib as _cp
-
 from soccer_env.sim.arena import BALL, HUMANOID, ROBOT, add_walls
+from soccer_env.sim.chipmunk import lib as cp
 from soccer_env.sim.ssl import robot_outline
 
 __all__ = ["SpaceBodies"]
@@ -111,7 +106,7 @@ class SpaceBodies:
     def _bind_handles(self) -> None:
         """Take the raw Chipmunk handles of the hot loop from the present space."""
         space = self.space
-        self._space_step = (functools.partial(_cp.cpSpaceStep, space._space)
+        self._space_step = (functools.partial(cp.cpSpaceStep, space._space)
                             if self.direct_step else space.step)
         self._ball_handle = self._ball._body
         self._control_handles = [c._body for c in self._controls]

@@ -44,13 +44,6 @@ import numpy as np
 import pymunk
 import pymunk.batch as pbatch
 
-# Chipmunk's C functions, called directly in the hot loop: pymunk's property wrappers cost
-# 0.6-0.8 microseconds per access against 0.2-0.3 for the C call, and a Goalkeeper step makes
-# a dozen such accesses; ``pymunk.batch`` reads and writes whole spaces, which costs more than
-# these calls for the few bodies of a world. The package pins pymunk 7, whose internals these
-# are.
-from pymunk._chipmunk import lib as _cp
-
 from soccer_env.presets import (
     BallSpec,
     FieldSpec,
@@ -60,6 +53,7 @@ from soccer_env.presets import (
 )
 from soccer_env.sim.arena import BALL, HUMANOID, OUT, ROBOT, WALL
 from soccer_env.sim.ball import BallExit, BallPhysics
+from soccer_env.sim.chipmunk import lib as cp
 from soccer_env.sim.humanoid_bodies import HumanoidBodies
 from soccer_env.sim.placement import Placement
 from soccer_env.sim.space import SpaceBodies
@@ -284,7 +278,7 @@ class World(KickerDribbler, HumanoidBodies, BallPhysics, SpaceBodies, Placement)
                              f"{commands.shape}")
         rows = commands.tolist()
         armed, chip, dribble = self._armed, self._chip, self._dribble
-        set_velocity, set_omega = _cp.cpBodySetVelocity, _cp.cpBodySetAngularVelocity
+        set_velocity, set_omega = cp.cpBodySetVelocity, cp.cpBodySetAngularVelocity
         headings = self._state[1:, 2].tolist()
         controls, limits = self._control_handles, self._limits
         # Plain-Python loop: at these sizes it is several times cheaper than numpy calls.
@@ -319,7 +313,7 @@ class World(KickerDribbler, HumanoidBodies, BallPhysics, SpaceBodies, Placement)
         dribbling = self._dribble_candidates() if any(dribble) else ()
 
         ball = self._ball_handle
-        get_velocity = _cp.cpBodyGetVelocity
+        get_velocity = cp.cpBodyGetVelocity
         h = self.substep_dt
         space_step = self._space_step
         for _ in range(self.n_substeps):
@@ -354,8 +348,8 @@ class World(KickerDribbler, HumanoidBodies, BallPhysics, SpaceBodies, Placement)
         """
         state = self._state
         if not (self.n_robots > DIRECT_READ_MAX_ROBOTS if batch is None else batch):
-            pos, vel = _cp.cpBodyGetPosition, _cp.cpBodyGetVelocity
-            ang, spin = _cp.cpBodyGetAngle, _cp.cpBodyGetAngularVelocity
+            pos, vel = cp.cpBodyGetPosition, cp.cpBodyGetVelocity
+            ang, spin = cp.cpBodyGetAngle, cp.cpBodyGetAngularVelocity
             rows = []
             for handle in self._body_handles:
                 p, v = pos(handle), vel(handle)

@@ -19,7 +19,12 @@ from typing import Any
 import numpy as np
 
 from agents.policies.files import UnsafeFileError
-from agents.runs.folders import RunRefused, TrainingStopped, run_files, run_folder
+from agents.runs.folders import (
+    RunRefused,
+    TrainingStopped,
+    check_steps_left,
+    occupied_run_files,
+)
 from agents.runs.resolve import load_sb3
 from agents.runs.training.config import TrainConfig
 from agents.runs.training.environments import check_env_kwargs, learner_action_map, training_env
@@ -102,18 +107,9 @@ def _refuse(cfg: TrainConfig, out: Path, resume: str | os.PathLike | None,
     """Raise :class:`~agents.runs.folders.RunRefused` when ``out`` holds another run and
     ``overwrite`` is false, or when ``resume`` leaves nothing to train; return the run files
     in ``out`` that the run replaces (none when it continues its own run)."""
-    continuing = resume is not None and run_folder(resume).resolve() == out.resolve()
-    existing = [] if continuing else run_files(out)
-    if existing and not overwrite:
-        raise RunRefused(f"out {os.fspath(out)} already holds a training run "
-                         f"({', '.join(existing)}); choose another folder, or overwrite "
-                         "it (--force; its run files are deleted first)")
+    existing = occupied_run_files(out, resume, overwrite)
     if resume is not None:
-        done = checkpoint_steps(resume)
-        if cfg.total_steps <= done:
-            raise RunRefused(f"total_steps {cfg.total_steps:,} leaves nothing to train: the "
-                             f"checkpoint {os.fspath(resume)} has trained {done:,} steps and "
-                             "total_steps counts them too")
+        check_steps_left(cfg.total_steps, checkpoint_steps(resume), resume)
     return existing
 
 
