@@ -73,8 +73,17 @@ import numpy as np
 
 from ..checks import MAX_PARTICLES, check_count, check_real
 from ..fusion.triangulation import PoseHypotheses, SightingMemory, triangulate_sightings
-from .kld import BIN_PACK, kld_table
+from .kld import kld_table
 from .landmarks import LandmarkTable
+from .localization_kernels import (
+    best_log_likelihood,
+    draw_rows,
+    kld_sample_count,
+    move_particles,
+    weigh,
+    weighted_pose,
+    weighted_spread,
+)
 
 __all__ = ["KLDConfig", "KLDLocalizer", "RECOVERIES", "seed_poses"]
 
@@ -253,6 +262,9 @@ class KLDLocalizer:
         #: Weighted by a measurement and not yet resampled (``binning="predicted"``: the
         #: next predict resamples).
         self._pending = False
+        #: KLD-sampling's bound per number of occupied bins (:func:`kld_table` as an array).
+        self._bound: np.ndarray | None = None
+        self._bin_size = tuple(float(v) for v in self.cfg.bin_size)
 
     @property
     def n(self) -> int:
@@ -293,9 +305,10 @@ class KLDLocalizer:
         if len(r) != len(L) or not (np.isfinite(L).all() and np.isfinite(r).all()):
             raise ValueError(f"landmarks ((m, 2)) and ranges ((m,)) must match and be finite, "
                              f"got {L.shape} and {r.shape}")
-        return np.sum(self._pair_log_likelihood(np.ascontiguousarray(L[:, 0]),
-                                                np.ascontiguousarray(L[:, 1]), r,
-                                                self._check_bearings(bearings, r)), axis=1)
+        return self._best_log_likelihood(np.ascontiguousarray(L[:, 0]),
+                                         np.ascontiguousarray(L[:, 1]),
+                                         np.ones(len(r), dtype=np.int64), r,
+                                         self._check_bearings(bearings, r))
 
     def _check_bearings(self, bearings: np.ndarray | None, r: np.ndarray) -> np.ndarray | None:
         """The bearings as a checked array, or None when they are not used."""
@@ -306,36 +319,17 @@ class KLDLocalizer:
             raise ValueError("bearings must be finite and match ranges")
         return b
 
-    def _pair_log_likelihood(self, Lx: np.ndarray, Ly: np.ndarray, r: np.ndarray,
-                             b: np.ndarray | None) -> np.ndarray:
-        """``(N, C)`` log-likelihood terms (up to a constant) of every particle for landmark
-        positions ``(Lx, Ly)`` ((C,) each) seen at ranges ``r`` ((C,)) and bearings ``b``
-        ((C,) or None), one pair per column:
-        ``-(g - r)^2 / (2 sigma_r^2) - wrap(atan2(dy, dx) - theta - b)^2 / (2 sigma_b^2)``.
-        In place on two ``(N, C)`` arrays: at a hundred particles the allocations cost as
-        much as the arithmetic."""
+    def _best_log_likelihood(self, Lx: np.ndarray, Ly: np.ndarray, counts: np.ndarray,
+                             r: np.ndarray, b: np.ndarray | None) -> np.ndarray:
+        """``(N,)`` log-likelihood (up to a constant) of every particle for ``m`` sightings
+        at ranges ``r`` ((m,)) and bearings ``b`` ((m,) or None), sighting ``j`` of the
+        best of its ``counts[j]`` candidate positions ``(Lx, Ly)`` (every sighting's in
+        turn): :func:`~estimators.particle.localization_kernels.best_log_likelihood`."""
         c = self.cfg
-        P = self.particles
-        dx = Lx - P[:, 0, None]
-        dy = Ly - P[:, 1, None]
-        log = np.hypot(dx, dy)  # the expected range g, then its log-likelihood term
-        sigma = c.range_sigmas(r)
-        log -= r
-        log /= sigma
-        np.square(log, out=log)
-        log *= -0.5
-        if b is not None:
-            err = np.arctan2(dy, dx)
-            err -= P[:, 2, None]
-            err -= b
-            err += math.pi
-            np.remainder(err, 2.0 * math.pi, out=err)
-            err -= math.pi
-            err /= c.bearing_sigma
-            np.square(err, out=err)
-            err *= -0.5
-            log += err
-        return log
+        return best_log_likelihood(
+            self.particles, Lx, Ly, counts, r, r if b is None else b,
+            (c.range_sigma, c.range_sigma_rel, c.range_sigma_quad),
+            0.0 if b is None else float(c.bearing_sigma))
 
     def update(self, landmarks: np.ndarray, ranges: np.ndarray,
                bearings: np.ndarray | None = None) -> None:
@@ -389,36 +383,24 @@ class KLDLocalizer:
         """:meth:`update_kinds` without its argument checks, for callers with validated data
         (a pipeline's own frames): ``kinds`` a non-empty tuple, ``ranges`` and ``bearings``
         finite float arrays of its length (``bearings`` None when not used)."""
-        Lx, Ly, counts, gather = table.layout(kinds)
+        Lx, Ly, counts, _ = table.layout(kinds)
         m = len(kinds)
         b = bearings if self.cfg.bearing_sigma is not None else None
-        # Every (observation, candidate) pair as one column, then the best candidate of each
-        # observation (the columns gathered into m padded blocks) and the sum over the
-        # observations.
-        log = self._pair_log_likelihood(Lx, Ly, np.repeat(ranges, counts),
-                                        None if b is None else np.repeat(b, counts))
-        best = log[:, gather].reshape(len(log), m, -1).max(axis=2)
+        # Each sighting's best candidate per particle, summed over the sightings.
+        log = self._best_log_likelihood(Lx, Ly, counts, ranges, b)
         if self.memory is not None and bearings is not None:
             for k in kinds:
                 self._seed_table[k] = table[k]
             self._remember(kinds, ranges, bearings)
-        self._weigh(np.sum(best, axis=1), m)
+        self._weigh(log, m)
 
     def _move(self, p: np.ndarray, d: np.ndarray, noise: np.ndarray) -> None:
         """Move the particles ``p`` ((n, 3), in place) by the body-frame displacement ``d``
-        with the odometry noise, ``noise`` ((n, 3)) standard normal draws."""
+        with the odometry noise, ``noise`` ((n, 3)) standard normal draws
+        (:func:`~estimators.particle.localization_kernels.move_particles`)."""
         c = self.cfg
-        dist, turn = math.hypot(d[0], d[1]), abs(d[2])
-        s_xy = c.a_trans * dist + c.a_rot_xy * turn
-        s_th = c.a_rot * turn + c.a_trans_theta * dist
-        dx = d[0] + s_xy * noise[:, 0]
-        dy = d[1] + s_xy * noise[:, 1]
-        th = p[:, 2] + 0.5 * d[2]  # the mid-step heading
-        cs, sn = np.cos(th), np.sin(th)
-        p[:, 0] += cs * dx - sn * dy
-        p[:, 1] += sn * dx + cs * dy
-        p[:, 2] = np.remainder(p[:, 2] + d[2] + s_th * noise[:, 2] + math.pi,
-                               2.0 * math.pi) - math.pi
+        move_particles(p, (float(d[0]), float(d[1]), float(d[2])), noise,
+                       (c.a_trans, c.a_rot_xy, c.a_rot, c.a_trans_theta))
 
     def _remember(self, kinds: tuple, ranges: np.ndarray, bearings: np.ndarray) -> None:
         """Keep one update's sightings for the recovery seed (the memory drops the oldest)."""
@@ -463,19 +445,13 @@ class KLDLocalizer:
     def _weigh(self, log: np.ndarray, m: int) -> None:
         """Weights times ``exp(log)`` for ``m`` observations, the recovery averages, then
         KLD resampling."""
-        w = self.weights * np.exp(log - log.max())  # scaled against underflow
-        total = float(w.sum())
-        mean_lik = float(np.dot(self.weights, np.exp(log / m)))
+        w, _, mean_lik = weigh(self.weights, log, m)
         c = self.cfg
         if c.alpha_fast > 0.0:
             if self.w_slow == 0.0:
                 self.w_slow = self.w_fast = mean_lik
             self.w_slow += c.alpha_slow * (mean_lik - self.w_slow)
             self.w_fast += c.alpha_fast * (mean_lik - self.w_fast)
-        if total <= 0.0 or not math.isfinite(total):
-            w = np.full(self.n, 1.0 / self.n)
-        else:
-            w = w / total
         self.weights = w
         if c.binning == "predicted":
             self._pending = True  # resampled by the next predict, on the predicted samples
@@ -489,72 +465,50 @@ class KLDLocalizer:
         inject = 0.0
         if c.alpha_fast > 0.0 and self.w_slow > 0.0:
             inject = max(0.0, 1.0 - self.w_fast / (c.recovery_ratio * self.w_slow))
-        size = np.asarray(c.bin_size)
-        bound = kld_table(c.epsilon, c.delta, c.max_particles)
-        low = c.min_particles
+        bound = self._bound
+        if bound is None or len(bound) != c.max_particles + 1:
+            bound = self._bound = np.asarray(kld_table(c.epsilon, c.delta, c.max_particles))
         cumulative = np.cumsum(self.weights)
         cumulative /= cumulative[-1]
         # Draw in batches (doubling from about the current size) until the KLD bound holds for
-        # the draws so far, rather than max_particles candidates every time. The bound is
-        # checked draw by draw in plain Python (a set of the occupied bins, packed into one
-        # integer each): a hundred draws cost less so than the dozen array operations of a
-        # prefix count. No sample is smaller than min_particles, so the draws before it only
-        # fill the set.
-        batch = min(c.max_particles, max(low, 2 * self.n))
+        # the draws so far, rather than max_particles candidates every time; the bins are
+        # counted over all the draws so far (kld_sample_count, a kernel), once per batch.
+        batch = min(c.max_particles, max(c.min_particles, 2 * self.n))
         parts: list[np.ndarray] = []
-        seen: set[int] = set()
         drawn = 0
         n = 0
         while not n:
             take = min(batch, c.max_particles - drawn)
-            # Multinomial draws by inverting the cumulative weights (what rng.choice does,
-            # without its per-call checks).
-            idx = np.searchsorted(cumulative, self.rng.random(take), side="right")
-            new = self.particles[np.minimum(idx, self.n - 1)]
+            new = draw_rows(cumulative, self.particles, self.rng.random(take))
             if inject > 0.0:
                 fresh = self.rng.random(take) < inject
                 new[fresh] = self._recovery_draws(int(fresh.sum()))
             if odometry is not None:
                 self._move(new, odometry, self.rng.normal(0.0, 1.0, (take, 3)))
             parts.append(new)
-            # k(n): the distinct bins among the first n draws; the first n with
-            # n >= bound(k(n)) and n >= min_particles is the sample size.
-            keys = (np.floor(new / size).astype(np.int64) @ BIN_PACK).tolist()
-            head = min(take, low - 1 - drawn)
-            if head > 0:
-                seen.update(keys[:head])
-                drawn += head
-                keys = keys[head:]
-            for key in keys:
-                seen.add(key)
-                drawn += 1
-                if drawn >= bound[len(seen)] and drawn >= low:
-                    n = drawn
-                    break
+            drawn += take
+            cand = parts[0] if len(parts) == 1 else np.concatenate(parts)
+            n = kld_sample_count(cand, self._bin_size, bound, c.min_particles)
             if not n and drawn >= c.max_particles:
                 n = c.max_particles
             batch *= 2
-        cand = parts[0] if len(parts) == 1 else np.concatenate(parts)
         self.particles = cand[:n].copy()
         self.weights = np.full(n, 1.0 / n)
 
     def estimate(self) -> np.ndarray:
         """The weighted mean pose ``(x, y, theta)`` (circular mean of the headings)."""
-        w, p = self.weights, self.particles
-        return np.array([w @ p[:, 0], w @ p[:, 1],
-                         math.atan2(float(w @ np.sin(p[:, 2])), float(w @ np.cos(p[:, 2])))])
+        x, y, theta, _ = weighted_pose(self.weights, self.particles)
+        return np.array([x, y, theta])
 
     def pose_sigma(self) -> tuple[float, float]:
         """The particles' spread as standard deviations: position ``sqrt(tr C / 2)`` [m] (per
         axis, ``C`` the weighted position covariance) and heading ``sqrt(-2 ln R)`` [rad],
         the circular standard deviation of the weighted mean resultant length ``R``."""
-        w, headings = self.weights, self.particles[:, 2]
-        r = math.hypot(float(w @ np.cos(headings)), float(w @ np.sin(headings)))
-        return (self.spread() / math.sqrt(2.0),
+        x, y, _, r = weighted_pose(self.weights, self.particles)
+        return (weighted_spread(self.weights, self.particles, x, y) / math.sqrt(2.0),
                 math.sqrt(-2.0 * math.log(min(1.0, max(r, 1e-300)))))
 
     def spread(self) -> float:
         """Weighted RMS distance of the particles from the mean position [m]."""
-        m = self.estimate()
-        return math.sqrt(float(self.weights @ ((self.particles[:, 0] - m[0]) ** 2
-                                               + (self.particles[:, 1] - m[1]) ** 2)))
+        x, y, _, _ = weighted_pose(self.weights, self.particles)
+        return weighted_spread(self.weights, self.particles, x, y)
