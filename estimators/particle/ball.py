@@ -70,6 +70,7 @@ from ..kalman.core import KalmanFilter
 from ..protocol import check_order, check_time
 from ..tracking import TrackQualityMixin, TrackTimes, prior_gain
 from .core import FBPF, PARTICLE_FILTERS, BootstrapPF
+from .filter_kernels import drift, position_likelihood, position_moments, transition
 
 __all__ = ["ParticleBallTracker", "CHI2_2DOF_9999"]
 
@@ -90,23 +91,6 @@ def _positive(name: str, value: float, allow_zero: bool = False) -> float:
         raise ValueError(f"{name} must be finite and {'>=' if allow_zero else '>'} 0, "
                          f"got {value!r}")
     return v
-
-
-def _drift(x: np.ndarray, dt: float, deceleration: float) -> np.ndarray:
-    """The deterministic motion of states ``x`` ((N, 4)) over ``dt`` [s] (see the module
-    docstring); a new array."""
-    out = x.copy()
-    v = x[:, 2:]
-    if deceleration == 0.0:
-        out[:, :2] += dt * v  # p' = p + dT v
-        return out
-    speed = np.hypot(v[:, 0], v[:, 1])
-    safe = np.where(speed > 0.0, speed, 1.0)
-    tau = np.minimum(dt, speed / deceleration)  # time until the ball stops, at most dT
-    # p' = p + u (s tau - a tau^2 / 2) = p + v (tau - a tau^2 / (2 s)); v' = v (1 - a tau / s)
-    out[:, :2] += v * (tau - 0.5 * deceleration * tau * tau / safe)[:, None]
-    out[:, 2:] *= np.maximum(1.0 - deceleration * tau / safe, 0.0)[:, None]
-    return out
 
 
 def _cv_matrices(dt: float) -> tuple[np.ndarray, np.ndarray]:
@@ -250,25 +234,12 @@ class ParticleBallTracker(TrackQualityMixin):
 
     def _transition(self, x: np.ndarray, k: int, rng: np.random.Generator) -> np.ndarray:
         """``X_t = A X_{t-1} + B W_t`` (or its decelerating variant) over ``self._dt``."""
-        dt = self._dt
-        out = _drift(x, dt, self.deceleration)
         w = rng.normal(0.0, self.accel_sigma, (len(x), 2))  # W_t [m/s^2]
-        out[:, :2] += (0.5 * dt * dt) * w  # B rows 1-2: dT^2 / 2
-        out[:, 2:] += dt * w  # B rows 3-4: dT
-        return out
-
-    def _positions(self, x: np.ndarray) -> np.ndarray:
-        """Particle positions at the measurement's time (``lag`` seconds before the filter's)."""
-        if self._lag > 0.0:
-            return x[:, :2] - self._lag * x[:, 2:]
-        return x[:, :2]
+        return transition(x, self._dt, self.deceleration, w)
 
     def _likelihood(self, x: np.ndarray, z: np.ndarray) -> np.ndarray:
         """``N(z; p, R)`` up to a constant factor."""
-        d = self._positions(x) - z
-        a, b, c = self._rinv
-        m = a * d[:, 0] ** 2 + 2.0 * b * d[:, 0] * d[:, 1] + c * d[:, 1] ** 2
-        return np.exp(-0.5 * (m - m.min()))
+        return position_likelihood(x, (float(z[0]), float(z[1])), self._lag, self._rinv)
 
     # ------------------------------------------------------------------------------------
 
@@ -297,10 +268,8 @@ class ParticleBallTracker(TrackQualityMixin):
         measurement."""
         if self._pf is None:
             return None
-        w = self.weights
-        p = self._pf.particles[:, :2]
-        d = p - w @ p
-        return math.sqrt(float(w @ np.sum(d * d, axis=1)))
+        _, _, cxx, _, cyy = position_moments(self._pf.particles, self._pf.weights, 0.0)
+        return math.sqrt(cxx + cyy)
 
     def _covariance(self, t: float) -> np.ndarray:
         """The Kalman start's ``P`` or the particles' weighted covariance at the filter's
@@ -426,7 +395,7 @@ class ParticleBallTracker(TrackQualityMixin):
         dt = t - self._t
         if not dt > 0.0:
             return self._x.copy()
-        # _drift for one state, in plain floats (called every control step by a pipeline).
+        # drift for one state, in plain floats (called every control step by a pipeline).
         px, py, vx, vy = self._x.tolist()
         a = self.deceleration
         speed = math.hypot(vx, vy)
@@ -451,7 +420,7 @@ class ParticleBallTracker(TrackQualityMixin):
                 F, B = _cv_matrices(dt)
                 # x' = drift(x) (exactly A x without deceleration), P' = A P A^T + s^2 B B^T
                 kf.predict_unchecked(F, self.accel_sigma**2 * (B @ B.T),
-                           _drift(kf.x[None, :], dt, self.deceleration)[0])
+                           drift(kf.x[None, :], dt, self.deceleration)[0])
                 self._x = kf.x.copy()
             self._t = t
 
@@ -466,14 +435,10 @@ class ParticleBallTracker(TrackQualityMixin):
     def _mahalanobis2(self, z: np.ndarray, R: np.ndarray) -> float:
         """``(z - m)^T (C + R)^-1 (z - m)`` with the particles' weighted mean position ``m``
         and covariance ``C`` (at the measurement's time)."""
-        pf = self._pf
-        w = pf.weights / pf.weights.sum()
-        p = self._positions(pf.particles)
-        m = w @ p
-        d = p - m
-        S = (d.T * w) @ d + R  # C + R
-        y0, y1 = z[0] - m[0], z[1] - m[1]
-        s00, s01, s11 = S[0, 0], S[0, 1], S[1, 1]
+        mx, my, cxx, cxy, cyy = position_moments(self._pf.particles, self._pf.weights,
+                                                 self._lag)
+        y0, y1 = z[0] - mx, z[1] - my
+        s00, s01, s11 = cxx + R[0, 0], cxy + R[0, 1], cyy + R[1, 1]  # C + R
         return float((s11 * y0 * y0 - 2.0 * s01 * y0 * y1 + s00 * y1 * y1)
                      / (s00 * s11 - s01 * s01))
 

@@ -53,6 +53,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..registry import Registry
+from .filter_kernels import sfn_apply, sfn_children, systematic_indices, weigh, weighted_mean
 
 __all__ = ["BootstrapPF", "FBPF", "MFBPF", "PARTICLE_FILTERS", "systematic_resample", "sfn",
            "ungm_model", "ungm_simulate"]
@@ -64,11 +65,7 @@ Likelihood = Callable[[np.ndarray, np.ndarray], np.ndarray]
 def systematic_resample(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
     """Indices drawn by systematic resampling of normalised ``weights`` ((N,)): one uniform
     offset, ``N`` evenly spaced pointers into the cumulative weights."""
-    n = len(weights)
-    positions = (rng.random() + np.arange(n)) / n
-    cumulative = np.cumsum(weights)
-    cumulative[-1] = 1.0
-    return np.searchsorted(cumulative, positions, side="right").clip(0, n - 1)
+    return systematic_indices(np.asarray(weights, dtype=np.float64), rng.random())
 
 
 def sfn(particles: np.ndarray, weights: np.ndarray, rng: np.random.Generator,
@@ -77,30 +74,17 @@ def sfn(particles: np.ndarray, weights: np.ndarray, rng: np.random.Generator,
     with normalised ``weights`` ((N,)); ``fission_variance`` is the offspring's perturbation
     variance, a scalar (every dimension) or a ``(d,)`` array (one per dimension). Returns the
     new particles, their normalised weights and a boolean mask of the offspring."""
-    n = len(weights)
-    order = np.argsort(-weights, kind="stable")  # sorting
-    p, w = particles[order], weights[order]
-    children = np.maximum(np.floor(n * w).astype(int) - 1, 0)
-    n_children = int(children.sum())
-    new_p, new_w = p.copy(), w.copy()
-    born = np.zeros(n, dtype=bool)
-    if n_children > 0:
-        # sum floor(N w) <= N, so the n_children lightest particles all have N w < 1.
-        parents = np.repeat(np.arange(n), children)
-        if np.ndim(fission_variance) == 0:
-            scale = math.sqrt(fission_variance)
-        else:  # one standard deviation per column, broadcast over the offspring
-            scale = np.sqrt(np.asarray(fission_variance, dtype=np.float64))
-        # N(0, scale^2) as scale times standard normals: the same draws and values as
-        # rng.normal(0, scale), without its per-element broadcasting of an array scale.
-        noise = rng.standard_normal((n_children, p.shape[1])) * scale
-        new_p[n - n_children:] = p[parents] + noise  # fission
-        split = w / (children + 1)
-        new_w[:n - n_children] = split[:n - n_children]
-        new_w[n - n_children:] = split[parents]
-        born[n - n_children:] = True
-    new_w /= new_w.sum()  # normalising
-    return new_p, new_w, born
+    order, children, n_children = sfn_children(weights)  # sorting
+    d = particles.shape[1]
+    if np.ndim(fission_variance) == 0:
+        scale = np.full(d, math.sqrt(fission_variance))
+    else:  # one standard deviation per column
+        scale = np.sqrt(np.asarray(fission_variance, dtype=np.float64))
+    # N(0, scale^2) as scale times standard normals (the offspring's perturbation); the
+    # fission and normalising in one kernel.
+    noise = (rng.standard_normal((n_children, d)) if n_children > 0
+             else np.zeros((0, d)))
+    return sfn_apply(particles, weights, order, children, noise, scale)
 
 
 class BootstrapPF:
@@ -156,7 +140,7 @@ class BootstrapPF:
         resampling or SFN (a cycle without a measurement). Returns the predicted estimate
         ``sum_i w^i x_k^i / sum_i w^i`` ((d,))."""
         self._propagate()
-        return (self.weights @ self.particles) / float(self.weights.sum())
+        return weighted_mean(self.weights, self.particles, 1.0 / float(self.weights.sum()))
 
     def step(self, y: np.ndarray | float) -> np.ndarray:
         """Advance one step with measurement ``y`` (:meth:`predict` then :meth:`correct`);
@@ -169,12 +153,11 @@ class BootstrapPF:
         estimate, then the filter's resampling and/or SFN (here: resampling when
         ``N_eff < N_th``). Returns the estimate ((d,))."""
         # Weights carry over between resamplings (uniform right after one).
-        w = self.weights * self._likelihood(np.asarray(y, dtype=np.float64))
-        total = w.sum()
+        w, total = weigh(self.weights, self._likelihood(np.asarray(y, dtype=np.float64)))
         # All particles impossible: keep the prior weights rather than divide by zero.
         w = w / total if total > 0.0 else np.full(self.n, 1.0 / self.n)
         self.weights = w
-        estimate = w @ self.particles
+        estimate = weighted_mean(w, self.particles, 1.0)
         self.n_eff = 1.0 / float(np.sum(w * w))
         self._resample_step(self.n_eff < self.threshold * self.n)
         return estimate
@@ -265,11 +248,10 @@ class MFBPF(FBPF):
 
     def correct(self, y: np.ndarray | float) -> np.ndarray:
         """Measurement update with MFBPF's bookkeeping (see the module docstring)."""
-        w = self.weights * self._likelihood(np.asarray(y, dtype=np.float64))
-        s = float(w.sum())
+        w, s = weigh(self.weights, self._likelihood(np.asarray(y, dtype=np.float64)))
         if s <= 0.0 or not math.isfinite(s):
             w, s = np.full(self.n, 1.0 / self.n), 1.0
-        estimate = (w @ self.particles) / s
+        estimate = weighted_mean(w, self.particles, 1.0 / s)
         # N_eff = S^2 / sum w^2, evaluated on w / S: S^2 and sum w^2 underflow to zero together
         # once S falls below about 1e-154 (a measurement far from every particle), and their
         # quotient is then 0 / 0. Dividing by S first keeps every term in [0, 1].
