@@ -54,10 +54,11 @@ from collections import deque
 from collections.abc import Hashable, Mapping, Sequence
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 __all__ = ["Fix", "PoseHypotheses", "SightingMemory", "triangulate", "triangulate_sightings",
-           "SEED_FAILURES"]
+           "SEED_FAILURES", "append_sightings", "move_points"]
 
 #: Below this |sin| of a bearing difference the two bearings are taken as parallel.
 _MIN_SIN = 1e-9
@@ -449,16 +450,19 @@ class SightingMemory:
                 1 <= frames <= 1000):
             raise ValueError(f"frames must be an integer in [1, 1000], got {frames!r}")
         self.frames = int(frames)
-        self._entries: deque[tuple[tuple[Hashable, ...], np.ndarray]] = deque(
-            maxlen=self.frames)
+        # Every frame's kinds and how many sightings it has, oldest first, and all their
+        # points in one (m, 2) array in the same order, so that a move is one kernel call.
+        self._kinds: deque[tuple[Hashable, ...]] = deque()
+        self._points = np.zeros((0, 2))
 
     def __len__(self) -> int:
         """The sightings kept (over all frames)."""
-        return sum(len(k) for k, _ in self._entries)
+        return len(self._points)
 
     def clear(self) -> None:
         """Forget every sighting."""
-        self._entries.clear()
+        self._kinds.clear()
+        self._points = np.zeros((0, 2))
 
     def add(self, kinds: Sequence[Hashable], ranges: np.ndarray, bearings: np.ndarray) -> None:
         """One frame's sightings: kinds, ranges [m] and bearings [rad, relative to the
@@ -466,32 +470,63 @@ class SightingMemory:
         r = np.asarray(ranges, dtype=np.float64).reshape(-1)
         b = np.asarray(bearings, dtype=np.float64).reshape(-1)
         kinds = tuple(kinds)
-        if not (len(kinds) == len(r) == len(b)) or not (np.isfinite(r).all()
-                                                          and np.isfinite(b).all()):
+        drop = len(self._kinds[0]) if len(self._kinds) == self.frames else 0
+        points = (append_sightings(self._points, drop, r, b)
+                  if len(kinds) == len(r) == len(b) else None)
+        if points is None:
             raise ValueError(f"kinds ({len(kinds)}), ranges {r.shape} and bearings {b.shape} "
                              f"must match and be finite")
-        self._entries.append((kinds, np.column_stack([r * np.cos(b), r * np.sin(b)])))
+        if len(self._kinds) == self.frames:
+            self._kinds.popleft()
+        self._kinds.append(kinds)
+        self._points = points
 
     def move(self, odometry: np.ndarray | Sequence[float]) -> None:
         """Move the kept sightings into the frame reached by the body-frame displacement
         ``(dx, dy, dtheta)`` [m, m, rad] (mid-step convention, see the class docstring)."""
         dx, dy, dth = (float(v) for v in odometry)
-        if not self._entries or (dx == 0.0 and dy == 0.0 and dth == 0.0):
+        if not len(self._points) or (dx == 0.0 and dy == 0.0 and dth == 0.0):
             return
-        ch, sh = math.cos(0.5 * dth), math.sin(0.5 * dth)
-        tx, ty = ch * dx - sh * dy, sh * dx + ch * dy
-        c, s = math.cos(dth), math.sin(dth)
-        rot = np.array([[c, -s], [s, c]])  # p' = Rot(-dtheta) (p - t), as row vectors
-        for _, pts in self._entries:
-            pts -= (tx, ty)
-            pts[:] = pts @ rot
+        move_points(self._points, dx, dy, dth)
 
     def sightings(self) -> tuple[tuple[Hashable, ...], np.ndarray]:
         """Every kept sighting, oldest first: kinds and ``(m, 2)`` present body-frame points
         [m]."""
         kinds: tuple[Hashable, ...] = ()
-        pts = [np.zeros((0, 2))]
-        for k, p in self._entries:
+        for k in self._kinds:
             kinds += k
-            pts.append(p)
-        return kinds, np.concatenate(pts)
+        return kinds, self._points.copy()
+
+
+@numba.njit(cache=True)
+def append_sightings(points: np.ndarray, drop: int, ranges: np.ndarray,
+                     bearings: np.ndarray) -> np.ndarray | None:
+    """The body-frame points ``points[drop:]`` ((m, 2) [m]) followed by the sightings at
+    ``ranges`` [m] and ``bearings`` [rad] (``(k,)`` each), ``r (cos b, sin b)``, as a new
+    array; None if a range or bearing is not finite."""
+    k = ranges.shape[0]
+    for i in range(k):
+        if not (math.isfinite(ranges[i]) and math.isfinite(bearings[i])):
+            return None
+    keep = points.shape[0] - drop
+    out = np.empty((keep + k, 2))
+    out[:keep] = points[drop:]
+    for i in range(k):
+        out[keep + i, 0] = ranges[i] * math.cos(bearings[i])
+        out[keep + i, 1] = ranges[i] * math.sin(bearings[i])
+    return out
+
+
+@numba.njit(cache=True)
+def move_points(points: np.ndarray, dx: float, dy: float, dth: float) -> None:
+    """Body-frame points ``p`` ((m, 2) [m], in place) into the frame reached by the
+    displacement ``(dx, dy, dtheta)`` at the mid-step heading: ``p' = Rot(-dtheta) (p -
+    t)``, ``t = Rot(dtheta / 2) (dx, dy)`` (:class:`SightingMemory`). A kernel: a memory
+    moves at every odometry step of every robot."""
+    ch, sh = math.cos(0.5 * dth), math.sin(0.5 * dth)
+    tx, ty = ch * dx - sh * dy, sh * dx + ch * dy
+    c, s = math.cos(dth), math.sin(dth)
+    for i in range(points.shape[0]):
+        px, py = points[i, 0] - tx, points[i, 1] - ty
+        points[i, 0] = px * c + py * s
+        points[i, 1] = py * c - px * s

@@ -223,3 +223,8 @@ def test_bad_sightings_raise():
             SightingMemory(frames)
     with pytest.raises(ValueError, match="must match"):
         SightingMemory(2).add(["L"], [1.0, 2.0], [0.0, 0.1])
+    memory = SightingMemory(1)
+    memory.add(["L"], [1.0], [0.0])
+    with pytest.raises(ValueError, match="must match and be finite"):
+        memory.add(["T"], [math.nan], [0.0])
+    assert memory.sightings()[0] == ("L",) and len(memory) == 1  # left as it was
