@@ -51,7 +51,6 @@ Infos: at an episode's end, ``info["outcome"]`` (the task's outcome: the Goalkee
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import gymnasium as gym
@@ -60,19 +59,19 @@ from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from soccer_env.envs.goalkeeper import (
-    CLEAR_SPEED,
-    INTERCEPT_MIN_SPEED,
-    STOP_SPEED,
-    GoalkeeperEnv,
-    fire_shot,
-    place_episode,
-)
+from soccer_env.envs.goalkeeper import GoalkeeperEnv, fire_shot, place_episode
 from soccer_env.envs.registration import GOALKEEPER_ID, GYMNASIUM, SHOOTOUT_ID
 from soccer_env.envs.senses import Senses
-from soccer_env.envs.shootout import CLEAR_SPEED as SHOOTOUT_CLEAR_SPEED
-from soccer_env.envs.shootout import STOP_SPEED as SHOOTOUT_STOP_SPEED
 from soccer_env.envs.shootout import ShootoutEnv
+from soccer_env.envs.task_rules import (
+    EXIT_GOAL,
+    EXIT_OUT,
+    GOALKEEPER_OUTCOMES,
+    SHOOTOUT_OUTCOMES,
+    goal_distance,
+    goalkeeper_rows,
+    shootout_rows,
+)
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
 from soccer_env.sim.commands import validate_actions
 from soccer_env.sim.heads import aim_heads
@@ -86,6 +85,10 @@ __all__ = ["BatchedTask", "GoalkeeperVectorEnv", "ShootoutVectorEnv", "NotBatcha
 DEFAULT_MAX_STEPS = GYMNASIUM[GOALKEEPER_ID].max_episode_steps
 SHOOTOUT_MAX_STEPS = GYMNASIUM[SHOOTOUT_ID].max_episode_steps
 
+
+#: The tasks' outcome names by code, as object arrays to index with a batch's codes.
+_GOALKEEPER_OUTCOMES = np.array(GOALKEEPER_OUTCOMES, dtype=object)
+_SHOOTOUT_OUTCOMES = np.array(SHOOTOUT_OUTCOMES, dtype=object)
 
 class NotBatchable(ValueError):
     """Goalkeeper-v0's arguments ask for what the batch does not run yet."""
@@ -352,15 +355,18 @@ class BatchedTask(VectorEnv):
         return (self._observe(), rewards.astype(np.float64), terminated, truncated, infos)
 
     def _exits(self, scored: int) -> np.ndarray:
-        """``(n,)`` object: ``"goal"`` where the ball went into the goal at the end ``scored``
-        (+1: ``x > 0``) during the last step, ``"out"`` where it left the field otherwise,
-        None elsewhere."""
-        outcome = np.full(self.num_envs, None, dtype=object)
+        """``(n,)`` exit codes of the last step (:mod:`~soccer_env.envs.task_rules`):
+        ``EXIT_GOAL`` where the ball went into the goal at the end ``scored`` (+1: ``x >
+        0``), ``EXIT_OUT`` where it left the field otherwise, ``NO_EXIT`` elsewhere."""
+        codes = np.zeros(self.num_envs, dtype=np.int64)
         for k, ex in self.batch.exits():
             kind = classify_exit(ex, self.field, self.ball_spec)
-            outcome[k] = "goal" if kind.kind == "goal" and kind.end == scored else "out"
-        return outcome
+            codes[k] = EXIT_GOAL if kind.kind == "goal" and kind.end == scored else EXIT_OUT
+        return codes
 
+    def _airborne(self) -> np.ndarray:
+        """``(n,)`` whether each world's ball is in the air."""
+        return np.array([w.ball_airborne for w in self.batch.worlds])
 
     def _observe(self) -> np.ndarray:
         arrays = self._senses.arrays()
@@ -396,7 +402,8 @@ class GoalkeeperVectorEnv(BatchedTask):
 
     def _setup(self) -> None:
         probe = self.probe
-        self.shots, self._shaping_on, self._mouth = probe.shots, probe._shaping_on, probe._mouth
+        self.shots = probe.shots
+        self._weights, self._geometry = probe._weights, probe._geometry
         n = self.num_envs
         self._shots: list[dict[str, Any]] = [{}] * n
         self._delay = np.zeros(n)
@@ -438,49 +445,13 @@ class GoalkeeperVectorEnv(BatchedTask):
         for k in np.nonzero(due)[0].tolist():
             self._fire(k)
         self._touched |= batch.touched()[:, 0]
-        state = batch.state
-        ball = state[:, 0]
-        outcome = self._exits(-1)
-        vx, vy = ball[:, 3], ball[:, 4]
-        airborne = np.array([w.ball_airborne for w in batch.worlds])
-        open_ = live & self._fired & (outcome == None)  # noqa: E711 (element-wise)
-        stopped = open_ & ~airborne & (vx * vx + vy * vy < STOP_SPEED * STOP_SPEED)
-        outcome[stopped] = "stopped"
-        cleared = open_ & ~stopped & (vx > CLEAR_SPEED)
-        outcome[cleared] = "cleared"
-        outcome[~live] = None
-        ended = outcome != None  # noqa: E711
-        rewards = np.where(outcome == "goal", -1.0, np.where(ended, 1.0, 0.0))
-        if self._shaping_on:
-            rewards = rewards + self._shaping(state, act)
-        return outcome, rewards
+        codes, rewards = goalkeeper_rows(self._exits(-1), self._fired, self._airborne(), live,
+                                         batch.state, act, self._weights, self._geometry,
+                                         self.control_dt)
+        return _GOALKEEPER_OUTCOMES[codes], rewards
 
     def _success(self, outcome: np.ndarray) -> np.ndarray:
         return outcome != "goal"
-
-    def _shaping(self, state: np.ndarray, act: np.ndarray) -> np.ndarray:
-        """The shaping terms of every environment (GoalkeeperEnv._reward_terms over the
-        batch)."""
-        sc, f, dt = self.shaping, self.field, self.control_dt
-        kx, ky = state[:, 1, 0], state[:, 1, 1]
-        bx, by, vx, vy = state[:, 0, 0], state[:, 0, 1], state[:, 0, 3], state[:, 0, 4]
-        total = np.zeros(self.num_envs)
-        if sc["intercept"]:
-            towards = vx < -INTERCEPT_MIN_SPEED
-            safe_vx = np.where(towards, vx, -1.0)
-            y_cross = np.clip(by + vy * (-f.half_length - bx) / safe_vx, -self._mouth,
-                              self._mouth)
-            err = np.where(towards, np.abs(ky - y_cross) / f.goal_width, 0.0)
-            total += -sc["intercept"] * err * dt
-        if sc["ball_distance"]:
-            total += -sc["ball_distance"] * np.hypot(bx - kx, by - ky) * dt
-        if sc["action_cost"]:
-            total += -sc["action_cost"] * np.sum(act[:, 0:3] ** 2, axis=1) / 3.0 * dt
-        if sc["outside_area"]:
-            inside = (kx <= -f.half_length + f.defense_depth) & (
-                np.abs(ky) <= 0.5 * f.defense_width)
-            total += np.where(inside, 0.0, -sc["outside_area"] * dt)
-        return total
 
 
 class ShootoutVectorEnv(BatchedTask):
@@ -503,7 +474,7 @@ class ShootoutVectorEnv(BatchedTask):
         self.start = probe.start
         self.keeper = probe.keeper
         self._keeper_view = probe._keeper_view
-        self._goal_x = float(self.field.half_length)
+        self._goal = probe._goal
         n = self.num_envs
         self._keeper_touched = np.zeros(n, dtype=bool)
         self._ball_to_goal = np.zeros(n)
@@ -517,7 +488,7 @@ class ShootoutVectorEnv(BatchedTask):
     def _begin(self, k: int, drawn: dict[str, Any]) -> None:
         self._keeper_touched[k] = False
         bx, by = drawn["ball"]
-        self._ball_to_goal[k] = math.hypot(bx - self._goal_x, by - 0.0)
+        self._ball_to_goal[k] = goal_distance((float(bx), float(by)), self._goal)
 
     def _commands(self, act: np.ndarray) -> np.ndarray:
         build = self._keeper_view.build
@@ -542,28 +513,13 @@ class ShootoutVectorEnv(BatchedTask):
         touched = batch.touched()
         self._keeper_touched = np.where(touched[:, 1], True,
                                         np.where(touched[:, 0], False, self._keeper_touched))
-        state = batch.state
-        ball = state[:, 0]
-        outcome = self._exits(+1)
-        vx, vy = ball[:, 3], ball[:, 4]
-        airborne = np.array([w.ball_airborne for w in batch.worlds])
-        open_ = self._keeper_touched & ~airborne & (outcome == None)  # noqa: E711
-        saved = open_ & ((vx < -SHOOTOUT_CLEAR_SPEED)
-                         | (vx * vx + vy * vy < SHOOTOUT_STOP_SPEED * SHOOTOUT_STOP_SPEED))
-        outcome[saved] = "saved"
-        outcome[~live] = None
-        ended = outcome != None  # noqa: E711
-        # The reward terms in ShootoutEnv._reward_terms's order.
-        sc, dt = self.shaping, self.control_dt
-        total = np.where(outcome == "goal", 1.0, np.where(ended, -1.0, 0.0))
-        d = np.hypot(ball[:, 0] - self._goal_x, ball[:, 1] - 0.0)
-        total = total + sc["ball_progress"] * (self._ball_to_goal - d)
-        self._ball_to_goal = d
-        a = state[:, 1]
-        total = total + -sc["ball_distance"] * np.hypot(ball[:, 0] - a[:, 0],
-                                                        ball[:, 1] - a[:, 1]) * dt
-        total = total + -sc["action_cost"] * np.sum(act[:, 0:3] ** 2, axis=1) / 3.0 * dt
-        return outcome, total
+        sc = self.shaping
+        codes, rewards = shootout_rows(
+            self._exits(+1), self._keeper_touched, self._airborne(), live, batch.state,
+            self._ball_to_goal, act, self._goal,
+            (float(sc["ball_progress"]), float(sc["ball_distance"]), float(sc["action_cost"])),
+            self.control_dt)
+        return _SHOOTOUT_OUTCOMES[codes], rewards
 
     def _success(self, outcome: np.ndarray) -> np.ndarray:
         return outcome == "goal"

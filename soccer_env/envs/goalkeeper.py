@@ -12,7 +12,17 @@ import numpy as np
 from soccer_env import presets
 from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_env.envs.settings import settings_keywords
-from soccer_env.envs.task import SingleAgentTask, action_cost
+from soccer_env.envs.task import SingleAgentTask
+from soccer_env.envs.task_rules import (
+    EXIT_GOAL,
+    EXIT_OUT,
+    GOALKEEPER_CLEAR_SPEED,
+    GOALKEEPER_OUTCOMES,
+    GOALKEEPER_STOP_SPEED,
+    NO_EXIT,
+    goalkeeper_outcome,
+    goalkeeper_terms,
+)
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.sim.referee import classify_exit
 from soccer_env.state import WorldState
@@ -22,13 +32,9 @@ __all__ = ["GoalkeeperEnv", "ShotDistribution", "place_episode", "fire_shot",
            "GOALKEEPER_SHAPING", "STOP_SPEED",
            "CLEAR_SPEED", "HUMANOID_SHOTS", "MAX_MATES", "mate_poses"]
 
-#: The ball counts as stopped below this speed [m/s].
-STOP_SPEED = 0.05
-#: The ball counts as cleared once it moves away from the goal faster than this [m/s].
-CLEAR_SPEED = 0.1
-#: The intercept shaping term applies while the ball moves towards the goal faster than this
-#: [m/s].
-INTERCEPT_MIN_SPEED = 0.05
+#: The ball counts as stopped below this speed [m/s]; cleared once it moves away from the
+#: goal faster than ``CLEAR_SPEED`` [m/s] (defined with the task's rules).
+STOP_SPEED, CLEAR_SPEED = GOALKEEPER_STOP_SPEED, GOALKEEPER_CLEAR_SPEED
 
 #: Shaping terms of the goalkeeper task (all off unless given a scale). Rates are per second
 #: and multiplied by the control step, so their sum over an episode does not depend on it.
@@ -282,6 +288,12 @@ class GoalkeeperEnv(SingleAgentTask):
         self.observation_space = self.builder.space()
         # Half-width of the goal mouth the intercept shaping limits its crossing point to [m].
         self._mouth = 0.5 * self.field.goal_width + self.ball_spec.radius
+        #: The shaping's scales and the field's numbers, as the rule kernels take them.
+        sc, f = self.shaping, self.field
+        self._weights = tuple(float(sc[k]) for k in ("intercept", "ball_distance",
+                                                     "action_cost", "outside_area"))
+        self._geometry = (float(f.half_length), float(self._mouth), float(f.goal_width),
+                          float(f.defense_depth), float(f.defense_width))
         self._shot: dict[str, Any] | None = None
 
     # ------------------------------------------------------------------------------------
@@ -335,51 +347,26 @@ class GoalkeeperEnv(SingleAgentTask):
 
     def _outcome(self, state: WorldState, event: Any = None) -> str | None:
         world = self.world
+        exit_code = NO_EXIT
         if world.ball_exit is not None:
             kind = classify_exit(world.ball_exit, self.field, self.ball_spec)
-            return "goal" if kind.kind == "goal" and kind.end < 0 else "out"
-        if not self._fired:
-            return None
-        vx, vy = state.ball[3], state.ball[4]
-        if not world.ball_airborne and vx * vx + vy * vy < STOP_SPEED * STOP_SPEED:
-            return "stopped"
-        if vx > CLEAR_SPEED:
-            return "cleared"
-        return None
+            exit_code = EXIT_GOAL if kind.kind == "goal" and kind.end < 0 else EXIT_OUT
+        ball = state.ball
+        return GOALKEEPER_OUTCOMES[goalkeeper_outcome(exit_code, self._fired,
+                                                      world.ball_airborne, ball[3], ball[4])]
 
     def _reward_terms(self, state: WorldState, act: np.ndarray, outcome: str | None
                       ) -> dict[str, float]:
         terms = {"outcome": 0.0 if outcome is None else (-1.0 if outcome == "goal" else 1.0)}
-        sc = self.shaping
         if not self._shaping_on:
             terms.update(self._zero_shaping)
             return terms
-        dt = self.world.control_dt
-        f = self.field
-        kx, ky = state.robots[0, 0:2]
-        bx, by, _, vx, vy, _ = state.ball
-        if sc["intercept"]:
-            err = 0.0
-            if vx < -INTERCEPT_MIN_SPEED:
-                # Where the ball's line crosses the goal line, limited to the mouth (a ball
-                # barely moving towards the goal would put it anywhere).
-                mouth = self._mouth
-                y_cross = by + vy * (-f.half_length - bx) / vx
-                y_cross = max(-mouth, min(mouth, y_cross))
-                err = abs(ky - y_cross) / f.goal_width
-            terms["intercept"] = -sc["intercept"] * err * dt
-        else:
-            terms["intercept"] = 0.0
-        terms["ball_distance"] = (-sc["ball_distance"] * math.hypot(bx - kx, by - ky) * dt
-                                  if sc["ball_distance"] else 0.0)
-        terms["action_cost"] = (action_cost(act, sc["action_cost"], dt)
-                                if sc["action_cost"] else 0.0)
-        if sc["outside_area"]:
-            inside = (kx <= -f.half_length + f.defense_depth
-                      and abs(ky) <= 0.5 * f.defense_width)
-            terms["outside_area"] = 0.0 if inside else -sc["outside_area"] * dt
-        else:
-            terms["outside_area"] = 0.0
+        b, k = state.ball, state.robots[0]
+        (terms["intercept"], terms["ball_distance"], terms["action_cost"],
+         terms["outside_area"]) = goalkeeper_terms(
+            (b[0], b[1], b[3], b[4]), (k[0], k[1]),
+            (float(act[0]), float(act[1]), float(act[2])), self._weights, self._geometry,
+            self.world.control_dt)
         return terms
 
     # ------------------------------------------------------------------------------------

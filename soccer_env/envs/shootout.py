@@ -12,7 +12,18 @@ import numpy as np
 from soccer_env.envs.keeper import ScriptedGoalkeeper
 from soccer_env.envs.registration import SHOOTOUT_ID
 from soccer_env.envs.settings import settings_keywords
-from soccer_env.envs.task import SingleAgentTask, action_cost
+from soccer_env.envs.task import SingleAgentTask
+from soccer_env.envs.task_rules import (
+    EXIT_GOAL,
+    EXIT_OUT,
+    NO_EXIT,
+    SHOOTOUT_CLEAR_SPEED,
+    SHOOTOUT_OUTCOMES,
+    SHOOTOUT_STOP_SPEED,
+    goal_distance,
+    shootout_outcome,
+    shootout_terms,
+)
 from soccer_env.observations import ObservationBuilder
 from soccer_env.presets import FieldSpec
 from soccer_env.sim.referee import classify_exit
@@ -21,10 +32,9 @@ from soccer_env.validation import check_number, check_pair, from_mapping
 
 __all__ = ["ShootoutEnv", "ShootoutStart", "SHOOTOUT_SHAPING", "CLEAR_SPEED", "STOP_SPEED"]
 
-#: A ball moving away from the goal faster than this [m/s] after the keeper touched it is saved.
-CLEAR_SPEED = 0.1
-#: A ball slower than this [m/s] after the keeper touched it is saved (the keeper holds it).
-STOP_SPEED = 0.05
+#: A ball moving away from the goal faster than ``CLEAR_SPEED`` [m/s], or slower than
+#: ``STOP_SPEED`` [m/s], after the keeper touched it is saved (defined with the task's rules).
+CLEAR_SPEED, STOP_SPEED = SHOOTOUT_CLEAR_SPEED, SHOOTOUT_STOP_SPEED
 
 #: Shaping terms of the shootout (all off unless given a scale). Rates are per second and
 #: multiplied by the control step, so their sum over an episode does not depend on it.
@@ -203,7 +213,7 @@ class ShootoutEnv(SingleAgentTask):
         self._keeper_view = ObservationBuilder(self.field, teams, [1])
         self.keeper = ScriptedGoalkeeper(self.field, self.ball_spec, spec,
                                          self._keeper_view.names)
-        self._goal = np.array([self.field.half_length, 0.0])
+        self._goal = (float(self.field.half_length), 0.0)
         self._start_draw: dict[str, Any] | None = None
 
     # ------------------------------------------------------------------------------------
@@ -232,28 +242,28 @@ class ShootoutEnv(SingleAgentTask):
 
     def _outcome(self, state: WorldState, event: Any = None) -> str | None:
         world = self.world
+        exit_code = NO_EXIT
         if world.ball_exit is not None:
             kind = classify_exit(world.ball_exit, self.field, self.ball_spec)
-            return "goal" if kind.kind == "goal" and kind.end > 0 else "out"
-        if self._keeper_touched and not world.ball_airborne:
-            vx, vy = state.ball[3], state.ball[4]
-            if vx < -CLEAR_SPEED or vx * vx + vy * vy < STOP_SPEED * STOP_SPEED:
-                return "saved"
-        return None
+            exit_code = EXIT_GOAL if kind.kind == "goal" and kind.end > 0 else EXIT_OUT
+        ball = state.ball
+        return SHOOTOUT_OUTCOMES[shootout_outcome(exit_code, self._keeper_touched,
+                                                  world.ball_airborne, ball[3], ball[4])]
 
     def _success(self, outcome: str) -> bool:
         return outcome == "goal"
 
     def _reward_terms(self, state: WorldState, action: np.ndarray, outcome: str | None
                       ) -> dict[str, float]:
-        sc, dt = self.shaping, self.world.control_dt
+        sc = self.shaping
         terms = {"outcome": 0.0 if outcome is None else (1.0 if outcome == "goal" else -1.0)}
-        d = self._distance_to_goal(state.ball)
-        terms["ball_progress"] = sc["ball_progress"] * (self._ball_to_goal - d)
-        self._ball_to_goal = d
-        a, b = state.robots[0, 0:2], state.ball[0:2]
-        terms["ball_distance"] = -sc["ball_distance"] * math.hypot(*(b - a)) * dt
-        terms["action_cost"] = action_cost(action, sc["action_cost"], dt)
+        b, a = state.ball, state.robots[0]
+        (terms["ball_progress"], terms["ball_distance"], terms["action_cost"],
+         self._ball_to_goal) = shootout_terms(
+            (b[0], b[1]), (a[0], a[1]), self._goal, self._ball_to_goal,
+            (float(action[0]), float(action[1]), float(action[2])),
+            (float(sc["ball_progress"]), float(sc["ball_distance"]), float(sc["action_cost"])),
+            self.world.control_dt)
         return terms
 
     def _task_info(self, info: dict[str, Any]) -> None:
@@ -272,4 +282,4 @@ class ShootoutEnv(SingleAgentTask):
     # ------------------------------------------------------------------------------------
 
     def _distance_to_goal(self, ball: np.ndarray) -> float:
-        return math.hypot(ball[0] - self._goal[0], ball[1] - self._goal[1])
+        return goal_distance((ball[0], ball[1]), self._goal)
