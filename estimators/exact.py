@@ -11,8 +11,9 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
+
+from .compiled import kernel
 
 __all__ = ["hypots", "wrap_angles", "wrap_angle"]
 
@@ -93,7 +94,7 @@ def wrap_angles(angle: np.ndarray | float) -> np.ndarray:
     return np.copysign(1.0, x) * np.where(m < c, m, np.where(m > c, -c, half))
 
 
-@numba.njit(cache=True)
+@kernel
 def wrap_angle(x: float) -> float:
     """``math.remainder(x, 2 pi)`` for one angle ``x`` [rad] in compiled kernels, which have no
     ``math.remainder``: :func:`wrap_angles`' steps on a float, bit for bit."""

@@ -54,8 +54,9 @@ from collections import deque
 from collections.abc import Hashable, Mapping, Sequence
 from dataclasses import dataclass
 
-import numba
 import numpy as np
+
+from ..compiled import kernel
 
 __all__ = ["Fix", "PoseHypotheses", "SightingMemory", "triangulate", "triangulate_sightings",
            "SEED_FAILURES", "append_sightings", "move_points"]
@@ -498,7 +499,7 @@ class SightingMemory:
         return kinds, self._points.copy()
 
 
-@numba.njit(cache=True)
+@kernel
 def append_sightings(points: np.ndarray, drop: int, ranges: np.ndarray,
                      bearings: np.ndarray) -> np.ndarray | None:
     """The body-frame points ``points[drop:]`` ((m, 2) [m]) followed by the sightings at
@@ -517,7 +518,7 @@ def append_sightings(points: np.ndarray, drop: int, ranges: np.ndarray,
     return out
 
 
-@numba.njit(cache=True)
+@kernel
 def move_points(points: np.ndarray, dx: float, dy: float, dth: float) -> None:
     """Body-frame points ``p`` ((m, 2) [m], in place) into the frame reached by the
     displacement ``(dx, dy, dtheta)`` at the mid-step heading: ``p' = Rot(-dtheta) (p -

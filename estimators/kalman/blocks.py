@@ -18,7 +18,7 @@ row-major blocks ``P = [[P11, P12], [P12^T, P22]]`` (:data:`Blocks`, each block 
 :func:`update_closed_form` (the standard form in closed form) and :func:`predict_jump` (the
 constant-velocity prediction with a velocity jump within the step).
 
-**Kernels.** Each block is written once, as a compiled ``numba`` kernel (:data:`kernel`):
+**Kernels.** Each block is written once, as a compiled ``numba`` kernel (:func:`~estimators.compiled.kernel`):
 called from Python on float tuples it takes about half the time of the same code
 interpreted, and :func:`predict_covariance_rows`, :func:`innovation_rows` and
 :func:`update_rows` run the same blocks over arrays whose rows are independent filters (what
@@ -33,17 +33,14 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-import numba
 import numpy as np
+
+from ..compiled import kernel
 
 __all__ = ["Mat2", "Blocks", "State", "transpose", "full_covariance", "blocks_from_row",
            "predict_covariance", "predict_jump", "innovation", "update", "update_closed_form",
            "predict_covariance_rows", "innovation_rows", "update_rows"]
 
-#: The compiled form of every block: ``numba.njit`` without fastmath (so no fused
-#: multiply-adds: each block rounds exactly as the same expressions in Python floats do),
-#: cached on disk so that a new process loads instead of compiling.
-kernel = numba.njit(cache=True)
 
 #: A 2 x 2 matrix as a row-major 4-tuple ``(m00, m01, m10, m11)``.
 Mat2 = tuple[float, float, float, float]

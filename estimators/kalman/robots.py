@@ -39,10 +39,10 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
 
 from ..checks import check_count
+from ..compiled import kernel
 from ..exact import wrap_angle
 from ..models.measurement import MIN_SIGMA_THETA, MIN_SIGMA_XY, PoseMeasurement
 from ..protocol import check_order, check_time
@@ -56,7 +56,7 @@ MAX_ROBOTS = 10_000
 _TWO_PI = 2.0 * math.pi
 
 
-@numba.njit(cache=True)
+@kernel
 def _axis(state: np.ndarray, a: int, z: float, T: float, q: float, r: float) -> None:
     """Axis ``a`` of one robot's ``state`` ``(5, 3)`` (rows ``p, v, P00, P01, P11``): predict
     over ``T`` [s], fuse ``z`` (in place); the heading (``a == 2``) wraps."""
@@ -80,7 +80,7 @@ def _axis(state: np.ndarray, a: int, z: float, T: float, q: float, r: float) -> 
     state[4, a] = P11 - 2.0 * K1 * P01 + K1 * K1 * S
 
 
-@numba.njit(cache=True)
+@kernel
 def update_pose(state: np.ndarray, times: np.ndarray, seen: np.ndarray, k: int, i: int,
                 t: float, z0: float, z1: float, z2: float, q: np.ndarray, r: np.ndarray,
                 var_v0: float) -> bool:
@@ -106,7 +106,7 @@ def update_pose(state: np.ndarray, times: np.ndarray, seen: np.ndarray, k: int, 
     return False
 
 
-@numba.njit(cache=True)
+@kernel
 def update_poses(state: np.ndarray, times: np.ndarray, seen: np.ndarray, dropped: np.ndarray,
                  k: np.ndarray, i: np.ndarray, t: np.ndarray, z: np.ndarray, q: np.ndarray,
                  r: np.ndarray, var_v0: float) -> None:
@@ -118,7 +118,7 @@ def update_poses(state: np.ndarray, times: np.ndarray, seen: np.ndarray, dropped
             dropped[k[j]] += 1
 
 
-@numba.njit(cache=True)
+@kernel
 def predict_poses(state: np.ndarray, times: np.ndarray, seen: np.ndarray, t: np.ndarray
                   ) -> np.ndarray:
     """``(m, n, 6)`` rows ``x, y, theta, vx, vy, omega`` of every robot predicted to its

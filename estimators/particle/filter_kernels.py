@@ -14,14 +14,15 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
+
+from ..compiled import kernel
 
 __all__ = ["weigh", "weighted_mean", "systematic_indices", "sfn_children", "sfn_apply",
            "drift", "transition", "position_likelihood", "position_moments"]
 
 
-@numba.njit(cache=True)
+@kernel
 def weigh(weights: np.ndarray, likelihood: np.ndarray) -> tuple[np.ndarray, float]:
     """``w_i = w_i p(y | x_i)`` ((N,), a new array) and its sum ``S``."""
     n = weights.shape[0]
@@ -33,7 +34,7 @@ def weigh(weights: np.ndarray, likelihood: np.ndarray) -> tuple[np.ndarray, floa
     return w, total
 
 
-@numba.njit(cache=True)
+@kernel
 def weighted_mean(weights: np.ndarray, particles: np.ndarray, scale: float) -> np.ndarray:
     """``scale * sum_i w_i x_i`` ((d,)) of particles ``x`` ((N, d))."""
     n, d = particles.shape
@@ -47,7 +48,7 @@ def weighted_mean(weights: np.ndarray, particles: np.ndarray, scale: float) -> n
     return out
 
 
-@numba.njit(cache=True)
+@kernel
 def systematic_indices(weights: np.ndarray, offset: float) -> np.ndarray:
     """Systematic resampling of normalised ``weights`` ((N,)): the indices of the ``N``
     evenly spaced pointers ``(offset + j) / N`` (``offset`` one uniform draw in [0, 1))
@@ -65,7 +66,7 @@ def systematic_indices(weights: np.ndarray, offset: float) -> np.ndarray:
     return out
 
 
-@numba.njit(cache=True)
+@kernel
 def sfn_children(weights: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
     """SFN's sorting and offspring count: the particles by decreasing weight (a stable
     order), ``max(floor(N w) - 1, 0)`` children of each in that order, and their total."""
@@ -80,7 +81,7 @@ def sfn_children(weights: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
     return order, children, total
 
 
-@numba.njit(cache=True)
+@kernel
 def sfn_apply(particles: np.ndarray, weights: np.ndarray, order: np.ndarray,
               children: np.ndarray, noise: np.ndarray, scale: np.ndarray
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -116,7 +117,7 @@ def sfn_apply(particles: np.ndarray, weights: np.ndarray, order: np.ndarray,
     return p, w, born
 
 
-@numba.njit(cache=True)
+@kernel
 def drift(x: np.ndarray, dt: float, deceleration: float) -> np.ndarray:
     """The deterministic ball motion of states ``x = (px, py, vx, vy)`` ((N, 4)) over
     ``dt`` [s] (a new array): constant velocity for ``deceleration = 0``, else uniform
@@ -141,7 +142,7 @@ def drift(x: np.ndarray, dt: float, deceleration: float) -> np.ndarray:
     return out
 
 
-@numba.njit(cache=True)
+@kernel
 def transition(x: np.ndarray, dt: float, deceleration: float, w: np.ndarray) -> np.ndarray:
     """``X_t = drift(X_{t-1}) + B W_t`` ((N, 4), a new array), ``B = [dt^2 / 2 I; dt I]``,
     ``w`` the ``(N, 2)`` accelerations ``W_t`` [m/s^2]."""
@@ -155,7 +156,7 @@ def transition(x: np.ndarray, dt: float, deceleration: float, w: np.ndarray) -> 
     return out
 
 
-@numba.njit(cache=True)
+@kernel
 def position_likelihood(x: np.ndarray, z: tuple[float, float], lag: float,
                         rinv: tuple[float, float, float]) -> np.ndarray:
     """``N(z; p_i, R)`` up to a constant factor ((N,)): ``exp(-(m_i - min m) / 2)``, ``m_i
@@ -176,7 +177,7 @@ def position_likelihood(x: np.ndarray, z: tuple[float, float], lag: float,
     return m
 
 
-@numba.njit(cache=True)
+@kernel
 def position_moments(x: np.ndarray, weights: np.ndarray, lag: float
                      ) -> tuple[float, float, float, float, float]:
     """The weighted mean ``(m_x, m_y)`` and covariance ``(c_xx, c_xy, c_yy)`` of the

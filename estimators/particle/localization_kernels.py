@@ -16,8 +16,9 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
+
+from ..compiled import kernel
 
 __all__ = ["floor_remainder", "best_log_likelihood", "weigh", "move_particles",
            "draw_rows", "kld_sample_count", "weighted_pose", "weighted_spread"]
@@ -25,7 +26,7 @@ __all__ = ["floor_remainder", "best_log_likelihood", "weigh", "move_particles",
 _TWO_PI = 2.0 * math.pi
 
 
-@numba.njit(cache=True)
+@kernel
 def floor_remainder(a: float, b: float) -> float:
     """``a mod b`` with the sign of ``b``, as ``numpy.remainder`` computes it (``fmod`` then
     one correction), so that a kernel wraps an angle exactly as the array code does."""
@@ -38,7 +39,7 @@ def floor_remainder(a: float, b: float) -> float:
     return mod
 
 
-@numba.njit(cache=True)
+@kernel
 def best_log_likelihood(particles: np.ndarray, lx: np.ndarray, ly: np.ndarray,
                         counts: np.ndarray, ranges: np.ndarray, bearings: np.ndarray,
                         sigmas: tuple[float, float, float], bearing_sigma: float
@@ -93,7 +94,7 @@ def best_log_likelihood(particles: np.ndarray, lx: np.ndarray, ly: np.ndarray,
     return out
 
 
-@numba.njit(cache=True)
+@kernel
 def weigh(weights: np.ndarray, log: np.ndarray, m: int) -> tuple[np.ndarray, float, float]:
     """The measurement update of the weights: ``w_i exp(log_i - max log)`` normalised (the
     shift against underflow; uniform when the total is zero or not finite), with the total
@@ -119,7 +120,7 @@ def weigh(weights: np.ndarray, log: np.ndarray, m: int) -> tuple[np.ndarray, flo
     return new, total, mean
 
 
-@numba.njit(cache=True)
+@kernel
 def move_particles(p: np.ndarray, d: tuple[float, float, float], noise: np.ndarray,
                    alphas: tuple[float, float, float, float]) -> None:
     """Move the particles ``p`` ((n, 3), in place) by the body-frame displacement ``d =
@@ -142,7 +143,7 @@ def move_particles(p: np.ndarray, d: tuple[float, float, float], noise: np.ndarr
                                   _TWO_PI) - math.pi
 
 
-@numba.njit(cache=True)
+@kernel
 def draw_rows(cumulative: np.ndarray, particles: np.ndarray, u: np.ndarray) -> np.ndarray:
     """Multinomial draws by inverting the cumulative weights: the row of the first
     ``cumulative > u_k`` for every uniform draw ``u_k`` ((k, 3), a copy)."""
@@ -156,7 +157,7 @@ def draw_rows(cumulative: np.ndarray, particles: np.ndarray, u: np.ndarray) -> n
     return out
 
 
-@numba.njit(cache=True)
+@kernel
 def kld_sample_count(rows: np.ndarray, bin_size: tuple[float, float, float],
                      bound: np.ndarray, low: int) -> int:
     """KLD-sampling's stopping rule over the draws ``rows`` ((k, 3)) in order: the first
@@ -174,7 +175,7 @@ def kld_sample_count(rows: np.ndarray, bin_size: tuple[float, float, float],
     return 0
 
 
-@numba.njit(cache=True)
+@kernel
 def weighted_pose(weights: np.ndarray, p: np.ndarray) -> tuple[float, float, float, float]:
     """The weighted mean pose ``(x, y, theta)`` (the headings' circular mean) and the mean
     resultant length ``R = |sum_i w_i (cos theta_i, sin theta_i)|`` of the headings."""
@@ -188,7 +189,7 @@ def weighted_pose(weights: np.ndarray, p: np.ndarray) -> tuple[float, float, flo
     return x, y, math.atan2(s, c), math.hypot(c, s)
 
 
-@numba.njit(cache=True)
+@kernel
 def weighted_spread(weights: np.ndarray, p: np.ndarray, x: float, y: float) -> float:
     """The weighted RMS distance [m] of the particles from the point ``(x, y)``."""
     total = 0.0

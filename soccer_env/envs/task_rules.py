@@ -17,8 +17,9 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
+
+from estimators.compiled import kernel
 
 __all__ = ["NO_EXIT", "EXIT_GOAL", "EXIT_OUT", "GOALKEEPER_OUTCOMES", "SHOOTOUT_OUTCOMES",
            "GOALKEEPER_STOP_SPEED", "GOALKEEPER_CLEAR_SPEED", "INTERCEPT_MIN_SPEED",
@@ -47,14 +48,14 @@ SHOOTOUT_CLEAR_SPEED = 0.1
 SHOOTOUT_STOP_SPEED = 0.05
 
 
-@numba.njit(cache=True)
+@kernel
 def action_cost_rate(a0: float, a1: float, a2: float) -> float:
     """``(vx^2 + vy^2 + omega^2) / 3`` of a normalised action (the action cost per second and
     unit scale)."""
     return (a0 * a0 + a1 * a1 + a2 * a2) / 3.0
 
 
-@numba.njit(cache=True)
+@kernel
 def goalkeeper_outcome(exit_code: int, fired: bool, airborne: bool, vx: float, vy: float
                        ) -> int:
     """Goalkeeper-v0's outcome code: the exit if the ball left the field; else, once the
@@ -71,7 +72,7 @@ def goalkeeper_outcome(exit_code: int, fired: bool, airborne: bool, vx: float, v
     return 0
 
 
-@numba.njit(cache=True)
+@kernel
 def goalkeeper_terms(ball: tuple[float, float, float, float], keeper: tuple[float, float],
                      action: tuple[float, float, float],
                      weights: tuple[float, float, float, float],
@@ -112,7 +113,7 @@ def goalkeeper_terms(ball: tuple[float, float, float, float], keeper: tuple[floa
     return intercept, ball_distance, cost, outside
 
 
-@numba.njit(cache=True)
+@kernel
 def goalkeeper_rows(exits: np.ndarray, fired: np.ndarray, airborne: np.ndarray,
                     live: np.ndarray, state: np.ndarray, actions: np.ndarray,
                     weights: tuple[float, float, float, float],
@@ -142,7 +143,7 @@ def goalkeeper_rows(exits: np.ndarray, fired: np.ndarray, airborne: np.ndarray,
     return codes, rewards
 
 
-@numba.njit(cache=True)
+@kernel
 def shootout_outcome(exit_code: int, keeper_touched: bool, airborne: bool, vx: float,
                      vy: float) -> int:
     """Shootout-v0's outcome code: the exit if the ball left the field; else ``saved`` once
@@ -157,13 +158,13 @@ def shootout_outcome(exit_code: int, keeper_touched: bool, airborne: bool, vx: f
     return 0
 
 
-@numba.njit(cache=True)
+@kernel
 def goal_distance(ball: tuple[float, float], goal: tuple[float, float]) -> float:
     """The ball's distance [m] to the goal's centre (Shootout-v0's progress measure)."""
     return math.hypot(ball[0] - goal[0], ball[1] - goal[1])
 
 
-@numba.njit(cache=True)
+@kernel
 def shootout_terms(ball: tuple[float, float], attacker: tuple[float, float],
                    goal: tuple[float, float], before: float,
                    action: tuple[float, float, float], weights: tuple[float, float, float],
@@ -181,7 +182,7 @@ def shootout_terms(ball: tuple[float, float], attacker: tuple[float, float],
     return progress, ball_distance, cost, d
 
 
-@numba.njit(cache=True)
+@kernel
 def shootout_rows(exits: np.ndarray, touched: np.ndarray, airborne: np.ndarray,
                   live: np.ndarray, state: np.ndarray, before: np.ndarray,
                   actions: np.ndarray, goal: tuple[float, float],

@@ -38,13 +38,14 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
+
+from estimators.compiled import kernel
 
 __all__ = ["back_project", "head_detections"]
 
 
-@numba.njit(cache=True)
+@kernel
 def back_project(u: float, v: float, head: tuple[float, float, float, float],
                  lens: tuple[float, float, float], height: float, plane: float
                  ) -> tuple[float, float, float]:
@@ -74,7 +75,7 @@ def back_project(u: float, v: float, head: tuple[float, float, float, float],
     return math.nan, math.nan, bearing
 
 
-@numba.njit(cache=True)
+@kernel
 def _hidden(sx: float, sy: float, ox: np.ndarray, oy: np.ndarray, r2: np.ndarray, me: int,
             target: int) -> bool:
     """Whether the ground segment from the observer ``me`` to the object at offset ``(sx,
@@ -97,7 +98,7 @@ def _hidden(sx: float, sy: float, ox: np.ndarray, oy: np.ndarray, r2: np.ndarray
     return False
 
 
-@numba.njit(cache=True)
+@kernel
 def _offset(slot: int, ball: np.ndarray, landmarks: np.ndarray, radii: np.ndarray,
             ox: np.ndarray, oy: np.ndarray, rx: float, ry: float) -> tuple[float, float]:
     """Ground offset ``(dx, dy)`` [m] of object ``slot`` (see :func:`head_detections`) from
@@ -117,7 +118,7 @@ def _offset(slot: int, ball: np.ndarray, landmarks: np.ndarray, radii: np.ndarra
     return ox[j] * keep, oy[j] * keep
 
 
-@numba.njit(cache=True)
+@kernel
 def head_detections(robots: np.ndarray, ball: np.ndarray, obs: np.ndarray, pan: np.ndarray,
                     tilt: np.ndarray, sway_pan: np.ndarray, sway_tilt: np.ndarray,
                     landmarks: np.ndarray, radii: np.ndarray, r2: np.ndarray,
