@@ -50,8 +50,9 @@ def best_log_likelihood(particles: np.ndarray, lx: np.ndarray, ly: np.ndarray,
 
     Args:
         particles: ``(N, 3)`` poses.
-        lx, ly: ``(C,)`` the candidate landmark positions [m], sighting ``j``'s ``counts[j]``
-            candidates in turn (one each for landmarks of known identity).
+        lx: ``(C,)`` the candidate landmark positions' ``x`` [m], sighting ``j``'s
+            ``counts[j]`` candidates in turn (one each for landmarks of known identity).
+        ly: ``(C,)`` their ``y`` [m].
         counts: ``(m,)`` candidates per sighting.
         ranges: ``(m,)`` measured ranges ``r_j`` [m].
         bearings: ``(m,)`` bearings ``b_j`` [rad, relative to the heading]; ignored when

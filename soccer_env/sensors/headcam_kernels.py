@@ -129,15 +129,21 @@ def head_detections(robots: np.ndarray, ball: np.ndarray, obs: np.ndarray, pan: 
     world state (module docstring): visibility, occlusion, pixel noise, back-projection.
 
     Args:
-        robots: ``(N, >=3)`` poses ``x, y, theta`` [m, m, rad]. ball: ``(>=3,)`` its ``x, y,
-            z`` [m].
-        pan, tilt, sway_pan, sway_tilt: ``(N,)`` every robot's head angles and sway [rad].
-        landmarks: ``(M, 2)`` positions [m]. radii, r2: ``(N,)`` robot radii [m] and their
-            squares [m^2].
-        range2, p_detect: ``(P,)`` squared range [m^2] and detection probability of each
-            object slot, ``P = 1 + M + N``: 0 the ball, ``1..M`` the landmarks, ``M + 1 + j``
-            robot ``j``'s foot point.
-        U: ``(F, >=P)`` detection uniforms; Z: ``(F, 2, P)`` pixel-noise normals (u, v).
+        robots: ``(N, >=3)`` poses ``x, y, theta`` [m, m, rad].
+        ball: ``(>=3,)`` its ``x, y, z`` [m].
+        obs: ``(F,)`` the observers' robot indices.
+        pan: ``(N,)`` every robot's head pan [rad].
+        tilt: ``(N,)`` every robot's head tilt [rad].
+        sway_pan: ``(N,)`` the gait's sway of the pan [rad].
+        sway_tilt: ``(N,)`` the gait's sway of the tilt [rad].
+        landmarks: ``(M, 2)`` positions [m].
+        radii: ``(N,)`` robot radii [m].
+        r2: ``(N,)`` their squares [m^2].
+        range2: ``(P,)`` squared range [m^2] of each object slot, ``P = 1 + M + N``: 0 the
+            ball, ``1..M`` the landmarks, ``M + 1 + j`` robot ``j``'s foot point.
+        p_detect: ``(P,)`` the detection probability of each object slot.
+        U: ``(F, >=P)`` detection uniforms.
+        Z: ``(F, 2, P)`` pixel-noise normals (u, v).
         camera: ``(height [m], f [px], u0 [px], v0 [px], ball radius [m], pixel sigma
             [px])``.
         occlusion: whether robots hide what is behind them.
