@@ -26,14 +26,16 @@ steps per second while stable-baselines3's PPO collects rollouts, in
 
 **Code.** :mod:`.runners` (what is timed and how: the environments stepped with random actions,
 bare pymunk, rates, memory), :mod:`.steps` (the step rates), :mod:`.profiling` (``--profile``),
-:mod:`.tables` (the plain-text tables), :mod:`.command` (the ``soccer-env bench`` command),
-:mod:`.save_rates` and :mod:`.rollouts` (the scripts' benchmarks); this package gathers their
-public names.
+:mod:`.compile_cost` (``--compile``: the kernels' compile and load times in fresh
+interpreters), :mod:`.tables` (the plain-text tables), :mod:`.command` (the ``soccer-env
+bench`` command), :mod:`.save_rates` and :mod:`.rollouts` (the scripts' benchmarks); this
+package gathers their public names.
 """
 
 from __future__ import annotations
 
 from soccer_lab.bench.command import main, parser
+from soccer_lab.bench.compile_cost import COMPILE_CASES, bench_compile, format_compile
 from soccer_lab.bench.profiling import PROFILE_CASES, format_profile, profile_perceived
 from soccer_lab.bench.rollouts import (
     ROLLOUT_CONFIGS,
@@ -61,4 +63,5 @@ __all__ = ["run_benchmarks", "bench_batched", "bench_frames", "format_table", "R
            "save_rate_main", "ROLLOUT_CONFIGS", "rollout_rate", "rollout_rates",
            "format_rollout_rates", "rollout_main", "memory_per_item", "bench_goalkeeper",
            "bench_match", "bench_perceived_cost", "PROFILE_CASES", "profile_perceived",
-           "format_profile", "HUMANOID", "HUMANOID_CAMERA"]
+           "format_profile", "HUMANOID", "HUMANOID_CAMERA", "COMPILE_CASES", "bench_compile",
+           "format_compile"]

@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 from typing import Any
 
+from soccer_lab.bench.compile_cost import bench_compile, format_compile
 from soccer_lab.bench.profiling import PROFILE_CASES, format_profile, profile_perceived
 from soccer_lab.bench.runners import HUMANOID_CAMERA
 from soccer_lab.bench.steps import bench_frames, run_benchmarks
@@ -30,7 +31,9 @@ def parser() -> Any:
                "  soccer-env bench --batch 128               # also the batched environments\n"
                "  soccer-env bench --frames                  # camera-image renderers (pixels "
                "extra)\n"
-               "  soccer-env bench --profile humanoid-goalkeeper")
+               "  soccer-env bench --profile humanoid-goalkeeper\n"
+               "  soccer-env bench --compile                 # kernels' compile and load "
+               "times")
     p.add_argument("--json", action="store_true", help="print the results as JSON")
     p.add_argument("--steps", type=int, default=20000,
                    help="Goalkeeper-v0 steps per timed run")
@@ -49,6 +52,9 @@ def parser() -> Any:
                    help=f"with --profile: the sensor preset ({sensor_presets_help()}) "
                         f"(default: {PROFILE_CASES['goalkeeper'][2]}, or "
                         f"{HUMANOID_CAMERA} for humanoids)")
+    p.add_argument("--compile", action="store_true",
+                   help="time the first import and first step of fresh interpreters instead, "
+                        "with an empty kernel cache (cold) and a filled one (warm)")
     p.add_argument("--top", type=int, default=25,
                    help="with --profile: how many functions to list")
     return p
@@ -81,6 +87,10 @@ def main(argv: list[str] | None = None) -> int:
         except (KeyError, ValueError) as why:
             p.error(str(why))
         print(json.dumps(prof, indent=2) if args.json else format_profile(prof))
+        return 0
+    if args.compile:
+        res = bench_compile()
+        print(json.dumps(res, indent=2) if args.json else format_compile(res))
         return 0
     if args.frames:
         ms = bench_frames()

@@ -87,3 +87,16 @@ def test_bench_profiles_a_perceived_step(capsys):
     with pytest.raises(SystemExit):
         main(["bench", "--profile", "goalkeeper", "--top", "0"])
     assert "--top must be >= 1" in capsys.readouterr().err
+
+
+def test_bench_compile_times_cold_and_warm_kernel_caches():
+    """``soccer-env bench --compile``'s measure on its cheapest case: a fresh interpreter
+    compiles with an empty kernel cache, and the next one loads what it saved."""
+    name = "Goalkeeper-v0, truth"
+    res = bench.bench_compile([name], steps=20)
+    cold, warm = res[name]["cold"], res[name]["warm"]
+    assert min(cold.values()) > 0 and min(warm.values()) > 0
+    assert warm["first_step_s"] < cold["first_step_s"]  # loading is cheaper than compiling
+    assert name in bench.format_compile(res)
+    with pytest.raises(ValueError, match="case must be one of"):
+        bench.bench_compile(["no such case"])
