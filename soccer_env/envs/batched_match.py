@@ -44,6 +44,7 @@ import numpy as np
 from soccer_env.envs.batched import NotBatchable
 from soccer_env.envs.match import SoccerParallelEnv
 from soccer_env.envs.senses import Senses
+from soccer_env.envs.task_rules import match_rows
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
 from soccer_env.sim.commands import validate_actions
 from soccer_env.sim.heads import aim_heads
@@ -122,7 +123,7 @@ class MatchBatch:
         self.shaping = probe.shaping
         self.possible_agents = list(probe.possible_agents)
         self.n_robots = w0.n_robots
-        self._teams = np.array(probe._teams)
+        self._teams = np.array(probe._teams, dtype=np.int64)
         self._out_of_range = probe.out_of_range_actions
         self._slices = [(model, sl) for model, sl, _ in probe._teams_in_play]
         self.builder = probe.builder
@@ -280,21 +281,15 @@ class MatchBatch:
 
     def _rewards(self, scorer: np.ndarray, events: np.ndarray,
                  ball_x_before: np.ndarray | None) -> np.ndarray:
-        """``(M, N)`` rewards: :meth:`SoccerParallelEnv._rewards` over the batch."""
+        """``(M, N)`` rewards: the single match's rule over the batch
+        (:func:`~soccer_env.envs.task_rules.match_rows`)."""
         sc = self.shaping
-        teams = self._teams
         state = self.batch.state
-        goal = np.where(scorer[:, None] < 0, 0.0, np.where(teams[None, :] == scorer[:, None],
-                                                            1.0, -1.0))
-        total = goal
-        if sc["ball_progress"]:
-            dx = sc["ball_progress"] * (state[:, 0, 0] - ball_x_before)
-            dx = np.where(events == None, dx, 0.0)  # noqa: E711 (element-wise)
-            total = total + np.where(teams[None, :] == 0, dx[:, None], -dx[:, None])
-        if sc["ball_distance"]:
-            d = np.hypot(state[:, 1:, 0] - state[:, :1, 0], state[:, 1:, 1] - state[:, :1, 1])
-            total = total + -sc["ball_distance"] * self.control_dt * d
-        return total
+        dx = state[:, 0, 0] - ball_x_before if ball_x_before is not None else np.zeros(len(state))
+        return match_rows(state, self._teams, scorer, dx,
+                          events == None,  # noqa: E711 (element-wise)
+                          (float(sc["ball_progress"]), float(sc["ball_distance"])),
+                          self.control_dt)
 
     def _observe(self) -> np.ndarray:
         """``(M, N, obs_dim)`` observations with each team's game block

@@ -32,6 +32,7 @@ from soccer_env.envs.game_flow import GameFlow
 from soccer_env.envs.game_rows import GAME_FLOW_NAMES, GAME_NAMES, GameRows, game_bounds
 from soccer_env.envs.registration import MATCH_ID
 from soccer_env.envs.settings import EnvSettings, per_team, settings_keywords
+from soccer_env.envs.task_rules import match_terms
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
 from soccer_env.presets import RobotSpec
 from soccer_env.presets.rules import HumanoidRuleSpec, RuleSpec
@@ -236,6 +237,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         self.builder = self._observation_builder(range(w.n_robots), game_low, game_high,
                                                  game_names)
         self._teams = w.teams.tolist()
+        self._team_array = np.asarray(self._teams, dtype=np.int64)
         #: Every possible agent's spaces (PettingZoo's ``observation_spaces`` and
         #: ``action_spaces``; ``observation_space(agent)`` reads them).
         self.observation_spaces = {a: self.builder.space() for a in self.possible_agents}
@@ -470,22 +472,15 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
 
     def _rewards(self, state, event: str | None, scorer: int, ball_x_before: float):
         """Per-agent rewards and their named terms (see :data:`MATCH_SHAPING`)."""
-        sc = self.shaping
-        teams = self._teams
-        n = len(teams)
-        goal = [0.0] * n if scorer < 0 else [1.0 if t == scorer else -1.0 for t in teams]
-        progress = [0.0] * n
         decision = None if self._flow is None else self._flow.decision
         moved = decision is not None and (decision.line_up is not None
                                           or decision.place_ball is not None)
-        if sc["ball_progress"] and event is None and not moved:
-            # Ball displacement towards the opponent goal this step: velocity times dt.
-            dx = sc["ball_progress"] * (float(state.ball[0]) - ball_x_before)
-            progress = [dx if t == 0 else -dx for t in teams]
-        distance = [0.0] * n
-        if sc["ball_distance"]:
-            d = np.hypot(*(state.robots[:, 0:2] - state.ball[0:2]).T)
-            distance = (-sc["ball_distance"] * self.world.control_dt * d).tolist()
+        sc = self.shaping
+        goal, progress, distance = match_terms(
+            (float(state.ball[0]), float(state.ball[1])), state.robots, self._team_array,
+            scorer, float(state.ball[0]) - ball_x_before, event is None and not moved,
+            (float(sc["ball_progress"]), float(sc["ball_distance"])),
+            self.world.control_dt).T.tolist()
         rewards, terms = {}, {}
         for a, g, p, d in zip(self.possible_agents, goal, progress, distance):
             rewards[a] = g + p + d

@@ -1,9 +1,9 @@
-"""The outcome and reward rules of the single-robot tasks (Goalkeeper-v0 and Shootout-v0),
-each written once as a compiled kernel on one environment's numbers, and run over rows of
-environments by a rows kernel that calls it: :class:`~soccer_env.envs.GoalkeeperEnv` and
-:class:`~soccer_env.envs.ShootoutEnv` call the row rules, their batched twins
-(:mod:`soccer_env.envs.batched`) the rows kernels, so a batch judges each environment exactly
-as a single one does.
+"""The outcome and reward rules of the tasks (Goalkeeper-v0, Shootout-v0 and the match's
+rewards), each written once as a compiled kernel on one environment's numbers, and run over
+rows of environments by a rows kernel that calls it: :class:`~soccer_env.envs.GoalkeeperEnv`,
+:class:`~soccer_env.envs.ShootoutEnv` and the match call the row rules, their batched
+counterparts (:mod:`soccer_env.envs.batched`, :mod:`soccer_env.envs.batched_match`) the rows
+kernels, so a batch judges each environment exactly as a single one does.
 
 Outcomes are codes, :data:`GOALKEEPER_OUTCOMES` and :data:`SHOOTOUT_OUTCOMES` their names (code
 0: the episode goes on). Where the ball left the field is classified before the rule by
@@ -25,7 +25,8 @@ __all__ = ["NO_EXIT", "EXIT_GOAL", "EXIT_OUT", "GOALKEEPER_OUTCOMES", "SHOOTOUT_
            "GOALKEEPER_STOP_SPEED", "GOALKEEPER_CLEAR_SPEED", "INTERCEPT_MIN_SPEED",
            "SHOOTOUT_STOP_SPEED", "SHOOTOUT_CLEAR_SPEED", "action_cost_rate",
            "goalkeeper_outcome", "goalkeeper_terms", "goalkeeper_rows", "shootout_outcome",
-           "goal_distance", "shootout_terms", "shootout_rows"]
+           "goal_distance", "shootout_terms", "shootout_rows", "match_terms",
+           "match_rows"]
 
 #: Exit codes: the ball is on the field, went into the task's goal, or left elsewhere.
 NO_EXIT, EXIT_GOAL, EXIT_OUT = 0, 1, 2
@@ -209,3 +210,47 @@ def shootout_rows(exits: np.ndarray, touched: np.ndarray, airborne: np.ndarray,
             rewards[k] = 0.0 + (0.0 if code == 0 else (1.0 if code == 1 else -1.0)) \
                 + progress + dist + cost
     return codes, rewards
+
+
+@kernel
+def match_terms(ball: tuple[float, float], robots: np.ndarray, teams: np.ndarray,
+                scorer: int, ball_dx: float, count_progress: bool,
+                weights: tuple[float, float], dt: float) -> np.ndarray:
+    """The match's reward terms of every robot ``(N, 3)``: ``goal`` (+1 for the scorer's
+    team, -1 for the other, 0 without a goal: ``scorer`` -1), ``ball_progress`` (the scale
+    times the ball's displacement ``ball_dx`` [m] along x this step, towards the yellow goal
+    for the blue team (team 0) and the opposite for yellow; 0 unless ``count_progress``: no
+    exit and no placement this step) and ``ball_distance`` (minus the scale times the
+    robot's distance to the ball per second; ``robots`` ``(N, >= 2)`` positions [m]).
+    ``weights`` are the scales ``(ball_progress, ball_distance)``, ``dt`` the control step
+    [s]."""
+    n = robots.shape[0]
+    out = np.zeros((n, 3))
+    w_prog, w_dist = weights
+    dx = w_prog * ball_dx
+    for i in range(n):
+        if scorer >= 0:
+            out[i, 0] = 1.0 if teams[i] == scorer else -1.0
+        if w_prog != 0.0 and count_progress:
+            out[i, 1] = dx if teams[i] == 0 else -dx
+        if w_dist != 0.0:
+            out[i, 2] = -w_dist * dt * math.hypot(robots[i, 0] - ball[0],
+                                                  robots[i, 1] - ball[1])
+    return out
+
+
+@kernel
+def match_rows(state: np.ndarray, teams: np.ndarray, scorers: np.ndarray,
+               ball_dx: np.ndarray, count_progress: np.ndarray,
+               weights: tuple[float, float], dt: float) -> np.ndarray:
+    """The rewards ``(M, N)`` of ``M`` matches, ``state`` ``(M, 1 + N, >= 2)`` (the ball,
+    then the robots): each robot's :func:`match_terms` summed in order, as the single match
+    sums them."""
+    m, n = state.shape[0], teams.shape[0]
+    out = np.empty((m, n))
+    for k in range(m):
+        terms = match_terms((state[k, 0, 0], state[k, 0, 1]), state[k, 1:], teams,
+                            scorers[k], ball_dx[k], count_progress[k], weights, dt)
+        for i in range(n):
+            out[k, i] = terms[i, 0] + terms[i, 1] + terms[i, 2]
+    return out

@@ -18,6 +18,8 @@ from soccer_env.envs.task_rules import (
     goalkeeper_outcome,
     goalkeeper_rows,
     goalkeeper_terms,
+    match_rows,
+    match_terms,
     shootout_outcome,
     shootout_rows,
     shootout_terms,
@@ -132,3 +134,23 @@ def test_shootout_rows_equal_the_row_rule_bit_for_bit():
         assert rewards[k] == (reward if live[k] else 0.0)
         assert before[k] == d
     assert {0, 1, 2, 3} <= set(codes.tolist())
+
+
+def test_match_terms_in_closed_form_and_rows_equal_them():
+    teams = np.array([0, 0, 1])
+    robots = np.array([[1.0, 0.0, 0.0], [0.0, 3.0, 0.0], [-2.0, 0.0, 1.0]])
+    terms = match_terms((0.0, 0.0), robots, teams, 1, 0.02, True, (10.0, 0.5), 0.016)
+    np.testing.assert_array_equal(terms[:, 0], [-1.0, -1.0, 1.0])  # yellow scored
+    np.testing.assert_allclose(terms[:, 1], [0.2, 0.2, -0.2])  # towards the yellow goal
+    np.testing.assert_allclose(terms[:, 2], [-0.008, -0.024, -0.016])
+    quiet = match_terms((0.0, 0.0), robots, teams, -1, 0.02, False, (10.0, 0.0), 0.016)
+    assert not quiet.any()  # no goal, progress not counted, no distance scale
+    rng = np.random.default_rng(4)
+    state = rng.normal(0.0, 2.0, (50, 4, 6))
+    scorers, dx = rng.integers(-1, 2, 50), rng.normal(0.0, 0.05, 50)
+    count = rng.random(50) < 0.8
+    rewards = match_rows(state, teams, scorers, dx, count, (3.0, 0.5), 0.016)
+    for k in range(50):
+        t = match_terms((state[k, 0, 0], state[k, 0, 1]), state[k, 1:], teams, scorers[k],
+                        dx[k], count[k], (3.0, 0.5), 0.016)
+        assert rewards[k].tolist() == [g + p + d for g, p, d in t.tolist()]
