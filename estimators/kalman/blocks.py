@@ -18,7 +18,8 @@ row-major blocks ``P = [[P11, P12], [P12^T, P22]]`` (:data:`Blocks`, each block 
 :func:`update_closed_form` (the standard form in closed form) and :func:`predict_jump` (the
 constant-velocity prediction with a velocity jump within the step).
 
-**Kernels.** Each block is written once, as a compiled ``numba`` kernel (:func:`~estimators.compiled.kernel`):
+**Kernels.** Each block is written once, as a compiled ``numba`` kernel
+(:func:`~estimators.compiled.kernel`):
 called from Python on float tuples it takes about half the time of the same code
 interpreted, and :func:`predict_covariance_rows`, :func:`innovation_rows` and
 :func:`update_rows` run the same blocks over arrays whose rows are independent filters (what
