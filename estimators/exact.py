@@ -15,7 +15,7 @@ import numpy as np
 
 from .compiled import kernel
 
-__all__ = ["hypots", "wrap_angles", "wrap_angle"]
+__all__ = ["hypots", "hypot_exact", "wrap_angles", "wrap_angle"]
 
 #: The full turn that :func:`wrap_angles` wraps by [rad].
 _TWO_PI = 2.0 * math.pi
@@ -108,3 +108,55 @@ def wrap_angle(x: float) -> float:
     else:
         r = m - 2.0 * np.fmod(0.5 * (ax - m), _TWO_PI)
     return math.copysign(1.0, x) * r
+
+
+@kernel
+def _square_exact(x: float) -> tuple[float, float]:
+    """:func:`_square` on one float: ``(x * x, error)``, Dekker's exact product."""
+    t = x * _SPLIT
+    hi = t - (t - x)
+    lo = x - hi
+    sq = x * x
+    return sq, ((hi * hi - sq) + 2.0 * hi * lo) + lo * lo
+
+
+@kernel
+def hypot_exact(x: float, y: float) -> float:
+    """``math.hypot(x, y)`` for one pair in compiled kernels: the length ``sqrt(x^2 + y^2)``
+    by :func:`hypots`' steps (CPython's algorithm) on floats, bit for bit; numba's
+    ``math.hypot`` is the C library's, which differs in the last bit for about one pair in
+    160."""
+    x, y = abs(x), abs(y)
+    if math.isinf(x) or math.isinf(y):
+        return math.inf
+    if math.isnan(x) or math.isnan(y):
+        return math.nan
+    big = max(x, y)
+    if big == 0.0:
+        return 0.0
+    exponent = math.frexp(big)[1]
+    tiny = exponent < -1023
+    if tiny:  # subnormal: make it normal first, as CPython does
+        x, y = x / _DBL_MIN, y / _DBL_MIN
+        exponent = math.frexp(max(x, y))[1]
+    scale = math.ldexp(1.0, -exponent)  # lossless scaling of the larger one into [0.5, 1)
+    x2, x2_err = _square_exact(x * scale)
+    y2, y2_err = _square_exact(y * scale)
+    # Compensated sum 1 + x^2 + y^2 (CPython's csum, frac1, frac2).
+    csum = 1.0 + x2
+    frac2 = (1.0 - csum) + x2
+    total = csum + y2
+    frac2 += (csum - total) + y2
+    csum = total
+    frac1 = x2_err + y2_err
+    h = math.sqrt((csum - 1.0) + (frac1 + frac2))
+    # Differential correction: h += (x^2 + y^2 - h^2) / (2 h).
+    h2, h2_err = _square_exact(h)
+    total = csum - h2
+    frac1 -= h2_err
+    frac2 += (csum - total) - h2
+    h += ((total - 1.0) + (frac1 + frac2)) / (2.0 * h)
+    h /= scale
+    if tiny:
+        h *= _DBL_MIN
+    return h

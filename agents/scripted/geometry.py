@@ -1,28 +1,116 @@
 """The field as a scripted SSL team sees it: its team frame, the zones it keeps out of and the
-ways round the ball, each single and batched pair side by side.
+ways round the ball.
 
 The team frame has the field's centre at the origin and attacks ``+x``: the own goal line is
 at ``x = -goal_x``, the opponents' at ``x = +goal_x``. All positions are in metres.
+
+Each rule is a compiled kernel (:func:`~estimators.compiled.kernel`) on floats and the team's
+numbers (:class:`Pitch`), called alike by the kernels of the team's play (one robot or rows of
+robots) and, through :class:`TeamGeometry`'s methods, by the restarts' Python.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from typing import NamedTuple
 
-import numpy as np
-
-from soccer_env.envs.keeper import hypots
+from estimators.compiled import kernel
+from estimators.exact import hypot_exact
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
 
-__all__ = ["TeamGeometry", "Hypot", "MARGIN"]
+__all__ = ["TeamGeometry", "Pitch", "MARGIN", "outside_defense_area",
+           "outside_opponent_defense", "within_walls", "around_ball"]
 
 #: Extra distance kept beyond what the rules ask [m].
 MARGIN = 0.1
 
-#: A length function on arrays: ``hypot(x, y)`` (:func:`~soccer_env.envs.keeper.hypots`, bit
-#: for bit ``math.hypot``, or ``np.hypot``).
-Hypot = Callable[[np.ndarray, np.ndarray], np.ndarray]
+
+class Pitch(NamedTuple):
+    """The numbers of the field, ball and robot that the team's kernels read [m, m/s, m/s^2,
+    rad/s]."""
+
+    #: The opponents' goal line; the own one is at ``-goal_x``.
+    goal_x: float
+    #: Half the goal mouth's width.
+    half_goal: float
+    #: Half the field's width.
+    half_width: float
+    #: The defense area's depth and width.
+    defense_depth: float
+    defense_width: float
+    #: Kicker-centre to ball-centre distance with the ball touching the front.
+    contact: float
+    #: Keep-out rectangle of the own defense area for the robot centre: ``x < def_front``
+    #: and ``|y| < def_side``.
+    def_front: float
+    def_side: float
+    #: Walls minus a robot radius: targets are clipped into ``|x| <= lim_x``,
+    #: ``|y| <= lim_y``.
+    lim_x: float
+    lim_y: float
+    #: The robot's radius, the ball's radius, the robot's centre-to-front distance and its
+    #: kicker's width.
+    radius: float
+    ball_radius: float
+    front_distance: float
+    kicker_width: float
+    #: The robot's limits: speed [m/s], acceleration [m/s^2], turn rate [rad/s].
+    max_speed: float
+    max_acceleration: float
+    max_angular_speed: float
+
+
+@kernel
+def outside_defense_area(p: Pitch, x: float, y: float) -> tuple[float, float]:
+    """A target inside the own defense area (widened by a robot radius and 5 cm) moved to the
+    nearest point on its edge [m]."""
+    ox = -p.goal_x
+    if x >= p.def_front or abs(y) >= p.def_side:
+        return x, y
+    to_front = p.def_front - x
+    to_side = p.def_side - abs(y)
+    if to_front <= to_side or x < ox:
+        return p.def_front, y
+    return x, math.copysign(p.def_side, y if y != 0.0 else 1.0)
+
+
+@kernel
+def outside_opponent_defense(p: Pitch, x: float, y: float, margin: float
+                             ) -> tuple[float, float]:
+    """A target nearer the opponent defense area than ``margin`` [m] moved to the nearest
+    point outside [m]."""
+    front = p.goal_x - p.defense_depth - margin
+    side = 0.5 * p.defense_width + margin
+    if x <= front or abs(y) >= side:
+        return x, y
+    if x - front <= side - abs(y):
+        return front, y
+    return x, math.copysign(side, y if y != 0.0 else 1.0)
+
+
+@kernel
+def within_walls(p: Pitch, x: float, y: float) -> tuple[float, float]:
+    """A target clipped into the walls minus a robot radius [m]."""
+    return max(-p.lim_x, min(p.lim_x, x)), max(-p.lim_y, min(p.lim_y, y))
+
+
+@kernel
+def around_ball(px: float, py: float, tx: float, ty: float, bx: float, by: float,
+                clear: float, pad: float) -> tuple[float, float]:
+    """A waypoint beside the ball, ``clear + pad`` from it, if the straight path from
+    ``(px, py)`` to ``(tx, ty)`` passes within ``clear`` of the ball ``(bx, by)``, else the
+    target [m] (a defender on its way to its slot must not knock the ball about)."""
+    ux, uy = tx - px, ty - py
+    length = hypot_exact(ux, uy)
+    if length < 1e-6:
+        return tx, ty
+    ux, uy = ux / length, uy / length
+    along = (bx - px) * ux + (by - py) * uy
+    side = (px - bx) * -uy + (py - by) * ux  # the robot's side of the ball, along n
+    if not 0.0 < along < length or abs(side) >= clear:
+        return tx, ty
+    sign = 1.0 if side >= 0.0 else -1.0
+    return bx - sign * (clear + pad) * uy, by + sign * (clear + pad) * ux
 
 
 class TeamGeometry:
@@ -32,13 +120,10 @@ class TeamGeometry:
         field: the match's field.
         ball: the match's ball.
         robot: the team's robot spec.
-        hypot: the length function of the batched (``*_rows``) methods.
     """
 
-    def __init__(self, field: FieldSpec, ball: BallSpec, robot: SSLRobotSpec,
-                 hypot: Hypot = hypots) -> None:
+    def __init__(self, field: FieldSpec, ball: BallSpec, robot: SSLRobotSpec) -> None:
         self.field, self.ball, self.robot = field, ball, robot
-        self.hypot = hypot
         hx, hy = field.half_length, field.half_width
         r = robot.radius
         #: The opponents' goal line; the own one is at ``-goal_x`` [m].
@@ -55,105 +140,38 @@ class TeamGeometry:
         #: lim_y`` [m].
         self.lim_x = hx + field.boundary - r - 0.02
         self.lim_y = hy + field.boundary - r - 0.02
+        #: These numbers for the kernels.
+        self.pitch = Pitch(
+            float(self.goal_x), float(self.half_goal), float(hy), float(field.defense_depth),
+            float(field.defense_width), float(self.contact), float(self.def_front),
+            float(self.def_side), float(self.lim_x), float(self.lim_y), float(r),
+            float(ball.radius), float(robot.front_distance), float(robot.kicker_width),
+            float(robot.max_speed), float(robot.max_acceleration),
+            float(robot.max_angular_speed))
 
     # ------------------------------------------------------------------------------------
-    # Keep-out zones
+    # Keep-out zones and the way round the ball (the kernels, for the restarts)
 
     def outside_defense_area(self, x: float, y: float) -> tuple[float, float]:
-        """Move a target inside the own defense area (widened by a robot radius and 5 cm) to
-        the nearest point on its edge."""
-        ox = -self.goal_x
-        if x >= self.def_front or abs(y) >= self.def_side:
-            return x, y
-        to_front = self.def_front - x
-        to_side = self.def_side - abs(y)
-        if to_front <= to_side or x < ox:
-            return self.def_front, y
-        return x, math.copysign(self.def_side, y if y != 0.0 else 1.0)
-
-    def outside_defense_area_rows(self, x: np.ndarray, y: np.ndarray
-                                  ) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`outside_defense_area` on arrays [m]."""
-        ox = -self.goal_x
-        inside = (x < self.def_front) & (np.abs(y) < self.def_side)
-        to_front = self.def_front - x
-        to_side = self.def_side - np.abs(y)
-        front = (to_front <= to_side) | (x < ox)
-        return (np.where(inside & front, self.def_front, x),
-                np.where(inside & ~front,
-                         np.copysign(self.def_side, np.where(y != 0.0, y, 1.0)), y))
+        """:func:`outside_defense_area` [m]."""
+        return outside_defense_area(self.pitch, x, y)
 
     def outside_opponent_defense(self, x: float, y: float, margin: float
                                  ) -> tuple[float, float]:
-        """Move a target nearer the opponent defense area than ``margin`` [m] to the nearest
-        point outside."""
-        f = self.field
-        front = self.goal_x - f.defense_depth - margin
-        side = 0.5 * f.defense_width + margin
-        if x <= front or abs(y) >= side:
-            return x, y
-        if x - front <= side - abs(y):
-            return front, y
-        return x, math.copysign(side, y if y != 0.0 else 1.0)
-
-    def outside_opponent_defense_rows(self, x: np.ndarray, y: np.ndarray, margin: float
-                                      ) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`outside_opponent_defense` on arrays [m]."""
-        f = self.field
-        front = self.goal_x - f.defense_depth - margin
-        side = 0.5 * f.defense_width + margin
-        inside = (x > front) & (np.abs(y) < side)
-        to_front = x - front <= side - np.abs(y)
-        return (np.where(inside & to_front, front, x),
-                np.where(inside & ~to_front, np.copysign(side, np.where(y != 0.0, y, 1.0)), y))
+        """:func:`outside_opponent_defense` [m]."""
+        return outside_opponent_defense(self.pitch, x, y, margin)
 
     def within_walls(self, x: float, y: float) -> tuple[float, float]:
-        """A target clipped into the walls minus a robot radius [m]."""
-        return max(-self.lim_x, min(self.lim_x, x)), max(-self.lim_y, min(self.lim_y, y))
-
-    def within_walls_rows(self, x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`within_walls` on arrays [m]."""
-        return np.clip(x, -self.lim_x, self.lim_x), np.clip(y, -self.lim_y, self.lim_y)
-
-    # ------------------------------------------------------------------------------------
-    # Round the ball
+        """:func:`within_walls` [m]."""
+        return within_walls(self.pitch, x, y)
 
     def around_ball(self, px: float, py: float, tx: float, ty: float, bx: float, by: float,
                     clear: float | None = None, pad: float = 0.0) -> tuple[float, float]:
-        """A waypoint beside the ball, ``clear + pad`` from it, if the straight path from
-        ``(px, py)`` to ``(tx, ty)`` passes within ``clear`` of the ball (default a robot
-        radius, a ball radius and 15 cm), else the target (a defender on its way to its slot
-        must not knock the ball about)."""
-        ux, uy = tx - px, ty - py
-        length = math.hypot(ux, uy)
-        if length < 1e-6:
-            return tx, ty
-        ux, uy = ux / length, uy / length
+        """:func:`around_ball`, ``clear`` by default a robot radius, a ball radius and 15 cm
+        [m]."""
         if clear is None:
             clear = self.robot.radius + self.ball.radius + 0.15
-        along = (bx - px) * ux + (by - py) * uy
-        side = (px - bx) * -uy + (py - by) * ux  # the robot's side of the ball, along n
-        if not 0.0 < along < length or abs(side) >= clear:
-            return tx, ty
-        sign = 1.0 if side >= 0.0 else -1.0
-        return bx - sign * (clear + pad) * uy, by + sign * (clear + pad) * ux
-
-    def around_ball_rows(self, px: np.ndarray, py: np.ndarray, tx: np.ndarray,
-                         ty: np.ndarray, bx: np.ndarray, by: np.ndarray
-                         ) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`around_ball` on arrays, with the default clearance and no pad [m]."""
-        ux, uy = tx - px, ty - py
-        length = self.hypot(ux, uy)
-        short = length < 1e-6
-        safe = np.where(short, 1.0, length)
-        ux, uy = ux / safe, uy / safe
-        clear = self.robot.radius + self.ball.radius + 0.15
-        along = (bx - px) * ux + (by - py) * uy
-        side = (px - bx) * -uy + (py - by) * ux  # the robot's side of the ball, along n
-        detour = ~short & (0.0 < along) & (along < length) & (np.abs(side) < clear)
-        sign = np.where(side >= 0.0, 1.0, -1.0)
-        return (np.where(detour, bx - sign * clear * uy, tx),
-                np.where(detour, by + sign * clear * ux, ty))
+        return around_ball(px, py, tx, ty, bx, by, clear, pad)
 
     # ------------------------------------------------------------------------------------
     # Off a circle or a corridor (restarts; single robots only)

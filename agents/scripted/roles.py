@@ -12,7 +12,9 @@ All robots of a team read the same belief, so they agree:
   across the line from the own goal to the ball (so that they do not cross each other's
   paths).
 
-Positions are in the team frame [m] (:mod:`agents.scripted.geometry`).
+Positions are in the team frame [m] (:mod:`agents.scripted.geometry`). The rules are compiled
+kernels on floats and the team's positions as arrays (:func:`role`,
+:func:`keeper_should_clear`); :class:`Roles` holds the team's numbers and calls them.
 """
 
 from __future__ import annotations
@@ -21,12 +23,80 @@ import math
 
 import numpy as np
 
-from agents.scripted.geometry import TeamGeometry
+from agents.scripted.geometry import Pitch, TeamGeometry
+from estimators.compiled import kernel
+from estimators.exact import hypot_exact
 
-__all__ = ["Roles", "DEFENDERS_PER_LINE"]
+__all__ = ["Roles", "DEFENDERS_PER_LINE", "role", "keeper_should_clear"]
 
 #: Defenders in one line between the ball and the own goal.
 DEFENDERS_PER_LINE = 3
+
+
+@kernel
+def role(p: Pitch, first: int, team_size: int, index: int, xs: np.ndarray, ys: np.ndarray,
+         bx: float, by: float, barred: int) -> tuple[bool, int, int]:
+    """``(attacker, rank, defenders)``: whether field player ``index`` is the attacker, else
+    its rank among the defenders, and their number (the module docstring); the field players
+    are ``first .. team_size - 1``, robot ``barred`` never attacks. ``xs``, ``ys``: the team's
+    robots by index, ``(bx, by)``: the ball [m].
+
+    The attacker is the first field player of least cost (a strict ``<``); the defenders are
+    the others in index order, in lines of :data:`DEFENDERS_PER_LINE`, within a line ranked
+    by ``(lateral position, index)``."""
+    # Cost to take the ball [m]: distance to the point behind the ball on the line from the
+    # opponent goal centre, plus a penalty for standing goal-side of the ball (the robot
+    # would have to go round it). A robot passing the ball on its way elsewhere does not
+    # steal the role from one already lined up behind it.
+    ex, ey = p.goal_x - bx, -by
+    d = hypot_exact(ex, ey)
+    if d == 0.0:
+        d = 1.0
+    ex, ey = ex / d, ey / d
+    back = p.contact + 0.12
+    qx, qy = bx - back * ex, by - back * ey
+    best, attacker = math.inf, -1
+    for k in range(first, team_size):
+        if k == barred:
+            continue
+        ahead = (xs[k] - bx) * ex + (ys[k] - by) * ey > p.contact
+        cost = hypot_exact(xs[k] - qx, ys[k] - qy) + (0.5 if ahead else 0.0)
+        if cost < best:
+            best, attacker = cost, k
+    if index == attacker:
+        return True, 0, 0
+    n_def = team_size - first - (1 if attacker >= 0 else 0)
+    # Lines of up to three by robot index (so that a robot keeps its line); within a line,
+    # slots by lateral position across the goal-ball line, so that defenders do not cross
+    # each other's paths to their slots.
+    per = DEFENDERS_PER_LINE
+    position = index - first - (1 if 0 <= attacker < index else 0)
+    start = position // per * per
+    ox = -p.goal_x
+    fx, fy = bx - ox, by
+    norm = hypot_exact(fx, fy)
+    if norm == 0.0:
+        norm = 1.0
+    nx, ny = -fy / norm, fx / norm
+    mine = (xs[index] - ox) * nx + ys[index] * ny
+    rank, j = start, 0
+    for k in range(first, team_size):
+        if k == attacker:
+            continue
+        if start <= j < start + per and k != index:
+            lateral = (xs[k] - ox) * nx + ys[k] * ny
+            if lateral < mine or (lateral == mine and k < index):
+                rank += 1
+        j += 1
+    return False, rank, n_def
+
+
+@kernel
+def keeper_should_clear(p: Pitch, bx: float, by: float, bvx: float, bvy: float) -> bool:
+    """A slow ball (under 0.5 m/s) inside the own defense area (position ``(bx, by)`` [m],
+    velocity ``(bvx, bvy)`` [m/s]): only the keeper may fetch it."""
+    inside = bx < -p.goal_x + p.defense_depth and abs(by) < 0.5 * p.defense_width
+    return inside and bx > -p.goal_x and hypot_exact(bvx, bvy) < 0.5
 
 
 class Roles:
@@ -47,98 +117,17 @@ class Roles:
 
     def role(self, index: int, xs: list[float], ys: list[float], bx: float, by: float,
              barred: int = -1) -> tuple[str, int, int]:
-        """``(role, rank, defenders)``: robot ``index``'s role (``"attacker"`` or
-        ``"defender"``), its rank among the defenders and their number; robot ``barred`` is
-        never the attacker. ``xs``, ``ys``: the team's robots by index, ``(bx, by)``: the
-        ball [m]."""
-        g = self.geometry
-        first = self.first
-        field_players = range(first, self.team_size)
-        # Cost to take the ball [m]: distance to the point behind the ball on the line from
-        # the opponent goal centre, plus a penalty for standing goal-side of the ball (the
-        # robot would have to go round it). A robot passing the ball on its way elsewhere
-        # does not steal the role from one already lined up behind it.
-        ex, ey = g.goal_x - bx, -by
-        d = math.hypot(ex, ey) or 1.0
-        ex, ey = ex / d, ey / d
-        back = g.contact + 0.12
-        qx, qy = bx - back * ex, by - back * ey
-        best, attacker = math.inf, -1
-        for k in field_players:
-            if k == barred:
-                continue
-            ahead = (xs[k] - bx) * ex + (ys[k] - by) * ey > g.contact
-            cost = math.hypot(xs[k] - qx, ys[k] - qy) + (0.5 if ahead else 0.0)
-            if cost < best:
-                best, attacker = cost, k
-        if index == attacker:
-            return "attacker", 0, 0
-        defenders = [k for k in field_players if k != attacker]
-        # Lines of up to three by robot index (so that a robot keeps its line); within a
-        # line, slots by lateral position across the goal-ball line, so that defenders do not
-        # cross each other's paths to their slots.
-        per = DEFENDERS_PER_LINE
-        start = defenders.index(index) // per * per
-        line = defenders[start:start + per]
-        ox = -g.goal_x
-        fx, fy = bx - ox, by
-        norm = math.hypot(fx, fy) or 1.0
-        nx, ny = -fy / norm, fx / norm
-        line.sort(key=lambda k: ((xs[k] - ox) * nx + ys[k] * ny, k))
-        return "defender", start + line.index(index), len(defenders)
-
-    def role_rows(self, index: np.ndarray, xs: np.ndarray, ys: np.ndarray, bx: np.ndarray,
-                  by: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`role` for field-player rows: ``(attacker, rank)``, whether each row's robot
-        is the attacker, and else its rank among the defenders. ``xs``, ``ys``: the team's
-        robots in the team frame as each row sees them, ``(team_size, n)`` [m]."""
-        g, hypot = self.geometry, self.geometry.hypot
-        first = self.first
-        ex, ey = g.goal_x - bx, -by
-        d = hypot(ex, ey)
-        d = np.where(d == 0.0, 1.0, d)
-        ex, ey = ex / d, ey / d
-        back = g.contact + 0.12
-        qx, qy = bx - back * ex, by - back * ey
-        # The first field player of least cost (role's strict "<" keeps the first).
-        ahead = (xs[first:] - bx) * ex + (ys[first:] - by) * ey > g.contact
-        cost = hypot(xs[first:] - qx, ys[first:] - qy) + np.where(ahead, 0.5, 0.0)
-        attacker = first + np.argmin(cost, axis=0)
-        is_attacker = index == attacker
-        # Defenders: the field players but the attacker, by index; lines of up to three
-        # (position // per), within a line slots by (lateral position, index).
-        per = DEFENDERS_PER_LINE
-        position = index - first - (attacker < index)
-        ox = -g.goal_x
-        fx, fy = bx - ox, by
-        norm = hypot(fx, fy)
-        norm = np.where(norm == 0.0, 1.0, norm)
-        nx, ny = -fy / norm, fx / norm
-        cols = np.arange(len(index))
-        mine = (xs[index, cols] - ox) * nx + ys[index, cols] * ny
-        rank = position // per * per
-        for p in range(self.team_size - first - 1):
-            k = first + p + (first + p >= attacker)
-            lateral = (xs[k, cols] - ox) * nx + ys[k, cols] * ny
-            before = (lateral < mine) | ((lateral == mine) & (k < index))
-            rank = rank + (before & (p // per == position // per))
-        return is_attacker, rank
+        """``(role, rank, defenders)`` of :func:`role`: robot ``index``'s role
+        (``"attacker"`` or ``"defender"``), its rank among the defenders and their number;
+        robot ``barred`` is never the attacker [m]."""
+        attacker, rank, n_def = role(self.geometry.pitch, self.first, self.team_size, index,
+                                     np.array(xs, dtype=np.float64),
+                                     np.array(ys, dtype=np.float64), bx, by, barred)
+        return ("attacker", 0, 0) if attacker else ("defender", rank, n_def)
 
     def keeper_should_clear(self, bx: float, by: float, bvx: float, bvy: float) -> bool:
-        """A slow ball (under 0.5 m/s) inside the own defense area: only the keeper may fetch
-        it."""
-        g = self.geometry
-        f = g.field
-        inside = bx < -g.goal_x + f.defense_depth and abs(by) < 0.5 * f.defense_width
-        return inside and bx > -g.goal_x and math.hypot(bvx, bvy) < 0.5
-
-    def keeper_should_clear_rows(self, bx: np.ndarray, by: np.ndarray, bvx: np.ndarray,
-                                 bvy: np.ndarray) -> np.ndarray:
-        """:meth:`keeper_should_clear` on arrays."""
-        g = self.geometry
-        f = g.field
-        inside = (bx < -g.goal_x + f.defense_depth) & (np.abs(by) < 0.5 * f.defense_width)
-        return inside & (bx > -g.goal_x) & (g.hypot(bvx, bvy) < 0.5)
+        """:func:`keeper_should_clear`."""
+        return keeper_should_clear(self.geometry.pitch, bx, by, bvx, bvy)
 
     def nearest_to_ball(self, xs: list[float], ys: list[float], bx: float, by: float) -> int:
         """The field player nearest the ball (the keeper when it is the only robot); ties to

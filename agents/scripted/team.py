@@ -78,11 +78,12 @@ class ScriptedTeam:
         guard_offset: keeper's guard line in front of the goal line, beyond its radius [m].
         attack_speed: speed [m/s] at which the attacker drives through the ball.
         defender_spacing: lateral distance between defenders of one line [m].
-        exact: :meth:`act_batch` computes lengths as ``math.hypot`` does, bit for bit
-            (:func:`~soccer_env.envs.keeper.hypots`), so that its actions equal :meth:`act`'s;
-            False uses ``np.hypot``, which makes :meth:`act_batch` about 40 % faster and
-            differs in the last bit for about one pair in 160 (the float32 actions almost
-            always come out the same).
+        exact: the keeper's batched guard
+            (:meth:`~soccer_env.envs.keeper.ScriptedGoalkeeper.act_batch`) computes lengths as
+            ``math.hypot`` does, bit for bit (:func:`~soccer_env.envs.keeper.hypots`); False
+            uses ``np.hypot``, faster, which differs in the last bit for about one pair in
+            160 (the float32 actions almost always come out the same). The other robots'
+            kernels always compute ``math.hypot``'s bits.
         rules: the rule preset whose distances and limits the team keeps at restarts when
             its observations carry the game flow (default ``"ssl-2025-div-b"``;
             :meth:`for_env` passes the match's).
@@ -119,9 +120,9 @@ class ScriptedTeam:
         self.prefix = prefix
         self.obs_size = self.view.size
         self.exact = bool(exact)
-        #: The length function of :meth:`act_batch`.
+        #: The length function of the keeper's batched guard.
         self.hypot = hypots if self.exact else np.hypot
-        self.geometry = TeamGeometry(field, ball, robot, self.hypot)
+        self.geometry = TeamGeometry(field, ball, robot)
         self.roles = Roles(self.geometry, self.team_size)
         self.has_keeper = self.roles.has_keeper
         self.model = FrictionBallModel(ball.rolling_deceleration)
@@ -204,14 +205,14 @@ class ScriptedTeam:
         matches: ``np.stack([self.act(o) for o in obs])``, computed on all ``M * team_size``
         rows at once (``M = 0`` gives an empty array).
 
-        Each row goes through the same arithmetic in the same order as :meth:`act_one`
-        (:func:`~soccer_env.envs.keeper.hypots` computes ``math.hypot``'s bits,
-        :func:`~soccer_env.envs.keeper.wrap_angles` ``math.remainder``'s, ``np.float_power``
-        the C library's ``pow``), except that ``np.arctan2`` stands for ``math.atan2``: it can
-        differ in the last bit of a float64 heading, which the float32 actions absorb except
-        in very rare cases (a last-bit difference in a turn rate or velocity). Rows in a
-        restart (:meth:`~agents.scripted.restarts.RestartPlay.needs_restart_play`) go through
-        :meth:`act_one` one by one.
+        The open-play rows go through one kernel call
+        (:func:`~agents.scripted.open_play.open_play_rows`), which runs the same compiled
+        rules as :meth:`act_one` (the same arithmetic on the same floats: the actions are
+        equal bit for bit); the guarding keepers' rows through
+        :meth:`~soccer_env.envs.keeper.ScriptedGoalkeeper.act_batch` (``np.arctan2`` for
+        ``math.atan2``: a turn rate could differ in its last float32 bit in very rare cases).
+        Rows in a restart (:meth:`~agents.scripted.restarts.RestartPlay.needs_restart_play`)
+        go through :meth:`act_one` one by one.
         """
         obs = np.asarray(obs)
         if obs.ndim != 3 or obs.shape[1:] != (self.team_size, self.obs_size):

@@ -12,16 +12,15 @@ of the team frame, with ``(c, s) = (cos h, sin h)``; a velocity ``(u, v)`` is
 ``(c u - s v, s u + c v)``. The team frame attacks ``+x`` on either side.
 
 :class:`ObservationView` finds the entries once, by name, and turns an observation (a
-sequence) or observation rows (an array) into a :class:`Frame`, the opponents' positions and
-the team's positions, each single and batched pair side by side.
+sequence) into a :class:`Frame`, the opponents' positions and the team's positions; the
+batched path reads observation rows in a kernel with the same arithmetic
+(:func:`~agents.scripted.open_play.open_play_rows`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from typing import NamedTuple
-
-import numpy as np
 
 from soccer_env.envs.match import GAME_FLOW_NAMES
 
@@ -35,29 +34,23 @@ FRAME_ENTRIES = ("self.x", "self.y", "self.ax", "self.ay", "ball.dx", "ball.dy",
 
 
 class Frame(NamedTuple):
-    """One robot's view of itself and the ball in the team frame: floats for one
-    observation, arrays ``(n,)`` for ``n`` observation rows."""
+    """One robot's view of itself and the ball in the team frame."""
 
     #: Own position [m].
-    px: float | np.ndarray
-    py: float | np.ndarray
+    px: float
+    py: float
     #: ``cos`` and ``sin`` of the own heading.
-    c: float | np.ndarray
-    s: float | np.ndarray
+    c: float
+    s: float
     #: The ball's position [m].
-    bx: float | np.ndarray
-    by: float | np.ndarray
+    bx: float
+    by: float
     #: The ball's velocity [m/s].
-    bvx: float | np.ndarray
-    bvy: float | np.ndarray
+    bvx: float
+    bvy: float
     #: The ball's offset in the robot's body frame (``dx`` > 0: in front) [m].
-    dx: float | np.ndarray
-    dy: float | np.ndarray
-
-    def take(self, rows: np.ndarray) -> Frame:
-        """The frame of the rows ``rows`` (a boolean mask or indices) of a batched frame."""
-        return Frame(*(v[rows] for v in self))
-
+    dx: float
+    dy: float
 
 class ObservationView:
     """The entries of a team's observations that a scripted robot reads, found by name.
@@ -98,33 +91,13 @@ class ObservationView:
                      if all(n in index for n in GAME_FLOW_NAMES) else None)
         self.team_size = int(team_size)
 
-    # Each method on one observation (a list of floats) and its ``*_rows`` twin on
-    # observation rows as columns (:meth:`columns`: one element per row).
-
-    @staticmethod
-    def columns(obs: np.ndarray) -> np.ndarray:
-        """Observation rows ``(n, obs_dim)`` as float64 columns ``(obs_dim, n)``: one entry
-        per row, what the ``*_rows`` methods read."""
-        return np.asarray(obs, dtype=np.float64).T
-
     def frame(self, o: Sequence[float]) -> Frame:
         """The robot and the ball in the team frame from one observation."""
         return _team_frame(*(o[i] for i in self.frame_index))
 
-    def frame_rows(self, o: np.ndarray) -> Frame:
-        """:meth:`frame` on columns ``o``: a frame of arrays ``(n,)``."""
-        return _team_frame(*o[self.frame_index])
-
     def opponents_of(self, o: Sequence[float], f: Frame) -> list[tuple[float, float]]:
         """The opponents' positions ``[(x, y), ...]`` in the team frame [m]."""
         return _points(o, f, self.opponents)
-
-    def opponents_rows(self, o: np.ndarray, f: Frame) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`opponents_of` on columns: the opponents' ``(x, y)`` in the team frame, each
-        ``(n_opps, n)`` [m]."""
-        px, py, c, s = f.px, f.py, f.c, f.s
-        mx, my = o[[i for i, _ in self.opponents]], o[[j for _, j in self.opponents]]
-        return px + c * mx - s * my, py + s * mx + c * my
 
     def mates_of(self, o: Sequence[float], f: Frame) -> list[tuple[float, float]]:
         """The team-mates' positions ``[(x, y), ...]`` in the team frame [m], in robot order
@@ -144,28 +117,11 @@ class ObservationView:
             xs[k], ys[k] = px + c * mx - s * my, py + s * mx + c * my
         return xs, ys
 
-    def team_positions_rows(self, o: np.ndarray, index: np.ndarray, f: Frame
-                            ) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`team_positions` on columns, for rows of robots ``index`` (``(n,)`` ints):
-        ``(xs, ys)``, each ``(team_size, n)`` [m]."""
-        px, py, c, s = f.px, f.py, f.c, f.s
-        xs = np.empty((self.team_size, len(index)))
-        ys = np.empty_like(xs)
-        for k in range(self.team_size):
-            # Robot k is mate k of the robots after it and mate k - 1 of those before.
-            xs[k], ys[k] = px, py
-            for j, rows in ((k, index > k), (k - 1, index < k)):
-                if 0 <= j < len(self.mates) and rows.any():
-                    ix, iy = self.mates[j]
-                    xs[k, rows] = (px + c * o[ix] - s * o[iy])[rows]
-                    ys[k, rows] = (py + s * o[ix] + c * o[iy])[rows]
-        return xs, ys
 
-
-def _team_frame(px: float | np.ndarray, py: float | np.ndarray, c: float | np.ndarray,
-                neg_s: float | np.ndarray, dx: float | np.ndarray, dy: float | np.ndarray,
-                bvx_b: float | np.ndarray, bvy_b: float | np.ndarray) -> Frame:
-    """The :class:`Frame` of the entries :data:`FRAME_ENTRIES` (floats or arrays)."""
+def _team_frame(px: float, py: float, c: float,
+                neg_s: float, dx: float, dy: float,
+                bvx_b: float, bvy_b: float) -> Frame:
+    """The :class:`Frame` of the entries :data:`FRAME_ENTRIES` (floats)."""
     s = -neg_s  # self.ay is -sin(heading)
     # Ball in the team frame.
     bx, by = px + c * dx - s * dy, py + s * dx + c * dy

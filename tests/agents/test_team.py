@@ -301,12 +301,11 @@ def test_bad_input_raises_clear_errors():
 # Batched actions: act_batch is act, match by match
 # ----------------------------------------------------------------------------------------
 #
-# act_batch runs act_one's arithmetic in the same order on arrays, with math.hypot's and
-# math.remainder's bits (hypots, wrap_angles) and the C library's pow (np.float_power). Only
-# math.atan2 has no bit-exact numpy counterpart: np.arctan2 differs from it in the last bit of
-# a float64 heading for a few percent of inputs, which the float32 actions absorb unless the
-# float64 value sits within about 1e-16 of a float32 rounding boundary (or of a threshold):
-# about one action in 1e8. These tests see none, so they ask for exact equality.
+# act_batch calls open_play_rows, which runs the compiled rules act_one calls (field_player,
+# attacker_act) on each row's floats: the same arithmetic, so the actions are equal bit for
+# bit. Only the guarding keeper's rows go through ScriptedGoalkeeper.act_batch, whose
+# np.arctan2 could differ from math.atan2 in the last bit of a float64 heading (absorbed by the
+# float32 actions except in very rare cases). These tests ask for exact equality.
 
 
 def match_observations(n, seed, steps=600):
@@ -553,8 +552,8 @@ def test_drive_and_turn_commands_are_the_scalar_commands():
 
 
 def test_inexact_act_batch_uses_numpys_hypot_and_agrees_to_float32():
-    """``exact=False``: act_batch with np.hypot, the same actions as the exact team on real
-    match observations up to the last float32 bit in rare rows."""
+    """``exact=False``: the keeper's batched guard with np.hypot, the same actions as the exact
+    team on real match observations up to the last float32 bit in rare rows."""
     env = soccer_env.parallel_env(blue=2, yellow=2)
     exact = ScriptedTeam.for_env(env, "yellow")
     fast = ScriptedTeam.for_env(env, "yellow", exact=False)
