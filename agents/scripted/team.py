@@ -54,7 +54,7 @@ from agents.scripted.roles import Roles
 from agents.scripted.view import ObservationView
 from estimators import FrictionBallModel
 from soccer_env import MAX_TEAM_SIZE, presets
-from soccer_env.envs.keeper import ScriptedGoalkeeper, hypots
+from soccer_env.envs.keeper import ScriptedGoalkeeper
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
 from soccer_env.presets.rules import RuleSpec
 
@@ -78,12 +78,9 @@ class ScriptedTeam:
         guard_offset: keeper's guard line in front of the goal line, beyond its radius [m].
         attack_speed: speed [m/s] at which the attacker drives through the ball.
         defender_spacing: lateral distance between defenders of one line [m].
-        exact: the keeper's batched guard
-            (:meth:`~soccer_env.envs.keeper.ScriptedGoalkeeper.act_batch`) computes lengths as
-            ``math.hypot`` does, bit for bit (:func:`~soccer_env.envs.keeper.hypots`); False
-            uses ``np.hypot``, faster, which differs in the last bit for about one pair in
-            160 (the float32 actions almost always come out the same). The other robots'
-            kernels always compute ``math.hypot``'s bits.
+        exact: kept for compatibility, without effect: every rule of the team, the keeper's
+            included, is a compiled kernel that computes lengths as ``math.hypot`` does, bit
+            for bit, one robot or many.
         rules: the rule preset whose distances and limits the team keeps at restarts when
             its observations carry the game flow (default ``"ssl-2025-div-b"``;
             :meth:`for_env` passes the match's).
@@ -120,14 +117,11 @@ class ScriptedTeam:
         self.prefix = prefix
         self.obs_size = self.view.size
         self.exact = bool(exact)
-        #: The length function of the keeper's batched guard.
-        self.hypot = hypots if self.exact else np.hypot
         self.geometry = TeamGeometry(field, ball, robot)
         self.roles = Roles(self.geometry, self.team_size)
         self.has_keeper = self.roles.has_keeper
         self.model = FrictionBallModel(ball.rolling_deceleration)
         self.keeper = ScriptedGoalkeeper(field, ball, robot, names, guard_offset=guard_offset)
-        self.keeper.hypot = None if self.exact else np.hypot
         game = self.view.game
         self.rules = presets.rules(rules if rules is not None else "ssl-2025-div-b")
         # Kicker power of every kick: full without the game flow; with it, 0.2 m/s under
@@ -209,8 +203,8 @@ class ScriptedTeam:
         (:func:`~agents.scripted.open_play.open_play_rows`), which runs the same compiled
         rules as :meth:`act_one` (the same arithmetic on the same floats: the actions are
         equal bit for bit); the guarding keepers' rows through
-        :meth:`~soccer_env.envs.keeper.ScriptedGoalkeeper.act_batch` (``np.arctan2`` for
-        ``math.atan2``: a turn rate could differ in its last float32 bit in very rare cases).
+        :meth:`~soccer_env.envs.keeper.ScriptedGoalkeeper.act_batch` (the keeper's compiled
+        rule on each row, equal to its single path bit for bit too).
         Rows in a restart (:meth:`~agents.scripted.restarts.RestartPlay.needs_restart_play`)
         go through :meth:`act_one` one by one.
         """

@@ -461,9 +461,9 @@ class ShootoutVectorEnv(BatchedTask):
     out), the reward terms and the time limit. Arguments as :class:`BatchedTask`'s;
     ``**kwargs`` are :class:`~soccer_env.envs.shootout.ShootoutEnv`'s.
 
-    The keeper's batched actions equal its per-environment ones except that ``np.arctan2``
-    stands for ``math.atan2``, whose last bits differ now and then (rarely visible in the
-    float32 action); the episodes agree with single environments as the Goalkeeper's do.
+    The keeper's batched actions equal its per-environment ones bit for bit (one compiled rule,
+    :func:`~soccer_env.envs.keeper.ssl_keeper`, on each row); the episodes agree with single
+    environments as the Goalkeeper's do.
     """
 
     TASK = ShootoutEnv

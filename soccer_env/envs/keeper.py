@@ -1,89 +1,215 @@
-"""A scripted goalkeeper that intercepts the ball's predicted path in front of its goal."""
+"""A scripted goalkeeper that intercepts the ball's predicted path in front of its goal.
+
+Its rules are compiled kernels on floats (:func:`guard_line_y`, :func:`ssl_keeper`,
+:func:`humanoid_keeper`, with the steering of :mod:`soccer_env.envs.steering`), written once:
+:meth:`ScriptedGoalkeeper.__call__` calls them on one observation's floats and
+:meth:`ScriptedGoalkeeper.act_batch` calls :func:`ssl_keeper_rows`, which runs
+:func:`ssl_keeper` on each row, so both give the same actions bit for bit. Team frame (the own
+goal at ``x = -L/2``), metres, seconds, radians.
+"""
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 
 from estimators import FrictionBallModel
-from estimators.exact import hypots, wrap_angles
+from estimators.compiled import kernel
+from soccer_env.envs.steering import TURN_GAIN, Action, command, drive_velocity, turn_rate
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 
-__all__ = ["ScriptedGoalkeeper", "drive_command", "drive_commands", "turn_command",
-           "turn_commands", "hypots", "wrap_angles", "TURN_GAIN"]
-
-#: Proportional gain of :func:`turn_command` [1/s].
-TURN_GAIN = 8.0
+__all__ = ["ScriptedGoalkeeper", "drive_command", "turn_command", "TURN_GAIN", "Guard",
+           "SSLKeeper", "HumanoidKeeper", "line_time", "rolled_y", "guard_line_y", "team_frame",
+           "ssl_keeper",
+           "ssl_keeper_rows", "humanoid_keeper"]
 
 
 def drive_command(px: float, py: float, c: float, s: float, tx: float, ty: float,
                   max_speed: float, max_acceleration: float, speed_cap: float | None = None
                   ) -> tuple[float, float]:
     """Body-frame velocity [m/s] that drives a robot at ``(px, py)`` with heading
-    ``(cos, sin) = (c, s)`` to ``(tx, ty)`` (all in one frame, metres) and can still stop there.
-
-    The speed follows the braking profile ``v = min(v_cap, sqrt(2 a_max d))`` for distance ``d``
-    (``v_cap`` is ``speed_cap`` or ``max_speed``): the fastest approach that can still stop on
-    the spot.
-    """
-    ex, ey = tx - px, ty - py
-    dist = math.hypot(ex, ey)
-    if dist <= 1e-6:
-        return 0.0, 0.0
-    cap = max_speed if speed_cap is None else min(speed_cap, max_speed)
-    speed = min(cap, math.sqrt(2.0 * max_acceleration * dist))
-    wx, wy = ex / dist * speed, ey / dist * speed
-    # Frame -> body frame: rotate by -heading.
-    return c * wx + s * wy, -s * wx + c * wy
+    ``(cos, sin) = (c, s)`` to ``(tx, ty)`` (all in one frame, metres) and can still stop there:
+    :func:`~soccer_env.envs.steering.drive_velocity` from Python, ``v = min(v_cap,
+    sqrt(2 a_max d))`` (``v_cap`` is ``speed_cap`` or ``max_speed``)."""
+    return drive_velocity(float(px), float(py), float(c), float(s), float(tx), float(ty),
+                          float(max_speed), float(max_acceleration),
+                          math.inf if speed_cap is None else float(speed_cap))
 
 
 def turn_command(c: float, s: float, target: float, max_angular_speed: float,
                  gain: float = TURN_GAIN) -> float:
     """Normalised turn rate in ``[-1, 1]`` that turns a robot with heading
     ``(cos, sin) = (c, s)`` towards the heading ``target`` [rad]: proportional to the wrapped
-    error with ``gain`` [1/s]."""
-    err = math.remainder(target - math.atan2(s, c), 2.0 * math.pi)
-    return max(-1.0, min(1.0, gain * err / max_angular_speed))
+    error with ``gain`` [1/s] (:func:`~soccer_env.envs.steering.turn_rate` from Python)."""
+    return turn_rate(float(c), float(s), float(target), float(max_angular_speed), float(gain))
 
 
-def drive_commands(px: np.ndarray, py: np.ndarray, c: np.ndarray, s: np.ndarray,
-                   tx: np.ndarray | float, ty: np.ndarray | float, max_speed: float,
-                   max_acceleration: float, speed_cap: np.ndarray | float | None = None,
-                   hypot: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
-                   ) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`drive_command` on arrays (broadcast): the body-frame velocities ``(vx, vy)``
-    [m/s] that drive robots at ``(px, py)`` with headings ``(c, s)`` to ``(tx, ty)`` [m] and can
-    still stop there; ``speed_cap`` [m/s] per robot (or one for all, or None: ``max_speed``).
+class Guard(NamedTuple):
+    """The guard line's numbers that the keeper's kernels read."""
 
-    The same arithmetic in the same order as :func:`drive_command`, with :func:`hypots` for
-    ``math.hypot``: the results equal it bit for bit (``hypot``: another length function,
-    e.g. ``np.hypot``, faster, whose last bit differs now and then).
-    """
-    ex, ey = tx - np.asarray(px, dtype=np.float64), ty - np.asarray(py, dtype=np.float64)
-    dist = (hypots if hypot is None else hypot)(ex, ey)
-    stop = dist <= 1e-6
-    cap = max_speed if speed_cap is None else np.minimum(speed_cap, max_speed)
-    speed = np.minimum(cap, np.sqrt(2.0 * max_acceleration * dist))
-    dist = np.where(stop, 1.0, dist)
-    wx, wy = ex / dist * speed, ey / dist * speed
-    # Frame -> body frame: rotate by -heading.
-    return (np.where(stop, 0.0, c * wx + s * wy), np.where(stop, 0.0, -s * wx + c * wy))
+    #: The guard line ``x = -L/2 + r + guard_offset`` [m].
+    guard_x: float
+    #: The goal line ``x = -L/2`` [m].
+    goal_x: float
+    #: Half the goal mouth plus a ball radius [m]: the targets' bound and the dive's mouth.
+    half_goal: float
+    #: The ball's rolling deceleration [m/s^2] (:class:`~estimators.FrictionBallModel`).
+    deceleration: float
 
 
-def turn_commands(c: np.ndarray, s: np.ndarray, target: np.ndarray | float,
-                  max_angular_speed: float, gain: float = TURN_GAIN) -> np.ndarray:
-    """:func:`turn_command` on arrays (broadcast): normalised turn rates in ``[-1, 1]`` that
-    turn robots with headings ``(c, s)`` towards the headings ``target`` [rad].
+class SSLKeeper(NamedTuple):
+    """An SSL keeper's limits [m/s, m/s^2, rad/s] and kicker geometry [m]."""
 
-    The same arithmetic as :func:`turn_command`, with ``np.arctan2`` for ``math.atan2``:
-    numpy's (vectorised) arctangent can differ from the C library's in the last bit, so a
-    result can differ from :func:`turn_command`'s by about 1e-16 (and, after rounding to
-    float32, in its last bit in very rare cases).
-    """
-    err = wrap_angles(target - np.arctan2(s, c))
-    return np.clip(gain * err / max_angular_speed, -1.0, 1.0)
+    max_speed: float
+    max_acceleration: float
+    max_angular_speed: float
+    front_distance: float
+    kicker_width: float
+
+
+class HumanoidKeeper(NamedTuple):
+    """A humanoid keeper's numbers: body [m], fall [s], walking limits [m/s, m/s^2, rad/s],
+    kick geometry [m], the ball's radius [m] and the dive's lead time [s]."""
+
+    radius: float
+    lying_length: float
+    fall_time: float
+    max_forward_speed: float
+    max_backward_speed: float
+    max_sideways_speed: float
+    max_acceleration: float
+    max_turn_speed: float
+    kick_reach: float
+    kick_width: float
+    ball_radius: float
+    dive_lead: float
+
+
+@kernel
+def line_time(deceleration: float, bx: float, vx: float, vy: float, x_line: float) -> float:
+    """Seconds until a ball at ``x = bx`` [m] moving at ``(vx, vy)`` [m/s] reaches the line
+    ``x = x_line``, ``inf`` if it stops first or moves away:
+    :meth:`~estimators.FrictionBallModel.time_to_line`'s arithmetic, the smallest ``t`` in
+    ``[0, v / a]`` with ``s = (x_line - bx) v / vx = v t - a t^2 / 2``, ``t = (v - sqrt(v^2 -
+    2 a s)) / a``."""
+    speed = math.sqrt(vx * vx + vy * vy)
+    dist = x_line - bx
+    if vx == 0.0:
+        return math.inf
+    s = dist * speed / vx
+    disc = speed * speed - 2.0 * deceleration * s
+    if not s >= 0.0 or (deceleration != 0.0 and not disc >= 0.0):
+        return math.inf
+    if dist == 0.0:
+        return 0.0
+    if deceleration == 0.0:
+        return s / speed
+    return (speed - math.sqrt(disc)) / deceleration
+
+
+@kernel
+def rolled_y(deceleration: float, by: float, vx: float, vy: float, dt: float) -> float:
+    """``y`` [m] of a ball at ``y = by`` moving at ``(vx, vy) != 0`` [m/s] after ``dt``
+    seconds: :meth:`~estimators.FrictionBallModel.predict`'s arithmetic, ``y + u_y (v t -
+    a t^2 / 2)`` with ``t = min(dt, v / a)``."""
+    speed = math.sqrt(vx * vx + vy * vy)
+    t_stop = speed / deceleration if deceleration > 0.0 else math.inf
+    t = min(dt, t_stop)
+    travelled = speed * t - 0.5 * deceleration * t * t
+    return by + vy / speed * travelled
+
+
+@kernel
+def guard_line_y(g: Guard, bx: float, by: float, vx: float, vy: float) -> float:
+    """Where on the guard line the keeper goes [m]: where a ball at ``(bx, by)`` moving
+    towards the goal (``vx < -0.05`` m/s) crosses it, if it gets there before it stops
+    (:func:`line_time`, :func:`rolled_y`), else where the line from the ball to the goal centre
+    ``(goal_x, 0)`` crosses it, ``y = by min((x_g - goal_x) / max(bx - goal_x, 1 mm), 1)``;
+    within ``+-half_goal``."""
+    if vx < -0.05:
+        t = line_time(g.deceleration, bx, vx, vy, g.guard_x)
+        if math.isfinite(t):
+            return max(-g.half_goal, min(g.half_goal, rolled_y(g.deceleration, by, vx, vy, t)))
+    frac = (g.guard_x - g.goal_x) / max(bx - g.goal_x, 1e-3)
+    return max(-g.half_goal, min(g.half_goal, by * min(frac, 1.0)))
+
+
+@kernel
+def team_frame(px: float, py: float, ax: float, ay: float, dx: float, dy: float, bvx: float,
+               bvy: float) -> tuple[float, float, float, float, float, float]:
+    """The heading ``(cos, sin) = (ax, -ay)`` and the ball's position and velocity in the team
+    frame, ``(c, s, bx, by, vx, vy)``, from the keeper's observed pose ``(px, py)`` [m] and
+    axis ``(ax, ay)``, the ball's egocentric offset ``(dx, dy)`` [m] and velocity ``(bvx,
+    bvy)`` [m/s]: ``b = p + R(heading) d``, ``v = R(heading) bv``."""
+    c, s = ax, -ay
+    return (c, s, px + c * dx - s * dy, py + s * dx + c * dy, c * bvx - s * bvy,
+            s * bvx + c * bvy)
+
+
+@kernel
+def ssl_keeper(g: Guard, k: SSLKeeper, px: float, py: float, ax: float, ay: float, dx: float,
+               dy: float, bvx: float, bvy: float) -> Action:
+    """The SSL keeper's action from its observation's floats (:func:`team_frame`'s inputs):
+    drive to ``(x_g, guard_line_y)`` with the braking profile, face the ball (the heading to
+    it clipped to ``[-pi/2, pi/2]``), kick when the ball sits in front of the kicker (``0 <
+    dx < front_distance + 0.1``, ``|dy| < kicker_width / 2``); chip and dribbler off."""
+    c, s, bx, by, vx, vy = team_frame(px, py, ax, ay, dx, dy, bvx, bvy)
+    ty = guard_line_y(g, bx, by, vx, vy)
+    face = max(-0.5 * math.pi, min(0.5 * math.pi, math.atan2(by - py, bx - px)))
+    in_front = 0.0 < dx < k.front_distance + 0.1 and abs(dy) < 0.5 * k.kicker_width
+    return command(k.max_speed, k.max_acceleration, k.max_angular_speed, px, py, c, s,
+                   g.guard_x, ty, face, math.inf, 1.0 if in_front else 0.0, -1.0)
+
+
+@kernel
+def ssl_keeper_rows(g: Guard, k: SSLKeeper, cols: np.ndarray, out: np.ndarray) -> None:
+    """:func:`ssl_keeper` on each row of ``cols`` ``(n, 8)`` float64 (``self.x, self.y,
+    self.ax, self.ay, ball.dx, ball.dy, ball.vx, ball.vy``), written into ``out`` ``(n, 6)``
+    (rounded to its dtype)."""
+    for i in range(cols.shape[0]):
+        a = ssl_keeper(g, k, cols[i, 0], cols[i, 1], cols[i, 2], cols[i, 3], cols[i, 4],
+                       cols[i, 5], cols[i, 6], cols[i, 7])
+        for j in range(6):
+            out[i, j] = a[j]
+
+
+@kernel
+def humanoid_keeper(g: Guard, h: HumanoidKeeper, px: float, py: float, ax: float, ay: float,
+                    dx: float, dy: float, bvx: float, bvy: float) -> Action:
+    """The humanoid keeper's action ``(vx, vy, omega, motion, pan, tilt)`` from its
+    observation's floats (:func:`team_frame`'s inputs).
+
+    It dives (``(0, +-1, 0, -1, 0, 0)``, to the side of the crossing in the body frame) when
+    the ball moving towards the goal will cross its line ``x = px`` within the goal mouth
+    widened by its reach ``r + r_ball``, beyond that reach but within its lying length plus a
+    ball radius, in at most ``fall_time + dive_lead`` seconds. Otherwise it walks to
+    ``(x_g, guard_line_y)`` (the braking profile at most at its sideways speed; each axis
+    divided by its own limit), turns to face the field (gain 2 /s) and kicks a ball resting
+    at its feet (``0 < dx < r + r_ball + kick_reach``, ``|dy| < kick_width / 2``, ``vx >
+    -0.1``)."""
+    c, s, bx, by, vx, vy = team_frame(px, py, ax, ay, dx, dy, bvx, bvy)
+    ty = guard_line_y(g, bx, by, vx, vy)
+    if vx < -0.05 and bx > px:
+        t = line_time(g.deceleration, bx, vx, vy, px)
+        if math.isfinite(t):
+            y_cross = rolled_y(g.deceleration, by, vx, vy, t)
+            off = y_cross - py
+            reach = h.radius + h.ball_radius
+            if (abs(y_cross) <= g.half_goal + reach
+                    and reach < abs(off) <= h.lying_length + h.ball_radius
+                    and t <= h.fall_time + h.dive_lead):
+                # Side in the body frame: left when the crossing is to the robot's left.
+                return 0.0, 1.0 if c * off >= 0.0 else -1.0, 0.0, -1.0, 0.0, 0.0
+    cmd_x, cmd_y = drive_velocity(px, py, c, s, g.guard_x, ty, h.max_sideways_speed,
+                                  h.max_acceleration, math.inf)
+    walk_x = cmd_x / (h.max_forward_speed if cmd_x >= 0.0 else h.max_backward_speed)
+    omega = turn_rate(c, s, 0.0, h.max_turn_speed, 2.0)
+    at_foot = (0.0 < dx < h.radius + h.ball_radius + h.kick_reach
+               and abs(dy) < 0.5 * h.kick_width and vx > -0.1)
+    return walk_x, cmd_y / h.max_sideways_speed, omega, 1.0 if at_foot else 0.0, 0.0, 0.0
 
 
 class ScriptedGoalkeeper:
@@ -115,6 +241,8 @@ class ScriptedGoalkeeper:
         names: the observation's entry names (``env.unwrapped.builder.names``).
         guard_offset: distance of the guard line in front of the goal line, beyond the robot's
             radius [m].
+        dive_lead: a humanoid keeper dives when the ball will cross its line within this many
+            seconds plus its fall time [s].
     """
 
     def __init__(self, field: FieldSpec, ball: BallSpec, robot: RobotSpec,
@@ -129,9 +257,21 @@ class ScriptedGoalkeeper:
                                         "ball.dy", "ball.vx", "ball.vy")]
         self.guard_x = -field.half_length + robot.radius + guard_offset
         self.obs_size = len(names)
-        #: The length function of :meth:`act_batch` (None: :func:`hypots`, ``math.hypot``'s
-        #: bits).
-        self.hypot: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
+        #: The guard line's numbers (:class:`Guard`) and the body's (:class:`SSLKeeper` or
+        #: :class:`HumanoidKeeper`) that the kernels read.
+        self.guard = Guard(float(self.guard_x), float(-field.half_length),
+                           float(0.5 * field.goal_width + ball.radius),
+                           float(self.model.deceleration))
+        r = robot
+        self.body: SSLKeeper | HumanoidKeeper = (
+            HumanoidKeeper(*(float(v) for v in (
+                r.radius, r.lying_length, r.fall_time, r.max_forward_speed,
+                r.max_backward_speed, r.max_sideways_speed, r.max_acceleration,
+                r.max_turn_speed, r.kick_reach, r.kick_width, ball.radius, dive_lead)))
+            if self.humanoid else
+            SSLKeeper(*(float(v) for v in (r.max_speed, r.max_acceleration,
+                                           r.max_angular_speed, r.front_distance,
+                                           r.kicker_width))))
 
     @classmethod
     def for_env(cls, env, **kwargs) -> ScriptedGoalkeeper:
@@ -140,77 +280,29 @@ class ScriptedGoalkeeper:
         return cls(u.field, u.ball_spec, u.robot_spec, u.builder.names, **kwargs)
 
     def _read(self, obs: np.ndarray) -> tuple[float, ...]:
-        """Own position, heading ``(cos, sin)``, the ball's position and velocity and its
-        egocentric offset, in the team frame, from the observation."""
-        px, py, ax, ay, dx, dy, bvx, bvy = (float(obs[i]) for i in self._idx)
-        c, s = ax, -ay  # cos and sin of the heading in the team frame
-        bx, by = px + c * dx - s * dy, py + s * dx + c * dy
-        vx, vy = c * bvx - s * bvy, s * bvx + c * bvy
-        return px, py, c, s, bx, by, vx, vy, dx, dy
+        """The kernels' inputs from the observation: own position [m] and axis ``(ax, ay)``,
+        the ball's egocentric offset [m] and velocity [m/s]."""
+        return tuple(float(obs[i]) for i in self._idx)
 
     def guard_y(self, obs: np.ndarray) -> float:
         """Where on the guard line the keeper goes [m, team frame] (step 2 of the class
-        docstring): the predicted crossing of a ball moving towards the goal, else the
-        crossing of the line from the ball to the goal centre; within the goal mouth."""
-        _, _, _, _, bx, by, vx, vy, _, _ = self._read(obs)
-        return self._guard_y(bx, by, vx, vy)
-
-    def _guard_y(self, bx: float, by: float, vx: float, vy: float) -> float:
-        f = self.field
-        half_goal = 0.5 * f.goal_width + self.ball.radius
-        goal_x = -f.half_length
-        ty = None
-        if vx < -0.05:
-            t = float(self.model.time_to_line(np.array([bx, by, vx, vy]), self.guard_x))
-            if math.isfinite(t):
-                ty = float(self.model.predict(np.array([bx, by, vx, vy]), t)[1])
-        if ty is None:
-            frac = (self.guard_x - goal_x) / max(bx - goal_x, 1e-3)
-            ty = by * min(frac, 1.0)
-        return max(-half_goal, min(half_goal, ty))
-
-    def _guard_ys(self, bx: np.ndarray, by: np.ndarray, vx: np.ndarray, vy: np.ndarray
-                  ) -> np.ndarray:
-        """:meth:`_guard_y` for arrays of balls: the guard-line targets ``y`` [m, team
-        frame], the same arithmetic row by row."""
-        f = self.field
-        half_goal = 0.5 * f.goal_width + self.ball.radius
-        goal_x = -f.half_length
-        state = np.stack([bx, by, vx, vy], axis=-1)
-        t = self.model.time_to_line(state, self.guard_x)
-        hit = (vx < -0.05) & np.isfinite(t)
-        crossing = self.model.predict(state, np.where(hit, t, 0.0))[..., 1]
-        frac = (self.guard_x - goal_x) / np.maximum(bx - goal_x, 1e-3)
-        ty = np.where(hit, crossing, by * np.minimum(frac, 1.0))
-        return np.clip(ty, -half_goal, half_goal)
+        docstring, :func:`guard_line_y`): the predicted crossing of a ball moving towards the
+        goal, else the crossing of the line from the ball to the goal centre; within the goal
+        mouth."""
+        _, _, bx, by, vx, vy = team_frame(*self._read(obs))
+        return guard_line_y(self.guard, bx, by, vx, vy)
 
     def __call__(self, obs: np.ndarray) -> np.ndarray:
-        r = self.robot
-        px, py, c, s, bx, by, vx, vy, dx, dy = self._read(obs)
-        ty = self._guard_y(bx, by, vx, vy)
-
-        if self.humanoid:
-            return self._humanoid(px, py, c, s, bx, by, vx, vy, dx, dy, ty)
-        # Drive to (guard_x, ty) with a profile that can still stop there, facing the ball.
-        cmd_x, cmd_y = drive_command(px, py, c, s, self.guard_x, ty, r.max_speed,
-                                     r.max_acceleration)
-        face = math.atan2(by - py, bx - px)
-        face = max(-0.5 * math.pi, min(0.5 * math.pi, face))
-        omega = turn_command(c, s, face, r.max_angular_speed)
-
-        in_front = 0.0 < dx < r.front_distance + 0.1 and abs(dy) < 0.5 * r.kicker_width
-        kick = 1.0 if in_front else 0.0
-        return np.array([cmd_x / r.max_speed, cmd_y / r.max_speed, omega, kick, -1.0, -1.0],
-                        dtype=np.float32)
+        """The action ``(6,)`` float32 from one observation: :func:`ssl_keeper` or
+        :func:`humanoid_keeper` on its floats."""
+        rule = humanoid_keeper if self.humanoid else ssl_keeper
+        return np.array(rule(self.guard, self.body, *self._read(obs)), dtype=np.float32)
 
     def act_batch(self, obs: np.ndarray) -> np.ndarray:
         """Actions ``(n, 6)`` float32 of ``n`` SSL keepers from their observations
-        ``(n, obs_dim)`` (float32 or float64): ``np.stack([self(o) for o in obs])``, computed
-        on whole arrays.
-
-        The same arithmetic in the same order as :meth:`__call__`; ``np.arctan2`` stands for
-        ``math.atan2`` (see :func:`turn_commands`), so a turn rate can differ in its last
-        float32 bit in very rare cases. Humanoid keepers are not batched (``ValueError``).
+        ``(n, obs_dim)`` (float32 or float64): ``np.stack([self(o) for o in obs])`` bit for
+        bit, one call of :func:`ssl_keeper_rows`, which runs :func:`ssl_keeper` on each row.
+        Humanoid keepers are not batched (``ValueError``).
         """
         if self.humanoid:
             raise ValueError("act_batch plays SSL keepers; call the policy on each "
@@ -219,50 +311,7 @@ class ScriptedGoalkeeper:
         if obs.ndim != 2 or obs.shape[1] != self.obs_size:
             raise ValueError(f"obs must have shape (n, {self.obs_size}) (one observation per "
                              f"row), got {obs.shape}")
-        r = self.robot
-        px, py, ax, ay, dx, dy, bvx, bvy = np.asarray(obs[:, self._idx], np.float64).T
-        c, s = ax, -ay  # cos and sin of the heading in the team frame
-        bx, by = px + c * dx - s * dy, py + s * dx + c * dy
-        vx, vy = c * bvx - s * bvy, s * bvx + c * bvy
-        ty = self._guard_ys(bx, by, vx, vy)
-        cmd_x, cmd_y = drive_commands(px, py, c, s, self.guard_x, ty, r.max_speed,
-                                      r.max_acceleration, hypot=self.hypot)
-        face = np.clip(np.arctan2(by - py, bx - px), -0.5 * math.pi, 0.5 * math.pi)
+        cols = np.ascontiguousarray(obs[:, self._idx], dtype=np.float64)
         out = np.empty((len(obs), 6), dtype=np.float32)
-        out[:, 0] = cmd_x / r.max_speed
-        out[:, 1] = cmd_y / r.max_speed
-        out[:, 2] = turn_commands(c, s, face, r.max_angular_speed)
-        out[:, 3] = (0.0 < dx) & (dx < r.front_distance + 0.1) & (np.abs(dy)
-                                                                    < 0.5 * r.kicker_width)
-        out[:, 4:] = -1.0
+        ssl_keeper_rows(self.guard, self.body, cols, out)
         return out
-
-    def _humanoid(self, px: float, py: float, c: float, s: float, bx: float, by: float,
-                  vx: float, vy: float, dx: float, dy: float, ty: float) -> np.ndarray:
-        """The humanoid keeper's action (see the class docstring), team frame."""
-        r, f = self.robot, self.field
-        # Dive if the ball will pass out of reach of the standing body but within the lying
-        # body's, soon enough that waiting longer would be too late.
-        if vx < -0.05 and bx > px:
-            state = np.array([bx, by, vx, vy])
-            t = float(self.model.time_to_line(state, px))
-            if math.isfinite(t):
-                y_cross = float(self.model.predict(state, t)[1])
-                off = y_cross - py
-                reach = r.radius + self.ball.radius
-                mouth = 0.5 * f.goal_width + self.ball.radius
-                if (abs(y_cross) <= mouth + reach and reach < abs(off)
-                        <= r.lying_length + self.ball.radius
-                        and t <= r.fall_time + self.dive_lead):
-                    # Side in the body frame: left when the crossing is to the robot's left.
-                    left = c * off >= 0.0
-                    return np.array([0.0, 1.0 if left else -1.0, 0.0, -1.0, 0.0, 0.0],
-                                    dtype=np.float32)
-        cmd_x, cmd_y = drive_command(px, py, c, s, self.guard_x, ty, r.max_sideways_speed,
-                                     r.max_acceleration)
-        ax = cmd_x / (r.max_forward_speed if cmd_x >= 0.0 else r.max_backward_speed)
-        ay = cmd_y / r.max_sideways_speed
-        omega = turn_command(c, s, 0.0, r.max_turn_speed, gain=2.0)
-        at_foot = (0.0 < dx < r.radius + self.ball.radius + r.kick_reach
-                   and abs(dy) < 0.5 * r.kick_width and vx > -0.1)
-        return np.array([ax, ay, omega, 1.0 if at_foot else 0.0, 0.0, 0.0], dtype=np.float32)

@@ -13,15 +13,8 @@ import pytest
 
 import soccer_env
 from agents.scripted import ScriptedTeam
-from soccer_env.envs.keeper import (
-    ScriptedGoalkeeper,
-    drive_command,
-    drive_commands,
-    hypots,
-    turn_command,
-    turn_commands,
-    wrap_angles,
-)
+from estimators.exact import hypots, wrap_angles
+from soccer_env.envs.keeper import ScriptedGoalkeeper
 
 FIELD = soccer_env.presets.field("ssl-div-b")
 HX = FIELD.half_length
@@ -303,9 +296,9 @@ def test_bad_input_raises_clear_errors():
 #
 # act_batch calls open_play_rows, which runs the compiled rules act_one calls (field_player,
 # attacker_act) on each row's floats: the same arithmetic, so the actions are equal bit for
-# bit. Only the guarding keeper's rows go through ScriptedGoalkeeper.act_batch, whose
-# np.arctan2 could differ from math.atan2 in the last bit of a float64 heading (absorbed by the
-# float32 actions except in very rare cases). These tests ask for exact equality.
+# bit. The guarding keeper's rows go through ScriptedGoalkeeper.act_batch, which runs the
+# keeper's compiled rule (ssl_keeper) on each row as its single path does. These tests ask for
+# exact equality.
 
 
 def match_observations(n, seed, steps=600):
@@ -530,34 +523,12 @@ def test_hypots_and_wrap_angles_are_math_hypot_and_remainder_bit_for_bit():
                                   [math.remainder(a, 2.0 * math.pi) for a in angles])
 
 
-def test_drive_and_turn_commands_are_the_scalar_commands():
-    """drive_commands is drive_command bit for bit (with and without a speed cap, at the
-    target); turn_commands is turn_command up to np.arctan2's last bit."""
-    rng = np.random.default_rng(4)
-    n = 2000
-    px, py, tx, ty = rng.uniform(-4.0, 4.0, (4, n))
-    tx[:10], ty[:10] = px[:10], py[:10]  # already there
-    h = rng.uniform(-math.pi, math.pi, n)
-    c, s = np.cos(h), np.sin(h)
-    cap = np.where(rng.random(n) < 0.5, 2.0, 3.0)
-    for caps in (None, cap):
-        vx, vy = drive_commands(px, py, c, s, tx, ty, 3.0, 3.0, caps)
-        expected = [drive_command(*v, 3.0, 3.0, None if caps is None else k)
-                    for *v, k in zip(px, py, c, s, tx, ty, cap)]
-        np.testing.assert_array_equal(np.column_stack([vx, vy]), expected)
-    target = rng.uniform(-math.pi, math.pi, n)
-    np.testing.assert_allclose(turn_commands(c, s, target, 10.0),
-                               [turn_command(*v, 10.0) for v in zip(c, s, target)],
-                               rtol=0.0, atol=1e-15)
-
-
-def test_inexact_act_batch_uses_numpys_hypot_and_agrees_to_float32():
-    """``exact=False``: the keeper's batched guard with np.hypot, the same actions as the exact
-    team on real match observations up to the last float32 bit in rare rows."""
+def test_exact_has_no_effect():
+    """``exact=False`` (kept for compatibility): the same actions as the exact team, bit for
+    bit, on real match observations (every rule is a compiled kernel)."""
     env = soccer_env.parallel_env(blue=2, yellow=2)
     exact = ScriptedTeam.for_env(env, "yellow")
     fast = ScriptedTeam.for_env(env, "yellow", exact=False)
-    assert fast.hypot is np.hypot and fast.keeper.hypot is np.hypot
     rng = np.random.default_rng(5)
     obs, _ = env.reset(seed=5)
     rows = []
@@ -565,7 +536,7 @@ def test_inexact_act_batch_uses_numpys_hypot_and_agrees_to_float32():
         rows.append(np.stack([obs["yellow_0"], obs["yellow_1"]]))
         obs, *_ = env.step({a: rng.uniform(-1, 1, 6) for a in env.possible_agents})
     batch = np.stack(rows)
-    np.testing.assert_allclose(fast.act_batch(batch), exact.act_batch(batch), atol=1e-6)
+    np.testing.assert_array_equal(fast.act_batch(batch), exact.act_batch(batch))
 
 
 def test_the_scripted_package_imports_without_the_learning_libraries():
