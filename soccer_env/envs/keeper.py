@@ -23,8 +23,7 @@ from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 
 __all__ = ["ScriptedGoalkeeper", "drive_command", "turn_command", "TURN_GAIN", "Guard",
            "SSLKeeper", "HumanoidKeeper", "line_time", "rolled_y", "guard_line_y", "team_frame",
-           "ssl_keeper",
-           "ssl_keeper_rows", "humanoid_keeper"]
+           "ssl_keeper", "observed", "ssl_keeper_rows", "humanoid_keeper", "keeper_obs"]
 
 
 def drive_command(px: float, py: float, c: float, s: float, tx: float, ty: float,
@@ -165,13 +164,24 @@ def ssl_keeper(g: Guard, k: SSLKeeper, px: float, py: float, ax: float, ay: floa
 
 
 @kernel
-def ssl_keeper_rows(g: Guard, k: SSLKeeper, cols: np.ndarray, out: np.ndarray) -> None:
-    """:func:`ssl_keeper` on each row of ``cols`` ``(n, 8)`` float64 (``self.x, self.y,
-    self.ax, self.ay, ball.dx, ball.dy, ball.vx, ball.vy``), written into ``out`` ``(n, 6)``
-    (rounded to its dtype)."""
-    for i in range(cols.shape[0]):
-        a = ssl_keeper(g, k, cols[i, 0], cols[i, 1], cols[i, 2], cols[i, 3], cols[i, 4],
-                       cols[i, 5], cols[i, 6], cols[i, 7])
+def observed(row: np.ndarray, idx: np.ndarray) -> tuple[float, float, float, float, float,
+                                                        float, float, float]:
+    """The entries ``idx`` of an observation ``row`` as float64 (exactly; numba's ``float()``
+    of a float32 would stay float32)."""
+    return (np.float64(row[idx[0]]), np.float64(row[idx[1]]), np.float64(row[idx[2]]),
+            np.float64(row[idx[3]]), np.float64(row[idx[4]]), np.float64(row[idx[5]]),
+            np.float64(row[idx[6]]), np.float64(row[idx[7]]))
+
+
+@kernel
+def ssl_keeper_rows(g: Guard, k: SSLKeeper, obs: np.ndarray, idx: np.ndarray,
+                    out: np.ndarray) -> None:
+    """:func:`ssl_keeper` on each row of the observations ``obs`` ``(n, obs_dim)``, whose
+    entries ``idx`` ``(8,)`` are ``self.x, self.y, self.ax, self.ay, ball.dx, ball.dy,
+    ball.vx, ball.vy`` (read as float64), written into ``out`` ``(n, 6)`` (rounded to its
+    dtype)."""
+    for i in range(obs.shape[0]):
+        a = ssl_keeper(g, k, *observed(obs[i], idx))
         for j in range(6):
             out[i, j] = a[j]
 
@@ -210,6 +220,28 @@ def humanoid_keeper(g: Guard, h: HumanoidKeeper, px: float, py: float, ax: float
     at_foot = (0.0 < dx < h.radius + h.ball_radius + h.kick_reach
                and abs(dy) < 0.5 * h.kick_width and vx > -0.1)
     return walk_x, cmd_y / h.max_sideways_speed, omega, 1.0 if at_foot else 0.0, 0.0, 0.0
+
+
+@kernel
+def keeper_obs(numbers: np.ndarray, obs: np.ndarray, idx: np.ndarray, out: np.ndarray
+               ) -> None:
+    """One keeper's action into ``out`` ``(6,)`` (rounded to its dtype) from its observation
+    ``obs`` (the entries ``idx`` as in :func:`ssl_keeper_rows`): :func:`ssl_keeper`, or
+    :func:`humanoid_keeper` where ``numbers`` ``(4 + 12,)`` holds a :class:`Guard` and a
+    :class:`HumanoidKeeper` (``(4 + 5,)``: a :class:`Guard` and an :class:`SSLKeeper`). The
+    numbers travel as an array: a call passes it faster than the named tuples."""
+    g = Guard(numbers[0], numbers[1], numbers[2], numbers[3])
+    px, py, ax, ay, dx, dy, bvx, bvy = observed(obs, idx)
+    if numbers.shape[0] == 16:
+        h = HumanoidKeeper(numbers[4], numbers[5], numbers[6], numbers[7], numbers[8],
+                           numbers[9], numbers[10], numbers[11], numbers[12], numbers[13],
+                           numbers[14], numbers[15])
+        a = humanoid_keeper(g, h, px, py, ax, ay, dx, dy, bvx, bvy)
+    else:
+        k = SSLKeeper(numbers[4], numbers[5], numbers[6], numbers[7], numbers[8])
+        a = ssl_keeper(g, k, px, py, ax, ay, dx, dy, bvx, bvy)
+    for j in range(6):
+        out[j] = a[j]
 
 
 class ScriptedGoalkeeper:
@@ -272,6 +304,8 @@ class ScriptedGoalkeeper:
             SSLKeeper(*(float(v) for v in (r.max_speed, r.max_acceleration,
                                            r.max_angular_speed, r.front_distance,
                                            r.kicker_width))))
+        self._numbers = np.array(self.guard + self.body, dtype=np.float64)
+        self._cols = np.array(self._idx, dtype=np.int64)
 
     @classmethod
     def for_env(cls, env, **kwargs) -> ScriptedGoalkeeper:
@@ -282,7 +316,7 @@ class ScriptedGoalkeeper:
     def _read(self, obs: np.ndarray) -> tuple[float, ...]:
         """The kernels' inputs from the observation: own position [m] and axis ``(ax, ay)``,
         the ball's egocentric offset [m] and velocity [m/s]."""
-        return tuple(float(obs[i]) for i in self._idx)
+        return tuple(np.float64(obs[i]) for i in self._idx)
 
     def guard_y(self, obs: np.ndarray) -> float:
         """Where on the guard line the keeper goes [m, team frame] (step 2 of the class
@@ -294,9 +328,11 @@ class ScriptedGoalkeeper:
 
     def __call__(self, obs: np.ndarray) -> np.ndarray:
         """The action ``(6,)`` float32 from one observation: :func:`ssl_keeper` or
-        :func:`humanoid_keeper` on its floats."""
-        rule = humanoid_keeper if self.humanoid else ssl_keeper
-        return np.array(rule(self.guard, self.body, *self._read(obs)), dtype=np.float32)
+        :func:`humanoid_keeper` on its floats (through :func:`keeper_obs`)."""
+        out = np.empty(6, dtype=np.float32)
+        keeper_obs(self._numbers, obs if isinstance(obs, np.ndarray) else np.asarray(obs),
+                   self._cols, out)
+        return out
 
     def act_batch(self, obs: np.ndarray) -> np.ndarray:
         """Actions ``(n, 6)`` float32 of ``n`` SSL keepers from their observations
@@ -311,7 +347,6 @@ class ScriptedGoalkeeper:
         if obs.ndim != 2 or obs.shape[1] != self.obs_size:
             raise ValueError(f"obs must have shape (n, {self.obs_size}) (one observation per "
                              f"row), got {obs.shape}")
-        cols = np.ascontiguousarray(obs[:, self._idx], dtype=np.float64)
         out = np.empty((len(obs), 6), dtype=np.float32)
-        ssl_keeper_rows(self.guard, self.body, cols, out)
+        ssl_keeper_rows(self.guard, self.body, np.ascontiguousarray(obs), self._cols, out)
         return out
