@@ -168,11 +168,20 @@ def test_ctrl_c_saves_a_checkpoint_and_prints_the_resume_command(tmp_path, no_ha
                             start_new_session=True,
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
-        # Training has begun once TensorBoard's log exists; let a few updates happen.
-        while not any((run / "tb").rglob("events.out.tfevents.*")):
+        # An update has completed once TensorBoard's log, created with a header, has grown
+        # twice (the logs of each rollout are written before the update on it): wait for
+        # that, however long the workers take to start, rather than a fixed time.
+        sizes: set[int] = set()
+        deadline = time.monotonic() + 300.0
+        while len(sizes - {0}) < 3:
             assert proc.poll() is None, proc.communicate()
-            time.sleep(0.2)
-        time.sleep(3.0)
+            assert time.monotonic() < deadline, "no update within 300 s"
+            logs = list((run / "tb").rglob("events.out.tfevents.*")) if (run / "tb").is_dir() \
+                else []
+            if logs:
+                sizes.add(sum(f.stat().st_size for f in logs))
+            time.sleep(0.1)
+        time.sleep(1.0)
         os.killpg(proc.pid, signal.SIGINT)
         try:
             out, err = proc.communicate(timeout=60)
