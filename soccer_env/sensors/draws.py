@@ -4,7 +4,7 @@
 
 A frame needs a few dozen numbers, and one numpy call per frame would cost more than using
 them: :class:`BlockDraws` draws :data:`DRAW_BLOCK` at a time from one generator and hands them
-out as Python floats; :class:`BatchDraws` does the same for many generators at once, in one
+out as slices of its block; :class:`BatchDraws` does the same for many generators at once, in one
 array, drawing each generator's numbers in the same blocks and handing them out in the same
 order as a :class:`BlockDraws` of that generator would, so that a batched sensor gives each
 field's single sensor's numbers bit for bit. The sequence is a function of the generator's
@@ -33,25 +33,28 @@ class BlockDraws:
 
     def __init__(self, rng: np.random.Generator) -> None:
         self._rng = rng
-        self._normal: list[float] = []
+        self._normal = np.zeros(0)
         self._n = 0
-        self._uniform: list[float] = []
+        self._uniform = np.zeros(0)
         self._u = 0
 
-    def normals(self, k: int) -> list[float]:
-        """The next ``k`` standard normal numbers."""
+    def normals(self, k: int) -> np.ndarray:
+        """The next ``k`` standard normal numbers ``(k,)`` (a read-only view of the block)."""
         if self._n + k > len(self._normal):
-            self._normal = self._normal[self._n:] + self._rng.standard_normal(
-                max(k, self.BLOCK)).tolist()
+            self._normal = np.concatenate((self._normal[self._n:],
+                                           self._rng.standard_normal(max(k, self.BLOCK))))
+            self._normal.setflags(write=False)
             self._n = 0
         self._n += k
         return self._normal[self._n - k:self._n]
 
-    def uniforms(self, k: int) -> list[float]:
-        """The next ``k`` uniform numbers in ``[0, 1)``."""
+    def uniforms(self, k: int) -> np.ndarray:
+        """The next ``k`` uniform numbers in ``[0, 1)`` ``(k,)`` (a read-only view of the
+        block)."""
         if self._u + k > len(self._uniform):
-            self._uniform = self._uniform[self._u:] + self._rng.random(
-                max(k, self.BLOCK)).tolist()
+            self._uniform = np.concatenate((self._uniform[self._u:],
+                                            self._rng.random(max(k, self.BLOCK))))
+            self._uniform.setflags(write=False)
             self._u = 0
         self._u += k
         return self._uniform[self._u - k:self._u]

@@ -22,9 +22,11 @@ per camera).
 
 Between two environment steps the truth is interpolated linearly to each capture time.
 
-The cameras of many fields alike capture in one array pass with
-:class:`~soccer_env.sensors.overhead_batch.OverheadVisionBatch`; the occlusion test is
-:class:`~soccer_env.sensors.occlusion.BallOcclusion`'s.
+The capture itself (interpolation, visibility, detection, noise, occlusion, spurious balls,
+delivery times) is the compiled kernel
+:func:`~soccer_env.sensors.overhead_kernels.capture_frames`, which the cameras of many fields
+alike (:class:`~soccer_env.sensors.overhead_batch.OverheadVisionBatch`) call too: one field is
+a batch of one.
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ from __future__ import annotations
 import heapq
 import math
 from collections.abc import Sequence
+from itertools import compress
 from typing import NamedTuple
 
 import numpy as np
@@ -40,7 +43,7 @@ from estimators import PoseMeasurement, PositionMeasurement
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec, SSLRobotSpec
 from soccer_env.presets.sensors import VisionSpec
 from soccer_env.sensors.draws import BlockDraws
-from soccer_env.sensors.occlusion import BallOcclusion
+from soccer_env.sensors.overhead_kernels import PARAMS, capture_frames, frame_columns
 from soccer_env.state import WorldState
 
 __all__ = ["Camera", "DetectionFrame", "OverheadVision", "default_cameras"]
@@ -125,17 +128,39 @@ class OverheadVision:
                              f"{len(specs)}")
         #: Every robot's spec (occlusion by its own footprint and height).
         self.robot_specs = specs
-        #: How much of the ball the robots' bodies hide from a camera.
-        self.occlusion = BallOcclusion(ball.radius, robot, specs)
-        fronts = [getattr(rs, "front_distance", None) for rs in specs]
-        #: Each robot's dribbler distance from its centre [m] (None: no dribbler); None when
-        #: every robot's is ``robot``'s.
-        self._fronts: list[float | None] | None = (
-            None if all(f == robot.front_distance for f in fronts) else fronts)
         self.cameras = cameras or default_cameras(field, spec.camera_height,
                                                   spec.camera_overlap)
         self.ball_model = PositionMeasurement(spec.ball_sigma)
         self.robot_model = PoseMeasurement(spec.robot_sigma, spec.robot_sigma_theta)
+        #: The cameras as ``(C, 7)`` rows ``(x, y, height, x_min, x_max, y_min, y_max)`` [m].
+        self.camera_rows = np.array(self.cameras, dtype=np.float64).reshape(-1, 7)
+        #: Every robot's body for the capture kernel, ``(N, 3)``: its dribbler's distance
+        #: from its centre plus the ball's radius (NaN: no dribbler, a humanoid), its height
+        #: and its footprint radius [m].
+        self.bodies = np.array([[math.nan if getattr(rs, "front_distance", None) is None
+                                 else rs.front_distance + ball.radius,
+                                 float(rs.height), float(rs.radius)] for rs in specs],
+                               dtype=np.float64).reshape(n_robots, 3)
+        period = self.period or 0.0
+        figures = {"ball_radius": ball.radius, "robot_detection": spec.robot_detection,
+                   "ball_detection": spec.ball_detection,
+                   "p_dribbler": 1.0 - math.exp(-spec.dribbler_false_rate * period),
+                   "p_random": 1.0 - math.exp(-spec.random_false_rate * period),
+                   "robot_sigma": self.robot_model.sigma_xy,
+                   "robot_sigma_theta": self.robot_model.sigma_theta,
+                   "ball_sigma": self.ball_model.sigma,
+                   "occlusion_threshold": spec.occlusion_threshold, "latency": spec.latency,
+                   "latency_jitter": spec.latency_jitter}
+        #: The capture kernel's figures, in the order of
+        #: :data:`~soccer_env.sensors.overhead_kernels.PARAMS` (probabilities per frame).
+        self.capture_params = np.array([figures[k] for k in PARAMS], dtype=np.float64)
+        #: Where the capture kernel writes a frame in its row (:func:`frame_columns`).
+        self.columns = frame_columns(n_robots)
+        # The capture kernel's buffers: each frame's state (all 0, a call has one state) and
+        # its output rows, grown when a step captures more frames.
+        self._rows = np.zeros(16, dtype=np.int64)
+        self._out = np.zeros((16, self.columns[4]))
+        self._cam_arrays: dict[tuple[int, ...], np.ndarray] = {}  # camera lists as arrays
         # Frames in flight, a heap ordered by delivery time.
         self._queue: list[tuple[float, float, int, DetectionFrame]] = []
         self._prev: WorldState | None = None
@@ -193,93 +218,43 @@ class OverheadVision:
 
     # ------------------------------------------------------------------------------------
 
-    def _interpolate(self, prev: WorldState, cur: WorldState, times: list[float]
-                     ) -> tuple[list[float], list]:
-        """The robots' poses at every capture time between ``prev`` and ``cur``: the
-        interpolation weights and ``(frames, N)`` poses ``(x, y, theta)``, linear, headings
-        on the short arc (plain Python for a few frames of a few robots, one array
-        expression for many)."""
-        F, N = len(times), self.n_robots
-        span = cur.time - prev.time
-        t0 = prev.time
-        weights = [(t - t0) / span if span > 0 else 1.0 for t in times]
-        if F * N <= 16:
-            pr, cr = prev.robots.tolist(), cur.robots.tolist()
-            moves = [(a[0], a[1], a[2], b[0] - a[0], b[1] - a[1],
-                      math.remainder(b[2] - a[2], 2.0 * math.pi)) for a, b in zip(pr, cr)]
-            interpolated = [[(x + w * dx, y + w * dy, th + w * dth)
-                             for x, y, th, dx, dy, dth in moves] for w in weights]
-        else:  # one array expression for many robots
-            delta = cur.robots[:, 0:3] - prev.robots[:, 0:3]
-            delta[:, 2] = np.remainder(delta[:, 2] + math.pi, 2.0 * math.pi) - math.pi
-            interpolated = (prev.robots[None, :, 0:3]
-                            + np.array(weights)[:, None, None] * delta).tolist()
-        return weights, interpolated
-
     def _capture(self, prev: WorldState, cur: WorldState, cams: list[int],
                  times: list[float], emit_empty: bool = False) -> list[DetectionFrame]:
         """Frames of cameras ``cams`` captured at ``times`` (between ``prev`` and ``cur``).
         Frames that detected nothing are dropped unless ``emit_empty`` (they carry no
         information for a tracker; the warm-up frames at reset are always kept).
 
-        Plain Python over cameras and robots, with random numbers drawn in blocks: a step has
-        a handful of frames with a dozen robots each, sizes at which numpy's per-call overhead
-        would dominate.
+        The frames are :func:`~soccer_env.sensors.overhead_kernels.capture_frames`' (a batch
+        of one field's frames, one state), from numbers drawn in blocks: per frame
+        ``3 (N + 2)`` normals and ``2 N + 5`` uniforms (the kernel's layout).
         """
-        spec, rs = self.spec, self.robot_spec
         F, N = len(cams), self.n_robots
-        r = self.ball_spec.radius
-        pb, cb = prev.ball.tolist(), cur.ball.tolist()
-        weights, interpolated = self._interpolate(prev, cur, times)
-        # Noise and uniform draws for everything this call may need. Uniforms per frame:
-        # robot detection (N), dribbler reflection (N), ball detection, spurious ball, its x
-        # and y, latency jitter.
         draws = self._draws
-        noise = draws.normals(F * (N + 2) * 3)
-        u = draws.uniforms(F * (2 * N + 5))
-        ball_noise, robot_noise = self.ball_model.perturb, self.robot_model.perturb
-        period = self.period or 0.0
-        p_dribbler = 1.0 - math.exp(-spec.dribbler_false_rate * period)
-        p_random = 1.0 - math.exp(-spec.random_false_rate * period)
-        fronts = self._fronts
-        front = rs.front_distance + r
+        normals = draws.normals(F * (N + 2) * 3)
+        uniforms = draws.uniforms(F * (2 * N + 5))
+        key = tuple(cams)
+        cam_rows = self._cam_arrays.get(key)
+        if cam_rows is None:
+            cam_rows = np.array(cams, dtype=np.int64)
+            if len(self._cam_arrays) < 256:  # the few patterns of a step's cameras
+                self._cam_arrays[key] = cam_rows
+        if F > len(self._rows):  # (room for every frame of the step)
+            self._rows = np.zeros(F, dtype=np.int64)
+            self._out = np.zeros((F, self.columns[4]))
+        out = self._out
+        capture_frames(self._rows[:F], cam_rows, np.array(times),
+                       np.array(((prev.time, cur.time - prev.time),)), prev.ball[None],
+                       cur.ball[None], prev.robots[None], cur.robots[None], normals, uniforms,
+                       self.camera_rows, self.bodies, self.capture_params, out)
+        _, b, r, p, _ = self.columns
+        ids = range(N)
         frames = []
-        nn, nu = 3 * (N + 2), 2 * N + 5
-        for f, (cam, t) in enumerate(zip(cams, times)):
-            cx, cy, h, x0, x1, y0, y1 = self.cameras[cam]
-            w = weights[f]
-            nf = noise[f * nn:(f + 1) * nn]  # 3 normals per robot, then 3 + 3 for balls
-            uf = u[f * nu:(f + 1) * nu]
-            robots = interpolated[f]
-            ids, poses, balls = [], [], []
-            for i, (x, y, th) in enumerate(robots):
-                if not (x0 <= x <= x1 and y0 <= y <= y1):
-                    continue
-                if uf[i] < spec.robot_detection:
-                    ids.append(i)
-                    poses.append(robot_noise(x, y, th, nf[3 * i], nf[3 * i + 1], nf[3 * i + 2]))
-                if uf[N + i] < p_dribbler:  # a spurious ball at this robot's dribbler
-                    d = front if fronts is None else (
-                        None if fronts[i] is None else fronts[i] + r)  # None: a humanoid
-                    if d is not None:
-                        balls.append(ball_noise(x + d * math.cos(th), y + d * math.sin(th),
-                                                nf[3 * N], nf[3 * N + 1]))
-            # The ball, where this camera's ray through it meets the resting-ball plane.
-            bx = pb[0] + w * (cb[0] - pb[0])
-            by = pb[1] + w * (cb[1] - pb[1])
-            zc = r + pb[2] + w * (cb[2] - pb[2])
-            k = (h - r) / (h - zc)
-            sx, sy = cx + (bx - cx) * k, cy + (by - cy) * k
-            if (x0 <= sx <= x1 and y0 <= sy <= y1 and uf[2 * N] < spec.ball_detection
-                    and (spec.occlusion_threshold > 1.0
-                         or self.occlusion.hidden(sx, sy, zc, robots, cx, cy, h)
-                         < spec.occlusion_threshold)):
-                balls.insert(0, ball_noise(sx, sy, nf[3 * N + 3], nf[3 * N + 4]))
-            if uf[2 * N + 1] < p_random:  # a spurious ball anywhere in view
-                balls.append((x0 + (x1 - x0) * uf[2 * N + 2], y0 + (y1 - y0) * uf[2 * N + 3]))
-            if not (balls or ids) and not emit_empty:
-                continue  # nothing seen: no frame to process downstream
-            delay = spec.latency + spec.latency_jitter * uf[2 * N + 4]
-            frames.append(DetectionFrame(cam, t, t + delay, tuple(balls), tuple(ids),
-                                         tuple(poses)))
+        for cam, t, row in zip(cams, times, out[:F].tolist()):
+            seen_b, seen_r = row[1:b], row[r:p]
+            if emit_empty or 1.0 in seen_b or 1.0 in seen_r:  # else no frame to process
+                xy, pose = iter(row[b:r]), iter(row[p:])
+                frames.append(DetectionFrame(cam, t, row[0],
+                                             tuple(compress(zip(xy, xy), seen_b)),
+                                             tuple(compress(ids, seen_r)),
+                                             tuple(compress(zip(pose, pose, pose), seen_r))))
         return frames

@@ -11,11 +11,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from estimators.exact import wrap_angles
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
 from soccer_env.presets.sensors import VisionSpec
 from soccer_env.sensors.draws import BatchDraws
 from soccer_env.sensors.overhead import Camera, DetectionFrame, OverheadVision
+from soccer_env.sensors.overhead_kernels import capture_frames
 
 __all__ = ["FrameBatch", "OverheadVisionBatch"]
 
@@ -80,11 +80,9 @@ class OverheadVisionBatch:
     Field ``k`` fed field ``k``'s truth gives the frames a single :class:`OverheadVision` on
     that field gives, bit for bit, from the same generator: the same capture schedule, the
     random numbers drawn in the same blocks and handed out in the same order
-    (:class:`~soccer_env.sensors.draws.BatchDraws`), the same arithmetic (``math.remainder`` by
-    :func:`~estimators.exact.wrap_angles`). What happens rarely runs frame by frame in the
-    single sensor's code: the occlusion test of a ball near a robot, the spurious balls at
-    dribblers (their sine and cosine from the C library, as the single sensor's).
-    ``tests/soccer_env/sensors/test_overhead.py`` compares them.
+    (:class:`~soccer_env.sensors.draws.BatchDraws`), and the same capture kernel
+    (:func:`~soccer_env.sensors.overhead_kernels.capture_frames`, every field's frames of a
+    step in one call). ``tests/soccer_env/sensors/test_overhead.py`` compares them.
 
     Args:
         spec: sensor characteristics, as :class:`OverheadVision`'s.
@@ -103,7 +101,6 @@ class OverheadVisionBatch:
         self.ball_model, self.robot_model = self._one.ball_model, self._one.robot_model
         self.n_robots, self.m = n_robots, int(m)
         c = len(self.cameras)
-        self._cams = np.array(self.cameras, dtype=np.float64).reshape(c, 7)
         self._next = np.full((self.m, c), math.inf)
         self._prev_t = np.zeros(self.m)
         self._prev_ball = np.zeros((self.m, 3))
@@ -149,19 +146,26 @@ class OverheadVisionBatch:
         captures of the started ones (:meth:`_start`), captured together
         (:meth:`_capture`); the new frames queued, and the frames delivered by each stepped
         field's time taken from the queue (:meth:`_deliver`)."""
-        parts = []  # (env, cams, times, counts, t0, span, prev ball, ball, prev robots, robots)
+        # Parts: (frames (env, cams, times, state), states (clock, balls at the step's start
+        # and end, robots at its start and end)).
+        parts = []
         horizon = None  # each field's delivery horizon [s], when fields step
         if step is not None and len(step[0]):
             part, horizon = self._due(*step)
             if part is not None:
                 parts.append(part)
-        n_step = sum(len(p[0]) for p in parts)
+        n_step = sum(len(p[0][0]) for p in parts)
         if start is not None and len(start[0]):
             parts.append(self._start(*start))
         if not parts:
             return self._empty, self._empty
-        columns = parts[0] if len(parts) == 1 else [np.concatenate(col) for col in zip(*parts)]
-        frames = self._capture(*columns)
+        if len(parts) == 1:
+            frames = self._capture(*parts[0][0], *parts[0][1])
+        else:
+            (first, s1), (second, s2) = parts
+            second = (*second[:3], second[3] + len(s1[0]))  # the second part's states follow
+            frames = self._capture(*(np.concatenate(col) for col in zip(first, second)),
+                                   *(np.concatenate(col) for col in zip(s1, s2)))
         warm = frames.take(np.arange(n_step, frames.count))
         warm = warm._replace(t_capture=warm.t_capture - self.spec.latency,
                              t_delivered=warm.t_capture.copy())
@@ -176,13 +180,13 @@ class OverheadVisionBatch:
 
     def _due(self, rows, now, balls, robots) -> tuple[tuple | None, np.ndarray]:
         """The captures due on the stepped fields ``rows`` by their times ``now`` (the
-        columns :meth:`_capture` takes, None for none) and every field's delivery horizon
-        [s]; the fields' truth is kept for their next step."""
+        columns :meth:`_capture` takes, frames and states, None for none) and every field's
+        delivery horizon [s]; the fields' truth is kept for their next step."""
         c = len(self.cameras)
         rows = np.asarray(rows, dtype=np.int64)
         now = np.asarray(now, dtype=np.float64)
-        balls = np.asarray(balls, dtype=np.float64)
-        robots = np.asarray(robots, dtype=np.float64)
+        balls = np.ascontiguousarray(balls, dtype=np.float64)
+        robots = np.ascontiguousarray(robots, dtype=np.float64)
         horizon = np.full(self.m, -math.inf)
         horizon[rows] = now + 1e-12
         if self.period is None:
@@ -192,12 +196,11 @@ class OverheadVisionBatch:
         else:
             r, cam, t = self._scheduled(rows, now)
         part = None
-        if len(r):
-            env = rows[r]
-            counts = np.bincount(r, minlength=len(rows))[r]
-            t0 = self._prev_t[env]
-            part = (env, cam, t, counts, t0, now[r] - t0, self._prev_ball[env], balls[r],
-                    self._prev_robots[env], robots[r])
+        if len(r):  # one state per stepped field
+            t0 = self._prev_t[rows]
+            part = ((rows[r], cam, t, r), (np.column_stack((t0, now - t0)),
+                                           self._prev_ball[rows], balls,
+                                           self._prev_robots[rows], robots))
         self._prev_t[rows], self._prev_ball[rows] = now, balls
         self._prev_robots[rows] = robots
         return part, horizon
@@ -232,13 +235,14 @@ class OverheadVisionBatch:
     def _start(self, rows, times, balls, robots, rngs) -> tuple:
         """Start an episode on fields ``rows``: their frames in flight dropped, their
         generators, draws and capture schedules new, their truth kept; returns the columns
-        of their warm-up captures (every camera at once, of a scene standing still)."""
+        of their warm-up captures (every camera at once, of a scene standing still): frames
+        and states, as :meth:`_due`'s."""
         c = len(self.cameras)
         period = self.period
         rows = np.asarray(rows, dtype=np.int64)
         times = np.asarray(times, dtype=np.float64)
-        balls = np.asarray(balls, dtype=np.float64)
-        robots = np.asarray(robots, dtype=np.float64)
+        balls = np.ascontiguousarray(balls, dtype=np.float64)
+        robots = np.ascontiguousarray(robots, dtype=np.float64)
         queue = []
         for chunk in self._queue:
             drop = np.isin(chunk.env, rows)
@@ -257,9 +261,8 @@ class OverheadVisionBatch:
         self._prev_robots[rows] = robots
         # Every camera at once, of a scene standing still.
         r = np.repeat(np.arange(len(rows)), c)
-        t = times[r]
-        return (rows[r], np.tile(np.arange(c), len(rows)), t, np.full(len(r), c), t,
-                np.zeros(len(r)), balls[r], balls[r], robots[r], robots[r])
+        return ((rows[r], np.tile(np.arange(c), len(rows)), times[r], r),
+                (np.column_stack((times, np.zeros(len(rows)))), balls, balls, robots, robots))
 
     def _deliver(self, horizon: np.ndarray) -> FrameBatch:
         """The queued frames delivered by each field's ``horizon`` [s], taken from the queue,
@@ -284,74 +287,26 @@ class OverheadVisionBatch:
     # ------------------------------------------------------------------------------------
 
     def _capture(self, env: np.ndarray, cams: np.ndarray, times: np.ndarray,
-                 counts: np.ndarray, t0: np.ndarray, span: np.ndarray, pb: np.ndarray,
-                 cb: np.ndarray, pr: np.ndarray, cr: np.ndarray) -> FrameBatch:
+                 state: np.ndarray, clock: np.ndarray, ball0: np.ndarray, ball1: np.ndarray,
+                 robots0: np.ndarray, robots1: np.ndarray) -> FrameBatch:
         """The frames of cameras ``cams`` of fields ``env`` captured at ``times`` (each
         field's frames consecutive, camera-major as :meth:`OverheadVision.step` lists them),
-        each frame with its field's number of frames this step ``counts``, its step's start
-        ``t0`` and length ``span`` [s], ball ``x, y, z`` at its start and end ``pb``, ``cb``
-        and robot poses ``pr``, ``cr``: :meth:`OverheadVision._capture` on arrays (frames that
-        detected nothing included)."""
-        spec, rs = self.spec, self._one.robot_spec
-        F, N = len(env), self.n_robots
-        r = self._one.ball_spec.radius
-        w, X, Y, TH = self._interpolate(times, counts, t0, span, pr, cr)
-        nf, uf = self._numbers(env)
-        cam = self._cams[cams]
-        x0, x1, y0, y1 = (cam[:, j] for j in range(3, 7))
-        inside = ((x0[:, None] <= X) & (X <= x1[:, None]) & (y0[:, None] <= Y)
-                  & (Y <= y1[:, None]))
-        robot_seen = inside & (uf[:, :N] < spec.robot_detection)
-        s, st = self.robot_model.sigma_xy, self.robot_model.sigma_theta
-        poses = np.stack([X + s * nf[:, 0:3 * N:3], Y + s * nf[:, 1:3 * N:3],
-                          wrap_angles(TH + st * nf[:, 2:3 * N:3])], axis=-1)
-        poses[~robot_seen] = 0.0
-        balls = np.zeros((F, N + 2, 2))
-        ball_seen = np.zeros((F, N + 2), dtype=bool)
-        sigma = self.ball_model.sigma
-        period = self.period or 0.0
-        p_dribbler = 1.0 - math.exp(-spec.dribbler_false_rate * period)
-        p_random = 1.0 - math.exp(-spec.random_false_rate * period)
-        if p_dribbler > 0.0:  # rare: frame by frame, with the C library's cos and sin
-            front = rs.front_distance + r
-            for f, i in zip(*(a.tolist() for a in np.nonzero(inside & (uf[:, N:2 * N]
-                                                                      < p_dribbler)))):
-                x, y, th = float(X[f, i]), float(Y[f, i]), float(TH[f, i])
-                balls[f, 1 + i] = self.ball_model.perturb(
-                    x + front * math.cos(th), y + front * math.sin(th), nf[f, 3 * N],
-                    nf[f, 3 * N + 1])
-                ball_seen[f, 1 + i] = True
-        sx, sy, visible = self._true_ball(cam, w, pb, cb, X, Y, TH, uf[:, 2 * N])
-        balls[:, 0, 0] = sx + sigma * nf[:, 3 * N + 3]
-        balls[:, 0, 1] = sy + sigma * nf[:, 3 * N + 4]
-        ball_seen[:, 0] = visible
-        spurious = uf[:, 2 * N + 1] < p_random
-        balls[:, N + 1, 0] = x0 + (x1 - x0) * uf[:, 2 * N + 2]
-        balls[:, N + 1, 1] = y0 + (y1 - y0) * uf[:, 2 * N + 3]
-        ball_seen[:, N + 1] = spurious
-        balls[~ball_seen] = 0.0
-        delivered = times + (spec.latency + spec.latency_jitter * uf[:, 2 * N + 4])
+        frame ``f`` of the field's step ``state[f]``: its start and length ``clock`` ``(S,
+        2)`` [s], the ball ``x, y, z`` at its start and end ``ball0``, ``ball1`` ``(S, 3)``
+        and the robots' poses ``robots0``, ``robots1`` ``(S, N, 3)``: the capture kernel
+        :func:`~soccer_env.sensors.overhead_kernels.capture_frames` on every frame at once,
+        with each field's numbers (:meth:`_numbers`; frames that detected nothing
+        included)."""
+        one, F, N = self._one, len(env), self.n_robots
+        normals, uniforms = self._numbers(env)
+        _, b, r, p, width = one.columns
+        out = np.empty((F, width))
+        capture_frames(state, cams, times, clock, ball0, ball1, robots0, robots1,
+                       normals.reshape(-1), uniforms.reshape(-1), one.camera_rows, one.bodies,
+                       one.capture_params, out)
         return FrameBatch(env.astype(np.int64), cams.astype(np.int64), times.copy(),
-                          delivered, balls, ball_seen, poses, robot_seen)
-
-    def _interpolate(self, times: np.ndarray, counts: np.ndarray, t0: np.ndarray,
-                     span: np.ndarray, pr: np.ndarray, cr: np.ndarray
-                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Each frame's interpolation weight ``(F,)`` and its robots' poses at the capture
-        time, ``X, Y, TH`` ``(F, N)``: positions on the line, headings on the short arc
-        (``math.remainder`` for few frames of few robots, numpy's remainder otherwise, as the
-        single sensor picks them)."""
-        with np.errstate(divide="ignore", invalid="ignore"):
-            w = np.where(span > 0, (times - t0) / np.where(span > 0, span, 1.0), 1.0)
-        delta = cr - pr
-        small = counts * self.n_robots <= 16
-        turn = np.where(small[:, None], wrap_angles(delta[..., 2]),
-                        np.remainder(delta[..., 2] + math.pi, 2.0 * math.pi) - math.pi)
-        wc = w[:, None]
-        X = pr[..., 0] + wc * delta[..., 0]
-        Y = pr[..., 1] + wc * delta[..., 1]
-        TH = pr[..., 2] + wc * turn
-        return w, X, Y, TH
+                          out[:, 0].copy(), out[:, b:r].reshape(F, N + 2, 2), out[:, 1:b] != 0.0,
+                          out[:, p:].reshape(F, N, 3), out[:, r:p] != 0.0)
 
     def _numbers(self, env: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The normals ``(F, 3 (N + 2))`` and uniforms ``(F, 2 N + 5)`` of the frames of
@@ -368,37 +323,3 @@ class OverheadVisionBatch:
         nf = self._normals.take(fields, per_field * nn, self._rngs, local, nn, env)
         uf = self._uniforms.take(fields, per_field * nu, self._rngs, local, nu, env)
         return nf, uf
-
-    def _true_ball(self, cam: np.ndarray, w: np.ndarray, pb: np.ndarray, cb: np.ndarray,
-                   X: np.ndarray, Y: np.ndarray, TH: np.ndarray, detect: np.ndarray
-                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The true ball in each frame of cameras ``cam`` ``(F, 7)``: where the camera's ray
-        through it meets the resting-ball plane ``sx, sy`` [m], and whether it is seen (in
-        view, its detection uniform ``detect`` under the detection probability, not hidden
-        by the robots at ``X, Y, TH``)."""
-        spec, rs = self.spec, self._one.robot_spec
-        r = self._one.ball_spec.radius
-        cx, cy, h, x0, x1, y0, y1 = (cam[:, j] for j in range(7))
-        bx = pb[:, 0] + w * (cb[:, 0] - pb[:, 0])
-        by = pb[:, 1] + w * (cb[:, 1] - pb[:, 1])
-        zc = r + pb[:, 2] + w * (cb[:, 2] - pb[:, 2])
-        kk = (h - r) / (h - zc)
-        sx, sy = cx + (bx - cx) * kk, cy + (by - cy) * kk
-        visible = ((x0 <= sx) & (sx <= x1) & (y0 <= sy) & (sy <= y1)
-                   & (detect < spec.ball_detection))
-        if spec.occlusion_threshold <= 1.0 and visible.any():
-            # The single sensor's test, for the frames where a robot may cover the ball (a
-            # looser bound than its own first test, so that no such frame is skipped).
-            H, R = rs.height, rs.radius
-            low = zc < H
-            with np.errstate(divide="ignore", invalid="ignore"):
-                kh = (h - zc) / (h - H)
-            near = (R * kh + r + 10.0 * (kh - 1.0) + 0.01) ** 2 * (1.0 + 1e-9) + 1e-12
-            d2 = (X - sx[:, None]) ** 2 + (Y - sy[:, None]) ** 2
-            hidden_by = self._one.occlusion.hidden
-            for f in np.nonzero(visible & low & (d2 <= near[:, None]).any(axis=1))[0].tolist():
-                robots = list(zip(X[f].tolist(), Y[f].tolist(), TH[f].tolist()))
-                hidden = hidden_by(float(sx[f]), float(sy[f]), float(zc[f]), robots,
-                                   float(cx[f]), float(cy[f]), float(h[f]))
-                visible[f] = hidden < spec.occlusion_threshold
-        return sx, sy, visible

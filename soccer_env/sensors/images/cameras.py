@@ -114,7 +114,8 @@ class OverheadImageCamera(OverheadVision):
             w = (t - prev.time) / span if span > 0 else 1.0
             image = self.renderers[cam].render(interpolate_state(prev, cur, w, t),
                                                self._image_rng)
-            delay = self.spec.latency + self.spec.latency_jitter * self._draws.uniforms(1)[0]
+            jitter = float(self._draws.uniforms(1)[0])
+            delay = self.spec.latency + self.spec.latency_jitter * jitter
             frames.append(ImageFrame(cam, t, t + delay, image))
         return frames
 

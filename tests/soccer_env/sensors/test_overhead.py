@@ -279,6 +279,7 @@ def _truths(rng, n_robots, steps, dt, field):
     ("realistic", "ssl-2012", 2, 1 / 60),   # misses, dribbler reflections, occlusion
     ("noisy", "ssl-div-b", 7, 1 / 30),      # many frames of many robots, spurious balls
     ("ideal", "ssl-2012", 2, 1 / 60),       # every camera every step
+    ("blind", "ssl-div-b", 5, 1 / 60),      # occlusion threshold 0: no ball is ever seen
 ])
 def test_batched_vision_equals_single_sensors_bit_for_bit(preset, field, n_robots, dt):
     """OverheadVisionBatch on m fields gives each field's single OverheadVision frames, bit
@@ -293,7 +294,9 @@ def test_batched_vision_equals_single_sensors_bit_for_bit(preset, field, n_robot
 
     spec = (dataclasses.replace(vision("harsh"), latency_jitter=0.0, dribbler_false_rate=3.0,
                                 random_false_rate=4.0, ball_detection=0.8, frame_rate=75.0)
-            if preset == "noisy" else vision(preset))
+            if preset == "noisy" else
+            dataclasses.replace(vision("realistic"), occlusion_threshold=0.0)
+            if preset == "blind" else vision(preset))
     f, rs, bs = field_spec(field), robot_spec("ssl"), ball_spec("ssl")
     m, steps = 4, 150
     rng = np.random.default_rng(11)
