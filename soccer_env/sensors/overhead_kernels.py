@@ -55,9 +55,9 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
 
+from estimators.compiled import kernel
 from estimators.exact import wrap_angle
 
 __all__ = ["FEW_POSES", "PARAMS", "RING", "capture_frames", "floored_remainder",
@@ -84,7 +84,7 @@ PARAMS = ("ball_radius", "robot_detection", "ball_detection", "p_dribbler", "p_r
 _TWO_PI = 2.0 * math.pi
 
 
-@numba.njit(cache=True)
+@kernel
 def floored_remainder(a: float, b: float) -> float:
     """``numpy.remainder(a, b)`` on floats (the sign of ``b``): ``fmod(a, b)`` (exact), plus
     ``b`` when its sign differs from ``b``'s, a zero with ``b``'s sign; numpy's ``npy_divmod``
@@ -100,7 +100,7 @@ def floored_remainder(a: float, b: float) -> float:
     return mod
 
 
-@numba.njit(cache=True)
+@kernel
 def interpolate_poses(w: float, prev: np.ndarray, cur: np.ndarray, short: bool,
                       X: np.ndarray, Y: np.ndarray, TH: np.ndarray) -> None:
     """The poses ``(N, >=3)`` ``prev`` and ``cur`` (``x, y, theta`` [m, rad]) interpolated to
@@ -115,7 +115,7 @@ def interpolate_poses(w: float, prev: np.ndarray, cur: np.ndarray, short: bool,
         TH[i] = prev[i, 2] + w * turn
 
 
-@numba.njit(cache=True)
+@kernel
 def hidden_fraction(bx: float, by: float, zc: float, X: np.ndarray, Y: np.ndarray,
                     camera: np.ndarray, r: float, heights: np.ndarray, radii: np.ndarray
                     ) -> float:
@@ -169,7 +169,7 @@ def hidden_fraction(bx: float, by: float, zc: float, X: np.ndarray, Y: np.ndarra
     return count / RING.shape[0]
 
 
-@numba.njit(cache=True)
+@kernel
 def frame_columns(n: int) -> tuple[int, int, int, int, int]:
     """Where :func:`capture_frames` writes a frame of ``n`` robots in its row: the first
     columns of the ball flags, the balls, the robot flags, the poses, and the row's width
@@ -180,7 +180,7 @@ def frame_columns(n: int) -> tuple[int, int, int, int, int]:
     return 1, balls, robot_flags, poses, poses + 3 * n
 
 
-@numba.njit(cache=True)
+@kernel
 def _robots(row: np.ndarray, normals: np.ndarray, uniforms: np.ndarray, X: np.ndarray,
             Y: np.ndarray, TH: np.ndarray, camera: np.ndarray, fronts: np.ndarray,
             params: np.ndarray) -> None:
@@ -209,7 +209,7 @@ def _robots(row: np.ndarray, normals: np.ndarray, uniforms: np.ndarray, X: np.nd
             row[balls + 3 + 2 * i] = y + d * math.sin(th) + sigma * normals[3 * n + 1]
 
 
-@numba.njit(cache=True)
+@kernel
 def _ball(row: np.ndarray, normals: np.ndarray, uniforms: np.ndarray, w: float,
           b0: np.ndarray, b1: np.ndarray, X: np.ndarray, Y: np.ndarray, camera: np.ndarray,
           bodies: np.ndarray, params: np.ndarray) -> None:
@@ -240,7 +240,7 @@ def _ball(row: np.ndarray, normals: np.ndarray, uniforms: np.ndarray, w: float,
         row[balls + 2 * (n + 1) + 1] = y0 + (y1 - y0) * uniforms[2 * n + 3]
 
 
-@numba.njit(cache=True)
+@kernel
 def capture_frames(rows: np.ndarray, cams: np.ndarray, times: np.ndarray, clock: np.ndarray,
                    ball0: np.ndarray, ball1: np.ndarray, robots0: np.ndarray,
                    robots1: np.ndarray, normals: np.ndarray, uniforms: np.ndarray,
