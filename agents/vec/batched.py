@@ -155,7 +155,7 @@ class BatchedMatchVecEnv(MatchVecEnv):
 
     Opponents run over the whole batch at once: a network (a numpy copy of a model) on every
     opponent row in one call, the scripted team through
-    :meth:`~agents.scripted.team.ScriptedTeam.act_batch` (with ``exact=False``); any other
+    :meth:`~agents.scripted.team.ScriptedTeam.act_batch`; any other
     callable is called once per match, as :class:`MatchVecEnv` calls it.
 
     The matches are those of :class:`MatchVecEnv` with the same seeds up to the rounding of
@@ -171,11 +171,6 @@ class BatchedMatchVecEnv(MatchVecEnv):
 
     #: Attributes that differ between matches, read from the batch's arrays.
     PER_MATCH = ("score", "restart_team", "cycles")
-    # The scripted opponent with numpy's hypot (about 40 % faster; its float32 actions almost
-    # always equal the exact ones, and the batch is equal to separate matches only up to
-    # rounding anyway).
-    _exact_scripted = False
-
     def _make_matches(self) -> Any:
         self.batch = MatchBatch(self.n_matches, **self.env_kwargs)
         self.matches = []

@@ -213,10 +213,6 @@ class MatchVecEnv(VecEnv):
         self._t_start = time.time()
         self._started = False
 
-    #: Whether the scripted opponent's batched actions equal its per-match ones bit for bit
-    #: (:class:`~agents.scripted.team.ScriptedTeam`'s ``exact``).
-    _exact_scripted = True
-
     def _make_matches(self) -> Any:
         """Build the matches (:attr:`matches`); return one of them, whose spaces, specs and
         observation layout every match shares."""
@@ -234,8 +230,7 @@ class MatchVecEnv(VecEnv):
             return opponent
         if isinstance(opponent, str):
             if opponent == "scripted":
-                team = ScriptedTeam.for_env(self._probe, self.opponent_team,
-                                            exact=self._exact_scripted)
+                team = ScriptedTeam.for_env(self._probe, self.opponent_team)
                 return _Opponent(team.act, False, "scripted", team.act_batch)
             if opponent == "idle":
                 return _Opponent(IdlePolicy(6), True, "idle")

@@ -55,7 +55,8 @@ per second alike.
   neglected over such a lag), and the filter's time stays where it is. Measurements older than
   ``max_lag`` are ignored (counted in ``late``).
 
-Vectorised numpy; every random draw from the given generator.
+The model's arithmetic over the particles in compiled kernels
+(:mod:`estimators.particle.filter_kernels`); every random draw from the given generator.
 """
 
 from __future__ import annotations

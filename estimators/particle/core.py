@@ -41,8 +41,9 @@ transition, weights unchanged, no resampling) followed by ``correct(y)`` (weight
 SFN and/or resampling); a tracker calls ``predict()`` alone for a cycle without a measurement,
 or the two halves separately to look at the predicted particles before weighting them.
 
-Vectorised numpy throughout: written here rather than taken from a library because the
-fission step and MFBPF's weight bookkeeping are the papers' own.
+The steps over the particles are compiled kernels (:mod:`estimators.particle.filter_kernels`):
+written here rather than taken from a library because the fission step and MFBPF's weight
+bookkeeping are the papers' own.
 """
 
 from __future__ import annotations

@@ -41,13 +41,9 @@ class LandmarkTable(Mapping[str, np.ndarray]):
     def __len__(self) -> int:
         return len(self.positions)
 
-    def layout(self, kinds: tuple[str, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray,
-                                                      np.ndarray]:
+    def layout(self, kinds: tuple[str, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """For observations of ``kinds``: the candidates' ``x`` and ``y`` ((C,), every
-        observation's candidates in turn), how many each observation has ((m,)) and a gather
-        index ((m * K,), ``K`` the most candidates of an observation) that lays the ``C``
-        columns out as ``m`` blocks of ``K``, short blocks padded with their first candidate
-        (which leaves each block's maximum as it is)."""
+        observation's candidates in turn) and how many each observation has ((m,), int64)."""
         lay = self._layouts.get(kinds)
         if lay is None:
             for kind in kinds:
@@ -55,14 +51,9 @@ class LandmarkTable(Mapping[str, np.ndarray]):
                     raise ValueError(f"unknown landmark kind {kind!r}; the table has "
                                      f"{sorted(self.positions)}")
             cands = [self.positions[k] for k in kinds]
-            counts = np.array([len(c) for c in cands])
-            width = int(counts.max())
-            starts = (np.cumsum(counts) - counts)[:, None]
-            j = np.arange(width)[None, :]
-            gather = np.where(j < counts[:, None], starts + j, starts)
+            counts = np.array([len(c) for c in cands], dtype=np.int64)
             L = np.concatenate(cands)
-            lay = (np.ascontiguousarray(L[:, 0]), np.ascontiguousarray(L[:, 1]), counts,
-                   gather.reshape(-1))
+            lay = (np.ascontiguousarray(L[:, 0]), np.ascontiguousarray(L[:, 1]), counts)
             if len(self._layouts) < 4096:
                 self._layouts[kinds] = lay
         return lay

@@ -60,7 +60,8 @@ State ``(x, y, theta)`` in the field frame [m, m, rad]; particles ``(N, 3)``.
   default ``recovery="uniform"`` is the textbook rule alone, draw for draw.
 
 Written here because KLD-sampling's variable sample size and the recovery bookkeeping are the
-paper's method, not a library's; vectorised numpy; every draw from the given generator.
+paper's method, not a library's; the arithmetic over the particles in compiled kernels
+(:mod:`estimators.particle.localization_kernels`); every draw from the given generator.
 """
 
 from __future__ import annotations
@@ -263,8 +264,9 @@ class KLDLocalizer:
         #: next predict resamples).
         self._pending = False
         #: KLD-sampling's bound per number of occupied bins (:func:`kld_table` as an array).
-        self._bound: np.ndarray | None = None
-        self._bin_size = tuple(float(v) for v in self.cfg.bin_size)
+        c = self.cfg
+        self._bound = np.asarray(kld_table(c.epsilon, c.delta, c.max_particles))
+        self._bin_size = tuple(float(v) for v in c.bin_size)
 
     @property
     def n(self) -> int:
@@ -362,8 +364,8 @@ class KLDLocalizer:
 
         Per observation ``j`` and particle, the log-likelihood is the largest over the
         candidates of its kind (nearest-neighbour association, see the module docstring);
-        the weighting, recovery bookkeeping and resampling are :meth:`update`'s. Vectorised
-        over particles x candidates.
+        the weighting, recovery bookkeeping and resampling are :meth:`update`'s. One kernel
+        pass over particles x candidates.
         """
         kinds = (kinds,) if isinstance(kinds, str) else tuple(kinds)
         r = np.asarray(ranges, dtype=np.float64).reshape(-1)
@@ -383,7 +385,7 @@ class KLDLocalizer:
         """:meth:`update_kinds` without its argument checks, for callers with validated data
         (a pipeline's own frames): ``kinds`` a non-empty tuple, ``ranges`` and ``bearings``
         finite float arrays of its length (``bearings`` None when not used)."""
-        Lx, Ly, counts, _ = table.layout(kinds)
+        Lx, Ly, counts = table.layout(kinds)
         m = len(kinds)
         b = bearings if self.cfg.bearing_sigma is not None else None
         # Each sighting's best candidate per particle, summed over the sightings.
@@ -465,9 +467,6 @@ class KLDLocalizer:
         inject = 0.0
         if c.alpha_fast > 0.0 and self.w_slow > 0.0:
             inject = max(0.0, 1.0 - self.w_fast / (c.recovery_ratio * self.w_slow))
-        bound = self._bound
-        if bound is None or len(bound) != c.max_particles + 1:
-            bound = self._bound = np.asarray(kld_table(c.epsilon, c.delta, c.max_particles))
         cumulative = np.cumsum(self.weights)
         cumulative /= cumulative[-1]
         # Draw in batches (doubling from about the current size) until the KLD bound holds for
@@ -488,7 +487,7 @@ class KLDLocalizer:
             parts.append(new)
             drawn += take
             cand = parts[0] if len(parts) == 1 else np.concatenate(parts)
-            n = kld_sample_count(cand, self._bin_size, bound, c.min_particles)
+            n = kld_sample_count(cand, self._bin_size, self._bound, c.min_particles)
             if not n and drawn >= c.max_particles:
                 n = c.max_particles
             batch *= 2

@@ -19,24 +19,12 @@ import math
 import numpy as np
 
 from ..compiled import kernel
+from ..exact import floor_remainder
 
-__all__ = ["floor_remainder", "best_log_likelihood", "weigh", "move_particles",
+__all__ = ["best_log_likelihood", "weigh", "move_particles",
            "draw_rows", "kld_sample_count", "weighted_pose", "weighted_spread"]
 
 _TWO_PI = 2.0 * math.pi
-
-
-@kernel
-def floor_remainder(a: float, b: float) -> float:
-    """``a mod b`` with the sign of ``b``, as ``numpy.remainder`` computes it (``fmod`` then
-    one correction), so that a kernel wraps an angle exactly as the array code does."""
-    mod = np.fmod(a, b)
-    if mod != 0.0:
-        if (b < 0.0) != (mod < 0.0):
-            mod += b
-    else:
-        mod = math.copysign(0.0, b)
-    return mod
 
 
 @kernel

@@ -123,7 +123,7 @@ class MatchBatch:
         self.shaping = probe.shaping
         self.possible_agents = list(probe.possible_agents)
         self.n_robots = w0.n_robots
-        self._teams = np.array(probe._teams, dtype=np.int64)
+        self._teams = probe.world.teams  # (read-only int64, as the single match passes it)
         self._out_of_range = probe.out_of_range_actions
         self._slices = [(model, sl) for model, sl, _ in probe._teams_in_play]
         self.builder = probe.builder

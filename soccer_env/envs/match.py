@@ -237,7 +237,6 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         self.builder = self._observation_builder(range(w.n_robots), game_low, game_high,
                                                  game_names)
         self._teams = w.teams.tolist()
-        self._team_array = np.asarray(self._teams, dtype=np.int64)
         #: Every possible agent's spaces (PettingZoo's ``observation_spaces`` and
         #: ``action_spaces``; ``observation_space(agent)`` reads them).
         self.observation_spaces = {a: self.builder.space() for a in self.possible_agents}
@@ -477,7 +476,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
                                           or decision.place_ball is not None)
         sc = self.shaping
         goal, progress, distance = match_terms(
-            (float(state.ball[0]), float(state.ball[1])), state.robots, self._team_array,
+            (float(state.ball[0]), float(state.ball[1])), state.robots, state.teams,
             scorer, float(state.ball[0]) - ball_x_before, event is None and not moved,
             (float(sc["ball_progress"]), float(sc["ball_distance"])),
             self.world.control_dt).T.tolist()

@@ -11,9 +11,9 @@ units, angles in radians; the model is in :mod:`soccer_env.sensors.overhead`):
   ``theta = theta0 + w turn`` on the short arc, ``turn = remainder(theta1 - theta0, 2 pi)``
   (``math.remainder``, :func:`~estimators.exact.wrap_angle`) when the step captures few
   poses (frames times robots at most :data:`FEW_POSES`), else ``mod(theta1 - theta0 + pi, 2
-  pi) - pi`` (numpy's floored remainder, :func:`floored_remainder`): the two differ only for
-  a turn of exactly pi, and the choice is the one the sensor has always made (its Python
-  version wrapped small steps, its numpy version large ones).
+  pi) - pi`` (numpy's floored remainder, :func:`~estimators.exact.floor_remainder`): the two
+  differ only for a turn of exactly pi, and the choice is the one the sensor has always made
+  (its Python version wrapped small steps, its numpy version large ones).
 * **Robots**: a robot inside the camera's view ``x_min <= x <= x_max``, ``y_min <= y <=
   y_max`` is detected if its uniform is below ``robot_detection``, at ``(x + s n0, y + s n1,
   remainder(theta + s_theta n2, 2 pi))`` (``n`` its standard normals, ``s``, ``s_theta`` the
@@ -58,9 +58,9 @@ import math
 import numpy as np
 
 from estimators.compiled import kernel
-from estimators.exact import wrap_angle
+from estimators.exact import floor_remainder, wrap_angle
 
-__all__ = ["FEW_POSES", "PARAMS", "RING", "capture_frames", "floored_remainder",
+__all__ = ["FEW_POSES", "PARAMS", "RING", "capture_frames",
            "frame_columns", "hidden_fraction", "interpolate_poses"]
 
 #: Points on the ball's disc (centre and two rings), in radii, for the hidden fraction:
@@ -85,22 +85,6 @@ _TWO_PI = 2.0 * math.pi
 
 
 @kernel
-def floored_remainder(a: float, b: float) -> float:
-    """``numpy.remainder(a, b)`` on floats (the sign of ``b``): ``fmod(a, b)`` (exact), plus
-    ``b`` when its sign differs from ``b``'s, a zero with ``b``'s sign; numpy's ``npy_divmod``
-    step by step, bit for bit."""
-    mod = np.fmod(a, b)
-    if b == 0.0:
-        return mod
-    if mod != 0.0:
-        if (b < 0.0) != (mod < 0.0):
-            mod += b
-    else:
-        mod = math.copysign(0.0, b)
-    return mod
-
-
-@kernel
 def interpolate_poses(w: float, prev: np.ndarray, cur: np.ndarray, short: bool,
                       X: np.ndarray, Y: np.ndarray, TH: np.ndarray) -> None:
     """The poses ``(N, >=3)`` ``prev`` and ``cur`` (``x, y, theta`` [m, rad]) interpolated to
@@ -109,7 +93,7 @@ def interpolate_poses(w: float, prev: np.ndarray, cur: np.ndarray, short: bool,
     docstring)."""
     for i in range(prev.shape[0]):
         d = cur[i, 2] - prev[i, 2]
-        turn = wrap_angle(d) if short else floored_remainder(d + math.pi, _TWO_PI) - math.pi
+        turn = wrap_angle(d) if short else floor_remainder(d + math.pi, _TWO_PI) - math.pi
         X[i] = prev[i, 0] + w * (cur[i, 0] - prev[i, 0])
         Y[i] = prev[i, 1] + w * (cur[i, 1] - prev[i, 1])
         TH[i] = prev[i, 2] + w * turn

@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
+from estimators.exact import floor_remainder
 from estimators.particle.localization_kernels import (
     best_log_likelihood,
-    floor_remainder,
     kld_sample_count,
     move_particles,
     weigh,

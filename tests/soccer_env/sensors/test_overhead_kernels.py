@@ -7,12 +7,11 @@ import math
 import numpy as np
 import pytest
 
-from estimators.exact import wrap_angle
+from estimators.exact import floor_remainder, wrap_angle
 from soccer_env.sensors.overhead_kernels import (
     PARAMS,
     RING,
     capture_frames,
-    floored_remainder,
     frame_columns,
     hidden_fraction,
     interpolate_poses,
@@ -194,9 +193,9 @@ def test_the_heading_wrap_follows_the_number_of_poses_captured():
         assert [f["poses"][0][2] for f in got] == [sign * math.pi / 2] * frames
 
 
-def test_floored_remainder_is_numpys():
+def test_floor_remainder_is_numpys():
     rng = np.random.default_rng(3)
     a = np.concatenate([rng.normal(0.0, 10.0, 2000), [0.0, -0.0, 2 * math.pi, -math.pi, 1e300]])
     for b in (2 * math.pi, -1.5):
-        got = np.array([floored_remainder(x, b) for x in a])
+        got = np.array([floor_remainder(x, b) for x in a])
         assert got.tobytes() == np.remainder(a, b).tobytes()
