@@ -4,7 +4,7 @@ observations, rewards and infos.
 Each case runs a few seeded episodes with seeded random actions and digests (SHA-256) every
 observation, reward, termination flag and info dict. The digests in
 ``tests/data/episode_digests.json`` were recorded on one machine; floating-point results can
-differ in the last bit with another numpy, pymunk or OpenCV release or another CPU's SIMD
+differ in the last bit with another numpy, numba, pymunk or OpenCV release or another CPU's SIMD
 paths, so the comparison runs only where that fingerprint matches the recording (and is
 skipped, saying why, elsewhere). A change that is meant to alter behaviour re-records the
 digests with::
@@ -199,6 +199,7 @@ def fingerprint() -> dict[str, Any]:
         "numpy": np.__version__,
         "pymunk": version("pymunk"),
         "opencv": version("opencv-python-headless"),
+        "numba": version("numba"),
         "cpu_features": sorted(k for k, v in features.items() if v),
     }
 
