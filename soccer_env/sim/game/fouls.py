@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 
+from soccer_env.sim.game.checks import contacts_started
 from soccer_env.sim.game.geometry import (
     defense_distance,
     inside_defense,
@@ -117,34 +118,35 @@ class FoulRules(RefereeState):
                                    float(ball[0]), float(ball[1]))
 
     def _referee_crashes(self, robots: np.ndarray, d: Decision) -> None:
-        """Crashing (8.4.2): robots of different teams that came into contact this step."""
+        """Crashing (8.4.2): robots of different teams that came into contact this step
+        (the pairs found by :func:`~soccer_env.sim.game.checks.contacts_started`) and closed
+        faster than :attr:`~RuleSpec.crash_speed`."""
         prev = self._prev_robots
         if prev is None or prev.shape != robots.shape:
             return
         r = self.rules
-        blue = np.flatnonzero(self.teams == 0)
-        yellow = np.flatnonzero(self.teams == 1)
-        for i in blue:
-            for j in yellow:
-                if not (self._on_field(int(i)) and self._on_field(int(j))):
-                    continue
-                reach = self.radii[i] + self.radii[j] + CONTACT_SLACK
-                now = math.hypot(*(robots[j, 0:2] - robots[i, 0:2]))
-                before = math.hypot(*(prev[j, 0:2] - prev[i, 0:2]))
-                if now > reach or before <= reach:
-                    continue
-                u = (prev[j, 0:2] - prev[i, 0:2]) / max(before, 1e-9)
-                closing = float(np.dot(prev[i, 3:5] - prev[j, 3:5], u))
-                if closing <= r.crash_speed:
-                    continue
-                si, sj = math.hypot(*prev[i, 3:5]), math.hypot(*prev[j, 3:5])
-                x, y = (robots[i, 0:2] + robots[j, 0:2]) / 2
-                if abs(si - sj) < r.crash_both_margin:
-                    for k in (int(i), int(j)):
-                        self._nonstop_foul(d, "bot_crash_drawn", int(self.teams[k]), k, x, y)
-                else:
-                    k = int(i) if si > sj else int(j)
-                    self._nonstop_foul(d, "bot_crash_unique", int(self.teams[k]), k, x, y)
+        on_field = np.ones(len(self.teams), dtype=np.bool_)
+        for info in self.team_info:
+            on_field[info.off] = False
+        pairs = np.empty((len(self.teams) ** 2, 2), dtype=np.int64)
+        n = contacts_started(robots, prev, self.teams, on_field, self.radii,
+                             CONTACT_SLACK, pairs)
+        for i, j in pairs[:n].tolist():
+            if not (self._on_field(i) and self._on_field(j)):
+                continue  # sent off by a card for an earlier pair of this step
+            before = math.hypot(*(prev[j, 0:2] - prev[i, 0:2]))
+            u = (prev[j, 0:2] - prev[i, 0:2]) / max(before, 1e-9)
+            closing = float(np.dot(prev[i, 3:5] - prev[j, 3:5], u))
+            if closing <= r.crash_speed:
+                continue
+            si, sj = math.hypot(*prev[i, 3:5]), math.hypot(*prev[j, 3:5])
+            x, y = (robots[i, 0:2] + robots[j, 0:2]) / 2
+            if abs(si - sj) < r.crash_both_margin:
+                for k in (i, j):
+                    self._nonstop_foul(d, "bot_crash_drawn", int(self.teams[k]), k, x, y)
+            else:
+                k = i if si > sj else j
+                self._nonstop_foul(d, "bot_crash_unique", int(self.teams[k]), k, x, y)
 
     def _keeper_held(self, ball: np.ndarray, dt: float, d: Decision) -> bool:
         """The ball kept in a defense area too long (8.4.1); True if the game stopped."""
