@@ -1,5 +1,6 @@
-"""CPython's ``math.hypot`` and ``math.remainder``, and numpy's ``remainder``, bit for bit
-in compiled kernels, with array forms of the first two.
+"""CPython's ``math.hypot`` and ``math.remainder``, and numpy's ``remainder``, stable
+``argsort`` and ``searchsorted``, bit for bit in compiled kernels, with array forms of the
+first two.
 
 The batched paths of the estimators and the environments (many filters, sensors or scripted
 robots stepped as arrays) must give the same numbers as their one-at-a-time versions, which run
@@ -8,6 +9,11 @@ in plain Python floats: ``+ - * /`` and ``sqrt`` round alike in both, but the C 
 ``math.remainder`` has no numpy or numba counterpart. Each function is written once, as a
 scalar kernel (:func:`hypot_exact`, :func:`wrap_angle`, :func:`floor_remainder`); the array
 forms (:func:`hypots`, :func:`wrap_angles`) run it over every element.
+
+numba compiles ``np.argsort(..., kind="mergesort")`` and ``np.searchsorted`` from generic
+templates that take seconds to compile on a first run (about 2 s for the stable argsort
+alone, against a tenth of that for a loop); :func:`stable_argsort` and
+:func:`search_right` are those loops, with numpy's ordering of floats (NaN last).
 """
 
 from __future__ import annotations
@@ -18,7 +24,8 @@ import numpy as np
 
 from .compiled import kernel
 
-__all__ = ["hypots", "hypot_exact", "wrap_angles", "wrap_angle", "floor_remainder"]
+__all__ = ["hypots", "hypot_exact", "wrap_angles", "wrap_angle", "floor_remainder",
+           "stable_argsort", "search_right"]
 
 #: The full turn that :func:`wrap_angles` wraps by [rad].
 _TWO_PI = 2.0 * math.pi
@@ -152,3 +159,60 @@ def floor_remainder(a: float, b: float) -> float:
     else:
         mod = math.copysign(0.0, b)
     return mod
+
+
+@kernel
+def _less(a: float, b: float) -> bool:
+    """numpy's order of floats: ``a < b``, NaN after every number."""
+    return a < b or (b != b and a == a)
+
+
+@kernel
+def stable_argsort(keys: np.ndarray) -> np.ndarray:
+    """``np.argsort(keys, kind="stable")`` of a float array ``(n,)``: the indices that sort
+    ``keys`` ascending, equal keys in their original order, NaN last (a bottom-up merge
+    sort; a stable order is unique, so the indices are numpy's)."""
+    n = keys.shape[0]
+    idx = np.empty(n, dtype=np.int64)
+    for i in range(n):
+        idx[i] = i
+    tmp = np.empty(n, dtype=np.int64)
+    width = 1
+    while width < n:
+        for lo in range(0, n, 2 * width):
+            mid = min(lo + width, n)
+            hi = min(lo + 2 * width, n)
+            i, j, k = lo, mid, lo
+            while i < mid and j < hi:
+                if _less(keys[idx[j]], keys[idx[i]]):
+                    tmp[k] = idx[j]
+                    j += 1
+                else:
+                    tmp[k] = idx[i]
+                    i += 1
+                k += 1
+            while i < mid:
+                tmp[k] = idx[i]
+                i += 1
+                k += 1
+            while j < hi:
+                tmp[k] = idx[j]
+                j += 1
+                k += 1
+        idx, tmp = tmp, idx
+        width *= 2
+    return idx
+
+
+@kernel
+def search_right(a: np.ndarray, v: float) -> int:
+    """``np.searchsorted(a, v, side="right")`` for a sorted float array ``a`` ``(n,)``: the
+    number of entries not after ``v`` in numpy's order (NaN last), by bisection."""
+    lo, hi = 0, a.shape[0]
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if _less(v, a[mid]):
+            hi = mid
+        else:
+            lo = mid + 1
+    return lo

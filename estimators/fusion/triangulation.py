@@ -511,7 +511,9 @@ def append_sightings(points: np.ndarray, drop: int, ranges: np.ndarray,
             return None
     keep = points.shape[0] - drop
     out = np.empty((keep + k, 2))
-    out[:keep] = points[drop:]
+    for i in range(keep):  # a loop, not a slice: a slice assignment costs seconds to compile
+        out[i, 0] = points[drop + i, 0]
+        out[i, 1] = points[drop + i, 1]
     for i in range(k):
         out[keep + i, 0] = ranges[i] * math.cos(bearings[i])
         out[keep + i, 1] = ranges[i] * math.sin(bearings[i])

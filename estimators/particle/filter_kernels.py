@@ -17,6 +17,7 @@ import math
 import numpy as np
 
 from ..compiled import kernel
+from ..exact import stable_argsort
 
 __all__ = ["weigh", "weighted_mean", "systematic_indices", "sfn_children", "sfn_apply",
            "drift", "transition", "position_likelihood", "position_moments"]
@@ -54,7 +55,11 @@ def systematic_indices(weights: np.ndarray, offset: float) -> np.ndarray:
     evenly spaced pointers ``(offset + j) / N`` (``offset`` one uniform draw in [0, 1))
     into the cumulative weights (its last entry set to 1 against rounding)."""
     n = weights.shape[0]
-    cumulative = np.cumsum(weights)
+    cumulative = np.empty(n)
+    total = 0.0
+    for i in range(n):  # np.cumsum's sums, in its order
+        total += weights[i]
+        cumulative[i] = total
     cumulative[n - 1] = 1.0
     out = np.empty(n, dtype=np.int64)
     i = 0
@@ -71,7 +76,10 @@ def sfn_children(weights: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
     """SFN's sorting and offspring count: the particles by decreasing weight (a stable
     order), ``max(floor(N w) - 1, 0)`` children of each in that order, and their total."""
     n = weights.shape[0]
-    order = np.argsort(-weights, kind="mergesort")
+    negated = np.empty(n)
+    for i in range(n):
+        negated[i] = -weights[i]
+    order = stable_argsort(negated)
     children = np.empty(n, dtype=np.int64)
     total = 0
     for j in range(n):

@@ -19,7 +19,7 @@ import math
 import numpy as np
 
 from ..compiled import kernel
-from ..exact import floor_remainder
+from ..exact import floor_remainder, search_right
 
 __all__ = ["best_log_likelihood", "weigh", "move_particles",
            "draw_rows", "kld_sample_count", "weighted_pose", "weighted_spread"]
@@ -102,7 +102,8 @@ def weigh(weights: np.ndarray, log: np.ndarray, m: int) -> tuple[np.ndarray, flo
         total += new[i]
         mean += weights[i] * math.exp(log[i] / m)
     if total <= 0.0 or not math.isfinite(total):
-        new[:] = 1.0 / n
+        for i in range(n):
+            new[i] = 1.0 / n
     else:
         for i in range(n):
             new[i] /= total
@@ -139,7 +140,7 @@ def draw_rows(cumulative: np.ndarray, particles: np.ndarray, u: np.ndarray) -> n
     n = particles.shape[0]
     out = np.empty((u.shape[0], 3))
     for k in range(u.shape[0]):
-        i = min(np.searchsorted(cumulative, u[k], side="right"), n - 1)
+        i = min(search_right(cumulative, u[k]), n - 1)
         out[k, 0] = particles[i, 0]
         out[k, 1] = particles[i, 1]
         out[k, 2] = particles[i, 2]
@@ -152,14 +153,29 @@ def kld_sample_count(rows: np.ndarray, bin_size: tuple[float, float, float],
     """KLD-sampling's stopping rule over the draws ``rows`` ((k, 3)) in order: the first
     ``n >= low`` with ``n >= bound[k(n)]``, ``k(n)`` the number of distinct bins
     ``floor(row / bin_size)`` among the first ``n`` draws; 0 when no prefix qualifies."""
-    seen = set()
-    for i in range(rows.shape[0]):
+    # The distinct bins in an open-addressing hash table of int64 keys (a typed set would
+    # do, but costs seconds to compile on a first run).
+    k = rows.shape[0]
+    size = 2
+    while size < 2 * k:
+        size <<= 1
+    mask = size - 1
+    table = np.empty(size, np.int64)
+    used = np.zeros(size, np.bool_)
+    distinct = 0
+    for i in range(k):
         key = (np.int64(math.floor(rows[i, 0] / bin_size[0])) * np.int64(1 << 42)
                + np.int64(math.floor(rows[i, 1] / bin_size[1])) * np.int64(1 << 21)
                + np.int64(math.floor(rows[i, 2] / bin_size[2])))
-        seen.add(key)
+        slot = (key ^ (key >> 21) ^ (key >> 42)) & mask
+        while used[slot] and table[slot] != key:
+            slot = (slot + 1) & mask
+        if not used[slot]:
+            used[slot] = True
+            table[slot] = key
+            distinct += 1
         n = i + 1
-        if n >= low and n >= bound[len(seen)]:
+        if n >= low and n >= bound[distinct]:
             return n
     return 0
 

@@ -259,7 +259,9 @@ def capture_frames(rows: np.ndarray, cams: np.ndarray, times: np.ndarray, clock:
     """
     F, n = rows.shape[0], robots0.shape[1]
     latency, jitter = params[9], params[10]
-    out[:F] = 0.0
+    for f in range(F):  # loops, not slices: a slice assignment costs seconds to compile
+        for k in range(out.shape[1]):
+            out[f, k] = 0.0
     counts = np.zeros(clock.shape[0], dtype=np.int64)
     for f in range(F):
         counts[rows[f]] += 1

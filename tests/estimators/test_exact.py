@@ -1,4 +1,5 @@
-"""The compiled scalar ports of CPython's ``math`` functions equal them bit for bit."""
+"""The compiled ports of CPython's ``math`` functions and numpy's stable argsort and searchsorted
+equal them bit for bit."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import sys
 import numpy as np
 import pytest
 
-from estimators.exact import hypot_exact, wrap_angle
+from estimators.exact import hypot_exact, search_right, stable_argsort, wrap_angle
 
 
 @pytest.mark.skipif(sys.version_info < (3, 11), reason="math.hypot's algorithm since 3.11")
@@ -36,3 +37,26 @@ def test_wrap_angle_is_math_remainder_bit_for_bit():
                                                                  3.0 * math.pi, 1e300]])
     for a in angles.tolist():
         assert wrap_angle(a) == math.remainder(a, 2.0 * math.pi)
+
+
+def _sort_cases():
+    rng = np.random.default_rng(7)
+    yield np.array([])
+    yield np.array([1.0])
+    yield rng.integers(0, 4, 37).astype(float)  # many ties
+    yield np.array([0.0, -0.0, np.nan, 1.0, np.nan, -np.inf, np.inf, -0.0])
+    for n in (2, 3, 20, 21, 64, 1000):
+        yield rng.normal(size=n)
+
+
+@pytest.mark.parametrize("keys", list(_sort_cases()), ids=lambda k: f"n{len(k)}")
+def test_stable_argsort_is_numpys_stable_argsort(keys):
+    assert np.array_equal(stable_argsort(keys), np.argsort(keys, kind="stable"))
+
+
+@pytest.mark.parametrize("keys", list(_sort_cases()), ids=lambda k: f"n{len(k)}")
+def test_search_right_is_numpys_searchsorted_right(keys):
+    a = np.sort(keys)
+    probes = np.concatenate([a, a + 1e-12, a - 1e-12, [np.nan, -np.inf, np.inf, 0.5]])
+    for v in probes:
+        assert search_right(a, float(v)) == np.searchsorted(a, v, side="right"), v

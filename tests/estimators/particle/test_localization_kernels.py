@@ -114,3 +114,20 @@ def test_weighted_pose_and_spread():
     assert abs(abs(theta) - math.pi) < 1e-12  # the circular mean across the seam
     assert r == pytest.approx(math.cos(0.1))
     assert weighted_spread(w, p, x, y) == pytest.approx(math.sqrt(2.0))
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_kld_sample_count_counts_distinct_bins_as_a_set_does(seed):
+    rng = np.random.default_rng(seed)
+    size = (0.1, 0.1, 0.2)
+    cells = rng.integers(-2, 2, size=(400, 3)) * rng.choice([1, 10**6], size=(400, 1))
+    rows = (cells + rng.uniform(0.01, 0.99, size=(400, 3))) * size  # negative and huge bins
+    bound = 1.5 * np.arange(402.0)
+    bins, expected = set(), 0
+    for i, row in enumerate(rows):
+        bins.add(tuple(np.floor(row / size).astype(np.int64)))
+        if i + 1 >= 10 and i + 1 >= bound[len(bins)]:
+            expected = i + 1
+            break
+    assert expected > 0
+    assert kld_sample_count(rows, size, bound, 10) == expected
