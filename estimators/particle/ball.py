@@ -229,6 +229,9 @@ class ParticleBallTracker(TrackQualityMixin):
         self._lag = 0.0
         self._rinv = (1.0, 0.0, 1.0)
         self.fused = self.rejected = self.resets = self.late = 0
+        # The latest estimate asked for: its time and value (a pipeline asks for the same
+        # time several times per step); cleared whenever the filter changes.
+        self._memo: tuple[float, np.ndarray | None] | None = None
 
     # ------------------------------------------------------------------------------------
     # The model, called by the filter
@@ -329,6 +332,7 @@ class ParticleBallTracker(TrackQualityMixin):
         Stamps are still checked to be in order."""
         if self._pf is not None:
             check_order(t, self._t)
+        self._memo = None
         prev, self._prev = self._prev, (t, z, R)
         if self._pf is None or (self.lost_after is not None
                                 and t - self._t_fused > self.lost_after):
@@ -381,6 +385,7 @@ class ParticleBallTracker(TrackQualityMixin):
         before the first measurement or for ``t`` at or before the filter's time."""
         t = check_time(t)
         if self._pf is not None and t > self._t:
+            self._memo = None
             self._advance(t)
             if self._kf is not None:
                 self._redraw()
@@ -389,8 +394,18 @@ class ParticleBallTracker(TrackQualityMixin):
         """The state ``(px, py, vx, vy)`` [m, m/s] at time ``t`` [s]: the filter's estimate
         moved by the deterministic motion (constant velocity, or the deceleration) when ``t``
         is later than the filter's time, unchanged otherwise; the filter is not changed.
-        None before the first measurement."""
+        None before the first measurement. A new array each call; the value at the latest
+        time asked for is kept until the filter changes (a pipeline asks for one time several
+        times per step)."""
         t = check_time(t)
+        memo = self._memo
+        if memo is None or memo[0] != t:
+            memo = self._memo = (t, self._drifted(t))
+        est = memo[1]
+        return None if est is None else est.copy()
+
+    def _drifted(self, t: float) -> np.ndarray | None:
+        """:meth:`estimate`'s value at the checked time ``t``."""
         if self._pf is None:
             return None
         dt = t - self._t

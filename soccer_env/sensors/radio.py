@@ -95,16 +95,15 @@ class TeamRadio:
         if not receivers:
             return 0
         self.sent += 1
-        lost = self.rng.random(len(receivers)) < self.spec.loss
-        delay = self.spec.latency + self.spec.jitter * self.rng.random(len(receivers))
+        lost = (self.rng.random(len(receivers)) < self.spec.loss).tolist()
+        delay = (self.spec.latency + self.spec.jitter * self.rng.random(len(receivers))).tolist()
         reached = 0
         for name, gone, d in zip(receivers, lost, delay):
             if gone:
                 self.lost += 1
                 continue
             self._seq += 1
-            heapq.heappush(self._queues.setdefault(name, []),
-                           (now + float(d), self._seq, message))
+            heapq.heappush(self._queues.setdefault(name, []), (now + d, self._seq, message))
             reached += 1
         return reached
 
