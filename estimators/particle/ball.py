@@ -105,6 +105,34 @@ def _cv_matrices(dt: float) -> tuple[np.ndarray, np.ndarray]:
     return A, B
 
 
+def _acceleration_noise(dt: float, s2: float) -> np.ndarray:
+    """``s2 B B^T`` for the ``B`` of :func:`_cv_matrices`, written out: with ``h = dt^2 / 2``,
+    ``B B^T = [[h^2 I, h dt I], [dt h I, dt^2 I]]`` (each entry one product, as the matrix
+    product rounds it: its other term is an exact zero)."""
+    h = 0.5 * dt * dt
+    hh, hd, dh, dd = s2 * (h * h), s2 * (h * dt), s2 * (dt * h), s2 * (dt * dt)
+    return np.array([[hh, 0.0, hd, 0.0], [0.0, hh, 0.0, hd],
+                     [dh, 0.0, dd, 0.0], [0.0, dh, 0.0, dd]])
+
+
+def _measurement_matrix(lag: float) -> np.ndarray:
+    """The Kalman start's ``H = [I, -lag I]`` ((2, 4)), read-only."""
+    H = np.zeros((2, 4))
+    H[0, 0] = H[1, 1] = 1.0
+    H[0, 2] = H[1, 3] = -lag
+    H.flags.writeable = False
+    return H
+
+
+#: :func:`_measurement_matrix` at no lag (the usual case), built once.
+_H_NO_LAG = _measurement_matrix(0.0)
+
+
+def _start_measurement(lag: float) -> np.ndarray:
+    """The Kalman start's ``H`` for a measurement ``lag`` [s] older than the filter."""
+    return _H_NO_LAG if lag == 0.0 else _measurement_matrix(lag)
+
+
 def _floats(value) -> np.ndarray | None:
     """``value`` as a float array, None when it is not numbers."""
     try:
@@ -286,8 +314,8 @@ class ParticleBallTracker(TrackQualityMixin):
             P = (d * w[:, None]).T @ d
         dt = float(t) - self._t
         if dt > 0.0:
-            A, B = _cv_matrices(dt)
-            P = A @ P @ A.T + self.accel_sigma**2 * (B @ B.T)
+            A = _cv_matrices(dt)[0]
+            P = A @ P @ A.T + _acceleration_noise(dt, self.accel_sigma**2)
         return P
 
     def _check(self, t: float, z, sigma) -> tuple[float, np.ndarray, np.ndarray]:
@@ -349,25 +377,18 @@ class ParticleBallTracker(TrackQualityMixin):
         self._lag = lag
         kf = self._kf
         if kf is not None:
-            # The Kalman start measures z with H = [I, -lag I] (the back-extrapolated position).
-            H = np.zeros((2, 4))
-            H[0, 0] = H[1, 1] = 1.0
-            H[0, 2] = H[1, 3] = -lag
-        if self.gate is not None:
-            d2 = kf.innovation(z, H, R)[2] if kf is not None else self._mahalanobis2(z, R)
-            if d2 > self.gate:
-                self.rejected += 1
-                self._misses += 1
-                if self._misses >= self.reinit_after:
-                    self._start(t, z, R, prev)
-                elif kf is not None:
-                    self._redraw()
+            # The Kalman start measures z with H = [I, -lag I] (the back-extrapolated
+            # position); the filter gates and updates on one innovation.
+            if not kf.update_unchecked(z, _start_measurement(lag), R, gate=self.gate):
+                self._reject(t, z, R, prev)
                 return
-        self._misses = 0
-        if kf is not None:
-            kf.update_unchecked(z, H, R)
+            self._misses = 0
             self._x = kf.x.copy()
         else:
+            if self.gate is not None and self._mahalanobis2(z, R) > self.gate:
+                self._reject(t, z, R, prev)
+                return
+            self._misses = 0
             det = R[0, 0] * R[1, 1] - R[0, 1] * R[1, 0]
             self._rinv = (R[1, 1] / det, -R[0, 1] / det, R[0, 0] / det)
             self._x = self._pf.correct(z)
@@ -379,6 +400,17 @@ class ParticleBallTracker(TrackQualityMixin):
             self._redraw()
             if self._since_start >= self.kalman_start:
                 self._kf = None  # the particles take over
+
+    def _reject(self, t: float, z: np.ndarray, R: np.ndarray,
+                prev: tuple[float, np.ndarray, np.ndarray] | None) -> None:
+        """An implausible measurement: counted, and the filter restarted at it after
+        ``reinit_after`` in a row (else, during the Kalman start, the particles redrawn)."""
+        self.rejected += 1
+        self._misses += 1
+        if self._misses >= self.reinit_after:
+            self._start(t, z, R, prev)
+        elif self._kf is not None:
+            self._redraw()
 
     def predict_to(self, t: float) -> None:
         """Time update only, to ``t`` [s] (a cycle without a measurement); nothing happens
@@ -433,10 +465,10 @@ class ParticleBallTracker(TrackQualityMixin):
             if kf is None:
                 self._x = self._pf.predict()
             else:
-                F, B = _cv_matrices(dt)
                 # x' = drift(x) (exactly A x without deceleration), P' = A P A^T + s^2 B B^T
-                kf.predict_unchecked(F, self.accel_sigma**2 * (B @ B.T),
-                           drift(kf.x[None, :], dt, self.deceleration)[0])
+                kf.predict_unchecked(_cv_matrices(dt)[0],
+                                     _acceleration_noise(dt, self.accel_sigma**2),
+                                     drift(kf.x[None, :], dt, self.deceleration)[0])
                 self._x = kf.x.copy()
             self._t = t
 
