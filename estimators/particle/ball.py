@@ -94,19 +94,16 @@ def _positive(name: str, value: float, allow_zero: bool = False) -> float:
     return v
 
 
-def _cv_matrices(dt: float) -> tuple[np.ndarray, np.ndarray]:
-    """The constant-velocity model over ``dt`` [s] for the state ``(px, py, vx, vy)``:
-    ``A = [[I, dt I], [0, I]]`` and the acceleration's input ``B = [dt^2 / 2 I; dt I]``."""
-    A = np.eye(4)
-    A[0, 2] = A[1, 3] = dt
-    B = np.zeros((4, 2))
-    B[0, 0] = B[1, 1] = 0.5 * dt * dt
-    B[2, 0] = B[3, 1] = dt
-    return A, B
+def _cv_matrix(dt: float) -> np.ndarray:
+    """The constant-velocity model's ``A = [[I, dt I], [0, I]]`` over ``dt`` [s] for the state
+    ``(px, py, vx, vy)``."""
+    return np.array([[1.0, 0.0, dt, 0.0], [0.0, 1.0, 0.0, dt],
+                     [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]])
 
 
 def _acceleration_noise(dt: float, s2: float) -> np.ndarray:
-    """``s2 B B^T`` for the ``B`` of :func:`_cv_matrices`, written out: with ``h = dt^2 / 2``,
+    """``s2 B B^T`` for the constant-velocity model's acceleration input
+    ``B = [dt^2 / 2 I; dt I]`` over ``dt`` [s], written out: with ``h = dt^2 / 2``,
     ``B B^T = [[h^2 I, h dt I], [dt h I, dt^2 I]]`` (each entry one product, as the matrix
     product rounds it: its other term is an exact zero)."""
     h = 0.5 * dt * dt
@@ -314,7 +311,7 @@ class ParticleBallTracker(TrackQualityMixin):
             P = (d * w[:, None]).T @ d
         dt = float(t) - self._t
         if dt > 0.0:
-            A = _cv_matrices(dt)[0]
+            A = _cv_matrix(dt)
             P = A @ P @ A.T + _acceleration_noise(dt, self.accel_sigma**2)
         return P
 
@@ -466,7 +463,7 @@ class ParticleBallTracker(TrackQualityMixin):
                 self._x = self._pf.predict()
             else:
                 # x' = drift(x) (exactly A x without deceleration), P' = A P A^T + s^2 B B^T
-                kf.predict_unchecked(_cv_matrices(dt)[0],
+                kf.predict_unchecked(_cv_matrix(dt),
                                      _acceleration_noise(dt, self.accel_sigma**2),
                                      drift(kf.x[None, :], dt, self.deceleration)[0])
                 self._x = kf.x.copy()

@@ -187,9 +187,10 @@ class Brain:
                           for j in range(p.n_robots) if p.teams[j] != self.team}
         for j in self.opponents:
             self._others[j, 0:2] = state.robots[j, 0:2]
-        # The latest ball_point asked for (time, value) and the present pose estimate, each
-        # kept until what it is computed from changes.
-        self._ball_memo: tuple[float, np.ndarray | None] | None = None
+        # Without a tracker, the ball point of the latest fused points (in a 1-tuple, None
+        # until asked for after a fusion); the present pose estimate (None until asked for
+        # after odometry or the localization moved it).
+        self._ball_memo: tuple[np.ndarray | None] | None = None
         self._pose_memo: np.ndarray | None = None
         if self.tracker is not None:
             self.tracker.reset()
@@ -445,16 +446,9 @@ class Brain:
 
     def ball_point(self, t: float) -> np.ndarray | None:
         """The believed ball ``(x, y, vx, vy)`` at ``t`` (None if never seen); a prediction
-        that would leave the walled area stops at the wall. A new array each call (the value
-        at the latest time asked for kept until a fusion changes it)."""
-        memo = self._ball_memo
-        if memo is None or memo[0] != t:
-            memo = self._ball_memo = (t, self._ball_point(t))
-        b = memo[1]
-        return None if b is None else b.copy()
-
-    def _ball_point(self, t: float) -> np.ndarray | None:
-        """:meth:`ball_point`'s value."""
+        that would leave the walled area stops at the wall. A new array each call (the
+        tracker keeps its estimate at the latest time asked for; without a tracker the
+        latest fused points' is kept until the next fusion)."""
         if self.tracker is not None:
             est = self.tracker.estimate(t)
             if est is None:
@@ -463,6 +457,14 @@ class Brain:
             if not (x0 <= est[0] <= x1 and y0 <= est[1] <= y1):
                 est = np.array([min(x1, max(x0, est[0])), min(y1, max(y0, est[1])), 0.0, 0.0])
             return est
+        if self._ball_memo is None:
+            self._ball_memo = (self._fused_point(),)
+        b = self._ball_memo[0]
+        return None if b is None else b.copy()
+
+    def _fused_point(self) -> np.ndarray | None:
+        """The latest fused point with the velocity of the latest two at least
+        ``_MIN_DIFF_GAP`` apart (zero without such a pair); None before the first."""
         if not self.points:
             return None
         t1, x1, y1 = self.points[-1]
