@@ -315,32 +315,31 @@ class Brain:
             pose = self.pose
             if any(math.isfinite(d[3]) for d in f.landmarks):
                 self.landmark_seen = f.t_capture
-        c, s = math.cos(pose[2]), math.sin(pose[2])
+        px, py, pth = pose.tolist()  # plain floats: the same roundings as the array's
+        c, s = math.cos(pth), math.sin(pth)
         # The ball: of several detections, the one nearest the present belief.
         line = None
         balls = f.balls
         if self.finder is not None and f.image is not None:  # find it in the image
-            balls = self.finder.detect(f.image, float(pose[2]) + f.pan, f.tilt, f.pan)
+            balls = self.finder.detect(f.image, pth + f.pan, f.tilt, f.pan)
         if balls:
             if len(balls) > 1:
                 guess = self.ball_point(f.t_capture)
                 if guess is not None:
-                    gx, gy = guess[0] - pose[0], guess[1] - pose[1]
+                    gx, gy = guess[0] - px, guess[1] - py
                     gb = math.atan2(-s * gx + c * gy, c * gx + s * gy)
                     balls = sorted(balls, key=lambda b: abs(math.remainder(b[4] - gb,
                                                                            2 * math.pi)))
             _u, _v, x, y, bearing = balls[0]
-            line = _Line(f.t_capture, (float(pose[0]), float(pose[1])),
-                         float(pose[2] + bearing), math.hypot(x, y))
+            line = _Line(f.t_capture, (px, py), float(pth + bearing), math.hypot(x, y))
             self.own_line = line
             self.ball_seen = f.t_capture
         for team, _u, _v, x, y, _b in f.robots:
             if team != self.team and math.isfinite(x):
-                self._opponent(f.t_capture, pose[0] + c * x - s * y, pose[1] + s * x + c * y)
+                self._opponent(f.t_capture, px + c * x - s * y, py + s * x + c * y)
         self._fuse(f.t_capture)
         sighting = None if line is None else (*line.origin, line.angle, line.range)
-        return Message(self.name, f.t_capture, (float(pose[0]), float(pose[1]),
-                                                float(pose[2])), sighting)
+        return Message(self.name, f.t_capture, (px, py, pth), sighting)
 
     def message(self, m: Message, now: float) -> None:
         """A team-mate's broadcast arrived."""
