@@ -94,15 +94,40 @@ def _positive(name: str, value: float, allow_zero: bool = False) -> float:
     return v
 
 
-def _cv_matrices(dt: float) -> tuple[np.ndarray, np.ndarray]:
-    """The constant-velocity model over ``dt`` [s] for the state ``(px, py, vx, vy)``:
-    ``A = [[I, dt I], [0, I]]`` and the acceleration's input ``B = [dt^2 / 2 I; dt I]``."""
-    A = np.eye(4)
-    A[0, 2] = A[1, 3] = dt
-    B = np.zeros((4, 2))
-    B[0, 0] = B[1, 1] = 0.5 * dt * dt
-    B[2, 0] = B[3, 1] = dt
-    return A, B
+def _cv_matrix(dt: float) -> np.ndarray:
+    """The constant-velocity model's ``A = [[I, dt I], [0, I]]`` over ``dt`` [s] for the state
+    ``(px, py, vx, vy)``."""
+    return np.array([[1.0, 0.0, dt, 0.0], [0.0, 1.0, 0.0, dt],
+                     [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]])
+
+
+def _acceleration_noise(dt: float, s2: float) -> np.ndarray:
+    """``s2 B B^T`` for the constant-velocity model's acceleration input
+    ``B = [dt^2 / 2 I; dt I]`` over ``dt`` [s], written out: with ``h = dt^2 / 2``,
+    ``B B^T = [[h^2 I, h dt I], [dt h I, dt^2 I]]`` (each entry one product, as the matrix
+    product rounds it: its other term is an exact zero)."""
+    h = 0.5 * dt * dt
+    hh, hd, dh, dd = s2 * (h * h), s2 * (h * dt), s2 * (dt * h), s2 * (dt * dt)
+    return np.array([[hh, 0.0, hd, 0.0], [0.0, hh, 0.0, hd],
+                     [dh, 0.0, dd, 0.0], [0.0, dh, 0.0, dd]])
+
+
+def _measurement_matrix(lag: float) -> np.ndarray:
+    """The Kalman start's ``H = [I, -lag I]`` ((2, 4)), read-only."""
+    H = np.zeros((2, 4))
+    H[0, 0] = H[1, 1] = 1.0
+    H[0, 2] = H[1, 3] = -lag
+    H.flags.writeable = False
+    return H
+
+
+#: :func:`_measurement_matrix` at no lag (the usual case), built once.
+_H_NO_LAG = _measurement_matrix(0.0)
+
+
+def _start_measurement(lag: float) -> np.ndarray:
+    """The Kalman start's ``H`` for a measurement ``lag`` [s] older than the filter."""
+    return _H_NO_LAG if lag == 0.0 else _measurement_matrix(lag)
 
 
 def _floats(value) -> np.ndarray | None:
@@ -229,6 +254,9 @@ class ParticleBallTracker(TrackQualityMixin):
         self._lag = 0.0
         self._rinv = (1.0, 0.0, 1.0)
         self.fused = self.rejected = self.resets = self.late = 0
+        # The latest estimate asked for: its time and value (a pipeline asks for the same
+        # time several times per step); cleared whenever the filter changes.
+        self._memo: tuple[float, np.ndarray | None] | None = None
 
     # ------------------------------------------------------------------------------------
     # The model, called by the filter
@@ -283,8 +311,8 @@ class ParticleBallTracker(TrackQualityMixin):
             P = (d * w[:, None]).T @ d
         dt = float(t) - self._t
         if dt > 0.0:
-            A, B = _cv_matrices(dt)
-            P = A @ P @ A.T + self.accel_sigma**2 * (B @ B.T)
+            A = _cv_matrix(dt)
+            P = A @ P @ A.T + _acceleration_noise(dt, self.accel_sigma**2)
         return P
 
     def _check(self, t: float, z, sigma) -> tuple[float, np.ndarray, np.ndarray]:
@@ -329,6 +357,7 @@ class ParticleBallTracker(TrackQualityMixin):
         Stamps are still checked to be in order."""
         if self._pf is not None:
             check_order(t, self._t)
+        self._memo = None
         prev, self._prev = self._prev, (t, z, R)
         if self._pf is None or (self.lost_after is not None
                                 and t - self._t_fused > self.lost_after):
@@ -345,25 +374,18 @@ class ParticleBallTracker(TrackQualityMixin):
         self._lag = lag
         kf = self._kf
         if kf is not None:
-            # The Kalman start measures z with H = [I, -lag I] (the back-extrapolated position).
-            H = np.zeros((2, 4))
-            H[0, 0] = H[1, 1] = 1.0
-            H[0, 2] = H[1, 3] = -lag
-        if self.gate is not None:
-            d2 = kf.innovation(z, H, R)[2] if kf is not None else self._mahalanobis2(z, R)
-            if d2 > self.gate:
-                self.rejected += 1
-                self._misses += 1
-                if self._misses >= self.reinit_after:
-                    self._start(t, z, R, prev)
-                elif kf is not None:
-                    self._redraw()
+            # The Kalman start measures z with H = [I, -lag I] (the back-extrapolated
+            # position); the filter gates and updates on one innovation.
+            if not kf.update_unchecked(z, _start_measurement(lag), R, gate=self.gate):
+                self._reject(t, z, R, prev)
                 return
-        self._misses = 0
-        if kf is not None:
-            kf.update_unchecked(z, H, R)
+            self._misses = 0
             self._x = kf.x.copy()
         else:
+            if self.gate is not None and self._mahalanobis2(z, R) > self.gate:
+                self._reject(t, z, R, prev)
+                return
+            self._misses = 0
             det = R[0, 0] * R[1, 1] - R[0, 1] * R[1, 0]
             self._rinv = (R[1, 1] / det, -R[0, 1] / det, R[0, 0] / det)
             self._x = self._pf.correct(z)
@@ -376,11 +398,23 @@ class ParticleBallTracker(TrackQualityMixin):
             if self._since_start >= self.kalman_start:
                 self._kf = None  # the particles take over
 
+    def _reject(self, t: float, z: np.ndarray, R: np.ndarray,
+                prev: tuple[float, np.ndarray, np.ndarray] | None) -> None:
+        """An implausible measurement: counted, and the filter restarted at it after
+        ``reinit_after`` in a row (else, during the Kalman start, the particles redrawn)."""
+        self.rejected += 1
+        self._misses += 1
+        if self._misses >= self.reinit_after:
+            self._start(t, z, R, prev)
+        elif self._kf is not None:
+            self._redraw()
+
     def predict_to(self, t: float) -> None:
         """Time update only, to ``t`` [s] (a cycle without a measurement); nothing happens
         before the first measurement or for ``t`` at or before the filter's time."""
         t = check_time(t)
         if self._pf is not None and t > self._t:
+            self._memo = None
             self._advance(t)
             if self._kf is not None:
                 self._redraw()
@@ -389,8 +423,18 @@ class ParticleBallTracker(TrackQualityMixin):
         """The state ``(px, py, vx, vy)`` [m, m/s] at time ``t`` [s]: the filter's estimate
         moved by the deterministic motion (constant velocity, or the deceleration) when ``t``
         is later than the filter's time, unchanged otherwise; the filter is not changed.
-        None before the first measurement."""
+        None before the first measurement. A new array each call; the value at the latest
+        time asked for is kept until the filter changes (a pipeline asks for one time several
+        times per step)."""
         t = check_time(t)
+        memo = self._memo
+        if memo is None or memo[0] != t:
+            memo = self._memo = (t, self._drifted(t))
+        est = memo[1]
+        return None if est is None else est.copy()
+
+    def _drifted(self, t: float) -> np.ndarray | None:
+        """:meth:`estimate`'s value at the checked time ``t``."""
         if self._pf is None:
             return None
         dt = t - self._t
@@ -418,10 +462,10 @@ class ParticleBallTracker(TrackQualityMixin):
             if kf is None:
                 self._x = self._pf.predict()
             else:
-                F, B = _cv_matrices(dt)
                 # x' = drift(x) (exactly A x without deceleration), P' = A P A^T + s^2 B B^T
-                kf.predict_unchecked(F, self.accel_sigma**2 * (B @ B.T),
-                           drift(kf.x[None, :], dt, self.deceleration)[0])
+                kf.predict_unchecked(_cv_matrix(dt),
+                                     _acceleration_noise(dt, self.accel_sigma**2),
+                                     drift(kf.x[None, :], dt, self.deceleration)[0])
                 self._x = kf.x.copy()
             self._t = t
 

@@ -176,11 +176,22 @@ class Brain:
         self.own_line: _Line | None = None
         self.mate_lines: dict[str, _Line] = {}
         self.mate_poses: dict[int, tuple[float, np.ndarray, np.ndarray]] = {}
+        # The other robots' rows of the belief (pose and velocity of the team-mates, position
+        # and velocity of the opponents), kept as they change.
+        self._others = np.zeros((p.n_robots, 6))
         for j in p.team_members[self.team]:
             if j != self.i:
                 self.mate_poses[j] = (state.time, state.robots[j, 0:3].copy(), np.zeros(3))
+                self._others[j, 0:3] = state.robots[j, 0:3]
         self.opponents = {j: [state.time, state.robots[j, 0:2].copy(), np.zeros(2)]
                           for j in range(p.n_robots) if p.teams[j] != self.team}
+        for j in self.opponents:
+            self._others[j, 0:2] = state.robots[j, 0:2]
+        # Without a tracker, the ball point of the latest fused points (in a 1-tuple, None
+        # until asked for after a fusion); the present pose estimate (None until asked for
+        # after odometry or the localization moved it).
+        self._ball_memo: tuple[np.ndarray | None] | None = None
+        self._pose_memo: np.ndarray | None = None
         if self.tracker is not None:
             self.tracker.reset()
         if self.finder is not None:
@@ -205,9 +216,11 @@ class Brain:
         """The walk engine's displacement over the step ending at ``t``."""
         if self.kind == "truth":
             self.pose = truth.copy()
+            self._pose_memo = None
             return
         if d == (0.0, 0.0, 0.0):
             return
+        self._pose_memo = None
         self.odo.append((t, d))
         if self.kind == "odometry":
             self.pose = self._moved(self.pose, d)
@@ -239,6 +252,7 @@ class Brain:
     def odometry_until(self, t: float) -> tuple[float, float, float]:
         """Compose and drop the odometry of the steps that ended by ``t``."""
         total = (0.0, 0.0, 0.0)
+        self._pose_memo = None
         while self.odo and self.odo[0][0] <= t + 1e-9:
             total = _compose(total, self.odo.popleft()[1])
         return total
@@ -253,6 +267,7 @@ class Brain:
         c, s = math.cos(0.5 * d[2]), math.sin(0.5 * d[2])
         self.loc.predict((c * d[0] + s * d[1], -s * d[0] + c * d[1], d[2]))
         self.loc_estimate = self.loc.estimate()
+        self._pose_memo = None
 
     def stood_up(self, heading_sigma: float) -> None:
         """The robot got up, turned by an angle its odometry does not report (Gaussian,
@@ -263,15 +278,24 @@ class Brain:
         turn = self.rng.normal(0.0, heading_sigma, len(p))
         p[:, 2] = np.remainder(p[:, 2] + turn + math.pi, 2.0 * math.pi) - math.pi
         self.loc_estimate = self.loc.estimate()
+        self._pose_memo = None
 
     def estimate_pose(self) -> np.ndarray:
         """The present pose estimate (localization plus the odometry not yet applied)."""
         if self.loc is None:
             return self.pose
-        pose = self.loc_estimate
-        for _, d in self.odo:
-            pose = self._moved(pose, d)
-        return pose
+        if not self.odo:
+            return self.loc_estimate
+        if self._pose_memo is None:
+            # _moved step by step, in plain floats (the same roundings as on the array).
+            x, y, theta = self.loc_estimate.tolist()
+            for _, d in self.odo:
+                th = theta + 0.5 * d[2]
+                c, s = math.cos(th), math.sin(th)
+                x, y, theta = (x + c * d[0] - s * d[1], y + s * d[0] + c * d[1],
+                               math.remainder(theta + d[2], 2.0 * math.pi))
+            self._pose_memo = np.array([x, y, theta])
+        return self._pose_memo.copy()
 
     # ------------------------------------------------------------------------------------
 
@@ -286,49 +310,57 @@ class Brain:
                 self.loc.update_sightings(kinds, ranges, bearings, p.landmark_table)
                 self.landmark_seen = f.t_capture
             pose = self.loc_estimate = self.loc.estimate()
+            self._pose_memo = None
         else:
             pose = self.pose
             if any(math.isfinite(d[3]) for d in f.landmarks):
                 self.landmark_seen = f.t_capture
-        c, s = math.cos(pose[2]), math.sin(pose[2])
+        px, py, pth = pose.tolist()  # plain floats: the same roundings as the array's
+        c, s = math.cos(pth), math.sin(pth)
         # The ball: of several detections, the one nearest the present belief.
         line = None
         balls = f.balls
         if self.finder is not None and f.image is not None:  # find it in the image
-            balls = self.finder.detect(f.image, float(pose[2]) + f.pan, f.tilt, f.pan)
+            balls = self.finder.detect(f.image, pth + f.pan, f.tilt, f.pan)
         if balls:
             if len(balls) > 1:
                 guess = self.ball_point(f.t_capture)
                 if guess is not None:
-                    gx, gy = guess[0] - pose[0], guess[1] - pose[1]
+                    gx, gy = guess[0] - px, guess[1] - py
                     gb = math.atan2(-s * gx + c * gy, c * gx + s * gy)
                     balls = sorted(balls, key=lambda b: abs(math.remainder(b[4] - gb,
                                                                            2 * math.pi)))
             _u, _v, x, y, bearing = balls[0]
-            line = _Line(f.t_capture, (float(pose[0]), float(pose[1])),
-                         float(pose[2] + bearing), math.hypot(x, y))
+            line = _Line(f.t_capture, (px, py), float(pth + bearing), math.hypot(x, y))
             self.own_line = line
             self.ball_seen = f.t_capture
         for team, _u, _v, x, y, _b in f.robots:
             if team != self.team and math.isfinite(x):
-                self._opponent(f.t_capture, pose[0] + c * x - s * y, pose[1] + s * x + c * y)
+                self._opponent(f.t_capture, px + c * x - s * y, py + s * x + c * y)
         self._fuse(f.t_capture)
         sighting = None if line is None else (*line.origin, line.angle, line.range)
-        return Message(self.name, f.t_capture, (float(pose[0]), float(pose[1]),
-                                                float(pose[2])), sighting)
+        return Message(self.name, f.t_capture, (px, py, pth), sighting)
 
     def message(self, m: Message, now: float) -> None:
         """A team-mate's broadcast arrived."""
         j = self.context.index_of[m.sender]
         prev = self.mate_poses.get(j)
-        pose = np.array(m.pose)
-        vel = np.zeros(3)
-        if prev is not None and m.stamp - prev[0] >= _MIN_DIFF_GAP:
-            vel = (pose - prev[1]) / (m.stamp - prev[0])
-            vel[2] = math.remainder(pose[2] - prev[1][2], 2 * math.pi) / (m.stamp - prev[0])
         if prev is None or m.stamp >= prev[0]:
-            self.mate_poses[j] = (m.stamp, pose, vel if prev is None or
-                                  m.stamp - prev[0] >= _MIN_DIFF_GAP else prev[2])
+            pose = np.array(m.pose)
+            if prev is None:
+                vel = np.zeros(3)
+            elif m.stamp - prev[0] >= _MIN_DIFF_GAP:
+                # The finite difference, the heading's wrapped (in plain floats).
+                span = m.stamp - prev[0]
+                (x, y, theta), (x0, y0, theta0) = m.pose, prev[1].tolist()
+                vel = np.array([(x - x0) / span, (y - y0) / span,
+                                math.remainder(theta - theta0, 2 * math.pi) / span])
+            else:
+                vel = prev[2]
+            self.mate_poses[j] = (m.stamp, pose, vel)
+            row = self._others[j]
+            row[0:3] = pose
+            row[3:6] = vel
         if m.sighting is not None and self.fusion != "own":
             x0, y0, angle, rng_ = m.sighting
             self.mate_lines[m.sender] = _Line(m.stamp, (x0, y0), angle, rng_)
@@ -353,6 +385,9 @@ class Brain:
         if t - t0 >= _MIN_DIFF_GAP and dist < _TRACK_GATE:
             vel = (new - pos) / (t - t0)
         self.opponents[best] = [t, new, vel]
+        row = self._others[best]
+        row[0:2] = new
+        row[3:5] = vel
 
     # ------------------------------------------------------------------------------------
 
@@ -370,10 +405,12 @@ class Brain:
         if self.tracker is not None:
             est = self.tracker.estimate(t)
             if est is not None:
-                velocity = est[2:4]
-                speed = math.hypot(*velocity)
+                _, _, vx, vy = est.tolist()
+                speed = math.hypot(vx, vy)
                 if speed > _MAX_BALL_SPEED:  # never move lines by an impossible motion
-                    velocity = velocity * (_MAX_BALL_SPEED / speed)
+                    k = _MAX_BALL_SPEED / speed
+                    vx, vy = vx * k, vy * k
+                velocity = (vx, vy)
         ranges = [ln.range for ln in lines]
         known = [r for r in ranges if math.isfinite(r)]
         if min(known, default=1.0) <= 0.0:
@@ -384,26 +421,33 @@ class Brain:
             fused = fuse_lines(
                 [list(ln.origin) for ln in lines], [ln.angle for ln in lines], ranges,
                 self.power, p.bearing_sigma, rel, MIN_CROSSING_ANGLE,
-                [ln.stamp for ln in lines], t,
-                None if velocity is None else (float(velocity[0]), float(velocity[1])),
-                pose_sigmas=self.pose_sigmas)
+                [ln.stamp for ln in lines], t, velocity, pose_sigmas=self.pose_sigmas)
         except ValueError:  # bearings only, no crossing: no position
             return
         point = fused.point
-        # (fuse_lines builds an exactly symmetric covariance, as the tracker takes it.)
-        cov = fused.cov + _MIN_SIGMA**2 * np.eye(2)
+        px, py = point.tolist()
+        # (fuse_lines builds an exactly symmetric covariance, as the tracker takes it.) The
+        # floor's variance on the diagonal, + 0.0 off it (as adding the matrix did: -0.0
+        # becomes 0.0).
+        (c00, c01), (c10, c11) = fused.cov.tolist()
+        floor = _MIN_SIGMA**2
+        cov = np.array([[c00 + floor, c01 + 0.0], [c10 + 0.0, c11 + floor]])
         x0, x1, y0, y1 = p.bounds
-        if not (np.isfinite(point).all() and np.isfinite(cov).all()
-                and x0 <= point[0] <= x1 and y0 <= point[1] <= y1):
+        if not (math.isfinite(px) and math.isfinite(py) and math.isfinite(c00 + floor)
+                and math.isfinite(c01) and math.isfinite(c10) and math.isfinite(c11 + floor)
+                and x0 <= px <= x1 and y0 <= py <= y1):
             return  # no ball can be there (outside the walls), or a degenerate fusion
+        self._ball_memo = None
         if self.tracker is not None:
             self.tracker.update_fused(t, point, cov)
-        self.points.append((t, float(point[0]), float(point[1])))
+        self.points.append((t, px, py))
         self.fused_at, self.fused_lines, self.fused_cov = t, len(lines), cov
 
     def ball_point(self, t: float) -> np.ndarray | None:
         """The believed ball ``(x, y, vx, vy)`` at ``t`` (None if never seen); a prediction
-        that would leave the walled area stops at the wall."""
+        that would leave the walled area stops at the wall. A new array each call (the
+        tracker keeps its estimate at the latest time asked for; without a tracker the
+        latest fused points' is kept until the next fusion)."""
         if self.tracker is not None:
             est = self.tracker.estimate(t)
             if est is None:
@@ -412,6 +456,14 @@ class Brain:
             if not (x0 <= est[0] <= x1 and y0 <= est[1] <= y1):
                 est = np.array([min(x1, max(x0, est[0])), min(y1, max(y0, est[1])), 0.0, 0.0])
             return est
+        if self._ball_memo is None:
+            self._ball_memo = (self._fused_point(),)
+        b = self._ball_memo[0]
+        return None if b is None else b.copy()
+
+    def _fused_point(self) -> np.ndarray | None:
+        """The latest fused point with the velocity of the latest two at least
+        ``_MIN_DIFF_GAP`` apart (zero without such a pair); None before the first."""
         if not self.points:
             return None
         t1, x1, y1 = self.points[-1]
@@ -496,19 +548,16 @@ class Brain:
 
     def belief(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         """``ball`` (6,) and ``robots`` (N, 6) as this robot believes them at ``t``."""
-        p = self.context
-        ball = np.zeros(6)
         b = self.ball_point(t)
-        if b is not None:
-            ball[0:2], ball[3:5] = b[0:2], b[2:4]
-        robots = np.zeros((p.n_robots, 6))
-        pose = self.estimate_pose()
+        if b is None:
+            ball = np.zeros(6)
+        else:
+            bx, by, bvx, bvy = b.tolist()
+            ball = np.array([bx, by, 0.0, bvx, bvy, 0.0])
+        robots = self._others.copy()
+        x, y, theta = self.estimate_pose().tolist()
         gx, gy, gw = self.gait_velocity
-        c, s = math.cos(pose[2]), math.sin(pose[2])
-        robots[self.i] = (*pose, c * gx - s * gy, s * gx + c * gy, gw)
-        for j, (_t, mpose, mvel) in self.mate_poses.items():
-            robots[j, 0:3], robots[j, 3:6] = mpose, mvel
-        for j, (_t, pos, vel) in self.opponents.items():
-            robots[j, 0:2], robots[j, 3:5] = pos, vel
+        c, s = math.cos(theta), math.sin(theta)
+        robots[self.i] = (x, y, theta, c * gx - s * gy, s * gx + c * gy, gw)
         return ball, robots
 

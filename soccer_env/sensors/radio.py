@@ -95,16 +95,19 @@ class TeamRadio:
         if not receivers:
             return 0
         self.sent += 1
-        lost = self.rng.random(len(receivers)) < self.spec.loss
-        delay = self.spec.latency + self.spec.jitter * self.rng.random(len(receivers))
+        spec = self.spec
+        # Per receiver: lost with probability ``loss``, else late by ``latency + jitter u``
+        # (plain floats: a handful of receivers).
+        lost = self.rng.random(len(receivers)).tolist()
+        delay = self.rng.random(len(receivers)).tolist()
         reached = 0
-        for name, gone, d in zip(receivers, lost, delay):
-            if gone:
+        for name, u, v in zip(receivers, lost, delay):
+            if u < spec.loss:
                 self.lost += 1
                 continue
             self._seq += 1
             heapq.heappush(self._queues.setdefault(name, []),
-                           (now + float(d), self._seq, message))
+                           (now + (spec.latency + spec.jitter * v), self._seq, message))
             reached += 1
         return reached
 

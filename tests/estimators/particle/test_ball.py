@@ -278,3 +278,23 @@ def test_update_fused_is_update_without_the_checks():
     np.testing.assert_array_equal(runs[0][0], runs[1][0])
     np.testing.assert_array_equal(runs[0][1], runs[1][1])
     assert runs[0][2] == runs[1][2] >= 1
+
+
+def test_an_estimate_kept_for_its_time_is_a_new_array_and_follows_the_filter():
+    rng = np.random.default_rng(4)
+    a = ParticleBallTracker(np.random.default_rng(1))
+    b = ParticleBallTracker(np.random.default_rng(1))
+    t = 0.0
+    for k in range(40):
+        t += 0.04
+        z = np.array([0.5 * t, -0.2 * t]) + rng.normal(0.0, 0.01, 2)
+        first = a.estimate(t + 0.02)  # asked for before and after each change of the filter
+        if first is not None:
+            first[:] = 99.0  # a caller's array: changing it changes nothing kept
+        a.update(t, z, 0.01)
+        b.update(t, z, 0.01)
+        if k % 5 == 0:
+            a.predict_to(t + 0.01)
+            b.predict_to(t + 0.01)
+        for q in (t + 0.02, t + 0.02, t - 0.01, t + 0.02):
+            assert np.array_equal(a.estimate(q), b.estimate(q))

@@ -382,3 +382,26 @@ def test_match_beliefs_of_the_ball_stay_inside_the_walls():
         for info in infos.values():
             bx, by = info["estimate"]["ball_position"]
             assert abs(bx) <= wx + 1e-9 and abs(by) <= wy + 1e-9
+
+
+@pytest.mark.parametrize("tracker", ["mfbpf", "none"])
+def test_beliefs_asked_for_again_are_equal_new_arrays(tracker):
+    env = keeper(mates=3, shots=None, ball_tracker=tracker)
+    env.reset(seed=1)
+    team = env.pipelines[0]
+    for _ in range(120):
+        env.step(STAND)
+        now = team.time
+        for i in team.observers:
+            brain = team.brain(i)
+            ball, robots = brain.belief(now)
+            again = brain.belief(now)
+            assert np.array_equal(ball, again[0]) and np.array_equal(robots, again[1])
+            ball[:] = robots[:] = np.nan  # the caller's arrays: nothing kept changes
+            attention = team.attention(i, now)
+            assert np.array_equal(attention.pose, again[1][i, 0:3])
+            point = brain.ball_point(now)
+            if point is not None:
+                assert np.array_equal(point[0:2], again[0][0:2])
+                point[:] = np.nan
+                assert np.array_equal(brain.ball_point(now)[2:4], again[0][3:5])
