@@ -63,6 +63,8 @@ __all__ = ["OverheadPixelDetector", "BallImageTracker"]
 
 #: Heading candidates of the dot-layout match [rad].
 _HEADINGS = np.radians(np.arange(0.0, 360.0, 5.0))
+#: Their cosines and sines.
+_COS, _SIN = np.cos(_HEADINGS), np.sin(_HEADINGS)
 #: Particles of the mean-shift particle filters (Li et al. 2010: about 20 suffice).
 _PARTICLES = 20
 
@@ -215,7 +217,7 @@ class OverheadPixelDetector:
         dots fall on the most probability of their colours."""
         layout, names = self._dots[i]
         r = self.renderers[cam]
-        c, s = np.cos(_HEADINGS), np.sin(_HEADINGS)
+        c, s = _COS, _SIN
         m = self._windows[cam][0]
         # Dot centres in pixels for every candidate heading: field +y is image -v.
         du = (c[:, None] * layout[None, :, 0] - s[:, None] * layout[None, :, 1]) / m
