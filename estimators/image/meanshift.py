@@ -110,6 +110,17 @@ class RegionImage:
         self._boxes.append((a, b, c, d))
         return self.array
 
+    def refill(self, fill) -> RegionImage:
+        """This region image started over on a new image of the same shape, ``fill`` its
+        pixels' (as the constructor's): the regions computed so far are set back to 0 and
+        forgotten, so the image reads as a new one would, without allocating (and zeroing)
+        a whole image again. Returns itself."""
+        for a, b, c, d in self._boxes:
+            self.array[b:d, a:c] = 0
+        self._boxes.clear()
+        self._fill = fill
+        return self
+
     def full(self) -> np.ndarray:
         """The whole image, computed."""
         return self.ensure(0, 0, self.shape[1], self.shape[0])
