@@ -6,6 +6,8 @@
 * :mod:`~estimators.fusion.sightings`: the fusion of a team's timestamped sightings with an
   error covariance for a tracker (:func:`fuse_sightings`, and :func:`fuse_lines` without its
   checks);
+* :mod:`~estimators.fusion.line_kernels`: their maths as compiled kernels over the lines
+  (:func:`~estimators.fusion.line_kernels.fuse_line_rows`);
 * :mod:`~estimators.fusion.triangulation`: a robot's pose from the bearings of three known
   landmarks (:func:`triangulate`), and pose hypotheses from sightings of landmarks known by
   kind only, gathered over several frames (:func:`triangulate_sightings`,

@@ -58,6 +58,12 @@ takes it at a first fused point (weights ``1 / L``) and fuses again.
 sightings (some with an estimated range, some bearing-only), moves them to a common time with a
 velocity estimate, falls back to the ranged point estimates when the lines do not cross well,
 and estimates the fused point's error covariance for a tracker.
+
+Two forms of the normal equations' sums remain, one solve: :func:`hough_fuse` (the array API,
+any number of lines) sums with numpy (pairwise summation, which differs from a running sum in
+the last bits from eight lines on), the compiled fusion of
+:mod:`~estimators.fusion.line_kernels` sums in the lines' order; both solve with
+:func:`~estimators.fusion.line_kernels.solve_normal`.
 """
 
 from __future__ import annotations
@@ -69,6 +75,7 @@ import numpy as np
 
 from ..checks import check_sigma
 from ..registry import Registry
+from .line_kernels import MIN_CONDITION, solve_normal
 
 __all__ = ["hough_lines", "hough_fuse", "fusion_weights", "line_offset_variance",
            "weighting_power", "FUSION_WEIGHTINGS", "INVERSE_VARIANCE", "WEIGHTING_NAMES",
@@ -101,9 +108,6 @@ WEIGHTING_NAMES: tuple[str, ...] = (*FUSION_WEIGHTINGS, INVERSE_VARIANCE)
 #: The shallowest crossing at which :func:`fuse_sightings` intersects lines by default [rad].
 MIN_CROSSING_ANGLE = math.radians(5.0)
 
-#: Below this ratio ``det M / trace(M)^2`` of the normal matrix ``M = sum K n n^T`` the lines
-#: are taken as parallel (no unique crossing point).
-MIN_CONDITION = 1e-9
 
 
 def _directions(origins: np.ndarray, directions: np.ndarray | None,
@@ -250,25 +254,19 @@ def hough_fuse(origins: np.ndarray | Sequence[Sequence[float]],
     if np.count_nonzero(k > 0.0) < 2:
         raise ValueError(f"need at least two lines with positive weight to fuse, got "
                          f"{np.count_nonzero(k > 0.0)}")
-    point, _ = _solve(theta, rho, k, MIN_CONDITION)
+    point = _solve(theta, rho, k)
     if point is None:
         raise ValueError("the lines are (nearly) parallel: no unique crossing point")
     return point
 
 
-def _solve(theta: np.ndarray, rho: np.ndarray, k: np.ndarray, min_condition: float
-           ) -> tuple[np.ndarray | None, np.ndarray]:
-    """The weighted least-squares point of the lines and the normal matrix
-    ``M = sum K n n^T`` (``n = (cos theta, sin theta)``); the point is None when
-    ``det M / trace(M)^2 <= min_condition`` (the lines (nearly) parallel)."""
+def _solve(theta: np.ndarray, rho: np.ndarray, k: np.ndarray) -> np.ndarray | None:
+    """The weighted least-squares point of the lines (normals ``n = (cos theta,
+    sin theta)``), None when the lines are (nearly) parallel: numpy's sums of the normal
+    equations (pairwise, as for any number of lines), solved by
+    :func:`~estimators.fusion.line_kernels.solve_normal`."""
     c, s = np.cos(theta), np.sin(theta)
     a11, a12, a22 = np.sum(k * c * c), np.sum(k * c * s), np.sum(k * s * s)
     b1, b2 = np.sum(k * c * rho), np.sum(k * s * rho)
-    M = np.array([[a11, a12], [a12, a22]])
-    det = a11 * a22 - a12 * a12
-    trace = a11 + a22
-    # det / trace^2 is the product over the square of the sum of the eigenvalues: near 0
-    # when every line has (nearly) the same normal.
-    if trace <= 0.0 or det <= min_condition * trace * trace:
-        return None, M
-    return np.array([(a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det]), M
+    ok, x, y = solve_normal(float(a11), float(a12), float(a22), float(b1), float(b2))
+    return np.array([x, y]) if ok else None

@@ -14,10 +14,10 @@ import numpy as np
 from ..checks import check_sigma
 from .hough import (
     INVERSE_VARIANCE,
-    MIN_CONDITION,
     MIN_CROSSING_ANGLE,
     weighting_power,
 )
+from .line_kernels import NO_POSITION, SQRT_NEGATIVE, fuse_line_rows
 
 __all__ = ["FusedSighting", "fuse_sightings", "fuse_lines"]
 
@@ -102,20 +102,19 @@ def fuse_sightings(origins: np.ndarray | Sequence[Sequence[float]],
         ValueError: bad shapes or values, or no position (a single bearing-only sighting,
             or bearing-only lines that are parallel).
 
-    Steps 1 to 5 are :func:`fuse_lines`, in plain floats on lists: the hot path (every
-    camera frame of every robot, on a handful of lines), where numpy's per-call overhead
-    would cost several times the arithmetic; a pipeline with checked data calls it directly.
+    Steps 1 to 5 are :func:`fuse_lines`, one compiled pass over the lines (the hot path:
+    every camera frame of every robot, on a handful of lines); a pipeline with checked data
+    calls it directly.
     """
     p, psi, r, power, pose_sigmas, shift = _check_sightings(
         origins, angles, ranges, stamps, now, velocity, weighting, bearing_sigma,
         range_sigma_rel, min_angle, position_sigma, heading_sigma)
     if shift is not None:
         st, t_now, v = shift
-        return fuse_lines(p.tolist(), psi.tolist(), r.tolist(), power, bearing_sigma,
-                          range_sigma_rel, min_angle, st.tolist(), t_now,
-                          (float(v[0]), float(v[1])), pose_sigmas=pose_sigmas)
-    return fuse_lines(p.tolist(), psi.tolist(), r.tolist(), power, bearing_sigma,
-                      range_sigma_rel, min_angle, pose_sigmas=pose_sigmas)
+        return fuse_lines(p, psi, r, power, bearing_sigma, range_sigma_rel, min_angle, st,
+                          t_now, (float(v[0]), float(v[1])), pose_sigmas=pose_sigmas)
+    return fuse_lines(p, psi, r, power, bearing_sigma, range_sigma_rel, min_angle,
+                      pose_sigmas=pose_sigmas)
 
 
 def _check_sightings(origins, angles, ranges, stamps, now, velocity, weighting: str,
@@ -167,14 +166,15 @@ def _check_sightings(origins, angles, ranges, stamps, now, velocity, weighting: 
     return p, psi, r, power, pose_sigmas, (st, t_now, v)
 
 
-def fuse_lines(P: list[list[float]], angles: list[float], R: list[float], power: float,
-               bearing_sigma: float, range_sigma_rel: float, min_angle: float,
-               stamps: list[float] | None = None, now: float = 0.0,
+def fuse_lines(P: list[list[float]] | np.ndarray, angles: list[float] | np.ndarray,
+               R: list[float] | np.ndarray, power: float, bearing_sigma: float,
+               range_sigma_rel: float, min_angle: float,
+               stamps: list[float] | np.ndarray | None = None, now: float = 0.0,
                velocity: tuple[float, float] | None = None, *,
                pose_sigmas: tuple[float, float] | None = None) -> FusedSighting:
-    """Steps 1 to 5 of :func:`fuse_sightings` without its checks, on plain lists, for
-    callers with validated data (a pipeline's own sighting lines): ``P`` the origins
-    ``[x, y]`` [m], ``angles`` [rad], ``R`` the ranges [m] (NaN: bearing only, else > 0),
+    """Steps 1 to 5 of :func:`fuse_sightings` without its checks, for callers with validated
+    data (a pipeline's own sighting lines): ``P`` the origins ``[x, y]`` [m], ``angles``
+    [rad], ``R`` the ranges [m] (NaN: bearing only, else > 0), as lists or arrays;
     ``power`` the weighting's (``K = 1 / L^power``); with ``stamps`` [s] and ``velocity``
     ``(vx, vy)`` [m/s], every origin is first moved by ``velocity (now - stamp)``. With
     ``pose_sigmas`` ``(position_sigma [m], heading_sigma [rad])``, crossing lines are fused
@@ -182,167 +182,31 @@ def fuse_lines(P: list[list[float]], angles: list[float], R: list[float], power:
     (``fuse_sightings(weighting="inverse_variance")``, which passes ``power`` 1); None (the
     default): ``K = 1 / L^power`` only.
 
+    The maths is one compiled pass over the lines
+    (:func:`~estimators.fusion.line_kernels.fuse_line_rows`): this runs at every camera
+    frame of every robot, on a handful of lines.
+
     Raises:
         ValueError: no position (see :func:`fuse_sightings`).
     """
-    # Plain floats: a handful of lines, where numpy's per-call overhead would cost several
-    # times the arithmetic (this runs at every camera frame of every robot).
+    p = np.ascontiguousarray(P, dtype=np.float64).reshape(-1, 2)
+    n = len(p)
+    psi = np.ascontiguousarray(angles, dtype=np.float64)
     if stamps is not None and velocity is not None:
-        vx, vy = velocity  # each line moved with the target since its stamp
-        P = [[x + (now - t) * vx, y + (now - t) * vy] for (x, y), t in zip(P, stamps)]
-    n = len(P)
-    ux = [math.cos(a) for a in angles]
-    uy = [math.sin(a) for a in angles]
-    has = [math.isfinite(v) for v in R]
-    if n >= 2:
-        far = 2.0 * max((v for v, h in zip(R, has) if h), default=0.5)
-        k = [(v if h else far) ** -power for v, h in zip(R, has)]
-        # Line normals n = (cos theta, sin theta) = (-sin psi, cos psi), rho = p . n.
-        nx, ny = [-v for v in uy], ux
-        rho = [x * a + y * b for (x, y), a, b in zip(P, nx, ny)]
-        crossing = _solve_lines(nx, ny, rho, k)
-        if crossing is not None:
-            _, M0 = _solve_lines(nx, ny, rho, [1.0] * n, normal_only=True)
-            a11, a12, a22 = M0
-            if (a11 * a22 - a12 * a12) / (a11 + a22) ** 2 > 0.25 * math.sin(min_angle) ** 2:
-                if pose_sigmas is not None:
-                    return _crossing_inverse_variance(crossing, P, nx, ny, rho, k,
-                                                      bearing_sigma, pose_sigmas)
-                return _crossing(crossing, P, nx, ny, rho, k, bearing_sigma)
-    if any(has):
-        return _ranged_mean(P, R, ux, uy, has, power, bearing_sigma, range_sigma_rel)
-    if n >= 2 and crossing is not None:
-        if pose_sigmas is not None:
-            return _crossing_inverse_variance(crossing, P, nx, ny, rho, k, bearing_sigma,
-                                              pose_sigmas)
-        return _crossing(crossing, P, nx, ny, rho, k, bearing_sigma)
-    raise ValueError("no position: need two crossing lines or a sighting with a range, got "
-                     f"{n} bearing-only sighting(s)" + (" (parallel)" if n > 1 else ""))
-
-
-def _ranged_mean(P: list[list[float]], R: list[float], ux: list[float], uy: list[float],
-                 has: list[bool], power: float, bearing_sigma: float, range_sigma_rel: float
-                 ) -> FusedSighting:
-    """Step 4 of :func:`fuse_sightings`: the weighted mean of the point estimates of the
-    sightings that have a range (``has``), with its covariance."""
-    n = len(P)
-    idx = [i for i in range(n) if has[i]]
-    kq = [R[i] ** -power for i in idx]
-    total = sum(kq)
-    wq = [v / total for v in kq]
-    qx = [P[i][0] + R[i] * ux[i] for i in idx]
-    qy = [P[i][1] + R[i] * uy[i] for i in idx]
-    px_ = sum(w * x for w, x in zip(wq, qx))
-    py_ = sum(w * y for w, y in zip(wq, qy))
-    b2, rel2 = bearing_sigma**2, range_sigma_rel**2
-    # cov_i = r^2 (b^2 I + (rel^2 - b^2) u u^T); cov = sum w^2 cov_i.
-    c00 = c01 = c11 = 0.0
-    covs = []
-    for w, i in zip(wq, idx):
-        r2, a, b = R[i] ** 2, ux[i], uy[i]
-        d = rel2 - b2
-        ci = (r2 * (b2 + d * a * a), r2 * d * a * b, r2 * (b2 + d * b * b))
-        covs.append(ci)
-        c00 += w * w * ci[0]
-        c01 += w * w * ci[1]
-        c11 += w * w * ci[2]
-    m = len(idx)
-    if m >= 2:
-        chi2 = 0.0
-        for (s00, s01, s11), x, y in zip(covs, qx, qy):
-            ex, ey = x - px_, y - py_
-            chi2 += (s11 * ex * ex - 2.0 * s01 * ex * ey + s00 * ey * ey) / (
-                s00 * s11 - s01 * s01)
-        f = max(1.0, chi2 / (2.0 * (m - 1)))
-        c00, c01, c11 = c00 * f, c01 * f, c11 * f
-    cov = np.array([[c00, c01], [c01, c11]])
-    return FusedSighting(np.array([px_, py_]), m, False, math.sqrt(0.5 * (c00 + c11)), cov)
-
-
-def _solve_lines(nx: list[float], ny: list[float], rho: list[float], k: list[float],
-                 normal_only: bool = False):
-    """:func:`~estimators.fusion.hough.hough_fuse`'s solve in plain floats: the weighted
-    least-squares point ``(X, Y)`` and the normal matrix entries ``(a11, a12, a22)``; None
-    when the lines are (nearly) parallel (with ``normal_only``, ``(None, (a11, a12, a22))``)."""
-    a11 = a12 = a22 = b1 = b2 = 0.0
-    for a, b, q, w in zip(nx, ny, rho, k):
-        wa, wb = w * a, w * b
-        a11 += wa * a
-        a12 += wa * b
-        a22 += wb * b
-        b1 += wa * q
-        b2 += wb * q
-    if normal_only:
-        return None, (a11, a12, a22)
-    det = a11 * a22 - a12 * a12
-    trace = a11 + a22
-    if trace <= 0.0 or det <= MIN_CONDITION * trace * trace:
-        return None
-    return ((a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det), (a11, a12, a22)
-
-
-#: The smallest offset variance [m^2] :func:`_crossing_inverse_variance` divides by (a line
-#: whose origin is at the fused point, with no position error, would have none).
-_MIN_OFFSET_VARIANCE = 1e-12
-
-
-def _crossing_inverse_variance(crossing: tuple, P: list, nx: list[float], ny: list[float],
-                               rho: list[float], k: list[float], bearing_sigma: float,
-                               pose_sigmas: tuple[float, float]) -> FusedSighting:
-    """Step 3 of :func:`fuse_sightings` with ``weighting="inverse_variance"``: from the first
-    fused point ``crossing`` (weights ``k``), the offset variances
-    ``s_i^2 = D_i^2 (bearing_sigma^2 + heading_sigma^2) + position_sigma^2`` and the point
-    fused with ``K_i = 1 / s_i^2`` (the first one if those weights make the lines
-    degenerate), with its covariance (:func:`_crossing` with ``s_i`` as the lines' sigmas)."""
-    position_sigma, heading_sigma = pose_sigmas
-    a = bearing_sigma * bearing_sigma + heading_sigma * heading_sigma
-    c = position_sigma * position_sigma
-
-    def variances(point: tuple[float, float]) -> list[float]:
-        X, Y = point  # plain floats, as line_offset_variance's formula
-        return [max(((X - x) ** 2 + (Y - y) ** 2) * a + c, _MIN_OFFSET_VARIANCE)
-                for x, y in P]
-
-    var = variances(crossing[0])
-    kv = [1.0 / v for v in var]
-    again = _solve_lines(nx, ny, rho, kv)
-    if again is None:
-        return _crossing(crossing, P, nx, ny, rho, k, bearing_sigma,
-                         [math.sqrt(v) for v in var])
-    return _crossing(again, P, nx, ny, rho, kv, bearing_sigma,
-                     [math.sqrt(v) for v in variances(again[0])])
-
-
-def _crossing(crossing: tuple, P: list, nx: list[float], ny: list[float], rho: list[float],
-              k: list[float], bearing_sigma: float, sigmas: list[float] | None = None
-              ) -> FusedSighting:
-    """Step 3 of :func:`fuse_sightings`: the fused point with its covariance
-    ``M^-1 (sum K^2 s^2 n n^T) M^-1``, inflated by ``chi^2 / (n - 2)`` for three or more
-    lines that disagree more than the model says; ``s_i`` is ``bearing_sigma * D_i``, or
-    ``sigmas[i]`` [m] when given."""
-    (X, Y), (a11, a12, a22) = crossing
-    det = a11 * a22 - a12 * a12
-    i00, i01, i11 = a22 / det, -a12 / det, a11 / det  # M^-1
-    s00 = s01 = s11 = 0.0
-    # The lines' lateral standard deviations at the fused point.
-    sig = [bearing_sigma * math.hypot(X - x, Y - y) for x, y in P] if sigmas is None \
-        else sigmas
-    for a, b, w, sd in zip(nx, ny, k, sig):
-        g = (w * sd) ** 2
-        s00 += g * a * a
-        s01 += g * a * b
-        s11 += g * b * b
-    # cov = Minv S Minv (all symmetric 2 x 2).
-    t00, t01 = i00 * s00 + i01 * s01, i00 * s01 + i01 * s11
-    t10, t11 = i01 * s00 + i11 * s01, i01 * s01 + i11 * s11
-    c00 = t00 * i00 + t01 * i01
-    c01 = 0.5 * ((t00 * i01 + t01 * i11) + (t10 * i00 + t11 * i01))
-    c11 = t10 * i01 + t11 * i11
-    n = len(rho)
-    if n >= 3:
-        chi2 = sum(((q - a * X - b * Y) / max(sd, 1e-12)) ** 2
-                   for q, a, b, sd in zip(rho, nx, ny, sig))
-        f = max(1.0, chi2 / (n - 2))
-        c00, c01, c11 = c00 * f, c01 * f, c11 * f
-    cov = np.array([[c00, c01], [c01, c11]])
-    return FusedSighting(np.array([X, Y]), n, True, math.sqrt(0.5 * (c00 + c11)), cov)
+        st = np.ascontiguousarray(stamps, dtype=np.float64)
+        shift = (1.0, float(now), float(velocity[0]), float(velocity[1]))
+    else:
+        st, shift = psi, (0.0, 0.0, 0.0, 0.0)  # stamps unused
+    position_sigma, heading_sigma = (0.0, 0.0) if pose_sigmas is None else pose_sigmas
+    settings = (float(bearing_sigma), float(range_sigma_rel), float(min_angle),
+                float(position_sigma), float(heading_sigma),
+                0.0 if pose_sigmas is None else 1.0, float(power), 2.0)
+    point, cov = np.empty(2), np.empty((2, 2))
+    status, n_lines, fused, sigma = fuse_line_rows(
+        p, psi, np.ascontiguousarray(R, dtype=np.float64), st, shift, settings, point, cov)
+    if status == NO_POSITION:
+        raise ValueError("no position: need two crossing lines or a sighting with a range, "
+                         f"got {n} bearing-only sighting(s)" + (" (parallel)" if n > 1 else ""))
+    if status == SQRT_NEGATIVE:
+        raise ValueError("math domain error")
+    return FusedSighting(point, n_lines, fused, sigma, cov)

@@ -4,6 +4,8 @@ table or a hue histogram, or a frame difference); numpy-only, whatever made the 
 * :mod:`~estimators.image.meanshift`: mean shift on a weight image (:func:`mean_shift`) and
   the batched window machinery the trackers share (:class:`MeanShiftWindows`);
 * :mod:`~estimators.image.checks`: the image trackers' argument checks;
+* :mod:`~estimators.image.window_kernels`: the window machinery as compiled kernels (the
+  global search's window masses, the windows' pixels, the mean-shift step);
 * :mod:`~estimators.image.mspf`: the feature-restricted mean-shift particle filter of Li,
   Wu and Kong (2010; :class:`MeanShiftParticleFilter`) and the plain particle filter it
   is compared with (:class:`ParticleFilterTracker`);

@@ -87,10 +87,13 @@ def grey(image: np.ndarray) -> np.ndarray:
     return cv2.cvtColor(image, cv2.COLOR_RGB2GRAY) if image.ndim == 3 else image
 
 
-def difference_image(prev: np.ndarray, cur: np.ndarray) -> RegionImage:
+def difference_image(prev: np.ndarray, cur: np.ndarray, reuse: RegionImage | None = None
+                     ) -> RegionImage:
     """:func:`frame_difference` of two grey uint8 frames (:func:`grey`) as a
     :class:`~estimators.image.meanshift.RegionImage`, computed box by box where the trackers
-    read it (a box's pixels are the whole difference's: it is per pixel)."""
+    read it (a box's pixels are the whole difference's: it is per pixel); with ``reuse`` (a
+    region image of the same shape that nothing reads any more, e.g. the previous frame's),
+    that one :meth:`~estimators.image.meanshift.RegionImage.refill`-ed."""
     if prev.shape != cur.shape or prev.ndim != 2:
         raise ValueError(f"frames must be grey images of one shape, got {prev.shape} and "
                          f"{cur.shape}")
@@ -98,7 +101,15 @@ def difference_image(prev: np.ndarray, cur: np.ndarray) -> RegionImage:
     def fill(x0: int, y0: int, x1: int, y1: int) -> np.ndarray:
         return _difference(prev[y0:y1, x0:x1], cur[y0:y1, x0:x1])
 
-    return RegionImage(cur.shape, fill)
+    return _region(cur.shape, fill, reuse)
+
+
+def _region(shape: tuple[int, ...], fill, reuse: RegionImage | None) -> RegionImage:
+    """A :class:`~estimators.image.meanshift.RegionImage` of ``shape`` and ``fill``: ``reuse``
+    refilled when it has that shape, else a new one."""
+    if reuse is not None and reuse.shape == (int(shape[0]), int(shape[1])):
+        return reuse.refill(fill)
+    return RegionImage(shape, fill)
 
 
 def _rgb(image: np.ndarray) -> np.ndarray:
@@ -202,17 +213,20 @@ class ColourTable:
         image: float32 ``(H, W)`` in [0, 1] (Li et al.'s 2010 colour image)."""
         return _look_up(_rgb(image), self._hists[self._index(cls)])
 
-    def region_image(self, image: np.ndarray, cls: str) -> RegionImage:
+    def region_image(self, image: np.ndarray, cls: str, reuse: RegionImage | None = None
+                     ) -> RegionImage:
         """:meth:`probability` of ``image`` as a :class:`~estimators.image.meanshift.
         RegionImage`: computed box by box where the trackers read it (a box's pixels are
-        the whole image's: the look-up is per pixel)."""
+        the whole image's: the look-up is per pixel); with ``reuse`` (a region image of the
+        same shape that nothing reads any more, e.g. the previous frame's), that one
+        :meth:`~estimators.image.meanshift.RegionImage.refill`-ed."""
         hist = self._hists[self._index(cls)]
         image = _rgb(image)
 
         def fill(x0: int, y0: int, x1: int, y1: int) -> np.ndarray:
             return _look_up(np.ascontiguousarray(image[y0:y1, x0:x1]), hist)
 
-        return RegionImage(image.shape[:2], fill)
+        return _region(image.shape[:2], fill, reuse)
 
     def classify(self, image: np.ndarray, threshold: float = 0.5) -> np.ndarray:
         """Most probable class index per pixel (``int8``), -1 where no class reaches

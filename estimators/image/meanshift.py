@@ -27,7 +27,10 @@ reproduces OpenCV's windows exactly.
 Every tracker runs mean shift on all its windows at once: one gather of the ``N`` windows'
 pixels through flat indices, ``(N, h w)``, and one matrix product with the ``(h w, 4)`` matrix
 of ``[k, k x, k y, 1]`` per iteration, so a frame costs ``O(N iterations h w)``, independent
-of the image size. Summed-area tables (integral images) make a window's sum ``O(1)`` but cost
+of the image size. The gather and the step are compiled kernels
+(:mod:`~estimators.image.window_kernels`); the product stays numpy's (the BLAS library's
+order of summation, which the results depend on in their last bits).
+Summed-area tables (integral images) make a window's sum ``O(1)`` but cost
 ``O(H W)`` per image and per moment (three tables per image for mean shift): they pay when
 many targets share one image, and are used here only for the global search (one table, the
 sum of every window position at once).
@@ -42,6 +45,7 @@ import numpy as np
 
 from ..registry import Registry
 from .checks import check_image, check_int, check_number
+from .window_kernels import gather_windows, mean_shift_step
 
 __all__ = ["mean_shift", "MEAN_SHIFT_KERNELS", "RegionImage", "MeanShiftWindows"]
 
@@ -110,6 +114,17 @@ class RegionImage:
         self._boxes.append((a, b, c, d))
         return self.array
 
+    def refill(self, fill) -> RegionImage:
+        """This region image started over on a new image of the same shape, ``fill`` its
+        pixels' (as the constructor's): the regions computed so far are set back to 0 and
+        forgotten, so the image reads as a new one would, without allocating (and zeroing)
+        a whole image again. Returns itself."""
+        for a, b, c, d in self._boxes:
+            self.array[b:d, a:c] = 0
+        self._boxes.clear()
+        self._fill = fill
+        return self
+
     def full(self) -> np.ndarray:
         """The whole image, computed."""
         return self.ensure(0, 0, self.shape[1], self.shape[0])
@@ -170,9 +185,28 @@ class MeanShiftWindows:
                    y0: np.ndarray) -> np.ndarray:
         """``(N, 4)`` kernel moments ``(m00, m10, m01, mass)`` (local coordinates; ``mass``
         the plain sum) of the image ``sum_j c_j I_j`` given as ``[(flat I_j, c_j)]``."""
+        x0 = np.ascontiguousarray(x0, dtype=np.intp)
+        y0 = np.ascontiguousarray(y0, dtype=np.intp)
+        return self._moments(flats, x0, y0, np.arange(len(x0)), len(x0))
+
+    def _moments(self, flats: Sequence[tuple[np.ndarray, float]], x0: np.ndarray,
+                 y0: np.ndarray, active: np.ndarray, count: int) -> np.ndarray:
+        """The moments of the windows ``active[:count]``: their pixels gathered and combined
+        by :func:`~estimators.image.window_kernels.gather_windows` (one or two flat images of
+        one dtype; more, or mixed dtypes, in numpy), then one matrix product with
+        :attr:`moments`."""
+        first = flats[0][0]
+        if len(flats) <= 2 and all(f.dtype == first.dtype for f, _ in flats):
+            second = flats[-1][0]
+            scales = np.array([flats[0][1], flats[-1][1]], dtype=first.dtype)
+            patch = np.empty((count, self.area))
+            gather_windows(first, second, scales, len(flats) == 2, x0, y0, active, count,
+                           self.width, self.offsets, patch)
+            return patch @ self.moments
+        rows = active[:count]
         patch = None
         for flat, c in flats:
-            p = self.gather(flat, x0, y0)
+            p = self.gather(flat, x0[rows], y0[rows])
             part = p if c == 1.0 else c * p
             patch = part if patch is None else patch + part
         return patch.astype(np.float64, copy=False) @ self.moments
@@ -180,30 +214,26 @@ class MeanShiftWindows:
     def shift(self, flats: Sequence[tuple[np.ndarray, float]], x0: np.ndarray, y0: np.ndarray,
               max_iter: int, eps: float
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Mean shift of every window (see the module docstring). Returns the converged
-        corners, the iteration counts and the moments at the converged windows."""
-        x0, y0 = x0.copy(), y0.copy()
+        """Mean shift of every window (see the module docstring): the moments of the
+        windows still moving, then
+        :func:`~estimators.image.window_kernels.mean_shift_step`, until none moves or
+        ``max_iter`` steps. Returns the converged corners, the iteration counts and the
+        moments at the converged windows."""
+        x0 = np.array(x0, dtype=np.intp)
+        y0 = np.array(y0, dtype=np.intp)
         n = len(x0)
         iters = np.zeros(n, dtype=np.intp)
         active = np.arange(n)
-        eps2 = eps * eps
+        count = n
+        origin = (float(self.ox), float(self.oy))
         for _ in range(max_iter):
-            mom = self.moments_of(flats, x0[active], y0[active])
-            m00 = mom[:, 0]
-            has_mass = m00 > 1e-12
-            safe = np.where(has_mass, m00, 1.0)
-            dx = np.where(has_mass, np.rint(mom[:, 1] / safe - self.ox), 0.0).astype(np.intp)
-            dy = np.where(has_mass, np.rint(mom[:, 2] / safe - self.oy), 0.0).astype(np.intp)
-            nx = np.minimum(np.maximum(x0[active] + dx, 0), self.width - self.w)
-            ny = np.minimum(np.maximum(y0[active] + dy, 0), self.height - self.h)
-            mx, my = nx - x0[active], ny - y0[active]
-            iters[active[has_mass]] += 1
-            x0[active], y0[active] = nx, ny
-            moving = has_mass & ((mx != 0) | (my != 0)) & (mx * mx + my * my >= eps2)
-            active = active[moving]
-            if active.size == 0:
+            mom = self._moments(flats, x0, y0, active, count)
+            count = mean_shift_step(mom, x0, y0, active, count, iters, origin,
+                                    self.width - self.w, self.height - self.h,
+                                    float(eps * eps))
+            if count == 0:
                 break
-        return x0, y0, iters, self.moments_of(flats, x0, y0)
+        return x0, y0, iters, self._moments(flats, x0, y0, np.arange(n), n)
 
     def centroids(self, mom: np.ndarray, x0: np.ndarray, y0: np.ndarray) -> np.ndarray:
         """Image coordinates of the kernel-weighted centroids ((N, 2)); the window centre

@@ -67,6 +67,7 @@ from ..checks import MAX_PARTICLES, check_count
 from ..particle.core import systematic_resample
 from .checks import check_image, check_int, check_number, check_point, check_window_size
 from .meanshift import MEAN_SHIFT_KERNELS, MeanShiftWindows, RegionImage
+from .window_kernels import window_mass_scores
 
 __all__ = ["MeanShiftParticleFilter", "ParticleFilterTracker"]
 
@@ -393,21 +394,20 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         colour, _ = self._images(colour_image, None)
         win = self._win
         w, h = win.w, win.h
-        s = np.zeros((colour.shape[0] + 1, colour.shape[1] + 1))
-        np.cumsum(colour, axis=0, out=s[1:, 1:])
-        np.cumsum(s[1:, 1:], axis=1, out=s[1:, 1:])
-        box = s[h:, w:] - s[:-h, w:] - s[h:, :-w] + s[:-h, :-w]  # (H-h+1, W-w+1)
         area = self._area_in_use(colour)
-        ok = np.abs(box - area) <= self.area_tolerance * area
-        if not ok.any():
+        # The colour mass of every window position (one summed-area table), -inf where the
+        # area restriction rejects it.
+        score = np.empty((colour.shape[0] - h + 1, colour.shape[1] - w + 1))
+        if not window_mass_scores(colour, w, h, area, self.area_tolerance * area, score):
             return None
-        score = np.where(ok, box, -np.inf).ravel()
+        cols = score.shape[1]
+        score = score.ravel()
         top = np.argsort(-score)[: 50 * candidates]
         picks: list[tuple[int, int]] = []
         for flat in top.tolist():  # greedy: the largest masses, a window apart
             if not math.isfinite(score[flat]) or len(picks) == candidates:
                 break
-            y, x = divmod(flat, box.shape[1])
+            y, x = divmod(flat, cols)
             if all(abs(x - px) >= w or abs(y - py) >= h for px, py in picks):
                 picks.append((x, y))
         x0 = np.array([p[0] for p in picks], dtype=np.intp)

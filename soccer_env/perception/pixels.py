@@ -12,7 +12,8 @@ vision preset's timing; the detector finds the robots and the ball in each:
   (:class:`estimators.MeanShiftParticleFilter`, 20 particles) on its team colour, started at
   its kick-off pose (robots are placed by the referee); its heading is read from its player
   dots by matching the known dot layout of its number, rotated in 5-degree steps, against the
-  dots' colour probabilities (the best sum wins);
+  dots' colour probabilities (the best sum wins; compiled kernels,
+  :mod:`soccer_env.perception.pixel_kernels`);
 * the ball is tracked the same way on orange; when its tracker loses it next to a robot it is
   taken as occluded by that robot (Li et al.'s 2010 rule) and not reported, so that the filters
   downstream predict it;
@@ -52,6 +53,7 @@ from estimators import (
     PoseMeasurement,
     PositionMeasurement,
 )
+from soccer_env.perception.pixel_kernels import best_heading, dot_pixels
 from soccer_env.presets import BallSpec
 from soccer_env.presets.images import CLASS_ALIASES, OVERHEAD_CLASSES
 from soccer_env.presets.sensors import HeadCameraSpec, VisionSpec
@@ -63,6 +65,8 @@ __all__ = ["OverheadPixelDetector", "BallImageTracker"]
 
 #: Heading candidates of the dot-layout match [rad].
 _HEADINGS = np.radians(np.arange(0.0, 360.0, 5.0))
+#: Their cosines and sines.
+_COS, _SIN = np.cos(_HEADINGS), np.sin(_HEADINGS)
 #: Particles of the mean-shift particle filters (Li et al. 2010: about 20 suffice).
 _PARTICLES = 20
 
@@ -114,7 +118,8 @@ class OverheadPixelDetector:
             patches = PATTERN.patches(t, index[t], s.radius)
             names = list(PATTERN_IDS[index[t]])  # the dots' colours, in patch order
             index[t] += 1
-            self._dots.append((np.array([(p.x, p.y) for p in patches[1:]]), names))
+            self._dots.append((np.array([(p.x, p.y) for p in patches[1:]], dtype=np.float64),
+                               names, np.array([n == "green" for n in names])))
 
     def reset(self, state: WorldState, rng: np.random.Generator) -> None:
         """Start an episode whose robots and ball start as in ``state`` (placed by the
@@ -122,6 +127,8 @@ class OverheadPixelDetector:
         self._track_rng = rng
         c = len(self.renderers)
         self._prev_image: list[np.ndarray | None] = [None] * c
+        # Every camera's region images of the last frame, by class (and "motion").
+        self._regions: list[dict[str, Any]] = [{} for _ in range(c)]
         # Every camera's trackers of every robot and of the ball (None: not tracking there).
         self._trackers: list[list[MeanShiftParticleFilter | None]] = [
             [None] * self.n_robots for _ in range(c)]
@@ -156,13 +163,19 @@ class OverheadPixelDetector:
         mpp, robot_window, ball_window, radius_px = self._windows[cam]
         table = self.table
         # The frame difference (grey levels), computed where the trackers read it.
+        # (The previous frame's region images are refilled: nothing reads them any more.)
+        regions = self._regions[cam]
         prev, cur = self._prev_image[cam], self._grey(image)
-        motion = None if prev is None else self._difference(prev, cur)
+        motion = None if prev is None else self._difference(prev, cur, regions.get("motion"))
         self._prev_image[cam] = cur
         # The class probabilities, looked up only where the trackers and the heading read
         # them (the same pixels as a look-up of the whole image).
-        colours = {c: table.region_image(image, c) for c in ("blue", "yellow", "orange")}
-        dots = {c: table.region_image(image, c) for c in ("pink", "green")}
+        for c in ("blue", "yellow", "orange", "pink", "green"):
+            regions[c] = table.region_image(image, c, regions.get(c))
+        if motion is not None:
+            regions["motion"] = motion
+        colours = {c: regions[c] for c in ("blue", "yellow", "orange")}
+        dots = {c: regions[c] for c in ("pink", "green")}
         trackers = self._trackers[cam]
         ids, poses, pixels = [], [], []
         for i in range(self.n_robots):
@@ -213,20 +226,17 @@ class OverheadPixelDetector:
                  ) -> float:
         """Robot ``i``'s heading [rad]: the rotation of its dot layout (5-degree steps) whose
         dots fall on the most probability of their colours."""
-        layout, names = self._dots[i]
+        layout, names, uses_green = self._dots[i]
         r = self.renderers[cam]
-        c, s = np.cos(_HEADINGS), np.sin(_HEADINGS)
-        m = self._windows[cam][0]
-        # Dot centres in pixels for every candidate heading: field +y is image -v.
-        du = (c[:, None] * layout[None, :, 0] - s[:, None] * layout[None, :, 1]) / m
-        dv = -(s[:, None] * layout[None, :, 0] + c[:, None] * layout[None, :, 1]) / m
-        cols = np.clip(np.rint(u + du).astype(int), 0, r.spec.width - 1)
-        rows = np.clip(np.rint(v + dv).astype(int), 0, r.spec.height - 1)
-        score = np.zeros(len(_HEADINGS))
-        box = (int(cols.min()), int(rows.min()), int(cols.max()) + 1, int(rows.max()) + 1)
-        for k, name in enumerate(names):
-            score += dots[name].ensure(*box)[rows[:, k], cols[:, k]]
-        return float(math.remainder(_HEADINGS[int(np.argmax(score))], 2.0 * math.pi))
+        cols = np.empty((len(_HEADINGS), len(layout)), dtype=np.int64)
+        rows = np.empty_like(cols)
+        box = dot_pixels(float(u), float(v), layout, _COS, _SIN, self._windows[cam][0],
+                         r.spec.width, r.spec.height, cols, rows)
+        for name in ("pink", "green"):
+            if name in names:
+                dots[name].ensure(*box)
+        best = best_heading(dots["pink"].array, dots["green"].array, uses_green, cols, rows)
+        return float(math.remainder(_HEADINGS[best], 2.0 * math.pi))
 
 
 class BallImageTracker:

@@ -14,7 +14,8 @@ is read at a random offset from a bank of Gaussian samples twice the image's siz
 per renderer from a fixed seed (drawing 900 k normals per frame would cost more than the rest of
 the frame): within a frame the samples are independent; consecutive frames read different,
 shifted windows. All per-frame draws come from the ``rng`` given to ``render``, so the same
-generator state gives the same image.
+generator state gives the same image. Both run in one compiled pass over the pixels
+(:func:`~soccer_env.sensors.images.photometry_kernels.light_and_noise`).
 """
 
 from __future__ import annotations
@@ -22,11 +23,11 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-import cv2
 import numpy as np
 
 from soccer_env.presets import RobotSpec
 from soccer_env.sensors.images.patterns import PATTERN_IDS
+from soccer_env.sensors.images.photometry_kernels import light_and_noise
 from soccer_env.state import WorldState
 
 __all__ = ["DRAW_SHIFT", "DRAW_ONE", "Photometry", "robot_markers", "check_robot_count"]
@@ -64,6 +65,7 @@ class Photometry:
             bank_rng = np.random.default_rng(0x5EED)
             self._bank = np.rint(noise_sigma * bank_rng.standard_normal(
                 (2 * height, 2 * width, 3), dtype=np.float32)).astype(np.int16)
+            self._bank_rows = self._bank.reshape(2 * height, 6 * width)
 
     def apply(self, img: np.ndarray, rng: np.random.Generator | None) -> np.ndarray:
         """``img`` (``(height, width, 3)`` ``uint8``) with this frame's lighting and noise
@@ -75,24 +77,26 @@ class Photometry:
         z = float(rng.standard_normal())
         a_u, phi_u = rng.random(2).tolist()
         oy, ox = rng.integers(0, (self.height + 1, self.width + 1)).tolist()
-        out = img
-        if self.gain_sigma > 0.0 or self.gradient > 0.0:
+        lit = self.gain_sigma > 0.0 or self.gradient > 0.0
+        row, column = self._xn, self._yn  # (not read when not lit)
+        if lit:
             gain = min(2.0, max(0.3, 1.0 + self.gain_sigma * z))
             a = self.gradient * a_u
             phi = 2.0 * math.pi * phi_u
             gx, gy = gain * a * math.cos(phi), gain * a * math.sin(phi)
-            ramp = (gain + gx * self._xn)[None, :] + (gy * self._yn)[:, None]
-            # 16-bit intermediate: values above 255 saturate only after the noise.
-            dtype = cv2.CV_16S if self._bank is not None else cv2.CV_8U
-            out = cv2.multiply(img, cv2.merge([ramp, ramp, ramp]), dtype=dtype)
-        if self._bank is not None:
-            window = self._bank[oy:oy + self.height, ox:ox + self.width]
-            # int16 sum saturated to 0..255: what cv2.add(..., dtype=CV_8U) gives, at half
-            # its cost (OpenCV's mixed-type path converts block by block).
-            out = np.add(out, window, dtype=np.int16)
-            np.clip(out, 0, 255, out=out)
-            out = out.astype(np.uint8)
+            # The ramp (float32) is row[x] + column[y].
+            row, column = gain + gx * self._xn, gy * self._yn
+        noisy = self._bank is not None
+        h, w = self.height, self.width
+        out = np.empty((h, w, 3), dtype=np.uint8)
+        light_and_noise(np.ascontiguousarray(img).reshape(h, 3 * w), np.repeat(row, 3),
+                        column, lit, self._bank_rows if noisy else _NO_BANK, oy, ox, noisy,
+                        out.reshape(h, 3 * w))
         return out
+
+
+#: The bank :func:`light_and_noise` is given when there is no noise (never read).
+_NO_BANK = np.zeros((1, 3), dtype=np.int16)
 
 
 def robot_markers(robot_specs: RobotSpec | Sequence[RobotSpec], teams: Sequence[int]
