@@ -224,7 +224,8 @@ class BallTracker(ReplayBuffer, TrackQualityMixin):
         #: Seconds of frames kept to replay out-of-order arrivals (``config.history``).
         self.history = c.history
         self._counts = np.zeros(4, dtype=np.int64)
-        self._real = np.ones(16, dtype=bool)  # "every row is real", sliced per frame
+        self._real = np.ones(16, dtype=bool)  # "every row is real"
+        self._no_robots = np.zeros((0, 2))
         self.reset()
 
     def reset(self) -> None:
@@ -268,7 +269,9 @@ class BallTracker(ReplayBuffer, TrackQualityMixin):
         with the detections and robots as arrays
         (:func:`~estimators.kalman.ball_kernels.as_points`), converted once for the frame and
         its replays."""
-        ReplayBuffer.update_frame(self, float(t), as_points(detections), as_points(obstacles))
+        # Without eq. 19's collision noise the robots are not read.
+        obs = as_points(obstacles) if self.config.collision_noise else self._no_robots
+        ReplayBuffer.update_frame(self, float(t), as_points(detections), obs)
 
     def estimate(self, t: float) -> np.ndarray | None:
         """State ``(x, y, vx, vy)`` predicted to time ``t`` (None before the first frame)."""
@@ -309,10 +312,11 @@ class BallTracker(ReplayBuffer, TrackQualityMixin):
                                self._mask(len(obs)), self.parameters)
 
     def _mask(self, n: int) -> np.ndarray:
-        """``n`` True flags (the rows of a single frame are all real)."""
+        """At least ``n`` True flags (the rows of a single frame are all real; the kernels
+        read as many as there are rows)."""
         if n > len(self._real):
             self._real = np.ones(2 * n, dtype=bool)
-        return self._real[:n]
+        return self._real
 
     # ------------------------------------------------------------------------------------
     # The update

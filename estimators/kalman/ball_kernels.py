@@ -108,7 +108,7 @@ def collision_sigma(px: float, py: float, obstacles: np.ndarray, seen: np.ndarra
     """Eq. 19 of Zhao et al. (2012): the velocity noise ``sigma_v`` [m/s per paper cycle] of a
     ball at ``(px, py)`` [m], ``max(k (R + r) / max(d, 1 um) sigma_R, sigma_R)`` with ``d``
     the distance to the nearest robot of ``obstacles`` ``(j, 2+)`` [m] of which ``seen``
-    ``(j,)`` are real; ``sigma_R`` without one or with ``collision_noise`` off."""
+    ``(j+,)`` are real; ``sigma_R`` without one or with ``collision_noise`` off."""
     sigma_r = p[_SIGMA_R]
     if p[_COLLISION] == 0.0:
         return sigma_r
@@ -253,9 +253,10 @@ def ball_frame(before: np.ndarray, after: np.ndarray, counts: np.ndarray, t: flo
                p: np.ndarray) -> tuple[float, float, int]:
     """The track ``after`` (a row, may be ``before`` itself) of the track ``before`` after one
     frame captured at ``t`` [s], no earlier than the track's time, with ball detections ``z``
-    ``(k, 2)`` [m] of which ``has`` ``(k,)`` are real and the robots ``obstacles`` ``(j, 2+)``
-    [m] of which ``seen`` ``(j,)`` are real (module docstring); ``counts`` (int64, four) is
-    updated. Returns the new track's ``(t, fused_at, since_start)``."""
+    ``(k, 2)`` [m] of which ``has`` ``(k+,)`` are real and the robots ``obstacles``
+    ``(j, 2+)`` [m] of which ``seen`` ``(j+,)`` are real (module docstring; flags beyond the
+    rows are not read); ``counts`` (int64, four) is updated. Returns the new track's
+    ``(t, fused_at, since_start)``."""
     for i in range(before.shape[0]):
         after[i] = before[i]
     first = -1
