@@ -29,7 +29,8 @@ from ..tracking import (
     TrackQualityMixin,
     prior_gain,
 )
-from .blocks import innovation, predict_covariance, predict_jump, update_closed_form
+from .blocks import innovation, update_closed_form
+from .imm_kernels import imm_deceleration, imm_parameters, imm_predict, imm_predicted_mean
 from .modes import DEFAULT_RATES, MIN_PROBABILITY, ModeChain
 
 __all__ = ["IMMBall", "DEFAULT_RATES"]
@@ -174,11 +175,11 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
     parts of :mod:`estimators.tracking`; what is this tracker's own is its three motion
     models, the mixing and the mode-matched updates above.
 
-    Cost: plain-float arithmetic on 2 x 2 blocks (:func:`~estimators.kalman.blocks.innovation`,
-    :func:`~estimators.kalman.blocks.predict_covariance`, the closed-form update
-    :func:`~estimators.kalman.blocks.update_closed_form`, the mixtures written out):
-    a frame and two :meth:`estimate` calls take 1.7 to 1.9 times what they take
-    :class:`~estimators.BallTracker`; :meth:`covariance` costs about one frame.
+    Cost: plain-float arithmetic on 2 x 2 blocks: the prediction (steps 1-4) compiled
+    (:mod:`~estimators.kalman.imm_kernels`), the update by the blocks' kernels
+    (:func:`~estimators.kalman.blocks.innovation`, the closed-form update
+    :func:`~estimators.kalman.blocks.update_closed_form`) called from Python;
+    :meth:`covariance` costs about one frame.
 
     Args:
         rolling_deceleration: rolling friction [m/s^2], in [0, 100].
@@ -232,6 +233,7 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
         chain = ModeChain(rates)
         self.rates = chain.rates
         self._products = chain.products  # mu_i Pi_ij(dt), see ModeChain.products
+        self._chain = chain.leave, chain.jump
         self.gate = check_real("gate", gate, 0.0, low_open=True)
         self.max_jump = check_real("max_jump", max_jump, 0.0, 10.0, low_open=True, unit=" m")
         self.max_kick_speed = check_real("max_kick_speed", max_kick_speed, 0.0,
@@ -245,6 +247,8 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
         self._man_q = self.maneuver_noise ** 2
         self._gate = Gate(self.gate, self.max_kick_speed)
         self._initiator = TrackInitiator(self.sigma_xy)
+        self._params = imm_parameters(self._rest_var_v, self._rest_q, self._roll_q,
+                                      self._man_q, self.rolling, self.sliding, self.k_switch)
         self.reset()
 
     def reset(self) -> None:
@@ -334,11 +338,9 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
     def _decel(self, x: tuple, kicked: float | None, t: float) -> float:
         """The rolling mode's deceleration from state ``x`` at time ``t``: sliding while the
         speed exceeds ``k_switch`` times the kick speed (``(1 - k) |v| > k a_s (t - kicked)``),
-        else rolling."""
-        if kicked is not None and (1.0 - self.k_switch) * math.hypot(x[2], x[3]) > \
-                self.k_switch * self.sliding * (t - kicked):
-            return self.sliding
-        return self.rolling
+        else rolling (:func:`~estimators.kalman.imm_kernels.imm_deceleration`)."""
+        return imm_deceleration(x, kicked is not None, 0.0 if kicked is None else kicked, t,
+                                self._params)
 
     def _kicked(self, kicked: float | None, x: tuple, t: float) -> float | None:
         """The kick time after a frame at ``t`` with the rolling mode at ``x``: None (rolling
@@ -348,25 +350,15 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
         return None
 
     def _predicted_mean(self, s: _State, dt: float) -> tuple[float, float, float, float]:
-        """The combined mean predicted ``dt`` > 0 seconds ahead (steps 1-4, means only):
-        ``c_j x0_j = sum_i mu_i Pi_ij x_i`` needs no division for the linear modes."""
-        aR, aF, aM, bR, bF, bM, eR, eF, eM = self._products(s.mu, dt)
-        px, py = s.rest[0], s.rest[1]
-        xF, xM = s.roll[0], s.man[0]
-        fx, fy, fu, fv = xF
-        mx, my, mu, mv = xM
-        cF = bR + bF + bM
-        if cF > 0.0:
-            f = ((bR * px + bF * fx + bM * mx) / cF, (bR * py + bF * fy + bM * my) / cF,
-                 (bF * fu + bM * mu) / cF, (bF * fv + bM * mv) / cF)
-        else:
-            f = xF
-        f = self.motion.step(*f, dt, self._decel(f, s.kicked, s.t))[0]
-        # Maneuver: c_M (p + v dt) with c_M p and c_M v the unnormalised mixtures.
-        u, v = eF * fu + eM * mu, eF * fv + eM * mv
-        return (aR * px + aF * fx + aM * mx + cF * f[0] + eR * px + eF * fx + eM * mx + u * dt,
-                aR * py + aF * fy + aM * my + cF * f[1] + eR * py + eF * fy + eM * my + v * dt,
-                cF * f[2] + u, cF * f[3] + v)
+        """The combined mean predicted ``dt`` > 0 seconds ahead (steps 1-4, means only;
+        :func:`~estimators.kalman.imm_kernels.imm_predicted_mean`)."""
+        return imm_predicted_mean(s.rest, s.roll, s.man, s.mu, dt, *self._kick(s), *self._chain,
+                                  self._params)
+
+    @staticmethod
+    def _kick(s: _State) -> tuple[bool, float, float]:
+        """The kernels' ``(kicked, t_kick, t)`` of state ``s``."""
+        return s.kicked is not None, 0.0 if s.kicked is None else s.kicked, s.t
 
     @staticmethod
     def _combined_mean(rest, roll, man, mu) -> tuple[float, float, float, float]:
@@ -376,62 +368,10 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
                 mF * xF[2] + mM * xM[2], mF * xF[3] + mM * xM[3])
 
     def _predict(self, s: _State, dt: float):
-        """Steps 1-3 over ``dt`` > 0 seconds: ``(rest, roll, man, c)`` predicted.
-
-        The mixtures are taken about the rolling mode's mean: with ``e_i = x_i - x_F``
-        (``e_F = 0``) and ``S_i = P_i + e_i e_i^T``, ``x0_j = x_F + m_j`` and
-        ``P0_j = sum_i mu_{i|j} S_i - m_j m_j^T``, ``m_j = sum_i mu_{i|j} e_i``."""
-        aR, aF, aM, bR, bF, bM, eR, eF, eM = self._products(s.mu, dt)
-        px, py, (r0, r1, _, r3) = s.rest
-        xF, PF = s.roll
-        xM, PM = s.man
-        fx, fy, fu, fv = xF
-        # Second moments about the rolling mean: rest (velocity zero with variance vr,
-        # uncorrelated: ``R``) and maneuver (``M``); the rolling mode's are its covariance.
-        vr = self._rest_var_v
-        ax, ay, au, av = px - fx, py - fy, -fu, -fv
-        R0, R1, R3 = r0 + ax * ax, r1 + ax * ay, r3 + ay * ay
-        R4, R5, R6, R7 = ax * au, ax * av, ay * au, ay * av
-        R8, R9, R11 = vr + au * au, au * av, vr + av * av
-        ex, ey, eu, ev = xM[0] - fx, xM[1] - fy, xM[2] - fu, xM[3] - fv
-        (k0, k1, _, k3), (l0, l1, l2, l3), (n0, n1, _, n3) = PM
-        M0, M1, M3 = k0 + ex * ex, k1 + ex * ey, k3 + ey * ey
-        M4, M5, M6, M7 = l0 + ex * eu, l1 + ex * ev, l2 + ey * eu, l3 + ey * ev
-        M8, M9, M11 = n0 + eu * eu, n1 + eu * ev, n3 + ev * ev
-        (f0, f1, _, f3), (g0, g1, g2, g3), (h0, h1, _, h3) = PF
-        # Rest: position only (its prediction drops the velocity).
-        cR = aR + aF + aM
-        a, b, e = (aR / cR, aF / cR, aM / cR) if cR > 0.0 else (1.0, 0.0, 0.0)
-        mx, my = a * ax + e * ex, a * ay + e * ey
-        q = self._rest_q * dt
-        c01 = a * R1 + b * f1 + e * M1 - mx * my
-        rest = (fx + mx, fy + my, (a * R0 + b * f0 + e * M0 - mx * mx + q, c01, c01,
-                                   a * R3 + b * f3 + e * M3 - my * my + q))
-        full = []
-        for a, b, e, own in ((bR, bF, bM, 1), (eR, eF, eM, 2)):
-            c = a + b + e
-            if c > 0.0:
-                a, b, e = a / c, b / c, e / c
-            else:  # no probability flows into the mode: it keeps its own estimate
-                a, b, e = (0.0, 1.0, 0.0) if own == 1 else (0.0, 0.0, 1.0)
-            mx, my, mu_, mv = a * ax + e * ex, a * ay + e * ey, a * au + e * eu, a * av + e * ev
-            c01 = a * R1 + b * f1 + e * M1 - mx * my
-            c23 = a * R9 + b * h1 + e * M9 - mu_ * mv
-            full.append(c)
-            full.append(((fx + mx, fy + my, fu + mu_, fv + mv),
-                         ((a * R0 + b * f0 + e * M0 - mx * mx, c01, c01,
-                           a * R3 + b * f3 + e * M3 - my * my),
-                          (a * R4 + b * g0 + e * M4 - mx * mu_, a * R5 + b * g1 + e * M5 - mx * mv,
-                           a * R6 + b * g2 + e * M6 - my * mu_, a * R7 + b * g3 + e * M7 - my * mv),
-                          (a * R8 + b * h0 + e * M8 - mu_ * mu_, c23, c23,
-                           a * R11 + b * h3 + e * M11 - mv * mv))))
-        cF, (x, P), cM, man = full
-        # Rolling: the friction model (analytic Jacobian), velocity random walk.
-        xn, A, B = self.motion.step(*x, dt, self._decel(x, s.kicked, s.t))
-        roll = (xn, predict_covariance(P, A, B, self._roll_q * dt))
-        # Maneuver: constant velocity, a velocity jump within the step.
-        man = predict_jump(*man, dt, self._man_q)
-        return rest, roll, man, (cR, cF, cM)
+        """Steps 1-3 over ``dt`` > 0 seconds: ``(rest, roll, man, c)`` predicted
+        (:func:`~estimators.kalman.imm_kernels.imm_predict`)."""
+        return imm_predict(s.rest, s.roll, s.man, s.mu, dt, *self._kick(s), *self._chain,
+                           self._params)
 
     def process(self, s: _State, t: float, dets: Sequence, obstacles: Sequence = ()) -> _State:
         """The state after one frame captured at ``t`` (no earlier than ``s.t``): steps 1-7
