@@ -17,8 +17,8 @@
   (:mod:`~estimators.kalman.segments`);
 * :mod:`~estimators.kalman.imm`: the interacting multiple model ball tracker (:class:`IMMBall`),
   rest, rolling and maneuver filters weighed by how well each predicted the detections, their
-  switching a Markov chain (:mod:`~estimators.kalman.modes`), its prediction compiled
-  (:mod:`~estimators.kalman.imm_kernels`);
+  switching a Markov chain (:mod:`~estimators.kalman.modes`), its prediction and update
+  compiled (:mod:`~estimators.kalman.imm_kernels`);
 * :mod:`~estimators.kalman.robots`: decoupled constant-velocity pose trackers for many robots
   (:class:`RobotTracker`).
 

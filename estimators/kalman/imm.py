@@ -29,8 +29,14 @@ from ..tracking import (
     TrackQualityMixin,
     prior_gain,
 )
-from .blocks import innovation, update_closed_form
-from .imm_kernels import imm_deceleration, imm_parameters, imm_predict, imm_predicted_mean
+from .imm_kernels import (
+    imm_combined_gate,
+    imm_deceleration,
+    imm_fuse,
+    imm_parameters,
+    imm_predict,
+    imm_predicted_mean,
+)
 from .modes import DEFAULT_RATES, MIN_PROBABILITY, ModeChain
 
 __all__ = ["IMMBall", "DEFAULT_RATES"]
@@ -175,11 +181,11 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
     parts of :mod:`estimators.tracking`; what is this tracker's own is its three motion
     models, the mixing and the mode-matched updates above.
 
-    Cost: plain-float arithmetic on 2 x 2 blocks: the prediction (steps 1-4) compiled
-    (:mod:`~estimators.kalman.imm_kernels`), the update by the blocks' kernels
-    (:func:`~estimators.kalman.blocks.innovation`, the closed-form update
-    :func:`~estimators.kalman.blocks.update_closed_form`) called from Python;
-    :meth:`covariance` costs about one frame.
+    Cost: plain-float arithmetic on 2 x 2 blocks, compiled: the prediction (steps 1-4) and
+    the gating, mode-matched updates and mode probabilities (steps 5-7) are kernels of
+    :mod:`~estimators.kalman.imm_kernels` on the filters' tuples; the choice among several
+    detections (:class:`~estimators.tracking.Gate`), the restarts, the two-phase kick and the
+    replay stay in Python. :meth:`covariance` costs about one frame.
 
     Args:
         rolling_deceleration: rolling friction [m/s^2], in [0, 100].
@@ -248,7 +254,9 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
         self._gate = Gate(self.gate, self.max_kick_speed)
         self._initiator = TrackInitiator(self.sigma_xy)
         self._params = imm_parameters(self._rest_var_v, self._rest_q, self._roll_q,
-                                      self._man_q, self.rolling, self.sliding, self.k_switch)
+                                      self._man_q, self.rolling, self.sliding, self.k_switch,
+                                      self._r, self._gate.limit, self._gate.kick_speed,
+                                      self.sigma_xy, self.max_jump)
         self.reset()
 
     def reset(self) -> None:
@@ -391,56 +399,19 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
         if not dets:
             return _State(t, rest, roll, man, c, s.candidates, s.fused_at, s.since_start,
                           self._kicked(s.kicked, roll[0], t), s.maneuver)
-        r, gate = self._r, self._gate
-        px, py, (r0, r1, _, r3) = rest
-        xF, PF = roll
-        xM, PM = man
         # The combined gate's distance is needed only when no mode's gate takes the
         # detection; with several detections the nearest one's comes with the choice.
         z, d2 = (dets[0], None) if len(dets) == 1 else self._nearest(rest, roll, man, c, dets)
         zx, zy = float(z[0]), float(z[1])
-        z = (zx, zy)  # (a float pair: the compiled blocks take one type)
-        # Step 6: the innovations; the rest mode's in closed form (no velocity).
-        s0, s3 = r0 + r, r3 + r
-        det = s0 * s3 - r1 * r1
-        j0, j1, j3 = s3 / det, -r1 / det, s0 / det
-        y0, y1 = zx - px, zy - py
-        dR = y0 * (j0 * y0 + j1 * y1) + y1 * (j1 * y0 + j3 * y1)
-        yF, SF, dF = innovation(xF, PF, z, r)
-        yM, SM, dM = innovation(xM, PM, z, r)
-        low = min(dR, dF, dM)
-        # Step 5: within max_jump of the combined prediction, and inside its gate or inside a
-        # mode's and near enough for a kick where the ball is.
-        cR, cF, cM = c
-        jump = math.hypot(zx - cR * px - cF * xF[0] - cM * xM[0],
-                          zy - cR * py - cF * xF[1] - cM * xM[1])
-        kick = low <= gate.limit and gate.reaches(jump, t - s.t, self.sigma_xy)
-        if not kick and d2 is None and jump <= self.max_jump:
-            d2 = self._nearest(rest, roll, man, c, (z,))[1]
-        if jump > self.max_jump or not (kick or d2 <= gate.limit):
+        fused, rest, roll, man, mu = imm_fuse(rest, roll, man, c, zx, zy, d2 is not None,
+                                              0.0 if d2 is None else d2, t - s.t,
+                                              self._params)
+        if not fused:
             self.rejected += 1
             return self._outlier(_State(t, rest, roll, man, c, s.candidates, s.fused_at,
                                         s.since_start, self._kicked(s.kicked, roll[0], t),
                                         s.maneuver), t, zx, zy)
         self.fused += 1
-        # Step 7: L_j ~ sqrt(det S_j^-1) exp(-d_j^2 / 2) (2 pi cancels), shifted by the
-        # smallest d^2 so that the best mode's exponential is 1.
-        lR = cR * math.sqrt(j0 * j3 - j1 * j1) * math.exp(0.5 * (low - dR))
-        lF = cF * math.sqrt(SF[0] * SF[3] - SF[1] * SF[1]) * math.exp(0.5 * (low - dF))
-        lM = cM * math.sqrt(SM[0] * SM[3] - SM[1] * SM[1]) * math.exp(0.5 * (low - dM))
-        total = lR + lF + lM
-        mu = (lR / total, lF / total, lM / total)
-        if mu[0] < MIN_PROBABILITY or mu[1] < MIN_PROBABILITY or mu[2] < MIN_PROBABILITY:
-            mu = tuple(max(m, MIN_PROBABILITY) for m in mu)
-            total = mu[0] + mu[1] + mu[2]
-            mu = (mu[0] / total, mu[1] / total, mu[2] / total)
-        # Step 6: the updates. Rest: K = P11 S^-1 = I - r S^-1, so x = z - r S^-1 y and
-        # P11 = (I - K) P11 = r (I - r S^-1) (P11 and S commute).
-        rr = r * r
-        rest = (zx - r * (j0 * y0 + j1 * y1), zy - r * (j1 * y0 + j3 * y1),
-                (r - rr * j0, -rr * j1, -rr * j1, r - rr * j3))
-        roll = update_closed_form(xF, PF, z, yF, SF, r)
-        man = update_closed_form(xM, PM, z, yM, SM, r)
         kicked, maneuver = self._kicked(s.kicked, roll[0], t), None
         if self.sliding is not None and mu[2] >= mu[0] and mu[2] >= mu[1]:
             # A maneuver: a kick if it made the ball faster by more than KICK_SPEED.
@@ -456,19 +427,7 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
     def _nearest(self, rest, roll, man, c, dets) -> tuple[Sequence[float], float]:
         """Steps 4-5: the detection nearest the combined prediction and its squared
         Mahalanobis distance ``d^2`` from it."""
-        cR, cF, cM = c
-        px, py, (r0, r1, _, r3) = rest
-        xF, xM = roll[0], man[0]
-        f0, f1, _, f3 = roll[1][0]
-        k0, k1, _, k3 = man[1][0]
-        r = self._r
-        gx, gy = cR * px + cF * xF[0] + cM * xM[0], cR * py + cF * xF[1] + cM * xM[1]
-        ax, ay = px - gx, py - gy
-        bx, by = xF[0] - gx, xF[1] - gy
-        ex, ey = xM[0] - gx, xM[1] - gy
-        s0 = cR * (r0 + ax * ax) + cF * (f0 + bx * bx) + cM * (k0 + ex * ex) + r
-        s1 = cR * (r1 + ax * ay) + cF * (f1 + bx * by) + cM * (k1 + ex * ey)
-        s3 = cR * (r3 + ay * ay) + cF * (f3 + by * by) + cM * (k3 + ey * ey) + r
+        gx, gy, s0, s1, s3 = imm_combined_gate(rest, roll, man, c, self._r)
         best, d2, _ = self._gate.nearest(gx, gy, (s0, s1, s3), dets)
         return best, d2
 

@@ -1,7 +1,9 @@
-"""The prediction of the :class:`~estimators.IMMBall` tracker (steps 1-4 of its docstring) as
-compiled kernels: the predicted mode probabilities, the mixing of the three mode-matched
-filters and their predictions (:func:`imm_predict`), and the combined mean ahead of the
-latest frame (:func:`imm_predicted_mean`).
+"""The filter arithmetic of the :class:`~estimators.IMMBall` tracker as compiled kernels:
+steps 1-3 of its docstring, the predicted mode probabilities, the mixing of the three
+mode-matched filters and their predictions (:func:`imm_predict`), the combined mean ahead of
+the latest frame (:func:`imm_predicted_mean`), the combined prediction's gate
+(:func:`imm_combined_gate`), and steps 5-7 for a frame's detection, the gating, the
+mode-matched updates and the new mode probabilities (:func:`imm_fuse`).
 
 The filters are the tracker's plain-float tuples: ``rest = (x, y, P11)``,
 ``roll = (x, P)`` and ``man = (x, P)`` with ``x`` the state ``(x, y, vx, vy)`` [m, m/s] and
@@ -10,34 +12,46 @@ probabilities. The tracker's figures are one float64 array (:func:`imm_parameter
 arithmetic is the order of the Python it replaced (the friction step by
 :func:`~estimators.models.motion.friction_step`, ``math.hypot`` by
 :func:`~estimators.exact.hypot_exact`, the mode chain by
-:func:`~estimators.kalman.modes.mode_products`), so results are bit for bit the same.
+:func:`~estimators.kalman.modes.mode_products`), so results are bit for bit the same. The
+squared Mahalanobis distance of one detection from the combined prediction is written here as
+:meth:`~estimators.tracking.Gate.nearest` computes it for a sequence of detections (the same
+expression in a kernel).
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
 from ..compiled import kernel
 from ..exact import hypot_exact
 from ..models.motion import friction_step
-from .blocks import predict_covariance, predict_jump
-from .modes import mode_products
+from .blocks import innovation, predict_covariance, predict_jump, update_closed_form
+from .modes import MIN_PROBABILITY, mode_products
 
-__all__ = ["imm_parameters", "imm_predict", "imm_predicted_mean"]
+__all__ = ["imm_parameters", "imm_deceleration", "imm_predict", "imm_predicted_mean",
+           "imm_combined_gate", "imm_fuse"]
 
 # Entries of the parameter array (imm_parameters).
-_REST_VAR_V, _REST_Q, _ROLL_Q, _MAN_Q, _ROLLING, _SLIDING, _K_SWITCH = range(7)
+(_REST_VAR_V, _REST_Q, _ROLL_Q, _MAN_Q, _ROLLING, _SLIDING, _K_SWITCH, _R, _LIMIT, _GATE_KICK,
+ _SIGMA_XY, _MAX_JUMP) = range(12)
 
 
 def imm_parameters(rest_var_v: float, rest_q: float, roll_q: float, man_q: float,
-                   rolling: float, sliding: float | None, k_switch: float) -> np.ndarray:
+                   rolling: float, sliding: float | None, k_switch: float, r: float,
+                   limit: float, gate_kick: float, sigma_xy: float, max_jump: float
+                   ) -> np.ndarray:
     """The parameter array of the kernels for an :class:`~estimators.IMMBall`: the rest
     mode's velocity variance [m^2/s^2] and position variance per second [m^2/s], the rolling
     mode's velocity variance per second [m^2/s^3], the maneuver's velocity jump variance
-    [m^2/s^2], the rolling and sliding decelerations [m/s^2] (None: one phase) and
-    ``k_switch``."""
+    [m^2/s^2], the rolling and sliding decelerations [m/s^2] (None: one phase),
+    ``k_switch``, the detections' noise variance ``r`` [m^2], the gate's squared Mahalanobis
+    limit and kick speed [m/s] (:class:`~estimators.tracking.Gate`), the detections' noise
+    ``sigma_xy`` [m] and ``max_jump`` [m]."""
     return np.array([rest_var_v, rest_q, roll_q, man_q, rolling,
-                     0.0 if sliding is None else sliding, k_switch], dtype=np.float64)
+                     0.0 if sliding is None else sliding, k_switch, r, limit, gate_kick,
+                     sigma_xy, max_jump], dtype=np.float64)
 
 
 @kernel
@@ -152,3 +166,98 @@ def imm_predicted_mean(rest, roll, man, mu, dt: float, kicked: bool, t_kick: flo
     return (aR * px + aF * fx + aM * mx + cF * f[0] + eR * px + eF * fx + eM * mx + u * dt,
             aR * py + aF * fy + aM * my + cF * f[1] + eR * py + eF * fy + eM * my + v * dt,
             cF * f[2] + u, cF * f[3] + v)
+
+
+@kernel
+def imm_combined_gate(rest, roll, man, c, r: float
+                      ) -> tuple[float, float, float, float, float]:
+    """Steps 4-5's combined prediction of the position: ``(gx, gy, s00, s01, s11)``, its mean
+    [m] and the innovation covariance ``S = P11- + r I`` [m^2] of the mixture of the three
+    filters with the predicted mode probabilities ``c``."""
+    cR, cF, cM = c
+    px, py, (r0, r1, _, r3) = rest
+    xF, xM = roll[0], man[0]
+    f0, f1, _, f3 = roll[1][0]
+    k0, k1, _, k3 = man[1][0]
+    gx, gy = cR * px + cF * xF[0] + cM * xM[0], cR * py + cF * xF[1] + cM * xM[1]
+    ax, ay = px - gx, py - gy
+    bx, by = xF[0] - gx, xF[1] - gy
+    ex, ey = xM[0] - gx, xM[1] - gy
+    s0 = cR * (r0 + ax * ax) + cF * (f0 + bx * bx) + cM * (k0 + ex * ex) + r
+    s1 = cR * (r1 + ax * ay) + cF * (f1 + bx * by) + cM * (k1 + ex * ey)
+    s3 = cR * (r3 + ay * ay) + cF * (f3 + by * by) + cM * (k3 + ey * ey) + r
+    return gx, gy, s0, s1, s3
+
+
+@kernel
+def _combined_d2(rest, roll, man, c, zx: float, zy: float, r: float) -> float:
+    """The squared Mahalanobis distance of ``(zx, zy)`` from the combined prediction
+    (:meth:`~estimators.tracking.Gate.nearest` of one detection: ``inf`` unless finite)."""
+    gx, gy, s0, s1, s3 = imm_combined_gate(rest, roll, man, c, r)
+    det = s0 * s3 - s1 * s1
+    i0, i1, i3 = s3 / det, -s1 / det, s0 / det
+    y0, y1 = zx - gx, zy - gy
+    d = y0 * (i0 * y0 + i1 * y1) + y1 * (i1 * y0 + i3 * y1)
+    return d if d < math.inf else math.inf
+
+
+@kernel
+def imm_fuse(rest, roll, man, c, zx: float, zy: float, known: bool, d2: float, dt: float,
+             p: np.ndarray):
+    """Steps 5-7 for the detection ``(zx, zy)`` [m] of a frame ``dt`` seconds after the
+    previous one, with the predicted filters and mode probabilities ``c``:
+    ``(fused, rest, roll, man, mu)``, the filters updated and the new mode probabilities when
+    the detection is fused, the predicted ones unchanged when it is gated out. ``d2``: its
+    squared Mahalanobis distance from the combined prediction when ``known`` (computed here
+    when needed otherwise)."""
+    r = p[_R]
+    px, py, (r0, r1, _, r3) = rest
+    xF, PF = roll
+    xM, PM = man
+    z = (zx, zy)
+    # Step 6: the innovations; the rest mode's in closed form (no velocity).
+    s0, s3 = r0 + r, r3 + r
+    det = s0 * s3 - r1 * r1
+    j0, j1, j3 = s3 / det, -r1 / det, s0 / det
+    y0, y1 = zx - px, zy - py
+    dR = y0 * (j0 * y0 + j1 * y1) + y1 * (j1 * y0 + j3 * y1)
+    yF, SF, dF = innovation(xF, PF, z, r)
+    yM, SM, dM = innovation(xM, PM, z, r)
+    low = dR
+    if dF < low:
+        low = dF
+    if dM < low:
+        low = dM
+    # Step 5: within max_jump of the combined prediction, and inside its gate or inside a
+    # mode's and near enough for a kick where the ball is.
+    cR, cF, cM = c
+    jump = hypot_exact(zx - cR * px - cF * xF[0] - cM * xM[0],
+                       zy - cR * py - cF * xF[1] - cM * xM[1])
+    kick = (low <= p[_LIMIT]
+            and jump <= p[_GATE_KICK] * (0.0 if 0.0 > dt else dt) + 3.0 * p[_SIGMA_XY])
+    if not kick and not known and jump <= p[_MAX_JUMP]:
+        d2, known = _combined_d2(rest, roll, man, c, zx, zy, r), True
+    if jump > p[_MAX_JUMP] or not (kick or d2 <= p[_LIMIT]):
+        return False, rest, roll, man, c
+    # Step 7: L_j ~ sqrt(det S_j^-1) exp(-d_j^2 / 2) (2 pi cancels), shifted by the
+    # smallest d^2 so that the best mode's exponential is 1.
+    lR = cR * math.sqrt(j0 * j3 - j1 * j1) * math.exp(0.5 * (low - dR))
+    lF = cF * math.sqrt(SF[0] * SF[3] - SF[1] * SF[1]) * math.exp(0.5 * (low - dF))
+    lM = cM * math.sqrt(SM[0] * SM[3] - SM[1] * SM[1]) * math.exp(0.5 * (low - dM))
+    total = lR + lF + lM
+    mu = (lR / total, lF / total, lM / total)
+    if mu[0] < MIN_PROBABILITY or mu[1] < MIN_PROBABILITY or mu[2] < MIN_PROBABILITY:
+        m0, m1, m2 = mu
+        m0 = MIN_PROBABILITY if MIN_PROBABILITY > m0 else m0
+        m1 = MIN_PROBABILITY if MIN_PROBABILITY > m1 else m1
+        m2 = MIN_PROBABILITY if MIN_PROBABILITY > m2 else m2
+        total = m0 + m1 + m2
+        mu = (m0 / total, m1 / total, m2 / total)
+    # Step 6: the updates. Rest: K = P11 S^-1 = I - r S^-1, so x = z - r S^-1 y and
+    # P11 = (I - K) P11 = r (I - r S^-1) (P11 and S commute).
+    rr = r * r
+    rest_n = (zx - r * (j0 * y0 + j1 * y1), zy - r * (j1 * y0 + j3 * y1),
+              (r - rr * j0, -rr * j1, -rr * j1, r - rr * j3))
+    roll_n = update_closed_form(xF, PF, z, yF, SF, r)
+    man_n = update_closed_form(xM, PM, z, yM, SM, r)
+    return True, rest_n, roll_n, man_n, mu
