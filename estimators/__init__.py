@@ -44,8 +44,8 @@ the state to any time ``t`` without changing the tracker (None before the first 
   never None (robots never seen read as zeros, see ``seen``).
 
 :class:`BallTrackerBatch` and :class:`RobotTrackerBatch` are ``m`` such trackers as arrays
-(the filters of ``m`` environments), updated with one array operation per batch of frames and
-equal to the single trackers bit for bit.
+(the filters of ``m`` environments), updated with one kernel call per batch of frames: the
+same compiled kernels as the single trackers', which are batches of one.
 
 The ball trackers also follow :class:`TrackQuality`: ``covariance(t)``, ``last_fused``
 and ``since_start`` say how sure they are (the environments' belief features; one

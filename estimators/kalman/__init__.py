@@ -9,21 +9,24 @@
   overhead-camera detections (:class:`BallTracker`, :class:`BallFilterConfig`);
   :mod:`~estimators.kalman.least_squares`: its least-squares baseline
   (:class:`LeastSquaresBall`); :mod:`~estimators.kalman.ball_batch`: the EKF of many
-  environments as arrays (:class:`BallTrackerBatch`);
+  environments as arrays (:class:`BallTrackerBatch`); :mod:`~estimators.kalman.ball_kernels`:
+  the EKF's frame, prediction and eq. 19 as compiled kernels over rows of tracks, which both
+  run;
 * :mod:`~estimators.kalman.kick`: the kick-aware ball tracker (:class:`KickAwareBall`), each
   motion since a kick or a collision fitted whole to the two-phase friction model
   (:mod:`~estimators.kalman.segments`);
 * :mod:`~estimators.kalman.imm`: the interacting multiple model ball tracker (:class:`IMMBall`),
   rest, rolling and maneuver filters weighed by how well each predicted the detections, their
-  switching a Markov chain (:mod:`~estimators.kalman.modes`);
+  switching a Markov chain (:mod:`~estimators.kalman.modes`), its prediction and update
+  compiled (:mod:`~estimators.kalman.imm_kernels`);
 * :mod:`~estimators.kalman.robots`: decoupled constant-velocity pose trackers for many robots
   (:class:`RobotTracker`).
 
 The ball trackers are built from the shared parts of :mod:`estimators.tracking` (gate, track
 initiator, replay buffer, track quality) and differ in their motion models and updates. The
-ball and robot trackers have batched twins (:class:`BallTrackerBatch`,
-:class:`RobotTrackerBatch`): many independent trackers as arrays, updated by one array
-operation per batch of frames, equal to the single trackers bit for bit.
+ball and robot trackers have batched forms (:class:`BallTrackerBatch`,
+:class:`RobotTrackerBatch`): many independent trackers as arrays, updated by one kernel call
+per batch of frames; the single trackers call the same kernels as batches of one.
 """
 
 from ..tracking import CHI2_2DOF_999

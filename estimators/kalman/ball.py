@@ -37,9 +37,22 @@ from ..tracking import (
     ReplayBuffer,
     TrackInitiator,
     TrackQualityMixin,
-    prior_gain,
 )
-from .blocks import Blocks, State, full_covariance, innovation, predict_covariance, update
+from .ball_kernels import (
+    FUSED,
+    MANEUVERS,
+    REJECTED,
+    RESETS,
+    TRACK_WIDTH,
+    as_points,
+    ball_estimate,
+    ball_frame,
+    ball_parameters,
+    ball_predicted,
+    collision_sigma,
+    track_width,
+)
+from .blocks import Blocks, State, blocks_from_row
 
 __all__ = ["BallFilterConfig", "BallTracker", "BallTrack", "CHI2_2DOF_999", "MAX_SPEED_CHANGE"]
 
@@ -120,28 +133,49 @@ class BallFilterConfig:
         FrictionBallMotion(self.deceleration, self.propagation)  # validates both
 
 
+
 class BallTrack(NamedTuple):
-    """The state of a :class:`BallTracker` after a frame: everything a replay must restore
-    (immutable, so snapshots need no copies).
+    """The state of a :class:`BallTracker` after a frame: everything a replay must restore.
+
+    The track itself is a row of :mod:`~estimators.kalman.ball_kernels` (``row``, never
+    changed once the frame is processed, so snapshots need no copies); the times and the
+    count the replay and the track quality read are fields, the rest properties.
 
     Attributes:
         t: capture time of the latest frame processed [s] (``-inf`` before the first).
-        x: the state ``(x, y, vx, vy)`` [m, m/s] at ``t`` (None before the first detection).
-        P: its covariance as :data:`~estimators.kalman.blocks.Blocks`.
-        candidates: gated-out detections that may start a new track
-            (:class:`~estimators.tracking.TrackInitiator`).
-        v_switch: the two-phase model's switch speed [m/s]: the ball slides while faster.
         fused_at: capture time of the latest detection fused [s].
-        since_start: detections fused since the track's latest (re)start.
+        since_start: detections fused since the track's latest (re)start (0: no track).
+        row: the track row (see :mod:`~estimators.kalman.ball_kernels`).
     """
 
-    t: float = -math.inf
-    x: State | None = None
-    P: Blocks | None = None
-    candidates: Candidates = ()
-    v_switch: float = 0.0
-    fused_at: float = -math.inf
-    since_start: int = 0
+    t: float
+    fused_at: float
+    since_start: int
+    row: np.ndarray
+
+    @property
+    def x(self) -> State | None:
+        """The state ``(x, y, vx, vy)`` [m, m/s] at ``t`` (None before the first detection)."""
+        return tuple(self.row[1:5].tolist()) if self.since_start else None
+
+    @property
+    def P(self) -> Blocks | None:
+        """Its covariance as :data:`~estimators.kalman.blocks.Blocks` (None before the first
+        detection)."""
+        return blocks_from_row(self.row[5:17]) if self.since_start else None
+
+    @property
+    def v_switch(self) -> float:
+        """The two-phase model's switch speed [m/s]: the ball slides while faster."""
+        return float(self.row[17])
+
+    @property
+    def candidates(self) -> Candidates:
+        """Gated-out detections that may start a new track
+        (:class:`~estimators.tracking.TrackInitiator`)."""
+        n = int(self.row[20])
+        c = self.row[TRACK_WIDTH:TRACK_WIDTH + 3 * n].tolist()
+        return tuple((c[3 * i], (c[3 * i + 1], c[3 * i + 2])) for i in range(n))
 
 
 class BallTracker(ReplayBuffer, TrackQualityMixin):
@@ -155,7 +189,10 @@ class BallTracker(ReplayBuffer, TrackQualityMixin):
     (``config.gate``) and fuses it with the Kalman blocks of
     :mod:`estimators.kalman.blocks`; a gated-out detection within ``maneuver_radius`` that
     the ball could have reached is a maneuver, any other goes to the
-    :class:`~estimators.tracking.TrackInitiator` (``config.reset_after``).
+    :class:`~estimators.tracking.TrackInitiator` (``config.reset_after``). The frame is one
+    call of the compiled :func:`~estimators.kalman.ball_kernels.ball_frame`, the kernel that
+    :class:`~estimators.BallTrackerBatch` runs over many tracks: this tracker is a batch of
+    one.
 
     Args:
         config: filter configuration (Zhao et al.'s 2012 EKF by default).
@@ -177,18 +214,41 @@ class BallTracker(ReplayBuffer, TrackQualityMixin):
         self.measurement = measurement or PositionMeasurement(c.sigma_xy, 4)
         #: The measurement noise variance per axis the filter fuses with [m^2].
         self.r = float(self.measurement.R[0, 0])
-        self._gate = Gate(c.gate)
-        self._initiator = (None if c.reset_after is None
-                           else TrackInitiator(c.sigma_xy, c.reset_after))
+        gate = Gate(c.gate)
+        initiator = (None if c.reset_after is None
+                     else TrackInitiator(c.sigma_xy, c.reset_after))
+        #: The kernels' parameters (:func:`~estimators.kalman.ball_kernels.ball_parameters`).
+        self.parameters = ball_parameters(c, self.r, gate.kick_speed, initiator)
+        #: Columns of a track row (:func:`~estimators.kalman.ball_kernels.track_width`).
+        self.width = track_width(c)
         #: Seconds of frames kept to replay out-of-order arrivals (``config.history``).
         self.history = c.history
+        self._counts = np.zeros(4, dtype=np.int64)
+        self._real = np.ones(16, dtype=bool)  # "every row is real"
+        self._no_robots = np.zeros((0, 2))
         self.reset()
 
     def reset(self) -> None:
         """Forget everything (a new episode)."""
-        self._track = BallTrack()
+        self._track = self.empty_track()
         self.reset_replay()
-        self.fused = self.rejected = self.resets = self.maneuvers = 0
+        self._counts[:] = 0
+
+    def empty_track(self) -> BallTrack:
+        """The track before the first frame."""
+        row = np.zeros(self.width)
+        row[0] = row[18] = -math.inf
+        return BallTrack(-math.inf, -math.inf, 0, row)
+
+    @property
+    def track(self) -> BallTrack:
+        """The current track (read only)."""
+        return self._track
+
+    fused = property(lambda self: int(self._counts[FUSED]), doc="Detections fused.")
+    rejected = property(lambda self: int(self._counts[REJECTED]), doc="Detections gated out.")
+    resets = property(lambda self: int(self._counts[RESETS]), doc="Track restarts.")
+    maneuvers = property(lambda self: int(self._counts[MANEUVERS]), doc="Maneuvers taken.")
 
     # ------------------------------------------------------------------------------------
 
@@ -203,21 +263,30 @@ class BallTracker(ReplayBuffer, TrackQualityMixin):
                else [])
         self.update_frame(t, dets, obs)
 
+    def update_frame(self, t: float, detections: Sequence[Sequence[float]],
+                     obstacles: Sequence[Sequence[float]] = ()) -> None:
+        """:meth:`ReplayBuffer.update_frame <estimators.tracking.ReplayBuffer.update_frame>`
+        with the detections and robots as arrays
+        (:func:`~estimators.kalman.ball_kernels.as_points`), converted once for the frame and
+        its replays."""
+        # Without eq. 19's collision noise the robots are not read.
+        obs = as_points(obstacles) if self.config.collision_noise else self._no_robots
+        ReplayBuffer.update_frame(self, float(t), as_points(detections), obs)
+
     def estimate(self, t: float) -> np.ndarray | None:
         """State ``(x, y, vx, vy)`` predicted to time ``t`` (None before the first frame)."""
         t = check_time(t)
         tr = self._track
-        if tr.x is None:
+        if not tr.since_start:
             return None
-        dt = t - tr.t
-        if dt <= 0.0:
-            return np.array(tr.x)
-        return np.array(self._step(tr, dt)[0])
+        out = np.empty(4)
+        ball_estimate(tr.row, t, out, self.parameters)
+        return out
 
     def estimate_with_covariance(self, t: float) -> tuple[np.ndarray, np.ndarray] | None:
         """``(x, P)`` predicted to time ``t`` without changing the tracker."""
         t = check_time(t)
-        if self._track.x is None:
+        if not self._track.since_start:
             return None
         return self._predicted(t)
 
@@ -227,143 +296,41 @@ class BallTracker(ReplayBuffer, TrackQualityMixin):
     def _predicted(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         """``(x, P)`` of a started track predicted to ``t`` (no process noise for eq. 19's
         robots: ``sigma_r``)."""
-        tr = self._track
-        dt = t - tr.t
-        if dt <= 0.0:
-            return np.array(tr.x), full_covariance(tr.P)
-        x, A, B = self._step(tr, dt)
-        q = self.motion.velocity_noise(dt, self.config.sigma_r)
-        return np.array(x), full_covariance(predict_covariance(tr.P, A, B, q))
-
-    # ------------------------------------------------------------------------------------
-    # The motion model
-
-    def _step(self, tr: BallTrack, dt: float):
-        """The friction model's ``(x', A, B)`` over ``dt`` from ``tr``: the sliding
-        deceleration while the two-phase ball is faster than its switch speed."""
-        c = self.config
-        decel = None
-        if c.two_phase is not None and math.hypot(tr.x[2], tr.x[3]) > tr.v_switch:
-            decel = c.two_phase[0]
-        return self.motion.step(*tr.x, dt, decel)
+        x, P = np.empty(4), np.empty((4, 4))
+        ball_predicted(self._track.row, t, x, P, self.parameters)
+        return x, P
 
     def velocity_sigma(self, position, obstacles=None) -> float:
         """The velocity noise ``sigma_v`` [m/s per paper cycle] of eq. 19 for a ball at
         ``position`` ``(x, y)`` [m] with robots at ``obstacles`` (``(j, 2)``, or poses whose
         first two entries are the position; None: no robots): ``sigma_r``, raised near a robot
-        when ``collision_noise`` is on (what :meth:`update` uses between two frames)."""
-        obs = (check_points("obstacles", obstacles, exact=False) if obstacles is not None
-               else [])
-        return self._sigma_v(position, obs)
+        when ``collision_noise`` is on (what :meth:`update` uses between two frames;
+        :func:`~estimators.kalman.ball_kernels.collision_sigma`)."""
+        obs = as_points(check_points("obstacles", obstacles, exact=False)
+                        if obstacles is not None else [])
+        return collision_sigma(float(position[0]), float(position[1]), obs,
+                               self._mask(len(obs)), self.parameters)
 
-    def _sigma_v(self, position, obstacles: list) -> float:
-        """Eq. 19 of Zhao et al. (2012) (:meth:`velocity_sigma` with the obstacles already a
-        list of rows)."""
-        c = self.config
-        if not c.collision_noise or not obstacles:
-            return c.sigma_r
-        px, py = position[0], position[1]
-        d = min(math.hypot(o[0] - px, o[1] - py) for o in obstacles)
-        return max(c.gain_k * (c.robot_radius + c.ball_radius) / max(d, 1e-6) * c.sigma_r,
-                   c.sigma_r)
+    def _mask(self, n: int) -> np.ndarray:
+        """At least ``n`` True flags (the rows of a single frame are all real; the kernels
+        read as many as there are rows)."""
+        if n > len(self._real):
+            self._real = np.ones(2 * n, dtype=bool)
+        return self._real
 
     # ------------------------------------------------------------------------------------
     # The update
 
-    def process(self, track: BallTrack, t: float, detections: Sequence[Sequence[float]],
-                obstacles: Sequence[Sequence[float]]) -> BallTrack:
-        """The track after one frame captured at ``t`` [s], no earlier than ``track.t``
-        (detections and robots as :meth:`update_frame` takes them): predict, gate, then fuse
-        the nearest detection, or take it as a maneuver, or offer it to the initiator. The
-        counters are updated; ``track`` is not changed. What :meth:`update_frame` replays."""
-        c, r = self.config, self.r
-        if track.x is None:
-            if not detections:
-                return track
-            zx, zy = detections[0]
-            var = c.tau**2
-            return BallTrack(t, (zx, zy, 0.0, 0.0), ((var, 0.0, 0.0, var), (0.0,) * 4,
-                                                      (var, 0.0, 0.0, var)), (), 0.0, t, 1)
-        x, P = track.x, track.P
-        dt = t - track.t
-        A = B = None
-        q_step = 0.0
-        if dt > 0.0:
-            sigma_v = self._sigma_v(x, obstacles)
-            x, A, B = self._step(track, dt)
-            q_step = self.motion.velocity_noise(dt, sigma_v)
-            P = predict_covariance(P, A, B, q_step)
-        if not detections:
-            return BallTrack(t, x, P, track.candidates, track.v_switch, track.fused_at,
-                             track.since_start)
-        # The detection nearest the prediction (Mahalanobis) is this frame's ball.
-        gate = self._gate
-        P11 = P[0]
-        z, d2, Si = gate.nearest(x[0], x[1], (P11[0] + r, P11[1], P11[3] + r), detections)
-        z = (float(z[0]), float(z[1]))  # (a float pair: the compiled blocks take one type)
-        y = (z[0] - x[0], z[1] - x[1])
-        if d2 <= gate.limit:
-            self.fused += 1
-            x, P = update(x, P, y, Si, r)
-            return BallTrack(t, x, P, (), track.v_switch, t, track.since_start + 1)
-        # A maneuver must be near the prediction and reachable: a velocity change of at
-        # most MAX_SPEED_CHANGE over the time since the last frame, plus noise.
-        jump = math.hypot(*y)
-        if (c.maneuver_radius is not None and jump <= c.maneuver_radius
-                and gate.reaches(jump, dt, c.sigma_xy)):
-            return self._maneuver(track, t, x, P, A, B, q_step, z)
-        self.rejected += 1
-        return self._outlier(BallTrack(t, x, P, track.candidates, track.v_switch,
-                                       track.fused_at, track.since_start), t, z)
-
-    def _maneuver(self, track: BallTrack, t: float, x: State, P: Blocks, A, B, q_step: float,
-                  z: Sequence[float]) -> BallTrack:
-        """The ball changed its motion where it is: redo the prediction from ``track`` (by
-        ``A``, ``B``, ``q_step``; none when the frame is another view of the same instant)
-        with a velocity change of ``maneuver_speed`` at the previous frame, so that the
-        uncertainty reaches the position through the motion, then fuse ``z``."""
-        c, r = self.config, self.r
-        self.maneuvers += 1
-        m = c.maneuver_speed**2
-        P11, P12, P22 = track.P
-        P = (P11, P12, (P22[0] + m, P22[1], P22[2], P22[3] + m))
-        if A is not None:
-            P = predict_covariance(P, A, B, q_step)
-        y, Si, _ = innovation(x, P, z, r)
-        x, P = update(x, P, y, Si, r)
-        speed = math.hypot(x[2], x[3])
-        v_switch = (c.two_phase[1] * speed if c.two_phase is not None
-                    and speed > c.kick_speed else track.v_switch)
-        return BallTrack(t, x, P, (), v_switch, t, track.since_start + 1)
-
-    def _outlier(self, tr: BallTrack, t: float, z: Sequence[float]) -> BallTrack:
-        """Keep a gated-out detection; restart the track once ``reset_after`` agree."""
-        initiator = self._initiator
-        if initiator is None:
-            return tr
-        candidates = initiator.offer(tr.candidates, t, tuple(z))
-        if not initiator.ready(candidates):
-            return tr._replace(candidates=candidates)
-        c = self.config
-        (t0, z0), (t1, z1) = candidates[0], candidates[-1]
-        span = t1 - t0
-        # The finite-difference velocity (z1 - z0) / span has variance 2 sigma^2 / span^2 per
-        # axis, unbounded when two cameras see the ball a moment apart: combined with the
-        # initiator's prior that a ball moves at most MAX_SPEED_CHANGE.
-        s0_2 = initiator.prior_var
-        if span > 1e-9:
-            var_fd = 2.0 * c.sigma_xy**2 / span**2
-            g = prior_gain(s0_2, var_fd)
-            vx, vy = g * (z1[0] - z0[0]) / span, g * (z1[1] - z0[1]) / span
-            var_v = g * var_fd + c.sigma_r**2
-        else:
-            vx = vy = 0.0
-            var_v = s0_2 + c.sigma_r**2
-        var_p = c.sigma_xy**2
-        speed = math.hypot(vx, vy)
-        v_switch = (c.two_phase[1] * speed if c.two_phase is not None and speed > c.kick_speed
-                    else 0.0)
-        self.resets += 1
-        return BallTrack(tr.t, (z1[0], z1[1], vx, vy),
-                         ((var_p, 0.0, 0.0, var_p), (0.0,) * 4, (var_v, 0.0, 0.0, var_v)), (),
-                         v_switch, t, 1)
+    def process(self, track: BallTrack, t: float, detections: np.ndarray,
+                obstacles: np.ndarray) -> BallTrack:
+        """The track after one frame captured at ``t`` [s], no earlier than ``track.t``, with
+        ball detections ``(k, 2)`` and robots ``(j, 2+)`` as
+        :func:`~estimators.kalman.ball_kernels.as_points` gives them: predict, gate, then fuse
+        the nearest detection, or take it as a maneuver, or offer it to the initiator
+        (:func:`~estimators.kalman.ball_kernels.ball_frame`). The counters are updated;
+        ``track`` is not changed. What :meth:`update_frame` replays."""
+        row = np.empty(self.width)
+        t, fused_at, since = ball_frame(track.row, row, self._counts, t, detections,
+                                        self._mask(len(detections)), obstacles,
+                                        self._mask(len(obstacles)), self.parameters)
+        return BallTrack(t, fused_at, since, row)

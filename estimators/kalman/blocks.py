@@ -20,10 +20,11 @@ constant-velocity prediction with a velocity jump within the step).
 
 **Kernels.** Each block is written once, as a compiled ``numba`` kernel
 (:func:`~estimators.compiled.kernel`): called from Python on float tuples it takes about half
-the time of the same code interpreted, and :func:`predict_covariance_rows`,
-:func:`innovation_rows` and :func:`update_rows` run the same blocks over arrays whose rows are
-independent filters (what :class:`~estimators.BallTrackerBatch` runs), so a row rounds exactly
-as the single filter does. ``P`` is then ``(d, 12)``: the blocks P11, P12 and P22 row-major in
+the time of the same code interpreted; the ball EKF's kernels
+(:mod:`~estimators.kalman.ball_kernels`) call them on each track, and
+:func:`predict_covariance_rows`, :func:`innovation_rows` and :func:`update_rows` run them over
+arrays whose rows are independent filters, so a row rounds exactly as the single filter does.
+``P`` is then ``(d, 12)``: the blocks P11, P12 and P22 row-major in
 columns 0-3, 4-7 and 8-11 (:func:`blocks_from_row` turns one row back into :data:`Blocks`);
 ``A``, ``B`` are ``(d, 4)`` row-major 2 x 2. The blocks take float tuples: a caller turns a
 detection into a ``(float, float)`` pair, so that one compiled version serves every caller.

@@ -29,7 +29,14 @@ from ..tracking import (
     TrackQualityMixin,
     prior_gain,
 )
-from .blocks import innovation, predict_covariance, predict_jump, update_closed_form
+from .imm_kernels import (
+    imm_combined_gate,
+    imm_deceleration,
+    imm_fuse,
+    imm_parameters,
+    imm_predict,
+    imm_predicted_mean,
+)
 from .modes import DEFAULT_RATES, MIN_PROBABILITY, ModeChain
 
 __all__ = ["IMMBall", "DEFAULT_RATES"]
@@ -174,11 +181,11 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
     parts of :mod:`estimators.tracking`; what is this tracker's own is its three motion
     models, the mixing and the mode-matched updates above.
 
-    Cost: plain-float arithmetic on 2 x 2 blocks (:func:`~estimators.kalman.blocks.innovation`,
-    :func:`~estimators.kalman.blocks.predict_covariance`, the closed-form update
-    :func:`~estimators.kalman.blocks.update_closed_form`, the mixtures written out):
-    a frame and two :meth:`estimate` calls take 1.7 to 1.9 times what they take
-    :class:`~estimators.BallTracker`; :meth:`covariance` costs about one frame.
+    Cost: plain-float arithmetic on 2 x 2 blocks, compiled: the prediction (steps 1-4) and
+    the gating, mode-matched updates and mode probabilities (steps 5-7) are kernels of
+    :mod:`~estimators.kalman.imm_kernels` on the filters' tuples; the choice among several
+    detections (:class:`~estimators.tracking.Gate`), the restarts, the two-phase kick and the
+    replay stay in Python. :meth:`covariance` costs about one frame.
 
     Args:
         rolling_deceleration: rolling friction [m/s^2], in [0, 100].
@@ -232,6 +239,7 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
         chain = ModeChain(rates)
         self.rates = chain.rates
         self._products = chain.products  # mu_i Pi_ij(dt), see ModeChain.products
+        self._chain = chain.leave, chain.jump
         self.gate = check_real("gate", gate, 0.0, low_open=True)
         self.max_jump = check_real("max_jump", max_jump, 0.0, 10.0, low_open=True, unit=" m")
         self.max_kick_speed = check_real("max_kick_speed", max_kick_speed, 0.0,
@@ -245,6 +253,10 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
         self._man_q = self.maneuver_noise ** 2
         self._gate = Gate(self.gate, self.max_kick_speed)
         self._initiator = TrackInitiator(self.sigma_xy)
+        self._params = imm_parameters(self._rest_var_v, self._rest_q, self._roll_q,
+                                      self._man_q, self.rolling, self.sliding, self.k_switch,
+                                      self._r, self._gate.limit, self._gate.kick_speed,
+                                      self.sigma_xy, self.max_jump)
         self.reset()
 
     def reset(self) -> None:
@@ -334,11 +346,9 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
     def _decel(self, x: tuple, kicked: float | None, t: float) -> float:
         """The rolling mode's deceleration from state ``x`` at time ``t``: sliding while the
         speed exceeds ``k_switch`` times the kick speed (``(1 - k) |v| > k a_s (t - kicked)``),
-        else rolling."""
-        if kicked is not None and (1.0 - self.k_switch) * math.hypot(x[2], x[3]) > \
-                self.k_switch * self.sliding * (t - kicked):
-            return self.sliding
-        return self.rolling
+        else rolling (:func:`~estimators.kalman.imm_kernels.imm_deceleration`)."""
+        return imm_deceleration(x, kicked is not None, 0.0 if kicked is None else kicked, t,
+                                self._params)
 
     def _kicked(self, kicked: float | None, x: tuple, t: float) -> float | None:
         """The kick time after a frame at ``t`` with the rolling mode at ``x``: None (rolling
@@ -348,25 +358,15 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
         return None
 
     def _predicted_mean(self, s: _State, dt: float) -> tuple[float, float, float, float]:
-        """The combined mean predicted ``dt`` > 0 seconds ahead (steps 1-4, means only):
-        ``c_j x0_j = sum_i mu_i Pi_ij x_i`` needs no division for the linear modes."""
-        aR, aF, aM, bR, bF, bM, eR, eF, eM = self._products(s.mu, dt)
-        px, py = s.rest[0], s.rest[1]
-        xF, xM = s.roll[0], s.man[0]
-        fx, fy, fu, fv = xF
-        mx, my, mu, mv = xM
-        cF = bR + bF + bM
-        if cF > 0.0:
-            f = ((bR * px + bF * fx + bM * mx) / cF, (bR * py + bF * fy + bM * my) / cF,
-                 (bF * fu + bM * mu) / cF, (bF * fv + bM * mv) / cF)
-        else:
-            f = xF
-        f = self.motion.step(*f, dt, self._decel(f, s.kicked, s.t))[0]
-        # Maneuver: c_M (p + v dt) with c_M p and c_M v the unnormalised mixtures.
-        u, v = eF * fu + eM * mu, eF * fv + eM * mv
-        return (aR * px + aF * fx + aM * mx + cF * f[0] + eR * px + eF * fx + eM * mx + u * dt,
-                aR * py + aF * fy + aM * my + cF * f[1] + eR * py + eF * fy + eM * my + v * dt,
-                cF * f[2] + u, cF * f[3] + v)
+        """The combined mean predicted ``dt`` > 0 seconds ahead (steps 1-4, means only;
+        :func:`~estimators.kalman.imm_kernels.imm_predicted_mean`)."""
+        return imm_predicted_mean(s.rest, s.roll, s.man, s.mu, dt, *self._kick(s), *self._chain,
+                                  self._params)
+
+    @staticmethod
+    def _kick(s: _State) -> tuple[bool, float, float]:
+        """The kernels' ``(kicked, t_kick, t)`` of state ``s``."""
+        return s.kicked is not None, 0.0 if s.kicked is None else s.kicked, s.t
 
     @staticmethod
     def _combined_mean(rest, roll, man, mu) -> tuple[float, float, float, float]:
@@ -376,62 +376,10 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
                 mF * xF[2] + mM * xM[2], mF * xF[3] + mM * xM[3])
 
     def _predict(self, s: _State, dt: float):
-        """Steps 1-3 over ``dt`` > 0 seconds: ``(rest, roll, man, c)`` predicted.
-
-        The mixtures are taken about the rolling mode's mean: with ``e_i = x_i - x_F``
-        (``e_F = 0``) and ``S_i = P_i + e_i e_i^T``, ``x0_j = x_F + m_j`` and
-        ``P0_j = sum_i mu_{i|j} S_i - m_j m_j^T``, ``m_j = sum_i mu_{i|j} e_i``."""
-        aR, aF, aM, bR, bF, bM, eR, eF, eM = self._products(s.mu, dt)
-        px, py, (r0, r1, _, r3) = s.rest
-        xF, PF = s.roll
-        xM, PM = s.man
-        fx, fy, fu, fv = xF
-        # Second moments about the rolling mean: rest (velocity zero with variance vr,
-        # uncorrelated: ``R``) and maneuver (``M``); the rolling mode's are its covariance.
-        vr = self._rest_var_v
-        ax, ay, au, av = px - fx, py - fy, -fu, -fv
-        R0, R1, R3 = r0 + ax * ax, r1 + ax * ay, r3 + ay * ay
-        R4, R5, R6, R7 = ax * au, ax * av, ay * au, ay * av
-        R8, R9, R11 = vr + au * au, au * av, vr + av * av
-        ex, ey, eu, ev = xM[0] - fx, xM[1] - fy, xM[2] - fu, xM[3] - fv
-        (k0, k1, _, k3), (l0, l1, l2, l3), (n0, n1, _, n3) = PM
-        M0, M1, M3 = k0 + ex * ex, k1 + ex * ey, k3 + ey * ey
-        M4, M5, M6, M7 = l0 + ex * eu, l1 + ex * ev, l2 + ey * eu, l3 + ey * ev
-        M8, M9, M11 = n0 + eu * eu, n1 + eu * ev, n3 + ev * ev
-        (f0, f1, _, f3), (g0, g1, g2, g3), (h0, h1, _, h3) = PF
-        # Rest: position only (its prediction drops the velocity).
-        cR = aR + aF + aM
-        a, b, e = (aR / cR, aF / cR, aM / cR) if cR > 0.0 else (1.0, 0.0, 0.0)
-        mx, my = a * ax + e * ex, a * ay + e * ey
-        q = self._rest_q * dt
-        c01 = a * R1 + b * f1 + e * M1 - mx * my
-        rest = (fx + mx, fy + my, (a * R0 + b * f0 + e * M0 - mx * mx + q, c01, c01,
-                                   a * R3 + b * f3 + e * M3 - my * my + q))
-        full = []
-        for a, b, e, own in ((bR, bF, bM, 1), (eR, eF, eM, 2)):
-            c = a + b + e
-            if c > 0.0:
-                a, b, e = a / c, b / c, e / c
-            else:  # no probability flows into the mode: it keeps its own estimate
-                a, b, e = (0.0, 1.0, 0.0) if own == 1 else (0.0, 0.0, 1.0)
-            mx, my, mu_, mv = a * ax + e * ex, a * ay + e * ey, a * au + e * eu, a * av + e * ev
-            c01 = a * R1 + b * f1 + e * M1 - mx * my
-            c23 = a * R9 + b * h1 + e * M9 - mu_ * mv
-            full.append(c)
-            full.append(((fx + mx, fy + my, fu + mu_, fv + mv),
-                         ((a * R0 + b * f0 + e * M0 - mx * mx, c01, c01,
-                           a * R3 + b * f3 + e * M3 - my * my),
-                          (a * R4 + b * g0 + e * M4 - mx * mu_, a * R5 + b * g1 + e * M5 - mx * mv,
-                           a * R6 + b * g2 + e * M6 - my * mu_, a * R7 + b * g3 + e * M7 - my * mv),
-                          (a * R8 + b * h0 + e * M8 - mu_ * mu_, c23, c23,
-                           a * R11 + b * h3 + e * M11 - mv * mv))))
-        cF, (x, P), cM, man = full
-        # Rolling: the friction model (analytic Jacobian), velocity random walk.
-        xn, A, B = self.motion.step(*x, dt, self._decel(x, s.kicked, s.t))
-        roll = (xn, predict_covariance(P, A, B, self._roll_q * dt))
-        # Maneuver: constant velocity, a velocity jump within the step.
-        man = predict_jump(*man, dt, self._man_q)
-        return rest, roll, man, (cR, cF, cM)
+        """Steps 1-3 over ``dt`` > 0 seconds: ``(rest, roll, man, c)`` predicted
+        (:func:`~estimators.kalman.imm_kernels.imm_predict`)."""
+        return imm_predict(s.rest, s.roll, s.man, s.mu, dt, *self._kick(s), *self._chain,
+                           self._params)
 
     def process(self, s: _State, t: float, dets: Sequence, obstacles: Sequence = ()) -> _State:
         """The state after one frame captured at ``t`` (no earlier than ``s.t``): steps 1-7
@@ -451,56 +399,19 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
         if not dets:
             return _State(t, rest, roll, man, c, s.candidates, s.fused_at, s.since_start,
                           self._kicked(s.kicked, roll[0], t), s.maneuver)
-        r, gate = self._r, self._gate
-        px, py, (r0, r1, _, r3) = rest
-        xF, PF = roll
-        xM, PM = man
         # The combined gate's distance is needed only when no mode's gate takes the
         # detection; with several detections the nearest one's comes with the choice.
         z, d2 = (dets[0], None) if len(dets) == 1 else self._nearest(rest, roll, man, c, dets)
         zx, zy = float(z[0]), float(z[1])
-        z = (zx, zy)  # (a float pair: the compiled blocks take one type)
-        # Step 6: the innovations; the rest mode's in closed form (no velocity).
-        s0, s3 = r0 + r, r3 + r
-        det = s0 * s3 - r1 * r1
-        j0, j1, j3 = s3 / det, -r1 / det, s0 / det
-        y0, y1 = zx - px, zy - py
-        dR = y0 * (j0 * y0 + j1 * y1) + y1 * (j1 * y0 + j3 * y1)
-        yF, SF, dF = innovation(xF, PF, z, r)
-        yM, SM, dM = innovation(xM, PM, z, r)
-        low = min(dR, dF, dM)
-        # Step 5: within max_jump of the combined prediction, and inside its gate or inside a
-        # mode's and near enough for a kick where the ball is.
-        cR, cF, cM = c
-        jump = math.hypot(zx - cR * px - cF * xF[0] - cM * xM[0],
-                          zy - cR * py - cF * xF[1] - cM * xM[1])
-        kick = low <= gate.limit and gate.reaches(jump, t - s.t, self.sigma_xy)
-        if not kick and d2 is None and jump <= self.max_jump:
-            d2 = self._nearest(rest, roll, man, c, (z,))[1]
-        if jump > self.max_jump or not (kick or d2 <= gate.limit):
+        fused, rest, roll, man, mu = imm_fuse(rest, roll, man, c, zx, zy, d2 is not None,
+                                              0.0 if d2 is None else d2, t - s.t,
+                                              self._params)
+        if not fused:
             self.rejected += 1
             return self._outlier(_State(t, rest, roll, man, c, s.candidates, s.fused_at,
                                         s.since_start, self._kicked(s.kicked, roll[0], t),
                                         s.maneuver), t, zx, zy)
         self.fused += 1
-        # Step 7: L_j ~ sqrt(det S_j^-1) exp(-d_j^2 / 2) (2 pi cancels), shifted by the
-        # smallest d^2 so that the best mode's exponential is 1.
-        lR = cR * math.sqrt(j0 * j3 - j1 * j1) * math.exp(0.5 * (low - dR))
-        lF = cF * math.sqrt(SF[0] * SF[3] - SF[1] * SF[1]) * math.exp(0.5 * (low - dF))
-        lM = cM * math.sqrt(SM[0] * SM[3] - SM[1] * SM[1]) * math.exp(0.5 * (low - dM))
-        total = lR + lF + lM
-        mu = (lR / total, lF / total, lM / total)
-        if mu[0] < MIN_PROBABILITY or mu[1] < MIN_PROBABILITY or mu[2] < MIN_PROBABILITY:
-            mu = tuple(max(m, MIN_PROBABILITY) for m in mu)
-            total = mu[0] + mu[1] + mu[2]
-            mu = (mu[0] / total, mu[1] / total, mu[2] / total)
-        # Step 6: the updates. Rest: K = P11 S^-1 = I - r S^-1, so x = z - r S^-1 y and
-        # P11 = (I - K) P11 = r (I - r S^-1) (P11 and S commute).
-        rr = r * r
-        rest = (zx - r * (j0 * y0 + j1 * y1), zy - r * (j1 * y0 + j3 * y1),
-                (r - rr * j0, -rr * j1, -rr * j1, r - rr * j3))
-        roll = update_closed_form(xF, PF, z, yF, SF, r)
-        man = update_closed_form(xM, PM, z, yM, SM, r)
         kicked, maneuver = self._kicked(s.kicked, roll[0], t), None
         if self.sliding is not None and mu[2] >= mu[0] and mu[2] >= mu[1]:
             # A maneuver: a kick if it made the ball faster by more than KICK_SPEED.
@@ -516,19 +427,7 @@ class IMMBall(ReplayBuffer, TrackQualityMixin):
     def _nearest(self, rest, roll, man, c, dets) -> tuple[Sequence[float], float]:
         """Steps 4-5: the detection nearest the combined prediction and its squared
         Mahalanobis distance ``d^2`` from it."""
-        cR, cF, cM = c
-        px, py, (r0, r1, _, r3) = rest
-        xF, xM = roll[0], man[0]
-        f0, f1, _, f3 = roll[1][0]
-        k0, k1, _, k3 = man[1][0]
-        r = self._r
-        gx, gy = cR * px + cF * xF[0] + cM * xM[0], cR * py + cF * xF[1] + cM * xM[1]
-        ax, ay = px - gx, py - gy
-        bx, by = xF[0] - gx, xF[1] - gy
-        ex, ey = xM[0] - gx, xM[1] - gy
-        s0 = cR * (r0 + ax * ax) + cF * (f0 + bx * bx) + cM * (k0 + ex * ex) + r
-        s1 = cR * (r1 + ax * ay) + cF * (f1 + bx * by) + cM * (k1 + ex * ey)
-        s3 = cR * (r3 + ay * ay) + cF * (f3 + by * by) + cM * (k3 + ey * ey) + r
+        gx, gy, s0, s1, s3 = imm_combined_gate(rest, roll, man, c, self._r)
         best, d2, _ = self._gate.nearest(gx, gy, (s0, s1, s3), dets)
         return best, d2
 

@@ -16,8 +16,9 @@ from collections.abc import Sequence
 from typing import Any
 
 from ..checks import check_real
+from ..compiled import kernel
 
-__all__ = ["ModeChain", "DEFAULT_RATES", "MIN_PROBABILITY", "check_rates"]
+__all__ = ["ModeChain", "DEFAULT_RATES", "MIN_PROBABILITY", "check_rates", "mode_products"]
 
 #: Default mode transition rates [1/s], ``DEFAULT_RATES[i][j]`` from mode ``i`` to mode ``j``
 #: (rest, rolling, maneuver; the diagonal is unused): a resting ball is kicked about every two
@@ -45,31 +46,44 @@ class ModeChain:
 
     Attributes:
         rates: the rates as a 3 x 3 tuple of floats (zero diagonal).
+        leave: the leaving rates ``lambda_i`` [1/s] of rest, rolling and maneuver.
+        jump: where the first jump goes, ``lambda_ij / lambda_i`` for ``ij`` = ``RF, RM, FR,
+            FM, MR, MF`` (0 for a mode never left).
     """
 
-    __slots__ = ("rates", "_leave", "_jump")
+    __slots__ = ("rates", "leave", "jump")
 
     def __init__(self, rates: Sequence[Sequence[float]] = DEFAULT_RATES) -> None:
         self.rates = check_rates(rates)
         # Leaving rates and where the first jump goes: lambda_i, lambda_ij / lambda_i.
-        self._leave = tuple(sum(row[j] for j in range(3) if j != i)
-                            for i, row in enumerate(self.rates))
-        self._jump = tuple(0.0 if self._leave[i] == 0.0 else self.rates[i][j] / self._leave[i]
-                           for i in range(3) for j in range(3) if j != i)
+        self.leave = tuple(sum(row[j] for j in range(3) if j != i)
+                           for i, row in enumerate(self.rates))
+        self.jump = tuple(0.0 if self.leave[i] == 0.0 else self.rates[i][j] / self.leave[i]
+                          for i in range(3) for j in range(3) if j != i)
 
     def products(self, mu: Sequence[float], dt: float) -> tuple[float, ...]:
         """``mu_i Pi_ij(dt)`` for mode probabilities ``mu`` and a step of ``dt`` > 0 seconds,
         for the targets rest, rolling and maneuver in turn (9 floats: ``i`` = rest, rolling,
         maneuver within each target); their sums over ``i`` are the predicted mode
         probabilities ``c_j``."""
-        mR, mF, mM = mu
-        lR, lF, lM = self._leave
-        jRF, jRM, jFR, jFM, jMR, jMF = self._jump
-        sR, sF, sM = math.exp(-lR * dt), math.exp(-lF * dt), math.exp(-lM * dt)
-        gR, gF, gM = mR - mR * sR, mF - mF * sF, mM - mM * sM  # mu_i (1 - Pi_ii)
-        return (mR * sR, gF * jFR, gM * jMR,
-                gR * jRF, mF * sF, gM * jMF,
-                gR * jRM, gF * jFM, mM * sM)
+        return mode_products(mu, dt, self.leave, self.jump)
+
+
+@kernel
+def mode_products(mu: tuple[float, float, float], dt: float,
+                  leave: tuple[float, float, float], jump: tuple[float, ...]
+                  ) -> tuple[float, ...]:
+    """:meth:`ModeChain.products` of a chain with leaving rates ``leave`` ``lambda_i`` [1/s]
+    and first-jump fractions ``jump`` ``lambda_ij / lambda_i`` (``RF, RM, FR, FM, MR, MF``):
+    ``mu_i Pi_ij(dt)`` for the targets rest, rolling and maneuver in turn."""
+    mR, mF, mM = mu
+    lR, lF, lM = leave
+    jRF, jRM, jFR, jFM, jMR, jMF = jump
+    sR, sF, sM = math.exp(-lR * dt), math.exp(-lF * dt), math.exp(-lM * dt)
+    gR, gF, gM = mR - mR * sR, mF - mF * sF, mM - mM * sM  # mu_i (1 - Pi_ii)
+    return (mR * sR, gF * jFR, gM * jMR,
+            gR * jRF, mF * sF, gM * jMF,
+            gR * jRM, gF * jFM, mM * sM)
 
 
 def check_rates(rates: Any) -> tuple[tuple[float, float, float], ...]:

@@ -11,8 +11,13 @@ import math
 
 import numpy as np
 
+from ..compiled import kernel
+from ..exact import hypot_exact
+
 __all__ = [
     "FrictionBallMotion",
+    "friction_step",
+    "rk4_friction",
     "ConstantVelocityMotion",
     "wrap_angle",
     "PAPER_CYCLE",
@@ -76,28 +81,11 @@ class FrictionBallMotion:
         """The mean after ``T`` seconds and the Jacobian blocks, in plain floats.
 
         Returns ``(x', A, B)`` with ``F = [[I, A], [0, B]]``; ``A`` and ``B`` are 2 x 2
-        row-major tuples. (Plain floats: the ball filter calls this every frame, where numpy's
-        per-call overhead would cost more than the arithmetic.)
+        row-major tuples (:func:`friction_step`, the compiled kernel the ball filters' own
+        kernels call).
         """
         a = self.deceleration if deceleration is None else deceleration
-        if self.propagation == "rk":
-            return _rk4_friction(px, py, vx, vy, a, T), (T, 0.0, 0.0, T), (1.0, 0.0, 0.0, 1.0)
-        speed = math.hypot(vx, vy)
-        if a == 0.0 or speed == 0.0:
-            return (px + vx * T, py + vy * T, vx, vy), (T, 0.0, 0.0, T), (1.0, 0.0, 0.0, 1.0)
-        if speed > a * T:
-            ux, uy = vx / speed, vy / speed
-            half = 0.5 * a * T * T
-            mean = (px + vx * T - half * ux, py + vy * T - half * uy,
-                    vx - a * T * ux, vy - a * T * uy)
-            # G = (I - u u^T) / |v|
-            g00, g01, g11 = (1.0 - ux * ux) / speed, -ux * uy / speed, (1.0 - uy * uy) / speed
-            A = (T - half * g00, -half * g01, -half * g01, T - half * g11)
-            B = (1.0 - a * T * g00, -a * T * g01, -a * T * g01, 1.0 - a * T * g11)
-            return mean, A, B
-        # Stops within the step: a = -v / T (eq. 14).
-        return (px + 0.5 * vx * T, py + 0.5 * vy * T, 0.0, 0.0), (0.5 * T, 0.0, 0.0, 0.5 * T), (
-            0.0, 0.0, 0.0, 0.0)
+        return friction_step(px, py, vx, vy, T, float(a), self.propagation == "rk")
 
     @staticmethod
     def velocity_noise(T: float, sigma_v: float) -> float:
@@ -118,29 +106,63 @@ class FrictionBallMotion:
         return np.array(mean), F, Q
 
 
-def _rk4_friction(px: float, py: float, vx: float, vy: float, a: float, T: float
-                  ) -> tuple[float, float, float, float]:
-    """One RK4 step of ``dp/dt = v``, ``dv/dt = -a v / |v|``; a ball that would stop within
-    the step is stopped where it comes to rest instead of reversing."""
-    speed = math.hypot(vx, vy)
+@kernel
+def friction_step(px: float, py: float, vx: float, vy: float, T: float, a: float, rk: bool
+                  ) -> tuple[tuple[float, float, float, float], tuple[float, float, float, float],
+                             tuple[float, float, float, float]]:
+    """``(x', A, B)`` of :meth:`FrictionBallMotion.step`: the state ``(px, py, vx, vy)``
+    [m, m/s] after ``T`` [s] at deceleration ``a`` [m/s^2] and the Jacobian blocks of
+    ``F = [[I, A], [0, B]]`` (2 x 2 row-major), by eq. 14 with the analytic Jacobian, or with
+    ``rk`` by :func:`rk4_friction` with ``F = M`` (``A = T I``, ``B = I``). Plain-float
+    arithmetic in Python's order (``math.hypot`` by :func:`~estimators.exact.hypot_exact`)."""
+    if rk:
+        return rk4_friction(px, py, vx, vy, a, T), (T, 0.0, 0.0, T), (1.0, 0.0, 0.0, 1.0)
+    speed = hypot_exact(vx, vy)
+    if a == 0.0 or speed == 0.0:
+        return (px + vx * T, py + vy * T, vx, vy), (T, 0.0, 0.0, T), (1.0, 0.0, 0.0, 1.0)
+    if speed > a * T:
+        ux, uy = vx / speed, vy / speed
+        half = 0.5 * a * T * T
+        mean = (px + vx * T - half * ux, py + vy * T - half * uy,
+                vx - a * T * ux, vy - a * T * uy)
+        # G = (I - u u^T) / |v|
+        g00, g01, g11 = (1.0 - ux * ux) / speed, -ux * uy / speed, (1.0 - uy * uy) / speed
+        A = (T - half * g00, -half * g01, -half * g01, T - half * g11)
+        B = (1.0 - a * T * g00, -a * T * g01, -a * T * g01, 1.0 - a * T * g11)
+        return mean, A, B
+    # Stops within the step: a = -v / T (eq. 14).
+    return ((px + 0.5 * vx * T, py + 0.5 * vy * T, 0.0, 0.0), (0.5 * T, 0.0, 0.0, 0.5 * T),
+            (0.0, 0.0, 0.0, 0.0))
+
+
+@kernel
+def _friction_accel(a: float, wx: float, wy: float) -> tuple[float, float]:
+    """The friction acceleration ``-a w / |w|`` of a ball at velocity ``w`` (zero at rest)."""
+    s = hypot_exact(wx, wy)
+    if s > 0.0:
+        return (-a * wx / s, -a * wy / s)
+    return (0.0, 0.0)
+
+
+@kernel
+def rk4_friction(px: float, py: float, vx: float, vy: float, a: float, T: float
+                 ) -> tuple[float, float, float, float]:
+    """One RK4 step of ``dp/dt = v``, ``dv/dt = -a v / |v|`` over ``T`` [s]; a ball that would
+    stop within the step is stopped where it comes to rest instead of reversing."""
+    speed = hypot_exact(vx, vy)
     if a > 0.0 and speed <= a * T:
         if speed == 0.0:
             return (px, py, 0.0, 0.0)
         d = speed / (2.0 * a)  # rest point along the direction of motion
         return (px + vx * d, py + vy * d, 0.0, 0.0)
-
-    def accel(wx: float, wy: float) -> tuple[float, float]:
-        s = math.hypot(wx, wy)
-        return (-a * wx / s, -a * wy / s) if s > 0.0 else (0.0, 0.0)
-
     h = 0.5 * T
-    a1 = accel(vx, vy)
+    a1 = _friction_accel(a, vx, vy)
     v2 = (vx + h * a1[0], vy + h * a1[1])
-    a2 = accel(*v2)
+    a2 = _friction_accel(a, v2[0], v2[1])
     v3 = (vx + h * a2[0], vy + h * a2[1])
-    a3 = accel(*v3)
+    a3 = _friction_accel(a, v3[0], v3[1])
     v4 = (vx + T * a3[0], vy + T * a3[1])
-    a4 = accel(*v4)
+    a4 = _friction_accel(a, v4[0], v4[1])
     w = T / 6.0
     return (px + w * (vx + 2.0 * v2[0] + 2.0 * v3[0] + v4[0]),
             py + w * (vy + 2.0 * v2[1] + 2.0 * v3[1] + v4[1]),
