@@ -76,5 +76,6 @@ def light_and_noise(img: np.ndarray, row: np.ndarray, column: np.ndarray, lit: b
             for j in range(w3):
                 v = np.float32(src[j]) + np.float32(noise[j])
                 dst[j] = np.uint8(min(max(v, _ZERO), _FULL))
-        else:
-            dst[:] = src
+        else:  # a loop, not a slice assignment, which costs seconds to compile
+            for j in range(w3):
+                dst[j] = src[j]
