@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import shutil
 import sys
 import textwrap
@@ -45,9 +46,10 @@ def _demo_parser() -> argparse.ArgumentParser:
                     "keeper perceiving through the realistic overhead vision, then a humanoid "
                     "keeper with three team-mates and head cameras, and write a video and "
                     "figures of each (trajectories, ball speed, estimation error) and a "
-                    "summary.json.\n\nThe figures need matplotlib and the video pygame and "
-                    "imageio (all in the render extra); without pygame or imageio the video "
-                    "is skipped.")
+                    "summary.json. The two keepers run in two processes at once where the "
+                    "machine has two cores or more.\n\nThe figures need matplotlib and the "
+                    "video pygame and imageio (all in the render extra); without pygame or "
+                    "imageio the video is skipped.")
     p.add_argument("--out", default="demo_output",
                    help="output folder (the humanoid keeper's files in its humanoid/ folder)")
     p.add_argument("--episodes", type=int, default=3,
@@ -72,15 +74,14 @@ def _cmd_demo(argv: list[str]) -> int:
             video = False
     from pathlib import Path
 
-    from soccer_lab.demo import run_demo
-
-    for robot, out, perception, title in (
-            ("ssl", Path(args.out), "realistic",
-             "SSL keeper (robot ssl, realistic overhead vision)"),
-            ("humanoid-2012", Path(args.out) / "humanoid", None,
-             "Humanoid keeper (robot humanoid-2012, its head camera, three team-mates)")):
-        summary = run_demo(out, args.episodes, args.seed, video=video, robot=robot,
-                           perception=perception)
+    keepers = (("ssl", Path(args.out), "realistic",
+                "SSL keeper (robot ssl, realistic overhead vision)"),
+               ("humanoid-2012", Path(args.out) / "humanoid", None,
+                "Humanoid keeper (robot humanoid-2012, its head camera, three team-mates)"))
+    summaries = _run_demos([{"out": out, "episodes": args.episodes, "seed": args.seed,
+                             "video": video, "robot": robot, "perception": perception}
+                            for robot, out, perception, _ in keepers])
+    for (_, _, _, title), summary in zip(keepers, summaries):
         print(f"{title}:")
         for ep in summary["episodes"]:
             shot = ep["shot"]
@@ -91,6 +92,24 @@ def _cmd_demo(argv: list[str]) -> int:
         for name, path in summary["files"].items():
             print(f"  wrote {name.replace('_', ' ')}: {path}")
     return 0
+
+
+def _run_demos(calls: list[dict]) -> list[dict]:
+    """:func:`~soccer_lab.demo.run_demo` with each of ``calls``' keyword arguments, in that
+    order; the keepers are independent, so where the machine has two cores or more they run
+    in two fresh processes at once (each compiles or loads its own kernels and renders its
+    own video)."""
+    from soccer_lab.demo import run_demo
+
+    if (os.cpu_count() or 1) < 2 or len(calls) < 2:
+        return [run_demo(**c) for c in calls]
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    with ProcessPoolExecutor(max_workers=2,
+                             mp_context=multiprocessing.get_context("spawn")) as pool:
+        futures = [pool.submit(run_demo, **c) for c in calls]
+        return [f.result() for f in futures]
 
 
 # --------------------------------------------------------------------------------------------
