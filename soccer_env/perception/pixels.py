@@ -121,6 +121,15 @@ class OverheadPixelDetector:
             self._dots.append((np.array([(p.x, p.y) for p in patches[1:]], dtype=np.float64),
                                names, np.array([n == "green" for n in names])))
 
+    def __getstate__(self) -> dict:
+        # The region images are the last frame's scratch buffers (each holds a look-up of
+        # that frame's image, which nothing reads again: the next frame refills them); a
+        # copy starts with none and allocates its own, the same numbers.
+        state = dict(self.__dict__)
+        if "_regions" in state:
+            state["_regions"] = [{} for _ in self._regions]
+        return state
+
     def reset(self, state: WorldState, rng: np.random.Generator) -> None:
         """Start an episode whose robots and ball start as in ``state`` (placed by the
         referee: their poses are known); ``rng`` draws the trackers' particles."""

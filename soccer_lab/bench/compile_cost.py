@@ -6,7 +6,8 @@ Each case runs in a fresh interpreter, twice: first with an empty kernel cache (
 sources), so every kernel the case uses is compiled and saved; then again with that folder,
 so every kernel is loaded. Timed: ``import soccer_env`` (which registers the environments),
 then ``gymnasium.make``, ``reset`` and the first step, then the next ``steps`` steps (the rate
-once everything is loaded). A user's first run pays the cold figures once per install (the
+once everything is loaded); counted: the kernel specializations compiled and those loaded from
+the cache. A user's first run pays the cold figures once per install (the
 cache beside the sources is kept); every later process, test workers and evaluation or
 training workers included, pays the warm ones.
 """
@@ -50,8 +51,14 @@ for _ in range(steps):
     if term or trunc:
         env.reset()
 t3 = time.perf_counter()
+from numba.core.registry import CPUDispatcher
+kernels = {id(v): v for name, m in list(sys.modules.items())
+           if name.split(".")[0] in ("soccer_env", "estimators", "agents")
+           for v in list(vars(m).values()) if isinstance(v, CPUDispatcher)}.values()
 print(json.dumps({"import_s": t1 - t0, "first_step_s": t2 - t1,
-                  "steps_per_s": steps / (t3 - t2)}))
+                  "steps_per_s": steps / (t3 - t2),
+                  "compiled": sum(sum(k.stats.cache_misses.values()) for k in kernels),
+                  "loaded": sum(sum(k.stats.cache_hits.values()) for k in kernels)}))
 """
 
 
@@ -68,7 +75,8 @@ def _timed(kwargs: dict[str, Any], steps: int, cache: str) -> dict[str, float]:
 def bench_compile(cases: list[str] | None = None, steps: int = 200) -> dict[str, Any]:
     """For each case of :data:`COMPILE_CASES` (all by default): the cold and the warm
     figures of a fresh interpreter (see the module docstring), ``{case: {"cold": {...},
-    "warm": {...}}}`` with ``import_s``, ``first_step_s`` and ``steps_per_s``."""
+    "warm": {...}}}`` with ``import_s``, ``first_step_s``, ``steps_per_s`` and the kernel
+    specializations ``compiled`` and ``loaded``."""
     names = list(COMPILE_CASES) if cases is None else cases
     for name in names:
         if name not in COMPILE_CASES:
@@ -85,9 +93,10 @@ def bench_compile(cases: list[str] | None = None, steps: int = 200) -> dict[str,
 def format_compile(res: dict[str, Any]) -> str:
     """The plain-text table of :func:`bench_compile`'s results."""
     head = ("case", "cold import", "cold first step", "warm import", "warm first step",
-            "then steps/s")
+            "then steps/s", "kernels compiled")
     rows = [(name, f"{r['cold']['import_s']:.2f}", f"{r['cold']['first_step_s']:.2f}",
              f"{r['warm']['import_s']:.2f}", f"{r['warm']['first_step_s']:.2f}",
-             f"{r['warm']['steps_per_s']:,.0f}") for name, r in res.items()]
+             f"{r['warm']['steps_per_s']:,.0f}", f"{r['cold']['compiled']}")
+            for name, r in res.items()]
     return ("fresh interpreter: import soccer_env, then make + reset + first step [s]; "
             "cold: empty kernel cache, warm: cache loaded\n" + table([head, *rows]))
