@@ -2,16 +2,20 @@
 observations, rewards and infos.
 
 Each case runs a few seeded episodes with seeded random actions and digests (SHA-256) every
-observation, reward, termination flag and info dict. The digests in
-``tests/data/episode_digests.json`` were recorded on one machine; floating-point results can
-differ in the last bit with another numpy, numba, pymunk or OpenCV release or another CPU's SIMD
-paths, so the comparison runs only where that fingerprint matches the recording (and is
-skipped, saying why, elsewhere). A change that is meant to alter behaviour re-records the
-digests with::
+observation, reward, termination flag and info dict. ``tests/data/episode_digests.json``
+holds one recording per machine fingerprint: floating-point results can differ in the last bit
+with another numpy, numba, pymunk or OpenCV release or another CPU's SIMD paths (numpy's sine
+and cosine on AVX-512 against AVX2, for one), so the comparison runs where a recording's
+fingerprint matches this machine's (and is skipped, saying why, elsewhere). A change that is
+meant to alter behaviour re-records the digests, which drops every other machine's recording
+(they are stale), and says so in its commit message::
 
     python -m tests.test_regression --update     # from the repository's root
 
-and says so in its commit message.
+Where the digests pass on one machine, another machine's recording is added (or its own
+replaced) with the same code, the others kept::
+
+    python -m tests.test_regression --add
 """
 
 from __future__ import annotations
@@ -204,20 +208,23 @@ def fingerprint() -> dict[str, Any]:
     }
 
 
-def _recorded() -> dict[str, Any]:
-    return json.loads(DIGESTS.read_text())
+def _recordings() -> list[dict[str, Any]]:
+    """Every recording: ``{"fingerprint": ..., "cases": {case: [digest per seed]}}``."""
+    return json.loads(DIGESTS.read_text())["recordings"]
 
 
 @pytest.fixture(scope="module")
 def recorded() -> dict[str, Any]:
-    data = _recorded()
     here = fingerprint()
-    if data["fingerprint"] != here:
-        diff = {k: (data["fingerprint"].get(k), v) for k, v in here.items()
-                if data["fingerprint"].get(k) != v}
-        pytest.skip(f"digests recorded under another environment {diff}; re-record with "
-                    "python -m tests.test_regression --update to compare here")
-    return data["cases"]
+    data = _recordings()
+    for rec in data:
+        if rec["fingerprint"] == here:
+            return rec["cases"]
+    diffs = [{k: (rec["fingerprint"].get(k), v) for k, v in here.items()
+              if rec["fingerprint"].get(k) != v} for rec in data]
+    pytest.skip(f"no digests recorded under this environment (the recordings differ in "
+                f"{diffs}); once they pass on a recorded machine, add this one with "
+                "python -m tests.test_regression --add")
 
 
 @pytest.mark.parametrize("case", sorted(CASES))
@@ -231,16 +238,31 @@ def test_pixel_episode_digests_unchanged(case, recorded):
     assert [PIXEL_CASES[case](s) for s in SEEDS] == recorded[case]
 
 
-def test_every_case_is_recorded():
-    assert sorted(_recorded()["cases"]) == sorted({**CASES, **PIXEL_CASES})
+def test_every_case_is_recorded_once_per_machine():
+    data = _recordings()
+    assert data, "no recording"
+    for rec in data:
+        assert sorted(rec["cases"]) == sorted({**CASES, **PIXEL_CASES})
+    prints = [json.dumps(rec["fingerprint"], sort_keys=True) for rec in data]
+    assert len(set(prints)) == len(prints)
+
+
+def _record(keep_others: bool) -> None:
+    """Record this machine's digests: alone (``--update``) or beside the other machines'
+    recordings (``--add``)."""
+    here = fingerprint()
+    cases = {name: [run(s) for s in SEEDS]
+             for name, run in sorted({**CASES, **PIXEL_CASES}.items())}
+    others = ([rec for rec in _recordings() if rec["fingerprint"] != here]
+              if keep_others and DIGESTS.exists() else [])
+    DIGESTS.parent.mkdir(exist_ok=True)
+    DIGESTS.write_text(json.dumps({"recordings": [*others, {"fingerprint": here,
+                                                            "cases": cases}]}, indent=1)
+                       + "\n")
+    print(f"recorded {len(cases)} cases in {DIGESTS} ({len(others)} other recordings kept)")
 
 
 if __name__ == "__main__":
-    if sys.argv[1:] != ["--update"]:
-        sys.exit("usage: python -m tests.test_regression --update")
-    cases = {name: [run(s) for s in SEEDS]
-             for name, run in sorted({**CASES, **PIXEL_CASES}.items())}
-    DIGESTS.parent.mkdir(exist_ok=True)
-    DIGESTS.write_text(json.dumps({"fingerprint": fingerprint(), "cases": cases}, indent=1)
-                       + "\n")
-    print(f"recorded {len(cases)} cases in {DIGESTS}")
+    if sys.argv[1:] not in (["--update"], ["--add"]):
+        sys.exit("usage: python -m tests.test_regression --update | --add")
+    _record(keep_others=sys.argv[1] == "--add")
