@@ -51,6 +51,7 @@ REQUIREMENTS: dict[str, tuple[Need, ...]] = {
     "bench": (),
     "bench --batch": (Need(("stable_baselines3",), "train"),),
     "bench --frames": (_IMAGES,),
+    "bench --pixels": (_IMAGES,),
     "paper ekf": (_FIGURES,),
     "paper ungm": (_FIGURES,),
     "paper localization": (_FIGURES,),

@@ -48,12 +48,14 @@ from soccer_lab.bench.runners import HUMANOID, HUMANOID_CAMERA, memory_per_item
 from soccer_lab.bench.save_rates import format_save_rates, keeper_save_rates, save_rate_main
 from soccer_lab.bench.steps import (
     PERCEIVED_PRESETS,
+    PIXELS_CASES,
     REFERENCE,
     bench_batched,
     bench_frames,
     bench_goalkeeper,
     bench_match,
     bench_perceived_cost,
+    bench_pixels,
     run_benchmarks,
 )
 from soccer_lab.bench.tables import format_table
@@ -64,4 +66,4 @@ __all__ = ["run_benchmarks", "bench_batched", "bench_frames", "format_table", "R
            "format_rollout_rates", "rollout_main", "memory_per_item", "bench_goalkeeper",
            "bench_match", "bench_perceived_cost", "PROFILE_CASES", "profile_perceived",
            "format_profile", "HUMANOID", "HUMANOID_CAMERA", "COMPILE_CASES", "bench_compile",
-           "format_compile"]
+           "format_compile", "PIXELS_CASES", "bench_pixels"]

@@ -9,7 +9,7 @@ from typing import Any
 from soccer_lab.bench.compile_cost import bench_compile, format_compile
 from soccer_lab.bench.profiling import PROFILE_CASES, format_profile, profile_perceived
 from soccer_lab.bench.runners import HUMANOID_CAMERA
-from soccer_lab.bench.steps import bench_frames, run_benchmarks
+from soccer_lab.bench.steps import bench_frames, bench_pixels, run_benchmarks
 from soccer_lab.bench.tables import format_table
 
 __all__ = ["parser", "main"]
@@ -31,6 +31,8 @@ def parser() -> Any:
                "  soccer-env bench --batch 128               # also the batched environments\n"
                "  soccer-env bench --frames                  # camera-image renderers (pixels "
                "extra)\n"
+               "  soccer-env bench --pixels                  # pixels detector's step rates "
+               "(pixels extra)\n"
                "  soccer-env bench --profile humanoid-goalkeeper\n"
                "  soccer-env bench --compile                 # kernels' compile and load "
                "times")
@@ -45,6 +47,10 @@ def parser() -> Any:
                         "the train extra)")
     p.add_argument("--frames", action="store_true",
                    help="time the camera-image renderers instead (needs the pixels extra)")
+    p.add_argument("--pixels", action="store_true",
+                   help="time a Goalkeeper-v0 and a 6 vs 6 match with the overhead pixels "
+                        "detector instead, against truth (--steps / 10 and --match-steps / 25 "
+                        "steps a run; needs the pixels extra)")
     p.add_argument("--profile", choices=sorted(PROFILE_CASES), default=None,
                    help="profile a perceived step of this case instead (cProfile: the top "
                         "functions by own time per step)")
@@ -75,7 +81,9 @@ def main(argv: list[str] | None = None) -> int:
         p.error(f"--top must be >= 1, got {args.top}")
     extras.require("bench")
     # What runs: --profile, else --frames, else the step rates (with --batch, batched too).
-    if args.frames and not args.profile:
+    if args.pixels and not args.profile:
+        extras.require("bench --pixels")
+    elif args.frames and not args.profile:
         extras.require("bench --frames")
     elif args.batch and not args.profile:
         extras.require("bench --batch", f"bench --batch {args.batch}")
@@ -91,6 +99,13 @@ def main(argv: list[str] | None = None) -> int:
     if args.compile:
         res = bench_compile()
         print(json.dumps(res, indent=2) if args.json else format_compile(res))
+        return 0
+    if args.pixels:
+        res = bench_pixels(max(1, args.steps // 10), max(1, args.match_steps // 25),
+                           args.repeats)
+        print(json.dumps(res, indent=2) if args.json else "\n".join(
+            f"{key}: {v['steps_per_s']:,.0f} steps/s, {v['cost_vs_truth']:.2f} times truth's "
+            "step" for key, v in res.items()))
         return 0
     if args.frames:
         ms = bench_frames()

@@ -62,7 +62,7 @@ def random_actions(rng: np.random.Generator, shape: tuple[int, ...], robot: str)
 
 
 def goalkeeper_runner(steps: int, seed: int = 0, obs_mode: str = "truth",
-                      perception: str | None = None, robot: str = "ssl"):
+                      perception: str | dict | None = None, robot: str = "ssl"):
     """A closure stepping ``gymnasium.make("soccer_env/Goalkeeper-v0")`` ``steps`` times with
     pre-drawn random actions (resetting when episodes end), and its environment."""
     env = gym.make(GOALKEEPER_ID, obs_mode=obs_mode, perception=perception,
@@ -80,7 +80,7 @@ def goalkeeper_runner(steps: int, seed: int = 0, obs_mode: str = "truth",
 
 
 def match_runner(steps: int, blue: int = 6, yellow: int = 6, field: str | None = None,
-                 seed: int = 0, obs_mode: str = "truth", perception: str | None = None,
+                 seed: int = 0, obs_mode: str = "truth", perception: str | dict | None = None,
                  robot: str = "ssl"):
     """A closure stepping a match ``steps`` times with pre-drawn random actions."""
     from soccer_env import parallel_env

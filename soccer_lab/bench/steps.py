@@ -26,8 +26,9 @@ from soccer_lab.bench.runners import (
     run_rate,
 )
 
-__all__ = ["PERCEIVED_PRESETS", "REFERENCE", "bench_goalkeeper", "bench_match",
-           "bench_perceived_cost", "bench_frames", "bench_batched", "run_benchmarks"]
+__all__ = ["PERCEIVED_PRESETS", "PIXELS_CASES", "REFERENCE", "bench_goalkeeper", "bench_match",
+           "bench_perceived_cost", "bench_frames", "bench_pixels", "bench_batched",
+           "run_benchmarks"]
 
 #: Sensor presets timed with ``obs_mode="perceived"`` (default EKF), against truth.
 PERCEIVED_PRESETS = ("realistic", "ssl-2012")
@@ -58,8 +59,8 @@ def bench_match(steps: int, repeats: int, seed: int = 0) -> dict[str, Any]:
             "bare_pymunk_steps_per_s": bare_rate(env.world, steps, repeats)}
 
 
-def bench_perceived_cost(make_runner: Callable, steps: int, repeats: int, preset: str
-                         ) -> dict[str, float]:
+def bench_perceived_cost(make_runner: Callable, steps: int, repeats: int,
+                         preset: str | dict[str, Any]) -> dict[str, float]:
     """Cost of a perceived step relative to a truth step, timed in alternation (truth,
     perceived, truth, ...) so that the machine's drift cancels; the median of the pairs'
     ratios."""
@@ -72,6 +73,31 @@ def bench_perceived_cost(make_runner: Callable, steps: int, repeats: int, preset
         ratios.append(t / p)
         rates.append(p)
     return {"steps_per_s": statistics.median(rates), "cost_vs_truth": statistics.median(ratios)}
+
+
+#: The environments timed by ``soccer-env bench --pixels``: the overhead pixels detector (each
+#: camera's image rendered, then every robot and the ball found in it by mean-shift particle
+#: filters) behind the default EKF, under one 25 Hz camera and four 60 Hz ones.
+PIXELS_CASES = {
+    "Goalkeeper-v0, ssl-2012 (1 camera)": ("goalkeeper", {"vision": "ssl-2012",
+                                                          "detector": "pixels"}),
+    "6 vs 6 Division B, realistic (4 cameras)": ("match", {"vision": "realistic",
+                                                           "detector": "pixels"}),
+}
+
+
+def bench_pixels(steps: int = 2000, match_steps: int = 200, repeats: int = 3
+                 ) -> dict[str, dict[str, float]]:
+    """Steps per second of the environments of :data:`PIXELS_CASES` and their cost against
+    truth, timed in alternation (``soccer-env bench --pixels``; needs the ``pixels``
+    extra)."""
+    out = {}
+    for name, (kind, perception) in PIXELS_CASES.items():
+        if kind == "goalkeeper":
+            out[name] = bench_perceived_cost(goalkeeper_runner, steps, repeats, perception)
+        else:
+            out[name] = bench_perceived_cost(match_runner, match_steps, repeats, perception)
+    return out
 
 
 def bench_frames(repeats: int = 200) -> dict[str, float]:

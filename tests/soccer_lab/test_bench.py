@@ -103,3 +103,18 @@ def test_bench_compile_times_cold_and_warm_kernel_caches():
     assert name in bench.format_compile(res)
     with pytest.raises(ValueError, match="case must be one of"):
         bench.bench_compile(["no such case"])
+
+
+def test_bench_pixels_times_the_pixels_detector_against_truth(capsys):
+    """``soccer-env bench --pixels`` at a tiny size: both environments, a rate and a cost."""
+    pytest.importorskip("cv2", reason="the pixels detector needs the 'pixels' extra (OpenCV)")
+    from soccer_lab.cli import main
+
+    assert main(["bench", "--pixels", "--json", "--steps", "30", "--match-steps", "50",
+                 "--repeats", "1"]) == 0
+    import json
+
+    res = json.loads(capsys.readouterr().out)
+    assert list(res) == list(bench.PIXELS_CASES)
+    for r in res.values():
+        assert r["steps_per_s"] > 0 and r["cost_vs_truth"] > 0
