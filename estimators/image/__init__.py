@@ -24,12 +24,13 @@ from .following import (
     focal_length_px,
 )
 from .meanshift import MEAN_SHIFT_KERNELS, MeanShiftWindows, mean_shift
-from .mspf import MeanShiftParticleFilter, ParticleFilterTracker
+from .mspf import EmptyWindowError, MeanShiftParticleFilter, ParticleFilterTracker
 
 __all__ = [
     "mean_shift",
     "MEAN_SHIFT_KERNELS",
     "MeanShiftWindows",
+    "EmptyWindowError",
     "MeanShiftParticleFilter",
     "ParticleFilterTracker",
     "KalmanMeanShift",

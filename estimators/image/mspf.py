@@ -69,9 +69,15 @@ from .checks import check_image, check_int, check_number, check_point, check_win
 from .meanshift import MEAN_SHIFT_KERNELS, MeanShiftWindows, RegionImage
 from .window_kernels import window_mass_scores
 
-__all__ = ["MeanShiftParticleFilter", "ParticleFilterTracker"]
+__all__ = ["EmptyWindowError", "MeanShiftParticleFilter", "ParticleFilterTracker"]
 
 FeatureCheck = Callable[[np.ndarray, np.ndarray], np.ndarray]
+
+
+class EmptyWindowError(ValueError):
+    """A :class:`MeanShiftParticleFilter` without ``area`` was given a first image that holds
+    no weight where it starts: there is nothing to measure the target's area on (the target is
+    not where the filter was started). The filter is left as it was before the update."""
 
 
 # ------------------------------------------------------------------------------------------
@@ -427,8 +433,8 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
                                            max(self.mean_shift_iter, 1), self.eps)
             mass = float(mom[0, 3])
             if mass <= 0.0:
-                raise ValueError("area is None and the first colour image holds no weight in "
-                                 "the initial window: pass area")
+                raise EmptyWindowError("area is None and the first colour image holds no "
+                                       "weight in the initial window: pass area")
             self.area = mass
         return self.area
 

@@ -32,7 +32,9 @@ Every overhead camera of the field has its own trackers (one camera on fields up
 four on Division B and A): a camera starts tracking a robot or the ball where it was last found,
 by any camera, once that is inside its view, and stops when its tracker has lost what another
 camera has since found outside its view; in the overlaps both cameras report it, as the
-geometric cameras do.
+geometric cameras do. A camera whose new tracker finds none of the target's colour where it
+starts (the ball hidden by a robot, or already out of that camera's view) drops it and tries
+again on its next frame.
 
 Limitations: the rendered resolution, not the vision preset's noise figures, sets the detection
 noise (the preset's detection probabilities, spurious balls and noise are not applied).
@@ -53,6 +55,7 @@ from estimators import (
     PoseMeasurement,
     PositionMeasurement,
 )
+from estimators.image import EmptyWindowError
 from soccer_env.perception.pixel_kernels import best_heading, dot_pixels
 from soccer_env.presets import BallSpec
 from soccer_env.presets.images import CLASS_ALIASES, OVERHEAD_CLASSES
@@ -202,7 +205,11 @@ class OverheadPixelDetector:
                 trackers[i] = None
                 continue
             colour = colours["blue" if self.teams[i] == 0 else "yellow"]
-            u, v, _, _ = tracker.update(colour, motion)
+            try:
+                u, v, _, _ = tracker.update(colour, motion)
+            except EmptyWindowError:  # a new tracker where nothing is seen: not started
+                trackers[i] = None
+                continue
             if tracker.lost:
                 continue
             pixels.append((u, v))
@@ -222,10 +229,13 @@ class OverheadPixelDetector:
             self._ball_trackers[cam] = bt
         if bt is not None:
             robots_px = np.array(pixels) if pixels else None
-            u, v, _, _ = bt.update(colours["orange"], motion, robots=robots_px,
-                                   robot_radius_px=float(np.mean(radius_px)) if pixels
-                                   else None)
-            if not (bt.lost or bt.occluded):
+            try:
+                u, v, _, _ = bt.update(colours["orange"], motion, robots=robots_px,
+                                       robot_radius_px=float(np.mean(radius_px)) if pixels
+                                       else None)
+            except EmptyWindowError:  # a new tracker where no ball is seen: not started
+                self._ball_trackers[cam] = bt = None
+            if bt is not None and not (bt.lost or bt.occluded):
                 x, y = r.to_field(u, v)
                 balls.append((float(x), float(y)))
                 self._known_ball = (float(x), float(y))

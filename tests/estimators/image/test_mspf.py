@@ -13,6 +13,7 @@ from estimators import (
     MeanShiftParticleFilter,
     ParticleFilterTracker,
 )
+from estimators.image import EmptyWindowError
 
 GEN = np.random.default_rng(0)
 IMG = np.zeros((H, W), np.float32)
@@ -180,6 +181,24 @@ def test_feature_check_hook_vetoes_windows():
 def test_bad_arguments_raise_value_error_naming_them(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+def test_a_first_image_with_nothing_to_calibrate_on_leaves_the_filter_as_it_was():
+    """Without ``area``, a first image with no weight where the filter starts raises
+    :class:`EmptyWindowError` (a ``ValueError``) and changes nothing: the same filter then
+    calibrates on an image that shows the target, as a new one would."""
+    img = np.zeros((60, 80))
+    f = MeanShiftParticleFilter((30.0, 20.0), (9, 9), np.random.default_rng(4))
+    g = MeanShiftParticleFilter((30.0, 20.0), (9, 9), np.random.default_rng(4))
+    particles = f.particles.copy()
+    with pytest.raises(EmptyWindowError, match="area"):
+        f.update(img)
+    assert issubclass(EmptyWindowError, ValueError)
+    assert f.area is None and f.frame == 0 and not f.lost
+    np.testing.assert_array_equal(f.particles, particles)
+    img[17:24, 27:34] = 1.0
+    np.testing.assert_array_equal(f.update(img), g.update(img))
+    assert f.area == g.area > 0
 
 
 @pytest.mark.parametrize("cls", [MeanShiftParticleFilter, ParticleFilterTracker])

@@ -106,6 +106,42 @@ def test_pixels_on_four_cameras_hand_robots_over_across_the_quadrants():
     assert max(errors[20:]) < 0.1 and np.median(errors[20:]) < 0.03
 
 
+def test_a_camera_whose_new_tracker_finds_nothing_drops_it_and_tries_again():
+    """Division B: a camera starts tracking the ball where it was last found once that is in
+    its view; where that start holds no orange (the ball hidden by a robot, or gone from that
+    camera's view since), the camera drops the tracker and reports nothing, and starts again
+    where the cameras that see the ball found it."""
+    env = soccer_env.parallel_env(blue=1, yellow=1, field="ssl-div-b", robot="ssl",
+                                  obs_mode="perceived", max_cycles=400,
+                                  perception={"vision": "ssl-2012", "detector": "pixels"})
+    env.reset(seed=2)
+    detector = env.unwrapped.pipelines[0].detector
+    frames = []
+    detections = detector.detections
+
+    def recorded(fs):
+        frames.extend(fs)
+        return detections(fs)
+
+    detector.detections = recorded
+    zero = {a: np.zeros(6, np.float32) for a in env.agents}
+    for _ in range(20):  # every camera tracks the ball at the centre spot
+        env.step(zero)
+    image = [f for f in frames if f.camera == 0][-1]
+    ball = detector._known_ball
+    # Camera 0, without a tracker, told the ball was last found in a corner of its view.
+    x0, _, y0, _ = detector.renderers[0].region
+    detector._ball_trackers[0] = None
+    detector._known_ball = (x0 + 0.5, y0 + 0.5)
+    out = detector.detections([image])
+    assert all(not f.balls for f in out) and detector._ball_trackers[0] is None
+    # Found again (by the other cameras) at the centre: camera 0 starts there.
+    detector._known_ball = ball
+    out = detector.detections([image])
+    assert np.hypot(*np.subtract(out[0].balls[0], ball)) < 0.02
+    assert detector._ball_trackers[0] is not None
+
+
 def test_an_unknown_detector_is_refused():
     with pytest.raises(ValueError, match=r"detector must be one of \['geometric', 'pixels'\]"):
         gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived",
