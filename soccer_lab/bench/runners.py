@@ -62,11 +62,12 @@ def random_actions(rng: np.random.Generator, shape: tuple[int, ...], robot: str)
 
 
 def goalkeeper_runner(steps: int, seed: int = 0, obs_mode: str = "truth",
-                      perception: str | dict | None = None, robot: str = "ssl"):
+                      perception: str | dict | None = None, robot: str = "ssl",
+                      field: str | None = None):
     """A closure stepping ``gymnasium.make("soccer_env/Goalkeeper-v0")`` ``steps`` times with
     pre-drawn random actions (resetting when episodes end), and its environment."""
     env = gym.make(GOALKEEPER_ID, obs_mode=obs_mode, perception=perception,
-                   robot=robot)
+                   robot=robot, **({} if field is None else {"field": field}))
     actions = random_actions(np.random.default_rng(seed), (steps,), robot).astype(np.float32)
     env.reset(seed=seed)
 

@@ -77,12 +77,14 @@ def bench_perceived_cost(make_runner: Callable, steps: int, repeats: int,
 
 #: The environments timed by ``soccer-env bench --pixels``: the overhead pixels detector (each
 #: camera's image rendered, then every robot and the ball found in it by mean-shift particle
-#: filters) behind the default EKF, under one 25 Hz camera and four 60 Hz ones.
+#: filters) behind the default EKF: a keeper on the 2012 league's field under its one 25 Hz
+#: camera, and a 6 vs 6 Division B match under four 60 Hz cameras. Each: the runner, its
+#: keyword arguments, the ``perception``.
 PIXELS_CASES = {
-    "Goalkeeper-v0, ssl-2012 (1 camera)": ("goalkeeper", {"vision": "ssl-2012",
-                                                          "detector": "pixels"}),
-    "6 vs 6 Division B, realistic (4 cameras)": ("match", {"vision": "realistic",
-                                                           "detector": "pixels"}),
+    "Goalkeeper-v0, ssl-2012 field and vision (1 camera)": (
+        goalkeeper_runner, {"field": "ssl-2012"}, {"vision": "ssl-2012", "detector": "pixels"}),
+    "6 vs 6 Division B, realistic vision (4 cameras)": (
+        match_runner, {}, {"vision": "realistic", "detector": "pixels"}),
 }
 
 
@@ -92,11 +94,11 @@ def bench_pixels(steps: int = 2000, match_steps: int = 200, repeats: int = 3
     truth, timed in alternation (``soccer-env bench --pixels``; needs the ``pixels``
     extra)."""
     out = {}
-    for name, (kind, perception) in PIXELS_CASES.items():
-        if kind == "goalkeeper":
-            out[name] = bench_perceived_cost(goalkeeper_runner, steps, repeats, perception)
-        else:
-            out[name] = bench_perceived_cost(match_runner, match_steps, repeats, perception)
+    for name, (runner, kwargs, perception) in PIXELS_CASES.items():
+        n = steps if runner is goalkeeper_runner else match_steps
+        out[name] = bench_perceived_cost(
+            lambda k, runner=runner, kwargs=kwargs, **kw: runner(k, **kwargs, **kw), n, repeats,
+            perception)
     return out
 
 
