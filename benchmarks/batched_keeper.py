@@ -83,8 +83,12 @@ def _memory(n: int, kwargs: dict) -> float:
         return (f"gym.make_vec('soccer_env/Goalkeeper-v0', num_envs={count}, "
                 f"vectorization_mode='vector_entry_point', **{kwargs!r})")
 
+    # The warm-up steps too: what a process loads once (the compiled kernels, numba's
+    # compiler) is not the environments' memory.
     return memory_per_item(
-        f"import gymnasium as gym, numpy as np, soccer_env\n{make(2)}.reset(seed=0)",
+        f"import gymnasium as gym, numpy as np, soccer_env\nwarm = {make(2)}\n"
+        "warm.reset(seed=0)\n"
+        "for _ in range(20): warm.step(np.zeros((2, 6), np.float32))",
         f"env = {make(n)}\nenv.reset(seed=0)\n"
         f"for _ in range(20): env.step(np.zeros(({n}, 6), np.float32))", n)
 
