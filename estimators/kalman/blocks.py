@@ -1,4 +1,4 @@
-"""Kalman blocks: the filter arithmetic of the ball trackers in plain floats, and on rows.
+"""Kalman blocks: the filter arithmetic of the ball trackers in plain floats.
 
 FilterPy exposes ``predict`` and ``update`` as functions beside its ``KalmanFilter`` class;
 these are the same steps for the ball trackers' state ``x = (x, y, vx, vy)`` [m, m/s], a
@@ -21,13 +21,12 @@ constant-velocity prediction with a velocity jump within the step).
 **Kernels.** Each block is written once, as a compiled ``numba`` kernel
 (:func:`~estimators.compiled.kernel`): called from Python on float tuples it takes about half
 the time of the same code interpreted; the ball EKF's kernels
-(:mod:`~estimators.kalman.ball_kernels`) call them on each track, and
-:func:`predict_covariance_rows`, :func:`innovation_rows` and :func:`update_rows` run them over
-arrays whose rows are independent filters, so a row rounds exactly as the single filter does.
-``P`` is then ``(d, 12)``: the blocks P11, P12 and P22 row-major in
-columns 0-3, 4-7 and 8-11 (:func:`blocks_from_row` turns one row back into :data:`Blocks`);
-``A``, ``B`` are ``(d, 4)`` row-major 2 x 2. The blocks take float tuples: a caller turns a
-detection into a ``(float, float)`` pair, so that one compiled version serves every caller.
+(:mod:`~estimators.kalman.ball_kernels`) call them on each track, a single tracker's and every
+row of a batch's alike, so a row rounds exactly as the single filter does. A track's
+covariance is stored as a row of 12: the blocks P11, P12 and P22 row-major in columns 0-3, 4-7
+and 8-11 (:func:`blocks_from_row` turns one row back into :data:`Blocks`). The blocks take
+float tuples: a caller turns a detection into a ``(float, float)`` pair, so that one compiled
+version serves every caller.
 """
 
 from __future__ import annotations
@@ -39,8 +38,7 @@ import numpy as np
 from ..compiled import kernel
 
 __all__ = ["Mat2", "Blocks", "State", "transpose", "full_covariance", "blocks_from_row",
-           "predict_covariance", "predict_jump", "innovation", "update", "update_closed_form",
-           "predict_covariance_rows", "innovation_rows", "update_rows"]
+           "predict_covariance", "predict_jump", "innovation", "update", "update_closed_form"]
 
 
 #: A 2 x 2 matrix as a row-major 4-tuple ``(m00, m01, m10, m11)``.
@@ -196,87 +194,3 @@ def update_closed_form(x: State, P: Blocks, z: Sequence[float], y: Sequence[floa
              (r * (i0 * m0 + i1 * m2), r * (i0 * m1 + i1 * m3),
               r * (i1 * m0 + i3 * m2), r * (i1 * m1 + i3 * m3)),
              (n0 - b0 * m0 - b1 * m2, c01, c01, n3 - b2 * m1 - b3 * m3)))
-
-
-# --------------------------------------------------------------------------------------------
-# Rows
-# --------------------------------------------------------------------------------------------
-
-
-@kernel
-def _row_blocks(P: np.ndarray, i: int) -> Blocks:
-    """Row ``i`` of a ``(d, 12)`` covariance array as :data:`Blocks`."""
-    return ((P[i, 0], P[i, 1], P[i, 2], P[i, 3]), (P[i, 4], P[i, 5], P[i, 6], P[i, 7]),
-            (P[i, 8], P[i, 9], P[i, 10], P[i, 11]))
-
-
-@kernel
-def _write_blocks(out: np.ndarray, i: int, P: Blocks) -> None:
-    """Write :data:`Blocks` ``P`` into row ``i`` of the ``(d, 12)`` array ``out``."""
-    for b in range(3):
-        for j in range(4):
-            out[i, 4 * b + j] = P[b][j]
-
-
-@kernel
-def predict_covariance_rows(P: np.ndarray, A: np.ndarray, B: np.ndarray, q: np.ndarray
-                            ) -> np.ndarray:
-    """:func:`predict_covariance` of every row: ``P`` ``(d, 12)``, ``A``, ``B`` ``(d, 4)``,
-    ``q`` ``(d,)``."""
-    out = np.empty_like(P)
-    for i in range(P.shape[0]):
-        a = (A[i, 0], A[i, 1], A[i, 2], A[i, 3])
-        b = (B[i, 0], B[i, 1], B[i, 2], B[i, 3])
-        _write_blocks(out, i, predict_covariance(_row_blocks(P, i), a, b, q[i]))
-    return out
-
-
-@kernel
-def _innovation_rows(x: np.ndarray, P: np.ndarray, z: np.ndarray, r: float):
-    d, k = z.shape[0], z.shape[1]
-    y0, y1, d2 = np.empty((d, k)), np.empty((d, k)), np.empty((d, k))
-    i0, i1, i3 = np.empty((d, 1)), np.empty((d, 1)), np.empty((d, 1))
-    for i in range(d):
-        xi = (x[i, 0], x[i, 1], x[i, 2], x[i, 3])
-        Pi = _row_blocks(P, i)
-        for j in range(k):
-            y, Si, dist2 = innovation(xi, Pi, (z[i, j, 0], z[i, j, 1]), r)
-            y0[i, j], y1[i, j], d2[i, j] = y[0], y[1], dist2
-            i0[i, 0], i1[i, 0], i3[i, 0] = Si[0], Si[1], Si[3]
-    return y0, y1, (i0, i1, i3), d2
-
-
-def innovation_rows(x: np.ndarray, P: np.ndarray, z: np.ndarray, r: float):
-    """:func:`innovation` of every row: ``(y0, y1, Si, d2)`` of detections ``z``
-    ``(d, k, 2)`` against ``d`` filters ``x`` ``(d, 4)``, ``P`` ``(d, 12)`` (each filter
-    against its ``k`` detections; ``Si`` the columns ``i0, i1, i3`` of ``S^-1``, each
-    ``(d, 1)``)."""
-    z = np.asarray(z, dtype=np.float64)
-    if z.ndim != 3 or z.shape[2] != 2 or z.shape[0] != len(x):
-        raise ValueError(f"z must have the shape (d, k, 2) with d = {len(x)} filters, "
-                         f"not {z.shape}")
-    return _innovation_rows(x, P, z, float(r))
-
-
-@kernel
-def _update_rows(x, P, y0, y1, i0, i1, i3, r):
-    xn, out = np.empty_like(x), np.empty_like(P)
-    for i in range(x.shape[0]):
-        xi = (x[i, 0], x[i, 1], x[i, 2], x[i, 3])
-        xu, Pu = update(xi, _row_blocks(P, i), (y0[i], y1[i]), (i0[i], i1[i], i1[i], i3[i]), r)
-        xn[i, 0], xn[i, 1], xn[i, 2], xn[i, 3] = xu
-        _write_blocks(out, i, Pu)
-    return xn, out
-
-
-def update_rows(x: np.ndarray, P: np.ndarray, y0: np.ndarray, y1: np.ndarray, Si,
-                r: float) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`update` of every row: states ``x`` ``(d, 4)``, covariances ``P`` ``(d, 12)``,
-    innovations ``y0``, ``y1`` ``(d,)`` and ``Si`` (columns ``i0, i1, i3`` of
-    :func:`innovation_rows`, each ``(d,)``)."""
-    i0, i1, i3 = (np.ascontiguousarray(s, dtype=np.float64).reshape(-1) for s in Si)
-    return _update_rows(np.ascontiguousarray(x, dtype=np.float64),
-                        np.ascontiguousarray(P, dtype=np.float64),
-                        np.ascontiguousarray(y0, dtype=np.float64).reshape(-1),
-                        np.ascontiguousarray(y1, dtype=np.float64).reshape(-1), i0, i1, i3,
-                        float(r))

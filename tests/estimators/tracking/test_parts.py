@@ -67,25 +67,6 @@ def test_blocks_are_the_matrix_equations():
             np.testing.assert_allclose(blocks.full_covariance(Pn), P_ref, atol=1e-10)
 
 
-def test_row_blocks_equal_the_plain_floats_bit_for_bit():
-    rng = np.random.default_rng(1)
-    rows = [_random_blocks(rng)[0] for _ in range(5)]
-    P = np.array([np.concatenate(b) for b in rows])
-    A, B, q = rng.normal(size=(5, 4)), rng.normal(size=(5, 4)), rng.uniform(0, 1, 5)
-    out = blocks.predict_covariance_rows(P, A, B, q)
-    for k, b in enumerate(rows):
-        assert blocks.blocks_from_row(out[k]) == blocks.predict_covariance(
-            b, tuple(A[k]), tuple(B[k]), float(q[k]))
-    x, z, r = rng.normal(size=(5, 4)), rng.normal(size=(5, 1, 2)), 0.02
-    y0, y1, Si, d2 = blocks.innovation_rows(x, P, z, r)
-    xn, Pn = blocks.update_rows(x, P, y0[:, 0], y1[:, 0], tuple(s[:, 0] for s in Si), r)
-    for k, b in enumerate(rows):
-        y, Sk, dk = blocks.innovation(tuple(x[k]), b, tuple(z[k, 0]), r)
-        assert (y0[k, 0], y1[k, 0], d2[k, 0]) == (y[0], y[1], dk)
-        xk, Pk = blocks.update(tuple(x[k]), b, y, Sk, r)
-        assert tuple(xn[k]) == xk and blocks.blocks_from_row(Pn[k]) == Pk
-
-
 def test_gate_takes_the_nearest_in_the_metric():
     gate = Gate(CHI2_2DOF_999)
     S = (1.0, 0.0, 100.0)  # y is ten times as uncertain as x
