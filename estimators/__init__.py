@@ -39,9 +39,10 @@ the state to any time ``t`` without changing the tracker (None before the first 
 * :class:`ParticleBallTracker`: ``update(t, z, sigma)`` (a fused position and its noise),
   ``estimate(t)`` -> ``(x, y, vx, vy)``;
 * :class:`RobotTracker` (many robots): ``update(t, z, index)`` (a batch of poses ``(k, 3)`` and
-  their robots, checked), ``update_robot(t, z, i)`` (one pose, unchecked: the per-detection
-  fast path), ``estimate(t)`` -> ``(n, 6)`` rows ``x, y, theta, vx, vy, omega`` for all robots,
-  never None (robots never seen read as zeros, see ``seen``).
+  their robots, checked), ``update_robot(t, z, i)`` and ``update_many(t, index, z)`` (one
+  pose or several, unchecked: the fast paths), ``estimate(t)`` -> ``(n, 6)`` rows
+  ``x, y, theta, vx, vy, omega`` for all robots, never None (robots never seen read as
+  zeros, see ``seen``).
 
 :class:`BallTrackerBatch` and :class:`RobotTrackerBatch` are ``m`` such trackers as arrays
 (the filters of ``m`` environments), updated with one kernel call per batch of frames: the

@@ -266,10 +266,19 @@ class FilteredPerception(VisionPerception):
         if not frames:
             return
         robots, ball = self.robot_tracker, self.ball_tracker
-        for f in sorted(frames, key=lambda f: f.t_capture):
+        frames = sorted(frames, key=lambda f: f.t_capture)
+        # The robots' filters and the ball's are independent (the ball's takes the frame's
+        # robot detections, not the robots' estimates): every robot detection of the step's
+        # frames in capture order goes in one kernel call, the same updates in the same order.
+        ids = [i for f in frames for i in f.robot_ids]
+        if len(ids) > 1:
+            robots.update_many([f.t_capture for f in frames for _ in f.robot_ids], ids,
+                               [p for f in frames for p in f.robots])
+        elif ids:
+            f = next(f for f in frames if f.robot_ids)
+            robots.update_robot(f.t_capture, f.robots[0], ids[0])
+        for f in frames:
             t = f.t_capture
-            for i, pose in zip(f.robot_ids, f.robots):
-                robots.update_robot(t, pose, i)
             if f.balls:
                 # Without latency compensation a pipeline stamps frames when they arrive.
                 stamp = t if self._capture_times else f.t_delivered

@@ -103,3 +103,25 @@ def test_batched_trackers_equal_single_trackers_bit_for_bit():
     assert batch.dropped.sum() > 0
     batch.reset([1])
     assert not batch.seen[1].any() and batch.estimate(0.0)[1].tolist() == [[0.0] * 6] * n
+
+
+def test_update_many_is_update_robot_in_turn_bit_for_bit():
+    """A step's detections in one call (new robots, late detections, headings across +-pi,
+    one robot twice) leave the tracker as update_robot of each in turn does."""
+    n = 5
+    rng = np.random.default_rng(8)
+    one, many = RobotTracker(n), RobotTracker(n)
+    clock = 0.0
+    for _ in range(100):
+        clock += rng.choice([1 / 60, 1 / 25])
+        d = int(rng.integers(0, 2 * n))
+        ids = rng.integers(0, n, d).tolist()
+        ts = [clock - (0.05 if rng.random() < 0.1 else 0.0) for _ in ids]
+        zs = [(rng.uniform(-3, 3), rng.uniform(-2, 2), rng.uniform(-3.2, 3.2)) for _ in ids]
+        for t, z, i in zip(ts, zs, ids):
+            one.update_robot(t, z, i)
+        many.update_many(ts, ids, zs)
+        assert many.estimate(clock + 0.02).tolist() == one.estimate(clock + 0.02).tolist()
+        assert many.p.tolist() == one.p.tolist() and many.v.tolist() == one.v.tolist()
+    assert many.dropped == one.dropped > 0
+    assert many.seen.tolist() == one.seen.tolist()
