@@ -265,18 +265,10 @@ class FilteredPerception(VisionPerception):
     def consume(self, frames: list[DetectionFrame], now: float) -> None:
         if not frames:
             return
-        robots, ball = self.robot_tracker, self.ball_tracker
-        frames = sorted(frames, key=lambda f: f.t_capture)
-        # The robots' filters and the ball's are independent (the ball's takes the frame's
-        # robot detections, not the robots' estimates): every robot detection of the step's
-        # frames in capture order goes in one kernel call, the same updates in the same order.
-        ids = [i for f in frames for i in f.robot_ids]
-        if len(ids) > 1:
-            robots.update_many([f.t_capture for f in frames for _ in f.robot_ids], ids,
-                               [p for f in frames for p in f.robots])
-        elif ids:
-            f = next(f for f in frames if f.robot_ids)
-            robots.update_robot(f.t_capture, f.robots[0], ids[0])
+        ball = self.ball_tracker
+        if len(frames) > 1:
+            frames = sorted(frames, key=lambda f: f.t_capture)
+        self._update_robots(frames)
         for f in frames:
             t = f.t_capture
             if f.balls:
@@ -285,6 +277,25 @@ class FilteredPerception(VisionPerception):
                 self._feed(stamp, f.balls, f.robots)
                 if self.features:  # of several detections, the one nearest the belief
                     self._measured = np.array(_nearest(f.balls, ball.estimate(stamp)))
+
+    def _update_robots(self, frames: list[DetectionFrame]) -> None:
+        """Fuse the robot detections of ``frames`` (in capture order). The robots' filters and
+        the ball's are independent (the ball's takes a frame's robot detections, not the
+        robots' estimates), so every robot detection of a step's frames goes in one kernel
+        call: the same updates in the same order as frame by frame."""
+        robots = self.robot_tracker
+        if len(frames) == 1:
+            f = frames[0]
+            ids = f.robot_ids
+            if len(ids) == 1:
+                robots.update_robot(f.t_capture, f.robots[0], ids[0])
+            elif ids:
+                robots.update_many([f.t_capture] * len(ids), ids, f.robots)
+            return
+        ids = [i for f in frames for i in f.robot_ids]
+        if ids:
+            robots.update_many([f.t_capture for f in frames for _ in f.robot_ids], ids,
+                               [p for f in frames for p in f.robots])
 
     def beliefs(self, now: float):
         current = self._belief(now)
