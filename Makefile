@@ -26,8 +26,10 @@ $(VENV)/.dev-installed: pyproject.toml | $(BIN)/python
 demo: $(VENV)/.demo-installed
 	$(BIN)/soccer-env demo --out demo_output
 
+# --dist worksteal: a worker that runs out of tests takes queued ones from the other, instead of
+# idling while the other works through a queue of long tests (training, examples, workers).
 test: $(VENV)/.dev-installed
-	$(BIN)/python -m pytest -n auto
+	$(BIN)/python -m pytest -n auto --dist worksteal
 
 # RLlib (the rllib extra) pins an older gymnasium than the other extras take, so its tests
 # (the files named test_*rllib*.py; the main suite skips them) run in an environment of their
