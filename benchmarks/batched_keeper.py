@@ -79,18 +79,16 @@ def _memory(n: int, kwargs: dict) -> float:
     """Bytes per environment of ``n`` batched environments, measured in a fresh process."""
     from soccer_lab.bench import memory_per_item
 
-    def make(count: int) -> str:
-        return (f"gym.make_vec('soccer_env/Goalkeeper-v0', num_envs={count}, "
-                f"vectorization_mode='vector_entry_point', **{kwargs!r})")
+    def run(name: str, count: int) -> str:
+        return (f"{name} = gym.make_vec('soccer_env/Goalkeeper-v0', num_envs={count}, "
+                f"vectorization_mode='vector_entry_point', **{kwargs!r})\n"
+                f"{name}.reset(seed=0)\n"
+                f"for _ in range(20): {name}.step(np.zeros(({count}, 6), np.float32))")
 
     # The warm-up steps too: what a process loads once (the compiled kernels, numba's
     # compiler) is not the environments' memory.
-    return memory_per_item(
-        f"import gymnasium as gym, numpy as np, soccer_env\nwarm = {make(2)}\n"
-        "warm.reset(seed=0)\n"
-        "for _ in range(20): warm.step(np.zeros((2, 6), np.float32))",
-        f"env = {make(n)}\nenv.reset(seed=0)\n"
-        f"for _ in range(20): env.step(np.zeros(({n}, 6), np.float32))", n)
+    return memory_per_item("import gymnasium as gym, numpy as np, soccer_env\n" + run("warm", 2),
+                           run("env", n), n)
 
 
 def main(argv: list[str] | None = None) -> int:

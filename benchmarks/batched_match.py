@@ -85,14 +85,16 @@ def _memory(size: int, n: int, extra: dict | None = None) -> float:
     from soccer_lab.bench import memory_per_item
 
     kwargs = {"blue": size, "yellow": size, **(extra or {})}
+
+    def run(name: str, count: int) -> str:
+        return (f"{name} = MatchBatch({count}, **{kwargs!r})\n{name}.reset(seed=0)\n"
+                f"for _ in range(20): {name}.step(np.zeros(({count}, {2 * size}, 6)))")
+
     # The warm-up steps too: what a process loads once (the compiled kernels, numba's
     # compiler) is not the matches' memory.
     return memory_per_item(
         "import numpy as np\nfrom soccer_env.envs.batched_match import MatchBatch\n"
-        f"warm = MatchBatch(2, **{kwargs!r})\nwarm.reset(seed=0)\n"
-        f"for _ in range(20): warm.step(np.zeros((2, {2 * size}, 6)))",
-        f"b = MatchBatch({n}, **{kwargs!r})\nb.reset(seed=0)\n"
-        f"for _ in range(20): b.step(np.zeros(({n}, {2 * size}, 6)))", n)
+        + run("warm", 2), run("b", n), n)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -284,13 +284,10 @@ class FilteredPerception(VisionPerception):
         robots' estimates), so every robot detection of a step's frames goes in one kernel
         call: the same updates in the same order as frame by frame."""
         robots = self.robot_tracker
-        if len(frames) == 1:
+        if len(frames) == 1 and len(frames[0].robot_ids) <= 1:  # a keeper's step: no arrays
             f = frames[0]
-            ids = f.robot_ids
-            if len(ids) == 1:
-                robots.update_robot(f.t_capture, f.robots[0], ids[0])
-            elif ids:
-                robots.update_many([f.t_capture] * len(ids), ids, f.robots)
+            if f.robot_ids:
+                robots.update_robot(f.t_capture, f.robots[0], f.robot_ids[0])
             return
         ids = [i for f in frames for i in f.robot_ids]
         if ids:

@@ -67,7 +67,7 @@ def goalkeeper_runner(steps: int, seed: int = 0, obs_mode: str = "truth",
     """A closure stepping ``gymnasium.make("soccer_env/Goalkeeper-v0")`` ``steps`` times with
     pre-drawn random actions (resetting when episodes end), and its environment."""
     env = gym.make(GOALKEEPER_ID, obs_mode=obs_mode, perception=perception,
-                   robot=robot, **({} if field is None else {"field": field}))
+                   robot=robot, field=field)
     actions = random_actions(np.random.default_rng(seed), (steps,), robot).astype(np.float32)
     env.reset(seed=seed)
 

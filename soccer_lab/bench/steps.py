@@ -8,6 +8,7 @@ import platform
 import statistics
 import time
 from collections.abc import Callable
+from functools import partial
 from typing import Any
 
 import gymnasium as gym
@@ -78,13 +79,14 @@ def bench_perceived_cost(make_runner: Callable, steps: int, repeats: int,
 #: The environments timed by ``soccer-env bench --pixels``: the overhead pixels detector (each
 #: camera's image rendered, then every robot and the ball found in it by mean-shift particle
 #: filters) behind the default EKF: a keeper on the 2012 league's field under its one 25 Hz
-#: camera, and a 6 vs 6 Division B match under four 60 Hz cameras. Each: the runner, its
-#: keyword arguments, the ``perception``.
+#: camera, and a 6 vs 6 Division B match under four 60 Hz cameras. Each: the runner (with its
+#: keyword arguments), whether it is a match, the ``perception``.
 PIXELS_CASES = {
     "Goalkeeper-v0, ssl-2012 field and vision (1 camera)": (
-        goalkeeper_runner, {"field": "ssl-2012"}, {"vision": "ssl-2012", "detector": "pixels"}),
+        partial(goalkeeper_runner, field="ssl-2012"), False,
+        {"vision": "ssl-2012", "detector": "pixels"}),
     "6 vs 6 Division B, realistic vision (4 cameras)": (
-        match_runner, {}, {"vision": "realistic", "detector": "pixels"}),
+        match_runner, True, {"vision": "realistic", "detector": "pixels"}),
 }
 
 
@@ -93,13 +95,9 @@ def bench_pixels(steps: int = 2000, match_steps: int = 200, repeats: int = 3
     """Steps per second of the environments of :data:`PIXELS_CASES` and their cost against
     truth, timed in alternation (``soccer-env bench --pixels``; needs the ``pixels``
     extra)."""
-    out = {}
-    for name, (runner, kwargs, perception) in PIXELS_CASES.items():
-        n = steps if runner is goalkeeper_runner else match_steps
-        out[name] = bench_perceived_cost(
-            lambda k, runner=runner, kwargs=kwargs, **kw: runner(k, **kwargs, **kw), n, repeats,
-            perception)
-    return out
+    return {name: bench_perceived_cost(runner, match_steps if is_match else steps, repeats,
+                                       perception)
+            for name, (runner, is_match, perception) in PIXELS_CASES.items()}
 
 
 def bench_frames(repeats: int = 200) -> dict[str, float]:
