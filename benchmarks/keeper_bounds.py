@@ -3,7 +3,7 @@ observations, on true observations, and with an oracle that knows the shot perfe
 moment the vision could first have seen it.
 
 Usage: ``python benchmarks/keeper_bounds.py [--robot ssl|humanoid] [--preset ssl-2012]
-[--episodes 1000] [--workers 2]``.
+[--ball-tracker mfbpf] [--episodes 1000] [--workers 2]``.
 
 The oracle observation is the truth, except that from the kick until the vision's first view
 of the moving ball (the kick time, half a frame period on average until the next capture,
@@ -15,7 +15,8 @@ every case. Seeds 0..N-1 of
 Goalkeeper-v0's suite; Wilson 95 % intervals.
 
 ``--robot humanoid``: the scripted humanoid keeper (``humanoid-2012``, three team-mates,
-``kidsize-2012`` head cameras, KLD localization, team fusion and MFBPF) perceived, perceived
+``kidsize-2012`` head cameras, KLD localization, the team's sightings fused and tracked by
+MFBPF, or tracked line by line by ``--ball-tracker kick``) perceived, perceived
 but with the true ball velocity (:class:`TrueBallVelocity`: believed pose and ball position,
 the velocity alone true), the first-frame oracle (the head camera's 25 Hz and 40 ms), and
 truth; 60 Hz decisions.
@@ -69,6 +70,8 @@ def oracle_env(**kwargs: Any) -> gym.Env:
     """Goalkeeper-v0 with :class:`FirstFrameOracle` observations (of the ``perception``
     preset's camera)."""
     preset = kwargs.get("perception", "ssl-2012")
+    if isinstance(preset, dict):  # a humanoid's perception settings: its camera
+        preset = preset["camera"]
     return FirstFrameOracle(gym.make(GK, obs_mode="truth", **kwargs), preset)
 
 
@@ -107,13 +110,16 @@ if TRUE_VELOCITY_ID not in gym.registry:
     gym.register(TRUE_VELOCITY_ID, entry_point=true_velocity_env)
 
 
-def humanoid(episodes: int, workers: int) -> None:
-    """The humanoid keeper's rows (see the module docstring)."""
-    base = {"robot": "humanoid-2012", "perception": "kidsize-2012"}
-    print(f"| scripted humanoid keeper, kidsize-2012, 60 Hz | save rate ({episodes} shots, "
-          "95 % CI) |")
+def humanoid(episodes: int, workers: int, tracker: str = "mfbpf") -> None:
+    """The humanoid keeper's rows (see the module docstring), the team's ball tracker
+    ``tracker`` (one of :data:`soccer_env.perception.BALL_TRACKERS`)."""
+    perception = {"camera": "kidsize-2012", "ball_tracker": tracker}
+    base = {"robot": "humanoid-2012", "perception": perception}
+    print(f"| scripted humanoid keeper, kidsize-2012, 60 Hz, ball tracker {tracker} | save rate "
+          f"({episodes} shots, 95 % CI) |")
     print("|---|---|")
-    rows = (("perceived (team fusion, MFBPF)", {**base, "obs_mode": "perceived"}, None),
+    rows = (("perceived (KLD localization, team sightings)", {**base, "obs_mode": "perceived"},
+             None),
             ("perceived, true ball velocity", base, TRUE_VELOCITY_ID),
             ("oracle from the first frame", base, ORACLE_ID),
             ("truth", {**base, "obs_mode": "truth"}, None))
@@ -130,9 +136,11 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--robot", choices=("ssl", "humanoid"), default="ssl")
     p.add_argument("--preset", choices=("ssl-2012", "realistic", "harsh"), default="ssl-2012",
                    help="the SSL keeper's vision preset (default: %(default)s)")
+    p.add_argument("--ball-tracker", default="mfbpf",
+                   help="the humanoid team's ball tracker (default: %(default)s)")
     args = p.parse_args(argv)
     if args.robot == "humanoid":
-        humanoid(args.episodes, args.workers)
+        humanoid(args.episodes, args.workers, args.ball_tracker)
         return 0
     print(f"| scripted keeper, {args.preset} | decisions | save rate ({args.episodes} shots, "
           "95 % CI) |")

@@ -38,6 +38,9 @@ the state to any time ``t`` without changing the tracker (None before the first 
   -> ``(x, y, vx, vy)``;
 * :class:`ParticleBallTracker`: ``update(t, z, sigma)`` (a fused position and its noise),
   ``estimate(t)`` -> ``(x, y, vx, vy)``;
+* :class:`LineBallTracker`: ``update_line(t, origin, angle, range_, own)`` (one robot's
+  sighting line, in any order within its replay window), ``estimate(t)`` ->
+  ``(x, y, vx, vy)``;
 * :class:`RobotTracker` (many robots): ``update(t, z, index)`` (a batch of poses ``(k, 3)`` and
   their robots, checked), ``update_robot(t, z, i)`` and ``update_many(t, index, z)`` (one
   pose or several, unchecked: the fast paths), ``estimate(t)`` -> ``(n, 6)`` rows
@@ -110,8 +113,10 @@ from .kalman import (
     KalmanFilter,
     KickAwareBall,
     LeastSquaresBall,
+    LineBallTracker,
     RobotTracker,
     RobotTrackerBatch,
+    SightingNoise,
 )
 from .models import (
     MIN_SIGMA_XY,
@@ -160,6 +165,8 @@ __all__ = [
     "LeastSquaresBall",
     "KickAwareBall",
     "IMMBall",
+    "LineBallTracker",
+    "SightingNoise",
     "ParticleBallTracker",
     "RobotTracker",
     "RobotTrackerBatch",

@@ -173,6 +173,9 @@ HUMANOID_CONFIGS: Registry[EstimatorConfig] = _registry(
         _humanoid_config("fusion-ivar-mfbpf", "Hough fusion weighted by the inverse variance "
                          "of each line's offset, MFBPF tracking", source="Xu et al. (2012); the "
                          "weighting ours", fusion="inverse_variance", ball_tracker="mfbpf"),
+        _humanoid_config("fusion-kick", "the team's sighting lines, each at its capture time, "
+                         "tracked by the kick-aware Kalman tracker (no fusion step)",
+                         source="ours", fusion="inverse", ball_tracker="kick"),
         _humanoid_config("pixels", "fusion-mfbpf with every robot finding the ball in its "
                          "rendered head-camera images (Kalman-started mean shift)",
                          source="Xu et al. (2012) and Yu et al. (2010)", fusion="inverse",

@@ -19,6 +19,9 @@
   rest, rolling and maneuver filters weighed by how well each predicted the detections, their
   switching a Markov chain (:mod:`~estimators.kalman.modes`), its prediction and update
   compiled (:mod:`~estimators.kalman.imm_kernels`);
+* :mod:`~estimators.kalman.lines`: a humanoid team's kick-aware ball tracker
+  (:class:`LineBallTracker`), fed each robot's sighting line at its capture time, a kick
+  hypothesis beside the track with its kick time searched (:mod:`~.line_kernels`);
 * :mod:`~estimators.kalman.robots`: decoupled constant-velocity pose trackers for many robots
   (:class:`RobotTracker`).
 
@@ -36,6 +39,7 @@ from .core import KalmanFilter, check_matrix, check_vector
 from .imm import IMMBall
 from .kick import KickAwareBall
 from .least_squares import LeastSquaresBall
+from .lines import LineBallTracker, SightingNoise
 from .robots import RobotTracker, RobotTrackerBatch
 
 __all__ = [
@@ -49,6 +53,8 @@ __all__ = [
     "LeastSquaresBall",
     "KickAwareBall",
     "IMMBall",
+    "LineBallTracker",
+    "SightingNoise",
     "CHI2_2DOF_999",
     "RobotTracker",
     "RobotTrackerBatch",

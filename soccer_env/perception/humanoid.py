@@ -29,7 +29,12 @@ Per humanoid ("brain"), per step:
    (:class:`~estimators.ParticleBallTracker`, ``ball_tracker="mfbpf" | "fbpf" |
    "bootstrap"``, 100 particles) stamped with the capture time, so its prediction to the
    present compensates the camera latency; with ``"none"`` the belief is the latest fused
-   point with the velocity of the last two (at least 0.1 s apart).
+   point with the velocity of the last two (at least 0.1 s apart). With ``"kick"``
+   (:class:`~estimators.LineBallTracker`) there is no fusion step: the robot's own line and
+   each team-mate's as it arrives (with the sender's sway, which the message carries) go to
+   a Kalman filter that keeps every observer's localization error in its state, processes
+   lines in capture order and opens a kick hypothesis as soon as a line leaves where the
+   resting ball should be seen (the team's lines are used unless ``fusion="own"``).
 6. **Opponents** are the robot's own sightings of robots of the other team's colour, each
    associated with the nearest opponent track within 1 m (no identity is seen); tracks start
    at the kick-off positions, which the rules fix.
@@ -52,6 +57,7 @@ from estimators import KLDConfig, KLDLocalizer, LandmarkTable, ParticleBallTrack
 from soccer_env.perception.base import expected_age
 from soccer_env.perception.brain import Brain, BrainContext
 from soccer_env.perception.options import DETECTORS
+from soccer_env.perception.sighting import sighting_sigmas
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.presets.sensors import HeadCameraSpec, RadioSpec
 from soccer_env.sensors.headcam import HeadFrame, field_landmarks
@@ -133,12 +139,9 @@ class HumanoidTeamPerception:
         self.fusion_window = ((_FUSION_WINDOW_FRAMES / camera.frame_rate
                                if camera.frame_rate else 0.05)
                               + radio.latency + radio.jitter)
-        # The sightings' error model for the fusion: bearings off by the pixel noise and the
-        # yaw sway; ranges (ground projections) off by about d^2 e / h for an angular error
-        # e of the tilt (pixel noise and pitch sway), i.e. relatively by d e / h.
-        self.bearing_sigma = max(math.radians(0.5), math.hypot(sway_p,
-                                                               camera.pixel_sigma / f_px))
-        self.range_per_metre = max(1e-3, ang / camera.height)
+        # The sightings' error model for the fusion, for the worst sway of the team's robots
+        # (:func:`~soccer_env.perception.brain.sighting_sigmas`).
+        self.bearing_sigma, self.range_per_metre = sighting_sigmas(camera, sway_p, sway_t)
         #: The observers' pose errors the inverse-variance fusion weighs lines by
         #: ``(position per axis [m], heading [rad])``: none for the oracle; else the
         #: localization's error while tracking, as ``soccer-env paper team`` and ``paper

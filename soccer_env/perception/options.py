@@ -3,9 +3,9 @@ one-line description (what ``soccer-env list``, the ablation and the error messa
 
 * :data:`BALL_FILTERS` (SSL teams, ``ball_filter=``): name -> ``factory(ball, vision,
   measurement) -> BallFilter`` (the tracker and whether it is fed capture times);
-* :data:`BALL_TRACKERS` (humanoids, ``ball_tracker=``): ``"none"`` or one of the estimators'
-  :data:`~estimators.PARTICLE_FILTERS`, name -> ``factory(rng, deceleration, max_speed)``
-  (None for ``"none"``);
+* :data:`BALL_TRACKERS` (humanoids, ``ball_tracker=``): ``"none"``, one of the estimators'
+  :data:`~estimators.PARTICLE_FILTERS` or ``"kick"`` (:class:`~estimators.LineBallTracker`),
+  name -> ``factory(rng, deceleration, max_speed, noise, observers)`` (None for ``"none"``);
 * :data:`FUSIONS` (humanoids, ``fusion=``): the robot's own sighting, or Hough-space fusion with
   one of the estimators' :data:`~estimators.FUSION_WEIGHTINGS` or the inverse variance of each
   line's offset; name -> the weighting of :func:`~estimators.fuse_sightings`;
@@ -38,8 +38,10 @@ from estimators import (
     KLDConfig,
     KLDLocalizer,
     LeastSquaresBall,
+    LineBallTracker,
     ParticleBallTracker,
     PositionMeasurement,
+    SightingNoise,
 )
 from estimators.registry import Registry
 from soccer_env.presets import BallSpec, FieldSpec, HeadCameraSpec, RobotSpec, VisionSpec
@@ -138,24 +140,41 @@ PARTICLES = 100
 
 
 def _particle_tracker(name: str, rng: np.random.Generator, deceleration: float,
-                      max_speed: float) -> ParticleBallTracker:
+                      max_speed: float, noise: SightingNoise, observers: tuple[int, ...]
+                      ) -> ParticleBallTracker:
     """A humanoid's ball tracker on the particle filter ``name`` (see
     :class:`~estimators.ParticleBallTracker`): 1 m/s^2 of acceleration noise, the ball's
     rolling deceleration, restarted after 2 s without a fused sighting or after two
-    implausible ones in a row."""
+    implausible ones in a row (``noise`` and ``observers`` are the fusion's business, not the
+    tracker's)."""
     return ParticleBallTracker(rng, filter=name, n_particles=PARTICLES, accel_sigma=1.0,
                                deceleration=deceleration, lost_after=2.0, max_speed=max_speed,
                                reinit_after=2)
 
 
-#: Ball trackers fed by a humanoid's fused sightings: none, or one per particle filter of the
-#: estimators.
-BALL_TRACKERS: Registry[Callable[..., ParticleBallTracker] | None] = Registry(
+def _line_tracker(rng: np.random.Generator, deceleration: float, max_speed: float,
+                  noise: SightingNoise, observers: tuple[int, ...]) -> LineBallTracker:
+    """The kick-aware tracker of the sighting lines of the robots ``observers`` (indices)
+    (:class:`~estimators.LineBallTracker`) with the ball's rolling deceleration, 1 m/s^2 of
+    acceleration noise (as the particle trackers) and kicks of 3 m/s per axis, restarted
+    after 2 s without an agreeing line; it draws nothing."""
+    return LineBallTracker(noise, deceleration=deceleration, accel_sigma=1.0, kick_sigma=3.0,
+                           lost_after=2.0, observers=observers)
+
+
+#: A humanoid's ball trackers, ``factory(rng, deceleration, max_speed, noise, observers)``
+#: with the team's sighting error model (:class:`~estimators.SightingNoise`) and the robots
+#: (indices) whose sightings it may get: none; one per particle
+#: filter of the estimators, fed the fused sightings; or the kick-aware tracker fed each line.
+BALL_TRACKERS: Registry[Callable[..., Any] | None] = Registry(
     "ball tracker",
     [("none", None, "no tracking: the latest fused point, velocity from the last two")]
     + [(name, functools.partial(_particle_tracker, name),
         f"{PARTICLE_FILTERS.description(name)}; {PARTICLES} particles")
-       for name in PARTICLE_FILTERS])
+       for name in PARTICLE_FILTERS]
+    + [("kick", _line_tracker,
+        "kick-aware Kalman tracker fed each sighting line at its capture time (no fusion "
+        "step); a kick hypothesis beside the track, its kick time searched")])
 
 #: Ball fusion: the robot's own sighting only, or Xu et al.'s (2012) Hough-space fusion of the
 #: team's sightings with one of the estimators' weightings (the value: the weighting

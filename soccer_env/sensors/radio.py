@@ -37,12 +37,15 @@ class Message:
         pose: its pose estimate ``(x, y, theta)``.
         sighting: None, or ``(x0, y0, angle, range)``: the line from ``(x0, y0)`` (its
             estimated position) at ``angle`` towards the ball, and the estimated range.
+        sway: how much its torso swayed at the capture, 0 (standing) to 1 (its walk's full
+            sway), which scales its camera's errors.
     """
 
     sender: str
     stamp: float
     pose: tuple[float, float, float]
     sighting: tuple[float, float, float, float] | None = None
+    sway: float = 1.0
 
 
 class TeamRadio:

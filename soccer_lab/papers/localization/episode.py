@@ -11,8 +11,8 @@ from typing import Any
 import numpy as np
 
 from soccer_env import presets
-from soccer_env.perception.brain import landmark_sightings
 from soccer_env.perception.humanoid import HumanoidTeamPerception
+from soccer_env.perception.sighting import landmark_sightings
 from soccer_env.presets.sensors import RADIO_PRESETS, head_camera
 from soccer_env.sim.heads import HeadController
 from soccer_env.sim.world import World

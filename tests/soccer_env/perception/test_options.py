@@ -45,7 +45,7 @@ def test_a_registered_ball_filter_is_usable_everywhere():
 def test_the_humanoid_families_follow_the_estimators_registries():
     from estimators import FUSION_WEIGHTINGS, INVERSE_VARIANCE, PARTICLE_FILTERS
 
-    assert list(BALL_TRACKERS) == ["none", *PARTICLE_FILTERS]
+    assert list(BALL_TRACKERS) == ["none", *PARTICLE_FILTERS, "kick"]
     assert list(FUSIONS) == ["own", *FUSION_WEIGHTINGS, INVERSE_VARIANCE]
     assert FUSIONS["own"] == "inverse"  # a lone own line, weighted as in the weighted fusion
     assert list(LOCALIZATIONS) == ["kld", "kld-triangulate", "odometry", "truth"]

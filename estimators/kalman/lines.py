@@ -1,0 +1,540 @@
+"""A humanoid team's ball tracker that sees a kick: a Kalman filter fed each robot's sighting
+line at its capture time, with each observer's localization error in its state and a kick
+hypothesis beside the track.
+
+The particle trackers of Xu et al. (2012) (:class:`~estimators.ParticleBallTracker`) are fed
+the team's *fused* point: the robot's fresh line with the team-mates' latest lines, each moved
+to the frame's time by the tracker's velocity. After a kick that velocity is still the resting
+ball's zero, so the team-mates' lines hold the fused point near the kick point, and the tracker
+learns of the kick only when enough fused points have left its gate. This tracker takes the
+lines one by one instead, each at the time it was captured, moves nothing by a stale velocity,
+and opens a kick hypothesis as soon as a line leaves where the resting ball should be seen.
+
+**State.** ``x = (px, py, vx, vy, b_1, beta_1, ..., b_m, beta_m)``: the ball [m, m/s] and, per
+observer ``j`` (the robots whose lines it takes), the error of its localization as its lines
+show it: a position bias ``b_j`` [m] and a heading bias ``beta_j`` [rad]. A robot's pose
+estimate is off by a few centimetres and degrees that change slowly, so its consecutive lines
+share that error. Fused as white noise (as the fusion does), it hides a kick: a team-mate 0.4 m
+from the ball sees it move 7 cm in its first frame after the kick, well above its camera's
+noise but not above its localization error. In the state, the biases are learnt from where the
+observers disagree while the ball rests, and a line is compared with where *that observer* has
+been seeing the ball. Priors ``b_j ~ N(0, s_p^2 I)``, ``beta_j ~ N(0, s_theta^2)`` (the
+localization's errors); they wander as random walks of ``bias_drift_xy^2`` [m^2/s] and
+``bias_drift_theta^2`` [rad^2/s].
+
+**Motion.** Between lines the ball rolls under uniform deceleration ``a`` along its motion,
+stopping rather than reversing (``tau = min(dt, s / a)``, ``p' = p + u (s tau - a tau^2 / 2)``,
+``v' = u (s - a tau)``); its covariance follows the constant-velocity model with white
+acceleration noise ``accel_sigma``: ``A P A^T + s_a^2 B B^T``, ``A = [[I, dt I], [0, I]]``,
+``B = [dt^2 / 2 I; dt I]`` (the deceleration is left out of the spread).
+
+**A sighting line** is what a robot's head camera gives: from the observer's estimated
+position ``o`` at capture along the estimated heading plus the detection's bearing, ``phi``,
+with the ground projection's range ``r`` (not finite: the bearing alone). With the direction
+``u = (cos phi, sin phi)`` and normal ``n = (-sin phi, cos phi)``, a pose error ``(b, beta)``
+moves the sighted point by ``b + r beta n``, so:
+
+* with a range, the point ``z = o + r u`` measures ``h(x) = p + b_j + r beta_j n`` with white
+  noise ``R = s_r^2 u u^T + s_c^2 n n^T + f^2 I`` (``s_b`` and ``k`` the line's own where it
+  brings them: a robot standing still does not sway): along the line the range error
+  ``s_r = max(k_0, k r) r`` (a tilt or pixel error ``e`` moves a ground point at ``r`` by
+  about ``r^2 e / h``: relatively ``k r``, at least ``k_0``), across it the bearing noise
+  ``s_c = r s_b``, and a floor ``f`` per axis;
+* bearing only, ``h(x) = n . (p + b_j - o) + d beta_j`` is measured as 0 with variance
+  ``d^2 s_b^2 + f^2``, ``d`` the predicted ball's distance from ``o``.
+
+Both are linear in ``x``; the update is Kalman's (:mod:`.line_kernels`).
+
+**Time order.** Lines arrive late and out of order (a team-mate's over the radio, 30-50 ms
+after the robot's own of the same moment). The tracker keeps the lines of the last ``history``
+seconds with its state before each; a line older than the newest rewinds to the state before
+it, and it and every later line are processed again in capture order. Older lines are dropped
+(``late``).
+
+**Kicks.** A line whose squared Mahalanobis distance ``d2 = y^T S^-1 y`` from the track
+exceeds ``suspect`` (chi-square, 95 %) opens a *kick hypothesis* beside the track: the track
+kicked at an unknown moment ``t_k`` of the last ``kick_window`` seconds by an unknown velocity
+change ``dv ~ N(0, kick_sigma^2 I)``. The kick time is searched over the logged lines' times:
+for each candidate the track without a kick up to ``t_k`` (its covariance's velocity block
+grown by ``kick_sigma^2 I``), then every line since fused; the candidate whose lines are most
+likely wins. From then on every line updates each hypothesis it *agrees* with
+(``d2 <= gate``, chi-square 99.9 %) and adds to the log-likelihood ratio
+``L = sum (log N(y_k; 0, S_k) - log N(y_t; 0, S_t))`` (each ``d2`` capped at ``2 gate``, so
+that one outlier weighs a bounded amount), which starts at the winning candidate's advantage
+over no kick less ``log`` of the candidates' number: the kick is *committed* (the track becomes
+the kicked one) once ``L >= decide``; it is *dropped* (an outlier opened it) once
+``L <= -decide``; undecided after ``history`` seconds, the sign of ``L`` decides. A line
+agreeing with neither opens a new kick hypothesis in place of the old one.
+
+The belief reported (:meth:`estimate`, :meth:`covariance`) is the kick hypothesis while
+``L >= 0`` if the robot's *own* sighting opened it or a later line was weighed; otherwise the
+track.
+
+**Starts.** The first line with a range starts the track at its point, at rest with velocity
+``N(0, init_speed_sigma^2 I)``; so does the first after ``lost_after`` seconds without an
+agreeing line (the observers' biases carry over). Bearing-only lines start nothing.
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+from collections.abc import Sequence
+from typing import NamedTuple
+
+import numpy as np
+
+from ..protocol import check_time
+from ..tracking import CHI2_2DOF_999, TrackQualityMixin, TrackTimes
+from .line_kernels import (
+    BALL,
+    SLOT,
+    drift_predict,
+    kick_prior,
+    rolled,
+    update_bearing,
+    update_point,
+)
+
+__all__ = ["SightingNoise", "LineBallTracker", "CHI2_2DOF_95"]
+
+#: 95 % quantile of the chi-square distribution with 2 degrees of freedom, ``-2 ln 0.05``.
+CHI2_2DOF_95 = 5.991464547107979
+
+#: The standard deviation of a start's position before its first line [m]: nothing known.
+_UNKNOWN = 100.0
+
+
+class SightingNoise(NamedTuple):
+    """The error model of a team's sighting lines (see the module docstring).
+
+    Attributes:
+        bearing_sigma: the bearing error ``s_b`` [rad] (pixel noise and the head's sway).
+        range_per_metre: the relative range error per metre of range ``k`` [1/m].
+        range_sigma_rel: the least relative range error ``k_0``.
+        pose_sigma_xy: the observers' position error per axis ``s_p`` [m] (the biases'
+            prior).
+        pose_sigma_theta: the observers' heading error ``s_theta`` [rad] (the biases'
+            prior).
+        floor: the least white standard deviation per axis ``f`` [m].
+    """
+
+    bearing_sigma: float
+    range_per_metre: float = 0.0
+    range_sigma_rel: float = 0.05
+    pose_sigma_xy: float = 0.0
+    pose_sigma_theta: float = 0.0
+    floor: float = 0.02
+
+
+class _Hypothesis(NamedTuple):
+    """A Kalman track: state and covariance at ``t``; the capture time of its latest agreeing
+    line; lines fused since the tracker's latest start."""
+
+    x: np.ndarray
+    P: np.ndarray
+    t: float
+    fused_at: float
+    since_start: int
+
+
+class _State(NamedTuple):
+    """Everything a line changes (immutable, so the replay log keeps it without copies):
+    the track, the kick hypothesis (or None), when and by whose sighting it was opened, the
+    log-likelihood ratio ``L``, and the lines weighed since it opened."""
+
+    track: _Hypothesis | None = None
+    kick: _Hypothesis | None = None
+    opened_at: float = -math.inf
+    own: bool = False
+    score: float = 0.0
+    weighed: int = 0
+
+
+class _Line(NamedTuple):
+    t: float
+    ox: float
+    oy: float
+    angle: float
+    range: float
+    own: bool
+    slot: int
+    bearing_sigma: float
+    range_per_metre: float
+
+
+def _positive(name: str, value: float, allow_zero: bool = False) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(v) or v < 0.0 or (v == 0.0 and not allow_zero):
+        raise ValueError(f"{name} must be finite and {'>=' if allow_zero else '>'} 0, "
+                         f"got {value!r}")
+    return v
+
+
+class LineBallTracker(TrackQualityMixin):
+    """Kick-aware Kalman tracking of a team's sighting lines (see the module docstring).
+
+    Args:
+        noise: the lines' error model (:class:`SightingNoise`).
+        deceleration: the ball's rolling deceleration ``a`` [m/s^2].
+        accel_sigma: the white acceleration noise ``s_a`` [m/s^2].
+        kick_sigma: the velocity change a kick makes, per axis ``sqrt(J)`` [m/s].
+        init_speed_sigma: the velocity's spread at a start [m/s].
+        gate: the squared Mahalanobis distance beyond which a line does not agree.
+        suspect: the squared Mahalanobis distance beyond which a line opens a kick hypothesis
+            (at most ``gate``).
+        decide: the log-likelihood ratio that commits or drops a kick hypothesis.
+        lost_after: seconds without an agreeing line after which the next line restarts.
+        history: seconds of lines kept for replay (and the longest a kick stays undecided).
+        kick_window: how far back the kick time is searched [s] (at most ``history``).
+        observers: the robots whose lines it takes (each has its bias in the state): their
+            integer names (e.g. robot indices), or a count ``n`` for ``0 .. n-1``.
+        bias_drift_xy, bias_drift_theta: how fast the observers' position [m/sqrt(s)] and
+            heading [rad/sqrt(s)] biases wander.
+
+    Attributes:
+        fused, rejected, kicks, resets, late: lines agreeing with a hypothesis, lines agreeing
+            with none, kicks committed, restarts after the first start, and lines dropped as
+            older than ``history`` (a replayed line is counted again).
+    """
+
+    #: The tracker takes sighting lines (:meth:`line`), not fused points.
+    takes_lines = True
+
+    def __init__(self, noise: SightingNoise, *, deceleration: float = 0.0,
+                 accel_sigma: float = 1.0, kick_sigma: float = 3.0,
+                 init_speed_sigma: float = 2.0, gate: float = CHI2_2DOF_999,
+                 suspect: float = CHI2_2DOF_95, decide: float = 3.0,
+                 lost_after: float = 2.0, history: float = 0.5, kick_window: float = 0.25,
+                 observers: int | Sequence[int] = 6, bias_drift_xy: float = 0.05,
+                 bias_drift_theta: float = math.radians(1.0)) -> None:
+        if not isinstance(noise, SightingNoise):
+            raise TypeError(f"noise must be a SightingNoise, got {type(noise).__name__}")
+        for name in SightingNoise._fields:
+            _positive(f"noise.{name}", getattr(noise, name),
+                      allow_zero=name not in ("bearing_sigma", "floor"))
+        self.noise = noise
+        self.deceleration = _positive("deceleration", deceleration, allow_zero=True)
+        self.accel_sigma = _positive("accel_sigma", accel_sigma)
+        self.kick_sigma = _positive("kick_sigma", kick_sigma)
+        self.init_speed_sigma = _positive("init_speed_sigma", init_speed_sigma)
+        self.gate = _positive("gate", gate)
+        self.suspect = _positive("suspect", suspect)
+        if self.suspect > self.gate:
+            raise ValueError(f"suspect must be at most gate ({self.gate:g}), got {suspect!r}")
+        self.decide = _positive("decide", decide)
+        self.lost_after = _positive("lost_after", lost_after)
+        self.history = _positive("history", history)
+        self.kick_window = _positive("kick_window", kick_window, allow_zero=True)
+        if self.kick_window > self.history:
+            raise ValueError(f"kick_window must be at most history ({self.history:g} s), "
+                             f"got {kick_window!r}")
+        ids = _observer_ids(observers)
+        #: The observers' bias slots: the index of each one's first entry in the state.
+        self.slots = {j: BALL + SLOT * k for k, j in enumerate(ids)}
+        self.observers = len(ids)
+        self.bias_drift_xy = _positive("bias_drift_xy", bias_drift_xy, allow_zero=True)
+        self.bias_drift_theta = _positive("bias_drift_theta", bias_drift_theta,
+                                          allow_zero=True)
+        self._q = (self.accel_sigma ** 2, self.bias_drift_xy ** 2, self.bias_drift_theta ** 2)
+        m = BALL + SLOT * self.observers
+        # The state before any line: nothing known of the ball, the biases at their priors.
+        self._prior_x = np.zeros(m)
+        diag = np.empty(m)
+        diag[0:2], diag[2:4] = _UNKNOWN ** 2, self.init_speed_sigma ** 2
+        for s in range(BALL, m, SLOT):
+            diag[s:s + 2], diag[s + 2] = noise.pose_sigma_xy ** 2, noise.pose_sigma_theta ** 2
+        self._prior_P = np.diag(diag)
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget everything (a new episode): the ball and the observers' biases."""
+        self._state = _State()
+        self._log: list[tuple[float, _Line, _State]] = []
+        self.fused = self.rejected = self.kicks = self.resets = self.late = 0
+
+    # ------------------------------------------------------------------------------------
+
+    @property
+    def _reported(self) -> _Hypothesis | None:
+        """The hypothesis the belief is (see the module docstring)."""
+        s = self._state
+        if s.kick is not None and s.score >= 0.0 and (s.own or s.weighed > 0):
+            return s.kick
+        return s.track
+
+    @property
+    def _track(self) -> TrackTimes:
+        h = self._reported
+        return TrackTimes() if h is None else TrackTimes(h.t, h.fused_at, h.since_start)
+
+    @property
+    def kick_pending(self) -> bool:
+        """Whether a kick hypothesis is open beside the track."""
+        return self._state.kick is not None
+
+    @property
+    def particles(self) -> np.ndarray:
+        """No particles: ``(0, 4)`` (for callers that draw a tracker's particles)."""
+        return np.zeros((0, 4))
+
+    def bias(self, observer: int) -> np.ndarray | None:
+        """The reported track's estimate of ``observer``'s localization error as its lines
+        show it, ``(bx, by, beta)`` [m, m, rad] (the prior's zeros until its lines tell);
+        None before the track or for a robot not among the observers."""
+        h, slot = self._reported, self.slots.get(observer)
+        return None if h is None or slot is None else h.x[slot:slot + SLOT].copy()
+
+    def estimate(self, t: float) -> np.ndarray | None:
+        """The ball ``(px, py, vx, vy)`` [m, m/s] at ``t`` [s], moved by the rolling motion
+        when ``t`` is later than the track's time; None before the first start. A new
+        array."""
+        t = check_time(t)
+        h = self._reported
+        if h is None:
+            return None
+        if not t > h.t:
+            return h.x[0:BALL].copy()
+        return rolled(h.x, t - h.t, self.deceleration)
+
+    def _covariance(self, t: float) -> np.ndarray:
+        h = self._reported
+        P = h.P[0:BALL, 0:BALL].copy()
+        dt = t - h.t
+        if dt > 0.0:
+            P = drift_predict(h.x[0:BALL], P, dt, self.deceleration, self._q[0], 0.0, 0.0)[1]
+        return P
+
+    # ------------------------------------------------------------------------------------
+
+    def update_line(self, t: float, origin, angle: float, range_: float, own: bool = True,
+                    observer: int = 0, bearing_sigma: float | None = None,
+                    range_per_metre: float | None = None) -> None:
+        """A sighting line captured at ``t`` [s] by robot ``observer`` (one of the
+        tracker's): from ``origin`` ``(x, y)`` [m] at ``angle`` [rad] in the field frame,
+        ``range_`` [m] along it (NaN or inf: the bearing only); ``own``: the robot's own
+        sighting (a team-mate's otherwise); ``bearing_sigma`` [rad] and ``range_per_metre``
+        [1/m]: this line's errors where they differ from the :class:`SightingNoise`'s (a
+        standing robot's camera does not sway)."""
+        t = check_time(t)
+        try:
+            ox, oy = (float(v) for v in origin)
+            a, r = float(angle), float(range_)
+        except (TypeError, ValueError):
+            raise ValueError(f"origin must be (x, y) and angle, range_ numbers, got "
+                             f"{origin!r}, {angle!r}, {range_!r}") from None
+        if not (math.isfinite(ox) and math.isfinite(oy) and math.isfinite(a)):
+            raise ValueError(f"origin and angle must be finite, got {origin!r}, {angle!r}")
+        if not (r > 0.0 or math.isnan(r)):
+            raise ValueError(f"range_ must be > 0 (NaN or inf: bearing only), got {range_!r}")
+        if isinstance(observer, bool) or observer not in self.slots:
+            raise ValueError(f"observer must be one of the tracker's observers "
+                             f"{list(self.slots)}, got {observer!r}")
+        sb = (self.noise.bearing_sigma if bearing_sigma is None
+              else _positive("bearing_sigma", bearing_sigma))
+        k = (self.noise.range_per_metre if range_per_metre is None
+             else _positive("range_per_metre", range_per_metre, allow_zero=True))
+        self.line(t, ox, oy, a, r, bool(own), int(observer), sb, k)
+
+    def line(self, t: float, ox: float, oy: float, angle: float, range_: float, own: bool,
+             observer: int = 0, bearing_sigma: float | None = None,
+             range_per_metre: float | None = None) -> None:
+        """:meth:`update_line` without its checks, for a pipeline's own lines (finite floats;
+        ``range_`` > 0, NaN or inf; ``observer`` one of the tracker's; the sigmas > 0 or
+        None)."""
+        n = self.noise
+        new = _Line(t, ox, oy, angle, range_, own, self.slots[observer],
+                    n.bearing_sigma if bearing_sigma is None else bearing_sigma,
+                    n.range_per_metre if range_per_metre is None else range_per_metre)
+        log = self._log
+        if not log or t >= log[-1][0]:
+            log.append((t, new, self._state))
+            self._state = self._process(self._state, new)
+        elif t < log[0][0]:
+            self.late += 1
+            return
+        else:  # rewind to the state before the first later line, replay in capture order
+            i = bisect.bisect_right([e[0] for e in log], t)
+            state = log[i][2]
+            replay = [new] + [e[1] for e in log[i:]]
+            del log[i:]
+            for ln in replay:
+                log.append((ln.t, ln, state))
+                state = self._process(state, ln)
+            self._state = state
+        cutoff = log[-1][0] - self.history
+        k = 0
+        while k < len(log) - 1 and log[k][0] < cutoff:
+            k += 1
+        if k:
+            del log[:k]
+
+    # ------------------------------------------------------------------------------------
+
+    def _noise(self, ln: _Line, px: float, py: float) -> tuple[float, float, float, float]:
+        """``(r00, r01, r11, var)``: the point's white covariance (with a range) or the
+        bearing's white variance (without; the distance taken to the predicted
+        ``(px, py)``)."""
+        n = self.noise
+        floor2 = n.floor * n.floor
+        r, sb = ln.range, ln.bearing_sigma
+        if not math.isfinite(r):
+            d2 = (px - ln.ox) ** 2 + (py - ln.oy) ** 2
+            return 0.0, 0.0, 0.0, max(d2, 0.01) * sb * sb + floor2
+        sa = max(n.range_sigma_rel, ln.range_per_metre * r) * r
+        along, across = sa * sa, (r * sb) ** 2
+        c, s = math.cos(ln.angle), math.sin(ln.angle)
+        return (along * c * c + across * s * s + floor2, (along - across) * c * s,
+                along * s * s + across * c * c + floor2, 0.0)
+
+    def _update(self, h: _Hypothesis, ln: _Line, P: np.ndarray | None = None
+                ) -> tuple[float, float, _Hypothesis]:
+        """``(d2, log det S, h')``: ``h`` predicted to the line's time and updated with it
+        (``P``: the predicted covariance to use instead, for a kick prior)."""
+        if ln.t > h.t:
+            h = self._predicted(h, ln.t)
+        x, Pp = h.x, (h.P if P is None else P)
+        nx, ny = -math.sin(ln.angle), math.cos(ln.angle)
+        if math.isfinite(ln.range):
+            r00, r01, r11, _ = self._noise(ln, 0.0, 0.0)
+            d2, logdet, xn, Pn = update_point(  # z = o + r u, u = (n_y, -n_x)
+                x, Pp, ln.ox + ln.range * ny, ln.oy - ln.range * nx, r00, r01, r11, ln.slot,
+                ln.range, nx, ny)
+        else:
+            var = self._noise(ln, x[0], x[1])[3]
+            d = math.hypot(x[0] - ln.ox, x[1] - ln.oy)
+            d2, logdet, xn, Pn = update_bearing(x, Pp, ln.ox, ln.oy, nx, ny, var, ln.slot, d)
+        return d2, logdet, _Hypothesis(xn, Pn, max(ln.t, h.t), ln.t, h.since_start + 1)
+
+    def _predicted(self, h: _Hypothesis, t: float) -> _Hypothesis:
+        dt = t - h.t
+        if not dt > 0.0:
+            return h
+        x, P = drift_predict(h.x, h.P, dt, self.deceleration, *self._q)
+        return _Hypothesis(x, P, t, h.fused_at, h.since_start)
+
+    def _start(self, ln: _Line, since: int = 0, old: _Hypothesis | None = None
+               ) -> _Hypothesis | None:
+        """A track started by the line (None for a bearing-only line): the ball unknown, at
+        rest with ``init_speed_sigma``, the biases those of ``old`` (the priors without),
+        then updated with the line."""
+        if not math.isfinite(ln.range):
+            return None
+        x, P = self._prior_x.copy(), self._prior_P.copy()
+        if old is not None:
+            x[BALL:], P[BALL:, BALL:] = old.x[BALL:], old.P[BALL:, BALL:]
+        blank = _Hypothesis(x, P, ln.t, ln.t, since)
+        return self._update(blank, ln)[2]
+
+    def _open(self, track: _Hypothesis, ln: _Line) -> tuple[_Hypothesis | None, float]:
+        """``(kick, L)``: the kick hypothesis the line (the newest of the log) opens from
+        ``track`` and its starting log-likelihood ratio (see the module docstring: the kick
+        time searched over the lines of the last ``kick_window``)."""
+        log = self._log
+        n = len(log) - 1
+        first = n
+        while first > 0 and log[first - 1][0] >= ln.t - self.kick_window:
+            first -= 1
+        base = log[first][2].track
+        kick_var = self.kick_sigma ** 2
+        if base is None or first == n:  # nothing to search: kicked at the latest agreement
+            pred = self._predicted(track, ln.t)
+            prior = kick_prior(pred.P, max(ln.t - track.fused_at, 0.0), kick_var)
+            d2, _, kicked = self._update(pred, ln, prior)
+            if d2 <= self.gate:
+                return kicked, 0.0
+            return self._start(ln, track.since_start, track), 0.0
+        cap = 2.0 * self.gate
+        # The track without a kick over the window's lines: its state before each, and the
+        # log-likelihood of the lines before each.
+        rest, before, h, total = [], [], base, 0.0
+        for i in range(first, n + 1):
+            rest.append(h)
+            before.append(total)
+            d2, ld, upd = self._update(h, log[i][1])
+            total -= 0.5 * (min(d2, cap) + ld)
+            h = upd if d2 <= self.gate else self._predicted(h, log[i][0])
+        best, best_ll = None, -math.inf
+        for c in range(first, n + 1):
+            k = self._predicted(rest[c - first], log[c][0])
+            k = k._replace(P=kick_prior(k.P, 0.0, kick_var))
+            ll = before[c - first]
+            for i in range(c, n + 1):
+                d2, ld, k = self._update(k, log[i][1])
+                ll -= 0.5 * (min(d2, cap) + ld)
+            if ll > best_ll:
+                best, best_ll = k, ll
+        return best, best_ll - total - math.log(n + 1 - first)
+
+    def _process(self, s: _State, ln: _Line) -> _State:
+        """The state after one line in capture order (``s`` is not changed)."""
+        track = s.track
+        if track is None or ln.t - track.fused_at > self.lost_after:
+            started = self._start(ln, 0, track)
+            if started is None:
+                self.rejected += 1
+                return s
+            if track is not None:
+                self.resets += 1
+            self.fused += 1
+            return _State(track=started)
+        d2_t, ld_t, upd_t = self._update(track, ln)
+        agree_t = d2_t <= self.gate
+        if s.kick is None:
+            if agree_t:
+                self.fused += 1
+            else:
+                self.rejected += 1
+            if d2_t <= self.suspect:
+                return _State(track=upd_t)
+            return self._opened(track, upd_t if agree_t else None, ln)
+        d2_k, ld_k, upd_k = self._update(s.kick, ln)
+        agree_k = d2_k <= self.gate
+        if not (agree_t or agree_k):
+            self.rejected += 1
+            return self._opened(track, None, ln)
+        self.fused += 1
+        cap = 2.0 * self.gate
+        score = s.score + 0.5 * (min(d2_t, cap) + ld_t - min(d2_k, cap) - ld_k)
+        track = upd_t if agree_t else self._predicted(track, ln.t)
+        kick = upd_k if agree_k else self._predicted(s.kick, ln.t)
+        late = ln.t - s.opened_at > self.history
+        if score >= self.decide or (late and score > 0.0):
+            self.kicks += 1
+            return _State(track=kick)
+        if score <= -self.decide or late:
+            return _State(track=track)
+        return _State(track, kick, s.opened_at, s.own, score, s.weighed + 1)
+
+    def _opened(self, track: _Hypothesis, updated: _Hypothesis | None, ln: _Line) -> _State:
+        """The state once ``ln`` opened a kick hypothesis from ``track`` (``updated``: the
+        track with ``ln`` fused, when it agreed)."""
+        kick, score = self._open(track, ln)
+        if kick is None:
+            return _State(track=track)
+        return _State(track=updated if updated is not None else self._predicted(track, ln.t),
+                      kick=kick, opened_at=ln.t, own=ln.own, score=score)
+
+
+
+def _observer_ids(observers: int | Sequence[int]) -> list[int]:
+    """The observers' integer names: ``0 .. n-1`` for a count ``n``; ``ValueError`` naming
+    the argument unless 1 to 64 distinct integers."""
+    def integer(j: object) -> bool:
+        return isinstance(j, (int, np.integer)) and not isinstance(j, bool)
+
+    if integer(observers):
+        ids = list(range(int(observers)))  # type: ignore[arg-type]
+    else:
+        try:
+            ids = list(observers)  # type: ignore[arg-type]
+        except TypeError:
+            ids = []
+        ids = [int(j) for j in ids] if all(integer(j) for j in ids) else []
+    if not 1 <= len(ids) <= 64 or len(set(ids)) != len(ids):
+        raise ValueError(f"observers must be a count 1..64 or 1 to 64 distinct integers, got "
+                         f"{observers!r}")
+    return ids
