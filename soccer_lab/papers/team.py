@@ -38,12 +38,14 @@ import numpy as np
 from soccer_env.render.plots import pyplot, save_figure
 from soccer_lab.papers.common import map_jobs, write_report
 
-__all__ = ["run", "Settings", "match_errors", "keeper_saves", "MATCH_CONFIGS", "KEEPER_CONFIGS",
+__all__ = ["run", "Settings", "match_errors", "keeper_saves", "ball_events", "lock_on",
+           "MATCH_CONFIGS", "KEEPER_CONFIGS",
            "PAPER"]
 
 #: Blue's ball estimation in the match: names of
 #: :data:`agents.studies.ablation_settings.HUMANOID_CONFIGS`.
-MATCH_CONFIGS = ("own", "own-mfbpf", "fusion", "fusion-mfbpf", "fusion-ivar-mfbpf")
+MATCH_CONFIGS = ("own", "own-mfbpf", "fusion", "fusion-mfbpf", "fusion-ivar-mfbpf",
+                 "fusion-kick")
 #: The keeper's configurations (the same plus the truth).
 KEEPER_CONFIGS = ("truth", *MATCH_CONFIGS)
 PAPER = {"baseline_mm": 86.0, "fused_mm": 45.0, "gain": 0.48}
@@ -51,8 +53,22 @@ ROBOT, CAMERA, FIELD = "humanoid-2012", "kidsize-2012", "humanoid-2012"
 BLUE, YELLOW = 4, 3
 #: Ball speed above which the ball counts as rolling [m/s].
 MOVING = 0.5
-#: Error below which a belief counts as good [m].
+#: Error below which a belief counts as good [m] (and a track as locked on).
 GOOD = 0.3
+#: A change of the true ball velocity in one step above this [m/s] is a kick or a collision.
+EVENT_DV = 0.3
+#: Events followed by this long without another are scored for lock-on, and steps this long
+#: after the latest event count as steady tracking [s].
+SETTLE = 0.5
+#: The head camera's frame period [s] (``kidsize-2012``: 25 Hz): lock-on is counted in
+#: frames.
+FRAME = 0.04
+#: Frames the velocity error must stay within its allowance to count as locked on.
+HOLD_FRAMES = 3
+#: The velocity error allowed for lock-on: this share of the true speed, at least
+#: :data:`LOCK_SPEED` [m/s].
+LOCK_SHARE = 0.25
+LOCK_SPEED = 0.2
 
 
 def _match(args: tuple[str, int, float]) -> dict[str, Any]:
@@ -71,7 +87,7 @@ def _match(args: tuple[str, int, float]) -> dict[str, Any]:
     obs, infos = env.reset(seed=seed)
     teams = [HumanoidTeam.for_env(env, "blue"), HumanoidTeam.for_env(env, "yellow")]
     blue = env.possible_agents[:BLUE]
-    err, moving, loc = [], [], []
+    err, moving, loc, per_step, velocity, off = [], [], [], [], [], []
     t0 = time.perf_counter()
     steps = 0
     while env.agents:
@@ -82,17 +98,79 @@ def _match(args: tuple[str, int, float]) -> dict[str, Any]:
         steps += 1
         truth = infos[blue[0]]["truth"]
         tb = truth["ball_position"]
-        rolling = math.hypot(*truth["ball_velocity"]) > MOVING
+        tv = truth["ball_velocity"][0:2]
+        velocity.append(tv)
+        rolling = math.hypot(*tv) > MOVING
+        scale = max(LOCK_SHARE * math.hypot(*tv), LOCK_SPEED)
+        row, vrow = [], []
         for a in blue:
             est = infos[a]["estimate"]
             e = math.hypot(*(est["ball_position"] - tb))
-            err.append(e)
+            row.append(e)
+            vrow.append(math.hypot(*(est["ball_velocity"][0:2] - tv)) / scale)
             if rolling:
                 moving.append(e)
             loc.append(math.hypot(*(est["robot_pose"][a][0:2] - truth["robot_pose"][a][0:2])))
+        err += row
+        per_step.append(row)
+        off.append(vrow)
     score = infos[blue[0]]["score"]
+    dt = float(env.settings.control_dt)
     return {"err": err, "moving": moving, "loc": loc, "steps": steps,
-            "seconds": time.perf_counter() - t0, "score": score}
+            "seconds": time.perf_counter() - t0, "score": score,
+            **_events(np.array(per_step), np.array(off), np.array(velocity), dt)}
+
+
+def ball_events(velocity: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(steps, kicked)``: the steps at which the true ball's velocity ``(K, 2)`` [m/s] changed
+    by more than :data:`EVENT_DV` from the step before (friction changes it far less), and
+    whether each was a kick (the speed grew by more than :data:`EVENT_DV`) rather than a
+    collision with a robot, a post or a wall."""
+    dv = np.hypot(*np.diff(velocity, axis=0).T)
+    steps = np.flatnonzero(dv > EVENT_DV) + 1
+    speed = np.hypot(*velocity.T)
+    return steps, speed[steps] - speed[steps - 1] > EVENT_DV
+
+
+def lock_on(err: np.ndarray, start: int, stop: int, threshold: float, hold: int) -> int | None:
+    """Steps from ``start`` until the error ``err`` stays below ``threshold`` for ``hold``
+    steps in a row, before ``stop``; None if it never does."""
+    run = 0
+    for k in range(start, stop):
+        run = run + 1 if err[k] < threshold else 0
+        if run >= hold:
+            return k - hold + 1 - start
+    return None
+
+
+def _events(err: np.ndarray, off: np.ndarray, velocity: np.ndarray, dt: float
+            ) -> dict[str, list[float]]:
+    """Each blue robot's lock-on after every kick and collision followed by at least
+    :data:`SETTLE` seconds without another (in camera frames, see :data:`FRAME`): until its
+    believed velocity is within :data:`LOCK_SHARE` of the true speed (at least
+    :data:`LOCK_SPEED`) for :data:`HOLD_FRAMES` frames; and the position errors of the steps
+    at least :data:`SETTLE` seconds after the latest event (steady tracking). ``err``:
+    ``(K, robots)`` position errors [m] per step; ``off``: the velocity errors over their
+    allowance."""
+    steps, kicked = ball_events(velocity)
+    settle, hold = round(SETTLE / dt), round(HOLD_FRAMES * FRAME / dt)
+    locks: dict[str, list[float]] = {"lock_kick": [], "lock_collision": [], "missed_kick": [],
+                                     "missed_collision": []}
+    bounds = list(steps) + [len(err)]
+    for j, (c, kick) in enumerate(zip(steps, kicked)):
+        if bounds[j + 1] - c < settle:
+            continue
+        kind = "kick" if kick else "collision"
+        for r in range(err.shape[1]):
+            k = lock_on(off[:, r], int(c), int(bounds[j + 1]), 1.0, hold)
+            if k is None:
+                locks["missed_" + kind].append(1.0)
+            else:
+                locks["lock_" + kind].append(k * dt / FRAME)
+    since = np.arange(len(err)) - np.maximum.accumulate(
+        np.isin(np.arange(len(err)), steps) * np.arange(len(err)))
+    locks["steady"] = err[since >= settle].ravel().tolist()
+    return locks
 
 
 def match_errors(matches: int = 4, duration: float = 60.0, workers: int | None = None,
@@ -108,8 +186,18 @@ def match_errors(matches: int = 4, duration: float = 60.0, workers: int | None =
         moving = np.concatenate([p["moving"] for p in parts])
         loc = np.concatenate([p["loc"] for p in parts])
         steps = sum(p["steps"] for p in parts)
+        locks = {key: np.concatenate([p[key] for p in parts]) for key in
+                 ("lock_kick", "lock_collision", "missed_kick", "missed_collision", "steady")}
         table[name] = {
             "mean_m": float(err.mean()), "median_m": float(np.median(err)),
+            "rmse_m": float(np.sqrt(np.mean(err ** 2))),
+            "steady_rmse_m": float(np.sqrt(np.mean(locks["steady"] ** 2)))
+            if len(locks["steady"]) else float("nan"),
+            **{f"{key}_median_frames": float(np.median(locks[key])) if len(locks[key])
+               else float("nan") for key in ("lock_kick", "lock_collision")},
+            **{f"{kind}s_missed": f"{len(locks['missed_' + kind])}/"
+               f"{len(locks['missed_' + kind]) + len(locks['lock_' + kind])}"
+               for kind in ("kick", "collision")},
             "good_share": float(np.mean(err < GOOD)),
             "moving_mean_m": float(moving.mean()) if len(moving) else float("nan"),
             "moving_share": len(moving) / len(err),
@@ -194,16 +282,29 @@ def _tables(s: Settings, m: dict[str, Any], k: dict[str, Any] | None
              f"{CAMERA}) against {YELLOW} yellow, {s.matches} seeded match(es) of "
              f"{s.duration:g} s per configuration of blue's ball estimation; blue robots' ball "
              "belief against the truth at every step.", "",
-             "| blue's ball estimation | mean error [m] | median [m] | within 0.3 m | "
-             "mean while rolling [m] | localization median [m] | ms per step |",
-             "|---|---|---|---|---|---|---|"]
+             "| blue's ball estimation | mean error [m] | median [m] | RMSE [m] | "
+             "steady RMSE [m] | within 0.3 m | mean while rolling [m] | lock-on after a kick "
+             "[frames] (never) | after a collision [frames] (never) | localization median [m] "
+             "| ms per step |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     rows = []
     for name, r in m["configs"].items():
         lines.append(f"| {name} | {r['mean_m']:.3f} | {r['median_m']:.3f} | "
+                     f"{r['rmse_m']:.3f} | {r['steady_rmse_m']:.3f} | "
                      f"{100 * r['good_share']:.0f} % | {r['moving_mean_m']:.3f} | "
+                     f"{r['lock_kick_median_frames']:.1f} ({r['kicks_missed']}) | "
+                     f"{r['lock_collision_median_frames']:.1f} ({r['collisions_missed']}) | "
                      f"{r['localization_median_m']:.3f} | {r['ms_per_step']:.2f} |")
         rows.append({"part": "match", "config": name,
                      **{kk: v for kk, v in r.items() if not isinstance(v, list)}})
+    lines += ["", f"Lock-on: camera frames ({1 / FRAME:g} Hz) from a kick (the ball's speed "
+              f"grew by over {EVENT_DV:g} m/s in a step) or a collision (its velocity changed "
+              f"as much otherwise) until a blue robot's believed ball velocity stays within "
+              f"{LOCK_SHARE:.0%} of the true speed (at least {LOCK_SPEED:g} m/s) for "
+              f"{HOLD_FRAMES} frames, median over robots and events followed by at least "
+              f"{SETTLE:g} s without another; (never): those that did not lock on before the "
+              f"next event, of all. Steady: steps at least {SETTLE:g} s after the latest "
+              "event."]
     own, fused = m["configs"]["own"]["mean_m"], m["configs"]["fusion"]["mean_m"]
     lines += ["", f"Team fusion against one robot alone (mean error): {1 - fused / own:.0%} "
               f"better (Xu et al. 2012, hardware: {PAPER['gain']:.0%}, "

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import numpy as np
 import pytest
 from saved_figures import saved_figures
 
@@ -21,6 +22,7 @@ def test_team_benchmark_measures_every_configuration_and_writes_its_outputs(tmp_
         assert r["mean_m"] > 0.0 and r["median_m"] > 0.0  # perceived, never exact
         assert 0.0 <= r["good_share"] <= 1.0
         assert r["localization_median_m"] < 0.5  # the robots know where they are
+        assert 0.0 < r["steady_rmse_m"] and r["mean_m"] <= r["rmse_m"]
     assert list(res["keeper"]["configs"]) == list(team.KEEPER_CONFIGS)
     assert res["keeper"]["configs"]["truth"]["ball_rmse_m"] == 0.0
     for suffix in ("md", "csv", "json", "png"):
@@ -28,6 +30,20 @@ def test_team_benchmark_measures_every_configuration_and_writes_its_outputs(tmp_
     data = json.loads((tmp_path / "paper_team.json").read_text())
     assert data["paper"]["gain"] == 0.48
     assert "Xu et al. 2012, hardware: 48%" in res["text"]
+
+
+def test_kicks_and_collisions_are_told_apart_and_lock_on_is_counted():
+    dt = 1.0 / 60.0
+    v = np.zeros((120, 2))
+    v[10:60] = (3.0, 0.0) - np.arange(50)[:, None] * (0.5 * dt, 0.0)  # kicked, then rolling
+    v[60:] = (-1.0, 0.5)  # off a post: slower, another direction
+    steps, kicked = team.ball_events(v)
+    assert steps.tolist() == [10, 60] and kicked.tolist() == [True, False]
+    err = np.ones(30)
+    err[12:] = 0.5
+    err[14] = 2.0  # one step off: the run starts again
+    assert team.lock_on(err, 10, 30, 1.0, 3) == 5
+    assert team.lock_on(err, 10, 16, 1.0, 3) is None
 
 
 def test_team_benchmark_rejects_bad_arguments(tmp_path: Path):
