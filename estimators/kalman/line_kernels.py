@@ -25,15 +25,26 @@ SLOT = 3
 
 
 @kernel
-def rolled(x: np.ndarray, dt: float, deceleration: float) -> np.ndarray:
-    """The ball ``x[0:4] = (px, py, vx, vy)`` ``dt >= 0`` [s] later, rolling under uniform
-    deceleration ``a`` along its motion until it stops (``tau = min(dt, s / a)``,
-    ``p' = p + u (s tau - a tau^2 / 2)``, ``v' = u (s - a tau)``; constant velocity for
-    ``a = 0``): a new ``(4,)`` array."""
+def rolled(x: np.ndarray, dt: float, deceleration: float, sliding: float,
+           switch: float) -> np.ndarray:
+    """The ball ``x[0:4] = (px, py, vx, vy)`` ``dt >= 0`` [s] later (a new ``(4,)`` array),
+    decelerating uniformly along its motion: by ``sliding`` [m/s^2] while its speed exceeds
+    ``switch`` [m/s] (a kicked ball slides; ``inf``: never), then by ``deceleration`` until
+    it stops. Over a phase of ``tau`` seconds at deceleration ``a`` from speed ``s`` along
+    ``u``: ``p' = p + u (s tau - a tau^2 / 2)``, ``v' = u (s - a tau)``; rolling lasts
+    ``tau = min(dt, s / a)`` (constant velocity for ``a = 0``)."""
     px, py, vx, vy = x[0], x[1], x[2], x[3]
     out = np.empty(4)
     speed = math.sqrt(vx * vx + vy * vy)
-    if deceleration == 0.0 or speed == 0.0:
+    if sliding > 0.0 and speed > switch:
+        t1 = (speed - switch) / sliding
+        tau = min(dt, t1)
+        k = tau - 0.5 * sliding * tau * tau / speed
+        f = 1.0 - sliding * tau / speed
+        px, py, vx, vy = px + k * vx, py + k * vy, f * vx, f * vy
+        dt -= tau
+        speed = speed * f
+    if deceleration == 0.0 or speed == 0.0 or dt <= 0.0:
         out[0], out[1], out[2], out[3] = px + dt * vx, py + dt * vy, vx, vy
     else:
         tau = min(dt, speed / deceleration)
@@ -45,7 +56,8 @@ def rolled(x: np.ndarray, dt: float, deceleration: float) -> np.ndarray:
 
 @kernel
 def drift_predict(x: np.ndarray, P: np.ndarray, dt: float, deceleration: float,
-                  q: float, q_xy: float, q_theta: float) -> tuple[np.ndarray, np.ndarray]:
+                  sliding: float, switch: float, q: float, q_xy: float, q_theta: float
+                  ) -> tuple[np.ndarray, np.ndarray]:
     """The time update over ``dt >= 0`` [s] (new arrays).
 
     The ball's mean by :func:`rolled`; its covariance by the constant-velocity model with white
@@ -55,7 +67,7 @@ def drift_predict(x: np.ndarray, P: np.ndarray, dt: float, deceleration: float,
     ``q_theta dt`` [rad^2] per heading."""
     n = x.shape[0]
     xn = x.copy()
-    ball = rolled(x, dt, deceleration)
+    ball = rolled(x, dt, deceleration, sliding, switch)
     for i in range(4):
         xn[i] = ball[i]
     Pn = P.copy()

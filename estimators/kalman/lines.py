@@ -24,9 +24,13 @@ localization's errors); they wander as random walks of ``bias_drift_xy^2`` [m^2/
 
 **Motion.** Between lines the ball rolls under uniform deceleration ``a`` along its motion,
 stopping rather than reversing (``tau = min(dt, s / a)``, ``p' = p + u (s tau - a tau^2 / 2)``,
-``v' = u (s - a tau)``); its covariance follows the constant-velocity model with white
-acceleration noise ``accel_sigma``: ``A P A^T + s_a^2 B B^T``, ``A = [[I, dt I], [0, I]]``,
-``B = [dt^2 / 2 I; dt I]`` (the deceleration is left out of the spread).
+``v' = u (s - a tau)``); a kicked ball first slides, decelerating by ``sliding_deceleration``
+``a_s`` until its speed is down to ``k_switch`` of its speed after the kick (the two-phase
+friction law, 5/7 for a solid ball), which for a speed ``s`` at ``t`` of a ball kicked at
+``t_k`` and still sliding is ``s + a_s (t - t_k)``; its covariance follows the
+constant-velocity model with white acceleration noise ``accel_sigma``:
+``A P A^T + s_a^2 B B^T``, ``A = [[I, dt I], [0, I]]``, ``B = [dt^2 / 2 I; dt I]`` (the
+deceleration is left out of the spread).
 
 **A sighting line** is what a robot's head camera gives: from the observer's estimated
 position ``o`` at capture along the estimated heading plus the detection's bearing, ``phi``,
@@ -129,13 +133,15 @@ class SightingNoise(NamedTuple):
 
 class _Hypothesis(NamedTuple):
     """A Kalman track: state and covariance at ``t``; the capture time of its latest agreeing
-    line; lines fused since the tracker's latest start."""
+    line; lines fused since the tracker's latest start; when it was kicked (NaN: not known to
+    be, so it rolls)."""
 
     x: np.ndarray
     P: np.ndarray
     t: float
     fused_at: float
     since_start: int
+    kicked_at: float = math.nan
 
 
 class _State(NamedTuple):
@@ -180,6 +186,10 @@ class LineBallTracker(TrackQualityMixin):
     Args:
         noise: the lines' error model (:class:`SightingNoise`).
         deceleration: the ball's rolling deceleration ``a`` [m/s^2].
+        sliding_deceleration: a kicked ball's deceleration while it slides [m/s^2] (0: no
+            sliding phase).
+        k_switch: a kicked ball slides until its speed is down to this share of its speed
+            after the kick, in (0, 1].
         accel_sigma: the white acceleration noise ``s_a`` [m/s^2].
         kick_sigma: the velocity change a kick makes, per axis ``sqrt(J)`` [m/s].
         init_speed_sigma: the velocity's spread at a start [m/s].
@@ -205,6 +215,7 @@ class LineBallTracker(TrackQualityMixin):
     takes_lines = True
 
     def __init__(self, noise: SightingNoise, *, deceleration: float = 0.0,
+                 sliding_deceleration: float = 0.0, k_switch: float = 5.0 / 7.0,
                  accel_sigma: float = 1.0, kick_sigma: float = 3.0,
                  init_speed_sigma: float = 2.0, gate: float = CHI2_2DOF_999,
                  suspect: float = CHI2_2DOF_95, decide: float = 3.0,
@@ -218,6 +229,11 @@ class LineBallTracker(TrackQualityMixin):
                       allow_zero=name not in ("bearing_sigma", "floor"))
         self.noise = noise
         self.deceleration = _positive("deceleration", deceleration, allow_zero=True)
+        self.sliding_deceleration = _positive("sliding_deceleration", sliding_deceleration,
+                                              allow_zero=True)
+        self.k_switch = _positive("k_switch", k_switch)
+        if self.k_switch > 1.0:
+            raise ValueError(f"k_switch must be in (0, 1], got {k_switch!r}")
         self.accel_sigma = _positive("accel_sigma", accel_sigma)
         self.kick_sigma = _positive("kick_sigma", kick_sigma)
         self.init_speed_sigma = _positive("init_speed_sigma", init_speed_sigma)
@@ -298,14 +314,15 @@ class LineBallTracker(TrackQualityMixin):
             return None
         if not t > h.t:
             return h.x[0:BALL].copy()
-        return rolled(h.x, t - h.t, self.deceleration)
+        return rolled(h.x, t - h.t, self.deceleration, *self._phase(h))
 
     def _covariance(self, t: float) -> np.ndarray:
         h = self._reported
         P = h.P[0:BALL, 0:BALL].copy()
         dt = t - h.t
         if dt > 0.0:
-            P = drift_predict(h.x[0:BALL], P, dt, self.deceleration, self._q[0], 0.0, 0.0)[1]
+            P = drift_predict(h.x[0:BALL], P, dt, self.deceleration, *self._phase(h),
+                              self._q[0], 0.0, 0.0)[1]
         return P
 
     # ------------------------------------------------------------------------------------
@@ -390,13 +407,11 @@ class LineBallTracker(TrackQualityMixin):
         return (along * c * c + across * s * s + floor2, (along - across) * c * s,
                 along * s * s + across * c * c + floor2, 0.0)
 
-    def _update(self, h: _Hypothesis, ln: _Line, P: np.ndarray | None = None
-                ) -> tuple[float, float, _Hypothesis]:
-        """``(d2, log det S, h')``: ``h`` predicted to the line's time and updated with it
-        (``P``: the predicted covariance to use instead, for a kick prior)."""
+    def _update(self, h: _Hypothesis, ln: _Line) -> tuple[float, float, _Hypothesis]:
+        """``(d2, log det S, h')``: ``h`` predicted to the line's time and updated with it."""
         if ln.t > h.t:
             h = self._predicted(h, ln.t)
-        x, Pp = h.x, (h.P if P is None else P)
+        x, Pp = h.x, h.P
         nx, ny = -math.sin(ln.angle), math.cos(ln.angle)
         if math.isfinite(ln.range):
             r00, r01, r11, _ = self._noise(ln, 0.0, 0.0)
@@ -407,14 +422,29 @@ class LineBallTracker(TrackQualityMixin):
             var = self._noise(ln, x[0], x[1])[3]
             d = math.hypot(x[0] - ln.ox, x[1] - ln.oy)
             d2, logdet, xn, Pn = update_bearing(x, Pp, ln.ox, ln.oy, nx, ny, var, ln.slot, d)
-        return d2, logdet, _Hypothesis(xn, Pn, max(ln.t, h.t), ln.t, h.since_start + 1)
+        return d2, logdet, _Hypothesis(xn, Pn, max(ln.t, h.t), ln.t, h.since_start + 1,
+                                       h.kicked_at)
+
+    def _phase(self, h: _Hypothesis) -> tuple[float, float]:
+        """``(sliding deceleration, switch speed)`` of ``h``'s motion (see :func:`rolled`): a
+        ball kicked at ``t_k`` slides until ``k_switch`` of its speed after the kick, which
+        (if it still slides) is ``s + a_s (t - t_k)`` for its speed ``s`` at ``t``."""
+        a_s = self.sliding_deceleration
+        if a_s == 0.0 or not h.kicked_at <= h.t:
+            return 0.0, math.inf
+        speed = math.hypot(h.x[2], h.x[3])
+        return a_s, self.k_switch * (speed + a_s * (h.t - h.kicked_at))
 
     def _predicted(self, h: _Hypothesis, t: float) -> _Hypothesis:
         dt = t - h.t
         if not dt > 0.0:
             return h
-        x, P = drift_predict(h.x, h.P, dt, self.deceleration, *self._q)
-        return _Hypothesis(x, P, t, h.fused_at, h.since_start)
+        x, P = drift_predict(h.x, h.P, dt, self.deceleration, *self._phase(h), *self._q)
+        return h._replace(x=x, P=P, t=t)
+
+    def _kicked(self, h: _Hypothesis, P: np.ndarray, at: float) -> _Hypothesis:
+        """``h`` with the covariance ``P`` of a kick at ``at`` [s]."""
+        return h._replace(P=P, kicked_at=at)
 
     def _start(self, ln: _Line, since: int = 0, old: _Hypothesis | None = None
                ) -> _Hypothesis | None:
@@ -442,8 +472,9 @@ class LineBallTracker(TrackQualityMixin):
         kick_var = self.kick_sigma ** 2
         if base is None or first == n:  # nothing to search: kicked at the latest agreement
             pred = self._predicted(track, ln.t)
-            prior = kick_prior(pred.P, max(ln.t - track.fused_at, 0.0), kick_var)
-            d2, _, kicked = self._update(pred, ln, prior)
+            pred = self._kicked(pred, kick_prior(pred.P, max(ln.t - track.fused_at, 0.0),
+                                                 kick_var), min(track.fused_at, ln.t))
+            d2, _, kicked = self._update(pred, ln)
             if d2 <= self.gate:
                 return kicked, 0.0
             return self._start(ln, track.since_start, track), 0.0
@@ -460,7 +491,7 @@ class LineBallTracker(TrackQualityMixin):
         best, best_ll = None, -math.inf
         for c in range(first, n + 1):
             k = self._predicted(rest[c - first], log[c][0])
-            k = k._replace(P=kick_prior(k.P, 0.0, kick_var))
+            k = self._kicked(k, kick_prior(k.P, 0.0, kick_var), log[c][0])
             ll = before[c - first]
             for i in range(c, n + 1):
                 d2, ld, k = self._update(k, log[i][1])

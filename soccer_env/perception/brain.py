@@ -161,7 +161,7 @@ class Brain:
         noise = SightingNoise(context.bearing_sigma, context.range_per_metre,
                               _LINE_RANGE_SIGMA_REL, *context.pose_sigmas, _MIN_SIGMA)
         self.tracker = (None if tracker is None else tracker(
-            rng, context.ball_spec.rolling_deceleration, _MAX_BALL_SPEED, noise,
+            rng, context.ball_spec, _MAX_BALL_SPEED, noise,
             tuple(context.team_members[team]) or (index,)))
         #: Whether the tracker takes the sighting lines one by one (else fused points).
         self.takes_lines = bool(getattr(self.tracker, "takes_lines", False))

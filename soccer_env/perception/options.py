@@ -5,7 +5,7 @@ one-line description (what ``soccer-env list``, the ablation and the error messa
   measurement) -> BallFilter`` (the tracker and whether it is fed capture times);
 * :data:`BALL_TRACKERS` (humanoids, ``ball_tracker=``): ``"none"``, one of the estimators'
   :data:`~estimators.PARTICLE_FILTERS` or ``"kick"`` (:class:`~estimators.LineBallTracker`),
-  name -> ``factory(rng, deceleration, max_speed, noise, observers)`` (None for ``"none"``);
+  name -> ``factory(rng, ball, max_speed, noise, observers)`` (None for ``"none"``);
 * :data:`FUSIONS` (humanoids, ``fusion=``): the robot's own sighting, or Hough-space fusion with
   one of the estimators' :data:`~estimators.FUSION_WEIGHTINGS` or the inverse variance of each
   line's offset; name -> the weighting of :func:`~estimators.fuse_sightings`;
@@ -139,7 +139,7 @@ BALL_FILTERS: Registry[Callable[..., BallFilter]] = Registry("ball filter", [
 PARTICLES = 100
 
 
-def _particle_tracker(name: str, rng: np.random.Generator, deceleration: float,
+def _particle_tracker(name: str, rng: np.random.Generator, ball: BallSpec,
                       max_speed: float, noise: SightingNoise, observers: tuple[int, ...]
                       ) -> ParticleBallTracker:
     """A humanoid's ball tracker on the particle filter ``name`` (see
@@ -148,24 +148,28 @@ def _particle_tracker(name: str, rng: np.random.Generator, deceleration: float,
     implausible ones in a row (``noise`` and ``observers`` are the fusion's business, not the
     tracker's)."""
     return ParticleBallTracker(rng, filter=name, n_particles=PARTICLES, accel_sigma=1.0,
-                               deceleration=deceleration, lost_after=2.0, max_speed=max_speed,
+                               deceleration=ball.rolling_deceleration, lost_after=2.0,
+                               max_speed=max_speed,
                                reinit_after=2)
 
 
-def _line_tracker(rng: np.random.Generator, deceleration: float, max_speed: float,
+def _line_tracker(rng: np.random.Generator, ball: BallSpec, max_speed: float,
                   noise: SightingNoise, observers: tuple[int, ...]) -> LineBallTracker:
     """The kick-aware tracker of the sighting lines of the robots ``observers`` (indices)
-    (:class:`~estimators.LineBallTracker`) with the ball's rolling deceleration, 1 m/s^2 of
-    acceleration noise (as the particle trackers) and kicks of 3 m/s per axis, restarted
+    (:class:`~estimators.LineBallTracker`) with the ball's two-phase friction law, 1 m/s^2
+    of acceleration noise (as the particle trackers) and kicks of 3 m/s per axis, restarted
     after 2 s without an agreeing line; it draws nothing."""
-    return LineBallTracker(noise, deceleration=deceleration, accel_sigma=1.0, kick_sigma=3.0,
+    return LineBallTracker(noise, deceleration=ball.rolling_deceleration,
+                           sliding_deceleration=ball.sliding_deceleration,
+                           k_switch=ball.k_switch, accel_sigma=1.0, kick_sigma=3.0,
                            lost_after=2.0, observers=observers)
 
 
-#: A humanoid's ball trackers, ``factory(rng, deceleration, max_speed, noise, observers)``
-#: with the team's sighting error model (:class:`~estimators.SightingNoise`) and the robots
-#: (indices) whose sightings it may get: none; one per particle
-#: filter of the estimators, fed the fused sightings; or the kick-aware tracker fed each line.
+#: A humanoid's ball trackers, ``factory(rng, ball, max_speed, noise, observers)`` with the
+#: ball's :class:`~soccer_env.presets.BallSpec`, the team's sighting error model
+#: (:class:`~estimators.SightingNoise`) and the robots (indices) whose sightings it may get:
+#: none; one per particle filter of the estimators, fed the fused sightings; or the
+#: kick-aware tracker fed each line.
 BALL_TRACKERS: Registry[Callable[..., Any] | None] = Registry(
     "ball tracker",
     [("none", None, "no tracking: the latest fused point, velocity from the last two")]

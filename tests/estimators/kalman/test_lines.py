@@ -104,6 +104,39 @@ def test_a_kick_is_learnt_within_a_few_frames():
     assert max(frames) <= 8, frames
 
 
+def slid(p0, v, t, sliding=2.0, k_switch=0.7):
+    """Position and velocity ``t`` [s] after a kick from ``p0`` at ``v`` under the two-phase
+    friction law: sliding at ``sliding`` [m/s^2] down to ``k_switch`` of the kick speed, then
+    rolling at ``DECEL``."""
+    p0, v = np.asarray(p0, float), np.asarray(v, float)
+    s = float(np.hypot(*v))
+    if t <= 0.0:
+        return p0, np.zeros(2)
+    u = v / s
+    t1 = (1.0 - k_switch) * s / sliding
+    if t <= t1:
+        return p0 + u * (s * t - 0.5 * sliding * t * t), u * (s - sliding * t)
+    p1 = p0 + u * (s * t1 - 0.5 * sliding * t1 * t1)
+    return rolled(p1, u * k_switch * s, t - t1)
+
+
+@pytest.mark.parametrize("two_phase", [True, False])
+def test_a_kicked_ball_slides_before_it_rolls(two_phase):
+    """With the ball's sliding phase in the model the believed speed follows the truth; with
+    rolling alone it lags the faster deceleration."""
+    rng = np.random.default_rng(5)
+    kick, v = 1.0, (3.5, -1.0)
+    tracker = LineBallTracker(NOISE, deceleration=DECEL,
+                              sliding_deceleration=2.0 if two_phase else 0.0, k_switch=0.7)
+    feed(tracker, sightings(rng, lambda t: slid((1.0, 0.5), v, t - kick), kick + 0.5))
+    _, vt = slid((1.0, 0.5), v, 0.5)
+    ratio = np.hypot(*tracker.estimate(kick + 0.5)[2:]) / np.hypot(*vt)
+    if two_phase:
+        assert abs(ratio - 1.0) < 0.03, ratio
+    else:
+        assert ratio > 1.05, ratio
+
+
 def test_an_outlier_does_not_move_the_track():
     rng = np.random.default_rng(1)
     tracker = LineBallTracker(NOISE, deceleration=DECEL)
@@ -166,6 +199,8 @@ def test_a_lost_ball_restarts_and_old_lines_are_dropped():
     ({"gate": math.nan}, "gate"),
     ({"suspect": 20.0}, "suspect must be at most gate"),
     ({"kick_window": 1.0}, "kick_window must be at most history"),
+    ({"sliding_deceleration": -1.0}, "sliding_deceleration"),
+    ({"k_switch": 1.5}, r"k_switch must be in \(0, 1\]"),
     ({"observers": 0}, "observers must be a count"),
     ({"observers": (1, 1)}, "observers must be a count"),
     ({"observers": (1, "2")}, "observers must be a count"),
