@@ -15,8 +15,8 @@ import numpy as np
 
 from ..compiled import kernel
 
-__all__ = ["rolled", "drift_predict", "kick_prior", "update_point", "update_bearing", "BALL",
-           "SLOT"]
+__all__ = ["rolled", "drift_predict", "kick_prior", "update_point", "update_bearing", "phase",
+           "line_step", "kick_search", "BALL", "SLOT", "LINE", "MODEL"]
 
 #: Entries of the ball's state ``(px, py, vx, vy)``, first in the state.
 BALL = 4
@@ -172,3 +172,88 @@ def update_bearing(x: np.ndarray, P: np.ndarray, ox: float, oy: float, nx: float
             Pn[i, j] = v
             Pn[j, i] = v
     return y * y / S, math.log(S), xn, Pn
+
+
+#: A line row's entries: capture time [s], origin x, y [m], angle [rad], range [m] (NaN: the
+#: bearing only), the observer's bias slot (its first entry in the state), bearing sigma
+#: [rad], range error per metre [1/m].
+LINE = 8
+#: The model row's entries: rolling and sliding deceleration [m/s^2], ``k_switch``, the
+#: acceleration noise [m^2/s^4], the biases' walks [m^2/s, rad^2/s], the least relative range
+#: error, the white floor [m].
+MODEL = 8
+
+
+@kernel
+def phase(x: np.ndarray, t: float, kicked_at: float, sliding: float,
+          k_switch: float) -> tuple[float, float]:
+    """``(sliding deceleration, switch speed)`` of a ball ``x`` at ``t`` [s] kicked at
+    ``kicked_at`` (NaN: not known to be kicked, so it rolls: ``(0, inf)``) for :func:`rolled`:
+    it slides until ``k_switch`` of its speed after the kick, which, if it still slides, is
+    ``s + a_s (t - t_k)`` for its speed ``s``."""
+    if sliding == 0.0 or not kicked_at <= t:
+        return 0.0, np.inf
+    speed = math.sqrt(x[2] * x[2] + x[3] * x[3])
+    return sliding, k_switch * (speed + sliding * (t - kicked_at))
+
+
+@kernel
+def line_step(x: np.ndarray, P: np.ndarray, t: float, kicked_at: float, line: np.ndarray,
+              model: np.ndarray) -> tuple[float, float, np.ndarray, np.ndarray]:
+    """A track ``(x, P)`` at ``t`` [s] (kicked at ``kicked_at``) predicted to the capture time
+    of ``line`` (a :data:`LINE` row) when that is later, and updated with it under ``model``
+    (a :data:`MODEL` row): ``(d2, log det S, x', P')``. The line's white noise: with a range
+    ``r``, ``R = s_r^2 u u^T + (r s_b)^2 n n^T + f^2 I`` with ``s_r = max(k_0, k r) r``
+    (:func:`update_point`); bearing only, ``d^2 s_b^2 + f^2`` at the predicted distance ``d``
+    (at least 0.1 m; :func:`update_bearing`)."""
+    lt = line[0]
+    if lt > t:
+        a_s, switch = phase(x, t, kicked_at, model[1], model[2])
+        x, P = drift_predict(x, P, lt - t, model[0], a_s, switch, model[3], model[4], model[5])
+    ox, oy, angle, r = line[1], line[2], line[3], line[4]
+    slot, sb, k = int(line[5]), line[6], line[7]
+    c, s = math.cos(angle), math.sin(angle)
+    nx, ny = -s, c
+    floor2 = model[7] * model[7]
+    if math.isfinite(r):
+        sa = max(model[6], k * r) * r
+        along, across = sa * sa, (r * sb) * (r * sb)
+        return update_point(x, P, ox + r * c, oy + r * s, along * c * c + across * s * s + floor2,
+                            (along - across) * c * s, along * s * s + across * c * c + floor2,
+                            slot, r, nx, ny)
+    d2 = (x[0] - ox) * (x[0] - ox) + (x[1] - oy) * (x[1] - oy)
+    var = max(d2, 0.01) * sb * sb + floor2
+    return update_bearing(x, P, ox, oy, nx, ny, var, slot, math.sqrt(d2))
+
+
+@kernel
+def kick_search(X: np.ndarray, Ps: np.ndarray, T: np.ndarray, K: np.ndarray,
+                before: np.ndarray, lines: np.ndarray, model: np.ndarray, kick_var: float,
+                cap: float) -> tuple[int, float, np.ndarray, np.ndarray, float]:
+    """The kick time searched over the lines ``lines`` (``(n, LINE)``, capture order): for
+    each candidate ``c``, the track before line ``c`` (``X[c]``, ``Ps[c]`` at ``T[c]``,
+    kicked at ``K[c]``) predicted to its time, kicked there (:func:`kick_prior` with no
+    elapsed time) and updated with lines ``c .. n-1``; its log-likelihood is ``before[c]``
+    (the lines before ``c`` under the track without a kick) less half of each later line's
+    ``min(d2, cap) + log det S``. Returns ``(c, log-likelihood, x, P, t)`` of the most
+    likely candidate."""
+    n = lines.shape[0]
+    best, best_ll = -1, -np.inf
+    bx, bP, bt = X[0].copy(), Ps[0].copy(), 0.0
+    for c in range(n):
+        x, P, t = X[c], Ps[c], T[c]
+        lt = lines[c, 0]
+        if lt > t:
+            a_s, switch = phase(x, t, K[c], model[1], model[2])
+            x, P = drift_predict(x, P, lt - t, model[0], a_s, switch, model[3], model[4],
+                                 model[5])
+            t = lt
+        P = kick_prior(P, 0.0, kick_var)
+        ll = before[c]
+        for i in range(c, n):
+            d2, ld, x, P = line_step(x, P, t, lt, lines[i], model)
+            t = max(t, lines[i, 0])
+            ll -= 0.5 * (min(d2, cap) + ld)
+        if ll > best_ll:
+            best, best_ll, bx, bP, bt = c, ll, x, P, t
+    return best, best_ll, bx, bP, bt

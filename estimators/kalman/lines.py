@@ -56,7 +56,7 @@ it, and it and every later line are processed again in capture order. Older line
 (``late``).
 
 **Kicks.** A line whose squared Mahalanobis distance ``d2 = y^T S^-1 y`` from the track
-exceeds ``suspect`` (chi-square, 95 %) opens a *kick hypothesis* beside the track: the track
+exceeds ``suspect`` (chi-square, 99 %) opens a *kick hypothesis* beside the track: the track
 kicked at an unknown moment ``t_k`` of the last ``kick_window`` seconds by an unknown velocity
 change ``dv ~ N(0, kick_sigma^2 I)``. The kick time is searched over the logged lines' times:
 for each candidate the track without a kick up to ``t_k`` (its covariance's velocity block
@@ -95,15 +95,16 @@ from .line_kernels import (
     SLOT,
     drift_predict,
     kick_prior,
+    kick_search,
+    line_step,
+    phase,
     rolled,
-    update_bearing,
-    update_point,
 )
 
-__all__ = ["SightingNoise", "LineBallTracker", "CHI2_2DOF_95"]
+__all__ = ["SightingNoise", "LineBallTracker", "CHI2_2DOF_99"]
 
-#: 95 % quantile of the chi-square distribution with 2 degrees of freedom, ``-2 ln 0.05``.
-CHI2_2DOF_95 = 5.991464547107979
+#: 99 % quantile of the chi-square distribution with 2 degrees of freedom, ``-2 ln 0.01``.
+CHI2_2DOF_99 = 9.210340371976182
 
 #: The standard deviation of a start's position before its first line [m]: nothing known.
 _UNKNOWN = 100.0
@@ -158,15 +159,11 @@ class _State(NamedTuple):
 
 
 class _Line(NamedTuple):
+    """A line: its capture time, whether the robot's own, and its :data:`LINE` row."""
+
     t: float
-    ox: float
-    oy: float
-    angle: float
-    range: float
     own: bool
-    slot: int
-    bearing_sigma: float
-    range_per_metre: float
+    row: np.ndarray
 
 
 def _positive(name: str, value: float, allow_zero: bool = False) -> float:
@@ -218,7 +215,7 @@ class LineBallTracker(TrackQualityMixin):
                  sliding_deceleration: float = 0.0, k_switch: float = 5.0 / 7.0,
                  accel_sigma: float = 1.0, kick_sigma: float = 3.0,
                  init_speed_sigma: float = 2.0, gate: float = CHI2_2DOF_999,
-                 suspect: float = CHI2_2DOF_95, decide: float = 3.0,
+                 suspect: float = CHI2_2DOF_99, decide: float = 3.0,
                  lost_after: float = 2.0, history: float = 0.5, kick_window: float = 0.25,
                  observers: int | Sequence[int] = 6, bias_drift_xy: float = 0.05,
                  bias_drift_theta: float = math.radians(1.0)) -> None:
@@ -256,6 +253,8 @@ class LineBallTracker(TrackQualityMixin):
         self.bias_drift_theta = _positive("bias_drift_theta", bias_drift_theta,
                                           allow_zero=True)
         self._q = (self.accel_sigma ** 2, self.bias_drift_xy ** 2, self.bias_drift_theta ** 2)
+        self._model = np.array([self.deceleration, self.sliding_deceleration, self.k_switch,
+                                *self._q, noise.range_sigma_rel, noise.floor])
         m = BALL + SLOT * self.observers
         # The state before any line: nothing known of the ball, the biases at their priors.
         self._prior_x = np.zeros(m)
@@ -269,7 +268,9 @@ class LineBallTracker(TrackQualityMixin):
     def reset(self) -> None:
         """Forget everything (a new episode): the ball and the observers' biases."""
         self._state = _State()
-        self._log: list[tuple[float, _Line, _State]] = []
+        # Per line in capture order: its time, the line, the state before it and the track's
+        # log-likelihood of it (0 without a track).
+        self._log: list[tuple[float, _Line, _State, float]] = []
         self.fused = self.rejected = self.kicks = self.resets = self.late = 0
 
     # ------------------------------------------------------------------------------------
@@ -363,13 +364,15 @@ class LineBallTracker(TrackQualityMixin):
         ``range_`` > 0, NaN or inf; ``observer`` one of the tracker's; the sigmas > 0 or
         None)."""
         n = self.noise
-        new = _Line(t, ox, oy, angle, range_, own, self.slots[observer],
-                    n.bearing_sigma if bearing_sigma is None else bearing_sigma,
-                    n.range_per_metre if range_per_metre is None else range_per_metre)
+        new = _Line(t, own, np.array([
+            t, ox, oy, angle, range_, self.slots[observer],
+            n.bearing_sigma if bearing_sigma is None else bearing_sigma,
+            n.range_per_metre if range_per_metre is None else range_per_metre]))
         log = self._log
         if not log or t >= log[-1][0]:
-            log.append((t, new, self._state))
-            self._state = self._process(self._state, new)
+            state = self._state
+            self._state, ll = self._process(state, new)
+            log.append((t, new, state, ll))
         elif t < log[0][0]:
             self.late += 1
             return
@@ -379,8 +382,9 @@ class LineBallTracker(TrackQualityMixin):
             replay = [new] + [e[1] for e in log[i:]]
             del log[i:]
             for ln in replay:
-                log.append((ln.t, ln, state))
-                state = self._process(state, ln)
+                after, ll = self._process(state, ln)
+                log.append((ln.t, ln, state, ll))
+                state = after
             self._state = state
         cutoff = log[-1][0] - self.history
         k = 0
@@ -391,49 +395,17 @@ class LineBallTracker(TrackQualityMixin):
 
     # ------------------------------------------------------------------------------------
 
-    def _noise(self, ln: _Line, px: float, py: float) -> tuple[float, float, float, float]:
-        """``(r00, r01, r11, var)``: the point's white covariance (with a range) or the
-        bearing's white variance (without; the distance taken to the predicted
-        ``(px, py)``)."""
-        n = self.noise
-        floor2 = n.floor * n.floor
-        r, sb = ln.range, ln.bearing_sigma
-        if not math.isfinite(r):
-            d2 = (px - ln.ox) ** 2 + (py - ln.oy) ** 2
-            return 0.0, 0.0, 0.0, max(d2, 0.01) * sb * sb + floor2
-        sa = max(n.range_sigma_rel, ln.range_per_metre * r) * r
-        along, across = sa * sa, (r * sb) ** 2
-        c, s = math.cos(ln.angle), math.sin(ln.angle)
-        return (along * c * c + across * s * s + floor2, (along - across) * c * s,
-                along * s * s + across * c * c + floor2, 0.0)
-
     def _update(self, h: _Hypothesis, ln: _Line) -> tuple[float, float, _Hypothesis]:
-        """``(d2, log det S, h')``: ``h`` predicted to the line's time and updated with it."""
-        if ln.t > h.t:
-            h = self._predicted(h, ln.t)
-        x, Pp = h.x, h.P
-        nx, ny = -math.sin(ln.angle), math.cos(ln.angle)
-        if math.isfinite(ln.range):
-            r00, r01, r11, _ = self._noise(ln, 0.0, 0.0)
-            d2, logdet, xn, Pn = update_point(  # z = o + r u, u = (n_y, -n_x)
-                x, Pp, ln.ox + ln.range * ny, ln.oy - ln.range * nx, r00, r01, r11, ln.slot,
-                ln.range, nx, ny)
-        else:
-            var = self._noise(ln, x[0], x[1])[3]
-            d = math.hypot(x[0] - ln.ox, x[1] - ln.oy)
-            d2, logdet, xn, Pn = update_bearing(x, Pp, ln.ox, ln.oy, nx, ny, var, ln.slot, d)
+        """``(d2, log det S, h')``: ``h`` predicted to the line's time and updated with it
+        (:func:`~.line_kernels.line_step`)."""
+        d2, logdet, xn, Pn = line_step(h.x, h.P, h.t, h.kicked_at, ln.row, self._model)
         return d2, logdet, _Hypothesis(xn, Pn, max(ln.t, h.t), ln.t, h.since_start + 1,
                                        h.kicked_at)
 
     def _phase(self, h: _Hypothesis) -> tuple[float, float]:
-        """``(sliding deceleration, switch speed)`` of ``h``'s motion (see :func:`rolled`): a
-        ball kicked at ``t_k`` slides until ``k_switch`` of its speed after the kick, which
-        (if it still slides) is ``s + a_s (t - t_k)`` for its speed ``s`` at ``t``."""
-        a_s = self.sliding_deceleration
-        if a_s == 0.0 or not h.kicked_at <= h.t:
-            return 0.0, math.inf
-        speed = math.hypot(h.x[2], h.x[3])
-        return a_s, self.k_switch * (speed + a_s * (h.t - h.kicked_at))
+        """``(sliding deceleration, switch speed)`` of ``h``'s motion
+        (:func:`~.line_kernels.phase`)."""
+        return phase(h.x, h.t, h.kicked_at, self.sliding_deceleration, self.k_switch)
 
     def _predicted(self, h: _Hypothesis, t: float) -> _Hypothesis:
         dt = t - h.t
@@ -451,7 +423,7 @@ class LineBallTracker(TrackQualityMixin):
         """A track started by the line (None for a bearing-only line): the ball unknown, at
         rest with ``init_speed_sigma``, the biases those of ``old`` (the priors without),
         then updated with the line."""
-        if not math.isfinite(ln.range):
+        if not math.isfinite(ln.row[4]):
             return None
         x, P = self._prior_x.copy(), self._prior_P.copy()
         if old is not None:
@@ -459,60 +431,54 @@ class LineBallTracker(TrackQualityMixin):
         blank = _Hypothesis(x, P, ln.t, ln.t, since)
         return self._update(blank, ln)[2]
 
-    def _open(self, track: _Hypothesis, ln: _Line) -> tuple[_Hypothesis | None, float]:
-        """``(kick, L)``: the kick hypothesis the line (the newest of the log) opens from
-        ``track`` and its starting log-likelihood ratio (see the module docstring: the kick
-        time searched over the lines of the last ``kick_window``)."""
+    def _open(self, track: _Hypothesis, ln: _Line, ll: float
+              ) -> tuple[_Hypothesis | None, float]:
+        """``(kick, L)``: the kick hypothesis the line opens from ``track`` (whose
+        log-likelihood of it is ``ll``) and its starting log-likelihood ratio (see the module
+        docstring: the kick time searched over the lines of the last ``kick_window``, by
+        :func:`~.line_kernels.kick_search`)."""
         log = self._log
-        n = len(log) - 1
-        first = n
-        while first > 0 and log[first - 1][0] >= ln.t - self.kick_window:
+        first = len(log)
+        while (first > 0 and log[first - 1][0] >= ln.t - self.kick_window
+               and log[first - 1][2].track is not None):
             first -= 1
-        base = log[first][2].track
         kick_var = self.kick_sigma ** 2
-        if base is None or first == n:  # nothing to search: kicked at the latest agreement
+        if first == len(log):  # nothing to search: kicked at the latest agreement
             pred = self._predicted(track, ln.t)
-            pred = self._kicked(pred, kick_prior(pred.P, max(ln.t - track.fused_at, 0.0),
-                                                 kick_var), min(track.fused_at, ln.t))
+            at = min(track.fused_at, ln.t)
+            pred = self._kicked(pred, kick_prior(pred.P, ln.t - at, kick_var), at)
             d2, _, kicked = self._update(pred, ln)
             if d2 <= self.gate:
                 return kicked, 0.0
             return self._start(ln, track.since_start, track), 0.0
-        cap = 2.0 * self.gate
-        # The track without a kick over the window's lines: its state before each, and the
-        # log-likelihood of the lines before each.
-        rest, before, h, total = [], [], base, 0.0
-        for i in range(first, n + 1):
-            rest.append(h)
-            before.append(total)
-            d2, ld, upd = self._update(h, log[i][1])
-            total -= 0.5 * (min(d2, cap) + ld)
-            h = upd if d2 <= self.gate else self._predicted(h, log[i][0])
-        best, best_ll = None, -math.inf
-        for c in range(first, n + 1):
-            k = self._predicted(rest[c - first], log[c][0])
-            k = self._kicked(k, kick_prior(k.P, 0.0, kick_var), log[c][0])
-            ll = before[c - first]
-            for i in range(c, n + 1):
-                d2, ld, k = self._update(k, log[i][1])
-                ll -= 0.5 * (min(d2, cap) + ld)
-            if ll > best_ll:
-                best, best_ll = k, ll
-        return best, best_ll - total - math.log(n + 1 - first)
+        window = log[first:]
+        rest = [e[2].track for e in window] + [track]
+        before = np.cumsum([0.0] + [e[3] for e in window])
+        best, best_ll, x, P, t = kick_search(
+            np.stack([h.x for h in rest]), np.stack([h.P for h in rest]),
+            np.array([h.t for h in rest]), np.array([h.kicked_at for h in rest]), before,
+            np.stack([e[1].row for e in window] + [ln.row]), self._model, kick_var,
+            2.0 * self.gate)
+        kicked = _Hypothesis(x, P, t, ln.t, track.since_start + 1,
+                             (window[best][0] if best < len(window) else ln.t))
+        return kicked, best_ll - (before[-1] + ll) - math.log(len(rest))
 
-    def _process(self, s: _State, ln: _Line) -> _State:
-        """The state after one line in capture order (``s`` is not changed)."""
+    def _process(self, s: _State, ln: _Line) -> tuple[_State, float]:
+        """The state after one line in capture order (``s`` is not changed), and the track's
+        log-likelihood of the line (0 where the line starts the track)."""
         track = s.track
         if track is None or ln.t - track.fused_at > self.lost_after:
             started = self._start(ln, 0, track)
             if started is None:
                 self.rejected += 1
-                return s
+                return s, 0.0
             if track is not None:
                 self.resets += 1
             self.fused += 1
-            return _State(track=started)
+            return _State(track=started), 0.0
+        cap = 2.0 * self.gate
         d2_t, ld_t, upd_t = self._update(track, ln)
+        ll = -0.5 * (min(d2_t, cap) + ld_t)
         agree_t = d2_t <= self.gate
         if s.kick is None:
             if agree_t:
@@ -520,35 +486,35 @@ class LineBallTracker(TrackQualityMixin):
             else:
                 self.rejected += 1
             if d2_t <= self.suspect:
-                return _State(track=upd_t)
-            return self._opened(track, upd_t if agree_t else None, ln)
+                return _State(track=upd_t), ll
+            return self._opened(track, upd_t if agree_t else None, ln, ll), ll
         d2_k, ld_k, upd_k = self._update(s.kick, ln)
         agree_k = d2_k <= self.gate
         if not (agree_t or agree_k):
             self.rejected += 1
-            return self._opened(track, None, ln)
+            return self._opened(track, None, ln, ll), ll
         self.fused += 1
-        cap = 2.0 * self.gate
         score = s.score + 0.5 * (min(d2_t, cap) + ld_t - min(d2_k, cap) - ld_k)
         track = upd_t if agree_t else self._predicted(track, ln.t)
         kick = upd_k if agree_k else self._predicted(s.kick, ln.t)
         late = ln.t - s.opened_at > self.history
         if score >= self.decide or (late and score > 0.0):
             self.kicks += 1
-            return _State(track=kick)
+            return _State(track=kick), ll
         if score <= -self.decide or late:
-            return _State(track=track)
-        return _State(track, kick, s.opened_at, s.own, score, s.weighed + 1)
+            return _State(track=track), ll
+        return _State(track, kick, s.opened_at, s.own, score, s.weighed + 1), ll
 
-    def _opened(self, track: _Hypothesis, updated: _Hypothesis | None, ln: _Line) -> _State:
+    def _opened(self, track: _Hypothesis, updated: _Hypothesis | None, ln: _Line,
+                ll: float) -> _State:
         """The state once ``ln`` opened a kick hypothesis from ``track`` (``updated``: the
-        track with ``ln`` fused, when it agreed)."""
-        kick, score = self._open(track, ln)
+        track with ``ln`` fused, when it agreed; ``ll``: the track's log-likelihood of
+        ``ln``)."""
+        kick, score = self._open(track, ln, ll)
         if kick is None:
             return _State(track=track)
         return _State(track=updated if updated is not None else self._predicted(track, ln.t),
                       kick=kick, opened_at=ln.t, own=ln.own, score=score)
-
 
 
 def _observer_ids(observers: int | Sequence[int]) -> list[int]:
