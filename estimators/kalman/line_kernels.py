@@ -180,8 +180,9 @@ def update_bearing(x: np.ndarray, P: np.ndarray, ox: float, oy: float, nx: float
 LINE = 8
 #: The model row's entries: rolling and sliding deceleration [m/s^2], ``k_switch``, the
 #: acceleration noise [m^2/s^4], the biases' walks [m^2/s, rad^2/s], the least relative range
-#: error, the white floor [m].
-MODEL = 8
+#: error, the white floor [m], and the observers' pose errors taken as white noise instead of
+#: biases, position [m^2] and heading [rad^2] (0 when the state holds them).
+MODEL = 10
 
 
 @kernel
@@ -203,9 +204,10 @@ def line_step(x: np.ndarray, P: np.ndarray, t: float, kicked_at: float, line: np
     """A track ``(x, P)`` at ``t`` [s] (kicked at ``kicked_at``) predicted to the capture time
     of ``line`` (a :data:`LINE` row) when that is later, and updated with it under ``model``
     (a :data:`MODEL` row): ``(d2, log det S, x', P')``. The line's white noise: with a range
-    ``r``, ``R = s_r^2 u u^T + (r s_b)^2 n n^T + f^2 I`` with ``s_r = max(k_0, k r) r``
-    (:func:`update_point`); bearing only, ``d^2 s_b^2 + f^2`` at the predicted distance ``d``
-    (at least 0.1 m; :func:`update_bearing`)."""
+    ``r``, ``R = s_r^2 u u^T + r^2 (s_b^2 + w_theta) n n^T + (f^2 + w_p) I`` with
+    ``s_r = max(k_0, k r) r`` (:func:`update_point`); bearing only,
+    ``d^2 (s_b^2 + w_theta) + f^2 + w_p`` at the predicted distance ``d`` (at least 0.1 m;
+    :func:`update_bearing`); ``w_p``, ``w_theta`` the pose errors taken as white noise."""
     lt = line[0]
     if lt > t:
         a_s, switch = phase(x, t, kicked_at, model[1], model[2])
@@ -214,15 +216,16 @@ def line_step(x: np.ndarray, P: np.ndarray, t: float, kicked_at: float, line: np
     slot, sb, k = int(line[5]), line[6], line[7]
     c, s = math.cos(angle), math.sin(angle)
     nx, ny = -s, c
-    floor2 = model[7] * model[7]
+    floor2 = model[7] * model[7] + model[8]
+    cross = sb * sb + model[9]
     if math.isfinite(r):
         sa = max(model[6], k * r) * r
-        along, across = sa * sa, (r * sb) * (r * sb)
+        along, across = sa * sa, r * r * cross
         return update_point(x, P, ox + r * c, oy + r * s, along * c * c + across * s * s + floor2,
                             (along - across) * c * s, along * s * s + across * c * c + floor2,
                             slot, r, nx, ny)
     d2 = (x[0] - ox) * (x[0] - ox) + (x[1] - oy) * (x[1] - oy)
-    var = max(d2, 0.01) * sb * sb + floor2
+    var = max(d2, 0.01) * cross + floor2
     return update_bearing(x, P, ox, oy, nx, ny, var, slot, math.sqrt(d2))
 
 

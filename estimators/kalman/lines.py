@@ -201,6 +201,8 @@ class LineBallTracker(TrackQualityMixin):
             integer names (e.g. robot indices), or a count ``n`` for ``0 .. n-1``.
         bias_drift_xy, bias_drift_theta: how fast the observers' position [m/sqrt(s)] and
             heading [rad/sqrt(s)] biases wander.
+        biases: keep the observers' pose errors in the state (False: add them to each line's
+            white noise instead, as the fusion does; for ablations).
 
     Attributes:
         fused, rejected, kicks, resets, late: lines agreeing with a hypothesis, lines agreeing
@@ -218,7 +220,7 @@ class LineBallTracker(TrackQualityMixin):
                  suspect: float = CHI2_2DOF_99, decide: float = 3.0,
                  lost_after: float = 2.0, history: float = 0.5, kick_window: float = 0.25,
                  observers: int | Sequence[int] = 6, bias_drift_xy: float = 0.05,
-                 bias_drift_theta: float = math.radians(1.0)) -> None:
+                 bias_drift_theta: float = math.radians(1.0), biases: bool = True) -> None:
         if not isinstance(noise, SightingNoise):
             raise TypeError(f"noise must be a SightingNoise, got {type(noise).__name__}")
         for name in SightingNoise._fields:
@@ -252,16 +254,23 @@ class LineBallTracker(TrackQualityMixin):
         self.bias_drift_xy = _positive("bias_drift_xy", bias_drift_xy, allow_zero=True)
         self.bias_drift_theta = _positive("bias_drift_theta", bias_drift_theta,
                                           allow_zero=True)
-        self._q = (self.accel_sigma ** 2, self.bias_drift_xy ** 2, self.bias_drift_theta ** 2)
+        self.biases = bool(biases)
+        walk = self.bias_drift_xy ** 2, self.bias_drift_theta ** 2
+        pose = noise.pose_sigma_xy ** 2, noise.pose_sigma_theta ** 2
+        # Biases in the state: their priors and walks; else none, the pose errors white.
+        prior, white = (pose, (0.0, 0.0)) if self.biases else ((0.0, 0.0), pose)
+        if not self.biases:
+            walk = (0.0, 0.0)
+        self._q = (self.accel_sigma ** 2, *walk)
         self._model = np.array([self.deceleration, self.sliding_deceleration, self.k_switch,
-                                *self._q, noise.range_sigma_rel, noise.floor])
+                                *self._q, noise.range_sigma_rel, noise.floor, *white])
         m = BALL + SLOT * self.observers
         # The state before any line: nothing known of the ball, the biases at their priors.
         self._prior_x = np.zeros(m)
         diag = np.empty(m)
         diag[0:2], diag[2:4] = _UNKNOWN ** 2, self.init_speed_sigma ** 2
         for s in range(BALL, m, SLOT):
-            diag[s:s + 2], diag[s + 2] = noise.pose_sigma_xy ** 2, noise.pose_sigma_theta ** 2
+            diag[s:s + 2], diag[s + 2] = prior
         self._prior_P = np.diag(diag)
         self.reset()
 

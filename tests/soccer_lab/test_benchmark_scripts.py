@@ -93,6 +93,19 @@ def test_true_velocity_keeps_the_belief_but_the_ball_velocity():
     assert fastest > 1.0  # the shot was checked in flight
 
 
+def test_kick_tracker_parts_table_has_every_variant_and_leaves_the_registry(capsys):
+    from soccer_env.perception import BALL_TRACKERS
+
+    parts = _script("kick_tracker_parts")
+    before = list(BALL_TRACKERS)
+    assert parts.main(["--episodes", "2"]) == 0
+    out = capsys.readouterr().out
+    assert all(f"| {name} | " in out for name in parts.VARIANTS)
+    assert list(BALL_TRACKERS) == before
+    with pytest.raises(SystemExit):
+        parts.main(["--variants", "kick,faster"])
+
+
 def test_soak_reports_memory_growth_per_million_steps(capsys):
     """The soak benchmark at a tiny size: it samples RSS and the Python heap and reports
     their slopes; a least-squares slope of a straight line is its gradient."""
