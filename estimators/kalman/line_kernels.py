@@ -56,15 +56,19 @@ def rolled(x: np.ndarray, dt: float, deceleration: float, sliding: float,
 
 @kernel
 def drift_predict(x: np.ndarray, P: np.ndarray, dt: float, deceleration: float,
-                  sliding: float, switch: float, q: float, q_xy: float, q_theta: float
-                  ) -> tuple[np.ndarray, np.ndarray]:
+                  sliding: float, switch: float, q: float, q_xy: float, q_theta: float,
+                  s2_xy: float, s2_theta: float) -> tuple[np.ndarray, np.ndarray]:
     """The time update over ``dt >= 0`` [s] (new arrays).
 
     The ball's mean by :func:`rolled`; its covariance by the constant-velocity model with white
     acceleration noise of variance ``q`` [m^2/s^4]: ``A P A^T + q B B^T``,
     ``A = [[I, dt I], [0, I]]``, ``B = [dt^2/2 I; dt I]`` on the ball's block (and its rows
-    of the cross-covariances). The biases walk: ``q_xy dt`` [m^2] per position axis and
-    ``q_theta dt`` [rad^2] per heading."""
+    of the cross-covariances). The biases are mean-reverting (Ornstein-Uhlenbeck) with
+    stationary variance ``s2`` and, over short times, the walk ``q dt``: each decays by
+    ``phi = exp(-dt / tau)``, ``tau = 2 s2 / q``, so ``b' = phi b`` and its rows and columns
+    of ``P`` scale by ``phi``, its variance gaining ``s2 (1 - phi^2)`` (``q_xy``, ``s2_xy``
+    [m^2/s, m^2] per position axis, ``q_theta``, ``s2_theta`` [rad^2/s, rad^2] per heading;
+    none where either is 0)."""
     n = x.shape[0]
     xn = x.copy()
     ball = rolled(x, dt, deceleration, sliding, switch)
@@ -83,10 +87,23 @@ def drift_predict(x: np.ndarray, P: np.ndarray, dt: float, deceleration: float,
         Pn[a, a + 2] += q * h * dt
         Pn[a + 2, a] += q * h * dt
         Pn[a + 2, a + 2] += q * dt * dt
-    for s in range(BALL, n, SLOT):
-        Pn[s, s] += q_xy * dt
-        Pn[s + 1, s + 1] += q_xy * dt
-        Pn[s + 2, s + 2] += q_theta * dt
+    if n > BALL and ((q_xy > 0.0 and s2_xy > 0.0) or (q_theta > 0.0 and s2_theta > 0.0)):
+        phi_xy = math.exp(-dt * q_xy / (2.0 * s2_xy)) if s2_xy > 0.0 else 1.0
+        phi_th = math.exp(-dt * q_theta / (2.0 * s2_theta)) if s2_theta > 0.0 else 1.0
+        f = np.ones(n)
+        for s in range(BALL, n, SLOT):
+            f[s] = f[s + 1] = phi_xy
+            f[s + 2] = phi_th
+        for i in range(BALL, n):
+            xn[i] *= f[i]
+        for i in range(n):
+            for j in range(n):
+                if f[i] != 1.0 or f[j] != 1.0:
+                    Pn[i, j] *= f[i] * f[j]
+        for s in range(BALL, n, SLOT):
+            Pn[s, s] += s2_xy * (1.0 - phi_xy * phi_xy)
+            Pn[s + 1, s + 1] += s2_xy * (1.0 - phi_xy * phi_xy)
+            Pn[s + 2, s + 2] += s2_theta * (1.0 - phi_th * phi_th)
     return xn, Pn
 
 
@@ -180,9 +197,10 @@ def update_bearing(x: np.ndarray, P: np.ndarray, ox: float, oy: float, nx: float
 LINE = 8
 #: The model row's entries: rolling and sliding deceleration [m/s^2], ``k_switch``, the
 #: acceleration noise [m^2/s^4], the biases' walks [m^2/s, rad^2/s], the least relative range
-#: error, the white floor [m], and the observers' pose errors taken as white noise instead of
-#: biases, position [m^2] and heading [rad^2] (0 when the state holds them).
-MODEL = 10
+#: error, the white floor [m], the observers' pose errors taken as white noise instead of
+#: biases, position [m^2] and heading [rad^2] (0 when the state holds them), and the biases'
+#: stationary variances [m^2, rad^2].
+MODEL = 12
 
 
 @kernel
@@ -211,7 +229,8 @@ def line_step(x: np.ndarray, P: np.ndarray, t: float, kicked_at: float, line: np
     lt = line[0]
     if lt > t:
         a_s, switch = phase(x, t, kicked_at, model[1], model[2])
-        x, P = drift_predict(x, P, lt - t, model[0], a_s, switch, model[3], model[4], model[5])
+        x, P = drift_predict(x, P, lt - t, model[0], a_s, switch, model[3], model[4], model[5],
+                             model[10], model[11])
     ox, oy, angle, r = line[1], line[2], line[3], line[4]
     slot, sb, k = int(line[5]), line[6], line[7]
     c, s = math.cos(angle), math.sin(angle)
@@ -249,7 +268,7 @@ def kick_search(X: np.ndarray, Ps: np.ndarray, T: np.ndarray, K: np.ndarray,
         if lt > t:
             a_s, switch = phase(x, t, K[c], model[1], model[2])
             x, P = drift_predict(x, P, lt - t, model[0], a_s, switch, model[3], model[4],
-                                 model[5])
+                                 model[5], model[10], model[11])
             t = lt
         P = kick_prior(P, 0.0, kick_var)
         ll = before[c]

@@ -19,8 +19,10 @@ from the ball sees it move 7 cm in its first frame after the kick, well above it
 noise but not above its localization error. In the state, the biases are learnt from where the
 observers disagree while the ball rests, and a line is compared with where *that observer* has
 been seeing the ball. Priors ``b_j ~ N(0, s_p^2 I)``, ``beta_j ~ N(0, s_theta^2)`` (the
-localization's errors); they wander as random walks of ``bias_drift_xy^2`` [m^2/s] and
-``bias_drift_theta^2`` [rad^2/s].
+localization's errors); they wander, over short times, as random walks of
+``bias_drift_xy^2`` [m^2/s] and ``bias_drift_theta^2`` [rad^2/s], and revert to zero
+(Ornstein-Uhlenbeck processes whose stationary spread is the prior's), so that over a long
+match they never wander further than a localization's error does.
 
 **Motion.** Between lines the ball rolls under uniform deceleration ``a`` along its motion,
 stopping rather than reversing (``tau = min(dt, s / a)``, ``p' = p + u (s tau - a tau^2 / 2)``,
@@ -71,8 +73,10 @@ the kicked one) once ``L >= decide``; it is *dropped* (an outlier opened it) onc
 agreeing with neither opens a new kick hypothesis in place of the old one.
 
 The belief reported (:meth:`estimate`, :meth:`covariance`) is the kick hypothesis while
-``L >= 0`` if the robot's *own* sighting opened it or a later line was weighed; otherwise the
-track.
+``L >= 0`` if the robot's *own* sighting opened it or lines of two observers agree with it;
+otherwise the track. A hypothesis a team-mate's line opened is committed only once a second
+observer's line agrees with it (a robot whose localization has failed sees the ball, for
+itself, wherever its lines say, and would otherwise move the whole team's belief there).
 
 **Starts.** The first line with a range starts the track at its point, at rest with velocity
 ``N(0, init_speed_sigma^2 I)``; so does the first after ``lost_after`` seconds without an
@@ -148,7 +152,8 @@ class _Hypothesis(NamedTuple):
 class _State(NamedTuple):
     """Everything a line changes (immutable, so the replay log keeps it without copies):
     the track, the kick hypothesis (or None), when and by whose sighting it was opened, the
-    log-likelihood ratio ``L``, and the lines weighed since it opened."""
+    log-likelihood ratio ``L``, the lines weighed since it opened, and which observers' lines
+    agreed with it (a bit per observer)."""
 
     track: _Hypothesis | None = None
     kick: _Hypothesis | None = None
@@ -156,6 +161,7 @@ class _State(NamedTuple):
     own: bool = False
     score: float = 0.0
     weighed: int = 0
+    seen_by: int = 0
 
 
 class _Line(NamedTuple):
@@ -263,7 +269,8 @@ class LineBallTracker(TrackQualityMixin):
             walk = (0.0, 0.0)
         self._q = (self.accel_sigma ** 2, *walk)
         self._model = np.array([self.deceleration, self.sliding_deceleration, self.k_switch,
-                                *self._q, noise.range_sigma_rel, noise.floor, *white])
+                                *self._q, noise.range_sigma_rel, noise.floor, *white, *prior])
+        self._q = (*self._q, *prior)
         m = BALL + SLOT * self.observers
         # The state before any line: nothing known of the ball, the biases at their priors.
         self._prior_x = np.zeros(m)
@@ -288,7 +295,7 @@ class LineBallTracker(TrackQualityMixin):
     def _reported(self) -> _Hypothesis | None:
         """The hypothesis the belief is (see the module docstring)."""
         s = self._state
-        if s.kick is not None and s.score >= 0.0 and (s.own or s.weighed > 0):
+        if s.kick is not None and s.score >= 0.0 and (s.own or _two(s.seen_by)):
             return s.kick
         return s.track
 
@@ -332,7 +339,7 @@ class LineBallTracker(TrackQualityMixin):
         dt = t - h.t
         if dt > 0.0:
             P = drift_predict(h.x[0:BALL], P, dt, self.deceleration, *self._phase(h),
-                              self._q[0], 0.0, 0.0)[1]
+                              self._q[0], 0.0, 0.0, 0.0, 0.0)[1]
         return P
 
     # ------------------------------------------------------------------------------------
@@ -506,13 +513,15 @@ class LineBallTracker(TrackQualityMixin):
         score = s.score + 0.5 * (min(d2_t, cap) + ld_t - min(d2_k, cap) - ld_k)
         track = upd_t if agree_t else self._predicted(track, ln.t)
         kick = upd_k if agree_k else self._predicted(s.kick, ln.t)
+        seen_by = s.seen_by | (_bit(ln) if agree_k else 0)
         late = ln.t - s.opened_at > self.history
-        if score >= self.decide or (late and score > 0.0):
+        trusted = s.own or _two(seen_by)
+        if trusted and (score >= self.decide or (late and score > 0.0)):
             self.kicks += 1
             return _State(track=kick), ll
         if score <= -self.decide or late:
             return _State(track=track), ll
-        return _State(track, kick, s.opened_at, s.own, score, s.weighed + 1), ll
+        return _State(track, kick, s.opened_at, s.own, score, s.weighed + 1, seen_by), ll
 
     def _opened(self, track: _Hypothesis, updated: _Hypothesis | None, ln: _Line,
                 ll: float) -> _State:
@@ -523,7 +532,17 @@ class LineBallTracker(TrackQualityMixin):
         if kick is None:
             return _State(track=track)
         return _State(track=updated if updated is not None else self._predicted(track, ln.t),
-                      kick=kick, opened_at=ln.t, own=ln.own, score=score)
+                      kick=kick, opened_at=ln.t, own=ln.own, score=score, seen_by=_bit(ln))
+
+
+def _bit(ln: _Line) -> int:
+    """The bit of the line's observer (by its bias slot)."""
+    return 1 << ((int(ln.row[5]) - BALL) // SLOT)
+
+
+def _two(seen_by: int) -> bool:
+    """Whether at least two observers' lines are in the bit set ``seen_by``."""
+    return seen_by & (seen_by - 1) != 0
 
 
 def _observer_ids(observers: int | Sequence[int]) -> list[int]:

@@ -135,6 +135,8 @@ GYM_CASES: dict[str, dict[str, Any]] = {
     "keeper-perceived-realistic": dict(obs_mode="perceived", perception={"vision": "realistic"}),
     "keeper-raw-rendered": dict(obs_mode="raw", render_mode="rgb_array", render_width=160),
     "keeper-humanoid-mates": dict(robot="humanoid", obs_mode="perceived", mates=3),
+    "keeper-humanoid-kick-tracker": dict(robot="humanoid", obs_mode="perceived", mates=3,
+                                         perception={"ball_tracker": "kick"}),
     "keeper-ssl-pixels": dict(field="ssl-2012", obs_mode="perceived",
                               perception={"vision": "ssl-2012", "detector": "pixels"}),
     "keeper-humanoid-pixels": dict(robot="humanoid-2012", obs_mode="perceived",
