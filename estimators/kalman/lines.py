@@ -205,8 +205,8 @@ class LineBallTracker(TrackQualityMixin):
         kick_window: how far back the kick time is searched [s] (at most ``history``).
         observers: the robots whose lines it takes (each has its bias in the state): their
             integer names (e.g. robot indices), or a count ``n`` for ``0 .. n-1``.
-        bias_drift_xy, bias_drift_theta: how fast the observers' position [m/sqrt(s)] and
-            heading [rad/sqrt(s)] biases wander.
+        bias_drift_xy: how fast the observers' position biases wander [m/sqrt(s)].
+        bias_drift_theta: how fast their heading biases wander [rad/sqrt(s)].
         biases: keep the observers' pose errors in the state (False: add them to each line's
             white noise instead, as the fusion does; for ablations).
 

@@ -106,6 +106,15 @@ def test_kick_tracker_parts_table_has_every_variant_and_leaves_the_registry(caps
         parts.main(["--variants", "kick,faster"])
 
 
+def test_keeper_lock_on_counts_frames_from_the_shot(capsys):
+    bench = _script("keeper_lock_on")
+    assert bench.main(["--episodes", "2", "--trackers", "kick"]) == 0
+    row = [line for line in capsys.readouterr().out.splitlines() if line.startswith("| kick")]
+    assert len(row) == 1
+    frames = bench.shot_lock_on("kick", 0)
+    assert frames is None or 1.0 <= frames < 20.0  # the first frame after the kick comes late
+
+
 def test_soak_reports_memory_growth_per_million_steps(capsys):
     """The soak benchmark at a tiny size: it samples RSS and the Python heap and reports
     their slopes; a least-squares slope of a straight line is its gradient."""
