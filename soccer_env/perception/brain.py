@@ -48,9 +48,10 @@ _MIN_SIGMA = 0.02
 _MIN_RANGE_SIGMA_REL = 0.05
 
 #: The least relative range error of a sighting line the line tracker assumes: a standing
-#: robot's ``kidsize-2012`` ball ranges are off by 0.6 % (under 1 m) to 1.6 % (3-4 m)
-#: standard deviation (measured over 4,714 frames of 20 seeded keeper episodes), 2 % covers
-#: them; walking adds the sway's share (:func:`sighting_sigmas`).
+#: robot's ``kidsize-2012`` ball ranges are off by 0.6 % (0.8 m), 1.3 % (2.5 m) and 1.9 %
+#: (3.8 m) standard deviation, the pixel noise alone (``tests/soccer_env/sensors/
+#: test_headcam.py``, the standing robot's range test); 2 % covers them; walking adds the
+#: sway's share (:func:`~soccer_env.perception.sighting.sighting_sigmas`).
 _LINE_RANGE_SIGMA_REL = 0.02
 
 
