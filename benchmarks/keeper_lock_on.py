@@ -7,7 +7,7 @@ The scripted humanoid keeper (``humanoid-2012``, three team-mates, perceived ``k
 plays seeded Goalkeeper-v0 shots (seeds 0 onwards). From the step the shot is fired, its
 belief's velocity error over its allowance (:data:`soccer_lab.papers.team.LOCK_SHARE` of the
 true speed, at least :data:`~soccer_lab.papers.team.LOCK_SPEED`) is scored with
-:func:`soccer_lab.papers.team.lock_on`, the definition ``soccer-env paper team`` uses in
+:func:`soccer_lab.papers.common.lock_on`, the definition ``soccer-env paper team`` uses in
 matches: locked on once within the allowance for
 :data:`~soccer_lab.papers.team.HOLD_FRAMES` frames (25 Hz). The count includes the camera's
 40 ms latency and the wait for the first frame after the kick (1.5 frames on average).
@@ -27,7 +27,8 @@ import numpy as np
 import soccer_env  # noqa: F401
 from agents.runs.resolve import make_policy
 from soccer_env.envs.registration import GOALKEEPER_ID
-from soccer_lab.papers.team import FRAME, HOLD_FRAMES, LOCK_SHARE, LOCK_SPEED, lock_on
+from soccer_lab.papers.common import lock_on
+from soccer_lab.papers.team import FRAME, HOLD_FRAMES, LOCK_SHARE, LOCK_SPEED
 
 
 def shot_lock_on(tracker: str, seed: int) -> float | None:

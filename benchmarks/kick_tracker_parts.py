@@ -34,6 +34,7 @@ import soccer_env  # noqa: F401
 from agents.runs.evaluation import evaluate
 from estimators import LineBallTracker, SightingNoise
 from soccer_env.perception import BALL_TRACKERS
+from soccer_env.perception.options import line_tracker
 from soccer_env.presets import BallSpec
 
 #: Variants and the arguments of their trackers (see the module docstring).
@@ -53,22 +54,18 @@ class _Walking(LineBallTracker):
 def _variant(name: str, rng: Any, ball: BallSpec, max_speed: float, noise: SightingNoise,
              observers: tuple[int, ...]) -> LineBallTracker:
     """The kick tracker's factory with the part ``name`` taken out."""
-    kwargs: dict[str, Any] = {"deceleration": ball.rolling_deceleration,
-                              "sliding_deceleration": ball.sliding_deceleration,
-                              "k_switch": ball.k_switch, "accel_sigma": 1.0,
-                              "kick_sigma": 3.0, "lost_after": 2.0, "observers": observers}
-    cls = LineBallTracker
+    overrides: dict[str, Any] = {}
     if name == "no-kick-hypothesis":
-        kwargs["suspect"] = kwargs["gate"] = 1e12
+        overrides = {"suspect": 1e12, "gate": 1e12}
     elif name == "white-pose":
-        kwargs["biases"] = False
+        overrides = {"biases": False}
     elif name == "walking":
-        cls = _Walking
+        overrides = {"cls": _Walking}
     elif name == "floor-5":
         noise = noise._replace(range_sigma_rel=0.05)
     elif name == "one-phase":
-        kwargs["sliding_deceleration"] = 0.0
-    return cls(noise, **kwargs)
+        overrides = {"sliding_deceleration": 0.0}
+    return line_tracker(rng, ball, max_speed, noise, observers, **overrides)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -9,7 +9,8 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["MAX_PARTICLES", "check_count", "check_real", "check_sigma", "check_points"]
+__all__ = ["MAX_PARTICLES", "check_count", "check_real", "check_positive", "check_sigma",
+           "check_points"]
 
 #: The most particles a filter takes: a million 4-D particles are 32 MB, and each update
 #: touches every one (10^10 asked for 298 GiB before failing).
@@ -36,6 +37,19 @@ def check_real(name: str, value: Any, low: float = -math.inf, high: float = math
         bracket = "(" if low_open else "["
         raise ValueError(f"{name} must be a finite number in {bracket}{low:g}, {high:g}]"
                          f"{unit}, got {value!r}")
+    return v
+
+
+def check_positive(name: str, value: Any, allow_zero: bool = False) -> float:
+    """``value`` as a float; ``ValueError`` naming ``name`` unless a finite number > 0
+    (>= 0 with ``allow_zero``)."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(v) or v < 0.0 or (v == 0.0 and not allow_zero):
+        raise ValueError(f"{name} must be finite and {'>=' if allow_zero else '>'} 0, "
+                         f"got {value!r}")
     return v
 
 

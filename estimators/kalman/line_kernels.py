@@ -14,6 +14,7 @@ import math
 import numpy as np
 
 from ..compiled import kernel
+from ..particle.filter_kernels import roll
 
 __all__ = ["rolled", "drift_predict", "kick_prior", "update_point", "update_bearing", "phase",
            "line_step", "kick_search", "BALL", "SLOT", "LINE", "MODEL"]
@@ -44,13 +45,7 @@ def rolled(x: np.ndarray, dt: float, deceleration: float, sliding: float,
         px, py, vx, vy = px + k * vx, py + k * vy, f * vx, f * vy
         dt -= tau
         speed = speed * f
-    if deceleration == 0.0 or speed == 0.0 or dt <= 0.0:
-        out[0], out[1], out[2], out[3] = px + dt * vx, py + dt * vy, vx, vy
-    else:
-        tau = min(dt, speed / deceleration)
-        k = tau - 0.5 * deceleration * tau * tau / speed
-        f = max(1.0 - deceleration * tau / speed, 0.0)
-        out[0], out[1], out[2], out[3] = px + k * vx, py + k * vy, f * vx, f * vy
+    out[0], out[1], out[2], out[3] = roll(px, py, vx, vy, speed, dt, deceleration)
     return out
 
 

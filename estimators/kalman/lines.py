@@ -92,6 +92,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..checks import check_positive
 from ..protocol import check_time
 from ..tracking import CHI2_2DOF_999, TrackQualityMixin, TrackTimes
 from .line_kernels import (
@@ -152,15 +153,14 @@ class _Hypothesis(NamedTuple):
 class _State(NamedTuple):
     """Everything a line changes (immutable, so the replay log keeps it without copies):
     the track, the kick hypothesis (or None), when and by whose sighting it was opened, the
-    log-likelihood ratio ``L``, the lines weighed since it opened, and which observers' lines
-    agreed with it (a bit per observer)."""
+    log-likelihood ratio ``L``, and which observers' lines agreed with it (a bit per
+    observer)."""
 
     track: _Hypothesis | None = None
     kick: _Hypothesis | None = None
     opened_at: float = -math.inf
     own: bool = False
     score: float = 0.0
-    weighed: int = 0
     seen_by: int = 0
 
 
@@ -170,17 +170,6 @@ class _Line(NamedTuple):
     t: float
     own: bool
     row: np.ndarray
-
-
-def _positive(name: str, value: float, allow_zero: bool = False) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
-    if not math.isfinite(v) or v < 0.0 or (v == 0.0 and not allow_zero):
-        raise ValueError(f"{name} must be finite and {'>=' if allow_zero else '>'} 0, "
-                         f"got {value!r}")
-    return v
 
 
 class LineBallTracker(TrackQualityMixin):
@@ -230,26 +219,26 @@ class LineBallTracker(TrackQualityMixin):
         if not isinstance(noise, SightingNoise):
             raise TypeError(f"noise must be a SightingNoise, got {type(noise).__name__}")
         for name in SightingNoise._fields:
-            _positive(f"noise.{name}", getattr(noise, name),
-                      allow_zero=name not in ("bearing_sigma", "floor"))
+            check_positive(f"noise.{name}", getattr(noise, name),
+                           allow_zero=name not in ("bearing_sigma", "floor"))
         self.noise = noise
-        self.deceleration = _positive("deceleration", deceleration, allow_zero=True)
-        self.sliding_deceleration = _positive("sliding_deceleration", sliding_deceleration,
-                                              allow_zero=True)
-        self.k_switch = _positive("k_switch", k_switch)
+        self.deceleration = check_positive("deceleration", deceleration, allow_zero=True)
+        self.sliding_deceleration = check_positive("sliding_deceleration",
+                                                   sliding_deceleration, allow_zero=True)
+        self.k_switch = check_positive("k_switch", k_switch)
         if self.k_switch > 1.0:
             raise ValueError(f"k_switch must be in (0, 1], got {k_switch!r}")
-        self.accel_sigma = _positive("accel_sigma", accel_sigma)
-        self.kick_sigma = _positive("kick_sigma", kick_sigma)
-        self.init_speed_sigma = _positive("init_speed_sigma", init_speed_sigma)
-        self.gate = _positive("gate", gate)
-        self.suspect = _positive("suspect", suspect)
+        self.accel_sigma = check_positive("accel_sigma", accel_sigma)
+        self.kick_sigma = check_positive("kick_sigma", kick_sigma)
+        self.init_speed_sigma = check_positive("init_speed_sigma", init_speed_sigma)
+        self.gate = check_positive("gate", gate)
+        self.suspect = check_positive("suspect", suspect)
         if self.suspect > self.gate:
             raise ValueError(f"suspect must be at most gate ({self.gate:g}), got {suspect!r}")
-        self.decide = _positive("decide", decide)
-        self.lost_after = _positive("lost_after", lost_after)
-        self.history = _positive("history", history)
-        self.kick_window = _positive("kick_window", kick_window, allow_zero=True)
+        self.decide = check_positive("decide", decide)
+        self.lost_after = check_positive("lost_after", lost_after)
+        self.history = check_positive("history", history)
+        self.kick_window = check_positive("kick_window", kick_window, allow_zero=True)
         if self.kick_window > self.history:
             raise ValueError(f"kick_window must be at most history ({self.history:g} s), "
                              f"got {kick_window!r}")
@@ -257,20 +246,21 @@ class LineBallTracker(TrackQualityMixin):
         #: The observers' bias slots: the index of each one's first entry in the state.
         self.slots = {j: BALL + SLOT * k for k, j in enumerate(ids)}
         self.observers = len(ids)
-        self.bias_drift_xy = _positive("bias_drift_xy", bias_drift_xy, allow_zero=True)
-        self.bias_drift_theta = _positive("bias_drift_theta", bias_drift_theta,
-                                          allow_zero=True)
+        self.bias_drift_xy = check_positive("bias_drift_xy", bias_drift_xy, allow_zero=True)
+        self.bias_drift_theta = check_positive("bias_drift_theta", bias_drift_theta,
+                                               allow_zero=True)
         self.biases = bool(biases)
-        walk = self.bias_drift_xy ** 2, self.bias_drift_theta ** 2
         pose = noise.pose_sigma_xy ** 2, noise.pose_sigma_theta ** 2
         # Biases in the state: their priors and walks; else none, the pose errors white.
-        prior, white = (pose, (0.0, 0.0)) if self.biases else ((0.0, 0.0), pose)
-        if not self.biases:
-            walk = (0.0, 0.0)
-        self._q = (self.accel_sigma ** 2, *walk)
+        none = (0.0, 0.0)
+        prior, white = (pose, none) if self.biases else (none, pose)
+        walk = (self.bias_drift_xy ** 2, self.bias_drift_theta ** 2) if self.biases else none
+        # The time update's noise (drift_predict's q, q_xy, q_theta, s2_xy, s2_theta) and the
+        # model row of the kernels (line_kernels.MODEL).
+        self._q = (self.accel_sigma ** 2, *walk, *prior)
         self._model = np.array([self.deceleration, self.sliding_deceleration, self.k_switch,
-                                *self._q, noise.range_sigma_rel, noise.floor, *white, *prior])
-        self._q = (*self._q, *prior)
+                                *self._q[0:3], noise.range_sigma_rel, noise.floor, *white,
+                                *prior])
         m = BALL + SLOT * self.observers
         # The state before any line: nothing known of the ball, the biases at their priors.
         self._prior_x = np.zeros(m)
@@ -368,9 +358,9 @@ class LineBallTracker(TrackQualityMixin):
             raise ValueError(f"observer must be one of the tracker's observers "
                              f"{list(self.slots)}, got {observer!r}")
         sb = (self.noise.bearing_sigma if bearing_sigma is None
-              else _positive("bearing_sigma", bearing_sigma))
+              else check_positive("bearing_sigma", bearing_sigma))
         k = (self.noise.range_per_metre if range_per_metre is None
-             else _positive("range_per_metre", range_per_metre, allow_zero=True))
+             else check_positive("range_per_metre", range_per_metre, allow_zero=True))
         self.line(t, ox, oy, a, r, bool(own), int(observer), sb, k)
 
     def line(self, t: float, ox: float, oy: float, angle: float, range_: float, own: bool,
@@ -521,7 +511,7 @@ class LineBallTracker(TrackQualityMixin):
             return _State(track=kick), ll
         if score <= -self.decide or late:
             return _State(track=track), ll
-        return _State(track, kick, s.opened_at, s.own, score, s.weighed + 1, seen_by), ll
+        return _State(track, kick, s.opened_at, s.own, score, seen_by), ll
 
     def _opened(self, track: _Hypothesis, updated: _Hypothesis | None, ln: _Line,
                 ll: float) -> _State:

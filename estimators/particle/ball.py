@@ -66,12 +66,12 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ..checks import MAX_PARTICLES, check_count
+from ..checks import MAX_PARTICLES, check_count, check_positive
 from ..kalman.core import KalmanFilter
 from ..protocol import check_order, check_time
 from ..tracking import TrackQualityMixin, TrackTimes, prior_gain
 from .core import FBPF, PARTICLE_FILTERS, BootstrapPF
-from .filter_kernels import drift, position_likelihood, position_moments, transition
+from .filter_kernels import drift, position_likelihood, position_moments, roll, transition
 
 __all__ = ["ParticleBallTracker", "CHI2_2DOF_9999"]
 
@@ -81,17 +81,6 @@ CHI2_2DOF_9999 = 18.420680743952367
 #: A re-initialisation takes its velocity from the measurement before it if that is at most
 #: this old [s].
 _MAX_DIFFERENCE_SPAN = 0.3
-
-
-def _positive(name: str, value: float, allow_zero: bool = False) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
-    if not math.isfinite(v) or v < 0.0 or (v == 0.0 and not allow_zero):
-        raise ValueError(f"{name} must be finite and {'>=' if allow_zero else '>'} 0, "
-                         f"got {value!r}")
-    return v
 
 
 def _cv_matrix(dt: float) -> np.ndarray:
@@ -207,23 +196,23 @@ class ParticleBallTracker(TrackQualityMixin):
         if resample not in FBPF.RESAMPLE:
             raise ValueError(f"resample must be one of {FBPF.RESAMPLE}, got {resample!r}")
         if gate is not None:
-            gate = _positive("gate", gate)
+            gate = check_positive("gate", gate)
         if isinstance(reinit_after, bool) or not isinstance(reinit_after, (int, np.integer)) \
                 or reinit_after < 1:
             raise ValueError(f"reinit_after must be an integer >= 1, got {reinit_after!r}")
         if lost_after is not None:
-            lost_after = _positive("lost_after", lost_after)
+            lost_after = check_positive("lost_after", lost_after)
         if isinstance(kalman_start, bool) or not isinstance(kalman_start, (int, np.integer)) \
                 or kalman_start < 1:
             raise ValueError(f"kalman_start must be an integer >= 1, got {kalman_start!r}")
         self.rng = rng
         self.filter = filter
         self.n_particles = int(n_particles)
-        self.accel_sigma = _positive("accel_sigma", accel_sigma)
-        self.deceleration = _positive("deceleration", deceleration, allow_zero=True)
-        self.init_speed_sigma = _positive("init_speed_sigma", init_speed_sigma)
-        self.max_lag = _positive("max_lag", max_lag, allow_zero=True)
-        self.max_speed = _positive("max_speed", max_speed)
+        self.accel_sigma = check_positive("accel_sigma", accel_sigma)
+        self.deceleration = check_positive("deceleration", deceleration, allow_zero=True)
+        self.init_speed_sigma = check_positive("init_speed_sigma", init_speed_sigma)
+        self.max_lag = check_positive("max_lag", max_lag, allow_zero=True)
+        self.max_speed = check_positive("max_speed", max_speed)
         self.gate, self.reinit_after, self.lost_after = gate, int(reinit_after), lost_after
         self.kalman_start = int(kalman_start)
         kwargs: dict = {}
@@ -440,16 +429,9 @@ class ParticleBallTracker(TrackQualityMixin):
         dt = t - self._t
         if not dt > 0.0:
             return self._x.copy()
-        # drift for one state, in plain floats (called every control step by a pipeline).
+        # drift for one state (called every control step by a pipeline).
         px, py, vx, vy = self._x.tolist()
-        a = self.deceleration
-        speed = math.hypot(vx, vy)
-        if a == 0.0 or speed == 0.0:
-            return np.array([px + dt * vx, py + dt * vy, vx, vy])
-        tau = min(dt, speed / a)
-        k = tau - 0.5 * a * tau * tau / speed
-        f = max(1.0 - a * tau / speed, 0.0)
-        return np.array([px + k * vx, py + k * vy, f * vx, f * vy])
+        return np.array(roll(px, py, vx, vy, math.hypot(vx, vy), dt, self.deceleration))
 
     # ------------------------------------------------------------------------------------
 

@@ -20,7 +20,7 @@ from ..compiled import kernel
 from ..exact import stable_argsort
 
 __all__ = ["weigh", "weighted_mean", "systematic_indices", "sfn_children", "sfn_apply",
-           "drift", "transition", "position_likelihood", "position_moments"]
+           "roll", "drift", "transition", "position_likelihood", "position_moments"]
 
 
 @kernel
@@ -126,27 +126,30 @@ def sfn_apply(particles: np.ndarray, weights: np.ndarray, order: np.ndarray,
 
 
 @kernel
+def roll(px: float, py: float, vx: float, vy: float, speed: float, dt: float,
+         deceleration: float) -> tuple[float, float, float, float]:
+    """One ball ``(px, py, vx, vy)`` of speed ``speed`` (its velocity's norm, as the caller
+    computes it) ``dt >= 0`` [s] later: constant velocity for ``deceleration = 0`` or a ball
+    at rest, else uniform deceleration ``a`` along the motion until the ball stops:
+    ``tau = min(dt, s / a)``, ``p' = p + v (tau - a tau^2 / (2 s))``,
+    ``v' = v max(1 - a tau / s, 0)``."""
+    if deceleration == 0.0 or speed == 0.0:
+        return px + dt * vx, py + dt * vy, vx, vy
+    tau = min(dt, speed / deceleration)
+    k = tau - 0.5 * deceleration * tau * tau / speed
+    f = max(1.0 - deceleration * tau / speed, 0.0)
+    return px + k * vx, py + k * vy, f * vx, f * vy
+
+
+@kernel
 def drift(x: np.ndarray, dt: float, deceleration: float) -> np.ndarray:
     """The deterministic ball motion of states ``x = (px, py, vx, vy)`` ((N, 4)) over
-    ``dt`` [s] (a new array): constant velocity for ``deceleration = 0``, else uniform
-    deceleration ``a`` along the motion until the ball stops: ``tau = min(dt, s / a)``,
-    ``p' = p + v (tau - a tau^2 / (2 s))``, ``v' = v max(1 - a tau / s, 0)``."""
+    ``dt`` [s] (a new array): :func:`roll` on each row."""
     out = x.copy()
     for i in range(x.shape[0]):
         vx, vy = x[i, 2], x[i, 3]
-        if deceleration == 0.0:
-            out[i, 0] += dt * vx
-            out[i, 1] += dt * vy
-            continue
-        speed = math.hypot(vx, vy)
-        safe = speed if speed > 0.0 else 1.0
-        tau = min(dt, speed / deceleration)
-        k = tau - 0.5 * deceleration * tau * tau / safe
-        f = max(1.0 - deceleration * tau / safe, 0.0)
-        out[i, 0] += vx * k
-        out[i, 1] += vy * k
-        out[i, 2] *= f
-        out[i, 3] *= f
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = roll(
+            x[i, 0], x[i, 1], vx, vy, math.hypot(vx, vy), dt, deceleration)
     return out
 
 

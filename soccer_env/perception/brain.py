@@ -335,8 +335,10 @@ class Brain:
                     balls = sorted(balls, key=lambda b: abs(math.remainder(b[4] - gb,
                                                                            2 * math.pi)))
             _u, _v, x, y, bearing = balls[0]
+            # (Its sway only matters to a tracker that weighs each line.)
             line = SightingLine(f.t_capture, (px, py), float(pth + bearing), math.hypot(x, y),
-                                sway_scale(p.specs[self.i], self.gait_velocity))
+                                sway_scale(p.specs[self.i], self.gait_velocity)
+                                if self.takes_lines else 1.0)
             self.own_line = line
             self.ball_seen = f.t_capture
         for team, _u, _v, x, y, _b in f.robots:

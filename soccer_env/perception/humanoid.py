@@ -125,23 +125,22 @@ class HumanoidTeamPerception:
         # pixel noise and the yaw sway. The sway's errors repeat from frame to frame (the
         # gait is periodic), so recovery waits for a deeper and longer drop of the likelihood
         # than the textbook rule.
-        f_px = camera.camera.focal_px
         hum = [s for s in self.specs if s.kind == "humanoid"]
         sway_t = max((s.sway_tilt for s in hum), default=0.0)
         sway_p = max((s.sway_pan for s in hum), default=0.0)
-        ang = math.hypot(sway_t, camera.pixel_sigma / f_px)
+        # The sightings' error model for the fusion, for the worst sway of the team's robots
+        # (:func:`~soccer_env.perception.sighting.sighting_sigmas`); the landmarks' is the same
+        # with larger floors.
+        self.bearing_sigma, self.range_per_metre = sighting_sigmas(camera, sway_p, sway_t)
         self.kld_config = KLDConfig(
             min_particles=50, max_particles=2000,
             range_sigma=0.05, range_sigma_rel=0.05,
-            range_sigma_quad=max(0.01, ang / camera.height),
-            bearing_sigma=max(math.radians(1.0), math.hypot(sway_p, camera.pixel_sigma / f_px)),
+            range_sigma_quad=max(0.01, self.range_per_metre),
+            bearing_sigma=max(math.radians(1.0), self.bearing_sigma),
             alpha_fast=0.1, recovery_ratio=0.2)
         self.fusion_window = ((_FUSION_WINDOW_FRAMES / camera.frame_rate
                                if camera.frame_rate else 0.05)
                               + radio.latency + radio.jitter)
-        # The sightings' error model for the fusion, for the worst sway of the team's robots
-        # (:func:`~soccer_env.perception.brain.sighting_sigmas`).
-        self.bearing_sigma, self.range_per_metre = sighting_sigmas(camera, sway_p, sway_t)
         #: The observers' pose errors the inverse-variance fusion weighs lines by
         #: ``(position per axis [m], heading [rad])``: none for the oracle; else the
         #: localization's error while tracking, as ``soccer-env paper team`` and ``paper

@@ -49,7 +49,7 @@ from soccer_env.sensors.headcam import HeadCameraSensor
 from soccer_env.sensors.overhead import OverheadVision
 
 __all__ = ["BallFilter", "BALL_FILTERS", "BALL_TRACKERS", "FUSIONS", "LOCALIZATIONS",
-           "Detector", "DETECTORS", "PARTICLES"]
+           "Detector", "DETECTORS", "PARTICLES", "line_tracker"]
 
 
 # --------------------------------------------------------------------------------------------
@@ -153,16 +153,20 @@ def _particle_tracker(name: str, rng: np.random.Generator, ball: BallSpec,
                                reinit_after=2)
 
 
-def _line_tracker(rng: np.random.Generator, ball: BallSpec, max_speed: float,
-                  noise: SightingNoise, observers: tuple[int, ...]) -> LineBallTracker:
-    """The kick-aware tracker of the sighting lines of the robots ``observers`` (indices)
-    (:class:`~estimators.LineBallTracker`) with the ball's two-phase friction law, 1 m/s^2
-    of acceleration noise (as the particle trackers) and kicks of 3 m/s per axis, restarted
-    after 2 s without an agreeing line; it draws nothing."""
-    return LineBallTracker(noise, deceleration=ball.rolling_deceleration,
-                           sliding_deceleration=ball.sliding_deceleration,
-                           k_switch=ball.k_switch, accel_sigma=1.0, kick_sigma=3.0,
-                           lost_after=2.0, observers=observers)
+def line_tracker(rng: np.random.Generator, ball: BallSpec, max_speed: float,
+                 noise: SightingNoise, observers: tuple[int, ...], *,
+                 cls: type[LineBallTracker] = LineBallTracker, **overrides: Any
+                 ) -> LineBallTracker:
+    """The ``"kick"`` tracker: the kick-aware tracker of the sighting lines of the robots
+    ``observers`` (indices) (:class:`~estimators.LineBallTracker`) with the ball's two-phase
+    friction law, 1 m/s^2 of acceleration noise (as the particle trackers) and kicks of 3 m/s
+    per axis, restarted after 2 s without an agreeing line; it draws nothing. ``cls`` and
+    ``overrides`` (keyword arguments of the tracker) build variants for ablations."""
+    kwargs: dict[str, Any] = dict(
+        deceleration=ball.rolling_deceleration, sliding_deceleration=ball.sliding_deceleration,
+        k_switch=ball.k_switch, accel_sigma=1.0, kick_sigma=3.0, lost_after=2.0,
+        observers=observers)
+    return cls(noise, **{**kwargs, **overrides})
 
 
 #: A humanoid's ball trackers, ``factory(rng, ball, max_speed, noise, observers)`` with the
@@ -176,7 +180,7 @@ BALL_TRACKERS: Registry[Callable[..., Any] | None] = Registry(
     + [(name, functools.partial(_particle_tracker, name),
         f"{PARTICLE_FILTERS.description(name)}; {PARTICLES} particles")
        for name in PARTICLE_FILTERS]
-    + [("kick", _line_tracker,
+    + [("kick", line_tracker,
         "kick-aware Kalman tracker fed each sighting line at its capture time (no fusion "
         "step); a kick hypothesis beside the track, its kick time searched")])
 

@@ -14,7 +14,7 @@ import numpy as np
 from soccer_env.presets import RobotSpec
 from soccer_env.presets.sensors import HeadCameraSpec
 from soccer_env.sensors.headcam import HeadFrame
-from soccer_env.sim.walk import WALK_THRESHOLD, speed_norm
+from soccer_env.sim.walk import speed_norm, sway_share
 
 __all__ = ["SightingLine", "sighting_sigmas", "sway_scale", "landmark_sightings"]
 
@@ -46,11 +46,9 @@ def sighting_sigmas(camera: HeadCameraSpec, sway_pan: float, sway_tilt: float
 
 def sway_scale(spec: RobotSpec, gait: tuple[float, float, float]) -> float:
     """How much a humanoid walking at ``gait`` ``(vx, vy, omega)`` sways, 0 (standing) to 1,
-    as its walk engine makes it (:mod:`soccer_env.sim.walk`): ``min(1, 5 s)`` for the gait's
-    ellipsoid norm ``s`` above the walking threshold. A robot knows its own gait, so its
-    sightings carry it."""
-    s = speed_norm(spec, *gait)
-    return min(1.0, 5.0 * s) if s > WALK_THRESHOLD else 0.0
+    as its walk engine makes it (:func:`soccer_env.sim.walk.sway_share`). A robot knows its own
+    gait, so its sightings carry it."""
+    return sway_share(speed_norm(spec, *gait))
 
 
 def landmark_sightings(frame: HeadFrame) -> tuple[tuple[str, ...], np.ndarray, np.ndarray]:

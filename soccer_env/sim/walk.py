@@ -45,7 +45,8 @@ import numpy as np
 
 from soccer_env.presets import HumanoidRobotSpec
 
-__all__ = ["WalkEngine", "HUMANOID_COMMAND_FIELDS", "WALK_THRESHOLD", "DIVE", "speed_norm"]
+__all__ = ["WalkEngine", "HUMANOID_COMMAND_FIELDS", "WALK_THRESHOLD", "DIVE", "speed_norm",
+           "sway_share"]
 
 #: Columns of a humanoid's row of the ``(N, 6)`` command array of
 #: :meth:`World.step <soccer_env.sim.world.World.step>`: body-frame ``vx, vy`` [m/s] and
@@ -66,6 +67,13 @@ def speed_norm(spec: HumanoidRobotSpec, vx: float, vy: float, w: float) -> float
     vx_lim = spec.max_forward_speed if vx >= 0.0 else spec.max_backward_speed
     return math.sqrt((vx / vx_lim) ** 2 + (vy / spec.max_sideways_speed) ** 2
                      + (w / spec.max_turn_speed) ** 2)
+
+
+def sway_share(s: float) -> float:
+    """How much of its full sway a humanoid's torso sways at the gait's ellipsoid norm ``s``
+    (:func:`speed_norm`): ``min(1, 5 s)`` while the gait steps (``s`` above
+    :data:`WALK_THRESHOLD`), 0 standing."""
+    return min(1.0, 5.0 * s) if s > WALK_THRESHOLD else 0.0
 
 
 class WalkEngine:
@@ -178,7 +186,7 @@ class WalkEngine:
                 self.phase[j] = before + spec.step_frequency * dt
                 if math.floor(self.phase[j]) != math.floor(before):
                     self._slip[j] = self._draw_slip(spec)  # a new step lands
-                a = min(1.0, 5.0 * s)
+                a = sway_share(s)
                 ph = self.phase[j]
                 self.sway_pan[j] = spec.sway_pan * a * math.sin(math.pi * ph)
                 self.sway_tilt[j] = spec.sway_tilt * a * math.sin(2.0 * math.pi * ph)

@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["check_count", "write_csv", "write_report", "map_jobs"]
+__all__ = ["check_count", "write_csv", "write_report", "map_jobs", "lock_on"]
 
 
 def check_count(name: str, value: Any, lo: int, hi: int) -> int:
@@ -22,6 +22,18 @@ def check_count(name: str, value: Any, lo: int, hi: int) -> int:
             or not lo <= value <= hi:
         raise ValueError(f"{name} must be an integer in [{lo}, {hi}], got {value!r}")
     return int(value)
+
+
+def lock_on(err: np.ndarray, start: int, stop: int, threshold: float, hold: int
+            ) -> int | None:
+    """Steps from ``start`` until the error ``err`` stays below ``threshold`` for ``hold``
+    steps in a row, before ``stop``; None if it never does."""
+    run = 0
+    for k in range(start, stop):
+        run = run + 1 if err[k] < threshold else 0
+        if run >= hold:
+            return k - hold + 1 - start
+    return None
 
 
 def map_jobs(fn: Callable[[Any], Any], jobs: Sequence[Any], workers: int | None) -> list[Any]:

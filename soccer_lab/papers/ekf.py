@@ -43,7 +43,7 @@ from soccer_env.presets.sensors import vision
 from soccer_env.render.plots import pyplot, save_figure
 from soccer_env.sensors.overhead import OverheadVision
 from soccer_env.sim.world import World, idle_commands
-from soccer_lab.papers.common import write_csv
+from soccer_lab.papers.common import lock_on, write_csv
 
 __all__ = ["run", "Settings", "open_loop", "closed_loop", "PAPER_CLAIMS", "ESTIMATORS",
            "steady_state_floor"]
@@ -222,15 +222,12 @@ def _run_estimator(name: str, ep: _Episode, ahead: float
     return now_est, ahead_est, time.perf_counter() - start
 
 
-def _lock_on(err: np.ndarray, start: int, stop: int, threshold: float, hold: int = 3) -> int:
-    """Cycles from ``start`` until the error stays below ``threshold`` for ``hold`` cycles
-    (``stop - start`` if it never does before ``stop``)."""
-    run = 0
-    for k in range(start, stop):
-        run = run + 1 if err[k] < threshold else 0
-        if run >= hold:
-            return k - hold + 1 - start
-    return stop - start
+def _cycles_to_lock_on(err: np.ndarray, start: int, stop: int) -> int:
+    """Cycles from ``start`` until the error stays below 3 sigma for 3 cycles
+    (:func:`~soccer_lab.papers.common.lock_on`; ``stop - start`` if it never does before
+    ``stop``)."""
+    k = lock_on(err, start, stop, 3 * SIGMA, 3)
+    return stop - start if k is None else k
 
 
 def open_loop(episodes: int = 200, seed: int = 0) -> dict[str, Any]:
@@ -268,7 +265,7 @@ def open_loop(episodes: int = 200, seed: int = 0) -> dict[str, Any]:
                 if stop - c < 5:
                     continue
                 (lock_start if c == 0 else lock_collision).append(
-                    _lock_on(err, c, stop, 3 * SIGMA))
+                    _cycles_to_lock_on(err, c, stop))
             if i == 0:
                 trace[name] = err_now
         cat = np.concatenate

@@ -36,11 +36,10 @@ from typing import Any
 import numpy as np
 
 from soccer_env.render.plots import pyplot, save_figure
-from soccer_lab.papers.common import map_jobs, write_report
+from soccer_lab.papers.common import lock_on, map_jobs, write_report
 
-__all__ = ["run", "Settings", "match_errors", "keeper_saves", "ball_events", "lock_on",
-           "MATCH_CONFIGS", "KEEPER_CONFIGS",
-           "PAPER"]
+__all__ = ["run", "Settings", "match_errors", "keeper_saves", "ball_events", "MATCH_CONFIGS",
+           "KEEPER_CONFIGS", "PAPER"]
 
 #: Blue's ball estimation in the match: names of
 #: :data:`agents.studies.ablation_settings.HUMANOID_CONFIGS`.
@@ -130,17 +129,6 @@ def ball_events(velocity: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     steps = np.flatnonzero(dv > EVENT_DV) + 1
     speed = np.hypot(*velocity.T)
     return steps, speed[steps] - speed[steps - 1] > EVENT_DV
-
-
-def lock_on(err: np.ndarray, start: int, stop: int, threshold: float, hold: int) -> int | None:
-    """Steps from ``start`` until the error ``err`` stays below ``threshold`` for ``hold``
-    steps in a row, before ``stop``; None if it never does."""
-    run = 0
-    for k in range(start, stop):
-        run = run + 1 if err[k] < threshold else 0
-        if run >= hold:
-            return k - hold + 1 - start
-    return None
 
 
 def _events(err: np.ndarray, off: np.ndarray, velocity: np.ndarray, dt: float

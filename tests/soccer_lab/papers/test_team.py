@@ -10,6 +10,7 @@ import pytest
 from saved_figures import saved_figures
 
 from soccer_lab.papers import team
+from soccer_lab.papers.common import lock_on
 
 pytestmark = pytest.mark.slow
 
@@ -42,8 +43,8 @@ def test_kicks_and_collisions_are_told_apart_and_lock_on_is_counted():
     err = np.ones(30)
     err[12:] = 0.5
     err[14] = 2.0  # one step off: the run starts again
-    assert team.lock_on(err, 10, 30, 1.0, 3) == 5
-    assert team.lock_on(err, 10, 16, 1.0, 3) is None
+    assert lock_on(err, 10, 30, 1.0, 3) == 5
+    assert lock_on(err, 10, 16, 1.0, 3) is None
 
 
 def test_team_benchmark_rejects_bad_arguments(tmp_path: Path):
