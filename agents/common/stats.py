@@ -1,12 +1,12 @@
-"""The intervals the evaluation, the ablations and the matches report: Wilson's score
-interval of a rate (:func:`wilson`) and the Student-t quantile of a mean's interval
-(:func:`t975`)."""
+"""The intervals and tests the evaluation, the ablations and the matches report: Wilson's
+score interval of a rate (:func:`wilson`), the Student-t quantile of a mean's interval
+(:func:`t975`) and the exact sign test of paired outcomes (:func:`sign_test`)."""
 
 from __future__ import annotations
 
 import math
 
-__all__ = ["wilson", "t975"]
+__all__ = ["wilson", "t975", "sign_test"]
 
 
 def wilson(successes: int, n: int, z: float = 1.96) -> tuple[float, float]:
@@ -34,3 +34,19 @@ def t975(dof: int) -> float:
          (3 * z ** 7 + 19 * z ** 5 + 17 * z ** 3 - 15 * z) / 384,
          (79 * z ** 9 + 776 * z ** 7 + 1482 * z ** 5 - 1920 * z ** 3 - 945 * z) / 92160]
     return z + sum(gi / dof ** (i + 1) for i, gi in enumerate(g))
+
+
+def sign_test(wins: int, losses: int) -> float:
+    """Two-sided exact sign test of paired outcomes: the probability, were either side
+    equally likely to take each pair that only one of them won, of a split at least as
+    uneven as ``wins`` against ``losses`` (ties, pairs both or neither won, carry no
+    information and are left out): ``min(1, 2 sum_{k <= min} C(n, k) / 2^n)`` with
+    ``n = wins + losses``; 1.0 when ``n = 0``."""
+    for name, value in (("wins", wins), ("losses", losses)):
+        if isinstance(value, bool) or not isinstance(value, int) or value < 0:
+            raise ValueError(f"{name} must be an integer >= 0, got {value!r}")
+    n = wins + losses
+    if n == 0:
+        return 1.0
+    tail = sum(math.comb(n, k) for k in range(min(wins, losses) + 1))
+    return min(1.0, 2 * tail / 2 ** n)  # exact integers: no overflow for large n

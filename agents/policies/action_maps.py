@@ -58,7 +58,7 @@ from soccer_env.envs.keeper import TURN_GAIN, ScriptedGoalkeeper
 
 __all__ = ["ACTION_MAPS", "POLICY_MAPS", "SSL_MAPS", "RESIDUAL", "BALL_RESIDUAL",
            "target_params", "residual_params", "ball_residual_params", "scripted_guard_y",
-           "action_to_command", "check_observation_layout"]
+           "team_frame_ball_velocity", "action_to_command", "check_observation_layout"]
 
 #: Action spaces of a learning keeper (see the module docstring) and their sizes.
 ACTION_MAPS = {"native": 6, "velocity": 3, "target": 2, "guard": 1,
@@ -199,9 +199,9 @@ def scripted_guard_y(obs: np.ndarray, params: Mapping[str, float]) -> np.ndarray
     obs = np.asarray(obs, dtype=np.float64)
     c, s = _heading(obs)
     px, py = obs[..., _POSE[0]], obs[..., _POSE[1]]
-    dx, dy, bvx, bvy = (obs[..., i] for i in _BALL)
+    dx, dy = obs[..., _BALL[0]], obs[..., _BALL[1]]
     bx, by = px + c * dx - s * dy, py + s * dx + c * dy
-    vx, vy = c * bvx - s * bvy, s * bvx + c * bvy
+    vx, vy = np.moveaxis(team_frame_ball_velocity(obs), -1, 0)
     gx, a = params["x_min"], params["deceleration"]
     speed = np.hypot(vx, vy)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -212,6 +212,16 @@ def scripted_guard_y(obs: np.ndarray, params: Mapping[str, float]) -> np.ndarray
     frac = (gx - params["goal_x"]) / np.maximum(bx - params["goal_x"], 1e-3)
     y = np.where(reaches, crossing, by * np.minimum(frac, 1.0))
     return np.clip(y, -params["half_goal"], params["half_goal"])
+
+
+def team_frame_ball_velocity(obs: np.ndarray) -> np.ndarray:
+    """The believed ball velocity of observations ``(..., n_obs)`` in the team frame [m/s],
+    ``(..., 2)``: the body-frame entries rotated by the heading, ``(c v_x - s v_y,
+    s v_x + c v_y)``."""
+    obs = np.asarray(obs, dtype=np.float64)
+    c, s = _heading(obs)
+    bvx, bvy = obs[..., _BALL[2]], obs[..., _BALL[3]]
+    return np.stack([c * bvx - s * bvy, s * bvx + c * bvy], axis=-1)
 
 
 def _to_body(c: np.ndarray, s: np.ndarray, x: np.ndarray, y: np.ndarray

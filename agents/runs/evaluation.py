@@ -28,12 +28,12 @@ import gymnasium as gym
 import soccer_env  # noqa: F401  (registers the environments)
 from agents.common.checks import check_full_infos
 from agents.common.processes import map_jobs
-from agents.common.stats import wilson
+from agents.common.stats import sign_test, wilson
 from agents.policies.base import describe_policy, reset_policy
 from agents.runs.resolve import make_policy, policy_for_jobs, saved_model
 from soccer_env.envs.registration import GOALKEEPER_ID
 
-__all__ = ["EvalResult", "evaluate", "record_video"]
+__all__ = ["EvalResult", "evaluate", "paired", "record_video"]
 
 
 @dataclass
@@ -83,6 +83,23 @@ class EvalResult:
         if self.estimator_us_per_step is not None:
             text += f"; estimator {self.estimator_us_per_step:.0f} us/step"
         return text
+
+
+def paired(a: EvalResult, b: EvalResult) -> dict[str, Any]:
+    """Two evaluations on the same shots compared shot by shot: the shots only ``a`` saved
+    (``a_only``), only ``b`` (``b_only``), the save-rate difference ``a - b`` and the exact
+    two-sided sign test's p-value over the shots that only one saved
+    (:func:`~agents.common.stats.sign_test`). Raises ``ValueError`` unless both played the
+    same number of shots in the same environment."""
+    if a.episodes != b.episodes or a.env_kwargs != b.env_kwargs:
+        raise ValueError("paired compares evaluations of the same shots: got "
+                         f"{a.episodes} and {b.episodes} shots, environments {a.env_kwargs} "
+                         f"and {b.env_kwargs}")
+    a_only = sum(x and not y for x, y in zip(a.saved, b.saved))
+    b_only = sum(y and not x for x, y in zip(a.saved, b.saved))
+    return {"a": a.policy, "b": b.policy, "episodes": a.episodes, "a_only": a_only,
+            "b_only": b_only, "difference": a.save_rate - b.save_rate,
+            "sign_test_p": sign_test(a_only, b_only)}
 
 
 class _Timer:

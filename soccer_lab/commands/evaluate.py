@@ -10,7 +10,7 @@ import os
 import sys
 from pathlib import Path
 
-from agents.runs.evaluation import evaluate, record_video
+from agents.runs.evaluation import evaluate, paired, record_video
 from agents.runs.resolve import make_policy
 from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_lab import extras
@@ -37,6 +37,9 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--policy", default="scripted",
                    help="scripted, idle, baseline:NAME, a .zip (stable-baselines3, needs the "
                         "train extra) or .npz model, or a training run folder")
+    p.add_argument("--versus", default=None, metavar="POLICY",
+                   help="another policy (as --policy) played on the same shots: the shots "
+                        "only one of them saved, and the sign test's p-value (default: none)")
     add_env_arguments(p)
     p.add_argument("--episodes", type=int, default=1000, help="shots")
     p.add_argument("--start-seed", type=int, default=0, help="seed of the first shot")
@@ -77,6 +80,8 @@ def main(argv: list[str] | None = None) -> int:
         probe = gym.make(GOALKEEPER_ID, **env_kwargs)
         try:
             make_policy(args.policy, probe, trust=args.trust)
+            if args.versus is not None:
+                make_policy(args.versus, probe, trust=args.trust)
         finally:
             probe.close()
     except (ValueError, TypeError, FileNotFoundError) as err:
@@ -92,14 +97,27 @@ def main(argv: list[str] | None = None) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     record = res.to_dict()
+    if args.versus is not None:
+        other = evaluate(args.versus, env_kwargs, args.episodes, args.start_seed, args.workers,
+                         trust=args.trust)
+        record["versus"] = {**other.to_dict(), **paired(res, other)}
     if video:
         seeds = range(args.start_seed, args.start_seed + min(video, args.episodes))
         record["video"] = str(record_video(args.policy, out / "eval.mp4", env_kwargs, seeds,
                                             trust=args.trust))
     (out / "eval.json").write_text(json.dumps(record, indent=1))
     if args.json:
-        print(json.dumps({k: v for k, v in record.items() if k != "saved"}, indent=1))
+        shown = {k: v for k, v in record.items() if k != "saved"}
+        if "versus" in shown:
+            shown["versus"] = {k: v for k, v in shown["versus"].items() if k != "saved"}
+        print(json.dumps(shown, indent=1))
     else:
         print(f"{res.policy} on Goalkeeper-v0 ({_describe(env_kwargs)}): {res.summary()}")
+        if args.versus is not None:
+            v = record["versus"]
+            print(f"versus {other.policy}: {other.summary()}\n"
+                  f"saved by {res.policy} only: {v['a_only']}, by {other.policy} only: "
+                  f"{v['b_only']}; difference {100 * v['difference']:+.1f} points, sign test "
+                  f"p = {v['sign_test_p']:.3g}")
         print(f"wrote {out / 'eval.json'}" + (f" and {record['video']}" if video else ""))
     return 0

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from agents.common.stats import wilson
+from agents.common.stats import sign_test, wilson
 from agents.runs.evaluation import evaluate
 
 
@@ -93,3 +93,14 @@ def test_bad_arguments():
         evaluate("scripted", episodes=2, workers=0)
     with pytest.raises(TypeError, match="unknown"):
         evaluate("scripted", {"obs_mod": "raw"}, episodes=1)
+
+
+def test_sign_test_is_the_exact_binomial_tail():
+    # 2 * P(X <= 5) for X ~ Bin(23, 1/2): 2 * 44,552 / 2^23.
+    assert sign_test(18, 5) == pytest.approx(2 * 44_552 / 2 ** 23)
+    assert sign_test(5, 18) == sign_test(18, 5)
+    assert sign_test(0, 0) == 1.0 and sign_test(7, 7) == 1.0
+    assert 0.0 < sign_test(1200, 1000) < 1e-4  # large counts: exact integers, no overflow
+    for bad in ((-1, 3), (2.5, 3), (True, 3)):
+        with pytest.raises(ValueError, match="must be an integer >= 0"):
+            sign_test(*bad)

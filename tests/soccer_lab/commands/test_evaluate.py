@@ -32,3 +32,21 @@ def test_eval_command_rejects_bad_input(tmp_path, capsys):
     assert "no model at" in capsys.readouterr().err
     with pytest.raises(SystemExit):
         main(["eval", "--perception", "foggy", "--out", str(tmp_path)])
+
+
+def test_eval_versus_compares_two_policies_shot_by_shot(tmp_path, capsys):
+    out = tmp_path / "ev"
+    assert main(["eval", "--policy", "scripted", "--versus", "idle", "--episodes", "8",
+                 "--workers", "1", "--video", "0", "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    record = json.loads((out / "eval.json").read_text())
+    v = record["versus"]
+    ours, theirs = record["saved"], v["saved"]
+    assert v["a_only"] == sum(a and not b for a, b in zip(ours, theirs))
+    assert v["b_only"] == sum(b and not a for a, b in zip(ours, theirs))
+    assert v["difference"] == pytest.approx(record["save_rate"] - v["save_rate"])
+    assert 0.0 < v["sign_test_p"] <= 1.0
+    assert "versus idle" in text and "sign test p = " in text
+    with pytest.raises(SystemExit):
+        main(["eval", "--versus", "nowhere.npz", "--out", str(tmp_path)])
+    assert "nowhere.npz" in capsys.readouterr().err
