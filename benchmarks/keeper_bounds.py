@@ -18,13 +18,15 @@ Goalkeeper-v0's suite; Wilson 95 % intervals.
 ``kidsize-2012`` head cameras, KLD localization, the team's sightings fused and tracked by
 MFBPF, or tracked line by line by ``--ball-tracker kick``) perceived, perceived
 but with the true ball velocity (:class:`TrueBallVelocity`: believed pose and ball position,
-the velocity alone true), the first-frame oracle (the head camera's 25 Hz and 40 ms), and
-truth; 60 Hz decisions.
+the velocity alone true), the same from the first step the believed ball moves
+(:class:`TrueVelocityOnceMoving`: what the belief's lag costs apart from its velocity error),
+the first-frame oracle (the head camera's 25 Hz and 40 ms), and truth; 60 Hz decisions.
 """
 
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from typing import Any
 
@@ -95,6 +97,26 @@ class TrueBallVelocity(gym.ObservationWrapper):
         return obs
 
 
+class TrueVelocityOnceMoving(TrueBallVelocity):
+    """:class:`TrueBallVelocity` from the first step the believed ball moves faster than
+    ``threshold`` [m/s] (the belief has seen the shot), the belief's velocity before: what
+    the lag before the belief moves costs, apart from the belief's velocity error after."""
+
+    def __init__(self, env: gym.Env, threshold: float = 0.3) -> None:
+        super().__init__(env)
+        self.threshold = threshold
+        self._moving = False
+
+    def reset(self, **kwargs: Any):
+        self._moving = False
+        return super().reset(**kwargs)
+
+    def observation(self, observation: np.ndarray) -> np.ndarray:
+        speed = math.hypot(float(observation[self._vx]), float(observation[self._vy]))
+        self._moving = self._moving or speed > self.threshold
+        return super().observation(observation) if self._moving else observation
+
+
 def true_velocity_env(**kwargs: Any) -> gym.Env:
     """Goalkeeper-v0, perceived, with :class:`TrueBallVelocity` observations."""
     return TrueBallVelocity(gym.make(GK, obs_mode="perceived", **kwargs))
@@ -108,6 +130,10 @@ if ORACLE_ID not in gym.registry:
 TRUE_VELOCITY_ID = "soccer_env_bench/TrueBallVelocity-v0"
 if TRUE_VELOCITY_ID not in gym.registry:
     gym.register(TRUE_VELOCITY_ID, entry_point=true_velocity_env)
+ONCE_MOVING_ID = "soccer_env_bench/TrueVelocityOnceMoving-v0"
+if ONCE_MOVING_ID not in gym.registry:
+    gym.register(ONCE_MOVING_ID, entry_point=lambda **kw: TrueVelocityOnceMoving(
+        gym.make(GK, obs_mode="perceived", **kw)))
 
 
 def humanoid(episodes: int, workers: int, tracker: str = "mfbpf") -> None:
@@ -121,6 +147,8 @@ def humanoid(episodes: int, workers: int, tracker: str = "mfbpf") -> None:
     rows = (("perceived (KLD localization, team sightings)", {**base, "obs_mode": "perceived"},
              None),
             ("perceived, true ball velocity", base, TRUE_VELOCITY_ID),
+            ("perceived, true ball velocity once the belief moves (> 0.3 m/s)", base,
+             ONCE_MOVING_ID),
             ("oracle from the first frame", base, ORACLE_ID),
             ("truth", {**base, "obs_mode": "truth"}, None))
     for label, kwargs, env_id in rows:

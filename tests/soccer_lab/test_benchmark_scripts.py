@@ -208,3 +208,33 @@ def test_known_kick_tells_the_filter_the_true_kick_time():
     ekf = bounds.known_kick_env(obs_mode="perceived", perception="ssl-2012")
     with pytest.raises(ValueError, match="kick"):
         ekf.reset(seed=3)
+
+
+def test_true_velocity_once_moving_waits_for_the_belief_to_move():
+    """The lag bound's observation: the perceived one until the believed ball moves faster
+    than the threshold, the true ball velocity from then on (also when the belief slows)."""
+    bounds = _script("keeper_bounds")
+    kwargs = {"robot": "humanoid-2012", "perception": "kidsize-2012"}
+    env = bounds.TrueVelocityOnceMoving(
+        gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived", **kwargs), threshold=0.3)
+    plain = gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived", **kwargs)
+    obs, _ = env.reset(seed=5)
+    pobs, _ = plain.reset(seed=5)
+    moving, switched = False, 0
+    for _ in range(150):
+        moving = moving or float(np.hypot(*pobs[9:11])) > 0.3
+        if moving:
+            c, s = obs[2], -obs[3]
+            v = env.unwrapped.world.snapshot().ball[3:5]
+            np.testing.assert_allclose(obs[9:11], [c * v[0] + s * v[1], -s * v[0] + c * v[1]],
+                                       atol=1e-5)
+            switched += 1
+        else:
+            np.testing.assert_array_equal(obs, pobs)
+        obs, _, term, trunc, _ = env.step(np.zeros(6, np.float32))
+        pobs, *_ = plain.step(np.zeros(6, np.float32))
+        if term or trunc:
+            break
+    assert switched > 0  # the belief saw the shot
+    obs, _ = env.reset(seed=6)  # each episode starts on the belief again
+    np.testing.assert_array_equal(obs, plain.reset(seed=6)[0])
