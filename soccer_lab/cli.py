@@ -374,6 +374,12 @@ def _cmd_train(argv: list[str]) -> int:
     return train_main(argv)
 
 
+def _cmd_imitate(argv: list[str]) -> int:
+    from soccer_lab.commands.imitate import main as imitate_main
+
+    return imitate_main(argv)
+
+
 def _cmd_eval(argv: list[str]) -> int:
     from soccer_lab.commands.evaluate import main as eval_main
 
@@ -402,6 +408,7 @@ COMMANDS: dict[str, tuple[Callable[[list[str]], int], str]] = {
     "bench": (_cmd_bench, "measure environment step rates against bare pymunk"),
     "paper": (_cmd_paper, "reproduce a source paper's claims (tables and plots)"),
     "train": (_cmd_train, "train a policy with stable-baselines3, or RLlib on a Ray cluster"),
+    "imitate": (_cmd_imitate, "train a keeper by DAgger with a privileged teacher"),
     "eval": (_cmd_eval, "evaluate a keeper policy on the fixed shot suite"),
     "ablation": (_cmd_ablation, "compare estimators in closed loop, per sensor preset"),
     "play": (_cmd_play, "drive a robot with the keyboard against the scripted team"),
@@ -412,13 +419,13 @@ COMMANDS: dict[str, tuple[Callable[[list[str]], int], str]] = {
 def parsers() -> dict[str, argparse.ArgumentParser]:
     """Every command's option parser by its command line (``"paper ekf"`` for each paper's)."""
     from soccer_lab.bench import parser as bench_parser
-    from soccer_lab.commands import ablation, evaluate, play, train
+    from soccer_lab.commands import ablation, evaluate, imitate, play, train
 
     paper, papers = paper_parser()
     return {"demo": _demo_parser(), "bench": bench_parser(), "paper": paper,
             **{f"paper {name}": sub for name, sub in papers.items()},
-            "train": train.parser(), "eval": evaluate.parser(), "ablation": ablation.parser(),
-            "list": _list_parser(), "play": play.parser()}
+            "train": train.parser(), "imitate": imitate.parser(), "eval": evaluate.parser(),
+            "ablation": ablation.parser(), "list": _list_parser(), "play": play.parser()}
 
 
 def _usage() -> str:

@@ -63,6 +63,7 @@ REQUIREMENTS: dict[str, tuple[Need, ...]] = {
     "train --algo recurrent-ppo": (Need(("sb3_contrib",), "train"),),
     "train progress bar": (Need(("tqdm", "rich"), "train"),),
     "train --backend rllib": (Need(("ray", "torch"), "rllib"),),
+    "imitate": (Need(("torch",), "train"),),
     "eval": (),
     # A stable-baselines3 model file (.zip) as the policy of eval or ablation.
     "policy .zip": (_SB3,),

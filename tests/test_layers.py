@@ -57,7 +57,8 @@ LEARNING_LIBRARIES = ("stable_baselines3", "sb3_contrib", "torch", "ray")
 DEFERRED_LIBRARIES = ("agents.sb3", "agents.sb3.algorithms", "agents.sb3.model_files",
                       "agents.sb3.normalization", "agents.sb3.policies", "agents.vec",
                       "agents.runs", "agents.runs.folders", "agents.runs.resolve",
-                      "agents.runs.evaluation", "agents.runs.training", "agents.studies")
+                      "agents.runs.evaluation", "agents.runs.imitation", "agents.runs.training",
+                      "agents.studies")
 
 
 def layer_of(module: str) -> int | None:

@@ -1,12 +1,13 @@
 """Trained policies shipped with the package.
 
 Each baseline is a :class:`~agents.policies.numpy_policy.NumpyPolicy` (``NAME.npz``: the
-actor's weights and observation statistics, a few tens of kB, run with numpy alone) and the
-stable-baselines3 model it was copied from (``NAME.zip``, with ``NAME_vecnormalize.npz``, its
-normalisation statistics, to fine-tune; both load without unpickling, see
-:mod:`agents.sb3.model_files`). The ``.npz`` carries the training configuration, the command
-that trained it and its evaluation in ``policy.meta``; :func:`make_baseline_env` builds the
-environment it was trained for.
+actor's weights and observation statistics, a few tens to a few hundred kB, run with numpy
+alone) and, for those trained with stable-baselines3, the model it was copied from
+(``NAME.zip``, with ``NAME_vecnormalize.npz``, its normalisation statistics, to fine-tune;
+both load without unpickling, see :mod:`agents.sb3.model_files`); the DAgger keeper
+(:data:`NUMPY_ONLY`) is its numpy policy alone. The ``.npz`` carries the training
+configuration, the command that trained it and its evaluation in ``policy.meta``;
+:func:`make_baseline_env` builds the environment it was trained for.
 
 >>> from agents.baselines import load_baseline, make_baseline_env
 >>> keeper = load_baseline("keeper-ppo-ssl2012")
@@ -32,7 +33,7 @@ from typing import Any
 from agents.policies import NumpyPolicy
 from soccer_env.envs.registration import GOALKEEPER_ID
 
-__all__ = ["BASELINES", "load_baseline", "baseline_path", "baseline_env_kwargs",
+__all__ = ["BASELINES", "NUMPY_ONLY", "load_baseline", "baseline_path", "baseline_env_kwargs",
            "make_baseline_env", "SSL_TEAM_2V2", "SSL_TEAM_CHECKPOINTS", "load_team"]
 
 _HERE = Path(__file__).parent
@@ -70,17 +71,32 @@ BASELINES: dict[str, tuple[str, str]] = {
         "keeper_ppo_truth",
         "the same PPO keeper trained on true observations only (1 M steps, ssl-2012 actuation "
         "latency), to be evaluated on perceived ones"),
+    "keeper-dagger-humanoid2012": (
+        "keeper_dagger_humanoid2012",
+        "humanoid keeper (humanoid-2012 with three team-mates) correcting the ball velocity "
+        "the scripted keeper believes (ball-residual actions, 60 times a second) from its last "
+        "8 perceived observations (kidsize-2012 head cameras, the kick tracker, belief "
+        "features), trained by DAgger on the true velocity (3 rounds of 3,000 shots)"),
 }
+
+
+#: Baselines trained without stable-baselines3 (:mod:`agents.runs.imitation`'s DAgger): the
+#: numpy policy is all that ships, with no ``.zip`` model or statistics beside it.
+NUMPY_ONLY: frozenset[str] = frozenset({"keeper-dagger-humanoid2012"})
 
 
 def baseline_path(name: str, kind: str = "npz") -> Path:
     """The file of baseline ``name``: ``kind="npz"`` (numpy policy), ``"zip"`` (the
     stable-baselines3 model) or ``"stats"`` (its ``VecNormalize`` statistics, an ``.npz``
-    for :func:`agents.sb3.normalization.read_vecnormalize`)."""
+    for :func:`agents.sb3.normalization.read_vecnormalize`); the baselines of
+    :data:`NUMPY_ONLY` have the ``"npz"`` only."""
     if name not in BASELINES:
         raise ValueError(f"unknown baseline {name!r}; shipped: {sorted(BASELINES)}")
     if kind not in ("npz", "zip", "stats"):
         raise ValueError(f"kind must be 'npz', 'zip' or 'stats', got {kind!r}")
+    if kind != "npz" and name in NUMPY_ONLY:
+        raise ValueError(f"baseline {name!r} was trained without stable-baselines3 and ships "
+                         "as a numpy policy only: kind must be 'npz'")
     stem = BASELINES[name][0]
     return _HERE / (f"{stem}_vecnormalize.npz" if kind == "stats" else f"{stem}.{kind}")
 
