@@ -38,8 +38,9 @@ The flow:
 * **Ball out of play** (Laws 9, 15-17): the restart goes to the opponents of the team that
   touched the ball last; if nobody touched it since the last restart, to the team defending
   the half (touch line) or the end (goal line) where it went out (the laws leave this case
-  open). The referee places the ball (``Decision.place_ball``,
-  :attr:`~HumanoidRuleSpec.line_inset` inside the lines, as the virtual referee does):
+  open; :func:`~soccer_env.sim.referee.restart_team`, as the SSL referee). The referee
+  places the ball (``Decision.place_ball``, :attr:`~HumanoidRuleSpec.line_inset` inside the
+  lines, as the virtual referee does):
 
   - **throw-in** (Law 15) over a touch line: on the touch line where the ball left the field;
     taken as an indirect free kick;
@@ -106,7 +107,14 @@ from soccer_env.presets.rules import HumanoidRuleSpec
 from soccer_env.sim.ball import BallExit
 from soccer_env.sim.game.state import RefereeState
 from soccer_env.sim.game.types import SITUATIONS, STAGES, Decision, Frame, GameEvent
-from soccer_env.sim.referee import ExitKind, classify_exit, defending_team, exit_end, exit_side
+from soccer_env.sim.referee import (
+    ExitKind,
+    classify_exit,
+    defending_team,
+    exit_end,
+    exit_side,
+    restart_team,
+)
 
 __all__ = ["HumanoidGameController", "HUMANOID_COMMANDS", "HUMANOID_FOULS", "RESTARTS"]
 
@@ -444,8 +452,7 @@ class HumanoidGameController(RefereeState):
         if kind.kind == "touch":
             d.events.append(GameEvent("ball_left_field_touch_line", last_team, last, ex.x,
                                       ex.y))
-            # Nobody touched it since the restart: the team defending that half.
-            team = 1 - last_team if last_team >= 0 else (1 if ex.x > 0 else 0)
+            team = restart_team(last_team, ex, kind)
             x = float(np.clip(ex.x, -hx, hx))
             self._interrupt("throw_in", team, (x, side * hy), d)
             return
@@ -453,7 +460,7 @@ class HumanoidGameController(RefereeState):
         end = exit_end(ex, kind)
         defender = defending_team(end)
         d.events.append(GameEvent("ball_left_field_goal_line", last_team, last, ex.x, ex.y))
-        if last_team == defender:
+        if restart_team(last_team, ex, kind) != defender:  # the defenders' touch
             self._interrupt("corner_kick", 1 - defender, (end * hx, side * hy), d)
         else:  # the attackers' touch, or nobody's
             self._interrupt("goal_kick", defender, (0.0, side * hy), d)

@@ -96,6 +96,18 @@ def defending_team(end: int) -> int:
     return 1 if end > 0 else 0
 
 
+def restart_team(last_team: int, exit: BallExit, kind: ExitKind) -> int:
+    """The team awarded the restart after the ball went out by ``exit`` (of kind ``kind``):
+    the opponents of ``last_team``, the team that touched it last; if nobody touched it
+    since the last restart (``last_team < 0``), the team defending the end (over a goal
+    line) or the half (over a touch line) where it went out. One convention for every
+    referee of the package (the simple referee, the SSL game controller, the humanoid
+    referee): neither league's laws settle the untouched case."""
+    if last_team >= 0:
+        return 1 - int(last_team)
+    return defending_team(exit_end(exit, kind))
+
+
 def formation(field: FieldSpec, team: int, n: int, kickoff: bool, robot_radius: float,
               rng: np.random.Generator, jitter: float) -> np.ndarray:
     """Kick-off poses ``(n, 3)`` (field frame) of a team in its own half.
@@ -217,11 +229,8 @@ def place_free_kick(world: World, exit: BallExit, kind: ExitKind) -> int:
     Robots of the other team within :data:`STOP_DISTANCE` of the spot, and team-mates
     overlapping the ball, are moved radially away (and stopped).
     """
-    if world.last_touch >= 0:
-        team = 1 - int(world.teams[world.last_touch])
-    else:
-        # Nobody touched it: the team defending that end.
-        team = defending_team(exit_end(exit, kind))
+    last = world.last_touch
+    team = restart_team(int(world.teams[last]) if last >= 0 else -1, exit, kind)
     bx, by = free_kick_spot(exit, kind, world.field)
     world.set_ball(bx, by)
     robots = world.robot_array().copy()

@@ -49,7 +49,11 @@ The flow (5):
   (net of successes) may not place for the rest of the half. With ``placement="referee"`` (or
   for a team that may not place) the referee places the ball at once.
 * **Free kick** (5.3.3) for throw-ins, goal kicks, corner kicks (6), fouls and failed
-  placements: all free kicks are direct, as in the 2025 rules; with ``free_kicks="2019"`` the
+  placements; after the ball went out, for the opponents of the team that touched it last,
+  or if nobody touched it since the last restart, for the team defending the half (touch
+  line) or the end (goal line) where it went out (the rules leave that case open; every
+  referee of the package follows :func:`soccer_env.sim.referee.restart_team`). All free kicks
+  are direct, as in the 2025 rules; with ``free_kicks="2019"`` the
   2019 edition's indirect free kick is played after throw-ins, double touches, aimless kicks
   and failed placements: a goal counts only if the ball touched a robot of the attacking team
   after it entered play (the 2019 rules, 5.3.4). The ball is in play once it has moved

@@ -36,6 +36,7 @@ from soccer_env.sim.referee import (
     exit_end,
     exit_side,
     free_kick_spot,
+    restart_team,
 )
 
 __all__ = ["GameController"]
@@ -316,7 +317,7 @@ class GameController(FoulRules, RestartRules):
         if kind.kind == "touch":
             d.events.append(GameEvent("ball_left_field_touch_line", last_team, last, ex.x,
                                       ex.y))
-            team = 1 - last_team if last_team >= 0 else (0 if ex.x > 0 else 1)
+            team = restart_team(last_team, ex, kind)
             spot = free_kick_spot(ex, kind, self.field, self.rules.line_margin)
             self._stop(d, ("direct_free", team), valid_free_kick(self.field, self.rules, *spot),
                        team, ball, indirect=self.options.free_kicks == "2019", out=True)
@@ -335,12 +336,11 @@ class GameController(FoulRules, RestartRules):
                        indirect=self.options.free_kicks == "2019", out=True)
             return
         d.events.append(GameEvent("ball_left_field_goal_line", last_team, last, ex.x, ex.y))
-        if last_team == defender:  # corner kick for the attackers
+        team = restart_team(last_team, ex, kind)
+        if team != defender:  # the defenders' touch: corner kick for the attackers
             x = end * (self.field.half_length - self.rules.line_margin)
-            team = 1 - defender
-        else:  # goal kick (also when nobody touched it)
+        else:  # goal kick (the attackers' touch, or nobody's)
             x = end * (self.field.half_length - self.rules.goal_kick_distance)
-            team = defender
         self._stop(d, ("direct_free", team), valid_free_kick(self.field, self.rules, x, side * hy),
                    team, ball, out=True)
 

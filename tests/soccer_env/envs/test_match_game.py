@@ -156,9 +156,9 @@ def test_with_referee_placement_the_ball_goes_to_the_throw_in_spot_and_play_resu
 def test_with_robot_placement_the_team_receiving_the_free_kick_is_asked_to_place():
     env = match()
     play_in(env)
-    obs, info = ball_out_over_touch_line(env, x=-1.0)
+    obs, info = ball_out_over_touch_line(env, x=1.0)
     g = info["blue_0"]["game"]
-    # Nobody touched it, over the touch line in yellow's attacking half: yellow's free kick.
+    # Nobody touched it, over the touch line in the half yellow defends: yellow's free kick.
     assert g["command"] == "ball_placement" and g["command_team"] == "yellow"
     assert game_entry(env, obs, "yellow_0", "game.placement_ours") == 1.0
     assert game_entry(env, obs, "blue_1", "game.placement_theirs") == 1.0
@@ -352,7 +352,7 @@ def test_scripted_robots_leave_the_ball_to_the_placing_opponents():
     teams = [ScriptedTeam.for_env(env, t) for t in ("blue", "yellow")]
     obs, _ = env.reset(seed=0)
     play_in(env)
-    obs, info = ball_out_over_touch_line(env, x=-1.0)
+    obs, info = ball_out_over_touch_line(env, x=1.0)
     assert info["blue_0"]["game"]["command_team"] == "yellow"
     closest = math.inf
     for k in range(int(RULES.placement_time * 60)):
@@ -410,3 +410,25 @@ def test_scripted_humanoids_keep_away_from_the_opponents_throw_in():
     assert "defender_too_close_to_kick_point" not in events
     robots = w.robot_array()[w.teams == other, 0:2]
     assert np.all(np.hypot(*(robots - w.ball_array()[0:2]).T) >= 0.75)
+
+
+def test_every_referee_gives_an_untouched_ball_to_the_team_defending_where_it_went_out():
+    """One convention for the simple referee, the SSL game flow and the humanoid game flow:
+    a ball nobody touched since the last restart goes to the team defending the half (touch
+    line) or the end (goal line) it left by."""
+    from soccer_env.sim.ball import BallExit
+    from soccer_env.sim.referee import classify_exit, restart_team
+
+    env = match()
+    f = env.field
+    cases = [((1.0, f.half_width + 0.1), 1), ((-1.0, -f.half_width - 0.1), 0),
+             ((f.half_length + 0.1, 1.0), 1), ((-f.half_length - 0.1, -1.0), 0)]
+    for (x, y), team in cases:
+        ex = BallExit(x, y, 0.0, 0.0)
+        assert restart_team(-1, ex, classify_exit(ex, f, env.ball_spec)) == team, (x, y)
+        assert restart_team(team, ex, classify_exit(ex, f, env.ball_spec)) == 1 - team
+    for x, team in ((1.0, "yellow"), (-1.0, "blue")):
+        env = match()
+        play_in(env)
+        _, info = ball_out_over_touch_line(env, x=x)
+        assert info["blue_0"]["game"]["command_team"] == team, x
