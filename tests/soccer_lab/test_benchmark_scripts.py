@@ -238,3 +238,17 @@ def test_true_velocity_once_moving_waits_for_the_belief_to_move():
     assert switched > 0  # the belief saw the shot
     obs, _ = env.reset(seed=6)  # each episode starts on the belief again
     np.testing.assert_array_equal(obs, plain.reset(seed=6)[0])
+
+
+def test_game_flow_counts_a_matchs_time_and_events(capsys):
+    flow = _script("game_flow")
+    row = flow.play("ssl", 1, 2.0, seed=0)
+    assert row["playing_seconds"] == 2.0
+    assert row["match_seconds"] >= 2.0  # the clock stops while nobody may play the ball
+    assert all(isinstance(v, int) and v > 0 for v in row["events"].values())
+    flow.report([row, {**row, "match_seconds": 2 * row["match_seconds"]}])
+    text = capsys.readouterr().out
+    ratio = 1.5 * row["match_seconds"] / 2.0
+    assert f"| match time / playing time | {ratio:.2f} (" in text
+    with pytest.raises(SystemExit):
+        flow.main(["--matches", "0"])

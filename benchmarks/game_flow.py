@@ -1,0 +1,117 @@
+"""Scripted matches under the game flow: how long a match takes beside its playing time, how
+ball placements end, and the fouls each team commits.
+
+Usage: ``python benchmarks/game_flow.py [--robot ssl|humanoid] [--size 2] [--matches 10]
+[--duration 60] [--start-seed 0] [--json FILE]``.
+
+``--matches`` seeded matches (seeds ``--start-seed`` onwards) of the scripted team against
+itself (:class:`agents.scripted.ScriptedTeam`, or :class:`agents.scripted.HumanoidTeam` with
+``--robot humanoid``), ``--size`` robots a side, ``game=True`` (the league's rules, robots
+placing the ball), truth observations, ``--duration`` seconds of playing time. Per match:
+
+* **match time over playing time**: the simulated seconds the match took (stops, placements
+  and restarts included) divided by its playing time, which runs only while a team may play
+  the ball (the rule book's clock);
+* **placements**: ball placements that succeeded and that failed (SSL; the humanoid referee
+  places the ball itself);
+* **fouls** per match by kind (:data:`soccer_env.sim.game.types.FOULS`; the humanoid laws'
+  removal penalties count as ``defender_too_close_to_kick_point``), and yellow and red cards.
+
+Means per match with a 95 % interval (Student-t over matches) are printed as a table.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import statistics
+import sys
+from collections import Counter
+from typing import Any
+
+import soccer_env
+from agents.common.stats import t975
+from agents.scripted import HumanoidTeam, ScriptedTeam
+from soccer_env.sim.game.types import FOULS
+
+#: Game events counted besides the fouls.
+COUNTED = ("placement_succeeded", "placement_failed", "yellow_card", "red_card")
+
+
+def play(robot: str, size: int, duration: float, seed: int) -> dict[str, Any]:
+    """One scripted match under the game flow: its match time [s], playing time [s] and the
+    count of each game event (both teams together)."""
+    kwargs: dict[str, Any] = {"blue": size, "yellow": size, "game": True,
+                              "match_duration": duration}
+    if robot == "humanoid":
+        kwargs["robot"] = "humanoid"
+    env = soccer_env.parallel_env(**kwargs)
+    obs, _ = env.reset(seed=seed)
+    team = HumanoidTeam if robot == "humanoid" else ScriptedTeam
+    teams = [team.for_env(env, side) for side in ("blue", "yellow")]
+    events: Counter = Counter()
+    steps = 0
+    while env.agents:
+        actions: dict[str, Any] = {}
+        for t in teams:
+            actions.update(t(obs))
+        obs, _, _, _, infos = env.step(actions)
+        steps += 1
+        info = next(iter(infos.values()), None)
+        if info is not None:
+            events.update(e["kind"] for e in info["game"]["events"])
+    seconds = steps * env.world.control_dt
+    env.close()
+    return {"seed": seed, "match_seconds": seconds, "playing_seconds": duration,
+            "events": dict(events)}
+
+
+def _mean_ci(values: list[float]) -> str:
+    """``mean (low to high)``, Student-t 95 % over matches."""
+    m = statistics.fmean(values)
+    if len(values) < 2:
+        return f"{m:.2f}"
+    h = t975(len(values) - 1) * statistics.stdev(values) / math.sqrt(len(values))
+    return f"{m:.2f} ({m - h:.2f} to {m + h:.2f})"
+
+
+def report(rows: list[dict[str, Any]]) -> None:
+    """The table of means per match."""
+    kinds = sorted({k for r in rows for k in r["events"]
+                    if k in FOULS or k in COUNTED})
+    print(f"| per match ({len(rows)} matches) | mean (95 % CI) |")
+    print("|---|---|")
+    ratio = [r["match_seconds"] / r["playing_seconds"] for r in rows]
+    print(f"| match time / playing time | {_mean_ci(ratio)} |")
+    fouls = [sum(v for k, v in r["events"].items() if k in FOULS) for r in rows]
+    print(f"| fouls, all kinds | {_mean_ci(fouls)} |")
+    for kind in kinds:
+        print(f"| {kind} | {_mean_ci([float(r['events'].get(kind, 0)) for r in rows])} |")
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--robot", choices=("ssl", "humanoid"), default="ssl")
+    p.add_argument("--size", type=int, default=2, help="robots a side")
+    p.add_argument("--matches", type=int, default=10)
+    p.add_argument("--duration", type=float, default=60.0, help="playing time [s]")
+    p.add_argument("--start-seed", type=int, default=0)
+    p.add_argument("--json", default=None, help="also write every match's counts here")
+    args = p.parse_args(argv)
+    for name in ("size", "matches"):
+        if getattr(args, name) < 1:
+            p.error(f"--{name} must be >= 1, got {getattr(args, name)}")
+    if not (math.isfinite(args.duration) and args.duration > 0):
+        p.error(f"--duration must be a finite number > 0, got {args.duration}")
+    rows = [play(args.robot, args.size, args.duration, args.start_seed + k)
+            for k in range(args.matches)]
+    report(rows)
+    if args.json:
+        with open(args.json, "w") as fh:
+            json.dump(rows, fh, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
