@@ -11,7 +11,8 @@ placing the ball), truth observations, ``--duration`` seconds of playing time. P
 
 * **match time over playing time**: the simulated seconds the match took (stops, placements
   and restarts included) divided by its playing time, which runs only while a team may play
-  the ball (the rule book's clock);
+  the ball (the rule book's clock); a match still going after :data:`MAX_RATIO` times its
+  playing time is stopped there and listed as not over;
 * **placements**: ball placements that succeeded and that failed (SSL; the humanoid referee
   places the ball itself);
 * **fouls** per match by kind (:data:`soccer_env.sim.game.types.FOULS`; the humanoid laws'
@@ -39,9 +40,14 @@ from soccer_env.sim.game.types import FOULS
 COUNTED = ("placement_succeeded", "placement_failed", "yellow_card", "red_card")
 
 
+#: A match is stopped (and counted as unfinished) after this many times its playing time.
+MAX_RATIO = 10.0
+
+
 def play(robot: str, size: int, duration: float, seed: int) -> dict[str, Any]:
-    """One scripted match under the game flow: its match time [s], playing time [s] and the
-    count of each game event (both teams together)."""
+    """One scripted match under the game flow: its match time [s], playing time [s], whether
+    it ended within :data:`MAX_RATIO` times its playing time, and the count of each game
+    event (both teams together)."""
     kwargs: dict[str, Any] = {"blue": size, "yellow": size, "game": True,
                               "match_duration": duration}
     if robot == "humanoid":
@@ -51,8 +57,8 @@ def play(robot: str, size: int, duration: float, seed: int) -> dict[str, Any]:
     team = HumanoidTeam if robot == "humanoid" else ScriptedTeam
     teams = [team.for_env(env, side) for side in ("blue", "yellow")]
     events: Counter = Counter()
-    steps = 0
-    while env.agents:
+    steps, limit = 0, int(MAX_RATIO * duration / env.world.control_dt)
+    while env.agents and steps < limit:
         actions: dict[str, Any] = {}
         for t in teams:
             actions.update(t(obs))
@@ -62,9 +68,10 @@ def play(robot: str, size: int, duration: float, seed: int) -> dict[str, Any]:
         if info is not None:
             events.update(e["kind"] for e in info["game"]["events"])
     seconds = steps * env.world.control_dt
+    finished = not env.agents
     env.close()
     return {"seed": seed, "match_seconds": seconds, "playing_seconds": duration,
-            "events": dict(events)}
+            "finished": finished, "events": dict(events)}
 
 
 def _mean_ci(values: list[float]) -> str:
@@ -83,7 +90,10 @@ def report(rows: list[dict[str, Any]]) -> None:
     print(f"| per match ({len(rows)} matches) | mean (95 % CI) |")
     print("|---|---|")
     ratio = [r["match_seconds"] / r["playing_seconds"] for r in rows]
+    unfinished = [r["seed"] for r in rows if not r["finished"]]
     print(f"| match time / playing time | {_mean_ci(ratio)} |")
+    print(f"| matches not over after {MAX_RATIO:g} times their playing time | "
+          f"{len(unfinished)} (seeds {unfinished}) |")
     fouls = [sum(v for k, v in r["events"].items() if k in FOULS) for r in rows]
     print(f"| fouls, all kinds | {_mean_ci(fouls)} |")
     for kind in kinds:

@@ -245,10 +245,12 @@ def test_game_flow_counts_a_matchs_time_and_events(capsys):
     row = flow.play("ssl", 1, 2.0, seed=0)
     assert row["playing_seconds"] == 2.0
     assert row["match_seconds"] >= 2.0  # the clock stops while nobody may play the ball
+    assert row["finished"] == (row["match_seconds"] < flow.MAX_RATIO * 2.0)
     assert all(isinstance(v, int) and v > 0 for v in row["events"].values())
     flow.report([row, {**row, "match_seconds": 2 * row["match_seconds"]}])
     text = capsys.readouterr().out
     ratio = 1.5 * row["match_seconds"] / 2.0
     assert f"| match time / playing time | {ratio:.2f} (" in text
+    assert "| matches not over after 10 times their playing time | " in text
     with pytest.raises(SystemExit):
         flow.main(["--matches", "0"])
