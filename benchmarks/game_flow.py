@@ -26,13 +26,12 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import statistics
 import sys
 from collections import Counter
 from typing import Any
 
 import soccer_env
-from agents.common.stats import t975
+from agents.common.stats import mean_interval
 from agents.scripted import HumanoidTeam, ScriptedTeam
 from soccer_env.sim.game.types import FOULS
 
@@ -75,12 +74,9 @@ def play(robot: str, size: int, duration: float, seed: int) -> dict[str, Any]:
 
 
 def _mean_ci(values: list[float]) -> str:
-    """``mean (low to high)``, Student-t 95 % over matches."""
-    m = statistics.fmean(values)
-    if len(values) < 2:
-        return f"{m:.2f}"
-    h = t975(len(values) - 1) * statistics.stdev(values) / math.sqrt(len(values))
-    return f"{m:.2f} ({m - h:.2f} to {m + h:.2f})"
+    """``mean (low to high)``, Student-t 95 % over matches (:func:`mean_interval`)."""
+    m, lo, hi = mean_interval(values)
+    return f"{m:.2f} ({lo:.2f} to {hi:.2f})" if math.isfinite(lo) else f"{m:.2f}"
 
 
 def report(rows: list[dict[str, Any]]) -> None:

@@ -122,6 +122,11 @@ def true_velocity_env(**kwargs: Any) -> gym.Env:
     return TrueBallVelocity(gym.make(GK, obs_mode="perceived", **kwargs))
 
 
+def once_moving_env(**kwargs: Any) -> gym.Env:
+    """Goalkeeper-v0, perceived, with :class:`TrueVelocityOnceMoving` observations."""
+    return TrueVelocityOnceMoving(gym.make(GK, obs_mode="perceived", **kwargs))
+
+
 #: The oracle environment's id, registered here for :func:`agents.runs.evaluation.evaluate` (which
 #: runs it in this process with one worker).
 ORACLE_ID = "soccer_env_bench/FirstFrameOracle-v0"
@@ -132,8 +137,7 @@ if TRUE_VELOCITY_ID not in gym.registry:
     gym.register(TRUE_VELOCITY_ID, entry_point=true_velocity_env)
 ONCE_MOVING_ID = "soccer_env_bench/TrueVelocityOnceMoving-v0"
 if ONCE_MOVING_ID not in gym.registry:
-    gym.register(ONCE_MOVING_ID, entry_point=lambda **kw: TrueVelocityOnceMoving(
-        gym.make(GK, obs_mode="perceived", **kw)))
+    gym.register(ONCE_MOVING_ID, entry_point=once_moving_env)
 
 
 def humanoid(episodes: int, workers: int, tracker: str = "mfbpf") -> None:

@@ -14,7 +14,7 @@ from contextlib import contextmanager
 from typing import Any
 
 __all__ = ["process_context", "ignore_interrupts", "process_pool", "resolve_workers",
-           "map_jobs"]
+           "map_jobs", "stripes", "unstripe"]
 
 
 def process_context(start_method: str | None = None) -> Any:
@@ -86,3 +86,20 @@ def map_jobs(fn: Callable[[Any], Any], jobs: Sequence[Any], workers: int | None 
             if progress:
                 progress(done, len(jobs))
     return results
+
+
+def stripes(items: Sequence[Any], workers: int) -> list[list[Any]]:
+    """``items`` dealt round-robin into ``min(workers, len(items))`` stripes (stripe ``i``
+    holds ``items[i::n]``), one job each for :func:`map_jobs`; :func:`unstripe` puts the
+    stripes' per-item results back in the items' order."""
+    n = max(1, min(int(workers), len(items)))
+    return [list(items[i::n]) for i in range(n)]
+
+
+def unstripe(parts: Sequence[Sequence[Any]]) -> list[Any]:
+    """The per-item results of :func:`stripes`' stripes (``parts[i]`` for stripe ``i``, in
+    its order) in the order of the items they were dealt from."""
+    out: list[Any] = [None] * sum(len(p) for p in parts)
+    for i, part in enumerate(parts):
+        out[i::len(parts)] = list(part)
+    return out

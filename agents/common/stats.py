@@ -1,12 +1,16 @@
 """The intervals and tests the evaluation, the ablations and the matches report: Wilson's
 score interval of a rate (:func:`wilson`), the Student-t quantile of a mean's interval
-(:func:`t975`) and the exact sign test of paired outcomes (:func:`sign_test`)."""
+(:func:`t975`) and the interval itself (:func:`mean_interval`), and the exact sign test of
+paired outcomes (:func:`sign_test`)."""
 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
-__all__ = ["wilson", "t975", "sign_test"]
+import numpy as np
+
+__all__ = ["wilson", "t975", "mean_interval", "sign_test"]
 
 
 def wilson(successes: int, n: int, z: float = 1.96) -> tuple[float, float]:
@@ -34,6 +38,20 @@ def t975(dof: int) -> float:
          (3 * z ** 7 + 19 * z ** 5 + 17 * z ** 3 - 15 * z) / 384,
          (79 * z ** 9 + 776 * z ** 7 + 1482 * z ** 5 - 1920 * z ** 3 - 945 * z) / 92160]
     return z + sum(gi / dof ** (i + 1) for i, gi in enumerate(g))
+
+
+def mean_interval(values: Sequence[float]) -> tuple[float, float, float]:
+    """The mean of ``values`` and its Student-t 95 % interval, ``(mean, low, high)``:
+    ``mean -+ t975(n - 1) s / sqrt(n)`` with ``s`` the sample standard deviation; with one
+    value the interval is unbounded."""
+    x = np.asarray(values, dtype=np.float64)
+    if x.size == 0:
+        raise ValueError("mean_interval needs at least one value")
+    mean = float(x.mean())
+    if x.size < 2:
+        return mean, -math.inf, math.inf
+    half = t975(x.size - 1) * float(x.std(ddof=1)) / math.sqrt(x.size)
+    return mean, mean - half, mean + half
 
 
 def sign_test(wins: int, losses: int) -> float:

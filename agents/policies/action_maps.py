@@ -201,7 +201,7 @@ def scripted_guard_y(obs: np.ndarray, params: Mapping[str, float]) -> np.ndarray
     px, py = obs[..., _POSE[0]], obs[..., _POSE[1]]
     dx, dy = obs[..., _BALL[0]], obs[..., _BALL[1]]
     bx, by = px + c * dx - s * dy, py + s * dx + c * dy
-    vx, vy = np.moveaxis(team_frame_ball_velocity(obs), -1, 0)
+    vx, vy = _rotate(c, s, obs[..., _BALL[2]], obs[..., _BALL[3]])
     gx, a = params["x_min"], params["deceleration"]
     speed = np.hypot(vx, vy)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -219,9 +219,14 @@ def team_frame_ball_velocity(obs: np.ndarray) -> np.ndarray:
     ``(..., 2)``: the body-frame entries rotated by the heading, ``(c v_x - s v_y,
     s v_x + c v_y)``."""
     obs = np.asarray(obs, dtype=np.float64)
-    c, s = _heading(obs)
-    bvx, bvy = obs[..., _BALL[2]], obs[..., _BALL[3]]
-    return np.stack([c * bvx - s * bvy, s * bvx + c * bvy], axis=-1)
+    return np.stack(_rotate(*_heading(obs), obs[..., _BALL[2]], obs[..., _BALL[3]]), axis=-1)
+
+
+def _rotate(c: np.ndarray, s: np.ndarray, x: np.ndarray, y: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray]:
+    """The body-frame vector ``(x, y)`` in the team frame of a robot with heading
+    ``(cos, sin) = (c, s)``: rotated by the heading, ``(c x - s y, s x + c y)``."""
+    return c * x - s * y, s * x + c * y
 
 
 def _to_body(c: np.ndarray, s: np.ndarray, x: np.ndarray, y: np.ndarray

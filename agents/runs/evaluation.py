@@ -27,7 +27,7 @@ import gymnasium as gym
 
 import soccer_env  # noqa: F401  (registers the environments)
 from agents.common.checks import check_full_infos
-from agents.common.processes import map_jobs
+from agents.common.processes import map_jobs, stripes, unstripe
 from agents.common.stats import sign_test, wilson
 from agents.policies.base import describe_policy, reset_policy
 from agents.runs.resolve import make_policy, policy_for_jobs, saved_model
@@ -186,21 +186,18 @@ def evaluate(policy: str | os.PathLike | Callable = "scripted",
     env_kwargs = dict(env_kwargs or {})
     check_full_infos(env_kwargs, "evaluate")
     seeds = list(range(int(start_seed), int(start_seed) + int(episodes)))
-    workers = min(int(workers), len(seeds))
     name = describe_policy(policy)
     if saved_model(policy):
         # Load a saved model once here (its numpy copy pickles cheaply) rather than import
         # torch and load it again in every worker; the workers never open the file.
         policy = policy_for_jobs(policy, env_id, env_kwargs, trust)
-    chunks = [seeds[i::workers] for i in range(workers)]
+    chunks = stripes(seeds, workers)
     jobs = [(policy, env_id, env_kwargs, c, measure_estimator) for c in chunks]
-    parts = map_jobs(_run_episodes, jobs, workers)
-    saved_by_seed: dict[int, bool] = {}
+    parts = map_jobs(_run_episodes, jobs, len(chunks))
     outcomes: Counter = Counter()
-    for chunk, part in zip(chunks, parts):
-        saved_by_seed.update(zip(chunk, part["saved"]))
+    for part in parts:
         outcomes.update(part["outcomes"])
-    saved = [saved_by_seed[s] for s in seeds]
+    saved = unstripe([p["saved"] for p in parts])
     steps = sum(p["steps"] for p in parts)
     saves = sum(saved)
     lo, hi = wilson(saves, len(seeds))

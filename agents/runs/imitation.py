@@ -50,8 +50,8 @@ import gymnasium as gym
 import numpy as np
 
 import soccer_env  # noqa: F401  (registers the environments)
-from agents.common.checks import check_full_infos
-from agents.common.processes import map_jobs
+from agents.common.checks import check_counts, check_full_infos
+from agents.common.processes import map_jobs, stripes, unstripe
 from agents.policies.action_maps import (
     BALL_RESIDUAL,
     ball_residual_params,
@@ -109,13 +109,9 @@ class ImitationConfig:
     def __post_init__(self) -> None:
         self.env_kwargs = dict(self.env_kwargs)
         self.hidden = tuple(self.hidden)
-        for name, low in (("rounds", 1), ("episodes", 1), ("frame_stack", 1), ("epochs", 1),
-                          ("batch_size", 1), ("seed", 0), ("eval_episodes", 0),
-                          ("eval_seed", 0), ("workers", 1), ("torch_threads", 1)):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) \
-                    or value < low:
-                raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
+        check_counts(self, (("rounds", 1), ("episodes", 1), ("frame_stack", 1), ("epochs", 1),
+                            ("batch_size", 1), ("seed", 0), ("eval_episodes", 0),
+                            ("eval_seed", 0), ("workers", 1), ("torch_threads", 1)))
         if not self.hidden or any(isinstance(h, bool) or not isinstance(h, (int, np.integer))
                                   or h < 1 for h in self.hidden):
             raise ValueError(f"hidden must be one or more integers >= 1, got {self.hidden!r}")
@@ -137,7 +133,7 @@ def teacher_action(obs: np.ndarray, true_velocity: Sequence[float],
     with ``v_belief`` the observation's ball velocity in the team frame [m/s]
     (:func:`~agents.policies.action_maps.team_frame_ball_velocity`) and ``true_velocity``
     the ball's [m/s]; float32 ``(2,)``."""
-    belief = team_frame_ball_velocity(np.asarray(obs, dtype=np.float64))
+    belief = team_frame_ball_velocity(obs)
     diff = np.asarray(true_velocity, dtype=np.float64) - belief
     return np.clip(diff / float(residual), -1.0, 1.0).astype(np.float32)
 
@@ -238,12 +234,10 @@ def _round_data(cfg: ImitationConfig, policy: NumpyPolicy | None, round_: int,
     """Round ``round_``'s shots played by ``policy``: network inputs, teacher's labels, the
     steps played. The shots are spread over the workers and put back in seed order."""
     first = TRAIN_SEED + cfg.seed * 10_000_000 + round_ * cfg.episodes
-    seeds = list(range(first, first + cfg.episodes))
-    workers = min(cfg.workers, len(seeds))
-    chunks = [seeds[i::workers] for i in range(workers)]
-    parts = map_jobs(_play, [(cfg.env_kwargs, policy, c, residual) for c in chunks], workers)
-    by_seed = {s: shot for chunk, part in zip(chunks, parts) for s, shot in zip(chunk, part)}
-    shots = [by_seed[s] for s in seeds]
+    chunks = stripes(range(first, first + cfg.episodes), cfg.workers)
+    parts = map_jobs(_play, [(cfg.env_kwargs, policy, c, residual) for c in chunks],
+                     len(chunks))
+    shots = unstripe(parts)
     x = np.concatenate([stack_history(o, cfg.frame_stack) for o, _ in shots])
     y = np.concatenate([a for _, a in shots])
     return x, y, len(y)
@@ -273,14 +267,15 @@ def imitate(cfg: ImitationConfig, out: str | os.PathLike,
         x_all.append(x)
         y_all.append(y)
         steps += n
-        layers, norm, loss = _fit(np.concatenate(x_all), np.concatenate(y_all), cfg, r)
+        labels = np.concatenate(y_all)
+        layers, norm, loss = _fit(np.concatenate(x_all), labels, cfg, r)
         meta = {"algorithm": "DAgger", "env_id": GOALKEEPER_ID,
                 "env_kwargs": cfg.env_kwargs, "round": r, "steps": steps,
                 "command": shlex.join(config["command"]), "config": config}
         policy = _policy(cfg, layers, norm, params, meta)
         path = policy.save(out / f"round_{r}_policy.npz")
-        row = {"round": r, "steps": steps, "samples": int(sum(len(a) for a in y_all)),
-               "loss": loss, "zero_loss": float(np.mean(np.concatenate(y_all) ** 2)),
+        row = {"round": r, "steps": steps, "samples": len(labels),
+               "loss": loss, "zero_loss": float(np.mean(labels ** 2)),
                "seconds": time.perf_counter() - t0}
         if cfg.eval_episodes:
             t_eval = time.perf_counter()

@@ -39,7 +39,7 @@ import numpy as np
 import soccer_env
 from agents.common.checks import check_full_infos
 from agents.common.processes import map_jobs
-from agents.common.stats import t975, wilson
+from agents.common.stats import mean_interval, wilson
 from agents.policies.numpy_policy import NumpyPolicy
 from agents.scripted import TEAMS, HumanoidTeam, ScriptedTeam
 from soccer_env.perception.base import OBS_MODES
@@ -326,12 +326,7 @@ class HeadToHead:
         by_seed: dict[int, list[int]] = {}
         for r in self.records:
             by_seed.setdefault(r.seed, []).append(r.goal_difference)
-        units = np.array([np.mean(v) for v in by_seed.values()])
-        mean = float(units.mean())
-        if len(units) < 2:
-            return mean, -math.inf, math.inf
-        half = t975(len(units) - 1) * float(units.std(ddof=1)) / math.sqrt(len(units))
-        return mean, mean - half, mean + half
+        return mean_interval([np.mean(v) for v in by_seed.values()])
 
     def ball_error(self, side: int) -> tuple[float, float]:
         """Side ``0`` (``a``) or ``1`` (``b``)'s ball-belief error: ``(mean, rms)`` [m]."""

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
-from agents.common.stats import sign_test, wilson
+from agents.common.processes import stripes, unstripe
+from agents.common.stats import mean_interval, sign_test, t975, wilson
 from agents.runs.evaluation import evaluate
 
 
@@ -104,3 +107,20 @@ def test_sign_test_is_the_exact_binomial_tail():
     for bad in ((-1, 3), (2.5, 3), (True, 3)):
         with pytest.raises(ValueError, match="must be an integer >= 0"):
             sign_test(*bad)
+
+
+def test_mean_interval_is_the_student_t_interval():
+    m, lo, hi = mean_interval([1.0, 2.0, 3.0, 6.0])
+    half = t975(3) * np.std([1.0, 2.0, 3.0, 6.0], ddof=1) / 2.0
+    assert m == 3.0 and (lo, hi) == pytest.approx((3.0 - half, 3.0 + half))
+    assert mean_interval([2.5]) == (2.5, -math.inf, math.inf)
+    with pytest.raises(ValueError, match="at least one value"):
+        mean_interval([])
+
+
+def test_stripes_deal_items_round_robin_and_unstripe_restores_their_order():
+    items = list(range(10, 17))
+    parts = stripes(items, 3)
+    assert parts == [[10, 13, 16], [11, 14], [12, 15]]
+    assert unstripe([[2 * x for x in p] for p in parts]) == [2 * x for x in items]
+    assert stripes(items[:2], 8) == [[10], [11]]  # no empty stripe
