@@ -206,6 +206,24 @@ class TeamGeometry:
                     return tx, ty
         return tx, ty
 
+    def leave_segment(self, x: float, y: float, ax: float, ay: float, qx: float, qy: float,
+                      dist: float) -> tuple[float, float]:
+        """:meth:`off_segment` kept inside the walls: where the sideways point lies beyond
+        them (a robot between a wall and the segment), the nearest point inside them that is
+        ``dist`` from the segment, searched on rings of 5 cm steps round ``(x, y)`` in 15
+        degree steps (up to 1.5 m) [m]."""
+        tx, ty = self.off_segment(x, y, ax, ay, qx, qy, dist)
+        if abs(tx) <= self.lim_x and abs(ty) <= self.lim_y:
+            return tx, ty
+        for k in range(1, 31):
+            for j in range(24):
+                a = j * math.pi / 12.0
+                cx, cy = x + 0.05 * k * math.cos(a), y + 0.05 * k * math.sin(a)
+                if abs(cx) <= self.lim_x and abs(cy) <= self.lim_y and \
+                        self.off_segment(cx, cy, ax, ay, qx, qy, dist) == (cx, cy):
+                    return cx, cy
+        return self.within_walls(tx, ty)
+
     @staticmethod
     def off_segment(x: float, y: float, ax: float, ay: float, qx: float, qy: float,
                     dist: float) -> tuple[float, float]:

@@ -3,7 +3,12 @@
 * the **keeper** plays :class:`~soccer_env.envs.keeper.ScriptedGoalkeeper` (guard line in front
   of the goal, moving to where the ball's predicted path crosses it), its kicker power capped
   at the team's, except that it clears a slow ball lying in its own defense area as the
-  attacker would (:class:`~agents.scripted.attack.Attack`);
+  attacker would (:class:`~agents.scripted.attack.Attack`). Under the game flow it catches
+  instead of deflecting (no kick, the dribbler on; ``catch``): the goalkeeper's save kicks
+  the ball back the way it came, which in a match sends it over a touch line or the far goal
+  line (an aimless kick) about once every ten seconds of play, and each time the game stops
+  for a ball placement; the caught ball lies slow in the defense area, and the keeper clears
+  it as the attacker plays (a shot or a pass, under the speed limit);
 * the **attacker** plays :class:`~agents.scripted.attack.Attack`;
 * the **defenders** play :class:`~agents.scripted.defence.Defence`.
 
@@ -106,13 +111,16 @@ class OpenPlay:
         defence: the defenders' play.
         keeper: the scripted goalkeeper robot 0 plays (of a team of two or more).
         kick_power: the kicker power the keeper's kicks are capped at (``(0, 1]``).
+        catch: whether the guarding keeper catches the ball (no kick, the dribbler on)
+            instead of kicking it away (the game flow's play; see the module docstring).
     """
 
     def __init__(self, view: ObservationView, roles: Roles, attack: Attack, defence: Defence,
-                 keeper: ScriptedGoalkeeper, kick_power: float) -> None:
+                 keeper: ScriptedGoalkeeper, kick_power: float, catch: bool = False) -> None:
         self.view, self.roles, self.attack, self.defence = view, roles, attack, defence
         self.keeper = keeper
         self.kick_power = kick_power
+        self.catch = bool(catch)
         self.pitch = attack.geometry.pitch
         # The observation columns open_play_rows reads.
         self.frame_index = np.array(view.frame_index, dtype=np.int64)
@@ -137,9 +145,12 @@ class OpenPlay:
         return self.keeper_guard(o)
 
     def keeper_guard(self, o: list[float]) -> list[float]:
-        """The scripted goalkeeper's action, its kicker power capped at the team's."""
+        """The scripted goalkeeper's action, its kicker power capped at the team's (or, with
+        ``catch``, no kick and the dribbler on)."""
         action = self.keeper(o).tolist()  # it reads entries by index: a list will do
-        action[3] = min(action[3], self.kick_power)
+        action[3] = 0.0 if self.catch else min(action[3], self.kick_power)
+        if self.catch:
+            action[5] = 1.0
         return action
 
     def field_player_act(self, index: int, f: Frame, xs: list[float], ys: list[float],
@@ -168,6 +179,8 @@ class OpenPlay:
                                self.mate_index, self.opponent_index, out)
         if guard.any():
             out[guard] = self.keeper.act_batch(obs[guard])
-            if self.kick_power < 1.0:
+            if self.catch:
+                out[guard, 3], out[guard, 5] = 0.0, 1.0
+            elif self.kick_power < 1.0:
                 out[guard, 3] = np.minimum(out[guard, 3], self.kick_power)
         return out

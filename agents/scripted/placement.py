@@ -4,9 +4,11 @@ state at the end of the placer's observation.
 The placer (the field player nearest the ball; the keeper when it is alone) stops between the
 designated position and the ball facing the ball, turns its dribbler on and backs off to the
 designated position pulling the ball, which works against a wall too (a ball against a wall or
-in a corner is taken facing the wall). With the ball within :data:`PLACE_DONE` of the position
-it turns the dribbler off and backs away, to the free kick's clearance when the free kick is
-its team's, else to the stop distance.
+in a corner is taken facing the wall). Its ways to the ball and to the designated position go
+round the goals (:class:`~agents.scripted.goals.GoalWalls`): a ball behind a goal line or in a
+goal's corner is fetched through the field and the goal's mouth. With the ball within
+:data:`PLACE_DONE` of the position it turns the dribbler off and backs away, to the free
+kick's clearance when the free kick is its team's, else to the stop distance.
 
 Positions are in the team frame [m], headings in radians, speeds in m/s.
 """
@@ -17,6 +19,7 @@ import math
 from collections.abc import Sequence
 
 from agents.scripted.geometry import MARGIN, TeamGeometry
+from agents.scripted.goals import GoalWalls
 from agents.scripted.motion import drive_and_turn
 from agents.scripted.view import Frame
 from soccer_env.presets.rules import RuleSpec
@@ -25,9 +28,12 @@ __all__ = ["BallPlacement", "PLACE_SPEED", "PLACE_DONE", "PLACE_DECELERATION"]
 
 #: Speed [m/s] at which the placer pulls the ball, and within how far of the designated
 #: position it releases it [m].
-PLACE_SPEED, PLACE_DONE = 0.8, 0.05
+PLACE_SPEED, PLACE_DONE = 1.5, 0.05
 #: Deceleration [m/s^2] of the placer carrying the ball, well within what the dribbler holds.
 PLACE_DECELERATION = 1.0
+#: Within this distance of a rolling ball [m] the placer aims at the ball itself, not where
+#: the ball will be half a second later.
+LEAD_FROM = 0.5
 
 
 class BallPlacement:
@@ -42,6 +48,8 @@ class BallPlacement:
 
     def __init__(self, geometry: TeamGeometry, rules: RuleSpec, game: dict[str, int]) -> None:
         self.geometry, self.rules, self.game = geometry, rules, game
+        #: The goals' walls, which the placer goes round.
+        self.walls = GoalWalls(geometry.field, geometry.robot.radius)
 
     def act(self, o: Sequence[float], f: Frame) -> list[float]:
         """The placer's action from its observation ``o`` (its frame ``f``): fetch the ball
@@ -70,13 +78,18 @@ class BallPlacement:
             # Carry the ball to the designated position without turning: the robot moves
             # as the ball must (the dribbler holds it against the front and damps its
             # sideways slip), slowing down on the braking profile.
-            ex, ey = qx - bx, qy - by
+            # The robot's centre goes where it stands when the ball is placed, round the
+            # goals (a ball fetched from inside a goal comes out through the mouth).
+            wx, wy = self.walls.route(px, py, qx + px - bx, qy + py - by)
+            ex, ey = wx - px, wy - py
+            norm = math.hypot(ex, ey) or 1.0
             speed = min(PLACE_SPEED, math.sqrt(2.0 * PLACE_DECELERATION * to_ball))
-            wx, wy = ex / to_ball * speed, ey / to_ball * speed
+            wx, wy = ex / norm * speed, ey / norm * speed
             vx, vy = c * wx + s * wy, -s * wx + c * wy
             return [vx / r.max_speed, vy / r.max_speed, 0.0, 0.0, -1.0, 1.0]
-        if bvx * bvx + bvy * bvy > 0.09:
-            # A rolling ball: meet it half a second ahead.
+        if bvx * bvx + bvy * bvy > 0.09 and math.hypot(bx - px, by - py) > LEAD_FROM:
+            # A rolling ball, still far: meet it half a second ahead. Near it, leading would
+            # chase a ball the robot itself pushes along.
             bx, by = bx + 0.5 * bvx, by + 0.5 * bvy
         # Stop between the designated position and the ball, facing the ball; then move in
         # until the ball is at the front.
@@ -90,8 +103,7 @@ class BallPlacement:
             cap = None
         lx = geo.field.half_length + geo.field.boundary - r.radius - 0.005
         ly = geo.field.half_width + geo.field.boundary - r.radius - 0.005
-        tx = max(-lx, min(lx, tx))
-        ty = max(-ly, min(ly, ty))
+        tx, ty = self.walls.route(px, py, max(-lx, min(lx, tx)), max(-ly, min(ly, ty)))
         return drive_and_turn(r, f, tx, ty, face, cap, dribble=1.0)
 
     def pick_up_direction(self, bx: float, by: float, ux: float, uy: float
@@ -99,7 +111,8 @@ class BallPlacement:
         """The direction ``(ux, uy)`` (unit) the placer faces to take the ball at ``(bx,
         by)``: from the designated position to the ball, turned by the least multiple of 15
         degrees that lets the robot's centre, a contact distance behind the ball, stay off the
-        walls (a ball against a wall or in a corner is taken facing the wall)."""
+        walls and the goals' walls (a ball against a wall or in a corner is taken facing the
+        wall)."""
         geo = self.geometry
         f, r = geo.field, geo.robot
         wx = f.half_length + f.boundary - r.radius - 0.005
@@ -110,7 +123,7 @@ class BallPlacement:
             for sign in ((1.0,) if k == 0 else (1.0, -1.0)):
                 a = a0 + sign * k * math.pi / 12.0
                 cx, cy = bx - contact * math.cos(a), by - contact * math.sin(a)
-                if abs(cx) <= wx and abs(cy) <= wy:
+                if abs(cx) <= wx and abs(cy) <= wy and self.walls.free(cx, cy, 0.005):
                     return math.cos(a), math.sin(a)
         # Wedged in a corner: face into it.
         nx = math.copysign(1.0, bx) if abs(bx) > wx - contact else 0.0

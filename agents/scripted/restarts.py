@@ -298,7 +298,7 @@ class RestartPlay:
         if corridor is not None:
             qx, qy, gap = corridor
             if geo.off_segment(px, py, bx, by, qx, qy, gap) != (px, py):
-                tx, ty = geo.off_segment(px, py, bx, by, qx, qy, gap + 0.05)
+                tx, ty = geo.leave_segment(px, py, bx, by, qx, qy, gap + 0.05)
                 clear_kick = False  # leaving the corridor sideways leaves the circle too
         if math.hypot(px - bx, py - by) < keep and clear_kick:
             tx, ty = geo.clear_of(px, py, bx, by, keep + 0.05)

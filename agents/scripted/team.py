@@ -134,7 +134,7 @@ class ScriptedTeam:
         defence = Defence(self.geometry, self.team_size, defender_spacing, self.kick_power)
         self.defender_spacing = defence.spacing
         self.open_play = OpenPlay(self.view, self.roles, attack, defence, self.keeper,
-                                  self.kick_power)
+                                  self.kick_power, catch=game is not None)
         #: The restart play, with the game flow (else None).
         self.restarts = None if game is None else RestartPlay(
             self.open_play, BallPlacement(self.geometry, self.rules, game), self.rules, game)
