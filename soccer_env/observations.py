@@ -217,7 +217,20 @@ class ObservationBuilder:
             names += [f"{tag}.{e}" for e in ("dx", "dy", "cos", "sin", "vx", "vy")]
         for post in ("own_left", "own_right", "opp_left", "opp_right"):
             names += [f"goal.{post}.dx", f"goal.{post}.dy"]
-        return (*names, *self._game_names, *self._feature_names)
+        # The game flow's slot entries (game.slot<j>.on_field) named after the slots.
+        game = [self._slot_name(name, n_mates) for name in self._game_names]
+        return (*names, *game, *self._feature_names)
+
+    @staticmethod
+    def _slot_name(name: str, n_mates: int) -> str:
+        """A game entry's name, ``game.slot<j>.<entry>`` named after slot ``j``: ``game.mate<j>.``
+        or ``game.opp<j - n_mates>.``."""
+        if not name.startswith("game.slot"):
+            return name
+        j_text, entry = name[len("game.slot"):].split(".", 1)
+        j = int(j_text)
+        tag = f"mate{j}" if j < n_mates else f"opp{j - n_mates}"
+        return f"game.{tag}.{entry}"
 
     @property
     def names(self) -> tuple[str, ...]:

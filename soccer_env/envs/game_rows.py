@@ -20,7 +20,7 @@ from soccer_env.presets import FieldSpec
 from soccer_env.sim.world import MAX_TEAM_SIZE
 
 __all__ = ["GameRows", "GAME_NAMES", "GAME_FLOW_NAMES", "GOALS_BOUND", "CARDS_BOUND",
-           "FOULS_BOUND", "game_bounds"]
+           "FOULS_BOUND", "game_bounds", "slot_names", "other_robots"]
 
 #: Game-state entries at the end of every match observation: the match time left as a
 #: fraction of ``match_duration``, goals for, goals against, and +1 / -1 while a restart
@@ -47,6 +47,14 @@ GAME_FLOW_NAMES = (
     "game.red_theirs", "game.fouls_ours", "game.fouls_theirs", "game.allowed_ours",
     "game.allowed_theirs", "game.can_place", "game.barred", "game.on_field",
 )
+#: After :data:`GAME_FLOW_NAMES`, one entry per other robot's slot of the observation (the
+#: agent's team-mates in robot order, then the opponents: its ``mate<j>.*`` and ``opp<j>.*``
+#: entries): 1 while that robot is on the field, 0 while a card or a removal penalty keeps it
+#: off (its pose entries then show where it waits). The names are ``game.slot<j>.on_field``
+#: here; each agent's observation names them after its slots, ``game.mate<j>.on_field`` and
+#: ``game.opp<j>.on_field`` (:meth:`~soccer_env.observations.ObservationBuilder.names_for`).
+SLOT_PREFIX = "game.slot"
+
 #: Column of each entry of :data:`GAME_FLOW_NAMES`.
 _FLOW = {name: k for k, name in enumerate(GAME_FLOW_NAMES)}
 
@@ -59,11 +67,25 @@ CARDS_BOUND = 1000.0
 FOULS_BOUND = 1e6
 
 
-def game_bounds(field: FieldSpec, flow: bool
+def slot_names(others: int) -> tuple[str, ...]:
+    """The names of the slots' on-field entries for ``others`` other robots."""
+    return tuple(f"{SLOT_PREFIX}{j}.on_field" for j in range(others))
+
+
+def other_robots(teams: list[int]) -> list[list[int]]:
+    """Each robot's other robots in the order of its observation's slots: its team-mates in
+    robot order, then its opponents in robot order."""
+    n = len(teams)
+    return [[j for j in range(n) if teams[j] == teams[i] and j != i]
+            + [j for j in range(n) if teams[j] != teams[i]] for i in range(n)]
+
+
+def game_bounds(field: FieldSpec, flow: bool, others: int = 0
                 ) -> tuple[tuple[float, ...], tuple[float, ...], tuple[str, ...]]:
     """The lower and upper bounds and the names of the game block: :data:`GAME_NAMES`, then
     with the game flow (``flow``) :data:`GAME_FLOW_NAMES` (the designated position within the
-    walled area of ``field`` [m])."""
+    walled area of ``field`` [m]) and the on-field flags of the ``others`` slots
+    (:func:`slot_names`)."""
     low, high = (0.0, 0.0, 0.0, -1.0), (1.0, GOALS_BOUND, GOALS_BOUND, 1.0)
     if not flow:
         return low, high, GAME_NAMES
@@ -75,7 +97,10 @@ def game_bounds(field: FieldSpec, flow: bool
     flow_low = [0.0] * 11 + [-1.0, 0.0, -lx, -ly, 0.0, 0.0] + [0.0] * 11
     flow_high = [1.0] * 11 + [1.0, 1.0, lx, ly, 1.0, 1.0] + [CARDS_BOUND] * 4 + \
         [FOULS_BOUND, FOULS_BOUND] + [team] * 2 + [1.0, team, 1.0]
-    return low + tuple(flow_low), high + tuple(flow_high), GAME_NAMES + GAME_FLOW_NAMES
+    flow_low += [0.0] * others
+    flow_high += [1.0] * others
+    return (low + tuple(flow_low), high + tuple(flow_high),
+            GAME_NAMES + GAME_FLOW_NAMES + slot_names(others))
 
 
 def _situation_column(kind: str, ours: bool) -> int:
@@ -99,6 +124,7 @@ class GameRows:
         self.teams = teams
         self.n_blue = n_blue
         self.match_duration = match_duration
+        self._others = np.array(other_robots(teams), dtype=np.int64).reshape(len(teams), -1)
 
     def simple(self, time: float, score: list[int], restart: int) -> np.ndarray:
         """The block of a match with the simple referee (:data:`GAME_NAMES`) at ``time`` [s]
@@ -113,22 +139,24 @@ class GameRows:
     def flow(self, game: Any, score: list[int], restart: int, off_field: list[int]
              ) -> np.ndarray:
         """The block of a match that plays the game flow (:data:`GAME_NAMES`, then
-        :data:`GAME_FLOW_NAMES`) from its ``game`` controller, the ``score``, the ``restart``
-        team and the robots ``off_field``."""
+        :data:`GAME_FLOW_NAMES` and the slots' on-field flags) from its ``game`` controller,
+        the ``score``, the ``restart`` team and the robots ``off_field``."""
         flag = 0.0 if restart < 0 else (1.0 if restart == 0 else -1.0)
         time_left = min(1.0, max(0.0, game.playing_time_left / self.match_duration))
         situation = game.situation()
         nxt = game.next_command[1] if game.next_command is not None else -1
         barred = game.barred_robot
-        rows = np.zeros((2, len(GAME_NAMES) + len(GAME_FLOW_NAMES)))
+        width = len(GAME_NAMES) + len(GAME_FLOW_NAMES)
+        rows = np.zeros((2, width))
         for t in (0, 1):
             sign = 1.0 if t == 0 else -1.0  # the team frame turns yellow's half a turn
             rows[t, 0:len(GAME_NAMES)] = (time_left, score[t], score[1 - t], flag * sign)
             referee = self._referee(game, t, situation, nxt, barred)
             rows[t, len(GAME_NAMES):] = list(referee.values())
-        out = rows[self.teams]
-        out[:, -1] = 1.0  # game.on_field
-        out[off_field, -1] = 0.0
+        on = np.ones(len(self.teams))
+        on[list(off_field)] = 0.0
+        out = np.concatenate([rows[self.teams], on[self._others]], axis=1)
+        out[:, width - 1] = on  # game.on_field
         return out
 
     def _referee(self, g: Any, t: int, situation: tuple[str, int], nxt: int, barred: int

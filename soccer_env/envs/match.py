@@ -233,7 +233,8 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
         self.robot_model = self._models[0] if blue else self._models[1]
         self.possible_agents = list(w.names)
         self.agents: list[str] = []
-        game_low, game_high, game_names = game_bounds(self.field, self.game_rules is not None)
+        game_low, game_high, game_names = game_bounds(self.field, self.game_rules is not None,
+                                                      w.n_robots - 1)
         self.builder = self._observation_builder(range(w.n_robots), game_low, game_high,
                                                  game_names)
         self._teams = w.teams.tolist()

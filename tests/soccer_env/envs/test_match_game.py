@@ -71,10 +71,12 @@ def test_without_the_game_flow_the_observation_keeps_its_four_game_entries():
     flow = SoccerParallelEnv(blue=2, yellow=2, game=True)
     assert plain.game_rules is None and flow.game_rules.name == "ssl-2025-div-b"
     names = list(flow.builder.names_for(0))
-    assert names[-len(GAME_FLOW_NAMES):] == list(GAME_FLOW_NAMES)
+    slots = ["game.mate0.on_field", "game.opp0.on_field", "game.opp1.on_field"]
+    assert names[-len(GAME_FLOW_NAMES) - 3:] == list(GAME_FLOW_NAMES) + slots
+    assert list(flow.builder.names_for(1))[-3:] == slots
     assert list(plain.builder.names_for(0))[-4:] == list(GAME_NAMES)
     size = plain.observation_space("blue_0").shape[0]
-    assert flow.observation_space("blue_0").shape[0] == size + len(GAME_FLOW_NAMES)
+    assert flow.observation_space("blue_0").shape[0] == size + len(GAME_FLOW_NAMES) + 3
 
 
 def test_the_match_with_the_game_flow_passes_the_parallel_api_test():
@@ -238,6 +240,13 @@ def test_a_yellow_card_takes_a_robot_to_the_bench_where_its_actions_are_ignored(
     assert info["blue_0"]["game"]["blue"]["robots_allowed"] == 2
     assert game_entry(env, obs, "blue_2", "game.on_field") == 0.0
     assert game_entry(env, obs, "blue_1", "game.on_field") == 1.0
+    # Every other robot's slot of blue_2 flags it off the field; the others stay on.
+    assert game_entry(env, obs, "blue_0", "game.mate1.on_field") == 0.0
+    assert game_entry(env, obs, "blue_1", "game.mate1.on_field") == 0.0
+    assert game_entry(env, obs, "blue_1", "game.mate0.on_field") == 1.0
+    assert game_entry(env, obs, "yellow_0", "game.opp2.on_field") == 0.0
+    assert [game_entry(env, obs, "yellow_0", f"game.opp{j}.on_field") for j in (0, 1)] \
+        == [1.0, 1.0]
     assert game_entry(env, obs, "yellow_1", "game.allowed_theirs") == 2.0
     bench = w.robot_array()[2, 0:2].copy()
     assert bench[1] < -env.field.half_width  # beyond the touch line
