@@ -2,7 +2,17 @@
 scripted team, self-play against a pool of past copies and the scripted team.
 
     python examples/train_ssl_team.py --out runs/ssl-team          # the shipped team's run
+    python examples/train_ssl_team.py --setting perceived-game --out runs/ssl-team-perceived
     python examples/train_ssl_team.py --tiny                       # seconds: what CI runs
+
+``--setting truth`` (the default) trains on true observations under the simple referee;
+``--setting perceived-game`` trains on what each team's ``ssl-2012`` cameras and filters
+give it, under the SSL game flow (stops, ball placements, free kicks, fouls and cards): each
+side perceives through its own pipeline, the matches run one by one in each worker (the
+batched match plays the simple referee only), the correction applies in open play only (the
+scripted team plays the restarts, :mod:`agents.scripted.residual`), and the idle team joins
+the scripted team in the league from the start, so that the team learns to score past a
+keeper that stands still as well as past one that moves.
 
 Every blue robot of every match is one entry of stable-baselines3's batch
 (:func:`agents.vec.factories.make_match_vec_env`, the matches stepped as one batch in each of two
@@ -56,6 +66,10 @@ TRAIN_KWARGS: dict[str, Any] = {"blue": 2, "yellow": 2, "match_duration": 30.0,
 #: The match the copies are evaluated in (and the shipped team's figures measured in).
 EVAL_KWARGS: dict[str, Any] = {"blue": 2, "yellow": 2, "match_duration": 60.0,
                                "control_dt": 1.0 / 30.0}
+#: What ``--setting perceived-game`` adds to both: each team's ``ssl-2012`` cameras and
+#: filters, the SSL game flow (Division B rules).
+PERCEIVED_GAME: dict[str, Any] = {"obs_mode": "perceived", "perception": {"vision": "ssl-2012"},
+                                  "game": True}
 #: PPO's settings.
 PPO_KWARGS: dict[str, Any] = {"n_steps": 128, "batch_size": 4096, "n_epochs": 5,
                               "gamma": 0.995, "learning_rate": 3e-4, "ent_coef": 0.0,
@@ -69,12 +83,19 @@ class PoolSelfPlay(SelfPlayCallback):
     against the scripted team."""
 
     def __init__(self, out: Path, update_every: int, pool_size: int, warmup: int,
-                 eval_matches: int, workers: int) -> None:
+                 eval_matches: int, workers: int, league: list[str] | None = None,
+                 eval_kwargs: dict[str, Any] | None = None, obs_mode: str = "truth",
+                 perception: dict[str, Any] | None = None) -> None:
         super().__init__(update_every=update_every, pool_size=pool_size, copy_at_start=False)
         self.out = out
         self.warmup = int(warmup)
         self.eval_matches = int(eval_matches)
         self.workers = int(workers)
+        #: The fixed members of the league besides the copies (the scripted team counts as
+        #: many times as there are copies).
+        self.league = list(league or [])
+        self.eval_kwargs = dict(EVAL_KWARGS if eval_kwargs is None else eval_kwargs)
+        self.obs_mode, self.perception = obs_mode, perception
         self.t0 = time.perf_counter()
 
     def _on_step(self) -> bool:
@@ -86,15 +107,17 @@ class PoolSelfPlay(SelfPlayCallback):
     def update_opponent(self) -> None:
         copy = self.snapshot()
         self.pool.append(copy)
-        self._venv.set_opponent_pool(["scripted"] * len(self.pool) + list(self.pool))
+        self._venv.set_opponent_pool(["scripted"] * len(self.pool) + self.league
+                                     + list(self.pool))
         self.n_updates += 1
         path = copy.save(self.out / "checkpoints" / f"team_{self.num_timesteps}.npz")
         line: dict[str, Any] = {"steps": int(self.num_timesteps),
                                 "seconds": round(time.perf_counter() - self.t0, 1),
                                 "checkpoint": path.name}
         if self.eval_matches:
-            h = head_to_head(Side(str(path), "truth"), Side("scripted", "truth"),
-                             self.eval_matches, start_seed=10_000, env_kwargs=EVAL_KWARGS,
+            h = head_to_head(Side(str(path), self.obs_mode, self.perception),
+                             Side("scripted", self.obs_mode, self.perception),
+                             self.eval_matches, start_seed=10_000, env_kwargs=self.eval_kwargs,
                              workers=self.workers)
             gd = h.goal_difference()
             line.update(wins=h.wins, draws=h.draws, losses=h.losses,
@@ -123,9 +146,19 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--eval", type=int, default=40,
                    help="matches each copy plays against the scripted team (40; 0: none)")
     p.add_argument("--seed", type=int, default=0, help="seed of the matches and of PPO (0)")
+    p.add_argument("--setting", choices=("truth", "perceived-game"), default="truth",
+                   help="truth observations and the simple referee, or each team's ssl-2012 "
+                        "perception and the SSL game flow (default: truth)")
     args = p.parse_args(argv)
     torch.set_num_threads(1)
     train, ppo = dict(TRAIN_KWARGS), dict(PPO_KWARGS)
+    eval_kwargs = dict(EVAL_KWARGS)
+    perceived = args.setting == "perceived-game"
+    obs_mode, perception = ("perceived", PERCEIVED_GAME["perception"]) if perceived else (
+        "truth", None)
+    if perceived:
+        train.update(PERCEIVED_GAME)
+        eval_kwargs["game"] = True
     if args.tiny:
         train["match_duration"] = 1.0
         args.matches, args.steps, args.warmup, args.copy_every, args.eval = 4, 512, 128, 128, 2
@@ -137,11 +170,14 @@ def main(argv: list[str] | None = None) -> int:
     env.close()
     venv = make_match_vec_env(train, n_matches=args.matches, learner="blue",
                               opponent="scripted", seed=args.seed, workers=args.workers,
-                              batched=True)
+                              batched=not perceived)
+    league = ["idle"] if perceived else []
+    if league:
+        venv.set_opponent_pool(["scripted", "scripted", *league])
     venv = VecNormalize(TeamResidualVecEnv(venv, params), gamma=ppo["gamma"])
     model = PPO("MlpPolicy", venv, seed=args.seed, verbose=0, **ppo)
     callback = PoolSelfPlay(out, args.copy_every, args.pool, args.warmup, args.eval,
-                            args.workers)
+                            args.workers, league, eval_kwargs, obs_mode, perception)
     t0 = time.perf_counter()
     model.learn(args.steps, callback=callback)
     minutes = (time.perf_counter() - t0) / 60
@@ -149,14 +185,15 @@ def main(argv: list[str] | None = None) -> int:
     command = "python examples/train_ssl_team.py " + shlex.join(
         sys.argv[1:] if argv is None else argv)
     final.meta.update(steps=int(model.num_timesteps), minutes=round(minutes, 1),
-                      command=command.strip(), train_kwargs=train, eval_kwargs=EVAL_KWARGS,
+                      command=command.strip(), train_kwargs=train, eval_kwargs=eval_kwargs,
                       ppo=ppo)
     path = final.save(out / "final_team.npz")
     venv.close()
     print(f"trained {model.num_timesteps:,} agent steps in {minutes:.1f} min; "
           f"{callback.n_updates} copies; the team: {path}")
-    h = head_to_head(Side(str(path), "truth"), Side("scripted", "truth"), args.eval or 2,
-                     start_seed=20_000, env_kwargs=EVAL_KWARGS, workers=args.workers)
+    h = head_to_head(Side(str(path), obs_mode, perception),
+                     Side("scripted", obs_mode, perception), args.eval or 2,
+                     start_seed=20_000, env_kwargs=eval_kwargs, workers=args.workers)
     print(h.summary())
     return 0
 

@@ -146,3 +146,17 @@ def test_train_ssl_team_example(tmp_path):
     team = NumpyPolicy.load(tmp_path / "run" / "final_team.npz")
     assert team.action_map["kind"] == "team-residual" and team.normalize is not None
     assert team.meta["steps"] == 512 and team.meta["train_kwargs"]["blue"] == 2
+
+
+def test_train_ssl_team_example_under_perception_and_the_game_flow(tmp_path):
+    _needs("stable_baselines3")
+    out = _run("train_ssl_team.py", "--setting", "perceived-game", "--out", str(tmp_path / "r"))
+    assert "trained 512 agent steps" in out
+    from agents.policies import NumpyPolicy
+
+    team = NumpyPolicy.load(tmp_path / "r" / "final_team.npz")
+    train = team.meta["train_kwargs"]
+    assert train["obs_mode"] == "perceived" and train["game"] is True
+    assert team.meta["eval_kwargs"]["game"] is True
+    assert "rules" in team.action_map["params"]
+    assert any(n == "game.mate0.on_field" for n in team.action_map["params"]["names"])

@@ -21,9 +21,14 @@ The map reads the robot's number in its team from the row's place in the batch: 
 team's roles depend on it (robot 0 keeps goal), and an observation does not carry it. Rows
 come as whole teams, robots in order (``(M * team_size, obs_dim)``, match after match), as
 :class:`~agents.vec.match.MatchVecEnv` lays out a team's entries and as
-:func:`agents.studies.matches.team_policy` calls a team's policy; so a team that plays
-through the map needs all its robots on the field (no game flow, whose cards send robots
-off).
+:func:`agents.studies.matches.team_policy` calls a team's policy. Under the game flow a robot
+sent off keeps its row (its observation says so, ``game.on_field``, and its team-mates' say
+which slot is empty), and the correction applies in open play only: while the game is
+stopped, at restarts, for a robot off the field and for the robot that took a restart and may
+not touch the ball again, the command is the scripted team's, which keeps the rules'
+distances, speeds and the double-touch rule (:meth:`~agents.scripted.restarts.RestartPlay.
+needs_restart_play`). The learner still sees every step and its observations carry the
+referee state, so its open play can prepare for what the restarts do.
 
 :func:`team_residual_params` records what rebuilds the scripted team (the specs as numbers, the
 observation's entry names, the team size), so a saved :class:`~agents.policies.NumpyPolicy`
@@ -46,6 +51,7 @@ import numpy as np
 
 from agents.scripted.team import TEAMS, ScriptedTeam
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
+from soccer_env.presets.rules import RuleSpec
 
 __all__ = ["TEAM_RESIDUAL", "team_residual_params", "team_residual_command",
            "scripted_team_from_params", "residual_command"]
@@ -64,7 +70,8 @@ def team_residual_params(env: Any, team: str = "blue", residual: float = TEAM_RE
                          ) -> dict[str, Any]:
     """The constants of the ``"team-residual"`` map for ``team`` of the match ``env`` (possibly
     wrapped): the field, ball and robot specs as numbers, the observation's entry names, the
-    team size and ``residual``. Only SSL teams without the game flow."""
+    team size, ``residual`` and, under the SSL game flow, the rule preset as numbers. Only SSL
+    teams."""
     u = getattr(env, "unwrapped", env)
     if team not in TEAMS:
         raise ValueError(f"team must be one of {list(TEAMS)}, got {team!r}")
@@ -72,16 +79,17 @@ def team_residual_params(env: Any, team: str = "blue", residual: float = TEAM_RE
     if kind != "ssl":
         raise ValueError(f"the 'team-residual' map corrects the scripted SSL team; the {team} "
                          f"team's robots are {kind!r}")
-    if getattr(u, "game_rules", None) is not None:
-        raise ValueError("the 'team-residual' map needs every robot of the team on the field: "
-                         "play it without the game flow (game=None)")
     if not (np.isfinite(residual) and 0.0 < residual <= 2.0):
         raise ValueError(f"residual must be in (0, 2], got {residual!r}")
     scripted = ScriptedTeam.for_env(u, team)
-    return {"team_size": scripted.team_size, "residual": float(residual),
-            "names": list(u.builder.names_for(team)),
-            "field": dataclasses.asdict(scripted.field),
-            "ball": dataclasses.asdict(scripted.ball), "robot": dataclasses.asdict(scripted.robot)}
+    params = {"team_size": scripted.team_size, "residual": float(residual),
+              "names": list(u.builder.names_for(team)),
+              "field": dataclasses.asdict(scripted.field),
+              "ball": dataclasses.asdict(scripted.ball),
+              "robot": dataclasses.asdict(scripted.robot)}
+    if scripted.restarts is not None:
+        params["rules"] = dataclasses.asdict(scripted.rules)
+    return params
 
 
 def scripted_team_from_params(params: Mapping[str, Any]) -> ScriptedTeam:
@@ -107,9 +115,10 @@ def _team_of(key: str) -> ScriptedTeam:
         d = {k: tuple(v) if isinstance(v, list) else v for k, v in d.items()}
         return cls(**d)
 
+    rules = spec(RuleSpec, params["rules"]) if "rules" in params else None
     return ScriptedTeam(spec(FieldSpec, params["field"]), spec(BallSpec, params["ball"]),
                         spec(SSLRobotSpec, params["robot"]), params["names"],
-                        int(params["team_size"]))
+                        int(params["team_size"]), rules=rules)
 
 
 def team_residual_command(obs: np.ndarray, act: np.ndarray, params: Mapping[str, Any]
@@ -135,9 +144,12 @@ def residual_command(team: ScriptedTeam, residual: float, obs: np.ndarray, act: 
     if len(obs) % size:
         raise ValueError(f"the 'team-residual' map acts on whole teams of {size} robots, in "
                          f"order (its roles depend on the robot's number); got {len(obs)} "
-                         "rows: a team with a robot off the field cannot play through it")
+                         "rows")
     base = team.act_batch(obs.reshape(-1, size, obs.shape[1])).reshape(-1, 6)
     base = base.astype(np.float64)
+    if team.restarts is not None:
+        # The scripted team's command at restarts, off the field and for a barred robot.
+        act[np.asarray(team.restarts.needs_restart_play(obs), dtype=bool)] = 0.0
     switches = list(_SWITCHES)
     base[:, switches] = np.where(base[:, switches] > 0.0, base[:, switches], -1.0)
     return np.clip(base + act * residual, -1.0, 1.0).astype(np.float32)

@@ -140,11 +140,41 @@ def test_training_through_the_map_gives_self_play_copies_the_map():
     venv.close()
 
 
+def test_under_the_game_flow_the_correction_applies_in_open_play_only():
+    """A full correction changes the command in open play and leaves the scripted team's at
+    restarts and for a robot off the field; the params rebuild a team with the match's
+    rules."""
+    env = soccer_env.parallel_env(blue=2, yellow=2, game=True, match_duration=30.0)
+    obs, _ = env.reset(seed=1)
+    params = team_residual_params(env, "blue")
+    assert params["rules"]["name"] == env.game_rules.name
+    team = ScriptedTeam.for_env(env, "blue")
+    yellow = ScriptedTeam.for_env(env, "yellow")
+    push = np.full((2, 6), 0.8)
+    seen = {"restart": 0, "open": 0}
+    while env.agents and env.world.time < 20.0:
+        rows = np.stack([obs["blue_0"], obs["blue_1"]])
+        scripted = team.act(rows)
+        scripted[:, 3:] = np.where(scripted[:, 3:] > 0.0, scripted[:, 3:], -1.0)
+        u = team_residual_command(rows, push, params)
+        restart = np.asarray(team.restarts.needs_restart_play(rows), dtype=bool)
+        np.testing.assert_allclose(u[restart], scripted[restart], atol=1e-6)
+        assert np.all(np.abs(u[~restart] - scripted[~restart]).max(axis=1) > 0.1)
+        seen["restart"] += int(restart.sum())
+        seen["open"] += int((~restart).sum())
+        obs, *_ = env.step({**dict(zip(("blue_0", "blue_1"), u)), **yellow(obs)})
+    assert seen["restart"] > 50 and seen["open"] > 50
+    # A robot off the field: its row plays the scripted team's command (standing still).
+    rows = np.stack([obs["blue_0"], obs["blue_1"]])
+    names = list(env.builder.names_for(0))
+    rows[1, names.index("game.on_field")] = 0.0
+    u = team_residual_command(rows, push, params)
+    np.testing.assert_allclose(u[1, :3], team.act(rows)[1, :3], atol=1e-6)
+
+
 @pytest.mark.parametrize("make, match", [
     (lambda: team_residual_params(soccer_env.parallel_env(blue=2, yellow=2, robot="humanoid"),
                                   "blue"), "corrects the scripted SSL team"),
-    (lambda: team_residual_params(soccer_env.parallel_env(blue=2, yellow=2, game=True),
-                                  "blue"), "without the game flow"),
     (lambda: team_residual_params(soccer_env.parallel_env(blue=2, yellow=2), "red"),
      "team must be one of"),
     (lambda: team_residual_params(soccer_env.parallel_env(blue=2, yellow=2), "blue",
