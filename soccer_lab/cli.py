@@ -392,6 +392,12 @@ def _cmd_ablation(argv: list[str]) -> int:
     return ablation_main(argv)
 
 
+def _cmd_rate(argv: list[str]) -> int:
+    from soccer_lab.commands.rate import main as rate_main
+
+    return rate_main(argv)
+
+
 def _cmd_play(argv: list[str]) -> int:
     # pygame first: the command's module draws with it.
     extras.require("play")
@@ -411,6 +417,7 @@ COMMANDS: dict[str, tuple[Callable[[list[str]], int], str]] = {
     "imitate": (_cmd_imitate, "train a keeper by DAgger with a privileged teacher"),
     "eval": (_cmd_eval, "evaluate a keeper policy on the fixed shot suite"),
     "ablation": (_cmd_ablation, "compare estimators in closed loop, per sensor preset"),
+    "rate": (_cmd_rate, "rate SSL match teams by a round robin of seeded matches"),
     "play": (_cmd_play, "drive a robot with the keyboard against the scripted team"),
     "list": (_cmd_list, "list environments, presets and perception options"),
 }
@@ -419,13 +426,14 @@ COMMANDS: dict[str, tuple[Callable[[list[str]], int], str]] = {
 def parsers() -> dict[str, argparse.ArgumentParser]:
     """Every command's option parser by its command line (``"paper ekf"`` for each paper's)."""
     from soccer_lab.bench import parser as bench_parser
-    from soccer_lab.commands import ablation, evaluate, imitate, play, train
+    from soccer_lab.commands import ablation, evaluate, imitate, play, rate, train
 
     paper, papers = paper_parser()
     return {"demo": _demo_parser(), "bench": bench_parser(), "paper": paper,
             **{f"paper {name}": sub for name, sub in papers.items()},
             "train": train.parser(), "imitate": imitate.parser(), "eval": evaluate.parser(),
-            "ablation": ablation.parser(), "list": _list_parser(), "play": play.parser()}
+            "ablation": ablation.parser(), "rate": rate.parser(), "list": _list_parser(),
+            "play": play.parser()}
 
 
 def _usage() -> str:

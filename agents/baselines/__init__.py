@@ -34,7 +34,8 @@ from agents.policies import NumpyPolicy
 from soccer_env.envs.registration import GOALKEEPER_ID
 
 __all__ = ["BASELINES", "NUMPY_ONLY", "load_baseline", "baseline_path", "baseline_env_kwargs",
-           "make_baseline_env", "SSL_TEAM_2V2", "SSL_TEAM_CHECKPOINTS", "load_team"]
+           "make_baseline_env", "SSL_TEAM_2V2", "SSL_TEAM_CHECKPOINTS", "load_team", "TEAMS",
+           "team_path"]
 
 _HERE = Path(__file__).parent
 
@@ -50,6 +51,22 @@ def load_team() -> NumpyPolicy:
     both robots of a team, in order, of a 2 vs 2 match made with
     ``soccer_env.parallel_env(**load_team().meta["eval_kwargs"])``."""
     return NumpyPolicy.load(SSL_TEAM_2V2)
+
+
+#: Shipped SSL match teams: name -> (file, description).
+TEAMS: dict[str, tuple[Path, str]] = {
+    "ssl-team-2v2": (
+        SSL_TEAM_2V2,
+        "2 vs 2 team correcting the scripted team (team-residual), trained by self-play on "
+        "true observations under the simple referee (25 M agent steps)"),
+}
+
+
+def team_path(name: str) -> Path:
+    """The numpy policy file of the shipped team ``name`` (:data:`TEAMS`)."""
+    if name not in TEAMS:
+        raise ValueError(f"unknown team {name!r}; shipped: {sorted(TEAMS)}")
+    return TEAMS[name][0]
 
 #: Shipped baselines: name -> (file stem, description).
 BASELINES: dict[str, tuple[str, str]] = {

@@ -1,0 +1,47 @@
+"""``soccer-env rate``: a tiny round robin, its table and JSON, and refused input."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from agents.baselines import SSL_TEAM_2V2
+from soccer_lab.commands.rate import main, parse_team
+
+
+def test_a_tiny_round_robin_prints_the_ratings_and_writes_every_match(tmp_path, capsys):
+    out = tmp_path / "r.json"
+    assert main(["--team", "scripted", "--team", "idle", "--team", "ssl-team-2v2", "--matches",
+                 "2", "--duration", "3", "--workers", "1", "--json", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "| side | Elo |" in text and "| scripted | 1000 |" in text
+    report = json.loads(out.read_text())
+    assert report["teams"] == ["scripted", "idle", "ssl-team-2v2"]
+    assert len(report["head_to_head"]) == 3
+    assert {r["label"] for r in report["ratings"]} == set(report["teams"])
+
+
+def test_a_team_plays_on_its_own_observation_mode():
+    side = parse_team("scripted@perceived", "truth", "ssl-2012")
+    assert side.obs_mode == "perceived" and side.perception == {"vision": "ssl-2012"}
+    side = parse_team("ssl-team-2v2", "truth", "ssl-2012")
+    assert side.obs_mode == "truth" and side.policy == str(SSL_TEAM_2V2)
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--team", "scripted"], "two or more different teams"),
+    (["--team", "scripted", "--team", "scripted"], "two or more different teams"),
+    (["--team", "scripted", "--team", "robots"], "must be one of"),
+    (["--team", "scripted", "--team", "idle@raw"], "the mode after @"),
+    (["--team", "scripted", "--team", "missing.npz"], "no such file"),
+    (["--team", "scripted", "--team", "ssl-team-2v2", "--game"], "takes observations of 41"),
+    (["--team", "scripted", "--team", "idle", "--matches", "0"], "--matches must be >= 1"),
+    (["--team", "scripted", "--team", "idle", "--anchor", "other"], "--anchor must be one"),
+    (["--team", "scripted", "--team", "idle", "--duration", "0"], "--duration must be"),
+])
+def test_bad_input_is_refused_naming_the_option(argv, message, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(argv)
+    assert exc.value.code == 2
+    assert message in capsys.readouterr().err
