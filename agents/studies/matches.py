@@ -174,6 +174,8 @@ class MatchRecord:
         err_sum, err_sq_sum, err_count: per side (``a``, ``b``), the sums of the ball-belief
             error [m] and of its square over the side's beliefs and steps, and how many.
         seconds: wall time of the match [s].
+        fouls, yellow_cards, red_cards: per side (``a``, ``b``), the fouls the game flow
+            called on it and the cards it was shown (0 without the game flow).
     """
 
     seed: int
@@ -185,6 +187,9 @@ class MatchRecord:
     err_sq_sum: tuple[float, float]
     err_count: tuple[int, int]
     seconds: float
+    fouls: tuple[int, int] = (0, 0)
+    yellow_cards: tuple[int, int] = (0, 0)
+    red_cards: tuple[int, int] = (0, 0)
 
     @property
     def goal_difference(self) -> int:
@@ -193,8 +198,9 @@ class MatchRecord:
 
 def play_match(env_kwargs: Mapping[str, Any], blue: Side, yellow: Side, seed: int
                ) -> dict[str, Any]:
-    """Play one match reset with ``seed``: blue's and yellow's goals, the steps, and each
-    team's ball-belief error sums (see :class:`MatchRecord`)."""
+    """Play one match reset with ``seed``: blue's and yellow's goals, the steps, each
+    team's ball-belief error sums, and under the game flow each team's fouls and cards (see
+    :class:`MatchRecord`)."""
     t0 = time.perf_counter()
     env = soccer_env.parallel_env(**match_env_kwargs(env_kwargs, blue, yellow))
     try:
@@ -206,6 +212,7 @@ def play_match(env_kwargs: Mapping[str, Any], blue: Side, yellow: Side, seed: in
         err = [0.0, 0.0]
         sq = [0.0, 0.0]
         count = [0, 0]
+        cards = {"yellow_card": [0, 0], "red_card": [0, 0]}
         steps = 0
         while env.agents:
             actions: dict[str, np.ndarray] = {}
@@ -214,6 +221,9 @@ def play_match(env_kwargs: Mapping[str, Any], blue: Side, yellow: Side, seed: in
             obs, _, _, _, infos = env.step(actions)
             steps += 1
             info = next(iter(infos.values()))
+            for e in info["game"]["events"] if "game" in info else ():
+                if e["kind"] in cards and e["team"] in ("blue", "yellow"):
+                    cards[e["kind"]][("blue", "yellow").index(e["team"])] += 1
             bx, by = info["truth"]["ball_position"][:2]
             for t, names in enumerate(members):
                 seen: set[int] = set()  # an SSL team's robots share one belief
@@ -228,11 +238,15 @@ def play_match(env_kwargs: Mapping[str, Any], blue: Side, yellow: Side, seed: in
                     sq[t] += e * e
                     count[t] += 1
         score = info["score"]
+        game = info.get("game")
+        fouls = (0, 0) if game is None else (int(game["blue"]["fouls"]),
+                                             int(game["yellow"]["fouls"]))
     finally:
         env.close()
     return {"goals": (int(score["blue"]), int(score["yellow"])), "steps": steps,
             "err_sum": tuple(err), "err_sq_sum": tuple(sq), "err_count": tuple(count),
-            "seconds": time.perf_counter() - t0}
+            "seconds": time.perf_counter() - t0, "fouls": fouls,
+            "yellow_cards": tuple(cards["yellow_card"]), "red_cards": tuple(cards["red_card"])}
 
 
 def _play_job(job: tuple) -> dict[str, Any]:
@@ -258,7 +272,9 @@ def _record(job: tuple, out: Mapping[str, Any]) -> MatchRecord:
     return MatchRecord(seed, a_blue, out["goals"][i], out["goals"][j], out["steps"],
                        (out["err_sum"][i], out["err_sum"][j]),
                        (out["err_sq_sum"][i], out["err_sq_sum"][j]),
-                       (out["err_count"][i], out["err_count"][j]), out["seconds"])
+                       (out["err_count"][i], out["err_count"][j]), out["seconds"],
+                       *((out[k][i], out[k][j]) for k in ("fouls", "yellow_cards",
+                                                          "red_cards")))
 
 
 def run_match_jobs(jobs: Sequence[tuple], workers: int | None = None,
@@ -337,6 +353,15 @@ class HeadToHead:
         sq = sum(r.err_sq_sum[side] for r in self.records)
         return s / n, math.sqrt(sq / n)
 
+    def per_match(self, what: str, side: int) -> tuple[float, float, float]:
+        """Side ``0`` (``a``) or ``1`` (``b``)'s ``"fouls"``, ``"yellow_cards"`` or
+        ``"red_cards"`` per match: ``(mean, low, high)``, a Student-t 95 % interval over
+        matches."""
+        if what not in ("fouls", "yellow_cards", "red_cards") or side not in (0, 1):
+            raise ValueError(f"what must be 'fouls', 'yellow_cards' or 'red_cards' and side 0 "
+                             f"or 1, got {what!r} and {side!r}")
+        return mean_interval([getattr(r, what)[side] for r in self.records])
+
     @property
     def steps(self) -> int:
         return sum(r.steps for r in self.records)
@@ -362,6 +387,8 @@ class HeadToHead:
             "goals_for": self.goals_for, "goals_against": self.goals_against,
             "goal_difference": [x if math.isfinite(x) else None for x in gd],
             "ball_error_m": {"a": list(self.ball_error(0)), "b": list(self.ball_error(1))},
+            **{f"{w}_per_match": {"a": list(self.per_match(w, 0)), "b": list(self.per_match(w, 1))}
+               for w in ("fouls", "yellow_cards", "red_cards")},
             "steps": self.steps, "seconds": self.seconds,
             "records": [asdict(r) for r in self.records],
         }

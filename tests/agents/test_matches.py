@@ -112,6 +112,29 @@ def test_a_numpy_policy_file_plays_for_every_robot_of_its_team(tmp_path):
         head_to_head(Side(str(small)), Side(), 1, env_kwargs=ONE_V_ONE, workers=1)
 
 
+def _full_speed(obs):
+    """Every robot drives forward at full speed, whatever the referee says."""
+    out = np.zeros((len(obs), 6), dtype=np.float32)
+    out[:, 0] = 1.0
+    return out
+
+
+def test_fouls_and_cards_are_counted_per_side_under_the_game_flow():
+    """A team that never slows down at a stop is called for it and carded; the idle team is
+    not; without the game flow nothing is counted."""
+    kwargs = {"blue": 2, "yellow": 2, "match_duration": 20.0, "control_dt": 1 / 30}
+    fast, idle = Side(_full_speed, "truth", label="fast"), Side("idle", "truth")
+    h = head_to_head(fast, idle, 2, env_kwargs={**kwargs, "game": True}, workers=1)
+    assert all(r.fouls[0] >= 1 and r.fouls[1] == 0 for r in h.records)
+    assert h.per_match("fouls", 0)[0] >= 1.0 and h.per_match("fouls", 1)[0] == 0.0
+    assert sum(r.yellow_cards[0] for r in h.records) >= 1
+    assert h.to_dict()["fouls_per_match"]["b"][0] == 0.0
+    plain = head_to_head(fast, idle, 2, env_kwargs=kwargs, workers=1)
+    assert all(r.fouls == (0, 0) and r.yellow_cards == (0, 0) for r in plain.records)
+    with pytest.raises(ValueError, match="what must be"):
+        h.per_match("goals", 0)
+
+
 def test_goal_difference_interval_is_paired_by_seed():
     def rec(seed, a_blue, ga, gb):
         return MatchRecord(seed, a_blue, ga, gb, 1, (0.0, 0.0), (0.0, 0.0), (1, 1), 0.0)
