@@ -88,12 +88,11 @@ def main(argv: list[str] | None = None) -> int:
     team, scripted, idle = side(str(path), "perceived team"), side("scripted", "scripted"), \
         side("idle", "idle")
     kw = {"env_kwargs": ENV_KWARGS, "workers": args.workers}
-    main_h = head_to_head(team, scripted, args.matches, args.start_seed, **kw)
-    team_idle = head_to_head(team, idle, args.idle, args.start_seed, **kw)
-    scripted_idle = head_to_head(scripted, idle, args.idle, args.start_seed, **kw)
-    results = [main_h, team_idle, scripted_idle]
-    for h in results:
-        print(f"{h.summary()}  [{time.perf_counter() - t0:.0f} s]")
+    results = []
+    for a, b, n in ((team, scripted, args.matches), (team, idle, args.idle),
+                    (scripted, idle, args.idle)):
+        results.append(head_to_head(a, b, n, args.start_seed, **kw))
+        print(f"{results[-1].summary()}  [{time.perf_counter() - t0:.0f} s]", flush=True)
     print("\n| match | outcome | rate | 95 % interval |\n|---|---|---|---|")
     for h in results:
         print("\n".join(outcome_rows(h)))

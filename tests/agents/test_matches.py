@@ -3,11 +3,13 @@ colour, a side against itself is a perfect mirror, a team that plays beats one t
 each team's ball error comes from its own belief, the numbers do not depend on the workers,
 and bad input is refused before any match."""
 
+import dataclasses
 import math
 
 import numpy as np
 import pytest
 
+import soccer_env
 from agents.common.stats import t975
 from agents.policies import NumpyPolicy
 from agents.studies.matches import (
@@ -122,12 +124,16 @@ def _full_speed(obs):
 def test_fouls_and_cards_are_counted_per_side_under_the_game_flow():
     """A team that never slows down at a stop is called for it and carded; the idle team is
     not; without the game flow nothing is counted."""
-    kwargs = {"blue": 2, "yellow": 2, "match_duration": 20.0, "control_dt": 1 / 30}
+    # Ten seconds of steps (the match clock barely runs: the idle team never kicks off), a
+    # yellow card for every foul.
+    kwargs = {"blue": 2, "yellow": 2, "match_duration": 20.0, "control_dt": 1 / 30,
+              "max_cycles": 300}
+    rules = dataclasses.replace(soccer_env.presets.RULES.get("ssl-2025-div-b"), fouls_per_card=1)
     fast, idle = Side(_full_speed, "truth", label="fast"), Side("idle", "truth")
-    h = head_to_head(fast, idle, 2, env_kwargs={**kwargs, "game": True}, workers=1)
+    h = head_to_head(fast, idle, 2, env_kwargs={**kwargs, "game": rules}, workers=1)
     assert all(r.fouls[0] >= 1 and r.fouls[1] == 0 for r in h.records)
     assert h.per_match("fouls", 0)[0] >= 1.0 and h.per_match("fouls", 1)[0] == 0.0
-    assert sum(r.yellow_cards[0] for r in h.records) >= 1
+    assert all(r.yellow_cards == (r.fouls[0], 0) for r in h.records)
     assert h.to_dict()["fouls_per_match"]["b"][0] == 0.0
     plain = head_to_head(fast, idle, 2, env_kwargs=kwargs, workers=1)
     assert all(r.fouls == (0, 0) and r.yellow_cards == (0, 0) for r in plain.records)
