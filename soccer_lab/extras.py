@@ -71,6 +71,7 @@ REQUIREMENTS: dict[str, tuple[Need, ...]] = {
     # The humanoid estimator configuration that finds the ball in rendered images.
     "ablation pixels": (_IMAGES,),
     "list": (),
+    "rate": (),
     "play": (Need(("pygame",), "render"),),
 }
 
