@@ -6,9 +6,9 @@
   attacker would (:class:`~agents.scripted.attack.Attack`). Under the game flow it catches
   instead of deflecting (no kick, the dribbler on; ``catch``): the goalkeeper's save kicks
   the ball back the way it came, which in a match sends it over a touch line or the far goal
-  line (an aimless kick) about once every ten seconds of play, and each time the game stops
-  for a ball placement; the caught ball lies slow in the defense area, and the keeper clears
-  it as the attacker plays (a shot or a pass, under the speed limit);
+  line (an aimless kick), and each time the game stops for a ball placement; the caught ball
+  lies slow in the defense area, and the keeper clears it as the attacker plays (a shot or a
+  pass, under the speed limit);
 * the **attacker** plays :class:`~agents.scripted.attack.Attack`;
 * the **defenders** play :class:`~agents.scripted.defence.Defence`.
 
