@@ -28,12 +28,8 @@ import time
 from pathlib import Path
 
 from agents.baselines import SSL_TEAM_2V2, SSL_TEAM_CHECKPOINTS, load_team
-from agents.studies.matches import Side, head_to_head
+from agents.studies.matches import Side, checkpoint_sides, head_to_head
 from agents.studies.rating import fit_ratings, rating_table, round_robin
-
-
-def _steps(path: Path) -> int:
-    return int(path.stem.rsplit("_", 1)[1])
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -61,10 +57,8 @@ def main(argv: list[str] | None = None) -> int:
     print(f"| goal difference per match | {gd[0]:+.2f} | {gd[1]:+.2f} to {gd[2]:+.2f} |")
     report = {"env_kwargs": eval_kwargs, "head_to_head": h.to_dict()}
     if args.round_robin:
-        copies = sorted(SSL_TEAM_CHECKPOINTS.glob("team_*.npz"), key=_steps)
         idle = Side("idle", "truth", label="idle")
-        players = [scripted, team, *(Side(str(c), "truth", label=f"copy at "
-                                          f"{_steps(c) / 1e6:.0f} M steps") for c in copies)]
+        players = [scripted, team, *checkpoint_sides(SSL_TEAM_CHECKPOINTS, "truth")]
         pairs = [(scripted, idle), (team, idle),
                  *((a, b) for a, b in itertools.combinations(players, 2)
                    if (a, b) != (scripted, team))]

@@ -28,7 +28,7 @@ import json
 import time
 from pathlib import Path
 
-from agents.studies.matches import HeadToHead, Side, head_to_head
+from agents.studies.matches import HeadToHead, Side, checkpoint_sides, head_to_head
 from agents.studies.rating import fit_ratings, rating_table, round_robin
 
 #: The match: the one the training evaluated its copies in.
@@ -68,10 +68,6 @@ def foul_rows(h: HeadToHead) -> list[str]:
     return rows
 
 
-def _steps(path: Path) -> int:
-    return int(path.stem.split("_")[-1])
-
-
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--team", required=True, help="the team's numpy file")
@@ -102,10 +98,8 @@ def main(argv: list[str] | None = None) -> int:
     report = {"env_kwargs": ENV_KWARGS, "perception": PERCEPTION, "team": str(path),
               "head_to_head": [h.to_dict() for h in results]}
     if args.round_robin:
-        folder = path.parent / "checkpoints"
-        copies = sorted(folder.glob("team_*.npz"), key=_steps) if folder.is_dir() else []
-        players = [team, *(side(str(c), f"copy at {_steps(c) / 1e6:.0f} M steps")
-                           for c in copies)]
+        players = [team, *checkpoint_sides(path.parent / "checkpoints", "perceived",
+                                           PERCEPTION)]
         pairs = [*itertools.combinations(players, 2),
                  *((c, other) for c in players[1:] for other in (scripted, idle))]
         more = round_robin([*players, scripted, idle], args.round_robin,

@@ -70,7 +70,8 @@ from soccer_env.presets import FieldSpec
 from soccer_env.state import BALL_STATUSES, Belief, WorldState
 
 __all__ = ["ObservationBuilder", "ROBOT_SPEED_BOUND", "ROBOT_TURN_BOUND", "BALL_SPEED_BOUND",
-           "SIGMA_BOUND", "AGE_BOUND", "BELIEF_FEATURES", "HUMANOID_BELIEF_FEATURES"]
+           "SIGMA_BOUND", "AGE_BOUND", "BELIEF_FEATURES", "HUMANOID_BELIEF_FEATURES",
+           "SLOT_PREFIX", "other_robots"]
 
 #: Observation bound on robot speed components [m/s] (robots can be shoved beyond their drive).
 ROBOT_SPEED_BOUND = 10.0
@@ -91,6 +92,20 @@ BELIEF_FEATURES = ("ball.sigma", "ball.velocity_sigma", "ball.age",
                    "ball.measured_dx", "ball.measured_dy")
 #: The further belief features of environments with humanoids.
 HUMANOID_BELIEF_FEATURES = ("ball.fused_age", "ball.seen_by")
+
+
+#: The prefix of a game entry about one of an agent's other robots, ``game.slot<j>.<entry>``
+#: for slot ``j`` (:func:`other_robots`); :meth:`ObservationBuilder.names_for` names it after
+#: the slot, ``game.mate<j>.<entry>`` or ``game.opp<j>.<entry>``.
+SLOT_PREFIX = "game.slot"
+
+
+def other_robots(teams: Sequence[int]) -> list[list[int]]:
+    """Each robot's other robots in the order of its observation's slots: its team-mates in
+    robot order, then its opponents in robot order (``teams``: every robot's team)."""
+    n = len(teams)
+    return [[j for j in range(n) if teams[j] == teams[i] and j != i]
+            + [j for j in range(n) if teams[j] != teams[i]] for i in range(n)]
 
 
 class ObservationBuilder:
@@ -143,10 +158,8 @@ class ObservationBuilder:
         self.n_robots = len(self.teams)
         self.own = list(agents)
         self.signs = [1.0 if self.teams[i] == 0 else -1.0 for i in self.own]
-        self.others = [[j for j in range(self.n_robots) if self.teams[j] == self.teams[i]
-                        and j != i]
-                       + [j for j in range(self.n_robots) if self.teams[j] != self.teams[i]]
-                       for i in self.own]
+        slots = other_robots(self.teams)
+        self.others = [slots[i] for i in self.own]
         self.k = self.n_robots - 1
         self.game_size = len(game_names)
         hx, gw = field.half_length, 0.5 * field.goal_width
@@ -225,9 +238,9 @@ class ObservationBuilder:
     def _slot_name(name: str, n_mates: int) -> str:
         """A game entry's name, ``game.slot<j>.<entry>`` named after slot ``j``: ``game.mate<j>.``
         or ``game.opp<j - n_mates>.``."""
-        if not name.startswith("game.slot"):
+        if not name.startswith(SLOT_PREFIX):
             return name
-        j_text, entry = name[len("game.slot"):].split(".", 1)
+        j_text, entry = name[len(SLOT_PREFIX):].split(".", 1)
         j = int(j_text)
         tag = f"mate{j}" if j < n_mates else f"opp{j - n_mates}"
         return f"game.{tag}.{entry}"

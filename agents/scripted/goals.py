@@ -17,16 +17,9 @@ import heapq
 import math
 
 from soccer_env.presets import FieldSpec
+from soccer_env.sim.game.geometry import segment_distance
 
 __all__ = ["GoalWalls", "segment_gap"]
-
-
-def _point_segment(px: float, py: float, ax: float, ay: float, bx: float, by: float) -> float:
-    """Distance from ``(px, py)`` to the segment ``a``-``b`` [m]."""
-    ex, ey = bx - ax, by - ay
-    n = ex * ex + ey * ey
-    t = 0.0 if n < 1e-18 else max(0.0, min(1.0, ((px - ax) * ex + (py - ay) * ey) / n))
-    return math.hypot(px - ax - t * ex, py - ay - t * ey)
 
 
 def segment_gap(a: tuple[float, float], b: tuple[float, float], c: tuple[float, float],
@@ -40,8 +33,8 @@ def segment_gap(a: tuple[float, float], b: tuple[float, float], c: tuple[float, 
     o3, o4 = orient(c, d, a), orient(c, d, b)
     if o1 * o2 < 0.0 and o3 * o4 < 0.0:
         return 0.0
-    return min(_point_segment(*a, *c, *d), _point_segment(*b, *c, *d),
-               _point_segment(*c, *a, *b), _point_segment(*d, *a, *b))
+    return min(segment_distance(*a, *c, *d), segment_distance(*b, *c, *d),
+               segment_distance(*c, *a, *b), segment_distance(*d, *a, *b))
 
 
 class GoalWalls:
@@ -74,7 +67,7 @@ class GoalWalls:
 
     def gap(self, x: float, y: float) -> float:
         """Distance from ``(x, y)`` to the nearest goal wall's middle [m]."""
-        return min(_point_segment(x, y, *a, *b) for a, b in self.walls)
+        return min(segment_distance(x, y, *a, *b) for a, b in self.walls)
 
     def free(self, x: float, y: float, pad: float | None = None) -> bool:
         """Whether a robot's centre at ``(x, y)`` keeps ``pad`` [m] (by default the route's)

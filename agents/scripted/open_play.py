@@ -148,9 +148,10 @@ class OpenPlay:
         """The scripted goalkeeper's action, its kicker power capped at the team's (or, with
         ``catch``, no kick and the dribbler on)."""
         action = self.keeper(o).tolist()  # it reads entries by index: a list will do
-        action[3] = 0.0 if self.catch else min(action[3], self.kick_power)
         if self.catch:
-            action[5] = 1.0
+            action[3], action[5] = 0.0, 1.0
+        else:
+            action[3] = min(action[3], self.kick_power)
         return action
 
     def field_player_act(self, index: int, f: Frame, xs: list[float], ys: list[float],

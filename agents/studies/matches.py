@@ -45,8 +45,11 @@ from agents.scripted import TEAMS, HumanoidTeam, ScriptedTeam
 from soccer_env.perception.base import OBS_MODES
 
 __all__ = ["Side", "MatchRecord", "HeadToHead", "head_to_head", "match_jobs",
-           "run_match_jobs", "play_match", "team_policy", "TEAM_POLICIES", "SIDE_KEYS"]
+           "run_match_jobs", "play_match", "team_policy", "TEAM_POLICIES", "SIDE_KEYS",
+           "DISCIPLINE", "checkpoint_sides"]
 
+#: What a :class:`MatchRecord` counts per side under the game flow.
+DISCIPLINE = ("fouls", "yellow_cards", "red_cards")
 #: Team policies given by name (besides a ``.npz`` numpy policy file or a callable).
 TEAM_POLICIES = ("scripted", "idle")
 #: Environment keyword arguments a side sets for its team (refused in the shared ones).
@@ -108,6 +111,23 @@ class Side:
         policy = self.policy if isinstance(self.policy, str) else self.label
         return {"label": self.label, "policy": policy, "obs_mode": self.obs_mode,
                 "perception": self.perception}
+
+
+def checkpoint_sides(folder: str | os.PathLike, obs_mode: str = "perceived",
+                     perception: Mapping[str, Any] | None = None) -> list[Side]:
+    """The copies of a team that a training run saved in ``folder``, ``team_<steps>.npz``
+    (as ``examples/train_ssl_team.py`` names them), oldest first, as sides on ``obs_mode`` and
+    ``perception`` labelled ``copy at <steps / 1e6> M steps`` (none if the folder is
+    missing)."""
+    folder = Path(folder)
+    if not folder.is_dir():
+        return []
+
+    def steps(path: Path) -> int:
+        return int(path.stem.rsplit("_", 1)[1])
+
+    return [Side(str(c), obs_mode, perception, label=f"copy at {steps(c) / 1e6:.0f} M steps")
+            for c in sorted(folder.glob("team_*.npz"), key=steps)]
 
 
 def match_env_kwargs(base: Mapping[str, Any] | None, blue: Side, yellow: Side
@@ -222,8 +242,8 @@ def play_match(env_kwargs: Mapping[str, Any], blue: Side, yellow: Side, seed: in
             steps += 1
             info = next(iter(infos.values()))
             for e in info["game"]["events"] if "game" in info else ():
-                if e["kind"] in cards and e["team"] in ("blue", "yellow"):
-                    cards[e["kind"]][("blue", "yellow").index(e["team"])] += 1
+                if e["kind"] in cards and e["team"] in TEAMS:
+                    cards[e["kind"]][TEAMS.index(e["team"])] += 1
             bx, by = info["truth"]["ball_position"][:2]
             for t, names in enumerate(members):
                 seen: set[int] = set()  # an SSL team's robots share one belief
@@ -273,8 +293,7 @@ def _record(job: tuple, out: Mapping[str, Any]) -> MatchRecord:
                        (out["err_sum"][i], out["err_sum"][j]),
                        (out["err_sq_sum"][i], out["err_sq_sum"][j]),
                        (out["err_count"][i], out["err_count"][j]), out["seconds"],
-                       *((out[k][i], out[k][j]) for k in ("fouls", "yellow_cards",
-                                                          "red_cards")))
+                       *((out[k][i], out[k][j]) for k in DISCIPLINE))
 
 
 def run_match_jobs(jobs: Sequence[tuple], workers: int | None = None,
@@ -357,9 +376,9 @@ class HeadToHead:
         """Side ``0`` (``a``) or ``1`` (``b``)'s ``"fouls"``, ``"yellow_cards"`` or
         ``"red_cards"`` per match: ``(mean, low, high)``, a Student-t 95 % interval over
         matches."""
-        if what not in ("fouls", "yellow_cards", "red_cards") or side not in (0, 1):
-            raise ValueError(f"what must be 'fouls', 'yellow_cards' or 'red_cards' and side 0 "
-                             f"or 1, got {what!r} and {side!r}")
+        if what not in DISCIPLINE or side not in (0, 1):
+            raise ValueError(f"what must be one of {list(DISCIPLINE)} and side 0 or 1, got "
+                             f"{what!r} and {side!r}")
         return mean_interval([getattr(r, what)[side] for r in self.records])
 
     @property
@@ -388,7 +407,7 @@ class HeadToHead:
             "goal_difference": [x if math.isfinite(x) else None for x in gd],
             "ball_error_m": {"a": list(self.ball_error(0)), "b": list(self.ball_error(1))},
             **{f"{w}_per_match": {"a": list(self.per_match(w, 0)), "b": list(self.per_match(w, 1))}
-               for w in ("fouls", "yellow_cards", "red_cards")},
+               for w in DISCIPLINE},
             "steps": self.steps, "seconds": self.seconds,
             "records": [asdict(r) for r in self.records],
         }

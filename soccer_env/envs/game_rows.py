@@ -16,11 +16,12 @@ from typing import Any
 
 import numpy as np
 
+from soccer_env.observations import SLOT_PREFIX, other_robots
 from soccer_env.presets import FieldSpec
 from soccer_env.sim.world import MAX_TEAM_SIZE
 
 __all__ = ["GameRows", "GAME_NAMES", "GAME_FLOW_NAMES", "GOALS_BOUND", "CARDS_BOUND",
-           "FOULS_BOUND", "game_bounds", "slot_names", "other_robots"]
+           "FOULS_BOUND", "game_bounds", "slot_names"]
 
 #: Game-state entries at the end of every match observation: the match time left as a
 #: fraction of ``match_duration``, goals for, goals against, and +1 / -1 while a restart
@@ -51,9 +52,9 @@ GAME_FLOW_NAMES = (
 #: agent's team-mates in robot order, then the opponents: its ``mate<j>.*`` and ``opp<j>.*``
 #: entries): 1 while that robot is on the field, 0 while a card or a removal penalty keeps it
 #: off (its pose entries then show where it waits). The names are ``game.slot<j>.on_field``
-#: here; each agent's observation names them after its slots, ``game.mate<j>.on_field`` and
-#: ``game.opp<j>.on_field`` (:meth:`~soccer_env.observations.ObservationBuilder.names_for`).
-SLOT_PREFIX = "game.slot"
+#: here (:data:`~soccer_env.observations.SLOT_PREFIX`); each agent's observation names them
+#: after its slots, ``game.mate<j>.on_field`` and ``game.opp<j>.on_field``
+#: (:meth:`~soccer_env.observations.ObservationBuilder.names_for`).
 
 #: Column of each entry of :data:`GAME_FLOW_NAMES`.
 _FLOW = {name: k for k, name in enumerate(GAME_FLOW_NAMES)}
@@ -70,14 +71,6 @@ FOULS_BOUND = 1e6
 def slot_names(others: int) -> tuple[str, ...]:
     """The names of the slots' on-field entries for ``others`` other robots."""
     return tuple(f"{SLOT_PREFIX}{j}.on_field" for j in range(others))
-
-
-def other_robots(teams: list[int]) -> list[list[int]]:
-    """Each robot's other robots in the order of its observation's slots: its team-mates in
-    robot order, then its opponents in robot order."""
-    n = len(teams)
-    return [[j for j in range(n) if teams[j] == teams[i] and j != i]
-            + [j for j in range(n) if teams[j] != teams[i]] for i in range(n)]
 
 
 def game_bounds(field: FieldSpec, flow: bool, others: int = 0

@@ -16,6 +16,7 @@ from agents.studies.matches import (
     HeadToHead,
     MatchRecord,
     Side,
+    checkpoint_sides,
     head_to_head,
     match_jobs,
     play_match,
@@ -139,6 +140,15 @@ def test_fouls_and_cards_are_counted_per_side_under_the_game_flow():
     assert all(r.fouls == (0, 0) and r.yellow_cards == (0, 0) for r in plain.records)
     with pytest.raises(ValueError, match="what must be"):
         h.per_match("goals", 0)
+
+
+def test_checkpoint_sides_are_a_runs_copies_oldest_first(tmp_path):
+    from agents.baselines import SSL_TEAM_CHECKPOINTS
+
+    sides = checkpoint_sides(SSL_TEAM_CHECKPOINTS, "truth")
+    assert [s.label for s in sides] == ["copy at 15 M steps", "copy at 20 M steps"]
+    assert all(s.obs_mode == "truth" and s.policy.endswith(".npz") for s in sides)
+    assert checkpoint_sides(tmp_path / "missing") == []
 
 
 def test_goal_difference_interval_is_paired_by_seed():
