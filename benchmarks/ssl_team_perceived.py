@@ -1,12 +1,14 @@
 """The perceived SSL team under the game flow: its head-to-heads, fouls and ratings.
 
 Usage: ``python benchmarks/ssl_team_perceived.py --team FILE [--matches 200] [--idle 40]
-[--round-robin 20] [--start-seed 50000] [--workers N] [--out FILE]``.
+[--round-robin 20] [--start-seed 50000] [--robot-prediction commands] [--workers N]
+[--out FILE]``.
 
 Every match is 2 vs 2, 60 s of playing time at 30 commands a second, under the SSL game flow
-(Division B rules), each team perceiving through its own ``ssl-2012`` cameras and filters
-(the match of ``examples/train_ssl_team.py --setting perceived-game``'s evaluations), on seeds
-from ``--start-seed`` (held out: training drew its matches' seeds from 0 and evaluated its
+(Division B rules), each team perceiving through its own ``ssl-2012`` cameras and filters,
+its own robots predicted through the commands it sent (``--robot-prediction``; the match of
+``examples/train_ssl_team.py --setting perceived-game``'s evaluations), on seeds from
+``--start-seed`` (held out: training drew its matches' seeds from 0 and evaluated its
 copies from 10,000):
 
 1. the team (a numpy team file, e.g. ``OUT/final_team.npz`` of the training) against the
@@ -30,17 +32,18 @@ from pathlib import Path
 
 from agents.studies.matches import HeadToHead, Side, checkpoint_sides, head_to_head
 from agents.studies.rating import fit_ratings, rating_table, round_robin
+from soccer_env.perception.options import ROBOT_PREDICTIONS
 
 #: The match: the one the training evaluated its copies in.
 ENV_KWARGS = {"blue": 2, "yellow": 2, "match_duration": 60.0, "control_dt": 1.0 / 30.0,
               "game": True}
-#: What every side perceives through.
-PERCEPTION = {"vision": "ssl-2012"}
+#: What every side perceives through (the own-robot prediction set by ``--robot-prediction``).
+PERCEPTION = {"vision": "ssl-2012", "robot_prediction": "commands"}
 
 
-def side(policy: str, label: str) -> Side:
+def side(policy: str, label: str, perception: dict = PERCEPTION) -> Side:
     """A side on perceived ``ssl-2012`` observations."""
-    return Side(policy, "perceived", PERCEPTION, label=label)
+    return Side(policy, "perceived", perception, label=label)
 
 
 def outcome_rows(h: HeadToHead) -> list[str]:
@@ -76,13 +79,17 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--round-robin", type=int, default=20,
                    help="matches per other pair of the rating table (20; 0: no table)")
     p.add_argument("--start-seed", type=int, default=50_000, help="first seed (50,000)")
+    p.add_argument("--robot-prediction", choices=list(ROBOT_PREDICTIONS), default="commands",
+                   help="how every side predicts its own robots (commands)")
     p.add_argument("--workers", type=int, default=None, help="processes (default: all cores)")
     p.add_argument("--out", default=None, help="a JSON file for the results")
     args = p.parse_args(argv)
     path = Path(args.team)
     t0 = time.perf_counter()
-    team, scripted, idle = side(str(path), "perceived team"), side("scripted", "scripted"), \
-        side("idle", "idle")
+    perception = {**PERCEPTION, "robot_prediction": args.robot_prediction}
+    team, scripted, idle = (side(str(path), "perceived team", perception),
+                            side("scripted", "scripted", perception),
+                            side("idle", "idle", perception))
     kw = {"env_kwargs": ENV_KWARGS, "workers": args.workers}
     results = []
     for a, b, n in ((team, scripted, args.matches), (team, idle, args.idle),
@@ -95,11 +102,11 @@ def main(argv: list[str] | None = None) -> int:
     print("\n| side | opponent | fouls | yellow cards | red cards |\n|---|---|---|---|---|")
     for h in results:
         print("\n".join(foul_rows(h)))
-    report = {"env_kwargs": ENV_KWARGS, "perception": PERCEPTION, "team": str(path),
+    report = {"env_kwargs": ENV_KWARGS, "perception": perception, "team": str(path),
               "head_to_head": [h.to_dict() for h in results]}
     if args.round_robin:
         players = [team, *checkpoint_sides(path.parent / "checkpoints", "perceived",
-                                           PERCEPTION)]
+                                           perception)]
         pairs = [*itertools.combinations(players, 2),
                  *((c, other) for c in players[1:] for other in (scripted, idle))]
         more = round_robin([*players, scripted, idle], args.round_robin,

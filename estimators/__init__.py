@@ -45,7 +45,8 @@ the state to any time ``t`` without changing the tracker (None before the first 
   their robots, checked), ``update_robot(t, z, i)`` and ``update_many(t, index, z)`` (one
   pose or several, unchecked: the fast paths), ``estimate(t)`` -> ``(n, 6)`` rows
   ``x, y, theta, vx, vy, omega`` for all robots, never None (robots never seen read as
-  zeros, see ``seen``).
+  zeros, see ``seen``), and ``estimate_driven(t, history)``: a team's own robots driven from
+  their latest update through the commands of a :class:`CommandHistory` (a Smith predictor).
 
 :class:`BallTrackerBatch` and :class:`RobotTrackerBatch` are ``m`` such trackers as arrays
 (the filters of ``m`` environments), updated with one kernel call per batch of frames: the
@@ -109,6 +110,7 @@ from .kalman import (
     BallFilterConfig,
     BallTracker,
     BallTrackerBatch,
+    CommandHistory,
     IMMBall,
     KalmanFilter,
     KickAwareBall,
@@ -170,6 +172,7 @@ __all__ = [
     "ParticleBallTracker",
     "RobotTracker",
     "RobotTrackerBatch",
+    "CommandHistory",
     "CHI2_2DOF_999",
     "hough_fuse",
     "fuse_sightings",

@@ -3,16 +3,21 @@ scripted team, self-play against a pool of past copies and the scripted team.
 
     python examples/train_ssl_team.py --out runs/ssl-team          # the shipped team's run
     python examples/train_ssl_team.py --setting perceived-game --out runs/ssl-team-perceived
+    python examples/train_ssl_team.py --setting humanoid-game --out runs/humanoid-team
     python examples/train_ssl_team.py --tiny                       # seconds: what CI runs
 
 ``--setting truth`` (the default) trains on true observations under the simple referee;
 ``--setting perceived-game`` trains on what each team's ``ssl-2012`` cameras and filters
-give it, under the SSL game flow (stops, ball placements, free kicks, fouls and cards): each
-side perceives through its own pipeline, the matches run one by one in each worker (the
+give it (its own robots predicted through the commands it sent, as SSL teams do to bridge
+the vision's delay), under the SSL game flow (stops, ball placements, free kicks, fouls and
+cards): each side perceives through its own pipeline, the matches run one by one in each worker (the
 batched match plays the simple referee only), the correction applies in open play only (the
 scripted team plays the restarts, :mod:`agents.scripted.residual`), and the idle team joins
 the scripted team in the league from the start, so that the team learns to score past a
-keeper that stands still as well as past one that moves.
+keeper that stands still as well as past one that moves. ``--setting humanoid-game`` trains a
+humanoid team the same way: 2 vs 2 ``humanoid-2012`` robots, each team on its own
+``kidsize-2012`` head cameras with team fusion, under the laws' game flow, the correction
+applied to the scripted humanoid team (:class:`~agents.scripted.HumanoidTeam`).
 
 Every blue robot of every match is one entry of stable-baselines3's batch
 (:func:`agents.vec.factories.make_match_vec_env`, the matches stepped as one batch in each of two
@@ -67,9 +72,21 @@ TRAIN_KWARGS: dict[str, Any] = {"blue": 2, "yellow": 2, "match_duration": 30.0,
 EVAL_KWARGS: dict[str, Any] = {"blue": 2, "yellow": 2, "match_duration": 60.0,
                                "control_dt": 1.0 / 30.0}
 #: What ``--setting perceived-game`` adds to both: each team's ``ssl-2012`` cameras and
-#: filters, the SSL game flow (Division B rules).
-PERCEIVED_GAME: dict[str, Any] = {"obs_mode": "perceived", "perception": {"vision": "ssl-2012"},
+#: filters, its own robots predicted through the commands it sent (``robot_prediction``), the
+#: SSL game flow (Division B rules).
+PERCEIVED_GAME: dict[str, Any] = {"obs_mode": "perceived",
+                                  "perception": {"vision": "ssl-2012",
+                                                 "robot_prediction": "commands"},
                                   "game": True}
+#: What ``--setting humanoid-game`` trains instead: 2 vs 2 ``humanoid-2012`` robots, each team
+#: perceiving through its head cameras (``kidsize-2012``, team fusion), the laws' game flow.
+HUMANOID_GAME: dict[str, Any] = {"robot": "humanoid-2012", "obs_mode": "perceived",
+                                 "perception": {"camera": "kidsize-2012"}, "game": True}
+#: The settings of ``--setting``: what each adds to the training match (the robots and the
+#: game flow go to the evaluation match too; the observation mode and the perception to
+#: both sides of it).
+SETTINGS: dict[str, dict[str, Any]] = {"truth": {}, "perceived-game": PERCEIVED_GAME,
+                                       "humanoid-game": HUMANOID_GAME}
 #: PPO's settings.
 PPO_KWARGS: dict[str, Any] = {"n_steps": 128, "batch_size": 4096, "n_epochs": 5,
                               "gamma": 0.995, "learning_rate": 3e-4, "ent_coef": 0.0,
@@ -146,19 +163,19 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--eval", type=int, default=40,
                    help="matches each copy plays against the scripted team (40; 0: none)")
     p.add_argument("--seed", type=int, default=0, help="seed of the matches and of PPO (0)")
-    p.add_argument("--setting", choices=("truth", "perceived-game"), default="truth",
-                   help="truth observations and the simple referee, or each team's ssl-2012 "
-                        "perception and the SSL game flow (default: truth)")
+    p.add_argument("--setting", choices=list(SETTINGS), default="truth",
+                   help="truth observations and the simple referee; each team's ssl-2012 "
+                        "perception and the SSL game flow; or humanoids on their head "
+                        "cameras under the laws' game flow (default: truth)")
     args = p.parse_args(argv)
     torch.set_num_threads(1)
     train, ppo = dict(TRAIN_KWARGS), dict(PPO_KWARGS)
     eval_kwargs = dict(EVAL_KWARGS)
-    perceived = args.setting == "perceived-game"
-    obs_mode, perception = ("perceived", PERCEIVED_GAME["perception"]) if perceived else (
-        "truth", None)
-    if perceived:
-        train.update(PERCEIVED_GAME)
-        eval_kwargs["game"] = True
+    setting = SETTINGS[args.setting]
+    perceived = args.setting != "truth"
+    obs_mode, perception = setting.get("obs_mode", "truth"), setting.get("perception")
+    train.update(setting)
+    eval_kwargs.update({k: setting[k] for k in ("robot", "game") if k in setting})
     if args.tiny:
         train["match_duration"] = 1.0
         args.matches, args.steps, args.warmup, args.copy_every, args.eval = 4, 512, 128, 128, 2

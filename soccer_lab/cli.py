@@ -152,6 +152,8 @@ def _families() -> list[tuple[str, list[tuple[str, str, Any]]]]:
              presets.HEAD_FRAMES)]),
         ("Perception options (perception={\"OPTION\": NAME, ...})", [
             ("ball_filters", "SSL ball filters (ball_filter)", options.BALL_FILTERS),
+            ("robot_predictions", "SSL own-robot prediction (robot_prediction)",
+             options.ROBOT_PREDICTIONS),
             ("localizations", "humanoid localization (localization)", options.LOCALIZATIONS),
             ("fusions", "humanoid ball fusion (fusion)", options.FUSIONS),
             ("ball_trackers", "humanoid ball trackers (ball_tracker)", options.BALL_TRACKERS),

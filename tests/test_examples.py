@@ -160,3 +160,16 @@ def test_train_ssl_team_example_under_perception_and_the_game_flow(tmp_path):
     assert team.meta["eval_kwargs"]["game"] is True
     assert "rules" in team.action_map["params"]
     assert any(n == "game.mate0.on_field" for n in team.action_map["params"]["names"])
+
+
+def test_train_ssl_team_example_trains_humanoids_on_their_cameras(tmp_path):
+    _needs("stable_baselines3")
+    out = _run("train_ssl_team.py", "--setting", "humanoid-game", "--out", str(tmp_path / "r"))
+    assert "trained 512 agent steps" in out
+    from agents.policies import NumpyPolicy
+
+    team = NumpyPolicy.load(tmp_path / "r" / "final_team.npz")
+    train, evaluation = team.meta["train_kwargs"], team.meta["eval_kwargs"]
+    assert train["robot"] == evaluation["robot"] == "humanoid-2012"
+    assert train["perception"] == {"camera": "kidsize-2012"} and evaluation["game"] is True
+    assert team.action_map["params"]["kind"] == "humanoid"

@@ -9,13 +9,14 @@ or Ray).
   (:mod:`~agents.scripted.restarts`, :mod:`~agents.scripted.placement`);
 * :class:`HumanoidTeam` (:mod:`agents.scripted.humanoid`): the humanoid match team;
 * the ``"team-residual"`` action map (:mod:`agents.scripted.residual`): a learned correction
-  to the scripted SSL team's commands.
+  to the scripted SSL or humanoid team's commands.
 """
 
 from __future__ import annotations
 
 from agents.scripted.humanoid import HumanoidTeam
 from agents.scripted.residual import (
+    HUMANOID_IDLE_MOTION,
     TEAM_RESIDUAL,
     residual_command,
     scripted_team_from_params,
@@ -26,5 +27,5 @@ from agents.scripted.restarts import SITUATION_NAMES, RestartPlay
 from agents.scripted.team import TEAMS, ScriptedTeam
 
 __all__ = ["ScriptedTeam", "TEAMS", "HumanoidTeam", "RestartPlay", "SITUATION_NAMES",
-           "TEAM_RESIDUAL", "team_residual_params", "team_residual_command",
+           "TEAM_RESIDUAL", "HUMANOID_IDLE_MOTION", "team_residual_params", "team_residual_command",
            "scripted_team_from_params", "residual_command"]

@@ -60,6 +60,8 @@ class HumanoidTeam:
             raise ValueError(f"HumanoidTeam plays humanoids, got a {robot.kind!r} robot")
         self.field, self.ball, self.robot = field, ball, robot
         self.agents = list(agents)
+        #: Robots in the team.
+        self.team_size = len(self.agents)
         self.behind = behind
         #: Where each robot finds its entries.
         self.view = ObservationView(names, len(self.agents))
@@ -86,6 +88,35 @@ class HumanoidTeam:
             if a in observations:
                 out[a] = self.act_one(observations[a], k)
         return out
+
+    def act(self, obs_batch: np.ndarray) -> np.ndarray:
+        """Actions ``(team_size, 6)`` float32 for observations ``(team_size, obs_dim)`` of
+        the team's robots in order."""
+        return self.act_batch(np.asarray(obs_batch)[None])[0]
+
+    def act_batch(self, obs: np.ndarray) -> np.ndarray:
+        """Actions ``(M, team_size, 6)`` float32 for the observations ``(M, team_size,
+        obs_dim)`` of the team's robots in ``M`` matches (robot ``k`` of each match by
+        :meth:`act_one` as robot ``k``)."""
+        obs = np.asarray(obs)
+        if obs.ndim != 3 or obs.shape[1] != self.team_size:
+            raise ValueError(f"obs must have shape (M, {self.team_size}, obs_dim) (M matches, "
+                             f"one row per robot of the team, in order), got {obs.shape}")
+        out = np.zeros(obs.shape[:2] + (6,), dtype=np.float32)
+        for m in range(obs.shape[0]):
+            for k in range(self.team_size):
+                out[m, k] = self.act_one(obs[m, k], k)
+        return out
+
+    def waiting_rows(self, obs: np.ndarray) -> np.ndarray:
+        """``(n,)`` bool for observations ``(n, obs_dim)``: the robots whose play the laws
+        decide under the game flow (off the field, or waiting out the opponents' kick-off or
+        free kick); all False without the game block."""
+        obs = np.asarray(obs)
+        if self._game is None:
+            return np.zeros(len(obs), dtype=bool)
+        kickoff, free_kick, on_field = (obs[:, i] for i in self._game)
+        return (on_field < 0.5) | (kickoff > 0.5) | (free_kick > 0.5)
 
     def act_one(self, obs: np.ndarray, k: int) -> np.ndarray:
         """The action of the team's ``k``-th robot."""

@@ -1,4 +1,5 @@
-"""A learned correction to the scripted SSL team: the action map of the shipped match team.
+"""A learned correction to the scripted SSL team (or the scripted humanoid team): the action
+map of the shipped match team.
 
 A team trained from scratch in the match has to learn to reach the ball, turn with it, aim and
 kick before it can learn anything about playing against opponents; with the scripted team's
@@ -49,11 +50,12 @@ from typing import Any
 
 import numpy as np
 
+from agents.scripted.humanoid import HumanoidTeam
 from agents.scripted.team import TEAMS, ScriptedTeam
-from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
+from soccer_env.presets import BallSpec, FieldSpec, HumanoidRobotSpec, SSLRobotSpec
 from soccer_env.presets.rules import RuleSpec
 
-__all__ = ["TEAM_RESIDUAL", "team_residual_params", "team_residual_command",
+__all__ = ["TEAM_RESIDUAL", "HUMANOID_IDLE_MOTION", "team_residual_params", "team_residual_command",
            "scripted_team_from_params", "residual_command"]
 
 #: The largest correction of every command entry (1: the learner can override the scripted
@@ -64,23 +66,32 @@ TEAM_RESIDUAL = 1.0
 _SWITCHES = (3, 4, 5)
 #: The keys of the map's params.
 _PARAMS = ("team_size", "residual", "names", "field", "ball", "robot")
+#: A humanoid's motion entry (3) when the scripted team neither kicks nor dives: the middle of
+#: the band that does neither, ``(-0.5, 0]``, so that a correction of up to 0.25 either way
+#: changes nothing.
+HUMANOID_IDLE_MOTION = -0.25
 
 
 def team_residual_params(env: Any, team: str = "blue", residual: float = TEAM_RESIDUAL
                          ) -> dict[str, Any]:
     """The constants of the ``"team-residual"`` map for ``team`` of the match ``env`` (possibly
     wrapped): the field, ball and robot specs as numbers, the observation's entry names, the
-    team size, ``residual`` and, under the SSL game flow, the rule preset as numbers. Only SSL
-    teams."""
+    team size, ``residual`` and, under the SSL game flow, the rule preset as numbers; for a
+    humanoid team ``"kind": "humanoid"`` (its scripted team is
+    :class:`~agents.scripted.humanoid.HumanoidTeam`)."""
     u = getattr(env, "unwrapped", env)
     if team not in TEAMS:
         raise ValueError(f"team must be one of {list(TEAMS)}, got {team!r}")
     kind = u.team_specs[TEAMS.index(team)].kind
-    if kind != "ssl":
-        raise ValueError(f"the 'team-residual' map corrects the scripted SSL team; the {team} "
-                         f"team's robots are {kind!r}")
     if not (np.isfinite(residual) and 0.0 < residual <= 2.0):
         raise ValueError(f"residual must be in (0, 2], got {residual!r}")
+    if kind == "humanoid":
+        humanoids = HumanoidTeam.for_env(u, team)
+        return {"kind": "humanoid", "team_size": humanoids.team_size,
+                "residual": float(residual), "names": list(u.builder.names_for(team)),
+                "field": dataclasses.asdict(humanoids.field),
+                "ball": dataclasses.asdict(humanoids.ball),
+                "robot": dataclasses.asdict(humanoids.robot)}
     scripted = ScriptedTeam.for_env(u, team)
     params = {"team_size": scripted.team_size, "residual": float(residual),
               "names": list(u.builder.names_for(team)),
@@ -92,7 +103,7 @@ def team_residual_params(env: Any, team: str = "blue", residual: float = TEAM_RE
     return params
 
 
-def scripted_team_from_params(params: Mapping[str, Any]) -> ScriptedTeam:
+def scripted_team_from_params(params: Mapping[str, Any]) -> ScriptedTeam | HumanoidTeam:
     """The scripted team of ``"team-residual"`` params (:func:`team_residual_params`),
     rebuilt from them alone; the last few are kept, keyed by the params' sorted JSON.
 
@@ -103,7 +114,7 @@ def scripted_team_from_params(params: Mapping[str, Any]) -> ScriptedTeam:
 
 
 @lru_cache(maxsize=8)
-def _team_of(key: str) -> ScriptedTeam:
+def _team_of(key: str) -> ScriptedTeam | HumanoidTeam:
     """:func:`scripted_team_from_params` of the params as sorted JSON."""
     params = json.loads(key)
     missing = [k for k in _PARAMS if k not in params]
@@ -115,6 +126,11 @@ def _team_of(key: str) -> ScriptedTeam:
         d = {k: tuple(v) if isinstance(v, list) else v for k, v in d.items()}
         return cls(**d)
 
+    if params.get("kind", "ssl") == "humanoid":
+        size = int(params["team_size"])
+        return HumanoidTeam(spec(FieldSpec, params["field"]), spec(BallSpec, params["ball"]),
+                            spec(HumanoidRobotSpec, params["robot"]), params["names"],
+                            [f"robot_{k}" for k in range(size)])
     rules = spec(RuleSpec, params["rules"]) if "rules" in params else None
     return ScriptedTeam(spec(FieldSpec, params["field"]), spec(BallSpec, params["ball"]),
                         spec(SSLRobotSpec, params["robot"]), params["names"],
@@ -131,10 +147,14 @@ def team_residual_command(obs: np.ndarray, act: np.ndarray, params: Mapping[str,
                             obs, act)
 
 
-def residual_command(team: ScriptedTeam, residual: float, obs: np.ndarray, act: np.ndarray
-                     ) -> np.ndarray:
+def residual_command(team: ScriptedTeam | HumanoidTeam, residual: float, obs: np.ndarray,
+                     act: np.ndarray) -> np.ndarray:
     """:func:`team_residual_command` with the scripted team already rebuilt
-    (:func:`scripted_team_from_params`) and its ``residual`` read from the params."""
+    (:func:`scripted_team_from_params`) and its ``residual`` read from the params.
+
+    For humanoids the motion entry's "neither kick nor dive" moves to
+    :data:`HUMANOID_IDLE_MOTION` instead, and the correction is zero for robots off the field
+    or waiting out the opponents' restart (:meth:`HumanoidTeam.waiting_rows`)."""
     obs = np.asarray(obs)
     act = np.clip(np.asarray(act, dtype=np.float64), -1.0, 1.0)
     if obs.ndim != 2 or act.shape != (len(obs), 6):
@@ -147,6 +167,10 @@ def residual_command(team: ScriptedTeam, residual: float, obs: np.ndarray, act: 
                          "rows")
     base = team.act_batch(obs.reshape(-1, size, obs.shape[1])).reshape(-1, 6)
     base = base.astype(np.float64)
+    if isinstance(team, HumanoidTeam):
+        act[team.waiting_rows(obs)] = 0.0
+        base[:, 3] = np.where(base[:, 3] != 0.0, base[:, 3], HUMANOID_IDLE_MOTION)
+        return np.clip(base + act * residual, -1.0, 1.0).astype(np.float32)
     if team.restarts is not None:
         # The scripted team's command at restarts, off the field and for a barred robot.
         act[np.asarray(team.restarts.needs_restart_play(obs), dtype=bool)] = 0.0

@@ -57,7 +57,7 @@ from agents.policies.base import IdlePolicy
 from agents.policies.numpy_policy import NumpyPolicy
 from agents.sb3.algorithms import is_recurrent, is_sb3_model
 from agents.sb3.policies import SB3Policy, numpy_copy
-from agents.scripted import TEAMS, ScriptedTeam
+from agents.scripted import TEAMS, HumanoidTeam, ScriptedTeam
 
 __all__ = ["MatchVecEnv", "LEARNERS", "OPPONENT_NAMES", "base_seed"]
 
@@ -229,8 +229,11 @@ class MatchVecEnv(VecEnv):
         if isinstance(opponent, _Opponent):
             return opponent
         if isinstance(opponent, str):
-            if opponent == "scripted":
-                team = ScriptedTeam.for_env(self._probe, self.opponent_team)
+            if opponent == "scripted":  # the scripted team of the opponents' robots
+                probe, side = self._probe, self.opponent_team
+                kind = probe.team_specs[TEAMS.index(side)].kind
+                team = (HumanoidTeam if kind == "humanoid" else ScriptedTeam).for_env(probe,
+                                                                                     side)
                 return _Opponent(team.act, False, "scripted", team.act_batch)
             if opponent == "idle":
                 return _Opponent(IdlePolicy(6), True, "idle")

@@ -23,7 +23,8 @@
   (:class:`LineBallTracker`), fed each robot's sighting line at its capture time, a kick
   hypothesis beside the track with its kick time searched (:mod:`~.line_kernels`);
 * :mod:`~estimators.kalman.robots`: decoupled constant-velocity pose trackers for many robots
-  (:class:`RobotTracker`).
+  (:class:`RobotTracker`); :mod:`~estimators.kalman.driven`: a team's own robots predicted
+  from the commands it sent them instead (:class:`CommandHistory`, a Smith predictor).
 
 The ball trackers are built from the shared parts of :mod:`estimators.tracking` (gate, track
 initiator, replay buffer, track quality) and differ in their motion models and updates. The
@@ -36,6 +37,7 @@ from ..tracking import CHI2_2DOF_999
 from .ball import BallFilterConfig, BallTrack, BallTracker
 from .ball_batch import BallTrackerBatch
 from .core import KalmanFilter, check_matrix, check_vector
+from .driven import CommandHistory
 from .imm import IMMBall
 from .kick import KickAwareBall
 from .least_squares import LeastSquaresBall
@@ -58,4 +60,5 @@ __all__ = [
     "CHI2_2DOF_999",
     "RobotTracker",
     "RobotTrackerBatch",
+    "CommandHistory",
 ]

@@ -47,6 +47,7 @@ from ..compiled import kernel
 from ..exact import wrap_angle
 from ..models.measurement import MIN_SIGMA_THETA, MIN_SIGMA_XY, PoseMeasurement
 from ..protocol import check_order, check_time
+from .driven import CommandHistory
 
 __all__ = ["RobotTracker", "RobotTrackerBatch", "MAX_ROBOTS", "update_pose", "update_poses",
            "predict_poses"]
@@ -253,6 +254,13 @@ class RobotTracker:
         seen read as zeros; see :attr:`seen`)."""
         t = check_time(t)
         return predict_poses(self._state, self._times, self._seen, np.array([t]))[0]
+
+    def estimate_driven(self, t: float, history: CommandHistory) -> np.ndarray:
+        """:meth:`estimate` at ``t`` with the robots of ``history`` (a team's own) driven
+        from their latest update through the commands sent to them
+        (:func:`~estimators.kalman.driven.drive_poses`) instead of at constant velocity."""
+        out = self.estimate(t)
+        return history.drive(out, self._state[0], self._times[0], self._seen[0], t)
 
     @property
     def p(self) -> np.ndarray:

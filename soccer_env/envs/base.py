@@ -320,6 +320,8 @@ class SoccerCore(RenderingMixin, abc.ABC):
             commands = np.concatenate([m.commands(actions[sl]) for m, sl, _ in teams])
         if self._heads is not None:
             self._heads.apply(commands, w.time, self._perception.attention)
+        if self._perception.driven:  # a team predicts its robots from what it sends
+            self._perception.command(w.time, commands)
         if one is not None:
             w.step(one[2].send(commands))
         else:

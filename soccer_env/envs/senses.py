@@ -126,6 +126,9 @@ class Senses:
                 heads.apply(c, now, p.attention)
         if self.plain:
             return commands
+        if self.perceptions[0].driven:  # teams that predict their robots from their commands
+            for p, c, now in zip(self.perceptions, commands, self.batch.times.tolist()):
+                p.command(now, c)
         if self._team_channels is not None:
             commands = np.array(commands, dtype=np.float64)
             for sl, _, channel in self._team_channels:

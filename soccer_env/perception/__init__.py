@@ -20,6 +20,7 @@ from soccer_env.perception.options import (
     DETECTORS,
     FUSIONS,
     LOCALIZATIONS,
+    ROBOT_PREDICTIONS,
 )
 from soccer_env.perception.overhead import (
     FilteredPerception,
@@ -29,6 +30,6 @@ from soccer_env.perception.overhead import (
 )
 
 __all__ = ["OBS_MODES", "BALL_FILTERS", "DETECTORS", "LOCALIZATIONS", "FUSIONS",
-           "BALL_TRACKERS", "Perception", "PerceptionConfig",
+           "BALL_TRACKERS", "ROBOT_PREDICTIONS", "Perception", "PerceptionConfig",
            "TruthPerception", "RawPerception", "FilteredPerception", "make_perception",
            "MatchPerception"]

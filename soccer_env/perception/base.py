@@ -41,6 +41,7 @@ from soccer_env.perception.options import (
     DETECTORS,
     FUSIONS,
     LOCALIZATIONS,
+    ROBOT_PREDICTIONS,
 )
 from soccer_env.presets.sensors import (
     HEAD_CAMERAS,
@@ -131,6 +132,10 @@ class PerceptionConfig:
         detector: ``"geometric"`` (the sensor model's detections) or ``"pixels"`` (rendered
             images tracked by Li et al.'s (2010) mean-shift particle filters,
             :mod:`soccer_env.perception.pixels`; needs the ``pixels`` extra).
+        robot_prediction: one of :data:`~soccer_env.perception.options.ROBOT_PREDICTIONS`:
+            ``"constant-velocity"`` (default) or ``"commands"``, the team's own robots
+            predicted through the commands it sent (used by ``obs_mode="perceived"``; each
+            team then runs its own filters, on shared camera frames).
 
     Humanoids (head cameras, :mod:`soccer_env.perception.humanoid`):
 
@@ -154,6 +159,7 @@ class PerceptionConfig:
     vision: VisionSpec
     ball_filter: str = "ekf"
     detector: str = "geometric"
+    robot_prediction: str = "constant-velocity"
     camera: HeadCameraSpec | str | None = None
     radio: RadioSpec | str = "zigbee"
     localization: str = "kld-triangulate"
@@ -170,6 +176,7 @@ class PerceptionConfig:
                             f"{type(self.vision).__name__}")
         BALL_FILTERS.check(self.ball_filter, "ball_filter")
         DETECTORS.check(self.detector, "detector")
+        ROBOT_PREDICTIONS.check(self.robot_prediction, "robot_prediction")
         if isinstance(self.camera, str):
             object.__setattr__(self, "camera", head_camera(self.camera))
         elif self.camera is not None and not isinstance(self.camera, HeadCameraSpec):

@@ -51,6 +51,8 @@ def batch_refusal(perception: MatchPerception, m: int | None = None) -> str | No
         return "randomised sensor figures"
     if perception.features:
         return "belief features"
+    if perception.driven:
+        return "robot_prediction='commands'"
     if len(perception._groups) != 1:
         return "two SSL teams with different perception"
     _, pipe, _ = perception._groups[0]

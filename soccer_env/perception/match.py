@@ -12,7 +12,9 @@ import numpy as np
 
 from soccer_env.perception.base import PerceptionConfig
 from soccer_env.perception.humanoid import HumanoidTeamPerception
+from soccer_env.perception.options import ROBOT_PREDICTIONS
 from soccer_env.perception.overhead import (
+    FilteredPerception,
     TruthPerception,
     VisionPerception,
     make_perception,
@@ -80,6 +82,9 @@ class MatchPerception:
         #: probability (0 for humanoids); with randomised figures, this episode's.
         self.delays = [0, 0]
         self.losses = [0.0, 0.0]
+        #: Whether a team's pipeline predicts its own robots from its commands (the
+        #: environment then hands them to :meth:`command` every step).
+        self.driven = False
         #: The head camera of every humanoid (robot index -> spec).
         self.cameras: dict[int, HeadCameraSpec] = {}
         # (robots, pipeline, whether it is a humanoid team's: it reads the bodies and keeps a
@@ -109,8 +114,11 @@ class MatchPerception:
         ssl_teams = [t for t in (0, 1) if kinds[t] == "ssl"]
         if not ssl_teams:
             return
+        # Teams that predict their own robots from their commands believe different things:
+        # each runs its own filters (on shared frames).
         shared = (len(ssl_teams) == 2 and configs[0] == configs[1]
-                  and modes[0] == modes[1])
+                  and modes[0] == modes[1]
+                  and not ROBOT_PREDICTIONS[configs[0].robot_prediction])
         for t in ([ssl_teams[0]] if shared else ssl_teams):
             cfg = configs[t]
             mode = modes[t]
@@ -123,9 +131,14 @@ class MatchPerception:
                 delay = round(spec.actuation_latency / control_dt)
                 for tt in tts:
                     self.delays[tt], self.losses[tt] = delay, spec.command_loss
-                return make_perception(mode, dataclasses.replace(cfg, vision=spec),
+                pipe = make_perception(mode, dataclasses.replace(cfg, vision=spec),
                                        field, specs[members[t][0]], ball, n,
                                        delay * control_dt, teams, specs, features)
+                if isinstance(pipe, FilteredPerception) and ROBOT_PREDICTIONS[
+                        cfg.robot_prediction]:
+                    pipe.drive_own(members[t], specs[members[t][0]], control_dt)
+                    self.driven = True
+                return pipe
 
             if cfg.randomize and mode != "truth":
                 check_ranges(cfg.vision, cfg.randomize, "ssl")
@@ -211,6 +224,15 @@ class MatchPerception:
         """The :class:`~soccer_env.perception.humanoid.HumanoidTeamPerception` of humanoid
         ``i`` (perceived and raw modes)."""
         return self._humanoid[i]
+
+    def command(self, now: float, commands: np.ndarray) -> None:
+        """Every robot's physical commands ``(N, 6)`` sent at ``now`` [s], for the pipelines
+        that predict their team's robots from them (each takes its own rows, effective one
+        actuation latency later)."""
+        for _, pipe, _ in self._groups:
+            history = getattr(pipe, "history", None)
+            if history is not None:
+                pipe.command(now + pipe.ahead, commands[history.robots])
 
     def reset(self, state: WorldState, rng: np.random.Generator, body: BodyState | None = None
               ) -> tuple[Any, Any]:

@@ -12,6 +12,8 @@ one-line description (what ``soccer-env list``, the ablation and the error messa
 * :data:`LOCALIZATIONS` (humanoids, ``localization=``): name -> ``factory(bounds, rng, config,
   pose)`` of the localization filter, or None for dead reckoning and the oracle, which the
   robot's :class:`~soccer_env.perception.brain.Brain` keeps itself;
+* :data:`ROBOT_PREDICTIONS` (SSL teams, ``robot_prediction=``): how the team's own robots are
+  predicted to when its commands take effect;
 * :data:`DETECTORS` (``detector=``): name -> :class:`Detector`, the factories of the overhead
   sensor (and its detector), the head-camera sensor and a robot's ball finder.
 
@@ -48,8 +50,8 @@ from soccer_env.presets import BallSpec, FieldSpec, HeadCameraSpec, RobotSpec, V
 from soccer_env.sensors.headcam import HeadCameraSensor
 from soccer_env.sensors.overhead import OverheadVision
 
-__all__ = ["BallFilter", "BALL_FILTERS", "BALL_TRACKERS", "FUSIONS", "LOCALIZATIONS",
-           "Detector", "DETECTORS", "PARTICLES", "line_tracker"]
+__all__ = ["BallFilter", "BALL_FILTERS", "ROBOT_PREDICTIONS", "BALL_TRACKERS", "FUSIONS",
+           "LOCALIZATIONS", "Detector", "DETECTORS", "PARTICLES", "line_tracker"]
 
 
 # --------------------------------------------------------------------------------------------
@@ -128,6 +130,17 @@ BALL_FILTERS: Registry[Callable[..., BallFilter]] = Registry("ball filter", [
     ("imm", _imm,
      "interacting multiple model: rest, rolling (two-phase friction) and maneuver Kalman "
      "filters mixed by their likelihoods; latency compensation, gating, restarts"),
+])
+
+
+#: How an SSL team's pipeline predicts its own robots to the time its commands take effect
+#: (``robot_prediction=``); the value says whether the team's commands are read.
+ROBOT_PREDICTIONS: Registry[bool] = Registry("robot prediction", [
+    ("constant-velocity", False,
+     "every robot at the constant velocity its pose filter estimates (default)"),
+    ("commands", True,
+     "the team's own robots driven through the commands it sent since their latest "
+     "detection (a Smith predictor, estimators.CommandHistory); others at constant velocity"),
 ])
 
 

@@ -5,7 +5,8 @@ the trackers on its rendered images):
 * :class:`RawPerception` (``"raw"``): the latest delayed detections, unfiltered;
 * :class:`FilteredPerception` (``"perceived"``): the ball filter chosen by ``ball_filter``
   (Zhao et al.'s 2012 EKF by default) and batched robot pose filters, fed with the frames by capture
-  time and predicted to the present plus the actuation latency.
+  time and predicted to the present plus the actuation latency (with
+  ``robot_prediction="commands"`` the team's own robots through the commands it sent).
 
 :func:`make_perception` builds the pipeline of an observation mode.
 """
@@ -18,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from estimators import RobotTracker
+from estimators import CommandHistory, RobotTracker
 from soccer_env.perception.base import (
     OBS_MODES,
     SSL_LOST_AFTER,
@@ -256,6 +257,34 @@ class FilteredPerception(VisionPerception):
         # (BallTracker.update_frame) is fed through it.
         self._feed = getattr(self.ball_tracker, "update_frame", self.ball_tracker.update)
         self.ahead = spec.actuation_latency
+        #: The team's recent commands, with ``robot_prediction="commands"`` (set by
+        #: :meth:`drive_own`); None: every robot at constant velocity.
+        self.history: CommandHistory | None = None
+
+    def drive_own(self, robots: Sequence[int], robot: SSLRobotSpec, control_dt: float
+                  ) -> None:
+        """Predict ``robots`` (the team's own, of model ``robot``) through the commands the
+        team sends (:meth:`command`, one per control step of ``control_dt`` [s]) instead of
+        at constant velocity (see :mod:`estimators.kalman.driven`). The history keeps enough
+        commands to span the vision's delay, the prediction's lead and three frames."""
+        v = self.vision_spec
+        frame = control_dt if v.frame_rate is None else 1.0 / v.frame_rate
+        span = v.latency + v.latency_jitter + self.ahead + 3.0 * frame
+        self.history = CommandHistory(
+            robots, control_dt, math.ceil(span / control_dt) + 2,
+            (robot.max_speed, robot.max_acceleration, robot.max_angular_speed,
+             robot.max_angular_acceleration))
+
+    def command(self, start: float, commands: np.ndarray) -> None:
+        """Record the team's physical commands ``(r, 6)`` (body-frame ``vx, vy, omega``
+        first) that take effect at ``start`` [s] (nothing without :meth:`drive_own`)."""
+        if self.history is not None:
+            self.history.record(start, commands)
+
+    def reset(self, state: WorldState, rng: np.random.Generator):
+        if self.history is not None:  # the robots stand still until the first command
+            self.history.reset(state.time)
+        return super().reset(state, rng)
 
     def _clear(self) -> None:
         self.robot_tracker.reset()
@@ -305,7 +334,10 @@ class FilteredPerception(VisionPerception):
         est = self.ball_tracker.estimate(t)
         ball = np.zeros(6) if est is None else np.array((est[0], est[1], 0.0, est[2], est[3],
                                                          0.0))
-        return Belief(t, ball, self.robot_tracker.estimate(t))
+        tracker, history = self.robot_tracker, self.history
+        robots = (tracker.estimate(t) if history is None
+                  else tracker.estimate_driven(t, history))
+        return Belief(t, ball, robots)
 
     def spread(self, t: float) -> BeliefSpread:
         """How the belief at ``t`` [s] is spread, for drawing (reads, never changes, the

@@ -60,7 +60,8 @@ class RuleSpec:
         placement_interference_distance: robots of the non-placing team keep this distance
             from the segment between the ball and the designated position (8.4.3).
         placement_interference_penalty: time added to the placement timer per interference
-            (8.4.3).
+            (8.4.3), once per interfering robot and placement (a robot wedged where it
+            cannot leave does not extend the placement for ever).
         max_placement_failures: a team with this many placement failures may not place the
             ball for the rest of the half (5.2).
         line_margin: a free kick's ball lies at least this far inside the field lines (5.3.3).

@@ -6,7 +6,8 @@ with bootstrap intervals over seeds.
 Teams are ``scripted``, ``idle``, a shipped team by name (:data:`agents.baselines.TEAMS`) or
 a numpy team file (``.npz``, arrays only); each may end in ``@truth`` or ``@perceived`` to
 play on that observation mode instead of ``--obs-mode`` (so a team is rated under the
-conditions it plays). The match (sizes, length, command rate, the game flow) is shared.
+conditions it plays). The match (sizes, length, command rate, the game flow) is shared, and
+so are the perceived teams' vision preset and own-robot prediction (``--robot-prediction``).
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from soccer_env.perception.options import ROBOT_PREDICTIONS
 from soccer_lab.cli_args import HelpFormatter
 
 __all__ = ["parser", "main", "parse_team"]
@@ -43,6 +45,10 @@ def parser() -> argparse.ArgumentParser:
                    help="the observation mode of teams without @MODE")
     p.add_argument("--vision", default="ssl-2012",
                    help="the vision preset perceived teams see through (soccer-env list)")
+    p.add_argument("--robot-prediction", choices=list(ROBOT_PREDICTIONS),
+                   default="constant-velocity",
+                   help="how perceived teams predict their own robots to when their commands "
+                        "take effect: at constant velocity, or through the commands they sent")
     p.add_argument("--game", action="store_true",
                    help="play the SSL game flow (Division B rules) instead of the simple "
                         "referee")
@@ -60,7 +66,8 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
-def parse_team(text: str, obs_mode: str, vision: str) -> Any:
+def parse_team(text: str, obs_mode: str, vision: str,
+               robot_prediction: str = "constant-velocity") -> Any:
     """The :class:`~agents.studies.matches.Side` of a ``--team`` value (see the module
     docstring), labelled with the text itself.
 
@@ -85,7 +92,8 @@ def parse_team(text: str, obs_mode: str, vision: str) -> Any:
     else:
         raise ValueError(f"--team {text!r}: must be one of {list(TEAM_POLICIES)}, a shipped "
                          f"team {sorted(TEAMS)} or a numpy team file (.npz)")
-    perception = {"vision": vision} if mode == "perceived" else None
+    perception = ({"vision": vision, "robot_prediction": robot_prediction}
+                  if mode == "perceived" else None)
     return Side(policy, mode, perception, label=text)
 
 
@@ -129,7 +137,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.anchor is not None and args.anchor not in args.team:
         p.error(f"--anchor must be one of the teams {args.team}, got {args.anchor!r}")
     try:
-        sides = [parse_team(t, args.obs_mode, args.vision) for t in args.team]
+        sides = [parse_team(t, args.obs_mode, args.vision, args.robot_prediction)
+                 for t in args.team]
     except ValueError as err:
         p.error(str(err))
     env_kwargs: dict[str, Any] = {"blue": args.size, "yellow": args.size,

@@ -9,6 +9,8 @@ import pytest
 import soccer_env
 from agents.policies import NumpyPolicy
 from agents.scripted import (
+    HUMANOID_IDLE_MOTION,
+    HumanoidTeam,
     ScriptedTeam,
     residual_command,
     scripted_team_from_params,
@@ -172,9 +174,53 @@ def test_under_the_game_flow_the_correction_applies_in_open_play_only():
     np.testing.assert_allclose(u[1, :3], team.act(rows)[1, :3], atol=1e-6)
 
 
+HUMANOIDS = {"blue": 2, "yellow": 2, "robot": "humanoid-2012", "match_duration": 8.0,
+             "control_dt": 1.0 / 30.0}
+
+
+@pytest.mark.parametrize("game", [False, True])
+def test_a_humanoid_team_through_the_map(game):
+    """The map corrects the scripted humanoid team: a zero correction plays it exactly (the
+    same match, its "neither kick nor dive" read as HUMANOID_IDLE_MOTION, which does
+    nothing), the rebuilt team is the team, and under the laws' game flow a robot waiting
+    out the opponents' restart or off the field plays the scripted command whatever the
+    correction."""
+    kwargs = {**HUMANOIDS, "game": game}
+    runs = []
+    for correct in (False, True):
+        env = soccer_env.parallel_env(**kwargs)
+        obs, _ = env.reset(seed=4)
+        params = team_residual_params(env, "blue")
+        team = scripted_team_from_params(params)
+        blue, yellow = (HumanoidTeam.for_env(env, side) for side in ("blue", "yellow"))
+        assert isinstance(team, HumanoidTeam) and params["kind"] == "humanoid"
+        balls, waited = [], 0
+        while env.agents:
+            rows = np.stack([obs["blue_0"], obs["blue_1"]])
+            base = np.stack(list(blue(obs).values()))
+            np.testing.assert_array_equal(team.act_batch(rows[None])[0], base)
+            act = (residual_command(team, 1.0, rows, np.zeros((2, 6))) if correct
+                   else base)
+            if correct:
+                idle = base[:, 3] == 0.0
+                assert np.all(act[idle, 3] == HUMANOID_IDLE_MOTION)
+                waiting = team.waiting_rows(rows)
+                waited += int(waiting.sum())
+                pushed = residual_command(team, 1.0, rows, np.ones((2, 6)))
+                np.testing.assert_array_equal(pushed[waiting], act[waiting])
+            actions = {"blue_0": act[0], "blue_1": act[1], **yellow(obs)}
+            obs, _, _, _, infos = env.step(actions)
+            balls.append(infos["blue_0"]["truth"]["ball_position"][:2].copy())
+        runs.append((np.array(balls), infos["blue_0"]["score"], waited))
+        env.close()
+    (want, want_score, _), (got, got_score, waited) = runs
+    assert np.abs(np.diff(want, axis=0)).sum() > 0.2  # the ball moved
+    np.testing.assert_array_equal(got, want)
+    assert got_score == want_score
+    assert (waited > 0) == game  # the kick-off's wait, under the game flow only
+
+
 @pytest.mark.parametrize("make, match", [
-    (lambda: team_residual_params(soccer_env.parallel_env(blue=2, yellow=2, robot="humanoid"),
-                                  "blue"), "corrects the scripted SSL team"),
     (lambda: team_residual_params(soccer_env.parallel_env(blue=2, yellow=2), "red"),
      "team must be one of"),
     (lambda: team_residual_params(soccer_env.parallel_env(blue=2, yellow=2), "blue",

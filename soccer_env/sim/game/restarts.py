@@ -53,6 +53,9 @@ class RestartRules(RefereeState):
         self._placement_first: tuple[str, int] | None = None
         self._interference: dict[int, float] = {}
         self._interference_counted = False
+        # Robots whose interference has extended this placement's timer (once each: a robot
+        # that cannot get out of the way does not hold the game up for ever).
+        self._extended: set[int] = set()
         self._stop_speed_fouled: set[int] = set()
         self._progress_anchor: np.ndarray | None = None
         self._progress_time = 0.0
@@ -138,6 +141,7 @@ class RestartRules(RefereeState):
             self._placement_first = next_command
         self._interference = {}
         self._interference_counted = False
+        self._extended = set()
 
     def _needs_placement(self, ball: np.ndarray, position: tuple[float, float]) -> bool:
         """Whether the ball must be placed before the restart (5.2)."""
@@ -237,7 +241,9 @@ class RestartRules(RefereeState):
                 self._interference[i] = self._interference.get(i, 0.0) + dt
                 if self._interference[i] > r.grace_period:
                     self._interference[i] = 0.0
-                    self._placement_left += r.placement_interference_penalty
+                    if i not in self._extended:
+                        self._extended.add(i)
+                        self._placement_left += r.placement_interference_penalty
                     if self.options.fouls and not self._interference_counted:
                         self._interference_counted = True
                         self._foul(d, "bot_interfered_placement", int(self.teams[i]), i,

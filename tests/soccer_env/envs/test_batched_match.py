@@ -76,6 +76,10 @@ def _compare(kwargs: dict, n: int, steps: int, seed: int) -> dict[str, int]:
     # Each match's own perception (the teams perceive differently), fed from the batch.
     {"blue": 2, "yellow": 2, "match_duration": 3.0, "field": "ssl-2012",
      "obs_mode": "perceived", "perception": {"blue": "ssl-2012", "yellow": "realistic"}},
+    # Each team predicts its robots through its own commands (its own filters).
+    {"blue": 2, "yellow": 2, "match_duration": 3.0, "field": "ssl-2012",
+     "obs_mode": "perceived",
+     "perception": {"vision": "ssl-2012", "robot_prediction": "commands"}},
     {"blue": 2, "yellow": 1, "max_cycles": 150, "field": "ssl-2012", "obs_mode": "raw",
      "perception": {"blue": "realistic", "yellow": "ssl-2012"}, "belief_features": True},
 ])

@@ -469,6 +469,9 @@ def test_no_progress_ends_in_a_force_start():
 
 
 def test_placement_interference_adds_time_and_one_foul():
+    """An interfering robot costs its team one foul and extends the placement once (10 s),
+    however long it stays: a robot that cannot leave does not hold the game up for ever,
+    and the placement still fails in the end."""
     g = Game()
     g.kick_off(0)
     g.kick(3, to=(1.0, 2.5))
@@ -477,7 +480,10 @@ def test_placement_interference_adds_time_and_one_foul():
     g.robots[3, 0:2] = (-1.0, HY - 0.1)  # yellow on the ball's way
     g.run(4.5)
     assert g.events.count("bot_interfered_placement") == 1
-    assert g.gc._placement_left == pytest.approx(30.0 - 4.5 + 20.0, abs=0.05)
+    assert g.gc._placement_left == pytest.approx(30.0 - 4.5 + 10.0, abs=0.05)
+    g.run(35.6)  # 40 s in all: the placement has failed
+    assert g.events.count("bot_interfered_placement") == 1
+    assert "placement_failed" in g.events
 
 
 def test_half_time_and_the_end_of_the_match():

@@ -24,7 +24,10 @@ def test_a_tiny_round_robin_prints_the_ratings_and_writes_every_match(tmp_path, 
 
 def test_a_team_plays_on_its_own_observation_mode():
     side = parse_team("scripted@perceived", "truth", "ssl-2012")
-    assert side.obs_mode == "perceived" and side.perception == {"vision": "ssl-2012"}
+    assert side.obs_mode == "perceived" and side.perception == {
+        "vision": "ssl-2012", "robot_prediction": "constant-velocity"}
+    side = parse_team("idle", "perceived", "realistic", "commands")
+    assert side.perception == {"vision": "realistic", "robot_prediction": "commands"}
     side = parse_team("ssl-team-2v2", "truth", "ssl-2012")
     assert side.obs_mode == "truth" and side.policy == str(SSL_TEAM_2V2)
 
@@ -39,6 +42,8 @@ def test_a_team_plays_on_its_own_observation_mode():
     (["--team", "scripted", "--team", "idle", "--matches", "0"], "--matches must be >= 1"),
     (["--team", "scripted", "--team", "idle", "--anchor", "other"], "--anchor must be one"),
     (["--team", "scripted", "--team", "idle", "--duration", "0"], "--duration must be"),
+    (["--team", "scripted", "--team", "idle", "--robot-prediction", "smith"],
+     "--robot-prediction: invalid choice"),
 ])
 def test_bad_input_is_refused_naming_the_option(argv, message, capsys):
     with pytest.raises(SystemExit) as exc:
