@@ -1,4 +1,4 @@
-"""``soccer-env rate``: a rating round robin between SSL match teams
+"""``soccer-env rate``: a rating round robin between match teams (SSL or humanoid)
 (:func:`agents.studies.rating.rate`): every pair plays the same seeded matches, colours
 swapped every other match, and one Elo rating per team is fitted to all the matches at once,
 with bootstrap intervals over seeds.
@@ -7,7 +7,9 @@ Teams are ``scripted``, ``idle``, a shipped team by name (:data:`agents.baseline
 a numpy team file (``.npz``, arrays only); each may end in ``@truth`` or ``@perceived`` to
 play on that observation mode instead of ``--obs-mode`` (so a team is rated under the
 conditions it plays). The match (sizes, length, command rate, the game flow) is shared, and
-so are the perceived teams' vision preset and own-robot prediction (``--robot-prediction``).
+so are the robots (``--robot``), the perceived SSL teams' vision preset and own-robot
+prediction (``--robot-prediction``) and the perceived humanoid teams' head camera
+(``--camera``, with team fusion).
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from soccer_env.perception.options import ROBOT_PREDICTIONS
+from soccer_env.presets import HEAD_CAMERAS, ROBOTS
 from soccer_lab.cli_args import HelpFormatter
 
 __all__ = ["parser", "main", "parse_team"]
@@ -33,7 +36,7 @@ def parser() -> argparse.ArgumentParser:
     """The options of ``soccer-env rate``."""
     p = argparse.ArgumentParser(
         prog="soccer-env rate", formatter_class=HelpFormatter,
-        description="Play a rating round robin between SSL match teams and print their Elo "
+        description="Play a rating round robin between match teams and print their Elo "
                     "ratings (the anchor team held at 1000) with 95 % bootstrap intervals "
                     "over seeds, and every pair's head-to-head.",
         epilog=f"example:\n  {_EXAMPLE}")
@@ -43,15 +46,20 @@ def parser() -> argparse.ArgumentParser:
                         "more (default: none)")
     p.add_argument("--obs-mode", choices=_MODES, default="truth",
                    help="the observation mode of teams without @MODE")
+    p.add_argument("--robot", choices=list(ROBOTS), default="ssl",
+                   help="the robots of both teams (a humanoid preset plays humanoid teams)")
     p.add_argument("--vision", default="ssl-2012",
-                   help="the vision preset perceived teams see through (soccer-env list)")
+                   help="the vision preset perceived SSL teams see through (soccer-env list)")
+    p.add_argument("--camera", choices=list(HEAD_CAMERAS), default="kidsize-2012",
+                   help="the head camera perceived humanoid teams see through, with team "
+                        "fusion")
     p.add_argument("--robot-prediction", choices=list(ROBOT_PREDICTIONS),
                    default="constant-velocity",
                    help="how perceived teams predict their own robots to when their commands "
                         "take effect: at constant velocity, or through the commands they sent")
     p.add_argument("--game", action="store_true",
-                   help="play the SSL game flow (Division B rules) instead of the simple "
-                        "referee")
+                   help="play the game flow (the SSL Division B rules, or the humanoid laws) "
+                        "instead of the simple referee")
     p.add_argument("--size", type=int, default=2, help="robots a side")
     p.add_argument("--duration", type=float, default=60.0, help="playing time of a match [s]")
     p.add_argument("--control-hz", type=float, default=30.0, help="commands per second")
@@ -67,7 +75,7 @@ def parser() -> argparse.ArgumentParser:
 
 
 def parse_team(text: str, obs_mode: str, vision: str,
-               robot_prediction: str = "constant-velocity") -> Any:
+               robot_prediction: str = "constant-velocity", camera: str | None = None) -> Any:
     """The :class:`~agents.studies.matches.Side` of a ``--team`` value (see the module
     docstring), labelled with the text itself.
 
@@ -92,8 +100,12 @@ def parse_team(text: str, obs_mode: str, vision: str,
     else:
         raise ValueError(f"--team {text!r}: must be one of {list(TEAM_POLICIES)}, a shipped "
                          f"team {sorted(TEAMS)} or a numpy team file (.npz)")
-    perception = ({"vision": vision, "robot_prediction": robot_prediction}
-                  if mode == "perceived" else None)
+    if mode != "perceived":
+        perception = None
+    elif camera is not None:  # humanoids: the head camera, with the default team fusion
+        perception = {"camera": camera}
+    else:
+        perception = {"vision": vision, "robot_prediction": robot_prediction}
     return Side(policy, mode, perception, label=text)
 
 
@@ -137,11 +149,12 @@ def main(argv: list[str] | None = None) -> int:
     if args.anchor is not None and args.anchor not in args.team:
         p.error(f"--anchor must be one of the teams {args.team}, got {args.anchor!r}")
     try:
-        sides = [parse_team(t, args.obs_mode, args.vision, args.robot_prediction)
-                 for t in args.team]
+        humanoid = ROBOTS[args.robot].kind == "humanoid"
+        sides = [parse_team(t, args.obs_mode, args.vision, args.robot_prediction,
+                            args.camera if humanoid else None) for t in args.team]
     except ValueError as err:
         p.error(str(err))
-    env_kwargs: dict[str, Any] = {"blue": args.size, "yellow": args.size,
+    env_kwargs: dict[str, Any] = {"blue": args.size, "yellow": args.size, "robot": args.robot,
                                   "match_duration": args.duration,
                                   "control_dt": 1.0 / args.control_hz}
     if args.game:

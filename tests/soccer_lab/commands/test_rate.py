@@ -28,6 +28,18 @@ def test_a_team_plays_on_its_own_observation_mode():
         "vision": "ssl-2012", "robot_prediction": "constant-velocity"}
     side = parse_team("idle", "perceived", "realistic", "commands")
     assert side.perception == {"vision": "realistic", "robot_prediction": "commands"}
+    side = parse_team("idle", "perceived", "ssl-2012", "commands", "kidsize-2012")
+    assert side.perception == {"camera": "kidsize-2012"}
+
+
+def test_humanoid_teams_are_rated_on_their_cameras(tmp_path, capsys):
+    out = tmp_path / "rating.json"
+    assert main(["--team", "scripted", "--team", "idle", "--robot", "humanoid-2012",
+                 "--obs-mode", "perceived", "--game", "--matches", "2", "--duration", "2",
+                 "--workers", "1", "--json", str(out)]) == 0
+    report = json.loads(out.read_text())
+    assert report["env_kwargs"]["robot"] == "humanoid-2012" and report["env_kwargs"]["game"]
+    assert len(report["head_to_head"]) == 1
     side = parse_team("ssl-team-2v2", "truth", "ssl-2012")
     assert side.obs_mode == "truth" and side.policy == str(SSL_TEAM_2V2)
 
