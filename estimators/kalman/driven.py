@@ -20,9 +20,9 @@ those commands with the drive of an omnidirectional robot:
   ``max_acceleration h`` (a vector step) and the turn rate by at most
   ``max_angular_acceleration h``, and the pose moves by the new velocity times ``h``
   (semi-implicit Euler, as the physics engine integrates);
-* before the history's first command, from ``origin`` on, the robots stand still (what a
-  command channel delivers before the first command arrives); before ``origin`` (or with no
-  history at all) the prediction is the tracker's constant velocity.
+* before the history's first command (or with none recorded), from ``origin`` on, the robots
+  stand still (what a command channel delivers before the first command arrives); a robot
+  last updated before ``origin`` keeps the tracker's constant-velocity prediction.
 
 Collisions and lost commands are not modelled: the next detection corrects them, with the
 vision's delay.
