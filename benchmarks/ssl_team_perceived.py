@@ -41,8 +41,8 @@ ENV_KWARGS = {"blue": 2, "yellow": 2, "match_duration": 60.0, "control_dt": 1.0 
 PERCEPTION = {"vision": "ssl-2012", "robot_prediction": "commands"}
 
 
-def side(policy: str, label: str, perception: dict = PERCEPTION) -> Side:
-    """A side on perceived ``ssl-2012`` observations."""
+def side(policy: str, label: str, perception: dict) -> Side:
+    """A side on perceived ``ssl-2012`` observations through ``perception``."""
     return Side(policy, "perceived", perception, label=label)
 
 

@@ -24,8 +24,8 @@ from agents.scripted.residual import (
     team_residual_params,
 )
 from agents.scripted.restarts import SITUATION_NAMES, RestartPlay
-from agents.scripted.team import TEAMS, ScriptedTeam
+from agents.scripted.team import TEAMS, ScriptedTeam, scripted_team
 
-__all__ = ["ScriptedTeam", "TEAMS", "HumanoidTeam", "RestartPlay", "SITUATION_NAMES",
-           "TEAM_RESIDUAL", "HUMANOID_IDLE_MOTION", "team_residual_params", "team_residual_command",
-           "scripted_team_from_params", "residual_command"]
+__all__ = ["ScriptedTeam", "TEAMS", "HumanoidTeam", "scripted_team", "RestartPlay",
+           "SITUATION_NAMES", "TEAM_RESIDUAL", "HUMANOID_IDLE_MOTION", "team_residual_params",
+           "team_residual_command", "scripted_team_from_params", "residual_command"]

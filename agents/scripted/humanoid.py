@@ -64,7 +64,7 @@ class HumanoidTeam:
         self.team_size = len(self.agents)
         self.behind = behind
         #: Where each robot finds its entries.
-        self.view = ObservationView(names, len(self.agents))
+        self.view = ObservationView(names, self.team_size)
         self.keeper = (ScriptedGoalkeeper(field, ball, robot, names)
                        if len(self.agents) >= 2 else None)
         index = self.view.index

@@ -51,7 +51,7 @@ from typing import Any
 import numpy as np
 
 from agents.scripted.humanoid import HumanoidTeam
-from agents.scripted.team import TEAMS, ScriptedTeam
+from agents.scripted.team import TEAMS, ScriptedTeam, scripted_team
 from soccer_env.presets import BallSpec, FieldSpec, HumanoidRobotSpec, SSLRobotSpec
 from soccer_env.presets.rules import RuleSpec
 
@@ -82,23 +82,17 @@ def team_residual_params(env: Any, team: str = "blue", residual: float = TEAM_RE
     u = getattr(env, "unwrapped", env)
     if team not in TEAMS:
         raise ValueError(f"team must be one of {list(TEAMS)}, got {team!r}")
-    kind = u.team_specs[TEAMS.index(team)].kind
     if not (np.isfinite(residual) and 0.0 < residual <= 2.0):
         raise ValueError(f"residual must be in (0, 2], got {residual!r}")
-    if kind == "humanoid":
-        humanoids = HumanoidTeam.for_env(u, team)
-        return {"kind": "humanoid", "team_size": humanoids.team_size,
-                "residual": float(residual), "names": list(u.builder.names_for(team)),
-                "field": dataclasses.asdict(humanoids.field),
-                "ball": dataclasses.asdict(humanoids.ball),
-                "robot": dataclasses.asdict(humanoids.robot)}
-    scripted = ScriptedTeam.for_env(u, team)
+    scripted = scripted_team(u, team)
     params = {"team_size": scripted.team_size, "residual": float(residual),
               "names": list(u.builder.names_for(team)),
               "field": dataclasses.asdict(scripted.field),
               "ball": dataclasses.asdict(scripted.ball),
               "robot": dataclasses.asdict(scripted.robot)}
-    if scripted.restarts is not None:
+    if isinstance(scripted, HumanoidTeam):
+        params["kind"] = "humanoid"
+    elif scripted.restarts is not None:
         params["rules"] = dataclasses.asdict(scripted.rules)
     return params
 
@@ -126,15 +120,14 @@ def _team_of(key: str) -> ScriptedTeam | HumanoidTeam:
         d = {k: tuple(v) if isinstance(v, list) else v for k, v in d.items()}
         return cls(**d)
 
+    field, ball = spec(FieldSpec, params["field"]), spec(BallSpec, params["ball"])
+    size = int(params["team_size"])
     if params.get("kind", "ssl") == "humanoid":
-        size = int(params["team_size"])
-        return HumanoidTeam(spec(FieldSpec, params["field"]), spec(BallSpec, params["ball"]),
-                            spec(HumanoidRobotSpec, params["robot"]), params["names"],
-                            [f"robot_{k}" for k in range(size)])
+        return HumanoidTeam(field, ball, spec(HumanoidRobotSpec, params["robot"]),
+                            params["names"], [f"robot_{k}" for k in range(size)])
     rules = spec(RuleSpec, params["rules"]) if "rules" in params else None
-    return ScriptedTeam(spec(FieldSpec, params["field"]), spec(BallSpec, params["ball"]),
-                        spec(SSLRobotSpec, params["robot"]), params["names"],
-                        int(params["team_size"]), rules=rules)
+    return ScriptedTeam(field, ball, spec(SSLRobotSpec, params["robot"]), params["names"],
+                        size, rules=rules)
 
 
 def team_residual_command(obs: np.ndarray, act: np.ndarray, params: Mapping[str, Any]
@@ -170,10 +163,10 @@ def residual_command(team: ScriptedTeam | HumanoidTeam, residual: float, obs: np
     if isinstance(team, HumanoidTeam):
         act[team.waiting_rows(obs)] = 0.0
         base[:, 3] = np.where(base[:, 3] != 0.0, base[:, 3], HUMANOID_IDLE_MOTION)
-        return np.clip(base + act * residual, -1.0, 1.0).astype(np.float32)
-    if team.restarts is not None:
-        # The scripted team's command at restarts, off the field and for a barred robot.
-        act[np.asarray(team.restarts.needs_restart_play(obs), dtype=bool)] = 0.0
-    switches = list(_SWITCHES)
-    base[:, switches] = np.where(base[:, switches] > 0.0, base[:, switches], -1.0)
+    else:
+        if team.restarts is not None:
+            # The scripted team's command at restarts, off the field and for a barred robot.
+            act[np.asarray(team.restarts.needs_restart_play(obs), dtype=bool)] = 0.0
+        switches = list(_SWITCHES)
+        base[:, switches] = np.where(base[:, switches] > 0.0, base[:, switches], -1.0)
     return np.clip(base + act * residual, -1.0, 1.0).astype(np.float32)

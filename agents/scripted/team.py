@@ -47,6 +47,7 @@ import numpy as np
 from agents.scripted.attack import Attack
 from agents.scripted.defence import Defence
 from agents.scripted.geometry import TeamGeometry
+from agents.scripted.humanoid import HumanoidTeam
 from agents.scripted.open_play import OpenPlay
 from agents.scripted.placement import BallPlacement
 from agents.scripted.restarts import RestartPlay
@@ -58,7 +59,7 @@ from soccer_env.envs.keeper import ScriptedGoalkeeper
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
 from soccer_env.presets.rules import RuleSpec
 
-__all__ = ["ScriptedTeam", "TEAMS"]
+__all__ = ["ScriptedTeam", "TEAMS", "scripted_team"]
 
 #: Team names accepted by :meth:`ScriptedTeam.for_env`, in team-index order.
 TEAMS = ("blue", "yellow")
@@ -227,3 +228,14 @@ class ScriptedTeam:
                     out[k] = self.act_one(rows[k], int(index[k]))
                 return out.reshape(obs.shape[:2] + (6,))
         return self.open_play.act_rows(rows, index).reshape(obs.shape[:2] + (6,))
+
+
+def scripted_team(env: Any, team: str = "blue") -> ScriptedTeam | HumanoidTeam:
+    """The scripted team of ``team`` (``"blue"`` or ``"yellow"``) of a (possibly wrapped)
+    match, for its robots: :class:`~agents.scripted.humanoid.HumanoidTeam` for humanoids,
+    :class:`ScriptedTeam` for SSL robots."""
+    if team not in TEAMS:
+        raise ValueError(f"team must be one of {list(TEAMS)}, got {team!r}")
+    u = getattr(env, "unwrapped", env)
+    spec = u.team_specs[TEAMS.index(team)] if hasattr(u, "team_specs") else u.robot_spec
+    return (HumanoidTeam if spec.kind == "humanoid" else ScriptedTeam).for_env(u, team)

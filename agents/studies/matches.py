@@ -41,7 +41,7 @@ from agents.common.checks import check_full_infos
 from agents.common.processes import map_jobs
 from agents.common.stats import mean_interval, wilson
 from agents.policies.numpy_policy import NumpyPolicy
-from agents.scripted import TEAMS, HumanoidTeam, ScriptedTeam
+from agents.scripted import TEAMS, scripted_team
 from soccer_env.perception.base import OBS_MODES
 
 __all__ = ["Side", "MatchRecord", "HeadToHead", "head_to_head", "match_jobs",
@@ -152,9 +152,7 @@ def team_policy(policy: Any, env: Any, team: str
     u = getattr(env, "unwrapped", env)
     agents = [a for a in u.possible_agents if a.startswith(f"{team}_")]
     if policy == "scripted":
-        if u.team_specs[TEAMS.index(team)].kind == "humanoid":
-            return HumanoidTeam.for_env(u, team)
-        return ScriptedTeam.for_env(u, team)
+        return scripted_team(u, team)
     if policy == "idle":
         zero = np.zeros(6, dtype=np.float32)
         return lambda obs: {a: zero for a in agents if a in obs}

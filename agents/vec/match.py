@@ -57,7 +57,7 @@ from agents.policies.base import IdlePolicy
 from agents.policies.numpy_policy import NumpyPolicy
 from agents.sb3.algorithms import is_recurrent, is_sb3_model
 from agents.sb3.policies import SB3Policy, numpy_copy
-from agents.scripted import TEAMS, HumanoidTeam, ScriptedTeam
+from agents.scripted import TEAMS, ScriptedTeam, scripted_team
 
 __all__ = ["MatchVecEnv", "LEARNERS", "OPPONENT_NAMES", "base_seed"]
 
@@ -230,10 +230,7 @@ class MatchVecEnv(VecEnv):
             return opponent
         if isinstance(opponent, str):
             if opponent == "scripted":  # the scripted team of the opponents' robots
-                probe, side = self._probe, self.opponent_team
-                kind = probe.team_specs[TEAMS.index(side)].kind
-                team = (HumanoidTeam if kind == "humanoid" else ScriptedTeam).for_env(probe,
-                                                                                     side)
+                team = scripted_team(self._probe, self.opponent_team)
                 return _Opponent(team.act, False, "scripted", team.act_batch)
             if opponent == "idle":
                 return _Opponent(IdlePolicy(6), True, "idle")
