@@ -2,7 +2,8 @@
 scripted team, self-play against a pool of past copies and the scripted team.
 
     python examples/train_ssl_team.py --out runs/ssl-team          # the shipped team's run
-    python examples/train_ssl_team.py --setting perceived-game --out runs/ssl-team-perceived
+    python examples/train_ssl_team.py --setting perceived-game --out runs/ssl-team-perceived \
+        --init agents/baselines/ssl_team_2v2.npz               # from the truth-trained team
     python examples/train_ssl_team.py --setting humanoid-game --out runs/humanoid-team
     python examples/train_ssl_team.py --tiny                       # seconds: what CI runs
 
@@ -27,10 +28,18 @@ correction to the scripted team's command from the same observation, so training
 a team that already plays, and the exploration noise starts small (``log_std_init=-2``: a
 standard deviation of 0.14 on each command entry).
 
-Opponents: the scripted team alone for the first ``--warmup`` steps; then, every
-``--copy-every`` steps, a frozen copy of the learner joins a pool of the last
-``--pool`` copies, and each match, when it restarts, draws its yellow team from the copies and
-the scripted team, the scripted team as often as all the copies together.
+Opponents: the scripted team (and the fixed members of the league) for the first
+``--warmup`` steps; then, every ``--copy-every`` steps, a frozen copy of the learner joins a
+pool of the last ``--pool`` copies, and each match, when it restarts, draws its yellow team
+from the copies, the fixed members and the scripted team, the scripted team as often as all
+the others together.
+
+``--init FILE`` starts the learner from a team file instead of a zero correction: the
+truth-trained team, whose observation lacks the game block's referee entries, starts with
+zero weights on them (:func:`agents.sb3.warm_start.load_actor`), so it plays as it did until
+training moves them; its network is held for the first ``--freeze-actor`` steps while the
+fresh critic learns its value (:class:`agents.sb3.warm_start.FreezeActor`), and the team as it
+started joins the league's fixed members.
 
 Rewards: +1 for a goal scored, -1 for a goal conceded (shared by the team), and
 ``ball_progress`` shaping of 0.2 per metre the ball moves towards the opponent goal
@@ -59,6 +68,9 @@ from stable_baselines3 import PPO
 from stable_baselines3.common.vec_env import VecNormalize
 
 import soccer_env
+from agents.policies.numpy_policy import NumpyPolicy
+from agents.sb3.policies import numpy_copy
+from agents.sb3.warm_start import FreezeActor, load_actor
 from agents.scripted import team_residual_params
 from agents.studies.matches import Side, head_to_head
 from agents.vec.factories import make_match_vec_env
@@ -124,7 +136,8 @@ class PoolSelfPlay(SelfPlayCallback):
     def update_opponent(self) -> None:
         copy = self.snapshot()
         self.pool.append(copy)
-        self._venv.set_opponent_pool(["scripted"] * len(self.pool) + self.league
+        self._venv.set_opponent_pool(["scripted"] * (len(self.pool) + len(self.league))
+                                     + self.league
                                      + list(self.pool))
         self.n_updates += 1
         path = copy.save(self.out / "checkpoints" / f"team_{self.num_timesteps}.npz")
@@ -145,6 +158,32 @@ class PoolSelfPlay(SelfPlayCallback):
             f.write(json.dumps(line) + "\n")
 
 
+def init_team(path: str, params: dict[str, Any]) -> NumpyPolicy:
+    """The team of ``--init``: a ``team-residual`` numpy team whose observation is the start of
+    the training match's (``params``, the map's parameters in the training match)."""
+    team = NumpyPolicy.load(path)
+    kind = (team.action_map or {}).get("kind")
+    if kind != "team-residual":
+        raise SystemExit(f"--init must be a team-residual team file, got a {kind!r} policy "
+                         f"({path})")
+    names, ours = list(team.action_map["params"]["names"]), list(params["names"])
+    if ours[:len(names)] != names:
+        raise SystemExit(f"--init {path}: its observation is not the start of the training "
+                         "match's")
+    return team
+
+
+def start_from(model: PPO, norm: VecNormalize, team: NumpyPolicy, params: dict[str, Any]
+               ) -> NumpyPolicy:
+    """Set the learner's actor and observation statistics to ``team``'s (the game block's
+    referee entries, which a team trained without the game flow lacks, start with zero
+    weights: :func:`agents.sb3.warm_start.load_actor`), and return the learner's copy: the
+    team as it plays the training match, for the league."""
+    load_actor(model, team, norm)
+    return numpy_copy(model, {"init": team.meta.get("command", "")}, norm,
+                      action_map={"kind": "team-residual", "params": params})
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--tiny", action="store_true",
@@ -163,6 +202,12 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--eval", type=int, default=40,
                    help="matches each copy plays against the scripted team (40; 0: none)")
     p.add_argument("--seed", type=int, default=0, help="seed of the matches and of PPO (0)")
+    p.add_argument("--init", default=None,
+                   help="a numpy team file to start the learner from (e.g. the shipped "
+                        "truth-trained team); it also joins the league")
+    p.add_argument("--freeze-actor", type=int, default=None,
+                   help="with --init: steps for which the network's actor is held while the "
+                        "critic learns (default 1,000,000)")
     p.add_argument("--setting", choices=list(SETTINGS), default="truth",
                    help="truth observations and the simple referee; each team's ssl-2012 "
                         "perception and the SSL game flow; or humanoids on their head "
@@ -185,18 +230,24 @@ def main(argv: list[str] | None = None) -> int:
     env = soccer_env.parallel_env(**train)
     params = team_residual_params(env, "blue")
     env.close()
+    init = init_team(args.init, params) if args.init else None
     venv = make_match_vec_env(train, n_matches=args.matches, learner="blue",
                               opponent="scripted", seed=args.seed, workers=args.workers,
                               batched=not perceived)
-    league = ["idle"] if perceived else []
+    league: list[Any] = ["idle"] if perceived else []
+    norm = VecNormalize(TeamResidualVecEnv(venv, params), gamma=ppo["gamma"])
+    model = PPO("MlpPolicy", norm, seed=args.seed, verbose=0, **ppo)
+    callbacks: list[Any] = []
+    if init is not None:
+        league.append(start_from(model, norm, init, params))
+        freeze = 1_000_000 if args.freeze_actor is None else args.freeze_actor
+        callbacks.append(FreezeActor(128 if args.tiny else freeze))
     if league:
-        venv.set_opponent_pool(["scripted", "scripted", *league])
-    venv = VecNormalize(TeamResidualVecEnv(venv, params), gamma=ppo["gamma"])
-    model = PPO("MlpPolicy", venv, seed=args.seed, verbose=0, **ppo)
+        venv.set_opponent_pool(["scripted"] * len(league) + league)
     callback = PoolSelfPlay(out, args.copy_every, args.pool, args.warmup, args.eval,
                             args.workers, league, eval_kwargs, obs_mode, perception)
     t0 = time.perf_counter()
-    model.learn(args.steps, callback=callback)
+    model.learn(args.steps, callback=[*callbacks, callback])
     minutes = (time.perf_counter() - t0) / 60
     final = callback.snapshot()
     command = "python examples/train_ssl_team.py " + shlex.join(
@@ -205,7 +256,7 @@ def main(argv: list[str] | None = None) -> int:
                       command=command.strip(), train_kwargs=train, eval_kwargs=eval_kwargs,
                       ppo=ppo)
     path = final.save(out / "final_team.npz")
-    venv.close()
+    norm.close()
     print(f"trained {model.num_timesteps:,} agent steps in {minutes:.1f} min; "
           f"{callback.n_updates} copies; the team: {path}")
     h = head_to_head(Side(str(path), obs_mode, perception),

@@ -10,6 +10,7 @@ import sys
 import zipfile
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -149,8 +150,10 @@ def test_train_ssl_team_example(tmp_path):
 
 
 def test_train_ssl_team_example_under_perception_and_the_game_flow(tmp_path):
+    """The perceived game-flow training, started from the truth-trained team (``--init``)."""
     _needs("stable_baselines3")
-    out = _run("train_ssl_team.py", "--setting", "perceived-game", "--out", str(tmp_path / "r"))
+    out = _run("train_ssl_team.py", "--setting", "perceived-game", "--init",
+               "agents/baselines/ssl_team_2v2.npz", "--out", str(tmp_path / "r"))
     assert "trained 512 agent steps" in out
     from agents.policies import NumpyPolicy
 
@@ -160,6 +163,24 @@ def test_train_ssl_team_example_under_perception_and_the_game_flow(tmp_path):
     assert team.meta["eval_kwargs"]["game"] is True
     assert "rules" in team.action_map["params"]
     assert any(n == "game.mate0.on_field" for n in team.action_map["params"]["names"])
+    start = NumpyPolicy.load(ROOT / "agents" / "baselines" / "ssl_team_2v2.npz")
+    team = NumpyPolicy.load(tmp_path / "r" / "checkpoints" / "team_248.npz")
+    assert team.obs_size > start.obs_size  # the game block's entries added
+    # The actor was held while the critic learned: the first copy has the network it started
+    # from, the game block's added entries weighing nothing.
+    (_, w0, b0), *rest = [layer for layer in team.layers if layer[0] == "linear"]
+    (_, v0, c0), *theirs = [layer for layer in start.layers if layer[0] == "linear"]
+    np.testing.assert_array_equal(w0[:, :start.obs_size], v0)
+    assert not w0[:, start.obs_size:].any()
+    for mine, other in zip([b0, *(a for layer in rest for a in layer[1:])],
+                           [c0, *(a for layer in theirs for a in layer[1:])]):
+        np.testing.assert_array_equal(mine, other)
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    proc = subprocess.run([sys.executable, str(EXAMPLES / "train_ssl_team.py"), "--tiny",
+                           "--init", "agents/baselines/keeper_ppo_truth.npz", "--out",
+                           str(tmp_path / "k")], cwd=ROOT, env=env, capture_output=True,
+                          text=True, timeout=300)
+    assert proc.returncode != 0 and "--init must be a team-residual team file" in proc.stderr
 
 
 def test_train_ssl_team_example_trains_humanoids_on_their_cameras(tmp_path):
