@@ -1,12 +1,13 @@
 """The perceived SSL team under the game flow: its head-to-heads, fouls and ratings.
 
 Usage: ``python benchmarks/ssl_team_perceived.py --team FILE [--matches 200] [--idle 40]
-[--round-robin 20] [--start-seed 50000] [--robot-prediction commands] [--workers N]
-[--out FILE]``.
+[--round-robin 20] [--start-seed 50000] [--ball-filter kick] [--robot-prediction commands]
+[--workers N] [--out FILE]``.
 
 Every match is 2 vs 2, 60 s of playing time at 30 commands a second, under the SSL game flow
 (Division B rules), each team perceiving through its own ``ssl-2012`` cameras and filters,
-its own robots predicted through the commands it sent (``--robot-prediction``; the match of
+the ball tracked by ``--ball-filter`` (the kick-aware tracker by default), its own robots
+predicted through the commands it sent (``--robot-prediction``; the match of
 ``examples/train_ssl_team.py --setting perceived-game``'s evaluations), on seeds from
 ``--start-seed`` (held out: training drew its matches' seeds from 0 and evaluated its
 copies from 10,000):
@@ -32,13 +33,13 @@ from pathlib import Path
 
 from agents.studies.matches import HeadToHead, Side, checkpoint_sides, head_to_head
 from agents.studies.rating import fit_ratings, rating_table, round_robin
-from soccer_env.perception.options import ROBOT_PREDICTIONS
+from soccer_env.perception.options import BALL_FILTERS, ROBOT_PREDICTIONS
 
 #: The match: the one the training evaluated its copies in.
 ENV_KWARGS = {"blue": 2, "yellow": 2, "match_duration": 60.0, "control_dt": 1.0 / 30.0,
               "game": True}
 #: What every side perceives through (the own-robot prediction set by ``--robot-prediction``).
-PERCEPTION = {"vision": "ssl-2012", "robot_prediction": "commands"}
+PERCEPTION = {"vision": "ssl-2012", "ball_filter": "kick", "robot_prediction": "commands"}
 
 
 def side(policy: str, label: str, perception: dict) -> Side:
@@ -79,6 +80,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--round-robin", type=int, default=20,
                    help="matches per other pair of the rating table (20; 0: no table)")
     p.add_argument("--start-seed", type=int, default=50_000, help="first seed (50,000)")
+    p.add_argument("--ball-filter", choices=list(BALL_FILTERS), default="kick",
+                   help="every side's ball filter (kick)")
     p.add_argument("--robot-prediction", choices=list(ROBOT_PREDICTIONS), default="commands",
                    help="how every side predicts its own robots (commands)")
     p.add_argument("--workers", type=int, default=None, help="processes (default: all cores)")
@@ -86,7 +89,8 @@ def main(argv: list[str] | None = None) -> int:
     args = p.parse_args(argv)
     path = Path(args.team)
     t0 = time.perf_counter()
-    perception = {**PERCEPTION, "robot_prediction": args.robot_prediction}
+    perception = {**PERCEPTION, "ball_filter": args.ball_filter,
+                  "robot_prediction": args.robot_prediction}
     team, scripted, idle = (side(str(path), "perceived team", perception),
                             side("scripted", "scripted", perception),
                             side("idle", "idle", perception))

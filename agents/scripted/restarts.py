@@ -66,6 +66,10 @@ PASS_SPEED = 1.5
 #: How far the robot that took a restart keeps from the ball until another robot has touched
 #: it, beyond a robot and a ball radius [m].
 BARRED_CLEARANCE = 0.25
+#: The kicker of a restart is armed while the ball is in front of it, within a kicker's width
+#: sideways, and the robot faces the kick's direction within this angle [rad]
+#: (:meth:`RestartPlay.take_kick`).
+ARM_HEADING = 0.3
 
 
 class RestartPlay:
@@ -210,7 +214,13 @@ class RestartPlay:
         face = math.atan2(ey, ex)
         heading_err = abs(math.remainder(face - math.atan2(s, c), 2.0 * math.pi))
         contact = geo.contact
-        kick = 0.0
+        # The kicker is armed whenever the ball is roughly in front of it, not only once the
+        # robot believes itself lined up (the kick goes off only when the ball touches it): a
+        # robot that sees its pose through noisy, late vision, a few centimetres off, would
+        # otherwise push the ball into play with its body and be barred from touching it
+        # again (SSL rules 8.2).
+        armed = along < 0.0 and abs(lateral) <= r.kicker_width and heading_err <= ARM_HEADING
+        kick = power if armed else 0.0
         if along > -contact + 0.01 or abs(lateral) > 0.5 * r.kicker_width:
             # Not yet behind the ball: go to the waiting point (round the ball if needed).
             tx, ty = bx - (contact + 0.1) * ex, by - (contact + 0.1) * ey
@@ -222,7 +232,6 @@ class RestartPlay:
         else:
             # Lined up: drive slowly into the ball with the kicker armed.
             tx, ty, cap = bx + 0.1 * ex, by + 0.1 * ey, 0.5
-            kick = power
         return drive_and_turn(r, f, tx, ty, face, cap, kick)
 
     # ------------------------------------------------------------------------------------

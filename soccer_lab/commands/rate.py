@@ -20,7 +20,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from soccer_env.perception.options import ROBOT_PREDICTIONS
+from soccer_env.perception.options import BALL_FILTERS, ROBOT_PREDICTIONS
 from soccer_env.presets import HEAD_CAMERAS, ROBOTS
 from soccer_lab.cli_args import HelpFormatter
 
@@ -53,6 +53,8 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--camera", choices=list(HEAD_CAMERAS), default="kidsize-2012",
                    help="the head camera perceived humanoid teams see through, with team "
                         "fusion")
+    p.add_argument("--ball-filter", choices=list(BALL_FILTERS), default="ekf",
+                   help="the ball filter of perceived SSL teams")
     p.add_argument("--robot-prediction", choices=list(ROBOT_PREDICTIONS),
                    default="constant-velocity",
                    help="how perceived teams predict their own robots to when their commands "
@@ -75,7 +77,8 @@ def parser() -> argparse.ArgumentParser:
 
 
 def parse_team(text: str, obs_mode: str, vision: str,
-               robot_prediction: str = "constant-velocity", camera: str | None = None) -> Any:
+               robot_prediction: str = "constant-velocity", camera: str | None = None,
+               ball_filter: str = "ekf") -> Any:
     """The :class:`~agents.studies.matches.Side` of a ``--team`` value (see the module
     docstring), labelled with the text itself.
 
@@ -105,7 +108,8 @@ def parse_team(text: str, obs_mode: str, vision: str,
     elif camera is not None:  # humanoids: the head camera, with the default team fusion
         perception = {"camera": camera}
     else:
-        perception = {"vision": vision, "robot_prediction": robot_prediction}
+        perception = {"vision": vision, "ball_filter": ball_filter,
+                      "robot_prediction": robot_prediction}
     return Side(policy, mode, perception, label=text)
 
 
@@ -151,7 +155,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         humanoid = ROBOTS[args.robot].kind == "humanoid"
         sides = [parse_team(t, args.obs_mode, args.vision, args.robot_prediction,
-                            args.camera if humanoid else None) for t in args.team]
+                            args.camera if humanoid else None, args.ball_filter)
+                 for t in args.team]
     except ValueError as err:
         p.error(str(err))
     env_kwargs: dict[str, Any] = {"blue": args.size, "yellow": args.size, "robot": args.robot,

@@ -94,3 +94,29 @@ def test_keeper_catches_instead_of_kicking_under_the_game_flow():
             np.testing.assert_allclose(one, act["blue_0"], atol=1e-6)
         obs, *_ = env.step(act)
     assert guarded > 100
+
+
+@pytest.mark.parametrize("x,y,heading,armed", [
+    (-0.12, 0.0, 0.0, True),    # lined up
+    (-0.12, 0.06, 0.0, True),   # believed off by more than half the kicker's width
+    (-0.13, 0.0, 0.2, True),    # facing 0.2 rad off the kick's direction
+    (-0.30, 0.0, 0.0, True),    # lined up, further back
+    (0.12, 0.0, np.pi, False),  # in front of the ball
+    (-0.12, 0.15, 0.0, False),  # beside the kicker
+    (-0.12, 0.0, 0.6, False),   # facing away from the kick's direction
+])
+def test_the_kicker_of_a_restart_is_armed_whenever_the_ball_is_in_front_of_it(x, y, heading,
+                                                                             armed):
+    """A robot that sees its own pose a few centimetres off through late, noisy vision and
+    touches the ball kicks it, rather than pushing it into play and being barred from it."""
+    from agents.scripted.view import Frame
+
+    env = soccer_env.parallel_env(blue=2, yellow=2, game=True)
+    env.reset(seed=0)
+    team = ScriptedTeam.for_env(env, "blue")
+    c, s = np.cos(heading), np.sin(heading)
+    dx, dy = -x, -y  # the ball at the centre, in the world frame from the robot
+    f = Frame(x, y, c, s, 0.0, 0.0, 0.0, 0.0, c * dx + s * dy, -s * dx + c * dy)
+    action = team.restarts.take_kick(1, f, [-4.3, x], [0.0, y], [])
+    assert (action[3] > 0.0) == armed
+    env.close()

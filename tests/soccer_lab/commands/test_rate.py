@@ -25,9 +25,10 @@ def test_a_tiny_round_robin_prints_the_ratings_and_writes_every_match(tmp_path, 
 def test_a_team_plays_on_its_own_observation_mode():
     side = parse_team("scripted@perceived", "truth", "ssl-2012")
     assert side.obs_mode == "perceived" and side.perception == {
-        "vision": "ssl-2012", "robot_prediction": "constant-velocity"}
-    side = parse_team("idle", "perceived", "realistic", "commands")
-    assert side.perception == {"vision": "realistic", "robot_prediction": "commands"}
+        "vision": "ssl-2012", "ball_filter": "ekf", "robot_prediction": "constant-velocity"}
+    side = parse_team("idle", "perceived", "realistic", "commands", ball_filter="kick")
+    assert side.perception == {"vision": "realistic", "ball_filter": "kick",
+                               "robot_prediction": "commands"}
     side = parse_team("idle", "perceived", "ssl-2012", "commands", "kidsize-2012")
     assert side.perception == {"camera": "kidsize-2012"}
 
@@ -56,6 +57,8 @@ def test_humanoid_teams_are_rated_on_their_cameras(tmp_path, capsys):
     (["--team", "scripted", "--team", "idle", "--duration", "0"], "--duration must be"),
     (["--team", "scripted", "--team", "idle", "--robot-prediction", "smith"],
      "--robot-prediction: invalid choice"),
+    (["--team", "scripted", "--team", "idle", "--ball-filter", "magic"],
+     "--ball-filter: invalid choice"),
 ])
 def test_bad_input_is_refused_naming_the_option(argv, message, capsys):
     with pytest.raises(SystemExit) as exc:
