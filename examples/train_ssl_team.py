@@ -41,6 +41,12 @@ training moves them; its network is held for the first ``--freeze-actor`` steps 
 fresh critic learns its value (:class:`agents.sb3.warm_start.FreezeActor`), and the team as it
 started joins the league's fixed members.
 
+Under the game flow the map plays the scripted command at every restart, whatever the
+correction; those steps' advantages are zeroed before each update
+(:class:`agents.sb3.masking.IgnoredActions`, PPO's ``normalize_advantage`` off: the callback
+normalises the rest), so that only open play moves the policy (``--keep-ignored``: as
+before, every step).
+
 Rewards: +1 for a goal scored, -1 for a goal conceded (shared by the team), and
 ``ball_progress`` shaping of 0.2 per metre the ball moves towards the opponent goal
 (zero-sum). Matches of 30 s at 30 commands a second.
@@ -69,6 +75,7 @@ from stable_baselines3.common.vec_env import VecNormalize
 
 import soccer_env
 from agents.policies.numpy_policy import NumpyPolicy
+from agents.sb3.masking import IgnoredActions
 from agents.sb3.policies import numpy_copy
 from agents.sb3.warm_start import FreezeActor, load_actor
 from agents.scripted import team_residual_params
@@ -187,7 +194,8 @@ def start_from(model: PPO, norm: VecNormalize, team: NumpyPolicy, params: dict[s
                       action_map={"kind": "team-residual", "params": params})
 
 
-def main(argv: list[str] | None = None) -> int:
+def parse_args(argv: list[str] | None) -> argparse.Namespace:
+    """The command line's arguments."""
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--tiny", action="store_true",
                    default=os.environ.get("SOCCER_EXAMPLES_TINY") == "1",
@@ -211,11 +219,18 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--freeze-actor", type=int, default=None,
                    help="with --init: steps for which the network's actor is held while the "
                         "critic learns (default 1,000,000)")
+    p.add_argument("--keep-ignored", action="store_true",
+                   help="under the game flow, let the steps whose correction the map ignored "
+                        "(restarts) into the policy's update, as before (default: zeroed)")
     p.add_argument("--setting", choices=list(SETTINGS), default="truth",
                    help="truth observations and the simple referee; each team's ssl-2012 "
                         "perception and the SSL game flow; or humanoids on their head "
                         "cameras under the laws' game flow (default: truth)")
-    args = p.parse_args(argv)
+    return p.parse_args(argv)
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parse_args(argv)
     torch.set_num_threads(1)
     train, ppo = dict(TRAIN_KWARGS), dict(PPO_KWARGS)
     eval_kwargs = dict(EVAL_KWARGS)
@@ -238,9 +253,12 @@ def main(argv: list[str] | None = None) -> int:
                               opponent="scripted", seed=args.seed, workers=args.workers,
                               batched=not perceived)
     league: list[Any] = ["idle"] if perceived else []
+    callbacks: list[Any] = []
+    if train.get("game") and not args.keep_ignored:
+        ppo["normalize_advantage"] = False
+        callbacks.append(IgnoredActions())
     norm = VecNormalize(TeamResidualVecEnv(venv, params), gamma=ppo["gamma"])
     model = PPO("MlpPolicy", norm, seed=args.seed, verbose=0, **ppo)
-    callbacks: list[Any] = []
     if init is not None:
         league.append(start_from(model, norm, init, params))
         freeze = 1_000_000 if args.freeze_actor is None else args.freeze_actor

@@ -161,6 +161,7 @@ def test_train_ssl_team_example_under_perception_and_the_game_flow(tmp_path):
     train = team.meta["train_kwargs"]
     assert train["obs_mode"] == "perceived" and train["game"] is True
     assert team.meta["eval_kwargs"]["game"] is True
+    assert team.meta["ppo"]["normalize_advantage"] is False  # restarts kept out of the update
     assert "rules" in team.action_map["params"]
     assert any(n == "game.mate0.on_field" for n in team.action_map["params"]["names"])
     start = NumpyPolicy.load(ROOT / "agents" / "baselines" / "ssl_team_2v2.npz")

@@ -18,6 +18,7 @@ from agents.scripted.humanoid import HumanoidTeam
 from agents.scripted.residual import (
     HUMANOID_IDLE_MOTION,
     TEAM_RESIDUAL,
+    ignored_rows,
     residual_command,
     scripted_team_from_params,
     team_residual_command,
@@ -28,4 +29,5 @@ from agents.scripted.team import TEAMS, ScriptedTeam, scripted_team
 
 __all__ = ["ScriptedTeam", "TEAMS", "HumanoidTeam", "scripted_team", "RestartPlay",
            "SITUATION_NAMES", "TEAM_RESIDUAL", "HUMANOID_IDLE_MOTION", "team_residual_params",
-           "team_residual_command", "scripted_team_from_params", "residual_command"]
+           "team_residual_command", "scripted_team_from_params", "residual_command",
+           "ignored_rows"]

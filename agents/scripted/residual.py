@@ -56,7 +56,7 @@ from soccer_env.presets import BallSpec, FieldSpec, HumanoidRobotSpec, SSLRobotS
 from soccer_env.presets.rules import RuleSpec
 
 __all__ = ["TEAM_RESIDUAL", "HUMANOID_IDLE_MOTION", "team_residual_params", "team_residual_command",
-           "scripted_team_from_params", "residual_command"]
+           "scripted_team_from_params", "residual_command", "ignored_rows"]
 
 #: The largest correction of every command entry (1: the learner can override the scripted
 #: command entirely).
@@ -140,14 +140,27 @@ def team_residual_command(obs: np.ndarray, act: np.ndarray, params: Mapping[str,
                             obs, act)
 
 
+def ignored_rows(team: ScriptedTeam | HumanoidTeam, obs: np.ndarray) -> np.ndarray:
+    """Which rows of ``obs`` ``(n, obs_dim)`` the map plays the scripted command for, whatever
+    the correction: an SSL robot in a restart, off the field or barred from the ball
+    (:meth:`~agents.scripted.restarts.RestartPlay.needs_restart_play`, under the game flow
+    only), a humanoid off the field or waiting out the opponents' restart
+    (:meth:`~agents.scripted.HumanoidTeam.waiting_rows`). A bool array ``(n,)``."""
+    obs = np.asarray(obs)
+    if isinstance(team, HumanoidTeam):
+        return np.asarray(team.waiting_rows(obs), dtype=bool)
+    if team.restarts is None:
+        return np.zeros(len(obs), dtype=bool)
+    return np.asarray(team.restarts.needs_restart_play(obs), dtype=bool)
+
+
 def residual_command(team: ScriptedTeam | HumanoidTeam, residual: float, obs: np.ndarray,
                      act: np.ndarray) -> np.ndarray:
     """:func:`team_residual_command` with the scripted team already rebuilt
     (:func:`scripted_team_from_params`) and its ``residual`` read from the params.
 
     For humanoids the motion entry's "neither kick nor dive" moves to
-    :data:`HUMANOID_IDLE_MOTION` instead, and the correction is zero for robots off the field
-    or waiting out the opponents' restart (:meth:`HumanoidTeam.waiting_rows`)."""
+    :data:`HUMANOID_IDLE_MOTION` instead; the correction is zero on :func:`ignored_rows`."""
     obs = np.asarray(obs)
     act = np.clip(np.asarray(act, dtype=np.float64), -1.0, 1.0)
     if obs.ndim != 2 or act.shape != (len(obs), 6):
@@ -160,13 +173,10 @@ def residual_command(team: ScriptedTeam | HumanoidTeam, residual: float, obs: np
                          "rows")
     base = team.act_batch(obs.reshape(-1, size, obs.shape[1])).reshape(-1, 6)
     base = base.astype(np.float64)
+    act[ignored_rows(team, obs)] = 0.0
     if isinstance(team, HumanoidTeam):
-        act[team.waiting_rows(obs)] = 0.0
         base[:, 3] = np.where(base[:, 3] != 0.0, base[:, 3], HUMANOID_IDLE_MOTION)
     else:
-        if team.restarts is not None:
-            # The scripted team's command at restarts, off the field and for a barred robot.
-            act[np.asarray(team.restarts.needs_restart_play(obs), dtype=bool)] = 0.0
         switches = list(_SWITCHES)
         base[:, switches] = np.where(base[:, switches] > 0.0, base[:, switches], -1.0)
     return np.clip(base + act * residual, -1.0, 1.0).astype(np.float32)

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 from stable_baselines3.common.vec_env import VecEnv, VecEnvWrapper
 
-from agents.scripted import residual_command, scripted_team_from_params
+from agents.scripted import ignored_rows, residual_command, scripted_team_from_params
 
 __all__ = ["TeamResidualVecEnv"]
 
@@ -23,6 +23,11 @@ class TeamResidualVecEnv(VecEnvWrapper):
     Wrap it inside ``VecNormalize`` (the map reads the plain observations). ``params`` is
     what a :class:`~agents.policies.numpy_policy.NumpyPolicy` copy of the learner needs as its
     ``action_map`` (:attr:`action_map`).
+
+    Every step's info says whether the entry's action was ignored
+    (``info["correction_ignored"]``: the map played the scripted command, the robot being in a
+    restart, off the field or barred; :func:`~agents.scripted.ignored_rows`), for
+    :class:`~agents.sb3.masking.IgnoredActions` to keep those steps out of the policy's update.
     """
 
     def __init__(self, venv: VecEnv, params: Mapping[str, Any]) -> None:
@@ -38,6 +43,7 @@ class TeamResidualVecEnv(VecEnvWrapper):
             raise ValueError(f"the map's observation layout has {len(self.params['names'])} "
                              f"entries, the VecEnv's {venv.observation_space.shape[0]}")
         self._obs: np.ndarray | None = None
+        self._ignored = np.zeros(venv.num_envs, dtype=bool)
 
     @property
     def action_map(self) -> dict[str, Any]:
@@ -51,10 +57,13 @@ class TeamResidualVecEnv(VecEnvWrapper):
     def step_async(self, actions: np.ndarray) -> None:
         if self._obs is None:
             raise RuntimeError("call reset() before step()")
-        self.venv.step_async(residual_command(self._team, float(self.params["residual"]), self._obs,
-                                      actions))
+        self._ignored = ignored_rows(self._team, self._obs)
+        self.venv.step_async(residual_command(self._team, float(self.params["residual"]),
+                                              self._obs, actions))
 
     def step_wait(self):
         obs, rewards, dones, infos = self.venv.step_wait()
         self._obs = obs
+        for info, ignored in zip(infos, self._ignored):
+            info["correction_ignored"] = bool(ignored)
         return obs, rewards, dones, infos
