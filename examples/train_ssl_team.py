@@ -15,10 +15,11 @@ cards): each side perceives through its own pipeline, the matches run one by one
 batched match plays the simple referee only), the correction applies in open play only (the
 scripted team plays the restarts, :mod:`agents.scripted.residual`), and the idle team joins
 the scripted team in the league from the start, so that the team learns to score past a
-keeper that stands still as well as past one that moves. ``--setting humanoid-game`` trains a
-humanoid team the same way: 2 vs 2 ``humanoid-2012`` robots, each team on its own
-``kidsize-2012`` head cameras with team fusion, under the laws' game flow, the correction
-applied to the scripted humanoid team (:class:`~agents.scripted.HumanoidTeam`).
+keeper that stands still as well as past one that moves (``--no-idle``: it does not).
+``--setting humanoid-game`` trains a humanoid team the same way: 2 vs 2 ``humanoid-2012``
+robots, each team on its own ``kidsize-2012`` head cameras with team fusion, under the laws'
+game flow, the correction applied to the scripted humanoid team
+(:class:`~agents.scripted.HumanoidTeam`).
 
 Every blue robot of every match is one entry of stable-baselines3's batch
 (:func:`agents.vec.factories.make_match_vec_env`, the matches stepped as one batch in each of two
@@ -39,7 +40,7 @@ truth-trained team, whose observation lacks the game block's referee entries, st
 zero weights on them (:func:`agents.sb3.warm_start.load_actor`), so it plays as it did until
 training moves them; its network is held for the first ``--freeze-actor`` steps while the
 fresh critic learns its value (:class:`agents.sb3.warm_start.FreezeActor`), and the team as it
-started joins the league's fixed members.
+started (written to ``OUT/start_team.npz``) joins the league's fixed members.
 
 Under the game flow the map plays the scripted command at every restart, whatever the
 correction; those steps' advantages are zeroed before each update
@@ -219,6 +220,8 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     p.add_argument("--freeze-actor", type=int, default=None,
                    help="with --init: steps for which the network's actor is held while the "
                         "critic learns (default 1,000,000)")
+    p.add_argument("--no-idle", action="store_true",
+                   help="leave the idle team out of the perceived settings' league")
     p.add_argument("--keep-ignored", action="store_true",
                    help="under the game flow, let the steps whose correction the map ignored "
                         "(restarts) into the policy's update, as before (default: zeroed)")
@@ -252,7 +255,7 @@ def main(argv: list[str] | None = None) -> int:
     venv = make_match_vec_env(train, n_matches=args.matches, learner="blue",
                               opponent="scripted", seed=args.seed, workers=args.workers,
                               batched=not perceived)
-    league: list[Any] = ["idle"] if perceived else []
+    league: list[Any] = ["idle"] if perceived and not args.no_idle else []
     callbacks: list[Any] = []
     if train.get("game") and not args.keep_ignored:
         ppo["normalize_advantage"] = False
@@ -261,6 +264,7 @@ def main(argv: list[str] | None = None) -> int:
     model = PPO("MlpPolicy", norm, seed=args.seed, verbose=0, **ppo)
     if init is not None:
         league.append(start_from(model, norm, init, params))
+        league[-1].save(out / "start_team.npz")  # the team as it starts, in the league
         freeze = 1_000_000 if args.freeze_actor is None else args.freeze_actor
         callbacks.append(FreezeActor(128 if args.tiny else freeze))
     if league:
