@@ -220,6 +220,11 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     p.add_argument("--freeze-actor", type=int, default=None,
                    help="with --init: steps for which the network's actor is held while the "
                         "critic learns (default 1,000,000)")
+    p.add_argument("--learning-rate", type=float, default=PPO_KWARGS["learning_rate"],
+                   help="PPO's learning rate (3e-4)")
+    p.add_argument("--clip-range", type=float, default=0.2,
+                   help="PPO's clip range (0.2; smaller keeps each update nearer the team "
+                        "it starts from)")
     p.add_argument("--no-idle", action="store_true",
                    help="leave the idle team out of the perceived settings' league")
     p.add_argument("--keep-ignored", action="store_true",
@@ -256,6 +261,7 @@ def main(argv: list[str] | None = None) -> int:
                               opponent="scripted", seed=args.seed, workers=args.workers,
                               batched=not perceived)
     league: list[Any] = ["idle"] if perceived and not args.no_idle else []
+    ppo.update(learning_rate=args.learning_rate, clip_range=args.clip_range)
     callbacks: list[Any] = []
     if train.get("game") and not args.keep_ignored:
         ppo["normalize_advantage"] = False
