@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 import soccer_env
-from agents.studies.matches import Side, match_env_kwargs, team_policy
+from agents.studies.matches import Side, match_env_kwargs, match_steps
 
 #: The match (the perceived team's benchmark's, with the game flow set by ``--game``).
 ENV_KWARGS: dict[str, Any] = {"blue": 2, "yellow": 2, "match_duration": 60.0,
@@ -39,16 +39,8 @@ def play(kwargs: dict[str, Any], blue: Side, yellow: Side, seed: int,
                                   render_mode="rgb_array" if render_at else None,
                                   render_width=640)
     try:
-        obs, _ = env.reset(seed=seed)
-        teams = [team_policy(blue.policy, env, "blue"), team_policy(yellow.policy, env,
-                                                                     "yellow")]
-        goals, frames, step, score = [], {}, 0, 0
-        while env.agents:
-            actions: dict[str, np.ndarray] = {}
-            for team in teams:
-                actions.update(team(obs))
-            obs, _, _, _, infos = env.step(actions)
-            step += 1
+        goals, frames, score = [], {}, 0
+        for step, infos in enumerate(match_steps(env, blue, yellow, seed), start=1):
             blue_goals = next(iter(infos.values()))["score"]["blue"]
             if blue_goals > score:
                 goals.append(step)

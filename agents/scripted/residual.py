@@ -155,12 +155,13 @@ def ignored_rows(team: ScriptedTeam | HumanoidTeam, obs: np.ndarray) -> np.ndarr
 
 
 def residual_command(team: ScriptedTeam | HumanoidTeam, residual: float, obs: np.ndarray,
-                     act: np.ndarray) -> np.ndarray:
+                     act: np.ndarray, ignored: np.ndarray | None = None) -> np.ndarray:
     """:func:`team_residual_command` with the scripted team already rebuilt
     (:func:`scripted_team_from_params`) and its ``residual`` read from the params.
 
     For humanoids the motion entry's "neither kick nor dive" moves to
-    :data:`HUMANOID_IDLE_MOTION` instead; the correction is zero on :func:`ignored_rows`."""
+    :data:`HUMANOID_IDLE_MOTION` instead; the correction is zero on :func:`ignored_rows`
+    (``ignored``, when the caller has them already)."""
     obs = np.asarray(obs)
     act = np.clip(np.asarray(act, dtype=np.float64), -1.0, 1.0)
     if obs.ndim != 2 or act.shape != (len(obs), 6):
@@ -173,7 +174,7 @@ def residual_command(team: ScriptedTeam | HumanoidTeam, residual: float, obs: np
                          "rows")
     base = team.act_batch(obs.reshape(-1, size, obs.shape[1])).reshape(-1, 6)
     base = base.astype(np.float64)
-    act[ignored_rows(team, obs)] = 0.0
+    act[ignored_rows(team, obs) if ignored is None else ignored] = 0.0
     if isinstance(team, HumanoidTeam):
         base[:, 3] = np.where(base[:, 3] != 0.0, base[:, 3], HUMANOID_IDLE_MOTION)
     else:

@@ -29,7 +29,7 @@ from __future__ import annotations
 import math
 import os
 import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
@@ -45,8 +45,8 @@ from agents.scripted import TEAMS, scripted_team
 from soccer_env.perception.base import OBS_MODES
 
 __all__ = ["Side", "MatchRecord", "HeadToHead", "head_to_head", "match_jobs",
-           "run_match_jobs", "play_match", "team_policy", "TEAM_POLICIES", "SIDE_KEYS",
-           "DISCIPLINE", "checkpoint_sides"]
+           "run_match_jobs", "play_match", "match_steps", "team_policy", "TEAM_POLICIES",
+           "SIDE_KEYS", "DISCIPLINE", "checkpoint_sides"]
 
 #: What a :class:`MatchRecord` counts per side under the game flow.
 DISCIPLINE = ("fouls", "yellow_cards", "red_cards")
@@ -214,6 +214,21 @@ class MatchRecord:
         return self.goals_a - self.goals_b
 
 
+def match_steps(env: Any, blue: Side, yellow: Side, seed: int
+                ) -> Iterator[dict[str, dict[str, Any]]]:
+    """Play the match ``env`` (a parallel match made with :func:`match_env_kwargs` of the
+    sides) from ``reset(seed=seed)`` to its end, ``blue`` and ``yellow`` each playing its
+    team: the agents' infos after every step."""
+    obs, _ = env.reset(seed=seed)
+    teams = [team_policy(blue.policy, env, "blue"), team_policy(yellow.policy, env, "yellow")]
+    while env.agents:
+        actions: dict[str, np.ndarray] = {}
+        for team in teams:
+            actions.update(team(obs))
+        obs, _, _, _, infos = env.step(actions)
+        yield infos
+
+
 def play_match(env_kwargs: Mapping[str, Any], blue: Side, yellow: Side, seed: int
                ) -> dict[str, Any]:
     """Play one match reset with ``seed``: blue's and yellow's goals, the steps, each
@@ -222,9 +237,6 @@ def play_match(env_kwargs: Mapping[str, Any], blue: Side, yellow: Side, seed: in
     t0 = time.perf_counter()
     env = soccer_env.parallel_env(**match_env_kwargs(env_kwargs, blue, yellow))
     try:
-        obs, infos = env.reset(seed=seed)
-        teams = [team_policy(blue.policy, env, "blue"), team_policy(yellow.policy, env,
-                                                                     "yellow")]
         members = [[a for a in env.possible_agents if a.startswith(p)]
                    for p in ("blue_", "yellow_")]
         err = [0.0, 0.0]
@@ -232,11 +244,7 @@ def play_match(env_kwargs: Mapping[str, Any], blue: Side, yellow: Side, seed: in
         count = [0, 0]
         cards = {"yellow_card": [0, 0], "red_card": [0, 0]}
         steps = 0
-        while env.agents:
-            actions: dict[str, np.ndarray] = {}
-            for team in teams:
-                actions.update(team(obs))
-            obs, _, _, _, infos = env.step(actions)
+        for infos in match_steps(env, blue, yellow, seed):
             steps += 1
             info = next(iter(infos.values()))
             for e in info["game"]["events"] if "game" in info else ():

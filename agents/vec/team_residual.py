@@ -59,7 +59,7 @@ class TeamResidualVecEnv(VecEnvWrapper):
             raise RuntimeError("call reset() before step()")
         self._ignored = ignored_rows(self._team, self._obs)
         self.venv.step_async(residual_command(self._team, float(self.params["residual"]),
-                                              self._obs, actions))
+                                              self._obs, actions, self._ignored))
 
     def step_wait(self):
         obs, rewards, dones, infos = self.venv.step_wait()
