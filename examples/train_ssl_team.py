@@ -41,6 +41,9 @@ zero weights on them (:func:`agents.sb3.warm_start.load_actor`), so it plays as 
 training moves them; its network is held for the first ``--freeze-actor`` steps while the
 fresh critic learns its value (:class:`agents.sb3.warm_start.FreezeActor`), and the team as it
 started (written to ``OUT/start_team.npz``) joins the league's fixed members.
+``--hold-statistics`` keeps the observation statistics of the team's own entries as the file
+has them (:class:`agents.sb3.warm_start.HeldRunningMeanStd`): by default they follow the new
+setting's observations, which changes what the network computes from the same observation.
 
 Under the game flow the map plays the scripted command at every restart, whatever the
 correction; those steps' advantages are zeroed before each update
@@ -184,13 +187,14 @@ def init_team(path: str, params: dict[str, Any]) -> NumpyPolicy:
     return team
 
 
-def start_from(model: PPO, norm: VecNormalize, team: NumpyPolicy, params: dict[str, Any]
-               ) -> NumpyPolicy:
+def start_from(model: PPO, norm: VecNormalize, team: NumpyPolicy, params: dict[str, Any],
+               hold: bool = False) -> NumpyPolicy:
     """Set the learner's actor and observation statistics to ``team``'s (the game block's
     referee entries, which a team trained without the game flow lacks, start with zero
     weights: :func:`agents.sb3.warm_start.load_actor`), and return the learner's copy: the
-    team as it plays the training match, for the league."""
-    load_actor(model, team, norm)
+    team as it plays the training match, for the league. ``hold``: the team's observation
+    statistics stay as they are while training runs."""
+    load_actor(model, team, norm, hold=hold)
     return numpy_copy(model, {"init": team.meta.get("command", "")}, norm,
                       action_map={"kind": "team-residual", "params": params})
 
@@ -220,6 +224,9 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     p.add_argument("--freeze-actor", type=int, default=None,
                    help="with --init: steps for which the network's actor is held while the "
                         "critic learns (default 1,000,000)")
+    p.add_argument("--hold-statistics", action="store_true",
+                   help="with --init: keep the team's observation statistics as the file has "
+                        "them (default: they follow the training's observations)")
     p.add_argument("--learning-rate", type=float, default=PPO_KWARGS["learning_rate"],
                    help="PPO's learning rate (3e-4)")
     p.add_argument("--clip-range", type=float, default=0.2,
@@ -269,7 +276,7 @@ def main(argv: list[str] | None = None) -> int:
     norm = VecNormalize(TeamResidualVecEnv(venv, params), gamma=ppo["gamma"])
     model = PPO("MlpPolicy", norm, seed=args.seed, verbose=0, **ppo)
     if init is not None:
-        league.append(start_from(model, norm, init, params))
+        league.append(start_from(model, norm, init, params, args.hold_statistics))
         league[-1].save(out / "start_team.npz")  # the team as it starts, in the league
         freeze = 1_000_000 if args.freeze_actor is None else args.freeze_actor
         callbacks.append(FreezeActor(128 if args.tiny else freeze))

@@ -150,10 +150,12 @@ def test_train_ssl_team_example(tmp_path):
 
 
 def test_train_ssl_team_example_under_perception_and_the_game_flow(tmp_path):
-    """The perceived game-flow training, started from the truth-trained team (``--init``)."""
+    """The perceived game-flow training, started from the truth-trained team (``--init``), its
+    observation statistics held (``--hold-statistics``)."""
     _needs("stable_baselines3")
     out = _run("train_ssl_team.py", "--setting", "perceived-game", "--init",
-               "agents/baselines/ssl_team_2v2.npz", "--out", str(tmp_path / "r"))
+               "agents/baselines/ssl_team_2v2.npz", "--hold-statistics",
+               "--out", str(tmp_path / "r"))
     assert "trained 512 agent steps" in out
     from agents.policies import NumpyPolicy
 
@@ -176,6 +178,10 @@ def test_train_ssl_team_example_under_perception_and_the_game_flow(tmp_path):
     for mine, other in zip([b0, *(a for layer in rest for a in layer[1:])],
                            [c0, *(a for layer in theirs for a in layer[1:])]):
         np.testing.assert_array_equal(mine, other)
+    n = start.obs_size
+    np.testing.assert_allclose(team.normalize[0][:n], start.normalize[0])
+    np.testing.assert_allclose(team.normalize[1][:n], start.normalize[1])
+    assert not np.allclose(team.normalize[1][n:], 1.0)  # the added entries' follow the game
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     proc = subprocess.run([sys.executable, str(EXAMPLES / "train_ssl_team.py"), "--tiny",
                            "--init", "agents/baselines/keeper_ppo_truth.npz", "--out",

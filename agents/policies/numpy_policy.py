@@ -26,7 +26,7 @@ import numpy as np
 from agents.policies.action_maps import POLICY_MAPS, action_to_command
 from agents.policies.files import UnsafeFileError, check_npz
 
-__all__ = ["NumpyPolicy", "NumpyRecurrentPolicy"]
+__all__ = ["NumpyPolicy", "NumpyRecurrentPolicy", "widen"]
 
 
 class NumpyPolicy:
@@ -277,6 +277,43 @@ class NumpyPolicy:
             if cls is not NumpyPolicy:
                 raise ValueError(f"{path} holds a feed-forward policy, not a {cls.__name__}")
             return cls(*args)
+
+
+def widen(policy: NumpyPolicy, obs_size: int, action_map: dict[str, Any] | None = None
+          ) -> NumpyPolicy:
+    """``policy`` reading observations of ``obs_size`` entries whose first
+    ``policy.obs_size`` are the ones it was trained on: the first linear layer weighs the added
+    entries by zero and their statistics are mean 0, variance 1, so
+    ``widen(p, n).network_action(x) == p.network_action(x[:, :p.obs_size])`` whatever the added
+    entries hold. A team trained without the game flow so reads the game flow's observation,
+    whose game block comes last. ``action_map`` replaces the policy's (the map's parameters of
+    the new observation); the meta is copied.
+
+    Raises ``ValueError`` for a policy with memory (recurrent or frame-stacked), or an
+    ``obs_size`` smaller than the policy's.
+    """
+    if type(policy) is not NumpyPolicy or policy.frame_stack != 1:
+        raise ValueError("widen takes feed-forward policies of single observations")
+    if isinstance(obs_size, bool) or not isinstance(obs_size, (int, np.integer)) \
+            or obs_size < policy.obs_size:
+        raise ValueError(f"obs_size must be an integer >= the policy's {policy.obs_size}, got "
+                         f"{obs_size!r}")
+    extra = int(obs_size) - policy.obs_size
+    layers, first = [], True
+    for kind, *rest in policy.layers:
+        if kind == "linear" and first:
+            w, b = rest
+            rest = [np.concatenate([w, np.zeros((w.shape[0], extra), w.dtype)], 1), b]
+            first = False
+        layers.append((kind, *rest))
+    normalize = None
+    if policy.normalize is not None:
+        mean, var, clip, eps = policy.normalize
+        normalize = (np.concatenate([mean, np.zeros(extra)]),
+                     np.concatenate([var, np.ones(extra)]), clip, eps)
+    return NumpyPolicy(layers, policy.output, policy.low, policy.high, meta=policy.meta,
+                       normalize=normalize,
+                       action_map=policy.action_map if action_map is None else action_map)
 
 
 def _sigmoid(x: np.ndarray) -> np.ndarray:

@@ -17,10 +17,11 @@ from typing import Any
 
 import numpy as np
 from stable_baselines3.common.callbacks import BaseCallback
+from stable_baselines3.common.running_mean_std import RunningMeanStd
 
-from agents.policies.numpy_policy import NumpyPolicy
+from agents.policies.numpy_policy import NumpyPolicy, widen
 
-__all__ = ["load_actor", "FreezeActor", "actor_parameters"]
+__all__ = ["load_actor", "FreezeActor", "HeldRunningMeanStd", "actor_parameters"]
 
 
 def actor_parameters(model: Any) -> list[Any]:
@@ -31,8 +32,34 @@ def actor_parameters(model: Any) -> list[Any]:
             *policy.action_net.parameters(), policy.log_std]
 
 
+class HeldRunningMeanStd(RunningMeanStd):
+    """Running observation statistics whose first ``held`` entries stay at the values they
+    are given: :meth:`update` moves only the entries after them. A network trained behind
+    fixed statistics reads its inputs through them; statistics that follow a new setting's
+    observations (another vision preset, the game flow's stoppages) change what the network
+    computes from the same observation, a change no gradient chose."""
+
+    def __init__(self, mean: np.ndarray, var: np.ndarray, held: int,
+                 count: float = 1e6) -> None:
+        mean, var = np.asarray(mean, np.float64), np.asarray(var, np.float64)
+        if mean.shape != var.shape or mean.ndim != 1:
+            raise ValueError(f"mean and var must be vectors of one size, got shapes "
+                             f"{mean.shape} and {var.shape}")
+        if not 0 <= held <= mean.size:
+            raise ValueError(f"held must be within 0..{mean.size}, got {held}")
+        super().__init__(shape=mean.shape)
+        self.mean, self.var, self.count = mean.copy(), var.copy(), float(count)
+        self.held = int(held)
+        self.held_mean, self.held_var = mean[:held].copy(), var[:held].copy()
+
+    def update(self, arr: np.ndarray) -> None:
+        super().update(arr)
+        self.mean[:self.held] = self.held_mean
+        self.var[:self.held] = self.held_var
+
+
 def load_actor(model: Any, policy: NumpyPolicy, vec_normalize: Any = None,
-               count: float = 1e6) -> None:
+               count: float = 1e6, hold: bool = False) -> None:
     """Set the actor of ``model`` (PPO or A2C, an MLP policy on a flat Box observation, no
     action squashing) to the network of ``policy``, and with ``vec_normalize`` (the
     ``VecNormalize`` the model trains behind) its observation statistics to the policy's.
@@ -42,8 +69,10 @@ def load_actor(model: Any, policy: NumpyPolicy, vec_normalize: Any = None,
     and variance 1, so the model's deterministic action equals ``policy.network_action`` on the
     shared entries. ``count`` is the weight of the policy's statistics against the running
     statistics' updates (:class:`~stable_baselines3.common.running_mean_std.RunningMeanStd`
-    counts observations: 1e6 lets a few million steps move them). The critic and the log
-    standard deviation are left as they are.
+    counts observations: 1e6 lets a few million steps move them). With ``hold`` the policy's
+    statistics stay as they are while training runs and only the added entries' move
+    (:class:`HeldRunningMeanStd`). The critic and the log standard deviation are left as they
+    are.
 
     Raises ``ValueError`` naming what differs: the layers (kinds, sizes, activations), the
     action size, the observation size (the model's shorter than the policy's), a frame stack,
@@ -67,14 +96,14 @@ def load_actor(model: Any, policy: NumpyPolicy, vec_normalize: Any = None,
     if n_obs < policy.obs_size:
         raise ValueError(f"the model's observation has {n_obs} entries, fewer than the "
                          f"policy's {policy.obs_size}")
+    n_held = policy.obs_size
     if (vec_normalize is None) != (policy.normalize is None):
         raise ValueError("a policy trained behind VecNormalize needs vec_normalize, and only "
                          "such a policy takes it")
+    policy = widen(policy, n_obs)
     weights = [layer[1:] for layer in policy.layers if layer[0] == "linear"]
     linears = [m for m in mods if isinstance(m, torch.nn.Linear)]
     for k, (m, (w, b)) in enumerate(zip(linears, weights)):
-        if k == 0:
-            w = np.concatenate([w, np.zeros((w.shape[0], n_obs - w.shape[1]), w.dtype)], 1)
         if tuple(m.weight.shape) != w.shape:
             raise ValueError(f"linear layer {k} of the model has shape "
                              f"{tuple(m.weight.shape)}, the policy's {w.shape}")
@@ -83,10 +112,11 @@ def load_actor(model: Any, policy: NumpyPolicy, vec_normalize: Any = None,
             m.bias.copy_(torch.as_tensor(b))
     if vec_normalize is not None:
         mean, var, _, _ = policy.normalize
-        rms = vec_normalize.obs_rms
-        rms.mean = np.concatenate([mean, np.zeros(n_obs - mean.size)])
-        rms.var = np.concatenate([var, np.ones(n_obs - var.size)])
-        rms.count = float(count)
+        if hold:
+            vec_normalize.obs_rms = HeldRunningMeanStd(mean, var, n_held, count)
+        else:
+            rms = vec_normalize.obs_rms
+            rms.mean, rms.var, rms.count = mean.copy(), var.copy(), float(count)
 
 
 class FreezeActor(BaseCallback):

@@ -40,8 +40,8 @@ import soccer_env
 from agents.common.checks import check_full_infos
 from agents.common.processes import map_jobs
 from agents.common.stats import mean_interval, wilson
-from agents.policies.numpy_policy import NumpyPolicy
-from agents.scripted import TEAMS, scripted_team
+from agents.policies.numpy_policy import NumpyPolicy, widen
+from agents.scripted import TEAMS, scripted_team, team_residual_params
 from soccer_env.perception.base import OBS_MODES
 
 __all__ = ["Side", "MatchRecord", "HeadToHead", "head_to_head", "match_jobs",
@@ -143,6 +143,25 @@ def match_env_kwargs(base: Mapping[str, Any] | None, blue: Side, yellow: Side
             "perception": {"blue": blue.perception, "yellow": yellow.perception}}
 
 
+def widened_team(policy: NumpyPolicy, env: Any, team: str) -> NumpyPolicy:
+    """``policy`` as a team of the match ``env`` whose observation adds entries at the end of
+    the one it was trained on (the game flow's game block: a team trained without the game
+    flow), if it is a ``"team-residual"`` team whose observation's entry names begin the
+    match's; otherwise ``policy`` itself. The added entries weigh nothing
+    (:func:`agents.policies.numpy_policy.widen`) and the map takes the match's parameters, so
+    under the game flow the scripted team plays the restarts, as for every team under it."""
+    amap = policy.action_map or {}
+    if amap.get("kind") != "team-residual" or type(policy) is not NumpyPolicy \
+            or policy.frame_stack != 1:
+        return policy
+    old = dict(amap["params"])
+    params = team_residual_params(env, team, residual=float(old.get("residual", 1.0)))
+    names = list(old.get("names", []))
+    if not names or params["names"][:len(names)] != names or len(params["names"]) == len(names):
+        return policy
+    return widen(policy, len(params["names"]), {"kind": "team-residual", "params": params})
+
+
 def team_policy(policy: Any, env: Any, team: str
                 ) -> Callable[[Mapping[str, np.ndarray]], dict[str, np.ndarray]]:
     """A function from the match's observations to the actions of ``team``'s live agents,
@@ -163,6 +182,9 @@ def team_policy(policy: Any, env: Any, team: str
                              "supported in head-to-head matches")
     size = getattr(policy, "obs_size", None)
     obs_dim = u.observation_space(agents[0]).shape[0]
+    if isinstance(policy, NumpyPolicy) and size is not None and size < obs_dim:
+        policy = widened_team(policy, u, team)
+        size = policy.obs_size
     if size is not None and size != obs_dim:
         raise ValueError(f"the {team} team's policy takes observations of size {size}, the "
                          f"match gives {obs_dim}")

@@ -115,23 +115,28 @@ def parse_team(text: str, obs_mode: str, vision: str,
 
 def check_sizes(sides: list[Any], env_kwargs: dict[str, Any]) -> None:
     """Refuse a numpy team whose observations are not the match's (another team size, or
-    trained without the game flow for a match with it, or the reverse)."""
+    trained with the game flow for a match without it). A team trained without the game flow
+    plays a match with it, its network reading the entries it knows
+    (:func:`agents.studies.matches.widened_team`)."""
     import soccer_env
     from agents.policies import NumpyPolicy
+    from agents.studies.matches import widened_team
 
     env = soccer_env.parallel_env(**env_kwargs)
-    size = env.observation_space(env.possible_agents[0]).shape[0]
-    env.close()
-    for side in sides:
-        if isinstance(side.policy, str) and side.policy.endswith(".npz"):
-            team = NumpyPolicy.load(side.policy)
-            if team.obs_size != size:
-                game = "with" if env_kwargs.get("game") else "without"
-                raise ValueError(f"--team {side.label!r} takes observations of "
-                                 f"{team.obs_size} entries; a {env_kwargs['blue']} vs "
-                                 f"{env_kwargs['yellow']} match {game} the game flow gives "
-                                 f"{size} (was it trained for another team size or game "
-                                 "flow setting?)")
+    try:
+        size = env.observation_space(env.possible_agents[0]).shape[0]
+        for side in sides:
+            if isinstance(side.policy, str) and side.policy.endswith(".npz"):
+                team = widened_team(NumpyPolicy.load(side.policy), env, "blue")
+                if team.obs_size != size:
+                    game = "with" if env_kwargs.get("game") else "without"
+                    raise ValueError(f"--team {side.label!r} takes observations of "
+                                     f"{team.obs_size} entries; a {env_kwargs['blue']} vs "
+                                     f"{env_kwargs['yellow']} match {game} the game flow "
+                                     f"gives {size} (was it trained for another team size or "
+                                     "game flow setting?)")
+    finally:
+        env.close()
 
 
 def main(argv: list[str] | None = None) -> int:

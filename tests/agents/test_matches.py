@@ -21,6 +21,7 @@ from agents.studies.matches import (
     match_jobs,
     play_match,
     team_policy,
+    widened_team,
 )
 
 ONE_V_ONE = {"blue": 1, "yellow": 1, "match_duration": 12.0}
@@ -113,6 +114,38 @@ def test_a_numpy_policy_file_plays_for_every_robot_of_its_team(tmp_path):
                         np.ones(6)).save(tmp_path / "small.npz")
     with pytest.raises(ValueError, match="takes observations of size 7, the match gives"):
         head_to_head(Side(str(small)), Side(), 1, env_kwargs=ONE_V_ONE, workers=1)
+
+
+def test_a_team_trained_without_the_game_flow_plays_under_it_on_the_entries_it_knows():
+    """The shipped truth-trained team reads the game flow's observation: the game block's
+    entries, which come last, weigh nothing, and the map takes the game flow's rules (the
+    scripted team plays the restarts)."""
+    from agents.baselines import SSL_TEAM_2V2
+    from agents.policies.numpy_policy import widen
+
+    team = NumpyPolicy.load(SSL_TEAM_2V2)
+    env = soccer_env.parallel_env(blue=2, yellow=2, game=True, match_duration=2.0)
+    obs, _ = env.reset(seed=3)
+    n = env.observation_space("blue_0").shape[0]
+    wide = widened_team(team, env, "yellow")
+    assert team.obs_size < n and wide.obs_size == n
+    assert "rules" in wide.action_map["params"] and "rules" not in team.action_map["params"]
+    x = np.stack([obs["yellow_0"], obs["yellow_1"]])
+    want = team.network_action(x[:, :team.obs_size])
+    np.testing.assert_allclose(wide.network_action(x), want, rtol=1e-6)
+    x[:, team.obs_size:] = 1e3  # whatever the game block says
+    np.testing.assert_allclose(wide.network_action(x), want, rtol=1e-6)
+    actions = team_policy(str(SSL_TEAM_2V2), env, "yellow")(obs)
+    assert sorted(actions) == ["yellow_0", "yellow_1"]
+    # A team that reads the game block does not play a match without it.
+    plain = soccer_env.parallel_env(blue=2, yellow=2, match_duration=2.0)
+    with pytest.raises(ValueError, match=f"takes observations of size {n}, the match gives"):
+        team_policy(wide, plain, "blue")
+    assert widened_team(wide, env, "blue").obs_size == n
+    with pytest.raises(ValueError, match="obs_size must be an integer >= the policy's"):
+        widen(team, team.obs_size - 1)
+    env.close()
+    plain.close()
 
 
 def _full_speed(obs):

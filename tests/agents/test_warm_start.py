@@ -15,7 +15,12 @@ from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize  # noqa: 
 
 from agents.policies import NumpyPolicy  # noqa: E402
 from agents.sb3.policies import numpy_copy  # noqa: E402
-from agents.sb3.warm_start import FreezeActor, actor_parameters, load_actor  # noqa: E402
+from agents.sb3.warm_start import (  # noqa: E402
+    FreezeActor,
+    HeldRunningMeanStd,
+    actor_parameters,
+    load_actor,
+)
 
 
 class _Box(gym.Env):
@@ -88,6 +93,28 @@ def test_the_actor_is_held_while_the_critic_learns_then_learns():
     assert not freeze.frozen
     assert any(not np.array_equal(a.numpy(), p.detach().numpy())
                for a, p in zip(before, actor_parameters(model)))
+
+
+@pytest.mark.parametrize("hold", [False, True])
+def test_held_statistics_keep_the_policys_entries_while_the_added_ones_follow(hold):
+    policy = _policy()
+    model, norm = _model()
+    load_actor(model, policy, norm, count=100.0, hold=hold)
+    model.learn(256)
+    mean, var = norm.obs_rms.mean, norm.obs_rms.var
+    held = np.allclose(mean[:5], policy.normalize[0]) and np.allclose(var[:5], policy.normalize[1])
+    assert held == hold
+    # the added entries follow the observations (uniform on [-5, 5]: variance 25/3)
+    assert np.all(var[5:] > 3.0)
+    copy = numpy_copy(model, vec_normalize=norm)
+    np.testing.assert_allclose(copy.normalize[0][:5], mean[:5])
+
+
+def test_held_statistics_refuse_mismatched_sizes():
+    with pytest.raises(ValueError, match="held must be within"):
+        HeldRunningMeanStd(np.zeros(3), np.ones(3), 4)
+    with pytest.raises(ValueError, match="mean and var"):
+        HeldRunningMeanStd(np.zeros(3), np.ones(2), 1)
 
 
 def test_mismatches_are_refused():
