@@ -254,3 +254,27 @@ def test_game_flow_counts_a_matchs_time_and_events(capsys):
     assert "| matches not over after 10 times their playing time | " in text
     with pytest.raises(SystemExit):
         flow.main(["--matches", "0"])
+    with pytest.raises(SystemExit):
+        flow.main(["--team", "missing.npz"])
+
+
+def test_game_flow_counts_each_teams_fouls_with_a_team_file(capsys, tmp_path):
+    """A team that never slows down at a stop fouls; every foul is put on the team that
+    committed it, the file's team on either colour."""
+    from agents.policies import NumpyPolicy
+
+    flow = _script("game_flow")
+    env = soccer_env.parallel_env(blue=1, yellow=1, game=True)
+    n = env.observation_space("blue_0").shape[0]
+    env.close()
+    reckless = NumpyPolicy([("linear", np.zeros((6, n)), np.array([1.0, 0, 0, 0, 0, 0]))],
+                           "clip", -np.ones(6), np.ones(6))
+    path = str(reckless.save(tmp_path / "reckless.npz"))
+    rows = [flow.play("ssl", 1, 4.0, seed=1, team_file=path, team_blue=blue)
+            for blue in (True, False)]
+    for row in rows:
+        assert sum(row["by_team"].values()) == sum(
+            v for k, v in row["events"].items() if k in flow.FOULS)
+        assert any(k.startswith("team:") and v > 0 for k, v in row["by_team"].items())
+    flow.report(rows)
+    assert "| fouls, team | " in capsys.readouterr().out
