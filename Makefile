@@ -18,9 +18,11 @@ $(VENV)/.demo-installed: pyproject.toml | $(BIN)/python
 # Tests need everything, the RL client libraries of examples/ included. torch==2.13.0 goes
 # first so that stable-baselines3 and torchrl take the CPU build that is on disk instead of
 # downloading a CUDA build of several GB.
-$(VENV)/.dev-installed: pyproject.toml | $(BIN)/python
+# The SSL protocol classes (the ssl extra) are a distribution of their own in third_party/.
+$(VENV)/.dev-installed: pyproject.toml third_party/ssl_protocol/pyproject.toml | $(BIN)/python
 	$(PIP) install --quiet torch==2.13.0
-	$(PIP) install --quiet -e ".[dev,render,train,pixels,clients]"
+	$(PIP) install --quiet ./third_party/ssl_protocol
+	$(PIP) install --quiet -e ".[dev,render,train,pixels,clients,ssl]"
 	touch $@ $(VENV)/.demo-installed
 
 demo: $(VENV)/.demo-installed

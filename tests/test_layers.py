@@ -31,6 +31,7 @@ LAYERS = (
     ("observations", ("soccer_env.observations",)),
     ("rendering", ("soccer_env.render",)),
     ("environments", ("soccer_env.envs", "soccer_env")),
+    ("protocols", ("soccer_env.protocol",)),
     ("agents: common", ("agents.common",)),
     ("agents: scripted", ("agents.scripted",)),
     ("agents: policies", ("agents.policies",)),
