@@ -400,6 +400,12 @@ def _cmd_rate(argv: list[str]) -> int:
     return rate_main(argv)
 
 
+def _cmd_serve(argv: list[str]) -> int:
+    from soccer_lab.commands.serve import main as serve_main
+
+    return serve_main(argv)
+
+
 def _cmd_play(argv: list[str]) -> int:
     # pygame first: the command's module draws with it.
     extras.require("play")
@@ -420,6 +426,8 @@ COMMANDS: dict[str, tuple[Callable[[list[str]], int], str]] = {
     "eval": (_cmd_eval, "evaluate a keeper policy on the fixed shot suite"),
     "ablation": (_cmd_ablation, "compare estimators in closed loop, per sensor preset"),
     "rate": (_cmd_rate, "rate SSL match teams by a round robin of seeded matches"),
+    "serve": (_cmd_serve, "serve an SSL match over the league's protocols (vision, referee, "
+                          "robot control)"),
     "play": (_cmd_play, "drive a robot with the keyboard against the scripted team"),
     "list": (_cmd_list, "list environments, presets and perception options"),
 }
@@ -428,14 +436,14 @@ COMMANDS: dict[str, tuple[Callable[[list[str]], int], str]] = {
 def parsers() -> dict[str, argparse.ArgumentParser]:
     """Every command's option parser by its command line (``"paper ekf"`` for each paper's)."""
     from soccer_lab.bench import parser as bench_parser
-    from soccer_lab.commands import ablation, evaluate, imitate, play, rate, train
+    from soccer_lab.commands import ablation, evaluate, imitate, play, rate, serve, train
 
     paper, papers = paper_parser()
     return {"demo": _demo_parser(), "bench": bench_parser(), "paper": paper,
             **{f"paper {name}": sub for name, sub in papers.items()},
             "train": train.parser(), "imitate": imitate.parser(), "eval": evaluate.parser(),
             "ablation": ablation.parser(), "rate": rate.parser(), "list": _list_parser(),
-            "play": play.parser()}
+            "serve": serve.parser(), "play": play.parser()}
 
 
 def _usage() -> str:

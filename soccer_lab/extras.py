@@ -4,7 +4,8 @@ The base install (numpy, pymunk, gymnasium, pettingzoo) runs the environments. T
 need more, from the extras of ``pyproject.toml``: ``render`` (matplotlib for figures, pygame to
 draw frames, imageio to write videos), ``train`` (stable-baselines3, torch, tensorboard, and
 tqdm with rich for the progress bar, sb3-contrib for RecurrentPPO), ``pixels`` (OpenCV, for
-rendered camera images) and ``rllib`` (Ray's RLlib).
+rendered camera images), ``rllib`` (Ray's RLlib) and ``ssl`` (protobuf and the league's message
+classes).
 
 :data:`REQUIREMENTS` is the one table: per command, or per use of one (``"paper meanshift"``,
 ``"train --backend rllib"``, ``"video"``), the modules it imports and the extra that installs
@@ -72,6 +73,7 @@ REQUIREMENTS: dict[str, tuple[Need, ...]] = {
     "ablation pixels": (_IMAGES,),
     "list": (),
     "rate": (),
+    "serve": (Need(("ssl_protocol", "google.protobuf"), "ssl"),),
     "play": (Need(("pygame",), "render"),),
 }
 

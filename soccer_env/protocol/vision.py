@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from functools import lru_cache
 
 import numpy as np
 from google.protobuf.message import DecodeError
@@ -62,11 +63,17 @@ def pixel_of(camera: Camera, x: float, y: float) -> tuple[float, float]:
     """The pixel ``(u, v)`` of the ground point ``(x, y)`` [m] in ``camera``'s image: a pinhole
     looking straight down from ``(camera.x, camera.y)``, scaled so that the camera's area just
     fits :data:`IMAGE_SIZE` (``u`` grows with ``x``, ``v`` against ``y``, as image rows run)."""
+    scale = _pixels_per_metre(camera)
     w, h = IMAGE_SIZE
+    return 0.5 * w + scale * (x - camera.x), 0.5 * h - scale * (y - camera.y)
+
+
+@lru_cache(maxsize=64)
+def _pixels_per_metre(camera: Camera) -> float:
+    """Pixels per metre on the ground of :func:`pixel_of`'s camera (its area just fits)."""
     reach_x = max(abs(camera.x_min - camera.x), abs(camera.x_max - camera.x), 1e-9)
     reach_y = max(abs(camera.y_min - camera.y), abs(camera.y_max - camera.y), 1e-9)
-    scale = min(0.5 * w / reach_x, 0.5 * h / reach_y)  # pixels per metre on the ground
-    return 0.5 * w + scale * (x - camera.x), 0.5 * h - scale * (y - camera.y)
+    return min(0.5 * IMAGE_SIZE[0] / reach_x, 0.5 * IMAGE_SIZE[1] / reach_y)
 
 
 def detection_packet(frame: DetectionFrame, camera: Camera, frame_number: int, n_blue: int,

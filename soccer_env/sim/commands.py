@@ -63,6 +63,14 @@ class SSLRobot:
         :data:`~soccer_env.sim.world.COMMAND_FIELDS`)."""
         return actions * self._scale
 
+    def actions(self, commands: np.ndarray) -> np.ndarray:
+        """The actions ``(N, 6)`` whose :meth:`commands` are the physical ``commands``
+        (``(N, 6)``, :data:`~soccer_env.sim.world.COMMAND_FIELDS`), clipped to [-1, 1]: each
+        velocity and kick speed beyond the robot's limit becomes the limit (the speed norm is
+        capped again by the world), chip and dribble keep their sign."""
+        commands = np.asarray(commands, dtype=np.float64)
+        return np.clip(commands / self._scale, -1.0, 1.0)
+
 
 class HumanoidRobot:
     """Action mapping of a humanoid's walk engine (:mod:`soccer_env.sim.walk`).

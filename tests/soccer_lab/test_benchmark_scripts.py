@@ -278,3 +278,14 @@ def test_game_flow_counts_each_teams_fouls_with_a_team_file(capsys, tmp_path):
         assert any(k.startswith("team:") and v > 0 for k, v in row["by_team"].items())
     flow.report(rows)
     assert "| fouls, team | " in capsys.readouterr().out
+
+
+def test_ssl_serve_measures_the_stepped_rate_and_the_cameras_in_real_time():
+    pytest.importorskip("ssl_protocol")
+    serve = _script("ssl_serve")
+    s = serve.stepped(1, "ssl-2012", 60)
+    assert s["steps"] == 60 and s["frames"] > 0 and s["dropped"] == 0
+    r = serve.realtime(1, "ssl-2012", 0.6)
+    assert r["cameras"] == 4 and all(v == pytest.approx(25.0, rel=0.01)
+                                     for v in r["rate_per_camera"].values())
+    assert r["delay_ms"][0] == pytest.approx(80.0, abs=0.1)  # ssl-2012: 80 ms, no jitter

@@ -22,7 +22,8 @@ ROOT = Path(__file__).resolve().parents[2]
 DISTRIBUTION = {"matplotlib": "matplotlib", "pygame": "pygame", "imageio": "imageio",
                 "cv2": "opencv-python-headless", "stable_baselines3": "stable-baselines3",
                 "sb3_contrib": "sb3-contrib", "torch": "torch", "tensorboard": "tensorboard",
-                "tqdm": "tqdm", "rich": "rich", "ray": "ray"}
+                "tqdm": "tqdm", "rich": "rich", "ray": "ray",
+                "ssl_protocol": "soccer-env-ssl-protocol", "google.protobuf": "protobuf"}
 
 
 def _requirement_names(specs: list[str]) -> set[str]:

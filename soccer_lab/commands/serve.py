@@ -1,0 +1,134 @@
+"""``soccer-env serve``: an SSL match served over the league's protocols
+(:class:`soccer_env.protocol.server.SSLServer`): the vision preset's cameras as SSL-Vision
+packets, the game controller's ``Referee`` messages (with ``--game``), and each team's robots
+driven by the simulation protocol's robot control, answered with feedback.
+
+Addresses are ``HOST:PORT`` with the league's defaults: vision to the multicast group
+224.5.23.2:10006, referee messages to 224.5.23.1:10003, robot control read on port 10301
+(blue) and 10302 (yellow) of every interface. To keep everything on one machine, give
+127.0.0.1 addresses (``--loopback``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+from soccer_lab.cli_args import HelpFormatter
+
+__all__ = ["parser", "main", "parse_address"]
+
+_EXAMPLE = ("soccer-env serve --loopback --blue 2 --yellow 2 --game --vision ssl-2012 "
+            "--duration 60")
+
+
+def parse_address(text: str, option: str) -> tuple[str, int]:
+    """``HOST:PORT`` as ``(host, port)``; ``ValueError`` naming ``option`` otherwise."""
+    from soccer_env.protocol.udp import check_address
+
+    host, sep, port = text.rpartition(":")
+    if not sep or not port.isdigit():
+        raise ValueError(f"{option} must be HOST:PORT (an IPv4 host), got {text!r}")
+    try:
+        return check_address((host, int(port)), option)
+    except ValueError as exc:
+        raise ValueError(f"{exc} (from {text!r})") from None
+
+
+def parser() -> argparse.ArgumentParser:
+    """The options of ``soccer-env serve``."""
+    p = argparse.ArgumentParser(
+        prog="soccer-env serve", formatter_class=HelpFormatter,
+        description="Serve an SSL match over the league's protocols: SSL-Vision packets of "
+                    "the vision preset's cameras (rate, latency, noise, drops, occlusion), the "
+                    "game controller's referee messages, and robot control through the "
+                    "simulation protocol. Real time by default; --stepped steps as fast as it "
+                    "can (the same episode for the same seed and commands).",
+        epilog=f"example:\n  {_EXAMPLE}")
+    p.add_argument("--blue", type=int, default=2, help="robots of the blue team")
+    p.add_argument("--yellow", type=int, default=2, help="robots of the yellow team")
+    p.add_argument("--field", default=None, help="the field preset (default: the match's)")
+    p.add_argument("--game", action="store_true",
+                   help="play the SSL game flow (Division B rules) and send referee messages")
+    p.add_argument("--vision", default="ssl-2012", help="the cameras' vision preset")
+    p.add_argument("--duration", type=float, default=300.0,
+                   help="playing time of the match [s]")
+    p.add_argument("--control-hz", type=float, default=60.0,
+                   help="physics steps (and command reads) per second")
+    p.add_argument("--seed", type=int, default=0, help="the match's seed")
+    p.add_argument("--stepped", action="store_true",
+                   help="step as fast as possible instead of in real time")
+    p.add_argument("--loopback", action="store_true",
+                   help="every address on 127.0.0.1 with the league's ports (overridden by "
+                        "the address options)")
+    p.add_argument("--vision-address", default=None,
+                   help="where vision packets go (default 224.5.23.2:10006)")
+    p.add_argument("--referee-address", default=None,
+                   help="where referee messages go (default 224.5.23.1:10003)")
+    p.add_argument("--blue-control", default=None,
+                   help="where blue's robot control is read (default 0.0.0.0:10301)")
+    p.add_argument("--yellow-control", default=None,
+                   help="where yellow's robot control is read (default 0.0.0.0:10302)")
+    return p
+
+
+def _addresses(args: argparse.Namespace) -> dict[str, tuple[str, int]]:
+    from soccer_env.protocol import udp
+
+    host = "127.0.0.1" if args.loopback else None
+    defaults = {"vision_address": (host or udp.VISION_ADDRESS[0], udp.VISION_ADDRESS[1]),
+                "referee_address": (host or udp.REFEREE_ADDRESS[0], udp.REFEREE_ADDRESS[1]),
+                "blue_control": (host or "0.0.0.0", udp.BLUE_CONTROL_PORT),
+                "yellow_control": (host or "0.0.0.0", udp.YELLOW_CONTROL_PORT)}
+    return {name: (parse_address(getattr(args, name), "--" + name.replace("_", "-"))
+                   if getattr(args, name) else default) for name, default in defaults.items()}
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``soccer-env serve``: check the options, serve until the match ends."""
+    p = parser()
+    args = p.parse_args(argv)
+    from soccer_lab import extras
+
+    for name, value, low, high in (("--blue", args.blue, 0, 11), ("--yellow", args.yellow, 0, 11)):
+        if not low <= value <= high:
+            p.error(f"{name} must be in {low}..{high}, got {value}")
+    if not 1.0 <= args.duration <= 36_000.0:
+        p.error(f"--duration must be in [1, 36000] s, got {args.duration}")
+    if not 10.0 <= args.control_hz <= 1000.0:
+        p.error(f"--control-hz must be in [10, 1000], got {args.control_hz}")
+    try:
+        addresses = _addresses(args)
+    except ValueError as exc:
+        p.error(str(exc))
+    extras.require("serve")
+    from soccer_env.protocol.server import SSLServer
+
+    kwargs = {"blue": args.blue, "yellow": args.yellow, "game": args.game,
+              "match_duration": args.duration, "control_dt": 1.0 / args.control_hz}
+    if args.field:
+        kwargs["field"] = args.field
+    try:
+        server = SSLServer(kwargs, args.vision, addresses["vision_address"],
+                           addresses["referee_address"],
+                           (addresses["blue_control"], addresses["yellow_control"]))
+    except (ValueError, KeyError, OSError) as exc:
+        p.error(str(exc))
+    try:
+        server.reset(seed=args.seed)
+        print(f"serving: vision to {addresses['vision_address']}, referee to "
+              f"{addresses['referee_address']}, robot control on "
+              f"{server.control_addresses[0]} (blue) and {server.control_addresses[1]} "
+              f"(yellow); {'stepped' if args.stepped else 'real time'}", flush=True)
+        t0 = time.perf_counter()
+        steps = server.run(realtime=not args.stepped)
+        seconds = time.perf_counter() - t0
+        print(f"served {steps} steps ({server.time:.1f} s of match time) in {seconds:.1f} s; "
+              f"{server.vision.sent} vision packets, {server.referee.sent} referee messages; "
+              f"commands received {server.received}, refused {server.refused}; dropped "
+              f"{dict(server.dropped) or 'none'}")
+    except KeyboardInterrupt:
+        print(f"stopped at {server.time:.1f} s of match time")
+    finally:
+        server.close()
+    return 0
