@@ -83,7 +83,7 @@ class VisionPublisher:
 
     def step(self) -> None:
         """Capture what the cameras saw while the world stepped (sent when delivered)."""
-        self._push(self.cameras.step(self.world.snapshot()))
+        self._push(self.cameras.capture(self.world.snapshot()))
 
     def _push(self, frames: list[DetectionFrame]) -> None:
         n_blue = int(self.world.n_blue)

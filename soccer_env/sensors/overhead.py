@@ -193,6 +193,20 @@ class OverheadVision:
     def step(self, state: WorldState) -> list[DetectionFrame]:
         """Capture the frames due since the last call and return those delivered by
         ``state.time``, ordered by delivery time."""
+        now = state.time
+        queue = self._queue
+        for frame in self.capture(state):
+            heapq.heappush(queue, (frame.t_delivered, frame.t_capture, frame.camera, frame))
+        out = []
+        while queue and queue[0][0] <= now + 1e-12:
+            out.append(heapq.heappop(queue)[3])
+        return out
+
+    def capture(self, state: WorldState) -> list[DetectionFrame]:
+        """Capture the frames due since the last call and return them at once, before their
+        delivery (``t_delivered`` says when): for a caller that delivers them itself, as a
+        served camera system does at the wall time of delivery. Call this or :meth:`step`,
+        not both, after a reset."""
         prev, now = self._prev, state.time
         period = self.period
         if period is None:
@@ -208,13 +222,7 @@ class OverheadVision:
                     nxt[c] += period
             new = self._capture(prev, state, cams, times) if cams else []
         self._prev = state
-        queue = self._queue
-        for frame in new:
-            heapq.heappush(queue, (frame.t_delivered, frame.t_capture, frame.camera, frame))
-        out = []
-        while queue and queue[0][0] <= now + 1e-12:
-            out.append(heapq.heappop(queue)[3])
-        return out
+        return new
 
     # ------------------------------------------------------------------------------------
 
