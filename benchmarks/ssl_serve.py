@@ -45,7 +45,7 @@ def _control(size: int) -> bytes:
 def _server(size: int, preset: str, reader: VisionReader) -> SSLServer:
     return SSLServer({"blue": size, "yellow": size, "control_dt": 1 / 60,
                       "match_duration": 3600.0}, preset, reader.address, ("127.0.0.1", 9),
-                     (LOOPBACK, LOOPBACK))
+                     (LOOPBACK, LOOPBACK), LOOPBACK)
 
 
 def stepped(size: int, preset: str, steps: int) -> dict[str, float]:

@@ -6,7 +6,10 @@ team sees comes out of the served cameras, not the environment's observation) an
 
 1. reads every ``RobotControl`` datagram waiting on each team's robot-control socket, applies
    it (:func:`~soccer_env.protocol.robot_control.apply_robot_control`; a robot keeps its last
-   command until another comes) and answers the sender with a ``RobotControlResponse``;
+   command until another comes) and answers the sender with a ``RobotControlResponse``, and
+   every ``SimulatorCommand`` on the simulator-control socket (teleporting the ball and the
+   robots: :func:`~soccer_env.protocol.simulator_control.apply_simulator_command`), answered
+   with a ``SimulatorResponse``;
 2. steps the match with those commands (as actions of the match's robot model; robots off
    the field stand, as in the match);
 3. publishes what the cameras delivered by then (:class:`~soccer_env.protocol.publisher.
@@ -21,7 +24,8 @@ machine). A datagram that is not a ``RobotControl`` is counted under its reason 
 :attr:`SSLServer.dropped`, logged once per reason and dropped.
 
 The addresses default to the league's (vision 224.5.23.2:10006, referee 224.5.23.1:10003,
-robot control on ports 10301 blue and 10302 yellow of every interface); the package's tests
+robot control on ports 10301 blue and 10302 yellow and simulator control on port 10300 of every
+interface); the package's tests
 and examples bind and send to 127.0.0.1 only.
 """
 
@@ -40,10 +44,12 @@ from soccer_env.protocol.publisher import VisionPublisher
 from soccer_env.protocol.reader import LOGGER
 from soccer_env.protocol.referee import RefereePublisher
 from soccer_env.protocol.robot_control import apply_robot_control, read_robot_control
+from soccer_env.protocol.simulator_control import apply_simulator_command, read_simulator_command
 from soccer_env.protocol.udp import (
     BLUE_CONTROL_PORT,
     MAX_DATAGRAM,
     REFEREE_ADDRESS,
+    SIMULATION_CONTROL_PORT,
     VISION_ADDRESS,
     YELLOW_CONTROL_PORT,
     check_address,
@@ -67,13 +73,17 @@ class SSLServer:
         vision: the served cameras' vision preset.
         vision_address, referee_address: where the vision and referee packets go.
         control_addresses: where each team's robot control is read, ``(blue, yellow)``.
+        simulator_address: where simulator control (teleporting the ball and the robots,
+            :mod:`~soccer_env.protocol.simulator_control`) is read.
     """
 
     def __init__(self, env_kwargs: Mapping[str, Any] | None = None, vision: Any = "ssl-2012",
                  vision_address: tuple[str, int] = VISION_ADDRESS,
                  referee_address: tuple[str, int] = REFEREE_ADDRESS,
                  control_addresses: tuple[tuple[str, int], tuple[str, int]] = (
-                     ("0.0.0.0", BLUE_CONTROL_PORT), ("0.0.0.0", YELLOW_CONTROL_PORT))) -> None:
+                     ("0.0.0.0", BLUE_CONTROL_PORT), ("0.0.0.0", YELLOW_CONTROL_PORT)),
+                 simulator_address: tuple[str, int] = ("0.0.0.0", SIMULATION_CONTROL_PORT)
+                 ) -> None:
         kwargs = dict(env_kwargs or {})
         clash = sorted(set(kwargs) & set(_OWN_KWARGS))
         if clash:
@@ -82,7 +92,7 @@ class SSLServer:
         if len(control_addresses) != 2:
             raise ValueError(f"control_addresses must be (blue, yellow) addresses, got "
                              f"{control_addresses!r}")
-        for a in (vision_address, referee_address, *control_addresses):
+        for a in (vision_address, referee_address, *control_addresses, simulator_address):
             check_address(a)
         self.env = soccer_env.parallel_env(**kwargs)
         u = self.env.unwrapped
@@ -94,16 +104,20 @@ class SSLServer:
         self.model = SSLRobot(self.world.robot_spec)
         self.vision = VisionPublisher(self.world, vision, vision_address)
         self.referee = RefereePublisher(referee_address)
-        self.controls = [receiver(a) for a in control_addresses]
+        self.controls = [receiver(a) for a in (*control_addresses, simulator_address)]
         for s in self.controls:
             s.setblocking(False)
-        #: The addresses the robot control is read on, ``(blue, yellow)``.
-        self.control_addresses = tuple(s.getsockname()[:2] for s in self.controls)
+        #: The addresses the robot control is read on, ``(blue, yellow)``, and the
+        #: simulator control.
+        self.control_addresses = tuple(s.getsockname()[:2] for s in self.controls[:2])
+        self.simulator_address = self.controls[2].getsockname()[:2]
         self.commands = np.zeros((self.world.n_robots, 6))
         #: Datagrams dropped, by reason; commands received, and refused, by team.
         self.dropped: Counter = Counter()
         self.received = [0, 0]
         self.refused = [0, 0]
+        #: Errors answered to simulator control.
+        self.simulator_errors = 0
         self.clock = 0.0
         self.steps = 0
         self._headings: np.ndarray | None = None
@@ -140,14 +154,20 @@ class SSLServer:
         return applied
 
     def _control(self, team: int, data: bytes, sender: Any, sock: socket.socket) -> int:
+        """Apply one datagram of ``team``'s robot control (team 2: simulator control)."""
         try:
-            control = read_robot_control(data)
+            control = (read_robot_control if team < 2 else read_simulator_command)(data)
         except PacketError as exc:
             if not self.dropped[exc.reason]:
-                LOGGER.warning("dropped a robot-control datagram (%s); further ones with this "
+                LOGGER.warning("dropped a control datagram (%s); further ones with this "
                                "reason are counted, not logged", exc)
             self.dropped[exc.reason] += 1
             return 0
+        if team == 2:
+            response = apply_simulator_command(control, self.world)
+            self.simulator_errors += len(response.errors)
+            sock.sendto(response.SerializeToString(), sender)
+            return 1
         w = self.world
         first, size = (0, w.n_blue) if team == 0 else (w.n_blue, w.n_yellow)
         if self._headings is None:

@@ -4,9 +4,9 @@ packets, the game controller's ``Referee`` messages (with ``--game``), and each 
 driven by the simulation protocol's robot control, answered with feedback.
 
 Addresses are ``HOST:PORT`` with the league's defaults: vision to the multicast group
-224.5.23.2:10006, referee messages to 224.5.23.1:10003, robot control read on port 10301
-(blue) and 10302 (yellow) of every interface. To keep everything on one machine, give
-127.0.0.1 addresses (``--loopback``).
+224.5.23.2:10006, referee messages to 224.5.23.1:10003, robot control read on port 10301 (blue)
+and 10302 (yellow) and simulator control on port 10300 of every interface. To keep everything
+on one machine, give 127.0.0.1 addresses (``--loopback``).
 """
 
 from __future__ import annotations
@@ -69,6 +69,9 @@ def parser() -> argparse.ArgumentParser:
                    help="where blue's robot control is read (default 0.0.0.0:10301)")
     p.add_argument("--yellow-control", default=None,
                    help="where yellow's robot control is read (default 0.0.0.0:10302)")
+    p.add_argument("--simulator-control", default=None,
+                   help="where simulator control (teleporting the ball and robots) is read "
+                        "(default 0.0.0.0:10300)")
     return p
 
 
@@ -79,7 +82,8 @@ def _addresses(args: argparse.Namespace) -> dict[str, tuple[str, int]]:
     defaults = {"vision_address": (host or udp.VISION_ADDRESS[0], udp.VISION_ADDRESS[1]),
                 "referee_address": (host or udp.REFEREE_ADDRESS[0], udp.REFEREE_ADDRESS[1]),
                 "blue_control": (host or "0.0.0.0", udp.BLUE_CONTROL_PORT),
-                "yellow_control": (host or "0.0.0.0", udp.YELLOW_CONTROL_PORT)}
+                "yellow_control": (host or "0.0.0.0", udp.YELLOW_CONTROL_PORT),
+                "simulator_control": (host or "0.0.0.0", udp.SIMULATION_CONTROL_PORT)}
     return {name: (parse_address(getattr(args, name), "--" + name.replace("_", "-"))
                    if getattr(args, name) else default) for name, default in defaults.items()}
 
@@ -111,7 +115,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         server = SSLServer(kwargs, args.vision, addresses["vision_address"],
                            addresses["referee_address"],
-                           (addresses["blue_control"], addresses["yellow_control"]))
+                           (addresses["blue_control"], addresses["yellow_control"]),
+                           addresses["simulator_control"])
     except (ValueError, KeyError, OSError) as exc:
         p.error(str(exc))
     try:
@@ -119,7 +124,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"serving: vision to {addresses['vision_address']}, referee to "
               f"{addresses['referee_address']}, robot control on "
               f"{server.control_addresses[0]} (blue) and {server.control_addresses[1]} "
-              f"(yellow); {'stepped' if args.stepped else 'real time'}", flush=True)
+              f"(yellow), simulator control on {server.simulator_address}; "
+              f"{'stepped' if args.stepped else 'real time'}", flush=True)
         t0 = time.perf_counter()
         steps = server.run(realtime=not args.stepped)
         seconds = time.perf_counter() - t0

@@ -27,7 +27,7 @@ KWARGS = {"blue": 2, "yellow": 2, "control_dt": 1 / 60, "match_duration": 10.0}
 def _server(vision_sock, referee_sock=None, **kw):
     referee = referee_sock.getsockname()[:2] if referee_sock is not None else ("127.0.0.1", 9)
     return SSLServer({**KWARGS, **kw}, "ssl-2012", vision_sock.getsockname()[:2], referee,
-                     (LOOPBACK, LOOPBACK))
+                     (LOOPBACK, LOOPBACK), LOOPBACK)
 
 
 def _forward(robot_id: int, speed: float) -> bytes:
@@ -110,3 +110,42 @@ def test_bad_arguments_are_refused():
                   referee_address=("127.0.0.1", 9), control_addresses=(LOOPBACK, LOOPBACK))
     with pytest.raises(ValueError, match="IPv4 host"):
         SSLServer({}, vision_address=("nowhere", 1))
+
+
+def test_simulator_control_places_the_ball_and_the_robots():
+    from ssl_protocol.sim import ssl_simulation_control_pb2 as sim_pb2
+    from ssl_protocol.state import ssl_gc_common_pb2 as common_pb2
+
+    sock = receiver(LOOPBACK, timeout=0.5)
+    server = _server(sock)
+    user = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    user.bind(LOOPBACK)
+    user.settimeout(1.0)
+    try:
+        server.reset(seed=2, clock=0.0)
+        command = sim_pb2.SimulatorCommand()
+        control = command.control
+        control.teleport_ball.x, control.teleport_ball.y = 1.5, -0.5
+        robot = control.teleport_robot.add(x=-1.0, y=1.0, orientation=0.5)
+        robot.id.id, robot.id.team = 1, common_pb2.YELLOW
+        missing = control.teleport_robot.add(x=0.0, y=0.0)
+        missing.id.id, missing.id.team = 7, common_pb2.BLUE
+        far = control.teleport_robot.add(x=50.0)
+        far.id.id, far.id.team = 0, common_pb2.BLUE
+        before = server.world.snapshot().robots[0].copy()
+        user.sendto(command.SerializeToString(), server.simulator_address)
+        server.read_controls()
+        response = sim_pb2.SimulatorResponse.FromString(user.recv(65_536))
+        assert [e.code for e in response.errors] == ["UNKNOWN_ROBOT", "OUT_OF_RANGE"]
+        state = server.world.snapshot()
+        np.testing.assert_allclose(state.ball[:2], [1.5, -0.5], atol=1e-6)
+        np.testing.assert_allclose(state.robots[3, :3], [-1.0, 1.0, 0.5], atol=1e-6)
+        np.testing.assert_array_equal(state.robots[0], before)  # refused: unchanged
+        assert server.simulator_errors == 2
+        user.sendto(b"\xff\xff", server.simulator_address)
+        server.read_controls()
+        assert server.dropped == {"malformed": 1}
+    finally:
+        user.close()
+        server.close()
+        sock.close()

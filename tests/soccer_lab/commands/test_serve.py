@@ -18,7 +18,8 @@ def test_a_stepped_match_is_served_and_summed_up(capsys):
         assert main(["--stepped", "--duration", "2", "--blue", "1", "--yellow", "1",
                      "--vision-address", f"127.0.0.1:{port}",
                      "--referee-address", f"127.0.0.1:{port}",
-                     "--blue-control", "127.0.0.1:0", "--yellow-control", "127.0.0.1:0"]) == 0
+                     "--blue-control", "127.0.0.1:0", "--yellow-control", "127.0.0.1:0",
+                     "--simulator-control", "127.0.0.1:0"]) == 0
         assert len(vision.recv(65_536)) > 0
     finally:
         vision.close()
