@@ -47,7 +47,8 @@ def parser() -> argparse.ArgumentParser:
         epilog=f"example:\n  {_EXAMPLE}")
     p.add_argument("--blue", type=int, default=2, help="robots of the blue team")
     p.add_argument("--yellow", type=int, default=2, help="robots of the yellow team")
-    p.add_argument("--field", default=None, help="the field preset (default: the match's)")
+    p.add_argument("--field", default=None,
+                   help="the field preset (default: the match's default)")
     p.add_argument("--game", action="store_true",
                    help="play the SSL game flow (Division B rules) and send referee messages")
     p.add_argument("--vision", default="ssl-2012", help="the cameras' vision preset")
@@ -62,16 +63,16 @@ def parser() -> argparse.ArgumentParser:
                    help="every address on 127.0.0.1 with the league's ports (overridden by "
                         "the address options)")
     p.add_argument("--vision-address", default=None,
-                   help="where vision packets go (default 224.5.23.2:10006)")
+                   help="where vision packets go (default: 224.5.23.2:10006)")
     p.add_argument("--referee-address", default=None,
-                   help="where referee messages go (default 224.5.23.1:10003)")
+                   help="where referee messages go (default: 224.5.23.1:10003)")
     p.add_argument("--blue-control", default=None,
-                   help="where blue's robot control is read (default 0.0.0.0:10301)")
+                   help="where blue's robot control is read (default: 0.0.0.0:10301)")
     p.add_argument("--yellow-control", default=None,
-                   help="where yellow's robot control is read (default 0.0.0.0:10302)")
+                   help="where yellow's robot control is read (default: 0.0.0.0:10302)")
     p.add_argument("--simulator-control", default=None,
                    help="where simulator control (teleporting the ball and robots) is read "
-                        "(default 0.0.0.0:10300)")
+                        "(default: 0.0.0.0:10300)")
     return p
 
 
