@@ -15,8 +15,9 @@ from collections import Counter
 from collections.abc import Sequence
 from typing import Any
 
+from soccer_env.protocol.datagrams import PacketError
 from soccer_env.protocol.udp import MAX_DATAGRAM, VISION_ADDRESS, receiver
-from soccer_env.protocol.vision import PacketError, detection_frame, read_packet
+from soccer_env.protocol.vision import detection_frame, read_packet
 from soccer_env.sensors.overhead import DetectionFrame
 
 __all__ = ["VisionReader", "LOGGER"]

@@ -22,11 +22,10 @@ import math
 import socket
 from typing import Any
 
-from google.protobuf.message import DecodeError
 from ssl_protocol.state import ssl_gc_referee_message_pb2 as referee_pb2
 
+from soccer_env.protocol.datagrams import PacketError, parse
 from soccer_env.protocol.udp import REFEREE_ADDRESS, check_address, sender
-from soccer_env.protocol.vision import MAX_PACKET_BYTES, PacketError
 
 __all__ = ["REFEREE_PERIOD", "referee_message", "read_referee", "RefereePublisher"]
 
@@ -88,18 +87,9 @@ def referee_message(game: Any, score: tuple[int, int], time: float, clock: float
 
 def read_referee(data: bytes) -> referee_pb2.Referee:
     """Parse and check one ``Referee`` datagram; raises
-    :class:`~soccer_env.protocol.vision.PacketError` (``"oversized"``, ``"malformed"``,
+    :class:`~soccer_env.protocol.datagrams.PacketError` (``"oversized"``, ``"malformed"``,
     ``"incomplete"``, or ``"out of range"`` for a designated position that is not finite)."""
-    if len(data) > MAX_PACKET_BYTES:
-        raise PacketError("oversized", f"{len(data)} bytes, at most {MAX_PACKET_BYTES}")
-    msg = referee_pb2.Referee()
-    try:
-        msg.ParseFromString(bytes(data))
-    except DecodeError as exc:
-        raise PacketError("malformed", f"not a Referee message ({exc})") from None
-    if not msg.IsInitialized():
-        missing = ", ".join(msg.FindInitializationErrors())
-        raise PacketError("incomplete", f"required fields missing: {missing}")
+    msg = parse(data, referee_pb2.Referee)
     if msg.HasField("designated_position") and not (
             math.isfinite(msg.designated_position.x)
             and math.isfinite(msg.designated_position.y)):

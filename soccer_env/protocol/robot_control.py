@@ -18,7 +18,7 @@ A command that names a robot the team does not have, that moves by wheel velocit
 that carries a number that is not finite or beyond :data:`MAX_SPEED`, :data:`MAX_TURN_RATE` or
 :data:`MAX_KICK_SPEED`, is not applied: the response carries a ``SimulatorError`` with its
 code (``UNKNOWN_ROBOT``, ``UNSUPPORTED_MOVE``, ``OUT_OF_RANGE``) and the robot keeps its last
-command. A datagram that does not parse raises :class:`~soccer_env.protocol.vision.PacketError`
+command. A datagram that does not parse raises :class:`~soccer_env.protocol.datagrams.PacketError`
 for the caller to count and drop.
 """
 
@@ -27,11 +27,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from google.protobuf.message import DecodeError
 from ssl_protocol.sim import ssl_simulation_robot_control_pb2 as control_pb2
 from ssl_protocol.sim import ssl_simulation_robot_feedback_pb2 as feedback_pb2
 
-from soccer_env.protocol.vision import MAX_PACKET_BYTES, PacketError
+from soccer_env.protocol.datagrams import parse
 
 __all__ = ["MAX_SPEED", "MAX_TURN_RATE", "MAX_KICK_SPEED", "read_robot_control",
            "apply_robot_control"]
@@ -46,18 +45,9 @@ MAX_KICK_SPEED = 50.0
 
 def read_robot_control(data: bytes) -> control_pb2.RobotControl:
     """Parse and check one ``RobotControl`` datagram; raises
-    :class:`~soccer_env.protocol.vision.PacketError` (``"oversized"``, ``"malformed"``,
+    :class:`~soccer_env.protocol.datagrams.PacketError` (``"oversized"``, ``"malformed"``,
     ``"incomplete"``)."""
-    if len(data) > MAX_PACKET_BYTES:
-        raise PacketError("oversized", f"{len(data)} bytes, at most {MAX_PACKET_BYTES}")
-    control = control_pb2.RobotControl()
-    try:
-        control.ParseFromString(bytes(data))
-    except DecodeError as exc:
-        raise PacketError("malformed", f"not a RobotControl ({exc})") from None
-    if not control.IsInitialized():
-        missing = ", ".join(control.FindInitializationErrors())
-        raise PacketError("incomplete", f"required fields missing: {missing}")
+    control = parse(data, control_pb2.RobotControl)
     return control
 
 

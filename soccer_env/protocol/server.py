@@ -40,6 +40,7 @@ from typing import Any
 import numpy as np
 
 import soccer_env
+from soccer_env.protocol.datagrams import PacketError
 from soccer_env.protocol.publisher import VisionPublisher
 from soccer_env.protocol.reader import LOGGER
 from soccer_env.protocol.referee import RefereePublisher
@@ -55,7 +56,6 @@ from soccer_env.protocol.udp import (
     check_address,
     receiver,
 )
-from soccer_env.protocol.vision import PacketError
 from soccer_env.sim.commands import SSLRobot
 
 __all__ = ["SSLServer"]

@@ -18,29 +18,19 @@ from __future__ import annotations
 
 from typing import Any
 
-from google.protobuf.message import DecodeError
 from ssl_protocol.sim import ssl_simulation_control_pb2 as sim_pb2
 from ssl_protocol.state import ssl_gc_common_pb2 as common_pb2
 
-from soccer_env.protocol.vision import MAX_PACKET_BYTES, PacketError
+from soccer_env.protocol.datagrams import parse
 
 __all__ = ["read_simulator_command", "apply_simulator_command"]
 
 
 def read_simulator_command(data: bytes) -> sim_pb2.SimulatorCommand:
     """Parse and check one ``SimulatorCommand`` datagram; raises
-    :class:`~soccer_env.protocol.vision.PacketError` (``"oversized"``, ``"malformed"``,
+    :class:`~soccer_env.protocol.datagrams.PacketError` (``"oversized"``, ``"malformed"``,
     ``"incomplete"``)."""
-    if len(data) > MAX_PACKET_BYTES:
-        raise PacketError("oversized", f"{len(data)} bytes, at most {MAX_PACKET_BYTES}")
-    command = sim_pb2.SimulatorCommand()
-    try:
-        command.ParseFromString(bytes(data))
-    except DecodeError as exc:
-        raise PacketError("malformed", f"not a SimulatorCommand ({exc})") from None
-    if not command.IsInitialized():
-        missing = ", ".join(command.FindInitializationErrors())
-        raise PacketError("incomplete", f"required fields missing: {missing}")
+    command = parse(data, sim_pb2.SimulatorCommand)
     return command
 
 

@@ -26,11 +26,11 @@ from collections.abc import Sequence
 from functools import lru_cache
 
 import numpy as np
-from google.protobuf.message import DecodeError
 from ssl_protocol.vision import ssl_vision_detection_pb2 as detection_pb2
 from ssl_protocol.vision import ssl_vision_wrapper_pb2 as wrapper_pb2
 
 from soccer_env.presets import BallSpec, FieldSpec, SSLRobotSpec
+from soccer_env.protocol.datagrams import MAX_PACKET_BYTES, PacketError, parse
 from soccer_env.sensors.overhead import Camera, DetectionFrame
 
 __all__ = ["IMAGE_SIZE", "MAX_PACKET_BYTES", "MAX_COORDINATE_MM", "PacketError",
@@ -41,22 +41,10 @@ __all__ = ["IMAGE_SIZE", "MAX_PACKET_BYTES", "MAX_COORDINATE_MM", "PacketError",
 MM = 1000.0
 #: The image of every camera [pixels] (width, height): an assumption of ours.
 IMAGE_SIZE = (780, 580)
-#: The largest packet read [bytes]. SSL-Vision's packets are a few kilobytes (a detection
-#: frame of 22 robots and a few balls under 1.5 kB, the geometry with its field lines under
-#: 4 kB); one UDP datagram holds at most 65,507.
-MAX_PACKET_BYTES = 16_384
 #: The largest coordinate accepted [mm]: beyond every division's field and its boundary.
 MAX_COORDINATE_MM = 20_000.0
 #: Robot numbers a team may have on the protocol (SSL-Vision's patterns number 0-15).
 MAX_ROBOT_ID = 15
-
-
-class PacketError(ValueError):
-    """A packet that cannot be used; ``reason`` says why (for a count per reason)."""
-
-    def __init__(self, reason: str, detail: str) -> None:
-        super().__init__(f"{reason}: {detail}")
-        self.reason = reason
 
 
 def pixel_of(camera: Camera, x: float, y: float) -> tuple[float, float]:
@@ -135,16 +123,7 @@ def read_packet(data: bytes) -> wrapper_pb2.SSL_WrapperPacket:
     ``"incomplete"`` (a required field missing), ``"empty"`` (neither detection nor geometry)
     or ``"out of range"`` (a number not finite or beyond the field, a confidence outside
     [0, 1], a robot number beyond 15)."""
-    if len(data) > MAX_PACKET_BYTES:
-        raise PacketError("oversized", f"{len(data)} bytes, at most {MAX_PACKET_BYTES}")
-    packet = wrapper_pb2.SSL_WrapperPacket()
-    try:
-        packet.ParseFromString(bytes(data))
-    except DecodeError as exc:
-        raise PacketError("malformed", f"not an SSL_WrapperPacket ({exc})") from None
-    if not packet.IsInitialized():
-        missing = ", ".join(packet.FindInitializationErrors())
-        raise PacketError("incomplete", f"required fields missing: {missing}")
+    packet = parse(data, wrapper_pb2.SSL_WrapperPacket)
     if not packet.HasField("detection") and not packet.HasField("geometry"):
         raise PacketError("empty", "neither a detection frame nor geometry")
     if packet.HasField("detection"):
