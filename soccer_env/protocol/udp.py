@@ -48,10 +48,13 @@ def _multicast(host: str) -> bool:
 def sender(address: tuple[str, int], interface: str = "0.0.0.0", ttl: int = 1
            ) -> socket.socket:
     """A UDP socket for sending to ``address``: to a multicast group it sends through
-    ``interface`` with ``ttl`` hops and loops back to this host."""
+    ``interface`` with ``ttl`` hops and loops back to this host; to a loopback address it is
+    bound to 127.0.0.1 (a free port), so that nothing listens beyond this host."""
     host, _ = check_address(address)
     sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM, socket.IPPROTO_UDP)
-    if _multicast(host):
+    if ipaddress.IPv4Address(host).is_loopback:
+        sock.bind(("127.0.0.1", 0))
+    elif _multicast(host):
         sock.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_TTL, ttl)
         sock.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_LOOP, 1)
         sock.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_IF, socket.inet_aton(interface))

@@ -61,6 +61,16 @@ def test_served_frames_keep_the_presets_rate_and_latency(preset):
     assert lag.max() <= spec.latency + spec.latency_jitter + 1e-6
 
 
+def test_senders_to_loopback_are_bound_to_loopback():
+    from soccer_env.protocol.udp import sender
+
+    sock = sender(("127.0.0.1", 10006))
+    try:
+        assert sock.getsockname()[0] == "127.0.0.1"
+    finally:
+        sock.close()
+
+
 def test_bad_datagrams_are_counted_by_reason_logged_once_and_reading_goes_on(caplog):
     bad = [b"\xff" * 30, b"\xff" * 30, b"", b"\x00" * 20_000]
     with caplog.at_level(logging.WARNING, logger="soccer_env.protocol"):
