@@ -54,7 +54,7 @@ class VisionPublisher:
             raise ValueError(f"geometry_period must be a finite number of seconds > 0, got "
                              f"{geometry_period!r}")
         self.world = world
-        self.address = check_address(address)
+        self.address = check_address(address, "address", bind=False)
         self.geometry_period = float(geometry_period)
         self.cameras = OverheadVision(self.spec, world.field, world.robot_spec,
                                       world.ball_spec, world.n_robots)

@@ -105,7 +105,7 @@ class RefereePublisher:
 
     def __init__(self, address: tuple[str, int] = REFEREE_ADDRESS,
                  sock: socket.socket | None = None) -> None:
-        self.address = check_address(address)
+        self.address = check_address(address, "address", bind=False)
         self._own = sock is None
         self.sock = sender(self.address) if sock is None else sock
         self.reset()

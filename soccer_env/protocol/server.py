@@ -92,8 +92,11 @@ class SSLServer:
         if len(control_addresses) != 2:
             raise ValueError(f"control_addresses must be (blue, yellow) addresses, got "
                              f"{control_addresses!r}")
-        for a in (vision_address, referee_address, *control_addresses, simulator_address):
-            check_address(a)
+        check_address(vision_address, "vision_address", bind=False)
+        check_address(referee_address, "referee_address", bind=False)
+        for name, a in zip(("blue control address", "yellow control address",
+                            "simulator_address"), (*control_addresses, simulator_address)):
+            check_address(a, name)
         self.env = soccer_env.parallel_env(**kwargs)
         u = self.env.unwrapped
         self.world = u.world

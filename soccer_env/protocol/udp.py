@@ -28,16 +28,19 @@ SIMULATION_CONTROL_PORT, BLUE_CONTROL_PORT, YELLOW_CONTROL_PORT = 10300, 10301, 
 MAX_DATAGRAM = 65_507
 
 
-def check_address(address: tuple[str, int], name: str = "address") -> tuple[str, int]:
-    """``address`` as ``(host, port)`` with an IPv4 host and a port in 0..65535 (0: any free
-    port, for binding); raises ``ValueError`` naming ``name`` otherwise."""
+def check_address(address: tuple[str, int], name: str = "address", bind: bool = True
+                  ) -> tuple[str, int]:
+    """``address`` as ``(host, port)`` with an IPv4 host and a port in 0..65535 for an address
+    to bind (0: any free port), 1..65535 for one to send to (``bind=False``); raises
+    ``ValueError`` naming ``name`` otherwise."""
     try:
         host, port = address
         ipaddress.IPv4Address(host)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be (IPv4 host, port), got {address!r}") from None
-    if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
-        raise ValueError(f"{name} port must be an integer in 0..65535, got {port!r}")
+    low = 0 if bind else 1
+    if isinstance(port, bool) or not isinstance(port, int) or not low <= port <= 65535:
+        raise ValueError(f"{name} port must be an integer in {low}..65535, got {port!r}")
     return str(host), int(port)
 
 
@@ -50,7 +53,7 @@ def sender(address: tuple[str, int], interface: str = "0.0.0.0", ttl: int = 1
     """A UDP socket for sending to ``address``: to a multicast group it sends through
     ``interface`` with ``ttl`` hops and loops back to this host; to a loopback address it is
     bound to 127.0.0.1 (a free port), so that nothing listens beyond this host."""
-    host, _ = check_address(address)
+    host, _ = check_address(address, bind=False)
     sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM, socket.IPPROTO_UDP)
     if ipaddress.IPv4Address(host).is_loopback:
         sock.bind(("127.0.0.1", 0))

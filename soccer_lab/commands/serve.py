@@ -22,15 +22,16 @@ _EXAMPLE = ("soccer-env serve --loopback --blue 2 --yellow 2 --game --vision ssl
             "--duration 60")
 
 
-def parse_address(text: str, option: str) -> tuple[str, int]:
-    """``HOST:PORT`` as ``(host, port)``; ``ValueError`` naming ``option`` otherwise."""
+def parse_address(text: str, option: str, bind: bool = True) -> tuple[str, int]:
+    """``HOST:PORT`` as ``(host, port)`` (port 0, any free port, only for an address to
+    bind); ``ValueError`` naming ``option`` otherwise."""
     from soccer_env.protocol.udp import check_address
 
     host, sep, port = text.rpartition(":")
     if not sep or not port.isdigit():
         raise ValueError(f"{option} must be HOST:PORT (an IPv4 host), got {text!r}")
     try:
-        return check_address((host, int(port)), option)
+        return check_address((host, int(port)), option, bind)
     except ValueError as exc:
         raise ValueError(f"{exc} (from {text!r})") from None
 
@@ -85,7 +86,8 @@ def _addresses(args: argparse.Namespace) -> dict[str, tuple[str, int]]:
                 "blue_control": (host or "0.0.0.0", udp.BLUE_CONTROL_PORT),
                 "yellow_control": (host or "0.0.0.0", udp.YELLOW_CONTROL_PORT),
                 "simulator_control": (host or "0.0.0.0", udp.SIMULATION_CONTROL_PORT)}
-    return {name: (parse_address(getattr(args, name), "--" + name.replace("_", "-"))
+    return {name: (parse_address(getattr(args, name), "--" + name.replace("_", "-"),
+                                 bind=name.endswith("control"))
                    if getattr(args, name) else default) for name, default in defaults.items()}
 
 

@@ -110,6 +110,8 @@ def test_bad_arguments_are_refused():
                   referee_address=("127.0.0.1", 9), control_addresses=(LOOPBACK, LOOPBACK))
     with pytest.raises(ValueError, match="IPv4 host"):
         SSLServer({}, vision_address=("nowhere", 1))
+    with pytest.raises(ValueError, match="referee_address port must be an integer in 1..65535"):
+        SSLServer({}, vision_address=("127.0.0.1", 9), referee_address=("127.0.0.1", 0))
 
 
 def test_simulator_control_places_the_ball_and_the_robots():

@@ -35,6 +35,7 @@ def test_a_stepped_match_is_served_and_summed_up(capsys):
     (["--vision-address", "localhost:10006"], "--vision-address must be (IPv4 host, port)"),
     (["--blue-control", "127.0.0.1"], "--blue-control must be HOST:PORT"),
     (["--yellow-control", "127.0.0.1:99999"], "port must be an integer in 0..65535"),
+    (["--vision-address", "127.0.0.1:0"], "--vision-address port must be an integer in 1..65535"),
 ])
 def test_bad_options_are_refused_naming_the_option(argv, message, capsys):
     with pytest.raises(SystemExit) as exc:
