@@ -71,7 +71,8 @@ class SSLServer:
         env_kwargs: the match's keyword arguments (:func:`soccer_env.parallel_env`: team
             sizes, field, ``game``, ``control_dt``, ``match_duration``, ...), SSL robots only.
         vision: the served cameras' vision preset.
-        vision_address, referee_address: where the vision and referee packets go.
+        vision_address: where the vision packets go.
+        referee_address: where the referee messages go.
         control_addresses: where each team's robot control is read, ``(blue, yellow)``.
         simulator_address: where simulator control (teleporting the ball and the robots,
             :mod:`~soccer_env.protocol.simulator_control`) is read.
