@@ -8,11 +8,16 @@ once and drop; the checks of each message's numbers are the callers'.
 
 from __future__ import annotations
 
+import logging
+from collections import Counter
 from typing import TypeVar
 
 from google.protobuf.message import DecodeError, Message
 
-__all__ = ["MAX_PACKET_BYTES", "PacketError", "parse"]
+__all__ = ["MAX_PACKET_BYTES", "PacketError", "parse", "drop", "LOGGER"]
+
+#: Where dropped datagrams are reported, once per reason.
+LOGGER = logging.getLogger("soccer_env.protocol")
 
 #: The largest datagram read [bytes]. The league's packets are a few kilobytes (an SSL-Vision
 #: detection frame of 22 robots and a few balls under 1.5 kB, the geometry with its field
@@ -45,3 +50,12 @@ def parse(data: bytes, message: type[M]) -> M:
         missing = ", ".join(out.FindInitializationErrors())
         raise PacketError("incomplete", f"required fields missing: {missing}")
     return out
+
+
+def drop(dropped: Counter, exc: PacketError, what: str) -> None:
+    """Count a datagram refused with ``exc`` under its reason in ``dropped``, logging it
+    (``what`` names the datagram's kind) the first time that reason occurs."""
+    if not dropped[exc.reason]:
+        LOGGER.warning("dropped %s (%s); further ones with this reason are counted, not logged",
+                       what, exc)
+    dropped[exc.reason] += 1

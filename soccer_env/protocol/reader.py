@@ -9,21 +9,17 @@ its reason occurs (logger ``soccer_env.protocol``), and dropped; reading goes on
 
 from __future__ import annotations
 
-import logging
 import socket
 from collections import Counter
 from collections.abc import Sequence
 from typing import Any
 
-from soccer_env.protocol.datagrams import PacketError
+from soccer_env.protocol.datagrams import LOGGER, PacketError, drop
 from soccer_env.protocol.udp import MAX_DATAGRAM, VISION_ADDRESS, receiver
 from soccer_env.protocol.vision import detection_frame, read_packet
 from soccer_env.sensors.overhead import DetectionFrame
 
 __all__ = ["VisionReader", "LOGGER"]
-
-#: Where bad packets are reported, once per reason.
-LOGGER = logging.getLogger("soccer_env.protocol")
 
 
 class VisionReader:
@@ -95,10 +91,7 @@ class VisionReader:
                 return None
             return detection_frame(packet, self.team_sizes, self.clock)
         except PacketError as exc:
-            if not self.dropped[exc.reason]:
-                LOGGER.warning("dropped an SSL-Vision datagram (%s); further ones with this "
-                               "reason are counted, not logged", exc)
-            self.dropped[exc.reason] += 1
+            drop(self.dropped, exc, "an SSL-Vision datagram")
             return None
 
     def close(self) -> None:

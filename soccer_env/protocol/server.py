@@ -40,9 +40,8 @@ from typing import Any
 import numpy as np
 
 import soccer_env
-from soccer_env.protocol.datagrams import PacketError
+from soccer_env.protocol.datagrams import PacketError, drop
 from soccer_env.protocol.publisher import VisionPublisher
-from soccer_env.protocol.reader import LOGGER
 from soccer_env.protocol.referee import RefereePublisher
 from soccer_env.protocol.robot_control import apply_robot_control, read_robot_control
 from soccer_env.protocol.simulator_control import apply_simulator_command, read_simulator_command
@@ -162,10 +161,7 @@ class SSLServer:
         try:
             control = (read_robot_control if team < 2 else read_simulator_command)(data)
         except PacketError as exc:
-            if not self.dropped[exc.reason]:
-                LOGGER.warning("dropped a control datagram (%s); further ones with this "
-                               "reason are counted, not logged", exc)
-            self.dropped[exc.reason] += 1
+            drop(self.dropped, exc, "a control datagram")
             return 0
         if team == 2:
             response = apply_simulator_command(control, self.world)
