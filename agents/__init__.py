@@ -11,7 +11,8 @@ The package is a stack of layers, lowest first, each importing only itself and t
 * :mod:`agents.sb3`: what needs stable-baselines3;
 * :mod:`agents.vec`: the vectorised environments;
 * :mod:`agents.runs`: resolving policies and run folders, evaluation, training;
-* :mod:`agents.studies`: matches, ratings, the estimator ablations.
+* :mod:`agents.studies`: matches, ratings, the estimator ablations;
+* :mod:`agents.live`: policies on live SSL protocols (the ``ssl`` extra).
 
 Up to :mod:`agents.baselines` nothing imports stable-baselines3, torch or Ray. This front
 imports none of the layers: it offers the scripted keeper, which the environments define.

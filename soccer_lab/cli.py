@@ -406,6 +406,12 @@ def _cmd_serve(argv: list[str]) -> int:
     return serve_main(argv)
 
 
+def _cmd_connect(argv: list[str]) -> int:
+    from soccer_lab.commands.connect import main as connect_main
+
+    return connect_main(argv)
+
+
 def _cmd_play(argv: list[str]) -> int:
     # pygame first: the command's module draws with it.
     extras.require("play")
@@ -428,6 +434,8 @@ COMMANDS: dict[str, tuple[Callable[[list[str]], int], str]] = {
     "rate": (_cmd_rate, "rate SSL match teams by a round robin of seeded matches"),
     "serve": (_cmd_serve, "serve an SSL match over the league's protocols (vision, referee, "
                           "robot control)"),
+    "connect": (_cmd_connect, "play a policy on live SSL vision and referee, sending robot "
+                              "control"),
     "play": (_cmd_play, "drive a robot with the keyboard against the scripted team"),
     "list": (_cmd_list, "list environments, presets and perception options"),
 }
@@ -436,14 +444,23 @@ COMMANDS: dict[str, tuple[Callable[[list[str]], int], str]] = {
 def parsers() -> dict[str, argparse.ArgumentParser]:
     """Every command's option parser by its command line (``"paper ekf"`` for each paper's)."""
     from soccer_lab.bench import parser as bench_parser
-    from soccer_lab.commands import ablation, evaluate, imitate, play, rate, serve, train
+    from soccer_lab.commands import (
+        ablation,
+        connect,
+        evaluate,
+        imitate,
+        play,
+        rate,
+        serve,
+        train,
+    )
 
     paper, papers = paper_parser()
     return {"demo": _demo_parser(), "bench": bench_parser(), "paper": paper,
             **{f"paper {name}": sub for name, sub in papers.items()},
             "train": train.parser(), "imitate": imitate.parser(), "eval": evaluate.parser(),
             "ablation": ablation.parser(), "rate": rate.parser(), "list": _list_parser(),
-            "serve": serve.parser(), "play": play.parser()}
+            "serve": serve.parser(), "connect": connect.parser(), "play": play.parser()}
 
 
 def _usage() -> str:

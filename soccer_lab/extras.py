@@ -74,6 +74,7 @@ REQUIREMENTS: dict[str, tuple[Need, ...]] = {
     "list": (),
     "rate": (),
     "serve": (Need(("ssl_protocol", "google.protobuf"), "ssl"),),
+    "connect": (Need(("ssl_protocol", "google.protobuf"), "ssl"),),
     "play": (Need(("pygame",), "render"),),
 }
 

@@ -40,6 +40,7 @@ LAYERS = (
     ("agents: vec", ("agents.vec",)),
     ("agents: runs", ("agents.runs",)),
     ("agents: studies", ("agents.studies",)),
+    ("agents: live", ("agents.live",)),
     ("agents: front", ("agents",)),
     ("application", ("soccer_lab",)),
 )

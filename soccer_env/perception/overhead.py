@@ -118,6 +118,13 @@ class VisionPerception:
         self.consume(frames, state.time)
         return self.beliefs(state.time)
 
+    def restart(self, now: float) -> None:
+        """Forget the episode and start afresh at ``now`` [s] with no frames: for frames that
+        come from elsewhere through :meth:`consume` (a live team's SSL-Vision,
+        :mod:`agents.live`) instead of this pipeline's sensor."""
+        self._clear()
+        self.last_frames = []
+
     def _clear(self) -> None:
         raise NotImplementedError
 
@@ -285,6 +292,11 @@ class FilteredPerception(VisionPerception):
         if self.history is not None:  # the robots stand still until the first command
             self.history.reset(state.time)
         return super().reset(state, rng)
+
+    def restart(self, now: float) -> None:
+        if self.history is not None:
+            self.history.reset(now)
+        super().restart(now)
 
     def _clear(self) -> None:
         self.robot_tracker.reset()

@@ -67,7 +67,7 @@ class VisionPublisher:
         self._counts = [0] * len(self.cameras.cameras)
         self._next_geometry = 0.0
         self._seq = 0
-        #: Packets sent since the last reset, and of them geometry packets.
+        #: Packets sent, and of them geometry packets.
         self.sent = 0
         self.geometry_sent = 0
 
@@ -78,7 +78,6 @@ class VisionPublisher:
         self._queue.clear()
         self._counts = [0] * len(self.cameras.cameras)
         self._next_geometry = float(self.world.time)
-        self.sent = self.geometry_sent = 0
         self._push(self.cameras.reset(self.world.snapshot(), rng))
 
     def step(self) -> None:

@@ -1,4 +1,5 @@
-"""SSL-Vision read from the network: :class:`VisionReader`.
+"""SSL-Vision and the referee read from the network: :class:`VisionReader` and
+:class:`RefereeReader`.
 
 It reads the datagrams waiting on its socket, checks each (:func:`~soccer_env.protocol.vision.
 read_packet`), keeps the latest geometry and returns the detection frames in the package's
@@ -15,11 +16,12 @@ from collections.abc import Sequence
 from typing import Any
 
 from soccer_env.protocol.datagrams import LOGGER, PacketError, drop
-from soccer_env.protocol.udp import MAX_DATAGRAM, VISION_ADDRESS, receiver
+from soccer_env.protocol.referee import read_referee
+from soccer_env.protocol.udp import MAX_DATAGRAM, REFEREE_ADDRESS, VISION_ADDRESS, receiver
 from soccer_env.protocol.vision import detection_frame, read_packet
 from soccer_env.sensors.overhead import DetectionFrame
 
-__all__ = ["VisionReader", "LOGGER"]
+__all__ = ["VisionReader", "RefereeReader", "LOGGER"]
 
 
 class VisionReader:
@@ -97,3 +99,40 @@ class VisionReader:
     def close(self) -> None:
         if self._own:
             self.sock.close()
+
+
+class RefereeReader:
+    """The game controller's ``Referee`` messages received on ``address`` (default: the
+    league's multicast group and port; port 0 binds a free port, :attr:`address` then holds
+    it). A datagram that fails :func:`~soccer_env.protocol.referee.read_referee` is counted
+    in :attr:`dropped` under its reason, logged the first time, and dropped."""
+
+    def __init__(self, address: tuple[str, int] = REFEREE_ADDRESS,
+                 interface: str = "0.0.0.0") -> None:
+        self.sock = receiver(address, interface)
+        self.address = self.sock.getsockname()[:2]
+        self.dropped: Counter = Counter()
+        #: Messages read and accepted.
+        self.received = 0
+
+    def poll(self, timeout: float = 0.0) -> list[Any]:
+        """The messages waiting, after waiting up to ``timeout`` [s] for the first."""
+        out: list[Any] = []
+        self.sock.settimeout(timeout if timeout > 0 else None)
+        if timeout <= 0:
+            self.sock.setblocking(False)
+        while True:
+            try:
+                data = self.sock.recv(MAX_DATAGRAM + 1)
+            except (BlockingIOError, TimeoutError):
+                break
+            self.sock.setblocking(False)
+            try:
+                out.append(read_referee(data))
+            except PacketError as exc:
+                drop(self.dropped, exc, "a referee datagram")
+        self.received += len(out)
+        return out
+
+    def close(self) -> None:
+        self.sock.close()

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 import socket
+from dataclasses import dataclass, field
 from typing import Any
 
 from ssl_protocol.state import ssl_gc_referee_message_pb2 as referee_pb2
@@ -27,18 +28,49 @@ from ssl_protocol.state import ssl_gc_referee_message_pb2 as referee_pb2
 from soccer_env.protocol.datagrams import PacketError, parse
 from soccer_env.protocol.udp import REFEREE_ADDRESS, check_address, sender
 
-__all__ = ["REFEREE_PERIOD", "referee_message", "read_referee", "RefereePublisher"]
+__all__ = ["REFEREE_PERIOD", "TeamRecord", "PlainGame", "referee_message", "read_referee",
+           "RefereePublisher"]
 
 #: Seconds between referee messages while the command stays the same.
 REFEREE_PERIOD = 0.1
 #: Microseconds per second: the message's times are microseconds.
 US = 1_000_000
 _STAGES = {"first_half": "NORMAL_FIRST_HALF", "second_half": "NORMAL_SECOND_HALF",
-           "post_game": "POST_GAME"}
+           "post_game": "POST_GAME", "penalty_shootout": "PENALTY_SHOOTOUT"}
 #: Commands given to a team, by our name: the message's name without its colour.
 _TEAM_COMMANDS = {"ball_placement": "BALL_PLACEMENT", "prepare_kickoff": "PREPARE_KICKOFF",
                   "prepare_penalty": "PREPARE_PENALTY", "direct_free": "DIRECT_FREE"}
 _TEAM_NAMES = ("blue", "yellow")
+
+
+@dataclass
+class TeamRecord:
+    """A team's record in a :class:`PlainGame`: no cards, fouls or failed placements."""
+
+    red_cards: int = 0
+    yellow_cards: tuple[float, ...] = ()
+    fouls: int = 0
+    placement_failures: int = 0
+    can_place: bool = True
+
+
+@dataclass
+class PlainGame:
+    """The referee's state of what is served without a game controller, in the game
+    controller's terms for :func:`referee_message`: a match without the game flow is one
+    first half of ``FORCE_START`` (play on, no rules called); a keeper or shootout task is a
+    ``PENALTY_SHOOTOUT`` whose every shot starts with ``PREPARE_PENALTY`` for the attacking
+    team (``command_team``: 0 blue, 1 yellow) and goes on with ``NORMAL_START`` once it is
+    taken."""
+
+    stage: str = "first_half"
+    stage_time_left: float = 0.0
+    command: str = "force_start"
+    command_team: int = 0
+    next_command: tuple[str, int] | None = None
+    designated: tuple[float, float] | None = None
+    team_info: tuple[TeamRecord, TeamRecord] = field(
+        default_factory=lambda: (TeamRecord(), TeamRecord()))
 
 
 def _command(name: str, team: int) -> int:
@@ -110,24 +142,31 @@ class RefereePublisher:
         self.sock = sender(self.address) if sock is None else sock
         self.reset()
 
-    def reset(self, clock: float = 0.0) -> None:
-        """A new episode whose time 0 is wall time ``clock`` [s]."""
+    def reset(self, clock: float = 0.0, count_on: bool = False) -> None:
+        """A new episode whose time 0 is wall time ``clock`` [s]; with ``count_on`` the next
+        of a series (a task's next shot): the command counter goes on, and the episode's
+        first command counts as a new one."""
         self.clock = float(clock)
-        self.counter = 0
-        self._last: tuple[str, int] | None = None
         self._command_time = 0.0
         self._next = -math.inf
+        if count_on:
+            self._last: tuple[str, int] | None = ("", -1)
+            return
+        self.counter = 0
+        self._last = None
         self.sent = 0
 
-    def publish(self, game: Any, score: tuple[int, int], time: float) -> bool:
-        """Send the message of ``game`` at episode time ``time`` if the command changed or the
-        period has come round; whether one was sent."""
+    def publish(self, game: Any, score: tuple[int, int], time: float, force: bool = False
+                ) -> bool:
+        """Send the message of ``game`` (a game controller or a :class:`PlainGame`) at
+        episode time ``time`` if the command changed, the period has come round or
+        ``force``; whether one was sent."""
         key = (game.command, game.command_team)
         changed = key != self._last
         if changed:
             self.counter += 1 if self._last is not None else 0
             self._last, self._command_time = key, float(time)
-        if not changed and time < self._next:
+        if not (changed or force) and time < self._next:
             return False
         msg = referee_message(game, score, time, self.clock, self.counter, self._command_time)
         self.sock.sendto(msg.SerializeToString(), self.address)

@@ -32,8 +32,8 @@ from ssl_protocol.sim import ssl_simulation_robot_feedback_pb2 as feedback_pb2
 
 from soccer_env.protocol.datagrams import parse
 
-__all__ = ["MAX_SPEED", "MAX_TURN_RATE", "MAX_KICK_SPEED", "read_robot_control",
-           "apply_robot_control"]
+__all__ = ["MAX_SPEED", "MAX_TURN_RATE", "MAX_KICK_SPEED", "DRIBBLER_RPM",
+           "read_robot_control", "apply_robot_control", "robot_control"]
 
 #: The largest speed a command may ask for [m/s] (the world caps it at the robot's).
 MAX_SPEED = 20.0
@@ -41,6 +41,9 @@ MAX_SPEED = 20.0
 MAX_TURN_RATE = 100.0
 #: The largest kick speed [m/s].
 MAX_KICK_SPEED = 50.0
+#: The dribbler speed [rpm] :func:`robot_control` asks for when a command turns it on (the
+#: world's dribbler is on or off).
+DRIBBLER_RPM = 10_000.0
 
 
 def read_robot_control(data: bytes) -> control_pb2.RobotControl:
@@ -108,3 +111,23 @@ def apply_robot_control(control: control_pb2.RobotControl, commands: np.ndarray,
         if ball_contact is not None:
             fb.dribbler_ball_contact = bool(ball_contact[i])
     return response
+
+
+def robot_control(commands: np.ndarray, ids: list[int] | range | None = None,
+                  chip_angle: float = math.pi / 4) -> control_pb2.RobotControl:
+    """The ``RobotControl`` of a team's physical commands ``(n, 6)`` (body-frame ``vx, vy``
+    [m/s], ``omega`` [rad/s], kick speed [m/s] (<= 0: none), chip (> 0), dribble (> 0)), for
+    the robots ``ids`` (default ``0..n-1``): the inverse of :func:`apply_robot_control`. A
+    chip goes out as ``kick_angle`` ``chip_angle`` [rad] in degrees (the world chips at its
+    robot's own angle), the dribbler as :data:`DRIBBLER_RPM`."""
+    rows = np.asarray(commands, dtype=np.float64).reshape(-1, 6)
+    control = control_pb2.RobotControl()
+    for i, row in zip(range(len(rows)) if ids is None else ids, rows):
+        cmd = control.robot_commands.add(id=int(i))
+        move = cmd.move_command.local_velocity
+        move.forward, move.left, move.angular = (float(row[0]), float(row[1]), float(row[2]))
+        if row[3] > 0.0:
+            cmd.kick_speed = float(row[3])
+            cmd.kick_angle = math.degrees(chip_angle) if row[4] > 0.0 else 0.0
+        cmd.dribbler_speed = DRIBBLER_RPM if row[5] > 0.0 else 0.0
+    return control

@@ -1,7 +1,8 @@
-"""``soccer-env serve``: an SSL match served over the league's protocols
-(:class:`soccer_env.protocol.server.SSLServer`): the vision preset's cameras as SSL-Vision
-packets, the game controller's ``Referee`` messages (with ``--game``), and each team's robots
-driven by the simulation protocol's robot control, answered with feedback.
+"""``soccer-env serve``: an SSL match, or the keeper's or the shootout's task, served over the
+league's protocols (:class:`soccer_env.protocol.server.SSLServer`): the vision preset's cameras
+as SSL-Vision packets, the referee's ``Referee`` messages (the game controller's with
+``--game``), and the robots driven by the simulation protocol's robot control, answered with
+feedback.
 
 Addresses are ``HOST:PORT`` with the league's defaults: vision to the multicast group
 224.5.23.2:10006, referee messages to 224.5.23.1:10003, robot control read on port 10301 (blue)
@@ -13,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import time
+from collections import Counter
 
 from soccer_lab.cli_args import HelpFormatter
 
@@ -40,12 +42,19 @@ def parser() -> argparse.ArgumentParser:
     """The options of ``soccer-env serve``."""
     p = argparse.ArgumentParser(
         prog="soccer-env serve", formatter_class=HelpFormatter,
-        description="Serve an SSL match over the league's protocols: SSL-Vision packets of "
-                    "the vision preset's cameras (rate, latency, noise, drops, occlusion), the "
-                    "game controller's referee messages, and robot control through the "
-                    "simulation protocol. Real time by default; --stepped steps as fast as it "
-                    "can (the same episode for the same seed and commands).",
+        description="Serve an SSL match (or the keeper's or the shootout's task, one shot "
+                    "after another) over the league's protocols: SSL-Vision packets of the "
+                    "vision preset's cameras (rate, latency, noise, drops, occlusion), the "
+                    "referee's messages, and robot control through the simulation protocol. "
+                    "Real time by default; --stepped steps as fast as the teams of --wait-for "
+                    "send commands (the same episode for the same seed and commands), with a "
+                    "referee message after every step carrying its time.",
         epilog=f"example:\n  {_EXAMPLE}")
+    p.add_argument("--task", choices=["match", "goalkeeper", "shootout"], default="match",
+                   help="what is served: a match, or a task whose learner (blue robot 0) the "
+                        "blue robot control commands")
+    p.add_argument("--episodes", type=int, default=1000,
+                   help="shots a task serves (seeds SEED onwards)")
     p.add_argument("--blue", type=int, default=2, help="robots of the blue team")
     p.add_argument("--yellow", type=int, default=2, help="robots of the yellow team")
     p.add_argument("--field", default=None,
@@ -59,7 +68,13 @@ def parser() -> argparse.ArgumentParser:
                    help="physics steps (and command reads) per second")
     p.add_argument("--seed", type=int, default=0, help="the match's seed")
     p.add_argument("--stepped", action="store_true",
-                   help="step as fast as possible instead of in real time")
+                   help="step as fast as the teams of --wait-for send commands instead of in "
+                        "real time")
+    p.add_argument("--wait-for", action="append", choices=["blue", "yellow"], default=[],
+                   help="with --stepped, a team whose command each step waits for (repeatable;"
+                        " none: step as fast as possible)")
+    p.add_argument("--timeout", type=float, default=1.0,
+                   help="seconds a stepped step waits for the commands before it goes on")
     p.add_argument("--loopback", action="store_true",
                    help="every address on 127.0.0.1 with the league's ports (overridden by "
                         "the address options)")
@@ -104,6 +119,12 @@ def main(argv: list[str] | None = None) -> int:
         p.error(f"--duration must be in [1, 36000] s, got {args.duration}")
     if not 10.0 <= args.control_hz <= 1000.0:
         p.error(f"--control-hz must be in [10, 1000], got {args.control_hz}")
+    if not 1 <= args.episodes <= 10_000_000:
+        p.error(f"--episodes must be in 1..10000000, got {args.episodes}")
+    if not 0.001 <= args.timeout <= 3600.0:
+        p.error(f"--timeout must be in [0.001, 3600] s, got {args.timeout}")
+    if args.wait_for and not args.stepped:
+        p.error("--wait-for needs --stepped (in real time the server keeps the wall clock)")
     try:
         addresses = _addresses(args)
     except ValueError as exc:
@@ -111,15 +132,17 @@ def main(argv: list[str] | None = None) -> int:
     extras.require("serve")
     from soccer_env.protocol.server import SSLServer
 
-    kwargs = {"blue": args.blue, "yellow": args.yellow, "game": args.game,
-              "match_duration": args.duration, "control_dt": 1.0 / args.control_hz}
+    kwargs: dict = {"control_dt": 1.0 / args.control_hz}
+    if args.task == "match":
+        kwargs.update(blue=args.blue, yellow=args.yellow, game=args.game,
+                      match_duration=args.duration)
     if args.field:
         kwargs["field"] = args.field
     try:
         server = SSLServer(kwargs, args.vision, addresses["vision_address"],
                            addresses["referee_address"],
                            (addresses["blue_control"], addresses["yellow_control"]),
-                           addresses["simulator_control"])
+                           addresses["simulator_control"], task=args.task)
     except (ValueError, KeyError, OSError) as exc:
         p.error(str(exc))
     try:
@@ -130,9 +153,16 @@ def main(argv: list[str] | None = None) -> int:
               f"(yellow), simulator control on {server.simulator_address}; "
               f"{'stepped' if args.stepped else 'real time'}", flush=True)
         t0 = time.perf_counter()
-        steps = server.run(realtime=not args.stepped)
+        steps = server.run(realtime=not args.stepped,
+                           episodes=args.episodes if args.task != "match" else None,
+                           wait_for=args.wait_for, timeout=args.timeout)
         seconds = time.perf_counter() - t0
-        print(f"served {steps} steps ({server.time:.1f} s of match time) in {seconds:.1f} s; "
+        if server.outcomes:
+            goals = server.outcomes.count("goal")
+            print(f"{len(server.outcomes)} shots: {goals} goals; outcomes "
+                  f"{dict(Counter(server.outcomes))}")
+        played = f" ({server.time:.1f} s of match time)" if args.task == "match" else ""
+        print(f"served {steps} steps{played} in {seconds:.1f} s; "
               f"{server.vision.sent} vision packets, {server.referee.sent} referee messages; "
               f"commands received {server.received}, refused {server.refused}; dropped "
               f"{dict(server.dropped) or 'none'}")

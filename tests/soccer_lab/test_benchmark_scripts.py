@@ -4,6 +4,8 @@
 from __future__ import annotations
 
 import importlib.util
+import subprocess
+import sys
 from pathlib import Path
 
 import gymnasium as gym
@@ -289,3 +291,16 @@ def test_ssl_serve_measures_the_stepped_rate_and_the_cameras_in_real_time():
     assert r["cameras"] == 4 and all(v == pytest.approx(25.0, rel=0.01)
                                      for v in r["rate_per_camera"].values())
     assert r["delay_ms"][0] == pytest.approx(80.0, abs=0.1)  # ssl-2012: 80 ms, no jitter
+
+
+def test_ssl_closed_loop_compares_the_served_keeper_with_the_keeper_in_process():
+    pytest.importorskip("ssl_protocol")
+    out = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "ssl_closed_loop.py"),
+                          "--policy", "scripted", "--env-kwarg", "control_dt=0.04",
+                          "--env-kwarg", "obs_mode=\"perceived\"",
+                          "--env-kwarg", "perception=\"ssl-2012\"", "--shots", "12",
+                          "--realtime-seconds", "1.5"],
+                         capture_output=True, text=True, timeout=300, check=True).stdout
+    assert "in process:          " in out and "% of 12 (95 %:" in out
+    assert "through the sockets: " in out and "0 steps missed" in out
+    assert "real time, 1.5 s: " in out and "actions/s" in out
