@@ -4,7 +4,8 @@ process of its own, serves the keeper task over loopback (127.0.0.1); the client
 commands back.
 
 Usage: ``python benchmarks/ssl_closed_loop.py [--policy baseline:keeper-ppo-residual-ssl2012]
-[--shots 1000] [--start-seed 0] [--realtime-seconds 20]``.
+[--shots 1000] [--start-seed 0] [--realtime-seconds 20] [--matches 0] [--team ssl-team-2v2]
+[--vision realistic]``.
 
 1. **Stepped.** The server waits for the client's command every step (``--wait-for blue``)
    and sends a referee message after it; ``--shots`` shots, seeds ``--start-seed`` onwards.
@@ -16,6 +17,13 @@ Usage: ``python benchmarks/ssl_closed_loop.py [--policy baseline:keeper-ppo-resi
    sent at its delivery time) and the client acts every control step at the present, for
    ``--realtime-seconds``: the shots played and saved, the actions per second, and the
    client's compute time per action.
+
+3. **Matches** (``--matches N``): the shipped team (``--team``) against the scripted team, both
+   perceiving through ``--vision`` cameras, each team played by a client of its own through
+   the sockets (server and clients in one process, in lock step), ``N`` matches of the
+   team's own settings (2 vs 2, 60 s, 30 commands a second) with seeds ``--start-seed``
+   onwards, the team blue in each; the goal difference per match with its 95 % interval
+   beside :func:`agents.studies.matches.play_match` of the same sides and seeds in process.
 
 The policy's environment settings are a baseline's own (``control_dt``, vision preset); for
 another policy give them with ``--env-kwarg`` as ``soccer-env eval`` takes them.
@@ -29,9 +37,11 @@ import multiprocessing as mp
 import time
 from typing import Any
 
+import numpy as np
+
 from agents.baselines import baseline_env_kwargs
 from agents.common.stats import wilson
-from agents.live import SSLClient
+from agents.live import SSLClient, locked_match
 from agents.runs.evaluation import evaluate
 
 LOOPBACK = ("127.0.0.1", 0)
@@ -99,6 +109,36 @@ def closed_loop(policy: str, env_kwargs: dict[str, Any], shots: int, seed: int,
             "seconds": seconds, "client_cpu_per_action_ms": 1e3 * compute / max(acted, 1)}
 
 
+def matches(team: str, vision: str, n: int, seed: int, seconds: float | None = None
+            ) -> dict[str, Any]:
+    """``n`` matches of ``team`` against the scripted team through the sockets and in
+    process (``seconds`` long, default the team's own settings): the goal differences and
+    their mean with a normal 95 % interval."""
+    from agents.baselines import TEAMS, team_path
+    from agents.policies import NumpyPolicy
+    from agents.studies.matches import Side, play_match
+
+    path = str(team_path(team)) if team in TEAMS else team
+    base = dict(NumpyPolicy.load(path).meta.get("eval_kwargs") or
+                {"blue": 2, "yellow": 2, "match_duration": 60.0, "control_dt": 1 / 30})
+    if seconds is not None:
+        base["match_duration"] = float(seconds)
+    side = {"obs_mode": "perceived", "perception": {"vision": vision}}
+    out: dict[str, Any] = {}
+    t0 = time.perf_counter()
+    served = [locked_match(path, "scripted", base, vision, seed + k).score for k in range(n)]
+    out["served_seconds"] = time.perf_counter() - t0
+    local = [play_match(base, Side(path, **side), Side("scripted", **side), seed + k)["goals"]
+             for k in range(n)]
+    for name, scores in (("served", served), ("local", local)):
+        gd = np.array([a - b for a, b in scores], dtype=float)
+        half = 1.96 * gd.std(ddof=1) / np.sqrt(n) if n > 1 else float("nan")
+        out[name] = {"goals": (sum(a for a, _ in scores), sum(b for _, b in scores)),
+                     "gd": float(gd.mean()), "interval": (gd.mean() - half, gd.mean() + half)}
+    out["steps"] = n * round(base["match_duration"] / base["control_dt"])
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--policy", default="baseline:keeper-ppo-residual-ssl2012")
@@ -106,6 +146,10 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--shots", type=int, default=1000)
     p.add_argument("--start-seed", type=int, default=0)
     p.add_argument("--realtime-seconds", type=float, default=20.0)
+    p.add_argument("--matches", type=int, default=0)
+    p.add_argument("--team", default="ssl-team-2v2")
+    p.add_argument("--vision", default="realistic")
+    p.add_argument("--match-seconds", type=float, default=None)
     args = p.parse_args(argv)
     kwargs: dict[str, Any] = {}
     if args.policy.startswith("baseline:"):
@@ -127,6 +171,18 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  real time, {args.realtime_seconds:g} s: {r['shots']} shots, {r['saves']} "
               f"saved; {r['acted'] / r['seconds']:.1f} actions/s; the client's CPU "
               f"{r['client_cpu_per_action_ms']:.2f} ms per action")
+    if args.matches > 0:
+        m = matches(args.team, args.vision, args.matches, args.start_seed, args.match_seconds)
+        print(f"{args.team} (blue) against the scripted team, {args.matches} matches, "
+              f"{args.vision} cameras, seeds {args.start_seed} onwards: goal difference per "
+              "match (95 %)")
+        for name, label in (("local", "in process"), ("served", "through the sockets")):
+            r = m[name]
+            lo, hi = r["interval"]
+            print(f"  {label + ':':21s}{r['gd']:+.2f} ({lo:+.2f} to {hi:+.2f}), goals "
+                  f"{r['goals'][0]}:{r['goals'][1]}")
+        print(f"  served: {m['steps']} steps in {m['served_seconds']:.1f} s, "
+              f"{m['steps'] / m['served_seconds']:.0f} steps/s with both teams' clients")
     return 0
 
 

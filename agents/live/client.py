@@ -7,13 +7,18 @@ its ball filter, its robot trackers, its prediction ahead by the actuation laten
 the policy's observation from the belief exactly as the environment does, and sends the
 policy's commands through the simulation protocol's robot control.
 
-What it plays (``task``):
+What it plays (``task``; :mod:`agents.live.players`):
 
 * ``"goalkeeper"`` or ``"shootout"``: the task's learner, blue robot 0, with a policy of
   :func:`~agents.runs.resolve.make_policy` (``"scripted"``, ``"baseline:NAME"``, a numpy
   policy file, a run folder). Each shot starts with the referee's ``PREPARE_PENALTY``: the
   pipeline starts afresh there (as the environment's does at its reset), from the frames
   delivered from that moment on.
+* ``"match"``: every robot of one ``team`` of a match without the game flow, with a team
+  policy (``"scripted"``, ``"idle"``, a shipped team, a numpy team file). Its observations'
+  game block comes from the referee: the match time from the stage's time left, the score,
+  and the team of a ``DIRECT_FREE`` restart not yet taken (how ``soccer-env serve`` sends the
+  simple referee's restarts).
 
 Time: every time is the source's (the packets' ``t_capture`` and ``t_sent``, the referee's
 ``packet_timestamp``), counted from the first referee message. :meth:`SSLClient.step` waits
@@ -31,17 +36,14 @@ from collections import Counter
 from collections.abc import Mapping
 from typing import Any
 
-import gymnasium as gym
 import numpy as np
 from ssl_protocol.sim import ssl_simulation_robot_feedback_pb2 as feedback_pb2
 from ssl_protocol.state import ssl_gc_referee_message_pb2 as referee_pb2
 
-from agents.policies.base import reset_policy
-from agents.runs.resolve import make_policy
+from agents.live.players import TEAM_NAMES, RefereeView, TaskPlayer, TeamPlayer
 from soccer_env.protocol.datagrams import PacketError, drop, parse
 from soccer_env.protocol.reader import RefereeReader, VisionReader
 from soccer_env.protocol.robot_control import robot_control
-from soccer_env.protocol.served import SERVED
 from soccer_env.protocol.udp import (
     BLUE_CONTROL_PORT,
     MAX_DATAGRAM,
@@ -54,8 +56,9 @@ from soccer_env.protocol.udp import (
 __all__ = ["CLIENT_TASKS", "SSLClient"]
 
 #: What the client plays.
-CLIENT_TASKS = ("goalkeeper", "shootout")
+CLIENT_TASKS = ("goalkeeper", "shootout", "match")
 _PREPARE = {referee_pb2.Referee.PREPARE_PENALTY_BLUE, referee_pb2.Referee.PREPARE_PENALTY_YELLOW}
+_FREE = {referee_pb2.Referee.DIRECT_FREE_BLUE: 0, referee_pb2.Referee.DIRECT_FREE_YELLOW: 1}
 US = 1e-6
 
 
@@ -63,8 +66,9 @@ class SSLClient:
     """The package's perception and a policy on live SSL protocols (module docstring).
 
     Args:
-        policy: what acts (:func:`~agents.runs.resolve.make_policy`'s references, or a
-            callable from observation to action).
+        policy: what acts: for a task :func:`~agents.runs.resolve.make_policy`'s references
+            (or a callable from observation to action); for a match a team policy
+            (:class:`~agents.live.players.TeamPlayer`).
         task: what is played (:data:`CLIENT_TASKS`).
         env_kwargs: the keyword arguments of the environment the policy was made for
             (``obs_mode`` "perceived", the default, or "raw"; ``perception``;
@@ -74,6 +78,8 @@ class SSLClient:
         control_address: where the robot control goes (the simulator's team port).
         interface: the interface multicast groups are joined on.
         trust: passed to :func:`~agents.runs.resolve.make_policy`.
+        team: the team played in a match, ``"blue"`` or ``"yellow"`` (a task's learner is
+            blue).
     """
 
     def __init__(self, policy: Any = "scripted", task: str = "goalkeeper",
@@ -81,9 +87,12 @@ class SSLClient:
                  vision_address: tuple[str, int] = VISION_ADDRESS,
                  referee_address: tuple[str, int] = REFEREE_ADDRESS,
                  control_address: tuple[str, int] = ("127.0.0.1", BLUE_CONTROL_PORT),
-                 interface: str = "0.0.0.0", trust: bool = False) -> None:
+                 interface: str = "0.0.0.0", trust: bool = False, team: str = "blue") -> None:
         if task not in CLIENT_TASKS:
             raise ValueError(f"task must be one of {list(CLIENT_TASKS)}, got {task!r}")
+        if team not in TEAM_NAMES or (task != "match" and team != "blue"):
+            raise ValueError(f"team must be 'blue' for a task (its learner) and one of "
+                             f"{list(TEAM_NAMES)} for a match, got {team!r}")
         kwargs = {"obs_mode": "perceived", **dict(env_kwargs or {})}
         if kwargs["obs_mode"] not in ("perceived", "raw"):
             raise ValueError(f"env_kwargs obs_mode must be 'perceived' or 'raw' (a live "
@@ -91,23 +100,15 @@ class SSLClient:
         if "render_mode" in kwargs:
             raise ValueError("env_kwargs must not set render_mode: the client draws nothing")
         self.control_address = check_address(control_address, "control_address", bind=False)
-        self.env = gym.make(SERVED[task], **kwargs)
-        u = self.env.unwrapped
-        if u.world.humanoid_indices:
-            self.env.close()
-            raise ValueError("the client plays SSL robots; these env_kwargs make humanoids")
         self.task = task
-        self.pipeline = u.pipelines[0]
-        self.builder = u.builder
-        self.model = u.robot_model
-        self.control_dt = float(u.world.control_dt)
-        try:
-            self.policy = make_policy(policy, self.env, trust=trust)
-        except BaseException:
-            self.env.close()
-            raise
-        self.vision = VisionReader((u.world.n_blue, u.world.n_yellow), vision_address,
-                                   interface=interface)
+        self.player: TaskPlayer | TeamPlayer = (
+            TeamPlayer(team, kwargs, policy) if task == "match"
+            else TaskPlayer(task, kwargs, policy, trust))
+        self.pipeline = self.player.pipeline
+        w = self.player.world
+        self.control_dt = float(w.control_dt)
+        self._duration = float(getattr(self.player.env.unwrapped, "match_duration", 0.0))
+        self.vision = VisionReader((w.n_blue, w.n_yellow), vision_address, interface=interface)
         self.referee = RefereeReader(referee_address, interface)
         self.sock = sender(self.control_address)
         self.sock.setblocking(False)
@@ -116,6 +117,8 @@ class SSLClient:
         self._origin: float | None = None
         self._start: tuple[int, int] | None = None  # the present shot's (counter, timestamp)
         self._since = 0.0  # frames delivered before this belong to an earlier shot
+        #: What a match team reads of the referee.
+        self.view = RefereeView(0.0, (0, 0), -1)
         #: Shots started, the latest score ``(blue, yellow)``, commands sent, the errors the
         #: source answered them with (by code), responses it could not read.
         self.shots = 0
@@ -123,7 +126,7 @@ class SSLClient:
         self.sent = 0
         self.errors: Counter = Counter()
         self.dropped: Counter = Counter()
-        self.last_command = np.zeros(6)
+        self.last_command = np.zeros((len(self.player.ids), 6))
 
     def _take(self, messages: list[Any]) -> None:
         """Follow the referee: the time, the score, and each shot's start."""
@@ -135,12 +138,14 @@ class SSLClient:
                 self.pipeline.restart(0.0)
             self.now = stamp - self._origin
             self.score = (int(msg.blue.score), int(msg.yellow.score))
+            self.view = RefereeView(max(0.0, self._duration - msg.stage_time_left * US),
+                                    self.score, _FREE.get(msg.command, -1))
             key = (int(msg.command_counter), int(msg.command_timestamp))
             if msg.command in _PREPARE and key != self._start:
                 self._start = key
                 self._since = msg.command_timestamp * US - self._origin
                 self.pipeline.restart(self._since)
-                reset_policy(self.policy)
+                self.player.restart()
                 self.shots += 1
 
     def _see(self, now: float) -> None:
@@ -148,19 +153,18 @@ class SSLClient:
         self.pipeline.consume(frames, now)
 
     def act(self, now: float) -> np.ndarray:
-        """The policy's action on the belief at ``now`` [s], sent as robot control; the
-        physical command sent ``(6,)``."""
+        """The policy's actions on the belief at ``now`` [s], sent as robot control; the
+        physical commands sent ``(k, 6)``, robots :attr:`ids`."""
         seen, _ = self.pipeline.beliefs(now)
-        action = np.clip(np.asarray(self.policy(self.builder.build(seen)[0]),
-                                    dtype=np.float64), -1.0, 1.0)
-        command = self.model.commands(action[None])
+        commands = self.player.commands(seen, self.view)
         if getattr(self.pipeline, "history", None) is not None:
-            self.pipeline.command(now + self.pipeline.ahead, command)
-        self.sock.sendto(robot_control(command).SerializeToString(), self.control_address)
+            self.pipeline.command(now + self.pipeline.ahead, commands)
+        self.sock.sendto(robot_control(commands, self.player.ids).SerializeToString(),
+                         self.control_address)
         self.sent += 1
         self._responses()
-        self.last_command = command[0]
-        return command[0]
+        self.last_command = commands
+        return commands
 
     def _responses(self) -> None:
         while True:
@@ -219,8 +223,13 @@ class SSLClient:
             time.sleep(max(0.0, tick - time.time()))
         return taken
 
+    @property
+    def ids(self) -> list[int]:
+        """The numbers, in the team, of the robots the client commands."""
+        return list(self.player.ids)
+
     def close(self) -> None:
         for part in (self.vision, self.referee):
             part.close()
         self.sock.close()
-        self.env.close()
+        self.player.close()

@@ -20,7 +20,7 @@ import numpy as np
 
 from soccer_env.presets import VisionSpec
 from soccer_env.presets.sensors import vision as vision_preset
-from soccer_env.protocol.udp import VISION_ADDRESS, check_address, sender
+from soccer_env.protocol.udp import VISION_ADDRESS, destinations, sender
 from soccer_env.protocol.vision import detection_packet, geometry_packet
 from soccer_env.sensors.overhead import DetectionFrame, OverheadVision
 
@@ -36,7 +36,8 @@ class VisionPublisher:
             each of its steps.
         vision: the vision preset (name or spec) of the cameras: rate, latency, noise, drops,
             occlusion, false balls, camera overlap.
-        address: where the packets go (default: SSL-Vision's multicast group and port).
+        address: where the packets go (default: SSL-Vision's multicast group and port), or
+            a list of addresses, each sent every packet (several teams on loopback).
         geometry_period: seconds of episode time between geometry packets.
         penalty_mark: distance [m] from a goal's centre to its penalty mark, for the geometry.
         sock: a socket to send through (default: :func:`~soccer_env.protocol.udp.sender` to
@@ -54,7 +55,10 @@ class VisionPublisher:
             raise ValueError(f"geometry_period must be a finite number of seconds > 0, got "
                              f"{geometry_period!r}")
         self.world = world
-        self.address = check_address(address, "address", bind=False)
+        #: Every address the packets go to (:func:`~soccer_env.protocol.udp.destinations`),
+        #: and the first.
+        self.addresses = destinations(address)
+        self.address = self.addresses[0]
         self.geometry_period = float(geometry_period)
         self.cameras = OverheadVision(self.spec, world.field, world.robot_spec,
                                       world.ball_spec, world.n_robots)
@@ -114,7 +118,8 @@ class VisionPublisher:
         """Send :meth:`due` ``(t)`` to the address; the number sent."""
         packets = self.due(t)
         for data in packets:
-            self.sock.sendto(data, self.address)
+            for address in self.addresses:
+                self.sock.sendto(data, address)
         self.sent += len(packets)
         return len(packets)
 

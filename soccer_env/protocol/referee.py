@@ -26,7 +26,7 @@ from typing import Any
 from ssl_protocol.state import ssl_gc_referee_message_pb2 as referee_pb2
 
 from soccer_env.protocol.datagrams import PacketError, parse
-from soccer_env.protocol.udp import REFEREE_ADDRESS, check_address, sender
+from soccer_env.protocol.udp import REFEREE_ADDRESS, destinations, sender
 
 __all__ = ["REFEREE_PERIOD", "TeamRecord", "PlainGame", "referee_message", "read_referee",
            "RefereePublisher"]
@@ -131,13 +131,16 @@ def read_referee(data: bytes) -> referee_pb2.Referee:
 
 class RefereePublisher:
     """Sends a match's ``Referee`` messages to ``address`` (default: the league's multicast
-    group and port): at every change of command and every :data:`REFEREE_PERIOD` seconds of
-    episode time otherwise. ``sock``: a socket to send through (default: a new one, closed by
-    :meth:`close`)."""
+    group and port; a list of addresses: to each): at every change of command and every
+    :data:`REFEREE_PERIOD` seconds of episode time otherwise. ``sock``: a socket to send
+    through (default: a new one, closed by :meth:`close`)."""
 
     def __init__(self, address: tuple[str, int] = REFEREE_ADDRESS,
                  sock: socket.socket | None = None) -> None:
-        self.address = check_address(address, "address", bind=False)
+        #: Every address the packets go to (:func:`~soccer_env.protocol.udp.destinations`),
+        #: and the first.
+        self.addresses = destinations(address)
+        self.address = self.addresses[0]
         self._own = sock is None
         self.sock = sender(self.address) if sock is None else sock
         self.reset()
@@ -169,7 +172,9 @@ class RefereePublisher:
         if not (changed or force) and time < self._next:
             return False
         msg = referee_message(game, score, time, self.clock, self.counter, self._command_time)
-        self.sock.sendto(msg.SerializeToString(), self.address)
+        data = msg.SerializeToString()
+        for address in self.addresses:
+            self.sock.sendto(data, address)
         self._next = float(time) + REFEREE_PERIOD
         self.sent += 1
         return True

@@ -9,7 +9,8 @@ and are lost at its command-loss rate, as they are in process. Each says which r
 team's robot control may command (:attr:`sizes`), steps with the commanded robots' actions,
 and gives the referee's state for the ``Referee`` messages: a match with the game flow its
 game controller; otherwise a :class:`~soccer_env.protocol.referee.PlainGame` (a match: one
-half of ``FORCE_START``; a task: a ``PENALTY_SHOOTOUT`` whose every shot starts with
+half of ``FORCE_START``, with a ``DIRECT_FREE`` for the team of a restart of the simple
+referee until its first touch; a task: a ``PENALTY_SHOOTOUT`` whose every shot starts with
 ``PREPARE_PENALTY`` for the attacking team, goes on with ``NORMAL_START`` once the shot is
 taken, and scores the attackers' goals).
 """
@@ -66,13 +67,19 @@ class ServedMatch:
         return None if self.env.agents else "full time"
 
     def referee(self) -> tuple[Any, tuple[int, int]]:
-        """The referee's state (the game controller, or one half of ``FORCE_START``) and the
-        score."""
+        """The referee's state (the game controller, or one half of ``FORCE_START`` and
+        ``DIRECT_FREE`` restarts) and the score."""
         u = self.env.unwrapped
         if u.game is not None:
             return u.game, tuple(u.score)
-        self._plain.stage_time_left = max(0.0, float(u.match_duration) - float(u.world.time))
-        return self._plain, tuple(u.score)
+        plain = self._plain
+        plain.stage_time_left = max(0.0, float(u.match_duration) - float(u.world.time))
+        # The simple referee's restart (after a goal or the ball out, until its first touch)
+        # as a direct free kick for the team that takes it.
+        restart = int(u.restart_team)
+        plain.command, plain.command_team = ("direct_free", restart) if restart >= 0 else \
+            ("force_start", 0)
+        return plain, tuple(u.score)
 
 
 class ServedTask:

@@ -58,6 +58,7 @@ from soccer_env.protocol.udp import (
     VISION_ADDRESS,
     YELLOW_CONTROL_PORT,
     check_address,
+    destinations,
     receiver,
 )
 from soccer_env.sim.commands import SSLRobot
@@ -79,8 +80,9 @@ class SSLServer:
             ``match_duration``, ...; or the task's), SSL robots only.
         vision: the served cameras' vision preset (also the robots' actuation latency and
             command loss).
-        vision_address: where the vision packets go.
-        referee_address: where the referee messages go.
+        vision_address: where the vision packets go (a list of addresses: to each, e.g. one
+            per team's software on loopback).
+        referee_address: where the referee messages go (likewise).
         control_addresses: where each team's robot control is read, ``(blue, yellow)``.
         simulator_address: where simulator control (teleporting the ball and the robots,
             :mod:`~soccer_env.protocol.simulator_control`) is read.
@@ -90,8 +92,8 @@ class SSLServer:
     """
 
     def __init__(self, env_kwargs: Mapping[str, Any] | None = None, vision: Any = "ssl-2012",
-                 vision_address: tuple[str, int] = VISION_ADDRESS,
-                 referee_address: tuple[str, int] = REFEREE_ADDRESS,
+                 vision_address: Any = VISION_ADDRESS,
+                 referee_address: Any = REFEREE_ADDRESS,
                  control_addresses: tuple[tuple[str, int], tuple[str, int]] = (
                      ("0.0.0.0", BLUE_CONTROL_PORT), ("0.0.0.0", YELLOW_CONTROL_PORT)),
                  simulator_address: tuple[str, int] = ("0.0.0.0", SIMULATION_CONTROL_PORT),
@@ -106,8 +108,8 @@ class SSLServer:
         if len(control_addresses) != 2:
             raise ValueError(f"control_addresses must be (blue, yellow) addresses, got "
                              f"{control_addresses!r}")
-        check_address(vision_address, "vision_address", bind=False)
-        check_address(referee_address, "referee_address", bind=False)
+        destinations(vision_address, "vision_address")
+        destinations(referee_address, "referee_address")
         for name, a in zip(("blue control address", "yellow control address",
                             "simulator_address"), (*control_addresses, simulator_address)):
             check_address(a, name)

@@ -14,6 +14,7 @@ from __future__ import annotations
 import ipaddress
 import socket
 import struct
+from typing import Any
 
 __all__ = ["VISION_ADDRESS", "REFEREE_ADDRESS", "SIMULATION_CONTROL_PORT", "BLUE_CONTROL_PORT",
            "YELLOW_CONTROL_PORT", "MAX_DATAGRAM", "check_address", "sender", "receiver"]
@@ -44,6 +45,23 @@ def check_address(address: tuple[str, int], name: str = "address", bind: bool = 
     return str(host), int(port)
 
 
+def destinations(address: Any, name: str = "address") -> list[tuple[str, int]]:
+    """The addresses to send to: one ``(host, port)`` or a non-empty list of them (each
+    checked by :func:`check_address`; all on loopback or none, as one sending socket serves
+    them, see :func:`sender`)."""
+    many = isinstance(address, list) or (isinstance(address, tuple) and address
+                                         and isinstance(address[0], (tuple, list)))
+    out = [check_address(tuple(a), name, bind=False) for a in address] if many \
+        else [check_address(address, name, bind=False)]
+    if not out:
+        raise ValueError(f"{name} must be an address or a non-empty list of addresses")
+    loop = {ipaddress.IPv4Address(h).is_loopback for h, _ in out}
+    if len(loop) > 1:
+        raise ValueError(f"{name}: the addresses must all be on loopback (127.0.0.0/8) or "
+                         f"none, got {out}")
+    return out
+
+
 def _multicast(host: str) -> bool:
     return ipaddress.IPv4Address(host).is_multicast
 
@@ -71,8 +89,11 @@ def receiver(address: tuple[str, int], interface: str = "0.0.0.0",
     ``interface``; otherwise bound to the host given. ``timeout`` [s] for ``recv``."""
     host, port = check_address(address)
     sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM, socket.IPPROTO_UDP)
-    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
     if _multicast(host):
+        # Several programs on a host listen to one group: they share its port. A unicast
+        # socket does not: with the option two sockets could be given the same free port,
+        # and one would take the other's datagrams.
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         sock.bind(("", port))
         membership = struct.pack("4s4s", socket.inet_aton(host), socket.inet_aton(interface))
         sock.setsockopt(socket.IPPROTO_IP, socket.IP_ADD_MEMBERSHIP, membership)

@@ -38,9 +38,14 @@ def parser() -> argparse.ArgumentParser:
                     "A shipped baseline brings the settings it was trained with.",
         epilog=f"example:\n  {_EXAMPLE}")
     p.add_argument("--policy", default="scripted",
-                   help="scripted, idle, baseline:NAME, a .npz model or a training run folder")
-    p.add_argument("--task", choices=["goalkeeper", "shootout"], default="goalkeeper",
-                   help="what the policy plays (as blue robot 0)")
+                   help="a task's: scripted, idle, baseline:NAME, a .npz model or a training "
+                        "run folder; a match team's: scripted, idle, a shipped team "
+                        "(ssl-team-2v2) or a .npz team file")
+    p.add_argument("--task", choices=["goalkeeper", "shootout", "match"], default="goalkeeper",
+                   help="what the policy plays: a task's learner (blue robot 0), or every "
+                        "robot of --team in a match without the game flow")
+    p.add_argument("--team", choices=["blue", "yellow"], default="blue",
+                   help="the team played in a match")
     add_env_arguments(p)
     p.add_argument("--duration", type=float, default=60.0,
                    help="seconds of the source's time to play")
@@ -57,7 +62,8 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--referee-address", default=None,
                    help="where referee messages are received (default: 224.5.23.1:10003)")
     p.add_argument("--control-address", default=None,
-                   help="where robot control is sent (default: 127.0.0.1:10301)")
+                   help="where robot control is sent (default: 127.0.0.1:10301 for blue, "
+                        "127.0.0.1:10302 for yellow)")
     add_trust_argument(p)
     return p
 
@@ -68,19 +74,25 @@ def _addresses(args: argparse.Namespace) -> dict[str, tuple[str, int]]:
     host = "127.0.0.1" if args.loopback else None
     defaults = {"vision_address": (host or udp.VISION_ADDRESS[0], udp.VISION_ADDRESS[1]),
                 "referee_address": (host or udp.REFEREE_ADDRESS[0], udp.REFEREE_ADDRESS[1]),
-                "control_address": ("127.0.0.1", udp.BLUE_CONTROL_PORT)}
+                "control_address": ("127.0.0.1", udp.BLUE_CONTROL_PORT if args.team == "blue"
+                                    else udp.YELLOW_CONTROL_PORT)}
     return {name: (parse_address(getattr(args, name), "--" + name.replace("_", "-"),
                                  bind=name != "control_address")
                    if getattr(args, name) else default) for name, default in defaults.items()}
 
 
 def _env_kwargs(args: argparse.Namespace) -> dict:
-    """The environment's settings: a baseline's own, under the options given."""
+    """The environment's settings: a baseline's or a shipped team's own, under the options
+    given."""
+    from agents.baselines import TEAMS, baseline_env_kwargs, team_path
+
     base: dict = {}
     if str(args.policy).startswith("baseline:"):
-        from agents.baselines import baseline_env_kwargs
-
         base = baseline_env_kwargs(args.policy.split(":", 1)[1])
+    elif args.task == "match" and args.policy in TEAMS:
+        from agents.policies import NumpyPolicy
+
+        base = dict(NumpyPolicy.load(team_path(args.policy)).meta.get("eval_kwargs", {}))
     return env_kwargs_from_args(args, base)
 
 
@@ -104,18 +116,20 @@ def main(argv: list[str] | None = None) -> int:
     try:
         client = SSLClient(args.policy, args.task, _env_kwargs(args),
                            addresses["vision_address"], addresses["referee_address"],
-                           addresses["control_address"], trust=args.trust)
+                           addresses["control_address"], trust=args.trust, team=args.team)
     except (ValueError, TypeError, KeyError, OSError, FileNotFoundError) as exc:
         p.error(str(exc))
     try:
-        print(f"playing {args.policy} ({args.task}): vision from "
+        what = f"{args.task}, {args.team}" if args.task == "match" else args.task
+        print(f"playing {args.policy} ({what}): vision from "
               f"{addresses['vision_address']}, referee from {addresses['referee_address']}, "
               f"robot control to {addresses['control_address']}; "
               f"{'stepped' if args.stepped else 'real time'}", flush=True)
         t0 = time.perf_counter()
         acted = client.run(args.duration, realtime=not args.stepped, timeout=args.timeout)
         seconds = time.perf_counter() - t0
-        print(f"acted {acted} times in {seconds:.1f} s; {client.shots} shots, score "
+        shots = f"{client.shots} shots, " if args.task != "match" else ""
+        print(f"acted {acted} times in {seconds:.1f} s; {shots}score "
               f"{client.score[0]}:{client.score[1]} (blue:yellow); {client.vision.frames} "
               f"frames; refused {dict(client.errors) or 'none'}; dropped "
               f"{dict(client.vision.dropped + client.referee.dropped) or 'none'}")

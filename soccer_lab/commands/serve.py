@@ -15,6 +15,7 @@ from __future__ import annotations
 import argparse
 import time
 from collections import Counter
+from typing import Any
 
 from soccer_lab.cli_args import HelpFormatter
 
@@ -78,10 +79,11 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--loopback", action="store_true",
                    help="every address on 127.0.0.1 with the league's ports (overridden by "
                         "the address options)")
-    p.add_argument("--vision-address", default=None,
-                   help="where vision packets go (default: 224.5.23.2:10006)")
-    p.add_argument("--referee-address", default=None,
-                   help="where referee messages go (default: 224.5.23.1:10003)")
+    p.add_argument("--vision-address", action="append", default=None,
+                   help="where vision packets go; repeatable, each gets every packet (e.g. "
+                        "one per team's software on loopback) (default: 224.5.23.2:10006)")
+    p.add_argument("--referee-address", action="append", default=None,
+                   help="where referee messages go; repeatable (default: 224.5.23.1:10003)")
     p.add_argument("--blue-control", default=None,
                    help="where blue's robot control is read (default: 0.0.0.0:10301)")
     p.add_argument("--yellow-control", default=None,
@@ -92,7 +94,7 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
-def _addresses(args: argparse.Namespace) -> dict[str, tuple[str, int]]:
+def _addresses(args: argparse.Namespace) -> dict[str, Any]:
     from soccer_env.protocol import udp
 
     host = "127.0.0.1" if args.loopback else None
@@ -101,9 +103,18 @@ def _addresses(args: argparse.Namespace) -> dict[str, tuple[str, int]]:
                 "blue_control": (host or "0.0.0.0", udp.BLUE_CONTROL_PORT),
                 "yellow_control": (host or "0.0.0.0", udp.YELLOW_CONTROL_PORT),
                 "simulator_control": (host or "0.0.0.0", udp.SIMULATION_CONTROL_PORT)}
-    return {name: (parse_address(getattr(args, name), "--" + name.replace("_", "-"),
-                                 bind=name.endswith("control"))
-                   if getattr(args, name) else default) for name, default in defaults.items()}
+    out: dict = {}
+    for name, default in defaults.items():
+        given = getattr(args, name)
+        option = "--" + name.replace("_", "-")
+        if not given:
+            out[name] = default
+        elif isinstance(given, list):  # the repeatable addresses to send to
+            parsed = [parse_address(text, option, bind=False) for text in given]
+            out[name] = parsed[0] if len(parsed) == 1 else parsed
+        else:
+            out[name] = parse_address(given, option, bind=True)
+    return out
 
 
 def main(argv: list[str] | None = None) -> int:

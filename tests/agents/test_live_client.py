@@ -9,13 +9,12 @@ without stopping the client."""
 from __future__ import annotations
 
 import socket
-import threading
 
 import pytest
 
 pytest.importorskip("ssl_protocol")
 
-from agents.live import SSLClient  # noqa: E402
+from agents.live import SSLClient, locked_match, play_locked  # noqa: E402
 from agents.runs.evaluation import evaluate  # noqa: E402
 from soccer_env.protocol.server import SSLServer  # noqa: E402
 
@@ -40,12 +39,7 @@ def _closed_loop(policy: str, shots: int, seed: int = 0, task: str = "goalkeeper
             for address in (client.vision.address, client.referee.address):
                 noise.sendto(data, address)
         noise.close()
-        thread = threading.Thread(target=server.run, kwargs={
-            "realtime": False, "episodes": shots, "wait_for": ("blue",), "timeout": 5.0})
-        thread.start()
-        while client.step(timeout=0.2) or thread.is_alive():
-            pass
-        thread.join()
+        play_locked(server, [client], episodes=shots)
         assert server.missed == 0  # lock step: every step waited for the client's command
         return list(server.outcomes), client
     finally:
@@ -98,7 +92,9 @@ def test_the_shootout_is_played_through_the_client():
 
 
 @pytest.mark.parametrize("kwargs, message", [
-    ({"task": "match"}, "task must be one of"),
+    ({"task": "penalties"}, "task must be one of"),
+    ({"team": "yellow"}, "team must be .blue. for a task"),
+    ({"task": "match", "env_kwargs": {"game": True}}, "game flow"),
     ({"env_kwargs": {"obs_mode": "truth"}}, "obs_mode must be 'perceived' or 'raw'"),
     ({"env_kwargs": {"robot": "humanoid"}}, "humanoids"),
     ({"control_address": ("224.5.23.2", 0)}, "control_address port must be"),
@@ -109,3 +105,35 @@ def test_bad_arguments_are_refused(kwargs, message):
             "control_address": ("127.0.0.1", 9), **kwargs}
     with pytest.raises(ValueError, match=message):
         SSLClient(**args)
+
+
+def _served_match(blue: str, yellow: str, seed: int, duration: float = 30.0):
+    """A 2 vs 2 match without the game flow through the sockets (``realistic`` cameras),
+    each team played by a client of its own."""
+    base = {"blue": 2, "yellow": 2, "match_duration": duration, "control_dt": 1 / 30}
+    match = locked_match(blue, yellow, base, "realistic", seed)
+    assert match.missed == 0 and not any(match.errors)
+    return match
+
+
+def test_match_teams_play_through_the_sockets_as_in_process():
+    from agents.studies.matches import Side, play_match
+
+    base = {"blue": 2, "yellow": 2, "match_duration": 30.0, "control_dt": 1 / 30}
+    side = {"obs_mode": "perceived", "perception": {"vision": "realistic"}}
+    served = [_served_match("scripted", "idle", seed).score for seed in (1, 2)]
+    local = [play_match(base, Side("scripted", **side), Side("idle", **side), seed)["goals"]
+             for seed in (1, 2)]
+    # the scripted team scores against a team that stands, through the sockets as in process
+    # (each counted from its own camera noise); the idle team never scores
+    assert sum(s[0] for s in served) >= 3 and all(s[1] == 0 for s in served)
+    assert abs(sum(s[0] for s in served) - sum(g[0] for g in local)) <= 4
+
+
+def test_a_served_match_is_the_same_for_the_same_seed_and_reads_the_referee():
+    a = _served_match("ssl-team-2v2", "scripted", 4, duration=8.0)
+    b = _served_match("ssl-team-2v2", "scripted", 4, duration=8.0)
+    assert a.score == b.score and a.steps == 8 * 30
+    assert a.sent == (8 * 30 + 1, 8 * 30 + 1)  # every step's message and the last one
+    view = a.views[1]
+    assert view.score == a.score and view.time == pytest.approx(8.0)

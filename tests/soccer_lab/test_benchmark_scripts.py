@@ -299,8 +299,10 @@ def test_ssl_closed_loop_compares_the_served_keeper_with_the_keeper_in_process()
                           "--policy", "scripted", "--env-kwarg", "control_dt=0.04",
                           "--env-kwarg", "obs_mode=\"perceived\"",
                           "--env-kwarg", "perception=\"ssl-2012\"", "--shots", "12",
-                          "--realtime-seconds", "1.5"],
+                          "--realtime-seconds", "1.5", "--matches", "2", "--match-seconds", "3"],
                          capture_output=True, text=True, timeout=300, check=True).stdout
     assert "in process:          " in out and "% of 12 (95 %:" in out
     assert "through the sockets: " in out and "0 steps missed" in out
     assert "real time, 1.5 s: " in out and "actions/s" in out
+    assert "ssl-team-2v2 (blue) against the scripted team, 2 matches" in out
+    assert "served: 180 steps in " in out

@@ -48,3 +48,22 @@ def test_addresses_parse_as_host_and_port():
     assert parse_address("127.0.0.1:10006", "--x") == ("127.0.0.1", 10006)
     with pytest.raises(ValueError, match="--x must be HOST:PORT"):
         parse_address("127.0.0.1:", "--x")
+
+
+def test_every_vision_and_referee_address_given_gets_every_packet(capsys):
+    socks = [receiver(("127.0.0.1", 0), timeout=1.0) for _ in range(4)]
+    ports = [s.getsockname()[1] for s in socks]
+    try:
+        assert main(["--stepped", "--duration", "1", "--blue", "1", "--yellow", "1",
+                     "--vision-address", f"127.0.0.1:{ports[0]}",
+                     "--vision-address", f"127.0.0.1:{ports[1]}",
+                     "--referee-address", f"127.0.0.1:{ports[2]}",
+                     "--referee-address", f"127.0.0.1:{ports[3]}",
+                     "--blue-control", "127.0.0.1:0", "--yellow-control", "127.0.0.1:0",
+                     "--simulator-control", "127.0.0.1:0"]) == 0
+        first = [s.recv(65_536) for s in socks]
+        assert first[0] == first[1] and first[2] == first[3]
+    finally:
+        for s in socks:
+            s.close()
+    assert "served 60 steps (1.0 s of match time)" in capsys.readouterr().out
