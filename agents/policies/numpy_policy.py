@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from agents.policies.action_maps import POLICY_MAPS, action_to_command
-from agents.policies.files import UnsafeFileError, check_npz
+from agents.policies.files import UnsafeFileError, check_npz, parse_json
 
 __all__ = ["NumpyPolicy", "NumpyRecurrentPolicy", "widen"]
 
@@ -258,7 +258,7 @@ class NumpyPolicy:
     @classmethod
     def _load(cls, path: str | os.PathLike) -> NumpyPolicy:
         with np.load(path, allow_pickle=False) as data:
-            header = json.loads(str(data["header"]))
+            header = parse_json(str(data["header"]), f"{path}: header")
             layers: list[tuple] = []
             for i, (kind, *rest) in enumerate(header["layers"]):
                 layers.append(("linear", data[f"W{i}"], data[f"b{i}"]) if kind == "linear"

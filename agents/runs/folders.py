@@ -6,10 +6,11 @@ them."""
 
 from __future__ import annotations
 
-import json
 import os
 from pathlib import Path
 from typing import Any
+
+from agents.policies.files import read_json
 
 __all__ = ["RUN_FILES", "run_files", "run_folder", "run_config", "occupied_run_files",
            "check_steps_left", "RunRefused",
@@ -92,14 +93,12 @@ def check_steps_left(total_steps: int, done: int, resume: str | os.PathLike) -> 
 def run_config(model_path: Path) -> dict[str, Any]:
     """The ``config.json`` of the training run that saved ``model_path`` (the model's folder
     or, for checkpoints, its parent); empty if there is none. Raises ``ValueError`` for one
-    that is not a JSON object."""
+    that is not a JSON object, not a regular file or beyond the JSON budgets
+    (:func:`~agents.policies.files.read_json`)."""
     for folder in (model_path.parent, model_path.parent.parent):
         config = folder / "config.json"
-        if config.is_file():
-            try:
-                data = json.loads(config.read_text())
-            except (ValueError, UnicodeDecodeError) as err:
-                raise ValueError(f"{config} is not valid JSON ({err})") from None
+        if config.exists() or config.is_symlink():  # a device or a dangling link: refused
+            data = read_json(config)
             if not isinstance(data, dict):
                 raise ValueError(f"{config} is not a training run's configuration")
             return data

@@ -50,7 +50,7 @@ from typing import Any
 
 from agents.common.checks import check_counts
 from agents.policies.action_maps import ACTION_MAPS
-from agents.policies.files import TRUST_HELP, UnsafeFileError
+from agents.policies.files import TRUST_HELP, UnsafeFileError, read_json
 from agents.runs.folders import (
     RunRefused,
     TrainingStopped,
@@ -267,7 +267,7 @@ def check_checkpoint(folder: str | os.PathLike, trust: bool = False) -> dict[str
         reason = None
         key = _key(create=False)
         try:
-            signature = json.loads((folder / SIGNATURE_FILE).read_text())
+            signature = read_json(folder / SIGNATURE_FILE)
             digests = _digests(folder)
         except FileNotFoundError:
             reason = "it is not signed"
@@ -286,7 +286,7 @@ def check_checkpoint(folder: str | os.PathLike, trust: bool = False) -> dict[str
                 f"{folder} is not a checkpoint of your own runs: {reason}. RLlib checkpoints "
                 f"are pickles (cloudpickle): {TRUST_HELP}")
     try:
-        return json.loads((folder / CHECKPOINT_INFO).read_text())
+        return read_json(folder / CHECKPOINT_INFO)
     except (OSError, ValueError) as err:
         raise ValueError(f"{folder} has no readable {CHECKPOINT_INFO} ({err}): not a "
                          "checkpoint of soccer-env train") from None

@@ -19,33 +19,127 @@ trust, since unpickling runs whatever code the file names.
 
 from __future__ import annotations
 
-import json
+import io
+import math
 import os
 import zipfile
 from pathlib import Path
 from typing import Any
 
-from agents.policies.files import TRUST_HELP, UnsafeFileError, open_archive
+from agents.policies.files import (
+    MAX_FILE_BYTES,
+    MAX_JSON_BYTES,
+    READ_METHODS,
+    TRUST_HELP,
+    UnsafeFileError,
+    open_archive,
+    parse_json,
+    read_member,
+)
 from agents.sb3.algorithms import LOAD_ORDER, SB3_ALGORITHMS, algorithm_class, algorithm_name
 
-__all__ = ["model_data", "serialized_entries", "load_sb3_safely", "load_model"]
+__all__ = ["MAX_NETWORK_PARAMETERS", "model_data", "serialized_entries", "network_parameters",
+           "check_weights", "load_sb3_safely", "load_model"]
+
+#: The most parameters the networks built from a model file may have when it is loaded
+#: without ``trust`` (the package's keepers have about 10,000, a 1,024 x 1,024 actor and critic
+#: about 2 million; ``trust`` lifts the limit).
+MAX_NETWORK_PARAMETERS = 4 * 2**20
+#: Layer sizes stable-baselines3 builds when ``policy_kwargs`` names none (its on-policy
+#: default; the off-policy algorithms' 256 x 256 is below the bound as well).
+_DEFAULT_ARCH = [64, 64]
 
 
 def model_data(path: Path) -> dict[str, Any]:
     """The JSON ``data`` entry of a stable-baselines3 model file (read, never unpickled;
-    size-checked first, :func:`~agents.policies.files.open_archive`)."""
+    size-checked first, :func:`~agents.policies.files.open_archive`; the entry read with its size
+    measured and parsed by :func:`~agents.policies.files.parse_json`)."""
     with open_archive(path) as archive:
         try:
-            data = json.loads(archive.read("data"))
+            data = parse_json(read_member(archive, "data", MAX_JSON_BYTES, path),
+                              f"{path}: member 'data'")
         except KeyError:
             raise ValueError(f"{path} is not a stable-baselines3 model file (it has no "
                              "'data' entry)") from None
+        except UnsafeFileError:
+            raise
         except (ValueError, zipfile.BadZipFile, OSError) as err:
             raise ValueError(f"{path} is not a stable-baselines3 model file ({err})") from None
     if not isinstance(data, dict):
         raise ValueError(f"{path} is not a stable-baselines3 model file (its 'data' entry is "
                          "not a JSON object)")
     return data
+
+
+def _layers(arch: Any, path: Path) -> list[list[int]]:
+    """The layer sizes of each network a ``net_arch`` describes (a list of sizes, a dict of
+    them per network, or stable-baselines3's old list of shared sizes and a dict)."""
+    def sizes(value: Any) -> list[int]:
+        if not isinstance(value, list) or not all(
+                isinstance(v, int) and not isinstance(v, bool) and v > 0 for v in value):
+            raise ValueError(f"{path}: net_arch must be lists of layer sizes (positive "
+                             f"integers), got {arch!r}")
+        return list(value)
+
+    if isinstance(arch, dict):
+        return [sizes(v) for v in arch.values()] or [[]]
+    if isinstance(arch, list) and arch and isinstance(arch[-1], dict):
+        shared = sizes(arch[:-1])
+        return [shared + sizes(v) for v in arch[-1].values()] or [shared]
+    return [sizes(arch)]
+
+
+def network_parameters(policy_kwargs: dict[str, Any], obs_size: int, act_size: int,
+                       path: Path) -> int:
+    """An upper estimate of the parameters of the networks stable-baselines3 builds from
+    ``policy_kwargs`` for observations of ``obs_size`` and actions of ``act_size`` entries:
+    every network of ``net_arch`` (two, actor and critic, when it names one list) from the
+    observation and the action to its output, and the LSTM's of ``lstm_hidden_size``."""
+    nets = _layers(policy_kwargs.get("net_arch", _DEFAULT_ARCH), path)
+    if len(nets) == 1:
+        nets = nets * 2
+    count = 0
+    for layers in nets:
+        dims = [obs_size + act_size, *layers, max(act_size, 1)]
+        count += sum((a + 1) * b for a, b in zip(dims, dims[1:]))
+    hidden = policy_kwargs.get("lstm_hidden_size", 0)
+    depth = policy_kwargs.get("n_lstm_layers", 1)
+    for name, value in (("lstm_hidden_size", hidden), ("n_lstm_layers", depth)):
+        if not isinstance(value, int) or isinstance(value, bool) or value < 0:
+            raise ValueError(f"{path}: {name} must be a non-negative integer, got {value!r}")
+    if hidden:
+        count += 2 * depth * 4 * hidden * (obs_size + 2 * hidden + 2)
+    return count
+
+
+def check_weights(path: Path) -> None:
+    """Check the weight records (``.pth`` entries, themselves zip archives) of the model file
+    ``path`` before torch reads them: every record's members stored or deflate-compressed,
+    and no stored member declaring more bytes than the record holds (torch allocates what a
+    record declares). :class:`UnsafeFileError` naming the entry otherwise."""
+    with open_archive(path) as archive:
+        for info in archive.infolist():
+            if not info.filename.endswith(".pth"):
+                continue
+            name = f"{path}: entry {info.filename!r}"
+            data = read_member(archive, info.filename, MAX_FILE_BYTES, path)
+            try:
+                record = zipfile.ZipFile(io.BytesIO(data))
+            except zipfile.BadZipFile:
+                continue  # an old-style record: torch refuses it with its own message
+            for member in record.infolist():
+                if member.compress_type not in READ_METHODS or (
+                        member.compress_type == zipfile.ZIP_STORED
+                        and member.file_size > len(data)):
+                    raise UnsafeFileError(
+                        f"{name}: its member {member.filename!r} declares "
+                        f"{member.file_size:,} bytes in a record of {len(data):,} (a crafted "
+                        "record)" if member.compress_type in READ_METHODS else
+                        f"{name}: its member {member.filename!r} is not stored or deflate")
+            declared = sum(m.file_size for m in record.infolist())
+            if declared > MAX_FILE_BYTES:
+                raise UnsafeFileError(f"{name} unpacks to {declared:,} bytes, more than the "
+                                      f"{MAX_FILE_BYTES:,} that are read")
 
 
 def serialized_entries(path: str | os.PathLike) -> list[str]:
@@ -84,6 +178,7 @@ def load_sb3_safely(path: str | os.PathLike, algorithm: str, observation_space: 
     algorithm = algorithm_name(algorithm)
     algo = algorithm_class(algorithm)
     data = model_data(path)
+    check_weights(path)
     params = dict(hyperparams or {})
     if policy_class is None:
         policy_class = algo.policy_aliases["MlpLstmPolicy" if algorithm == "RECURRENTPPO"
@@ -123,6 +218,14 @@ def load_sb3_safely(path: str | os.PathLike, algorithm: str, observation_space: 
             raise UnsafeFileError(f"{path}: the entry {name!r} can only be read by unpickling "
                                   f"it; {TRUST_HELP}")
     custom = {k: v for k, v in replacements.items() if k in serialized}
+    kwargs_built = custom.get("policy_kwargs", data.get("policy_kwargs"))
+    if isinstance(kwargs_built, dict):
+        size = network_parameters(kwargs_built, _size(observation_space),
+                                  _size(action_space), path)
+        if size > MAX_NETWORK_PARAMETERS:
+            raise UnsafeFileError(
+                f"{path}: its networks would have about {size:,} parameters, more than the "
+                f"{MAX_NETWORK_PARAMETERS:,} built from a file without --trust (trust=True)")
     try:
         return algo.load(path, device=kwargs.pop("device", "cpu"), custom_objects=custom,
                          **kwargs)
@@ -131,6 +234,15 @@ def load_sb3_safely(path: str | os.PathLike, algorithm: str, observation_space: 
         raise ValueError(f"{path} could not be loaded as a {algorithm} model acting on "
                          f"{observation_space} with {policy_name} ({type(err).__name__}: "
                          f"{err})") from None
+
+
+def _size(space: Any) -> int:
+    """The entries of a space's samples (a dict space's summed)."""
+    spaces = getattr(space, "spaces", None)
+    if isinstance(spaces, dict):
+        return sum(_size(s) for s in spaces.values())
+    shape = getattr(space, "shape", None) or (1,)
+    return int(math.prod(shape))
 
 
 def load_model(path: str | os.PathLike, algorithm: str | None = None, *, trust: bool = False,
@@ -156,8 +268,10 @@ def load_model(path: str | os.PathLike, algorithm: str | None = None, *, trust: 
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"no model at {path}")
+    # The budgets, trusted or not: size, compression, JSON, weight records.
+    model_data(path)
+    check_weights(path)
     if not trust:
-        model_data(path)  # size limits and format, before anything else
         env = kwargs.get("env")
         if observation_space is None and env is not None:
             observation_space, action_space = env.observation_space, env.action_space

@@ -21,7 +21,13 @@ from typing import Any
 
 import numpy as np
 
-from agents.policies.files import TRUST_HELP, UnsafeFileError, check_file_size, check_npz
+from agents.policies.files import (
+    TRUST_HELP,
+    UnsafeFileError,
+    check_file_size,
+    check_npz,
+    parse_json,
+)
 
 __all__ = ["NormalizationStats", "save_vecnormalize", "read_vecnormalize", "vecnormalize_on",
            "vecnormalize_path", "load_vecnormalize"]
@@ -111,7 +117,7 @@ def read_vecnormalize(path: str | os.PathLike) -> NormalizationStats:
     check_npz(path)
     try:
         with np.load(path, allow_pickle=False) as data:
-            header = json.loads(str(data["header"]))
+            header = parse_json(str(data["header"]), f"{path}: header")
             if header.get("format") != "soccer_env vecnormalize 1":
                 raise ValueError(f"format {header.get('format')!r}")
 

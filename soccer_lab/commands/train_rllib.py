@@ -29,11 +29,11 @@ periodic evaluation (``--eval-every``, ``--eval-episodes``, ``--eval-obs-mode``,
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from pathlib import Path
 from typing import Any
 
+from agents.policies.files import read_json
 from agents.runs.folders import RunRefused, TrainingStopped, run_folder
 from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_lab import extras
@@ -99,9 +99,11 @@ def _resumed_fields(p: argparse.ArgumentParser, resume: str) -> dict[str, Any]:
                 "checkpoints/checkpoint_<steps>_steps folder)")
     run = run_folder(ckpt)
     try:
-        saved = json.loads((run / "config.json").read_text())
+        saved = read_json(run / "config.json")
     except (OSError, ValueError) as err:
         p.error(f"--resume: no readable config.json in {run} ({err})")
+    if not isinstance(saved, dict):
+        p.error(f"--resume: {run / 'config.json'} is not a training run's configuration")
     if saved.get("backend") != "rllib":
         p.error(f"--resume: {run} is not a run of --backend rllib")
     base = {k: v for k, v in saved.items()
