@@ -14,7 +14,7 @@ from __future__ import annotations
 import dataclasses
 import inspect
 import math
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import Any, TypeVar
 
 import numpy as np
@@ -23,7 +23,8 @@ from estimators.registry import Registry
 
 __all__ = ["reject_unknown", "keyword_names", "check_choice", "check_range", "check_int",
            "parse_scales", "check_number", "check_integer", "check_flag", "check_rgb",
-           "check_fields", "from_mapping", "resolve_preset", "preset_table"]
+           "check_fields", "from_mapping", "resolve_preset", "preset_table", "check_options",
+           "real_array"]
 
 
 def keyword_names(func: Callable[..., Any]) -> list[str]:
@@ -53,7 +54,10 @@ def check_choice(name: str, value: Any, allowed: Iterable[Any]) -> None:
 
 
 def check_range(name: str, value: float, low: float, high: float) -> float:
-    """Return ``float(value)``; raise ``ValueError`` unless finite and in ``[low, high]``."""
+    """Return ``float(value)``; raise ``ValueError`` unless a finite real number (not a
+    string, a bool or a complex number) in ``[low, high]``."""
+    if isinstance(value, (str, bytes, bool, np.bool_, complex, np.complexfloating)):
+        raise ValueError(f"{name} must be a number in [{low}, {high}], got {value!r}")
     try:
         v = float(value)
     except (TypeError, ValueError):
@@ -103,6 +107,35 @@ def check_seed(seed: Any) -> None:
     if seed is not None and not (isinstance(seed, (int, np.integer))
                                  and not isinstance(seed, (bool, np.bool_)) and seed >= 0):
         raise ValueError(f"seed must be None or an integer >= 0, got {seed!r}")
+
+
+def check_options(options: Any, allowed: Sequence[str], who: str, strict: bool = True
+                  ) -> dict[str, Any]:
+    """``reset``'s ``options`` as a dict: ``ValueError`` naming ``who`` (the environment)
+    unless None or a mapping whose keys are among ``allowed`` (with ``strict``; otherwise
+    other keys are ignored)."""
+    if options is None:
+        return {}
+    if not isinstance(options, Mapping):
+        raise ValueError(f"options must be None or a dict, got {type(options).__name__} "
+                         f"{options!r}")
+    unknown = sorted(str(k) for k in options if k not in allowed)
+    if unknown and strict:
+        takes = f"takes the options {list(allowed)}" if allowed else "takes no options"
+        raise ValueError(f"options: {who} {takes}; got {unknown}")
+    return dict(options)
+
+
+def real_array(name: str, value: Any) -> np.ndarray:
+    """``value`` as a float64 array: ``ValueError`` naming ``name`` unless it holds real
+    numbers (booleans, integers or floats: not complex numbers, dates, strings or objects)."""
+    try:
+        arr = np.asarray(value)
+    except (TypeError, ValueError):  # ragged
+        raise ValueError(f"{name} must be an array of real numbers, got {value!r}") from None
+    if arr.dtype.kind not in "biuf":
+        raise ValueError(f"{name} must hold real numbers, got an array of {arr.dtype}")
+    return arr.astype(np.float64)
 
 
 def check_pair(name: str, value: Any) -> tuple[float, float]:

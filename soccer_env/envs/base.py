@@ -184,6 +184,9 @@ class SoccerCore(RenderingMixin, abc.ABC):
         check_choice("render_mode", s.render_mode, [None, *RENDER_MODES])
         check_choice("out_of_range_actions", s.out_of_range_actions, OUT_OF_RANGE_MODES)
         check_choice("head", s.head, HEAD_MODES)
+        if s.head != "auto" and "humanoid" not in (team_specs[0].kind, team_specs[1].kind):
+            raise ValueError(f"head aims humanoids' head cameras; these robots are SSL robots, "
+                             f"which have none (head must be 'auto'), got {s.head!r}")
         check_integer("render_width", s.render_width, *RENDER_WIDTHS, " pixels")
         self._render_view = check_view(s.render_view)
         self.settings = s

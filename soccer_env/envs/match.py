@@ -15,8 +15,6 @@ from typing import Any
 import gymnasium
 import numpy as np
 from pettingzoo import ParallelEnv
-from pettingzoo.utils.conversions import parallel_to_aec_wrapper
-from pettingzoo.utils.wrappers import OrderEnforcingWrapper
 
 from soccer_env import presets
 from soccer_env.envs.base import SoccerCore
@@ -42,9 +40,17 @@ from soccer_env.sim.game import GameController, GameOptions, game_config
 from soccer_env.sim.humanoid_game import HumanoidGameController
 from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff
 from soccer_env.sim.world import MAX_TEAM_SIZE
-from soccer_env.validation import check_choice, check_int, check_range, check_seed, parse_scales
+from soccer_env.validation import (
+    check_choice,
+    check_int,
+    check_options,
+    check_range,
+    check_seed,
+    parse_scales,
+    real_array,
+)
 
-__all__ = ["SoccerParallelEnv", "parallel_env", "env", "MATCH_SHAPING", "GAME_NAMES",
+__all__ = ["SoccerParallelEnv", "parallel_env", "MATCH_SHAPING", "GAME_NAMES",
            "GAME_FLOW_NAMES", "FLAT_GAME_KEYS"]
 
 #: Shaping terms of the match (all off unless given a scale). Rates are per second and
@@ -330,6 +336,9 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
 
     def reset(self, seed: int | None = None, options: dict | None = None):
         check_seed(seed)
+        # PettingZoo's API test resets with options no environment knows: others are
+        # ignored, but they must be a dict.
+        check_options(options, (), type(self).__name__, strict=False)
         if seed is not None or self._rng is None:
             self._rng = np.random.default_rng(seed)
         state = self._start(self._rng)
@@ -438,16 +447,19 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
             raise ValueError(f"missing actions for agent(s) {missing}; every live agent must "
                              "act")
         try:
-            act = np.array([actions[a] for a in agents], dtype=np.float64)
-        except (TypeError, ValueError):  # ragged or non-numeric: find the culprit below
+            act = real_array("actions", [actions[a] for a in agents])
+        except (TypeError, ValueError):  # ragged or not real numbers: find the culprit below
             act = None
         if act is None or act.shape != (len(agents), 6):
             for a in agents:
-                shape = np.shape(actions[a])
+                try:
+                    shape: Any = np.shape(actions[a])
+                except ValueError:  # a ragged sequence has no shape
+                    shape = "a ragged sequence"
                 if shape != (6,):
                     raise ValueError(f"action for agent {a!r} must have shape (6,) "
                                      f"({self._action_names(a)}), got {shape}")
-            raise ValueError("actions must be numeric arrays of shape (6,)")
+            raise ValueError("actions must be arrays of 6 real numbers")
         return validate_actions(act, agents, self.out_of_range_actions)
 
     # ------------------------------------------------------------------------------------
@@ -556,23 +568,3 @@ def _state_space(field: Any, n_robots: int) -> gymnasium.spaces.Box:
 def parallel_env(**kwargs: Any) -> SoccerParallelEnv:
     """The match as a PettingZoo ``ParallelEnv`` (see :class:`SoccerParallelEnv`)."""
     return SoccerParallelEnv(**kwargs)
-
-
-class _CheckedAEC(parallel_to_aec_wrapper):
-    """PettingZoo's conversion of the parallel match to AEC, checking each agent's action when
-    the agent acts: a bad action raises there, naming the agent, and leaves the cycle as it
-    was (the conversion alone stores it and fails at the cycle's last agent, after which
-    every step fails until a reset)."""
-
-    def step(self, action: Any) -> None:
-        agent = self.agent_selection
-        if action is not None and not (self.terminations.get(agent)
-                                       or self.truncations.get(agent)):
-            action = self.env.check_action(agent, action)
-        super().step(action)
-
-
-def env(**kwargs: Any):
-    """The match as a PettingZoo AEC environment (agents act in turn; the physics steps
-    once every agent has acted; each action is checked when its agent acts)."""
-    return OrderEnforcingWrapper(_CheckedAEC(SoccerParallelEnv(**kwargs)))

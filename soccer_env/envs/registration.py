@@ -47,7 +47,7 @@ GYMNASIUM: Registry[GymTask] = Registry("Gymnasium environment", [
 #: The PettingZoo environments (``pettingzoo.make("parallel" | "aec", id)``): their parallel
 #: and AEC entry points.
 PETTINGZOO: Registry[tuple[str, str]] = Registry("PettingZoo environment", [
-    (MATCH_ID, ("soccer_env.envs.match:parallel_env", "soccer_env.envs.match:env"),
+    (MATCH_ID, ("soccer_env.envs.match:parallel_env", "soccer_env.envs.aec:env"),
      "a match between two teams of SSL robots, humanoids or one of each"),
 ])
 

@@ -20,7 +20,13 @@ from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.render import Banner
 from soccer_env.sim.commands import HumanoidRobot, SSLRobot, validate_actions
 from soccer_env.state import WorldState
-from soccer_env.validation import check_choice, check_seed, parse_scales
+from soccer_env.validation import (
+    check_choice,
+    check_options,
+    check_seed,
+    parse_scales,
+    real_array,
+)
 
 __all__ = ["SingleAgentTask", "action_cost"]
 
@@ -131,7 +137,9 @@ class SingleAgentTask(SoccerCore, gym.Env):
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         check_seed(seed)
-        super().reset(seed=seed)
+        check_options(options, (), type(self).__name__)
+        # Gymnasium's seeding takes Python integers only; numpy's are as good a seed.
+        super().reset(seed=None if seed is None else int(seed))
         state = self._start(self.np_random)
         self._running, self._ended = True, None
         self._note_reset(seed)
@@ -147,10 +155,7 @@ class SingleAgentTask(SoccerCore, gym.Env):
                 raise RuntimeError(f"the episode has ended ({self._ended!r}): call reset() "
                                    "before stepping again")
             raise RuntimeError("call reset() before step()")
-        try:
-            act = np.asarray(action, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ValueError(f"action must be 6 numbers, got {action!r}") from None
+        act = real_array("action", action)
         if act.shape != (6,):
             names = ", ".join(self._models[0].action_names)
             raise ValueError(f"action must have shape (6,) ({names}), got {act.shape}")

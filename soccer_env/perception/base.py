@@ -119,6 +119,10 @@ class Perception(Protocol):
         ...
 
 
+#: The options of humanoids' perception only.
+_HUMANOID_ONLY = ("camera", "radio", "localization", "fusion", "ball_tracker")
+
+
 @dataclass(frozen=True)
 class PerceptionConfig:
     """What a team perceives with.
@@ -216,6 +220,11 @@ class PerceptionConfig:
                                  f"{sorted(VISION)}")
             return cls(vision(value))
         if isinstance(value, Mapping):
+            humanoid_only = [k for k in _HUMANOID_ONLY if k in value]
+            if kind == "ssl" and humanoid_only:
+                raise ValueError(f"perception {humanoid_only}: these are humanoids' head-camera "
+                                 "options; SSL robots see through the overhead vision "
+                                 "(vision, ball_filter, detector, robot_prediction, randomize)")
             return from_mapping(cls, value, "perception", defaults={
                 "vision": default_vision if kind == "humanoid" else "realistic"})
         raise TypeError(f"perception must be a preset name, a VisionSpec or HeadCameraSpec, a "

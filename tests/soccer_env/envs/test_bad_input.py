@@ -87,7 +87,12 @@ def test_unknown_keyword_lists_allowed():
     ({"perception": "foggy"}, r"unknown vision preset 'foggy'; known: \['harsh', 'ideal'"),
     ({"perception": {"ball_filter": "ukf"}}, r"ball_filter must be one of \['kf', 'kf-comp'"),
     ({"perception": {"colour": 2}}, r"unknown perception key\(s\) \['colour'\]"),
-    ({"perception": {"camera": 2}}, r"perception camera must be a head-camera preset name"),
+    ({"perception": {"camera": 2}}, r"perception \['camera'\]: these are humanoids' "
+                                    r"head-camera options; SSL robots see through the overhead"),
+    ({"perception": {"camera": "kidsize", "radio": "zigbee"}}, r"\['camera', 'radio'\]"),
+    ({"head": "scan"}, r"head aims humanoids' head cameras; these robots are SSL robots"),
+    ({"control_dt": "0.02"}, r"control_dt must be a number in \[0.001, 0.5\], got '0.02'"),
+    ({"physics_dt": True}, r"physics_dt must be a number"),
     ({"robot": "humanoid", "perception": "realistic"}, r"unknown head-camera preset "
                                                        r"'realistic' for humanoid perception"),
     ({"robot": "humanoid", "perception": {"fusion": "median"}}, r"fusion must be one of"),
@@ -221,6 +226,66 @@ def test_aec_refuses_a_bad_action_at_the_agent_that_acts(bad, match):
     env.step(np.zeros(6))  # the physics steps: the cycle is complete
     assert env.agent_selection == "blue_0"
     env.step(np.zeros(6))
+
+
+@pytest.mark.parametrize("action", [np.array([1j, 0, 0, 0, 0, 0]),
+                                    np.array(["2020-01-01"] * 6, dtype="datetime64[D]"),
+                                    np.array(["a"] * 6), [0, 0, 0, 0, 0, [1]]])
+def test_actions_that_are_no_real_numbers_are_refused(action):
+    env = gym.make("soccer_env/Goalkeeper-v0")
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match="action must"):
+        env.step(action)
+    env.step(np.zeros(6))  # nothing was broken
+    match = soccer_env.parallel_env(blue=1, yellow=1)
+    match.reset(seed=0)
+    with pytest.raises(ValueError, match="actions must be arrays of 6 real numbers|must have "
+                                         "shape"):
+        match.step({a: action for a in match.agents})
+    match.step({a: np.zeros(6) for a in match.agents})
+
+
+def test_reset_options_are_checked():
+    """The tasks take no reset options; the match ignores the keys it does not know (as
+    PettingZoo's API test expects) but takes a dict only."""
+    env = gym.make("soccer_env/Goalkeeper-v0")
+    with pytest.raises(ValueError, match=r"options: GoalkeeperEnv takes no options; got "
+                                         r"\['foo'\]"):
+        env.reset(options={"foo": 1})
+    with pytest.raises(ValueError, match=r"options must be None or a dict, got str 'x'"):
+        env.reset(options="x")
+    env.reset(seed=0, options={})  # an empty dict is no option
+    parallel = soccer_env.parallel_env(blue=1, yellow=1)
+    with pytest.raises(ValueError, match=r"options must be None or a dict, got str 'x'"):
+        parallel.reset(options="x")
+    a, _ = parallel.reset(seed=3, options={"foo": 1})
+    b, _ = parallel.reset(seed=3)
+    assert all(np.array_equal(a[k], b[k]) for k in a)
+
+
+def test_a_numpy_integer_seed_is_a_seed():
+    env = gym.make("soccer_env/Goalkeeper-v0")
+    a, _ = env.reset(seed=np.int64(7))
+    b, _ = env.reset(seed=7)
+    assert np.array_equal(a, b)
+
+
+def test_a_shot_range_of_one_value_fixes_it():
+    env = gym.make("soccer_env/Goalkeeper-v0", shots={"x_range": (-1.0, -1.0)})
+    for seed in range(3):
+        _, info = env.reset(seed=seed)
+        assert info["shot"]["x"] == -1.0 if "x" in info["shot"] else True
+        assert info["truth"]["ball_position"][0] == pytest.approx(-1.0)
+
+
+def test_an_aec_step_after_the_match_is_over_raises():
+    env = soccer_env.env(blue=1, yellow=1, max_cycles=1)
+    env.reset(seed=0)
+    for _agent in env.agent_iter():
+        _, _, done, cut, _ = env.last()
+        env.step(None if done or cut else np.zeros(6))
+    with pytest.raises(RuntimeError, match="the match is over; call reset"):
+        env.step(np.zeros(6))
 
 
 def test_step_after_match_end():

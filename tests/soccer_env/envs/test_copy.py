@@ -25,7 +25,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import soccer_env  # noqa: F401  (registers the environments)
-from soccer_env.envs.match import env as aec_env
+from soccer_env.envs.aec import env as aec_env
 from soccer_env.envs.match import parallel_env
 
 cloudpickle = pytest.importorskip("cloudpickle")
