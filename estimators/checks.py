@@ -9,12 +9,17 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["MAX_PARTICLES", "check_count", "check_real", "check_positive", "check_sigma",
-           "check_points"]
+__all__ = ["MAX_PARTICLES", "MAX_COORDINATE", "check_count", "check_real", "check_positive",
+           "check_sigma", "check_points"]
 
 #: The most particles a filter takes: a million 4-D particles are 32 MB, and each update
 #: touches every one (10^10 asked for 298 GiB before failing).
 MAX_PARTICLES = 1_000_000
+
+
+#: The farthest a measured point may lie from the origin [m]: fields are tens of metres; a
+#: detection a thousand kilometres away is corrupt data (and its squares near overflow).
+MAX_COORDINATE = 1e6
 
 
 def check_count(name: str, value: Any, low: int, high: int) -> int:
@@ -83,7 +88,10 @@ def check_points(name: str, value: Any, exact: bool = True) -> list:
         n = len(p)
         if n < 2 or (exact and n != 2):
             raise ValueError(f"{name} must have shape (k, 2); got a point of length {n}")
-        total += p[0] + p[1]
+        total += abs(p[0]) + abs(p[1])
     if not math.isfinite(total):
         raise ValueError(f"{name} must be finite (NaN measurements are refused)")
+    if total > MAX_COORDINATE:
+        raise ValueError(f"{name} must lie within {MAX_COORDINATE:g} m of the origin, got "
+                         f"{rows!r}"[:300])
     return rows

@@ -28,11 +28,11 @@ import numpy as np
 
 __all__ = ["Tracker", "TrackQuality", "check_time", "check_order", "MAX_TIME", "MAX_REWIND"]
 
-#: The largest time stamp a tracker takes, in absolute value [s]: 10^10 s (about 317 years)
-#: covers clocks counted from the episode's start and Unix time alike, while the motion
-#: models' squared time steps stay far from overflowing (a frame stamped 1e155 s turned a
-#: track into NaN).
-MAX_TIME = 1e10
+#: The largest time stamp a tracker takes, in absolute value [s]: 10^12 s covers clocks
+#: counted from the episode's start and Unix time alike (and still resolves 0.1 ms), while the
+#: motion models' squared time steps stay far from overflowing (a frame stamped 1e155 s turned
+#: a track into NaN).
+MAX_TIME = 1e12
 
 #: How far a measurement may lag the tracker's latest one [s]. Late frames within a
 #: tracker's own window are replayed or counted as late (network and camera latency: tens of
@@ -43,7 +43,9 @@ MAX_REWIND = 10.0
 
 def check_time(t: Any, name: str = "t") -> float:
     """``t`` as a float time stamp [s]; ``ValueError`` naming ``name`` unless it is a finite
-    number within ``[-MAX_TIME, MAX_TIME]``."""
+    number (not a string or a bool) within ``[-MAX_TIME, MAX_TIME]``."""
+    if isinstance(t, (str, bytes, bool, np.bool_)):
+        raise ValueError(f"{name} must be a time in seconds, a number, got {t!r}")
     try:
         value = float(t)
     except (TypeError, ValueError):

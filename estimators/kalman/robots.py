@@ -227,8 +227,13 @@ class RobotTracker:
 
     def update_robot(self, t: float, z, i: int) -> None:
         """Fuse one pose detection ``z = (x, y, theta)`` of robot ``i`` captured at ``t``
-        (unchecked: the fast path for callers with validated data, one call per detection
-        without the array round trip of :meth:`update`)."""
+        (the fast path, one call per detection without the array round trip of
+        :meth:`update`: only that the numbers are finite and the robot exists is checked,
+        ``ValueError`` otherwise, before any state changes)."""
+        if not (0 <= i < self.n and math.isfinite(t) and math.isfinite(z[0])
+                and math.isfinite(z[1]) and math.isfinite(z[2])):
+            raise ValueError(f"update_robot needs a finite time and pose and a robot in "
+                             f"0..{self.n - 1}, got t={t!r}, z={tuple(z)!r}, i={i!r}")
         if update_pose(self._state, self._times, self._seen, 0, i, t, z[0], z[1], z[2],
                        self._q, self._r, self.var_v0):
             self.dropped += 1
@@ -276,6 +281,7 @@ class RobotTracker:
         """Standard deviations of robot ``i``'s pose predicted to ``t``: position
         ``sqrt((var x + var y) / 2)`` [m] and heading [rad], each axis's ``P00`` predicted as
         in the module docstring; ``(inf, inf)`` for a robot never seen."""
+        self._check_index(i)
         if not self._seen[0, i]:
             return math.inf, math.inf
         T = max(0.0, t - float(self._times[0, i]))
@@ -284,8 +290,13 @@ class RobotTracker:
                for (P00, P01, P11), q in zip(axes, self.q)]
         return math.sqrt(0.5 * (var[0] + var[1])), math.sqrt(var[2])
 
+    def _check_index(self, i: int) -> None:
+        if isinstance(i, bool) or not isinstance(i, (int, np.integer)) or not 0 <= i < self.n:
+            raise ValueError(f"robot index must be an integer in 0..{self.n - 1}, got {i!r}")
+
     def covariance(self, i: int) -> np.ndarray:
         """The 6 x 6 covariance of robot ``i`` (order ``x, y, theta, vx, vy, omega``)."""
+        self._check_index(i)
         P = np.zeros((6, 6))
         if self._seen[0, i]:
             for ax, (P00, P01, P11) in enumerate(self._state[0, i, 2:5].T.tolist()):

@@ -48,6 +48,10 @@ class HeadCamera:
     height_px: int = 625
 
     def __post_init__(self) -> None:
+        for name in ("width", "height_px"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+                raise ValueError(f"{name} must be a whole number of pixels, got {value!r}")
         if not 0.0 < self.height < 10.0:
             raise ValueError(f"height must be in (0, 10) m, got {self.height!r}")
         if not 0.0 < self.hfov < math.pi:
@@ -86,6 +90,7 @@ class HeadCamera:
         p = np.asarray(points, dtype=np.float64)
         if p.ndim != 2 or p.shape[1] not in (2, 3):
             raise ValueError(f"points must have shape (n, 2) or (n, 3), got {p.shape}")
+        _check_angles(pan, tilt)
         z = p[:, 2] if p.shape[1] == 3 else np.zeros(len(p))
         world = np.column_stack([-p[:, 1], p[:, 0], z - self.height])
         cam = world @ self._rotation(pan, tilt).T
@@ -109,6 +114,9 @@ class HeadCamera:
         uv = np.asarray(pixels, dtype=np.float64)
         if uv.ndim != 2 or uv.shape[1] != 2:
             raise ValueError(f"pixels must have shape (n, 2), got {uv.shape}")
+        if not np.isfinite(uv).all():
+            raise ValueError("pixels must be finite (NaN pixels are refused)")
+        _check_angles(pan, tilt)
         if not math.isfinite(plane_height):
             raise ValueError(f"plane_height must be finite, got {plane_height!r}")
         u0, v0 = self.centre
@@ -120,3 +128,10 @@ class HeadCamera:
         t = np.where(meets, drop / np.where(meets, ray[:, 2], 1.0), np.nan)
         xw, yw = t * ray[:, 0], t * ray[:, 1]
         return np.column_stack([yw, -xw])  # paper world -> robot frame
+
+
+def _check_angles(pan: float, tilt: float) -> None:
+    """``ValueError`` unless the head's ``pan`` and ``tilt`` [rad] are finite numbers."""
+    if not (math.isfinite(pan) and math.isfinite(tilt)):
+        raise ValueError(f"pan and tilt must be finite angles in radians, got {pan!r}, "
+                         f"{tilt!r}")

@@ -65,8 +65,13 @@ Likelihood = Callable[[np.ndarray, np.ndarray], np.ndarray]
 
 def systematic_resample(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
     """Indices drawn by systematic resampling of normalised ``weights`` ((N,)): one uniform
-    offset, ``N`` evenly spaced pointers into the cumulative weights."""
-    return systematic_indices(np.asarray(weights, dtype=np.float64), rng.random())
+    offset, ``N`` evenly spaced pointers into the cumulative weights. ``ValueError`` for
+    weights that are not finite and non-negative with a positive sum."""
+    w = np.asarray(weights, dtype=np.float64)
+    if w.ndim != 1 or not (np.isfinite(w).all() and (w >= 0.0).all() and w.sum() > 0.0):
+        raise ValueError("weights must be a 1-D array of finite, non-negative numbers with a "
+                         f"positive sum, got {w!r}"[:300])
+    return systematic_indices(w, rng.random())
 
 
 def sfn(particles: np.ndarray, weights: np.ndarray, rng: np.random.Generator,
@@ -322,6 +327,8 @@ def ungm_simulate(steps: int, rng: np.random.Generator, process_variance: float 
                   ) -> tuple[float, np.ndarray, np.ndarray]:
     """A UNGM trajectory: ``x_0 ~ N(0, initial_variance)``, then ``steps`` states
     ``x_1..x_steps`` and their measurements. Returns ``(x_0, xs, ys)``."""
+    if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 0:
+        raise ValueError(f"steps must be a whole number >= 0, got {steps!r}")
     x0 = float(rng.normal(0.0, math.sqrt(initial_variance)))
     xs, ys = np.empty(steps), np.empty(steps)
     x = x0

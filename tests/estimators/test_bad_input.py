@@ -80,3 +80,66 @@ def test_particle_counts_are_bounded_before_anything_is_allocated():
     with pytest.raises(ValueError, match=r"n must be an integer in \[0, 10,000\]"):
         RobotTracker(10**10)
     assert math.isfinite(MAX_PARTICLES)
+
+
+def test_robot_tracker_refuses_a_robot_it_does_not_have_and_nan_detections():
+    tracker = RobotTracker(2)
+    tracker.update_robot(0.0, (1.0, 0.5, 0.1), 0)
+    before = tracker.covariance(0).copy()
+    for i in (2, -1, True, 1.0):
+        with pytest.raises(ValueError, match=r"robot index must be an integer in 0..1"):
+            tracker.covariance(i)
+    with pytest.raises(ValueError, match=r"robot index must be an integer in 0..1, got 99"):
+        tracker.pose_sigma(99, 0.0)
+    for t, z, i in ((0.1, (NAN, 0.0, 0.0), 0), (INF, (0.0, 0.0, 0.0), 0),
+                    (0.1, (0.0, 0.0, 0.0), 5)):
+        with pytest.raises(ValueError, match=r"update_robot needs a finite time and pose and "
+                                             r"a robot in 0..1"):
+            tracker.update_robot(t, z, i)
+    assert np.array_equal(tracker.covariance(0), before)  # nothing changed
+    assert np.isfinite(tracker.estimate(0.2)).all()
+
+
+@pytest.mark.parametrize("weights", [[NAN, 1.0], [-1.0, 2.0], [0.0, 0.0], [[0.5, 0.5]],
+                                     [INF, 1.0]])
+def test_systematic_resampling_refuses_weights_that_are_no_distribution(weights):
+    from estimators.particle import systematic_resample
+
+    with pytest.raises(ValueError, match=r"weights must be a 1-D array of finite, "
+                                         r"non-negative numbers with a positive sum"):
+        systematic_resample(np.array(weights), np.random.default_rng(0))
+    assert list(systematic_resample(np.array([0.0, 1.0]), np.random.default_rng(0))) == [1, 1]
+
+
+def test_head_camera_refuses_fractional_sizes_and_non_finite_angles_and_pixels():
+    from estimators import HeadCamera
+
+    with pytest.raises(ValueError, match=r"width must be a whole number of pixels, got 2.5"):
+        HeadCamera(width=2.5)
+    camera = HeadCamera()
+    with pytest.raises(ValueError, match=r"pan and tilt must be finite angles"):
+        camera.project(np.array([[1.0, 0.0, 0.0]]), NAN, 0.3)
+    with pytest.raises(ValueError, match=r"pixels must be finite"):
+        camera.ground_point(np.array([[NAN, 100.0]]), 0.0, 0.3)
+    assert np.isfinite(camera.ground_point(np.array([[360.0, 500.0]]), 0.0, 0.3)).all()
+
+
+def test_trackers_take_unix_times_and_refuse_strings_and_far_detections():
+    from estimators import BallTracker
+
+    tracker = BallTracker()
+    with pytest.raises(ValueError, match=r"t must be a time in seconds, a number, got '0.1'"):
+        tracker.update("0.1", [(0.0, 0.0)])
+    with pytest.raises(ValueError, match=r"detections must lie within 1e\+06 m"):
+        tracker.update(0.0, [(1e300, 0.0)])
+    assert tracker.estimate(0.0) is None  # nothing was fused
+    tracker.update(1e12 - 1.0, [(1.0, 2.0)])  # a time stamp in milliseconds since 1970
+    assert np.allclose(tracker.estimate(1e12)[:2], (1.0, 2.0), atol=0.1)
+
+
+def test_ungm_simulate_refuses_a_negative_length():
+    from estimators.particle import ungm_simulate
+
+    with pytest.raises(ValueError, match=r"steps must be a whole number >= 0, got -1"):
+        ungm_simulate(-1, np.random.default_rng(0))
+    assert len(ungm_simulate(0, np.random.default_rng(0))[1]) == 0
