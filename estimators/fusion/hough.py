@@ -73,7 +73,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ..checks import check_sigma
+from ..checks import MAX_COORDINATE, check_sigma
 from ..registry import Registry
 from .line_kernels import MIN_CONDITION, solve_normal
 
@@ -150,6 +150,21 @@ def hough_lines(origins: np.ndarray | Sequence[Sequence[float]],
     return theta, rho
 
 
+#: The nearest a robot may be to what it sights [m]: closer, ``1 / L^p`` weights overflow.
+MIN_DISTANCE = 1e-6
+
+
+def _distances(distances: np.ndarray | Sequence[float]) -> np.ndarray:
+    """``distances`` [m] as a 1-d array, each in [:data:`MIN_DISTANCE`,
+    :data:`~estimators.checks.MAX_COORDINATE`]; ``ValueError`` otherwise."""
+    L = np.asarray(distances, dtype=np.float64)
+    if L.ndim != 1 or not (np.isfinite(L).all() and (L >= MIN_DISTANCE).all()
+                           and (L <= MAX_COORDINATE).all()):
+        raise ValueError(f"distances must be a 1-d array of finite numbers in "
+                         f"[{MIN_DISTANCE:g}, {MAX_COORDINATE:g}] m, got {L}")
+    return L
+
+
 def line_offset_variance(distances: np.ndarray | Sequence[float], bearing_sigma: float,
                          position_sigma: float = 0.0, heading_sigma: float = 0.0
                          ) -> np.ndarray:
@@ -167,9 +182,7 @@ def line_offset_variance(distances: np.ndarray | Sequence[float], bearing_sigma:
         ValueError: bad distances, a negative or non-finite sigma, or all three sigmas zero
             (no error: every variance 0 and the weights undefined).
     """
-    L = np.asarray(distances, dtype=np.float64)
-    if L.ndim != 1 or not np.isfinite(L).all() or (L <= 0.0).any():
-        raise ValueError(f"distances must be a 1-d array of positive finite numbers, got {L}")
+    L = _distances(distances)
     sb = check_sigma("bearing_sigma", bearing_sigma)
     sp = check_sigma("position_sigma", position_sigma)
     sh = check_sigma("heading_sigma", heading_sigma)
@@ -197,9 +210,7 @@ def fusion_weights(distances: np.ndarray | Sequence[float], weighting: str = "in
     if bearing_sigma is not None or position_sigma != 0.0 or heading_sigma != 0.0:
         raise ValueError(f"bearing_sigma, position_sigma and heading_sigma apply to weighting "
                          f"'inverse_variance' only, not {weighting!r}")
-    L = np.asarray(distances, dtype=np.float64)
-    if L.ndim != 1 or not np.isfinite(L).all() or (L <= 0.0).any():
-        raise ValueError(f"distances must be a 1-d array of positive finite numbers, got {L}")
+    L = _distances(distances)
     return L ** -float(power)
 
 

@@ -119,6 +119,10 @@ class BallFilterConfig:
                 raise ValueError(f"{name} must be finite and > 0, got {v!r}")
         if self.gate is not None and not self.gate > 0:
             raise ValueError(f"gate must be > 0 or None, got {self.gate!r}")
+        if self.maneuver_radius is not None and not (math.isfinite(self.maneuver_radius)
+                                                     and self.maneuver_radius > 0.0):
+            raise ValueError(f"maneuver_radius must be finite and > 0 [m], or None (no "
+                             f"maneuvers), got {self.maneuver_radius!r}")
         if self.reset_after is not None and (not isinstance(self.reset_after, int)
                                              or self.reset_after < 1):
             raise ValueError(f"reset_after must be a positive integer or None, got "

@@ -86,7 +86,11 @@ from .localization_kernels import (
     weighted_spread,
 )
 
-__all__ = ["KLDConfig", "KLDLocalizer", "RECOVERIES", "seed_poses"]
+__all__ = ["KLDConfig", "KLDLocalizer", "RECOVERIES", "MAX_ODOMETRY", "seed_poses"]
+
+#: The largest odometry step a localizer takes, per entry (metres or radians): a robot moves
+#: centimetres between updates; a step of a kilometre is corrupt data.
+MAX_ODOMETRY = 1e3
 
 #: How :class:`KLDLocalizer` draws the particles it injects when it is lost: uniformly over
 #: the bounds (augmented MCL), or partly around poses triangulated from recent sightings.
@@ -256,8 +260,12 @@ class KLDLocalizer:
             p = np.asarray(pose, dtype=np.float64)
             if p.shape != (3,) or not np.isfinite(p).all():
                 raise ValueError(f"pose must be a finite (3,) array, got {pose!r}")
+            sigma = np.asarray(pose_sigma, dtype=np.float64)
+            if sigma.shape != (3,) or not (np.isfinite(sigma).all() and (sigma >= 0).all()):
+                raise ValueError(f"pose_sigma must be three finite numbers >= 0 (m, m, rad), "
+                                 f"got {pose_sigma!r}")
             n = self.cfg.min_particles
-            self.particles = p + rng.normal(0.0, 1.0, (n, 3)) * np.asarray(pose_sigma)
+            self.particles = p + rng.normal(0.0, 1.0, (n, 3)) * sigma
         self.weights = np.full(len(self.particles), 1.0 / len(self.particles))
         self._hypotheses: PoseHypotheses | None = None
         #: Weighted by a measurement and not yet resampled (``binning="predicted"``: the
@@ -283,8 +291,9 @@ class KLDLocalizer:
         """Move every particle by the body-frame displacement ``(dx, dy, dtheta)`` [m, m,
         rad] with the odometry noise."""
         d = np.asarray(odometry, dtype=np.float64)
-        if d.shape != (3,) or not np.isfinite(d).all():
-            raise ValueError(f"odometry must be a finite (dx, dy, dtheta), got {odometry!r}")
+        if d.shape != (3,) or not np.isfinite(d).all() or np.abs(d).max() > MAX_ODOMETRY:
+            raise ValueError(f"odometry must be a finite (dx, dy, dtheta), each within "
+                             f"{MAX_ODOMETRY:g} (m, rad) of 0, got {odometry!r}")
         if self._pending:  # Fox's KLD-sampling: draw, move and bin the predicted samples
             self._pending = False
             self._resample(d)
@@ -307,6 +316,8 @@ class KLDLocalizer:
         if len(r) != len(L) or not (np.isfinite(L).all() and np.isfinite(r).all()):
             raise ValueError(f"landmarks ((m, 2)) and ranges ((m,)) must match and be finite, "
                              f"got {L.shape} and {r.shape}")
+        if (r < 0.0).any():
+            raise ValueError(f"ranges must be >= 0 [m], got {r!r}")
         return self._best_log_likelihood(np.ascontiguousarray(L[:, 0]),
                                          np.ascontiguousarray(L[:, 1]),
                                          np.ones(len(r), dtype=np.int64), r,

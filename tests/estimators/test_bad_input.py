@@ -143,3 +143,43 @@ def test_ungm_simulate_refuses_a_negative_length():
     with pytest.raises(ValueError, match=r"steps must be a whole number >= 0, got -1"):
         ungm_simulate(-1, np.random.default_rng(0))
     assert len(ungm_simulate(0, np.random.default_rng(0))[1]) == 0
+
+
+@pytest.mark.parametrize("radius", [-1.0, 0.0, NAN, INF])
+def test_ball_filter_config_refuses_a_maneuver_radius_that_is_no_distance(radius):
+    from estimators import BallFilterConfig
+
+    with pytest.raises(ValueError, match=r"maneuver_radius must be finite and > 0"):
+        BallFilterConfig(maneuver_radius=radius)
+    assert BallFilterConfig(maneuver_radius=None).maneuver_radius is None
+
+
+def test_kld_localizer_refuses_bad_spreads_odometry_and_ranges():
+    from estimators import KLDLocalizer
+
+    bounds = (-4.5, 4.5, -3.0, 3.0)
+    for sigma in (-1.0, (0.1, NAN, 0.1), (0.1, 0.1)):
+        with pytest.raises(ValueError, match=r"pose_sigma must be three finite numbers >= 0"):
+            KLDLocalizer(bounds, np.random.default_rng(0), pose=np.zeros(3), pose_sigma=sigma)
+    loc = KLDLocalizer(bounds, np.random.default_rng(0), pose=np.zeros(3))
+    before = loc.particles.copy()
+    with pytest.raises(ValueError, match=r"odometry must be a finite \(dx, dy, dtheta\), each "
+                                         r"within 1000"):
+        loc.predict((1e300, 0.0, 0.0))
+    with pytest.raises(ValueError, match=r"ranges must be >= 0"):
+        loc.update(np.array([[0.0, 0.0]]), np.array([-1.0]))
+    assert np.array_equal(loc.particles, before)  # nothing changed
+    loc.predict((0.1, 0.0, 0.0))
+    assert np.isfinite(loc.estimate()).all()
+
+
+@pytest.mark.parametrize("distances", [[1e308, 1.0], [1e-320, 1.0], [0.0, 1.0], [NAN, 1.0]])
+def test_fusion_weights_refuse_distances_whose_weights_overflow(distances):
+    from estimators import fusion_weights, line_offset_variance
+
+    with pytest.raises(ValueError, match=r"distances must be a 1-d array of finite numbers in "
+                                         r"\[1e-06, 1e\+06\] m"):
+        fusion_weights(distances)
+    with pytest.raises(ValueError, match=r"distances must be"):
+        line_offset_variance(distances, 0.01)
+    assert np.isfinite(fusion_weights([0.5, 3.0], "inverse_square")).all()

@@ -111,7 +111,8 @@ def test_degenerate_and_bad_input_is_reported():
         hough_fuse([[0, 0], [1, 0]], angles=[0.0, 1.0], weights=[1.0, -1.0])
     with pytest.raises(ValueError, match="weighting must be one of"):
         fusion_weights([1.0, 2.0], "cubic")
-    with pytest.raises(ValueError, match="positive"):
+    with pytest.raises(ValueError, match=r"distances must be a 1-d array of finite numbers in "
+                                         r"\[1e-06, 1e\+06\] m"):
         fusion_weights([1.0, 0.0])
 
 
