@@ -126,7 +126,6 @@ class SSLClient:
         self.sent = 0
         self.errors: Counter = Counter()
         self.dropped: Counter = Counter()
-        self.last_command = np.zeros((len(self.player.ids), 6))
 
     def _take(self, messages: list[Any]) -> None:
         """Follow the referee: the time, the score, and each shot's start."""
@@ -163,7 +162,6 @@ class SSLClient:
                          self.control_address)
         self.sent += 1
         self._responses()
-        self.last_command = commands
         return commands
 
     def _responses(self) -> None:

@@ -12,7 +12,8 @@ from typing import Any
 
 from agents.policies.files import read_json
 
-__all__ = ["RUN_FILES", "run_files", "run_folder", "run_config", "occupied_run_files",
+__all__ = ["RUN_FILES", "run_files", "run_folder", "run_config", "read_run_config",
+           "occupied_run_files",
            "check_steps_left", "RunRefused",
            "TrainingStopped"]
 
@@ -98,8 +99,15 @@ def run_config(model_path: Path) -> dict[str, Any]:
     for folder in (model_path.parent, model_path.parent.parent):
         config = folder / "config.json"
         if config.exists() or config.is_symlink():  # a device or a dangling link: refused
-            data = read_json(config)
-            if not isinstance(data, dict):
-                raise ValueError(f"{config} is not a training run's configuration")
-            return data
+            return read_run_config(config)
     return {}
+
+
+def read_run_config(config: Path) -> dict[str, Any]:
+    """A run's ``config.json`` at ``config``, read within the JSON budgets
+    (:func:`~agents.policies.files.read_json`); ``ValueError`` for one that is not a JSON
+    object, ``FileNotFoundError`` if there is none."""
+    data = read_json(config)
+    if not isinstance(data, dict):
+        raise ValueError(f"{config} is not a training run's configuration")
+    return data

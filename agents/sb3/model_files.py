@@ -268,10 +268,12 @@ def load_model(path: str | os.PathLike, algorithm: str | None = None, *, trust: 
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"no model at {path}")
-    # The budgets, trusted or not: size, compression, JSON, weight records.
+    # The budgets, trusted or not: size, compression, JSON (and, untrusted, the weight
+    # records, which load_sb3_safely checks itself).
     model_data(path)
-    check_weights(path)
-    if not trust:
+    if trust:
+        check_weights(path)
+    else:
         env = kwargs.get("env")
         if observation_space is None and env is not None:
             observation_space, action_space = env.observation_space, env.action_space

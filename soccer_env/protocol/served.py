@@ -95,9 +95,6 @@ class ServedTask:
         self.env = gym.make(SERVED[task], **env_kwargs, obs_mode="truth", perception=vision)
         u = self.env.unwrapped
         self.world = u.world
-        if self.world.humanoid_indices:
-            self.env.close()
-            raise ValueError("the SSL protocols serve SSL robots; this task has humanoids")
         self.sizes = (1, 0)
         self.attacker = _ATTACKERS[task]
         self.limit = GYMNASIUM[SERVED[task]].max_episode_steps
@@ -106,12 +103,10 @@ class ServedTask:
         self._game = PlainGame()
 
     def reset(self, seed: int | None) -> None:
-        _, info = self.env.reset(seed=seed)
+        self.env.reset(seed=seed)
         self._running = True
         self._game = PlainGame("penalty_shootout", self._time_left(), "prepare_penalty",
                                self.attacker)
-        # The keeper task's shot may be taken at once (a delay of 0).
-        self._taken = bool(info.get("shot_fired", False))
 
     def _time_left(self) -> float:
         w = self.world
@@ -125,8 +120,8 @@ class ServedTask:
         """Step with the learner's action ``actions[0]``; the outcome once the shot is over
         (the task's, or ``"time limit"``), else None."""
         _, _, terminated, truncated, info = self.env.step(actions[0])
-        if self._game.command == "prepare_penalty" and (
-                self._taken or info.get("shot_fired", True)):  # the shootout's: at once
+        # Taken: the keeper task's shot once fired (it stays fired), the shootout's at once.
+        if self._game.command == "prepare_penalty" and info.get("shot_fired", True):
             self._game.command = "normal_start"
         self._game.stage_time_left = self._time_left()
         if not (terminated or truncated):
@@ -151,6 +146,9 @@ def served(task: str, env_kwargs: Mapping[str, Any], vision: VisionSpec
     """What serves ``task`` (:data:`SERVED`)."""
     if task not in SERVED:
         raise ValueError(f"task must be one of {list(SERVED)}, got {task!r}")
-    if SERVED[task] is None:
-        return ServedMatch(env_kwargs, vision)
-    return ServedTask(task, env_kwargs, vision)
+    out = ServedMatch(env_kwargs, vision) if SERVED[task] is None else \
+        ServedTask(task, env_kwargs, vision)
+    if out.world.humanoid_indices:
+        out.env.close()
+        raise ValueError(f"the SSL protocols serve SSL robots; this {task} has humanoids")
+    return out

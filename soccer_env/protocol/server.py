@@ -48,7 +48,7 @@ from soccer_env.protocol.datagrams import PacketError, drop
 from soccer_env.protocol.publisher import VisionPublisher
 from soccer_env.protocol.referee import RefereePublisher
 from soccer_env.protocol.robot_control import apply_robot_control, read_robot_control
-from soccer_env.protocol.served import SERVED, served
+from soccer_env.protocol.served import served
 from soccer_env.protocol.simulator_control import apply_simulator_command, read_simulator_command
 from soccer_env.protocol.udp import (
     BLUE_CONTROL_PORT,
@@ -103,8 +103,6 @@ class SSLServer:
         if clash:
             raise ValueError(f"env_kwargs must not set {clash}: the served match's teams see "
                              "through the served cameras")
-        if task not in SERVED:
-            raise ValueError(f"task must be one of {list(SERVED)}, got {task!r}")
         if len(control_addresses) != 2:
             raise ValueError(f"control_addresses must be (blue, yellow) addresses, got "
                              f"{control_addresses!r}")
@@ -118,10 +116,6 @@ class SSLServer:
         self.task = task
         self.env = self.served.env
         self.world = self.served.world
-        if self.world.humanoid_indices:
-            self.env.close()
-            raise ValueError("the SSL protocols serve matches of SSL robots; this match has "
-                             "humanoids")
         self.model = SSLRobot(self.world.robot_spec)
         self.vision = VisionPublisher(self.world, spec, vision_address)
         self.referee = RefereePublisher(referee_address)

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import time
+from typing import Any
 
 from soccer_lab.cli_args import (
     HelpFormatter,
@@ -19,7 +20,7 @@ from soccer_lab.cli_args import (
     add_trust_argument,
     env_kwargs_from_args,
 )
-from soccer_lab.commands.serve import parse_address
+from soccer_lab.commands.serve import parse_addresses
 
 __all__ = ["parser", "main"]
 
@@ -68,7 +69,7 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
-def _addresses(args: argparse.Namespace) -> dict[str, tuple[str, int]]:
+def _addresses(args: argparse.Namespace) -> dict[str, Any]:
     from soccer_env.protocol import udp
 
     host = "127.0.0.1" if args.loopback else None
@@ -76,9 +77,7 @@ def _addresses(args: argparse.Namespace) -> dict[str, tuple[str, int]]:
                 "referee_address": (host or udp.REFEREE_ADDRESS[0], udp.REFEREE_ADDRESS[1]),
                 "control_address": ("127.0.0.1", udp.BLUE_CONTROL_PORT if args.team == "blue"
                                     else udp.YELLOW_CONTROL_PORT)}
-    return {name: (parse_address(getattr(args, name), "--" + name.replace("_", "-"),
-                                 bind=name != "control_address")
-                   if getattr(args, name) else default) for name, default in defaults.items()}
+    return parse_addresses(args, defaults, send=("control_address",))
 
 
 def _env_kwargs(args: argparse.Namespace) -> dict:

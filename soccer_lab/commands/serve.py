@@ -15,11 +15,12 @@ from __future__ import annotations
 import argparse
 import time
 from collections import Counter
+from collections.abc import Sequence
 from typing import Any
 
 from soccer_lab.cli_args import HelpFormatter
 
-__all__ = ["parser", "main", "parse_address"]
+__all__ = ["parser", "main", "parse_address", "parse_addresses"]
 
 _EXAMPLE = ("soccer-env serve --loopback --blue 2 --yellow 2 --game --vision ssl-2012 "
             "--duration 60")
@@ -103,17 +104,21 @@ def _addresses(args: argparse.Namespace) -> dict[str, Any]:
                 "blue_control": (host or "0.0.0.0", udp.BLUE_CONTROL_PORT),
                 "yellow_control": (host or "0.0.0.0", udp.YELLOW_CONTROL_PORT),
                 "simulator_control": (host or "0.0.0.0", udp.SIMULATION_CONTROL_PORT)}
+    return parse_addresses(args, defaults, send=("vision_address", "referee_address"))
+
+
+def parse_addresses(args: argparse.Namespace, defaults: dict[str, Any],
+                    send: Sequence[str]) -> dict[str, Any]:
+    """The address options ``defaults`` names (option ``--a-b`` for name ``a_b``), each
+    parsed by :func:`parse_address` (those of ``send`` as addresses to send to, the others
+    to bind), else its default; a repeatable option given several times gives a list."""
     out: dict = {}
     for name, default in defaults.items():
         given = getattr(args, name)
         option = "--" + name.replace("_", "-")
-        if not given:
-            out[name] = default
-        elif isinstance(given, list):  # the repeatable addresses to send to
-            parsed = [parse_address(text, option, bind=False) for text in given]
-            out[name] = parsed[0] if len(parsed) == 1 else parsed
-        else:
-            out[name] = parse_address(given, option, bind=True)
+        texts = given if isinstance(given, list) else [given] if given else []
+        parsed = [parse_address(text, option, bind=name not in send) for text in texts]
+        out[name] = default if not parsed else parsed[0] if len(parsed) == 1 else parsed
     return out
 
 

@@ -17,8 +17,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from agents.policies.files import read_json
-from agents.runs.folders import RunRefused, TrainingStopped, run_folder
+from agents.runs.folders import RunRefused, TrainingStopped, read_run_config, run_folder
 from agents.runs.training import TrainConfig, check_env_kwargs, checkpoint_steps, train
 from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_lab import extras
@@ -42,11 +41,9 @@ def _resumed_fields(p: argparse.ArgumentParser, resume: str) -> dict[str, Any]:
     if not (run / "config.json").exists():
         p.error(f"--resume: no config.json in {run}")
     try:
-        saved = read_json(run / "config.json")
+        saved = read_run_config(run / "config.json")
     except (OSError, ValueError) as err:
         p.error(f"--resume: {err}")
-    if not isinstance(saved, dict):
-        p.error(f"--resume: {run / 'config.json'} is not a training run's configuration")
     base = {k: v for k, v in saved.items()
             if k not in ("command", "resumed_from", "versions", "action_map")}
     # The run continues where it is, never where its config.json says: a run folder received

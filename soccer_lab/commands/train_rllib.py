@@ -33,8 +33,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from agents.policies.files import read_json
-from agents.runs.folders import RunRefused, TrainingStopped, run_folder
+from agents.runs.folders import RunRefused, TrainingStopped, read_run_config, run_folder
 from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_lab import extras
 from soccer_lab.cli_args import env_kwargs_from_args, key_values
@@ -99,11 +98,9 @@ def _resumed_fields(p: argparse.ArgumentParser, resume: str) -> dict[str, Any]:
                 "checkpoints/checkpoint_<steps>_steps folder)")
     run = run_folder(ckpt)
     try:
-        saved = read_json(run / "config.json")
+        saved = read_run_config(run / "config.json")
     except (OSError, ValueError) as err:
         p.error(f"--resume: no readable config.json in {run} ({err})")
-    if not isinstance(saved, dict):
-        p.error(f"--resume: {run / 'config.json'} is not a training run's configuration")
     if saved.get("backend") != "rllib":
         p.error(f"--resume: {run} is not a run of --backend rllib")
     base = {k: v for k, v in saved.items()
