@@ -22,6 +22,10 @@ The worlds are the same physics as separate worlds, but not bit for bit: a world
 in the shared space are offset by its patch's origin, which rounds differently (differences of
 1e-14 m to 1e-11 m after a few hundred steps without contacts; contacts amplify them).
 
+A batch copies (:mod:`pickle`, :mod:`copy`) with its worlds and spaces, and the copy steps
+as the original does, bit for bit (:meth:`WorldBatch.__getstate__`); a world of a batch is
+copied with its batch, not on its own.
+
 Humanoids step in the batch too, but their walk engines, falls, lying bodies and foot strikes
 run world by world in Python (as :meth:`World.step <soccer_env.sim.world.World.step>` runs
 them), so a batch of humanoid worlds saves only the physics; their contacts are routed to
@@ -30,6 +34,7 @@ their world by body, since a lying humanoid's shape changes.
 
 from __future__ import annotations
 
+import copy
 import math
 
 import numpy as np
@@ -56,6 +61,9 @@ SHARD_SIZE = 128
 _VELOCITIES = pbatch.BodyFields.VELOCITY | pbatch.BodyFields.ANGULAR_VELOCITY
 _FIELDS = (pbatch.BodyFields.POSITION | pbatch.BodyFields.ANGLE | pbatch.BodyFields.VELOCITY
            | pbatch.BodyFields.ANGULAR_VELOCITY)
+#: Attributes of :class:`WorldBatch` that hold raw Chipmunk handles or :mod:`pymunk.batch`
+#: buffers: never copied, made again from the spaces by :meth:`WorldBatch._bind`.
+_HANDLE_ATTRIBUTES = ("_shards", "_step_space")
 
 
 class _Shard:
@@ -193,7 +201,7 @@ class WorldBatch:
         self._owner: dict[pymunk.Shape, int] = {}
         # A humanoid's shapes change (its lying body): its contacts are routed by body.
         self._body_owner: dict[pymunk.Body, int] = {}
-        shards = []
+        spaces = []
         for start in range(0, self.n_worlds, self.shard_size):
             stop = min(start + self.shard_size, self.n_worlds)
             space = pymunk.Space()
@@ -205,7 +213,7 @@ class WorldBatch:
                 static = pymunk.Body(body_type=pymunk.Body.STATIC)
                 static.position = origin
                 space.add(static)
-                w._populate(space, static, origin)
+                w._populate(space, static, origin, shared=True)
                 self._owner[next(iter(w._ball.shapes))] = k
                 for shape in w._shape_index:
                     self._owner[shape] = k
@@ -217,7 +225,7 @@ class WorldBatch:
                 space.on_collision(BALL, HUMANOID, pre_solve=self._touch)
                 for other in (ROBOT, HUMANOID, WALL):
                     space.on_collision(HUMANOID, other, begin=self._impact)
-            shards.append(_Shard(start, stop, space, self.worlds[start:stop]))
+            spaces.append(space)
         for k, (w, p, b) in enumerate(zip(self.worlds, poses, balls.tolist())):
             w.restart(p, tuple(b), None if rngs is None else rngs[k])
         self._times = np.zeros(self.n_worlds)
@@ -227,8 +235,7 @@ class WorldBatch:
             np.zeros((self.n_worlds, n)), np.zeros((self.n_worlds, n), dtype=bool),
             np.zeros((self.n_worlds, n), dtype=bool))
         self._pending: list[int] = []
-        self._step_space = cp.cpSpaceStep
-        self._shards = shards
+        self._bind(spaces)
         # ``state`` already holds every world's start exactly (the worlds' restarts write it
         # through their views); a read from the space would round it through the offsets.
 
@@ -247,6 +254,74 @@ class WorldBatch:
     def close(self) -> None:
         """Free the spaces (the batch needs a :meth:`reset` to step again)."""
         self._shards = []
+
+    def _bind(self, spaces: list[pymunk.Space]) -> None:
+        """Take the raw handles of the hot loop from ``spaces`` (one per shard, in world
+        order; none before :meth:`reset` and after :meth:`close`): each shard's Chipmunk
+        handle, body rows and buffers; and every world's state as its view of :attr:`state`
+        again (a copy of the batch copies the views as arrays of their own)."""
+        for k, world in enumerate(self.worlds):
+            world._state = self.state[k]
+        size = self.shard_size
+        self._shards = [_Shard(start, min(start + size, self.n_worlds), space,
+                               self.worlds[start:start + size])
+                        for start, space in zip(range(0, self.n_worlds, size), spaces)]
+        self._step_space = cp.cpSpaceStep
+
+    # ------------------------------------------------------------------------------------
+    # Copying
+    # ------------------------------------------------------------------------------------
+
+    def __getstate__(self) -> dict:
+        """The batch's state for :mod:`pickle` and :mod:`copy`: its attributes, its worlds
+        and its spaces (pymunk pickles each space with its bodies, joints, cached contacts
+        and collision handlers, the batch's own methods), the shards' raw Chipmunk handles
+        and :mod:`pymunk.batch` buffers left out.
+
+        As a world on its own does (:meth:`World.__getstate__
+        <soccer_env.sim.world.World.__getstate__>`), the batch first replaces its own spaces
+        with copies rebuilt from their state, as every copy's spaces are: a space rebuilt
+        from its state steps differently in the last bits (Chipmunk's bounding-box trees are
+        built anew, the joints' warm-start impulses restart at zero), so the original must
+        be rebuilt too for it and every copy taken at that moment to step identically from
+        then on. Its worlds share the spaces, so the batch rebuilds each space once, for
+        all the worlds in it, and the worlds leave theirs alone.
+        """
+        if self._shards:
+            self._rebuild_spaces()
+        return self._plain_state()
+
+    def _plain_state(self) -> dict:
+        """The attributes that :mod:`pickle` and :mod:`copy` carry, with the spaces under
+        ``"_spaces"`` in place of the shards that hold them."""
+        state = {k: v for k, v in self.__dict__.items() if k not in _HANDLE_ATTRIBUTES}
+        state["_spaces"] = self.spaces
+        return state
+
+    def __setstate__(self, state: dict) -> None:
+        """Restore a state of :meth:`__getstate__` and take the handles from its spaces."""
+        state = dict(state)
+        spaces = state.pop("_spaces")
+        self.__dict__.update(state)
+        self._bind(spaces)
+
+    def _rebuild_spaces(self) -> None:
+        """Replace every space (and every object in it, with the worlds' and the batch's
+        references to them) with a copy rebuilt from its state, in one deep copy of the
+        batch's and the worlds' attributes. The memo maps the batch and its worlds to
+        themselves, so that the collision handlers stay bound to this batch and
+        :attr:`worlds` holds the same worlds."""
+        worlds = self.worlds
+        memo: dict[int, object] = {id(self): self}
+        memo.update((id(w), w) for w in worlds)
+        fresh, fresh_worlds = copy.deepcopy(
+            (self._plain_state(), [w._plain_state() for w in worlds]), memo)
+        spaces = fresh.pop("_spaces")
+        self.__dict__.update(fresh)
+        for world, state in zip(worlds, fresh_worlds):
+            world.__dict__.update(state)
+            world._bind_handles()
+        self._bind(spaces)
 
     # ------------------------------------------------------------------------------------
     # Stepping

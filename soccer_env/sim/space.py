@@ -36,12 +36,15 @@ class SpaceBodies:
     # ------------------------------------------------------------------------------------
 
     def _populate(self, space: pymunk.Space, static: pymunk.Body,
-                  origin: tuple[float, float]) -> None:
+                  origin: tuple[float, float], shared: bool = False) -> None:
         """Build this world's arena, ball and robots in ``space``: the arena on ``static``
         (the space's static body, or a static body of this world's own at ``origin`` when
         several worlds share the space), every position offset by ``origin``. The collision
-        handlers are the space owner's to register."""
+        handlers are the space owner's to register. ``shared``: the space belongs to a
+        :class:`~soccer_env.sim.batch.WorldBatch`, which copies it (see
+        :meth:`__getstate__`)."""
         self.space = space
+        self.shares_space = bool(shared)
         self.origin = (float(origin[0]), float(origin[1]))
         self._shifted = self.origin != (0.0, 0.0)
         self._static = static
@@ -170,12 +173,20 @@ class SpaceBodies:
         perturbs its trajectory in the last bits (a world that is never copied is not
         affected), and from then on the original and every copy taken at that moment step
         identically under the same commands.
+
+        A world in a space shared with other worlds (``shares_space``) leaves the rebuild to
+        the :class:`~soccer_env.sim.batch.WorldBatch` that owns the space: rebuilding it here
+        would copy the other worlds of the space (and, through the collision handlers, the
+        batch) once per world, and leave the batch's handles on the old space. Such a world
+        is copied with its batch, not on its own.
         """
-        if self.space is not None:
+        if self.space is not None and not self.shares_space:
             self._rebuild_space()
         return self._plain_state()
 
     def _plain_state(self) -> dict:
+        """The attributes that :mod:`pickle` and :mod:`copy` carry: all but the raw Chipmunk
+        handles, which :meth:`_bind_handles` takes again from the space."""
         return {k: v for k, v in self.__dict__.items() if k not in _HANDLE_ATTRIBUTES}
 
     def __setstate__(self, state: dict) -> None:

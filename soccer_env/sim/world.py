@@ -179,6 +179,9 @@ class World(KickerDribbler, HumanoidBodies, BallPhysics, SpaceBodies, Placement)
         self._buffer = pbatch.Buffer()
         self._state = np.zeros((1 + self.n_robots, 6))
         self.space: pymunk.Space | None = None
+        #: Whether :attr:`space` is shared with other worlds: a
+        #: :class:`~soccer_env.sim.batch.WorldBatch`'s, which copies it with its worlds.
+        self.shares_space = False
         #: Where the field's centre lies in the space [m] (non-zero when several worlds
         #: share one space, each on its own patch).
         self.origin = (0.0, 0.0)

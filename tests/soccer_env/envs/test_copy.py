@@ -1,7 +1,9 @@
 """Copyable environments: ``copy.deepcopy``, ``pickle`` and ``cloudpickle`` of every
 environment at any point of an episode give an environment whose future under the same
 actions is the original's, bit for bit (physics with its cached contacts, referee, sensors'
-queues, filters, random generators, renderer).
+queues, filters, random generators, renderer). The batched environments too (the Goalkeeper's
+and the Shootout's vector environments, the batched match): before their first reset, right
+after it, and mid-episode after autoresets.
 
 The property: step ``k`` times, copy, step both ``n`` more times with the same actions
 (through episode ends and seeded resets), and compare everything each step returns, the
@@ -26,6 +28,7 @@ from hypothesis import strategies as st
 
 import soccer_env  # noqa: F401  (registers the environments)
 from soccer_env.envs.aec import env as aec_env
+from soccer_env.envs.batched_match import MatchBatch, MatchStep
 from soccer_env.envs.match import parallel_env
 
 cloudpickle = pytest.importorskip("cloudpickle")
@@ -48,7 +51,11 @@ def assert_same(a: Any, b: Any, where: str = "") -> None:
         for i, (x, y) in enumerate(zip(a, b)):
             assert_same(x, y, f"{where}[{i}]")
     elif isinstance(a, np.ndarray):
-        assert a.dtype == b.dtype and np.array_equal(a, b, equal_nan=True), where
+        assert a.dtype == b.dtype and a.shape == b.shape, (where, a, b)
+        if a.dtype == object:  # (the batched environments' outcomes, final observations)
+            assert_same(a.tolist(), b.tolist(), where)
+        else:
+            np.testing.assert_array_equal(a, b, err_msg=where)
     elif isinstance(a, float) and a != a:
         assert b != b, where
     else:
@@ -283,3 +290,90 @@ def test_copying_changes_the_original_only_in_the_last_bits():
         if t == 30:
             copy.deepcopy(copied)
     np.testing.assert_allclose(_truth(copied)[2], _truth(plain)[2], atol=1e-6)
+
+
+# ----------------------------------------------------------------------------------------
+# Batched environments
+# ----------------------------------------------------------------------------------------
+
+#: The batched single-agent tasks; the Shootout's time limit is short so that its episodes
+#: (which random actions rarely end otherwise) end and autoreset within the test.
+VECTOR_CASES: dict[str, tuple[str, dict[str, Any]]] = {
+    "goalkeeper-truth": ("soccer_env/Goalkeeper-v0", {}),
+    "goalkeeper-perceived": ("soccer_env/Goalkeeper-v0", {"obs_mode": "perceived"}),
+    "shootout-truth": ("soccer_env/Shootout-v0", {"max_episode_steps": 40}),
+    "shootout-perceived": ("soccer_env/Shootout-v0",
+                           {"obs_mode": "perceived", "max_episode_steps": 40}),
+}
+#: When the copy is taken: before the first reset (then both reset with the same seed),
+#: right after it, or mid-episode, after an autoreset and at a step that ended an episode
+#: (its environment resets at the next step while the others play on).
+WHEN = ("before-reset", "after-reset", "mid-episode")
+
+
+def _copy_batched(env: Any, when: str, copier: str, seed: int,
+                  step: Callable[[Any], Any], ended: Callable[[Any], bool]) -> Any:
+    """Bring ``env`` to the moment ``when`` (stepping with ``step(env)``, which returns what
+    ``env.step`` returns, and ``ended`` of it) and return its copy, reset as ``env`` where
+    the copy is taken before the first reset."""
+    if when == "before-reset":
+        twin = COPIERS[copier](env)
+        assert_same(env.reset(seed=seed), twin.reset(seed=seed), "reset")
+        return twin
+    env.reset(seed=seed)
+    if when == "mid-episode":
+        ends = 0
+        for _ in range(400):
+            ends += ended(step(env))
+            if ends >= 2:  # the first one's environment has autoreset since
+                break
+        assert ends >= 2, "no episode ended"
+    return COPIERS[copier](env)
+
+
+@pytest.mark.parametrize("when", WHEN)
+@pytest.mark.parametrize("copier", sorted(COPIERS))
+@pytest.mark.parametrize("case", sorted(VECTOR_CASES))
+def test_batched_copy_has_the_same_future(case, copier, when):
+    """The batched Goalkeeper and Shootout (``gymnasium.make_vec``, Gymnasium's
+    ``NEXT_STEP`` autoreset): every step's observations, rewards, terminations, truncations
+    and infos, the physics' state, and at the end the whole state of both."""
+    env_id, kwargs = VECTOR_CASES[case]
+    env = gym.make_vec(env_id, num_envs=3, vectorization_mode="vector_entry_point", **kwargs)
+    rng = np.random.default_rng(7)
+
+    def act() -> np.ndarray:
+        return rng.uniform(-1.0, 1.0, env.action_space.shape).astype(np.float32)
+
+    twin = _copy_batched(env, when, copier, 9, lambda e: e.step(act()),
+                         lambda out: bool(np.any(out[2] | out[3])))
+    ends = 0
+    for t in range(200):
+        a = act()
+        out, out_twin = env.step(a), twin.step(a)
+        assert_same(out, out_twin, f"step {t}")
+        assert_same(env.batch.state, twin.batch.state, f"truth {t}")
+        ends += int(np.any(out[2] | out[3]))
+    assert ends > 0  # the copies' futures went through episode ends and autoresets
+    assert_same_state(env, twin)
+
+
+@pytest.mark.parametrize("when", WHEN)
+@pytest.mark.parametrize("copier", sorted(COPIERS))
+@pytest.mark.parametrize("obs_mode", ["truth", "perceived"])
+def test_batched_match_copy_has_the_same_future(obs_mode, copier, when):
+    """The batched match (2 vs 2, short matches so that they end and start over)."""
+    batch = MatchBatch(3, blue=2, yellow=2, obs_mode=obs_mode, max_cycles=60)
+    rng = np.random.default_rng(3)
+    shape = (3, batch.n_robots, 6)
+
+    def fields(out: MatchStep) -> dict[str, Any]:
+        return {name: getattr(out, name) for name in MatchStep.__slots__}
+
+    twin = _copy_batched(batch, when, copier, 4, lambda b: b.step(rng.uniform(-1, 1, shape)),
+                         lambda out: bool(np.any(out.terminated | out.truncated)))
+    for t in range(150):
+        a = rng.uniform(-1.0, 1.0, shape)
+        assert_same(fields(batch.step(a)), fields(twin.step(a)), f"step {t}")
+        assert_same(batch.batch.state, twin.batch.state, f"truth {t}")
+    assert_same_state(batch, twin)

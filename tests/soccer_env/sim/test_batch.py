@@ -4,6 +4,9 @@ time."""
 
 from __future__ import annotations
 
+import copy
+import pickle
+
 import numpy as np
 import pytest
 
@@ -181,3 +184,32 @@ def test_humanoids_step_in_the_batch_as_in_worlds_apart(robots):
         assert falls > 0 and lying > 0  # robots fell, lay and got up
     else:
         assert kicks > 0
+
+
+@pytest.mark.parametrize("copier", ["deepcopy", "pickle"])
+def test_a_copied_batch_steps_as_the_original(copier):
+    """A batch of five worlds in three spaces (shard size 2), copied mid-run (kicks, chips,
+    dribbling, robots pushing each other): original and copy step identically, bit for bit,
+    through a world's restart; the copy's worlds are views of its own state, its spaces its
+    own, its collision handlers bound to it."""
+    n, robots = 5, 3
+    batch, _ = _pair(n, 2, 1, shard_size=2)
+    commands = _commands(np.random.default_rng(2), 300, n, robots)
+    for c in commands[:100]:
+        batch.step(c)
+    twin = copy.deepcopy(batch) if copier == "deepcopy" else pickle.loads(pickle.dumps(batch))
+    assert len(twin.spaces) == 3 and not set(map(id, twin.spaces)) & set(map(id, batch.spaces))
+    for k, w in enumerate(twin.worlds):
+        assert np.shares_memory(w.robot_array(), twin.state[k])
+        assert w.space is twin.spaces[k // 2]
+    for t, c in enumerate(commands[100:]):
+        if t == 50:
+            for b in (batch, twin):
+                b.restart(3, np.array([[0.5, 0.5, 0.0], [-0.5, 0.5, 0.0], [1.0, -1.0, np.pi]]),
+                          (0.0, 0.2))
+        batch.step(c)
+        twin.step(c)
+        np.testing.assert_array_equal(twin.state, batch.state, err_msg=f"step {t}")
+        np.testing.assert_array_equal(twin.touched(), batch.touched(), err_msg=f"step {t}")
+        np.testing.assert_array_equal(twin.times, batch.times)
+        assert [k for k, _ in twin.exits()] == [k for k, _ in batch.exits()], t
