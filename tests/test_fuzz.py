@@ -7,11 +7,14 @@ never NaN, never a hang (each example is bounded by hypothesis' deadline)."""
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, event, given, settings
+from fuzzing import ANYTHING, FAST, NUMBERS
+from fuzzing import accepted as _accepted
+from fuzzing import finite as _finite
+from fuzzing import named as _named
+from hypothesis import given
 from hypothesis import strategies as st
 
 import soccer_env
@@ -27,47 +30,6 @@ from estimators import (
 from soccer_env.envs.goalkeeper import GoalkeeperEnv
 from soccer_env.envs.shootout import ShootoutEnv
 from soccer_env.validation import keyword_names
-
-NUMBERS = st.one_of(st.integers(-10**12, 10**12),
-                    st.floats(allow_nan=True, allow_infinity=True))
-#: Anything a caller might pass by mistake.
-ANYTHING = st.one_of(
-    st.none(), st.booleans(), NUMBERS, st.text(max_size=6),
-    st.lists(NUMBERS, max_size=4).map(tuple), st.lists(NUMBERS, max_size=7),
-    st.dictionaries(st.text(max_size=8), NUMBERS, max_size=2))
-FAST = settings(max_examples=120, deadline=5000,
-                suppress_health_check=[HealthCheck.too_slow,
-                                       HealthCheck.function_scoped_fixture])
-
-
-def _finite(value: Any) -> bool:
-    """Whether every number in ``value`` (arrays, dicts and sequences searched) is finite."""
-    if value is None or isinstance(value, (str, bool)):
-        return True
-    if isinstance(value, dict):
-        return all(_finite(v) for v in value.values())
-    if isinstance(value, (list, tuple)):
-        return all(_finite(v) for v in value)
-    if isinstance(value, (int, float, np.number, np.ndarray)):
-        arr = np.asarray(value)
-        return not np.issubdtype(arr.dtype, np.number) or bool(np.all(np.isfinite(arr)))
-    return True
-
-
-def _named(err: Exception, *names: str) -> bool:
-    """Whether the message of ``err`` names one of ``names`` (and count the refusal in
-    hypothesis' statistics: ``pytest tests/test_fuzz.py --hypothesis-show-statistics``)."""
-    text = str(err)
-    named = any(n in text for n in names)
-    event("refused, naming the argument" if named else "refused, NOT naming the argument")
-    return named
-
-
-def _accepted(ok: bool) -> bool:
-    """Count an accepted input in hypothesis' statistics; ``ok``: its results are finite."""
-    event("accepted, finite results" if ok else "accepted, NON-FINITE results")
-    return ok
-
 
 # -- environments ----------------------------------------------------------------------------
 

@@ -14,7 +14,21 @@ from contextlib import contextmanager
 from typing import Any
 
 __all__ = ["process_context", "ignore_interrupts", "process_pool", "resolve_workers",
-           "map_jobs", "stripes", "unstripe"]
+           "map_jobs", "stripes", "unstripe", "REPLY_TIMEOUT", "START_TIMEOUT"]
+
+#: How long a rollout worker of :mod:`agents.vec` may take to answer a request before it
+#: counts as no longer answering (seconds): the default of ``reply_timeout`` and of the
+#: training configuration's ``worker_timeout``. A healthy step of a worker's block takes
+#: milliseconds (at most 0.02 s over 200 steps of 32 six-a-side matches per worker on a
+#: 2-core machine); one that compiles a numba kernel for the first time takes seconds.
+REPLY_TIMEOUT = 60.0
+#: The allowance of a rollout worker's replies until it has answered its first step
+#: (seconds), when it is longer than the reply timeout: building the environments, importing
+#: their libraries and, where numba's disk cache is empty, compiling their kernels. On a
+#: 2-core machine with an empty cache the first reset of perceived Goalkeeper environments
+#: took 11 s with 2 workers and 19 s with 4, the first step of six-a-side matches 9 s and
+#: 15 s: it grows with the workers per core.
+START_TIMEOUT = 300.0
 
 
 def process_context(start_method: str | None = None) -> Any:

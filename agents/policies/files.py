@@ -116,9 +116,15 @@ def read_bounded(fh: IO[bytes], limit: int, name: str) -> bytes:
 
 def read_member(archive: zipfile.ZipFile, member: str, limit: int, path: Path) -> bytes:
     """Member ``member`` of ``archive`` (opened by :func:`open_archive` from ``path``), read
-    by :func:`read_bounded` up to ``limit`` bytes; ``KeyError`` if there is none."""
-    with archive.open(member) as fh:
-        return read_bounded(fh, limit, f"{path}: member {member!r}")
+    by :func:`read_bounded` up to ``limit`` bytes; ``KeyError`` if there is none, and
+    :class:`UnsafeFileError` for one whose content is not what its header declares (its
+    size or checksum: a crafted or damaged archive)."""
+    try:
+        with archive.open(member) as fh:
+            return read_bounded(fh, limit, f"{path}: member {member!r}")
+    except zipfile.BadZipFile as err:
+        raise UnsafeFileError(f"{path}: member {member!r} is not what its header declares "
+                              f"({err}): a crafted or damaged archive") from None
 
 
 def _refuse_constant(name: str) -> Any:

@@ -40,6 +40,7 @@ import math
 import os
 import platform
 import secrets
+import shlex
 import shutil
 import socket
 import time
@@ -58,6 +59,7 @@ from agents.runs.folders import (
     occupied_run_files,
     run_folder,
 )
+from agents.runs.limits import resume_options
 from agents.runs.rllib import (
     ENV_IDS,
     POLICY_MAPPINGS,
@@ -420,7 +422,8 @@ def _versions() -> dict[str, str]:
 
 def _resume_command(cfg: RllibTrainConfig, checkpoint: Path, steps: int) -> str:
     more = max(cfg.total_steps - steps, steps, 1)
-    return (f"soccer-env train --backend rllib --resume {checkpoint} --steps {steps + more}")
+    return shlex.join(["soccer-env", "train", "--backend", "rllib", "--resume", str(checkpoint),
+                       "--steps", str(steps + more), *resume_options(cfg.to_dict())])
 
 
 def train(cfg: RllibTrainConfig, resume: str | os.PathLike | None = None,

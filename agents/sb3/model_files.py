@@ -22,6 +22,8 @@ from __future__ import annotations
 import io
 import math
 import os
+import pickle
+import re
 import zipfile
 from pathlib import Path
 from typing import Any
@@ -183,7 +185,40 @@ def load_sb3_safely(path: str | os.PathLike, algorithm: str, observation_space: 
     if policy_class is None:
         policy_class = algo.policy_aliases["MlpLstmPolicy" if algorithm == "RECURRENTPPO"
                                            else "MlpPolicy"]
+    serialized = [k for k, v in data.items() if isinstance(v, dict) and ":serialized:" in v]
+    replacements = _replacements(path, serialized, params, observation_space, action_space,
+                                 policy_class)
+    custom = {k: v for k, v in replacements.items() if k in serialized}
+    kwargs_built = custom.get("policy_kwargs", data.get("policy_kwargs"))
+    if isinstance(kwargs_built, dict):
+        size = network_parameters(kwargs_built, _size(observation_space),
+                                  _size(action_space), path)
+        if size > MAX_NETWORK_PARAMETERS:
+            raise UnsafeFileError(
+                f"{path}: its networks would have about {size:,} parameters, more than the "
+                f"{MAX_NETWORK_PARAMETERS:,} built from a file without --trust (trust=True)")
+    try:
+        return algo.load(path, device=kwargs.pop("device", "cpu"), custom_objects=custom,
+                         **kwargs)
+    except pickle.UnpicklingError as err:
+        # torch.load(weights_only=True) refused a global: name it, not torch's advice to
+        # load the file unsafely.
+        found = re.search(r"Unsupported global: GLOBAL (\S+)", str(err))
+        what = f"the global {found.group(1)}" if found else "objects other than tensors"
+        raise UnsafeFileError(f"{path}: a weight entry (.pth) is a pickle that names {what}, "
+                              f"not weights only; {TRUST_HELP}") from None
+    except (RuntimeError, KeyError, TypeError, AssertionError, ValueError) as err:
+        policy_name = getattr(policy_class, "__name__", policy_class)
+        raise ValueError(f"{path} could not be loaded as a {algorithm} model acting on "
+                         f"{observation_space} with {policy_name} ({type(err).__name__}: "
+                         f"{err})") from None
 
+
+def _replacements(path: Path, serialized: list[str], params: dict[str, Any],
+                  observation_space: Any, action_space: Any, policy_class: Any
+                  ) -> dict[str, Any]:
+    """What replaces each serialized entry of a model file (see :func:`load_sb3_safely`);
+    :class:`UnsafeFileError` for an entry only unpickling could read."""
     def constant(name: str, default: Any) -> Any:
         value = params.get(name, default)
         if not isinstance(value, (int, float)) or isinstance(value, bool):
@@ -197,7 +232,6 @@ def load_sb3_safely(path: str | os.PathLike, algorithm: str, observation_space: 
         "rollout_buffer_class": None, "replay_buffer_class": None,
         "action_noise": None,
         **{name: None for name in _RUNTIME_STATE}}
-    serialized = [k for k, v in data.items() if isinstance(v, dict) and ":serialized:" in v]
     for name in serialized:
         if name in replacements:
             continue
@@ -217,23 +251,7 @@ def load_sb3_safely(path: str | os.PathLike, algorithm: str, observation_space: 
         else:
             raise UnsafeFileError(f"{path}: the entry {name!r} can only be read by unpickling "
                                   f"it; {TRUST_HELP}")
-    custom = {k: v for k, v in replacements.items() if k in serialized}
-    kwargs_built = custom.get("policy_kwargs", data.get("policy_kwargs"))
-    if isinstance(kwargs_built, dict):
-        size = network_parameters(kwargs_built, _size(observation_space),
-                                  _size(action_space), path)
-        if size > MAX_NETWORK_PARAMETERS:
-            raise UnsafeFileError(
-                f"{path}: its networks would have about {size:,} parameters, more than the "
-                f"{MAX_NETWORK_PARAMETERS:,} built from a file without --trust (trust=True)")
-    try:
-        return algo.load(path, device=kwargs.pop("device", "cpu"), custom_objects=custom,
-                         **kwargs)
-    except (RuntimeError, KeyError, TypeError, AssertionError, ValueError) as err:
-        policy_name = getattr(policy_class, "__name__", policy_class)
-        raise ValueError(f"{path} could not be loaded as a {algorithm} model acting on "
-                         f"{observation_space} with {policy_name} ({type(err).__name__}: "
-                         f"{err})") from None
+    return replacements
 
 
 def _size(space: Any) -> int:

@@ -13,6 +13,7 @@ trusted). Importing this module imports neither stable-baselines3 nor torch.
 from __future__ import annotations
 
 import json
+import math
 import os
 import pickle
 from dataclasses import dataclass
@@ -122,9 +123,22 @@ def read_vecnormalize(path: str | os.PathLike) -> NormalizationStats:
                 raise ValueError(f"format {header.get('format')!r}")
 
             def rms(prefix: str, entry: dict[str, float]) -> _RunningStats:
-                return _RunningStats(np.array(data[f"{prefix}mean"]),
-                                     np.array(data[f"{prefix}var"]), float(entry["count"]))
+                mean = np.array(data[f"{prefix}mean"], dtype=np.float64)
+                var = np.array(data[f"{prefix}var"], dtype=np.float64)
+                count = float(entry["count"])
+                if not (np.isfinite(mean).all() and np.isfinite(var).all()
+                        and (var >= 0.0).all() and math.isfinite(count) and count > 0.0):
+                    raise ValueError(f"the statistics {prefix}mean, {prefix}var and count are "
+                                     "not finite (NaN or infinite), or a variance or the "
+                                     "count is not positive")
+                return _RunningStats(mean, var, count)
 
+            for name in ("clip_obs", "clip_reward", "epsilon"):
+                value = float(header[name])
+                if not (math.isfinite(value) and value > 0.0):
+                    raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+            if not 0.0 <= float(header["gamma"]) <= 1.0:
+                raise ValueError(f"gamma must be in [0, 1], got {header['gamma']!r}")
             obs: Any = None
             if header["norm_obs"]:
                 obs = ({k: rms(f"obs_{k}_", e) for k, e in header["obs"].items()}

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 from stable_baselines3.common.vec_env import VecEnv
 
+from agents.common.processes import REPLY_TIMEOUT
 from agents.policies.wrappers import wrap_learner
 from agents.vec.batched import BatchedMatchVecEnv
 from agents.vec.match import MatchVecEnv
@@ -22,14 +23,14 @@ __all__ = ["make_match_vec_env", "goalkeeper_env_fn"]
 
 def make_match_vec_env(env_kwargs: Mapping[str, Any] | None = None, n_matches: int = 1,
                        learner: str = "blue", opponent: Any = None, seed: int | None = None,
-                       workers: int = 0, pin: bool | None = None, batched: bool = False
-                       ) -> VecEnv:
+                       workers: int = 0, pin: bool | None = None, batched: bool = False,
+                       reply_timeout: float = REPLY_TIMEOUT) -> VecEnv:
     """A :class:`~agents.vec.match.MatchVecEnv` (``workers=0``: every match in this process) or
     a :class:`~agents.vec.match_workers.MatchWorkerVecEnv` (its matches split over ``workers``
-    processes; ``pin`` as that class takes it), seeded so that its first ``reset()`` is
-    reproducible (match ``k`` gets ``seed + k``, whatever the number of workers). With
-    ``batched``, the matches of each process are stepped as one batch
-    (:class:`~agents.vec.batched.BatchedMatchVecEnv`)."""
+    processes; ``pin`` and ``reply_timeout``, the seconds a worker may take to answer, as that
+    class takes them), seeded so that its first ``reset()`` is reproducible (match ``k`` gets
+    ``seed + k``, whatever the number of workers). With ``batched``, the matches of each
+    process are stepped as one batch (:class:`~agents.vec.batched.BatchedMatchVecEnv`)."""
     if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 0:
         raise ValueError(f"workers must be an integer >= 0, got {workers!r}")
     if not isinstance(batched, (bool, np.bool_)):
@@ -37,7 +38,7 @@ def make_match_vec_env(env_kwargs: Mapping[str, Any] | None = None, n_matches: i
     if workers:
         venv: VecEnv = MatchWorkerVecEnv(env_kwargs, n_matches=n_matches, learner=learner,
                                          opponent=opponent, workers=int(workers), pin=pin,
-                                         batched=bool(batched))
+                                         batched=bool(batched), reply_timeout=reply_timeout)
         if seed is not None:
             venv.seed(seed)
         return venv

@@ -23,9 +23,10 @@ to agree on every event and end over a few hundred steps); a run is reproducible
 with the same number of workers.
 
 Failures are those of :class:`~agents.vec.workers.WorkerVecEnv` (whose process handling this
-class shares): a worker whose match raises, or that dies, raises
-:class:`~agents.vec.workers.WorkerError` naming it and its batch entries, after stopping the
-others; workers ignore Ctrl-C.
+class shares): a worker whose match raises, that dies, or that gives no reply within
+``reply_timeout`` seconds (stopped, deadlocked, in an endless loop) raises
+:class:`~agents.vec.workers.WorkerError` naming it and its batch entries, after stopping every
+worker; workers ignore Ctrl-C.
 """
 
 from __future__ import annotations
@@ -43,7 +44,8 @@ from stable_baselines3.common.vec_env.base_vec_env import (
 )
 
 import soccer_env
-from agents.common.processes import process_context
+from agents.common.checks import positive_seconds
+from agents.common.processes import REPLY_TIMEOUT, process_context
 from agents.sb3.algorithms import is_sb3_model
 from agents.sb3.policies import SB3Policy, numpy_copy
 from agents.vec.batched import BatchedMatchVecEnv
@@ -163,6 +165,11 @@ class MatchWorkerVecEnv(WorkerVecEnv):
         batched: each worker steps its block of matches as one batch
             (:class:`~agents.vec.batched.BatchedMatchVecEnv`, for the matches it runs) instead of
             one after the other.
+        reply_timeout: seconds a worker may take to answer a request (finite, > 0; default
+            :data:`~agents.vec.workers.REPLY_TIMEOUT`, 60 s), as
+            :class:`~agents.vec.workers.WorkerVecEnv` takes it: until its first step's reply
+            (building its matches, the first reset and step) a worker gets
+            :data:`~agents.vec.workers.START_TIMEOUT` if that is longer.
 
     The batch layout, spaces, infos and methods are :class:`MatchVecEnv`'s:
     ``set_opponent``, ``set_opponent_pool``, ``opponents``, ``opponent_pool`` act on every
@@ -173,10 +180,11 @@ class MatchWorkerVecEnv(WorkerVecEnv):
     def __init__(self, env_kwargs: Mapping[str, Any] | None = None, n_matches: int = 2,
                  learner: str = "blue", opponent: Any = None, workers: int = 2,
                  start_method: str | None = None, pin: bool | None = None,
-                 batched: bool = False) -> None:
+                 batched: bool = False, reply_timeout: float = REPLY_TIMEOUT) -> None:
         if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or (
                 workers < 1):
             raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
+        reply_timeout = positive_seconds(reply_timeout, "reply_timeout")
         # A probe in this process checks every argument (and gives the spaces) before any
         # worker starts, so that bad input fails here with the constructor's own message.
         if batched:
@@ -233,6 +241,7 @@ class MatchWorkerVecEnv(WorkerVecEnv):
                                         self._buffer, self._layout, rows, cpu)
             self.remotes.append(remote)
             self.processes.append(proc)
+        self._watch(reply_timeout)
         for w in range(workers):
             self._recv(w)  # each worker has built its matches
         self.num_envs = n

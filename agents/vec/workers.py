@@ -17,17 +17,29 @@ large infos dominate. :class:`WorkerVecEnv` instead
   before ``reset()``, ``get_attr``, ``set_attr``, ``env_method``, ``env_is_wrapped``,
   ``get_images``;
 * fails fast: a worker whose environment raises sends the traceback and stops, a worker that
-  dies (killed, out of memory) is noticed within :data:`POLL_SECONDS`, and either way the call
-  raises :class:`WorkerError` naming the worker, its environments and the traceback or the
-  signal, after stopping the other workers (stable-baselines3's ``SubprocVecEnv`` waits
-  forever on a dead worker's pipe). Workers ignore Ctrl-C (``SIGINT``): the parent handles the
-  interrupt and closes them, so that an interrupt to the process group prints one traceback,
-  not one per process.
+  dies (killed, out of memory) is noticed within :data:`POLL_SECONDS`, a worker that lives on
+  but gives no reply within ``reply_timeout`` seconds (stopped by ``SIGSTOP``, deadlocked, in
+  an endless loop) is ended, and either way the call raises :class:`WorkerError` naming the
+  worker, its environments and the traceback, the signal or the silence, after stopping every
+  worker (stable-baselines3's ``SubprocVecEnv`` waits forever on a dead worker's pipe).
+  Workers ignore Ctrl-C (``SIGINT``): the parent handles the interrupt and closes them, so that
+  an interrupt to the process group prints one traceback, not one per process.
+
+The reply timeout (default :data:`REPLY_TIMEOUT`, 60 s) counts from the moment the parent
+starts waiting for that worker, in polls of :data:`POLL_SECONDS`: a poll that returns late
+(the parent itself was stopped, Ctrl-Z, or waited for a core) counts as one poll. Until a
+worker has answered its first step, its replies (building the environments, the first reset,
+the first step: imports and numba's compilation fall there) get :data:`START_TIMEOUT`
+(300 s) instead, or the reply timeout if that is longer. A worker that stops answering is
+ended with ``SIGTERM`` and ``SIGCONT`` (a stopped process that handles ``SIGTERM`` acts on it
+only once continued), then ``SIGKILL`` after :data:`KILL_SECONDS`.
 """
 
 from __future__ import annotations
 
+import os
 import signal
+import time
 import traceback
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -42,15 +54,26 @@ from stable_baselines3.common.vec_env.base_vec_env import (
     VecEnvStepReturn,
 )
 
-from agents.common.processes import ignore_interrupts, process_context
+from agents.common.checks import positive_seconds
+from agents.common.processes import (
+    REPLY_TIMEOUT,
+    START_TIMEOUT,
+    ignore_interrupts,
+    process_context,
+)
 
 __all__ = ["WorkerVecEnv", "WorkerError", "DEFAULT_INFO_KEYS", "POLL_SECONDS",
-           "CLOSE_SECONDS", "REPLY_OK", "REPLY_ERROR", "worker_frame", "start_worker"]
+           "CLOSE_SECONDS", "KILL_SECONDS", "REPLY_TIMEOUT", "START_TIMEOUT", "REPLY_OK",
+           "REPLY_ERROR", "worker_frame", "start_worker"]
 
 #: How often a waiting parent checks that the worker it waits on is still alive (seconds).
 POLL_SECONDS = 0.5
-#: How long ``close()`` waits for a worker to finish before terminating it (seconds).
+#: How long ``close()`` waits for the workers to finish before terminating them (seconds,
+#: all of them together).
 CLOSE_SECONDS = 5.0
+#: How long the workers get to end after ``SIGTERM`` before they are killed (seconds, all of
+#: them together).
+KILL_SECONDS = 1.0
 
 #: The tags of a worker's replies: ``(REPLY_OK, result)`` or ``(REPLY_ERROR, (local
 #: environment index or None, traceback))`` (:func:`worker_frame`).
@@ -58,28 +81,42 @@ REPLY_OK, REPLY_ERROR = "ok", "error"
 
 
 class WorkerError(RuntimeError):
-    """A rollout worker of :class:`WorkerVecEnv` died or its environment raised.
+    """A rollout worker of :class:`WorkerVecEnv` died, stopped answering (no reply within
+    the reply timeout) or its environment raised.
 
     Attributes:
         worker: the worker's index.
         environments: the global indices of the environments it stepped.
         exitcode: the process's exit code (negative: the signal that killed it), None while
-            it ran on.
+            it ran on (as a worker that stopped answering did until it was ended).
         remote_traceback: the environment's traceback, when one raised.
+        timeout: the seconds it was given to reply, when it stopped answering (else None).
     """
 
     def __init__(self, message: str, worker: int, environments: range,
-                 exitcode: int | None = None, remote_traceback: str | None = None) -> None:
+                 exitcode: int | None = None, remote_traceback: str | None = None,
+                 timeout: float | None = None) -> None:
         super().__init__(message)
         self.worker = worker
         self.environments = environments
         self.exitcode = exitcode
         self.remote_traceback = remote_traceback
+        self.timeout = timeout
 
 #: Info keys passed from the workers: Monitor's episode statistics, SB3's reset bookkeeping,
 #: and the Goalkeeper's episode result (``is_success`` feeds SB3's success-rate log).
 DEFAULT_INFO_KEYS = ("episode", "terminal_observation", "TimeLimit.truncated", "is_success",
                      "outcome")
+
+
+def _continue(proc: Any) -> None:
+    """Send ``SIGCONT`` to ``proc`` where the platform has it (a stopped process that handles
+    ``SIGTERM`` acts on it only once continued); a process that has gone is ignored."""
+    if hasattr(signal, "SIGCONT") and proc.pid is not None:
+        try:
+            os.kill(proc.pid, signal.SIGCONT)
+        except ProcessLookupError:
+            pass
 
 
 def _stack(observations: list) -> Any:
@@ -237,16 +274,22 @@ class WorkerVecEnv(VecEnv):
         info_keys: info keys to forward (None: all of them, as ``SubprocVecEnv`` does).
         start_method: multiprocessing start method (default ``"forkserver"`` where available,
             as stable-baselines3 does, else ``"spawn"``).
+        reply_timeout: seconds a worker may take to answer a request (finite, > 0; default
+            :data:`REPLY_TIMEOUT`); one that lives on without answering is ended and the call
+            raises :class:`WorkerError`. Until its first step's reply a worker gets
+            :data:`START_TIMEOUT` if that is longer.
     """
 
     def __init__(self, env_fns: Sequence[Callable[[], gym.Env]], n_workers: int = 2,
                  info_keys: Sequence[str] | None = DEFAULT_INFO_KEYS,
-                 start_method: str | None = None) -> None:
+                 start_method: str | None = None,
+                 reply_timeout: float = REPLY_TIMEOUT) -> None:
         n = len(env_fns)
         if n < 1:
             raise ValueError("env_fns must hold at least one environment constructor")
         if not isinstance(n_workers, int) or n_workers < 1:
             raise ValueError(f"n_workers must be an integer >= 1, got {n_workers!r}")
+        reply_timeout = positive_seconds(reply_timeout, "reply_timeout")
         n_workers = min(n_workers, n)
         ctx = process_context(start_method)
         bounds = [w * n // n_workers for w in range(n_workers + 1)]
@@ -261,20 +304,28 @@ class WorkerVecEnv(VecEnv):
             self.processes.append(proc)
         self.waiting = False
         self.closed = False
-        self.remotes[0].send(("get_spaces", None))
+        self._watch(reply_timeout)
+        self._send(0, ("get_spaces", None))
         obs_space, act_space, render_mode = self._recv(0)
         super().__init__(n, obs_space, act_space)
         self.render_mode = render_mode
 
-    # -- stepping ---------------------------------------------------------------------------
-
     # -- talking to the workers ---------------------------------------------------------------
+
+    def _watch(self, reply_timeout: float) -> None:
+        """Start watching the workers' replies: each gets ``reply_timeout`` seconds (checked
+        finite and > 0), or :data:`START_TIMEOUT` if longer until it has answered a step."""
+        #: Seconds a worker may take to answer a request.
+        self.reply_timeout = reply_timeout
+        self._asked: list[str | None] = [None] * len(self.processes)
+        self._stepped = [False] * len(self.processes)
 
     def _send(self, w: int, message: tuple) -> None:
         """Send ``message`` to worker ``w``; a worker that has gone raises
         :class:`WorkerError`."""
         if self.closed:
             raise RuntimeError("this WorkerVecEnv is closed")
+        self._asked[w] = message[0]
         try:
             self.remotes[w].send(message)
         except (BrokenPipeError, ConnectionResetError, OSError):
@@ -282,25 +333,42 @@ class WorkerVecEnv(VecEnv):
 
     def _recv(self, w: int) -> Any:
         """Worker ``w``'s reply, checking every :data:`POLL_SECONDS` that it is alive; a
-        worker that died or whose environment raised raises :class:`WorkerError`."""
+        worker that died, whose environment raised, or that gave no reply within its
+        allowance (:attr:`reply_timeout`, or :data:`START_TIMEOUT` before its first step)
+        raises :class:`WorkerError`."""
         remote, proc = self.remotes[w], self.processes[w]
-        while not remote.poll(POLL_SECONDS):
+        allowance = self.reply_timeout if self._stepped[w] else max(self.reply_timeout,
+                                                                    START_TIMEOUT)
+        waited = 0.0
+        while True:
+            wait = min(POLL_SECONDS, allowance - waited)
+            if remote.poll(wait):
+                break
+            # Polls are counted, not the clock: a poll that returns late (this process was
+            # stopped, Ctrl-Z, or waited for a core) counts as on time.
+            waited += wait
             if not proc.is_alive() and not remote.poll(0):
                 self._fail(w, None)
+            if waited >= allowance:
+                self._fail(w, None, allowance)
         try:
             tag, payload = remote.recv()
         except (EOFError, ConnectionResetError, OSError):
             self._fail(w, None)
         if tag == REPLY_ERROR:
             self._fail(w, payload)
+        if self._asked[w] == "step":
+            self._stepped[w] = True
         return payload
 
-    def _fail(self, w: int, error: tuple[int | None, str] | None) -> None:
+    def _fail(self, w: int, error: tuple[int | None, str] | None,
+              silent: float | None = None) -> None:
         """Stop every worker and raise :class:`WorkerError` for worker ``w`` (``error``: the
         local index of the environment that raised, or None, and the traceback; None when
-        the worker died)."""
+        the worker died or, with ``silent`` seconds, gave no reply within them)."""
         proc = self.processes[w]
-        proc.join(timeout=1.0)
+        if silent is None:
+            proc.join(timeout=1.0)
         code = proc.exitcode
         self._terminate()
         blk = self._blocks[w]
@@ -311,6 +379,9 @@ class WorkerVecEnv(VecEnv):
             local, remote_traceback = error
             env = "an environment" if local is None else f"environment {blk.start + local}"
             message = f"{where}: {env} raised\n{remote_traceback.rstrip()}"
+        elif silent is not None:
+            message = (f"{where} stopped answering: no reply within {silent:g} s (it may be "
+                       "stopped (SIGSTOP), deadlocked or in an endless loop); it was ended")
         elif code is not None and code < 0:
             try:
                 name = signal.Signals(-code).name
@@ -319,15 +390,20 @@ class WorkerVecEnv(VecEnv):
             message = f"{where} died: killed by {name}"
         else:
             message = f"{where} died (exit code {code})"
-        raise WorkerError(message, w, blk, code, remote_traceback)
+        raise WorkerError(message, w, blk, code, remote_traceback, silent)
 
     def _terminate(self) -> None:
-        """End every worker now (after a failure): no replies are awaited."""
+        """End every worker now (after a failure): no replies are awaited. ``SIGTERM`` and
+        ``SIGCONT`` (for a stopped worker), then ``SIGKILL`` for any left after
+        :data:`KILL_SECONDS`."""
         for proc in self.processes:
             if proc.is_alive():
                 proc.terminate()
+                _continue(proc)
+        deadline = time.monotonic() + KILL_SECONDS
         for proc in self.processes:
-            proc.join(timeout=1.0)
+            proc.join(timeout=max(0.0, deadline - time.monotonic()))
+        for proc in self.processes:
             if proc.is_alive():
                 proc.kill()
                 proc.join()
@@ -363,20 +439,23 @@ class WorkerVecEnv(VecEnv):
         return _concatenate([r[0] for r in results])
 
     def close(self) -> None:
-        """Close the environments and end the workers: each gets :data:`CLOSE_SECONDS` to
-        finish a pending step and close, then is terminated. Never raises for a worker that
-        has died (the failure was raised where it was noticed)."""
+        """Close the environments and end the workers: together they get
+        :data:`CLOSE_SECONDS` to finish a pending step and close, then any left is ended (a
+        stopped or stuck one too). Never raises for a worker that has died (the failure was
+        raised where it was noticed)."""
         if self.closed:
             return
+        deadline = time.monotonic() + CLOSE_SECONDS
         for remote, proc in zip(self.remotes, self.processes):
             try:
-                if self.waiting and proc.is_alive() and remote.poll(CLOSE_SECONDS):
+                if self.waiting and proc.is_alive() and \
+                        remote.poll(max(0.0, deadline - time.monotonic())):
                     remote.recv()
                 remote.send(("close", None))
             except (EOFError, BrokenPipeError, ConnectionResetError, OSError):
                 pass
         for proc in self.processes:
-            proc.join(timeout=CLOSE_SECONDS)
+            proc.join(timeout=max(0.0, deadline - time.monotonic()))
         self._terminate()
 
     def get_images(self) -> Sequence[np.ndarray | None]:

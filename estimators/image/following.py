@@ -54,8 +54,17 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..checks import MAX_PIXELS, check_reals
 from ..kalman.core import KalmanFilter
-from .checks import check_image, check_int, check_number, check_point, check_window_size
+from .checks import (
+    MIN_SIGMA_PX,
+    check_fits,
+    check_image,
+    check_int,
+    check_number,
+    check_point,
+    check_window_size,
+)
 from .meanshift import MEAN_SHIFT_KERNELS, MeanShiftWindows
 
 __all__ = ["KalmanMeanShift", "PlainMeanShift", "depth_from_size", "focal_length_px",
@@ -122,15 +131,10 @@ def ego_motion_shift(rotation: float, advance: float, image_size: Sequence[int],
     towards the target, ``d = distance`` [m] before the move, ``h = camera_height`` [m] above
     the target's centre; ``d - s`` floored at 1 mm). ``distance`` is needed when
     ``advance != 0``."""
-    theta = float(rotation)
-    s = float(advance)
-    if not (math.isfinite(theta) and math.isfinite(s)):
-        raise ValueError(f"rotation and advance must be finite, got {rotation!r}, {advance!r}")
+    theta = check_number("rotation", rotation, -math.inf)
+    s = check_number("advance", advance, -math.inf)
     xb, yb = check_window_size("image_size", image_size)
-    try:
-        gx, gy = (float(a) for a in fov)
-    except (TypeError, ValueError):
-        raise ValueError(f"fov must be (gamma_x, gamma_y) [rad], got {fov!r}") from None
+    gx, gy = check_reals("fov", fov, 2, what="(gamma_x, gamma_y) [rad]")
     check_number("fov[0] (gamma_x)", gx)
     check_number("fov[1] (gamma_y)", gy)
     dx = theta * xb / gx
@@ -139,9 +143,7 @@ def ego_motion_shift(rotation: float, advance: float, image_size: Sequence[int],
         if distance is None:
             raise ValueError("distance is needed when advance != 0")
         d = check_number("distance", distance)
-        h = float(camera_height)
-        if not math.isfinite(h):
-            raise ValueError(f"camera_height must be finite, got {camera_height!r}")
+        h = check_number("camera_height", camera_height, -math.inf)
         d1 = max(d - s, 1e-3)
         dy = (math.atan2(h, d1) - math.atan2(h, d)) * yb / gy
     return np.array([dx, dy])
@@ -153,7 +155,7 @@ class _MeanShiftTrack:
     def __init__(self, window_size, window_scale: float, max_iter: int, eps: float,
                  kernel: str, min_fill: float) -> None:
         w, h = check_window_size("window_size", window_size)
-        self.window_scale = check_number("window_scale", window_scale)
+        self.window_scale = check_number("window_scale", window_scale, high=MAX_PIXELS)
         self.target_size = (w, h)
         self.window_size = (max(int(round(w * self.window_scale)), 1),
                             max(int(round(h * self.window_scale)), 1))
@@ -163,6 +165,8 @@ class _MeanShiftTrack:
         self.kernel = kernel
         self.min_fill = check_number("min_fill", min_fill, allow_low=True, high=1.0)
         self._win: MeanShiftWindows | None = None
+        #: The weight images' ``(H, W)`` where the tracker knows it (None: any).
+        self._image_shape: tuple[int, int] | None = None
         self.lost = False
         self.lost_frames = 0
         self.fill = 0.0
@@ -171,7 +175,7 @@ class _MeanShiftTrack:
     def _shift_from(self, image, start: np.ndarray) -> tuple[np.ndarray | None, np.ndarray]:
         """Mean shift from the window centred at ``start``; returns the centroid (None if
         the converged window's mean weight is below ``min_fill``) and the flat image."""
-        img = check_image("weight_image", image)
+        img = check_image("weight_image", image, self._image_shape, window=self.window_size)
         if self._win is None or (self._win.height, self._win.width) != img.shape:
             self._win = MeanShiftWindows(*self.window_size, img.shape, self.kernel)
         win = self._win
@@ -283,17 +287,18 @@ class KalmanMeanShift(_MeanShiftTrack):
                              f"replaces the posterior by mean shift's position), got "
                              f"{posterior!r}")
         self.order = order
-        self.region_scale = check_number("region_scale", region_scale)
+        self.region_scale = check_number("region_scale", region_scale, high=MAX_PIXELS)
         self.region_floor = check_number("region_floor", region_floor, allow_low=True, high=1.0)
         tw, th = self.target_size
         self.region_size = (max(int(round(tw * self.region_scale)), 1),
                             max(int(round(th * self.region_scale)), 1))
         self.image_size = check_window_size("image_size", image_size)
+        self._image_shape = (self.image_size[1], self.image_size[0])
+        check_fits("image_size", self.window_size, self._image_shape,
+                   "the window (window_size x window_scale)")
         ego_motion_shift(0.0, 0.0, self.image_size, fov)  # validates fov
         self.fov = (float(fov[0]), float(fov[1]))
-        self.camera_height = float(camera_height)
-        if not math.isfinite(self.camera_height):
-            raise ValueError(f"camera_height must be finite, got {camera_height!r}")
+        self.camera_height = check_number("camera_height", camera_height, -math.inf)
         self.distance = None if distance is None else check_number("distance", distance)
         self.target_height_m = (None if target_height_m is None
                                 else check_number("target_height_m", target_height_m))
@@ -301,15 +306,10 @@ class KalmanMeanShift(_MeanShiftTrack):
         if posterior not in ("replace", "update"):
             raise ValueError(f"posterior must be 'replace' or 'update', got {posterior!r}")
         self.posterior = posterior
-        sa = check_number("accel_sigma", accel_sigma, allow_low=True)
-        sm = check_number("measurement_sigma", measurement_sigma)
-        try:
-            sp, sv = (float(v) for v in init_sigma)
-        except (TypeError, ValueError):
-            raise ValueError(f"init_sigma must be (position, velocity) standard deviations, "
-                             f"got {init_sigma!r}") from None
-        check_number("init_sigma[0]", sp)
-        check_number("init_sigma[1]", sv)
+        sa = check_number("accel_sigma", accel_sigma, allow_low=True, high=MAX_PIXELS)
+        sm = check_number("measurement_sigma", measurement_sigma, high=MAX_PIXELS)
+        sp, sv = check_reals("init_sigma", init_sigma, 2, MIN_SIGMA_PX, MAX_PIXELS,
+                             "(position, velocity) standard deviations [px, px/frame]")
         x = np.concatenate([check_point("position", position), check_point("velocity", velocity)])
         self.kf = KalmanFilter(x, np.diag([sp * sp, sp * sp, sv * sv, sv * sv]))
         self.F = np.array([[1.0, 0, 1, 0], [0, 1, 0, 1], [0, 0, 1, 0], [0, 0, 0, 1]])
@@ -355,13 +355,22 @@ class KalmanMeanShift(_MeanShiftTrack):
     def update(self, weight_image: np.ndarray, rotation: float = 0.0, advance: float = 0.0,
                distance: float | None = None) -> np.ndarray:
         """One frame: :meth:`predict` with the robot's motion, mean shift on ``weight_image``
-        (the hue back-projection, ``(H, W)``) from the prediction, then the measurement
-        update (or, when lost, the prediction alone). Returns ``(x, y, vx, vy)``."""
+        (the hue back-projection, ``(H, W)`` = ``image_size`` reversed) from the prediction,
+        then the measurement update (or, when lost, the prediction alone). Returns
+        ``(x, y, vx, vy)``. A refused image (``ValueError``: another shape, weights that are
+        not finite and non-negative) leaves the tracker as it was."""
+        img = check_image("weight_image", weight_image, self._image_shape,
+                          window=self.window_size)
+        before = (self.kf.x.copy(), self.kf.P.copy(), self.prediction.copy(), self.distance)
         start = self.predict(rotation, advance, distance)
-        if self.order == "paper":
-            z, img = self._paper_order(weight_image, start)
-        else:
-            z, img = self._shift_from(weight_image, start)
+        try:
+            if self.order == "paper":
+                z, img = self._paper_order(img, start)
+            else:
+                z, img = self._shift_from(img, start)
+        except ValueError:
+            self.kf.x, self.kf.P, self.prediction, self.distance = before
+            raise
         self.lost = z is None
         if self.lost:
             # A lost target is taken to stand where it was last predicted: its own velocity
@@ -399,6 +408,11 @@ class KalmanMeanShift(_MeanShiftTrack):
         if x2 <= x1 or y2 <= y1:
             return None, img
         patch = img[y1:y2, x1:x2]
+        mass = float(patch.sum())
+        if not (math.isfinite(mass) and patch.min() >= 0.0):
+            raise ValueError("weight_image must hold finite, non-negative weights "
+                             f"(probabilities, or weights small enough that a region's sum "
+                             f"is finite): the region R sums to {mass!r}")
         patch = np.where(patch >= self.region_floor, patch, 0.0)
         mass = float(patch.sum())
         if mass <= 0.0:

@@ -44,10 +44,11 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..registry import Registry
-from .checks import check_image, check_int, check_number
+from .checks import check_fits, check_image, check_int, check_number
 from .window_kernels import gather_windows, mean_shift_step
 
-__all__ = ["mean_shift", "MEAN_SHIFT_KERNELS", "RegionImage", "MeanShiftWindows"]
+__all__ = ["mean_shift", "MEAN_SHIFT_KERNELS", "RegionImage", "MeanShiftWindows",
+           "check_moments"]
 
 
 def _flat(xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
@@ -153,9 +154,7 @@ class MeanShiftWindows:
                  opencv: bool = False) -> None:
         profile = MEAN_SHIFT_KERNELS[MEAN_SHIFT_KERNELS.check(kernel, "kernel")]
         height, width = shape
-        if w > width or h > height:
-            raise ValueError(f"window size ({w}, {h}) must fit in the image ({width} x "
-                             f"{height})")
+        check_fits("image", (w, h), shape)
         self.w, self.h, self.width, self.height = w, h, width, height
         ys, xs = np.mgrid[0:h, 0:w].astype(np.float64)
         self.cx, self.cy = 0.5 * (w - 1), 0.5 * (h - 1)
@@ -182,12 +181,14 @@ class MeanShiftWindows:
         return flat[(y0 * self.width + x0)[:, None] + self.offsets]
 
     def moments_of(self, flats: Sequence[tuple[np.ndarray, float]], x0: np.ndarray,
-                   y0: np.ndarray) -> np.ndarray:
+                   y0: np.ndarray, name: str = "weight_image") -> np.ndarray:
         """``(N, 4)`` kernel moments ``(m00, m10, m01, mass)`` (local coordinates; ``mass``
-        the plain sum) of the image ``sum_j c_j I_j`` given as ``[(flat I_j, c_j)]``."""
+        the plain sum) of the image ``sum_j c_j I_j`` given as ``[(flat I_j, c_j)]``;
+        ``ValueError`` naming the image ``name`` where they are not finite and non-negative
+        (:func:`check_moments`)."""
         x0 = np.ascontiguousarray(x0, dtype=np.intp)
         y0 = np.ascontiguousarray(y0, dtype=np.intp)
-        return self._moments(flats, x0, y0, np.arange(len(x0)), len(x0))
+        return check_moments(self._moments(flats, x0, y0, np.arange(len(x0)), len(x0)), name)
 
     def _moments(self, flats: Sequence[tuple[np.ndarray, float]], x0: np.ndarray,
                  y0: np.ndarray, active: np.ndarray, count: int) -> np.ndarray:
@@ -212,13 +213,14 @@ class MeanShiftWindows:
         return patch.astype(np.float64, copy=False) @ self.moments
 
     def shift(self, flats: Sequence[tuple[np.ndarray, float]], x0: np.ndarray, y0: np.ndarray,
-              max_iter: int, eps: float
+              max_iter: int, eps: float, name: str = "weight_image"
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Mean shift of every window (see the module docstring): the moments of the
         windows still moving, then
         :func:`~estimators.image.window_kernels.mean_shift_step`, until none moves or
         ``max_iter`` steps. Returns the converged corners, the iteration counts and the
-        moments at the converged windows."""
+        moments at the converged windows; ``ValueError`` naming the image ``name`` where the
+        first moments are not finite and non-negative (:func:`check_moments`)."""
         x0 = np.array(x0, dtype=np.intp)
         y0 = np.array(y0, dtype=np.intp)
         n = len(x0)
@@ -226,14 +228,16 @@ class MeanShiftWindows:
         active = np.arange(n)
         count = n
         origin = (float(self.ox), float(self.oy))
-        for _ in range(max_iter):
+        for step in range(max_iter):
             mom = self._moments(flats, x0, y0, active, count)
+            if step == 0:
+                check_moments(mom, name)
             count = mean_shift_step(mom, x0, y0, active, count, iters, origin,
                                     self.width - self.w, self.height - self.h,
                                     float(eps * eps))
             if count == 0:
                 break
-        return x0, y0, iters, self._moments(flats, x0, y0, np.arange(n), n)
+        return x0, y0, iters, check_moments(self._moments(flats, x0, y0, np.arange(n), n), name)
 
     def centroids(self, mom: np.ndarray, x0: np.ndarray, y0: np.ndarray) -> np.ndarray:
         """Image coordinates of the kernel-weighted centroids ((N, 2)); the window centre
@@ -243,6 +247,21 @@ class MeanShiftWindows:
         cx = np.where(m00 > 1e-12, mom[:, 1] / safe, self.cx)
         cy = np.where(m00 > 1e-12, mom[:, 2] / safe, self.cy)
         return np.stack([x0 + cx, y0 + cy], axis=1)
+
+
+def check_moments(mom: np.ndarray, name: str) -> np.ndarray:
+    """``mom`` (windows' moments, ``(N, 4)``, the last column the plain sum of the weights)
+    unchanged; ``ValueError`` naming the image ``name`` unless every moment is finite and
+    every window's weight non-negative. The trackers check the moments of the windows they
+    read rather than scan whole frames (see :mod:`estimators.image.checks`): NaN, infinite or
+    negative weights, or weights so large (about 1e300) that a window's sums overflow, are
+    caught where they are read, before any state is changed by them."""
+    bad = ~(np.isfinite(mom).all(axis=1) & (mom[:, -1] >= 0.0))
+    if bad.any():
+        raise ValueError(f"{name} must hold finite, non-negative weights (probabilities, or "
+                         "weights small enough that a window's sum is finite): a window "
+                         f"read from it sums to {float(mom[bad][0, -1])!r}")
+    return mom
 
 
 def mean_shift(weight_image: np.ndarray, window: Sequence[int], max_iter: int = 10,
@@ -278,6 +297,7 @@ def mean_shift(weight_image: np.ndarray, window: Sequence[int], max_iter: int = 
     check_int("window h", h)
     max_iter = check_int("max_iter", max_iter)
     eps = check_number("eps", eps, allow_low=True)
+    check_fits("weight_image", (w, h), img.shape, "the window size (window[2:4])")
     win = MeanShiftWindows(w, h, img.shape, kernel, bool(opencv_compatible))
     x0 = np.clip(np.array([x], dtype=np.intp), 0, img.shape[1] - w)
     y0 = np.clip(np.array([y], dtype=np.intp), 0, img.shape[0] - h)

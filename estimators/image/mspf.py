@@ -57,15 +57,24 @@ no mean shift, no feature restriction, no lost-track handling.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..checks import MAX_PARTICLES, check_count
+from ..checks import MAX_PARTICLES, MAX_PIXELS, check_count
 from ..particle.core import systematic_resample
-from .checks import check_image, check_int, check_number, check_point, check_window_size
+from .checks import (
+    check_fits,
+    check_image,
+    check_int,
+    check_number,
+    check_point,
+    check_window_size,
+)
 from .meanshift import MEAN_SHIFT_KERNELS, MeanShiftWindows, RegionImage
 from .window_kernels import window_mass_scores
 
@@ -84,6 +93,35 @@ class EmptyWindowError(ValueError):
 # Li et al. (2010): particle filters on window likelihoods
 # ------------------------------------------------------------------------------------------
 
+def _image_names(flats: list[tuple[np.ndarray, float]]) -> str:
+    """The arguments the combined image ``flats`` comes from, for error messages."""
+    return "colour_image" if len(flats) == 1 else "colour_image and motion_image"
+
+
+def _unchanged_on_error(update: Callable[..., np.ndarray]) -> Callable[..., np.ndarray]:
+    """``update`` made all-or-nothing: an image refused part-way through the frame
+    (``ValueError``: weights found not finite where a window reads them, see
+    :func:`~estimators.image.meanshift.check_moments`) leaves the tracker, its particles
+    and its random generator as they were before the call."""
+    @functools.wraps(update)
+    def wrapper(self: _WindowParticleFilter, *args: Any, **kwargs: Any) -> np.ndarray:
+        saved = {k: v.copy() if isinstance(v, np.ndarray) else v for k, v in vars(self).items()}
+        rng_state = self.rng.bit_generator.state
+        try:
+            return update(self, *args, **kwargs)
+        except ValueError:
+            self.__dict__.clear()
+            self.__dict__.update(saved)
+            self.rng.bit_generator.state = rng_state
+            raise
+    return wrapper
+
+
+#: The range of the likelihood's ``sigma`` (``Dis`` is in ``[0, 1]``): ``Dis^2 / (2 sigma^2)``
+#: stays finite and the weights distinguish windows.
+LIKELIHOOD_SIGMA = (1e-6, 1e6)
+
+
 class _WindowParticleFilter:
     """The motion model, likelihood and bookkeeping shared by the two particle trackers."""
 
@@ -99,9 +137,12 @@ class _WindowParticleFilter:
         v = check_point("velocity", velocity)
         self.window_size = check_window_size("window_size", window_size)
         self.n = check_count("n_particles", n_particles, 2, MAX_PARTICLES)
-        self.process_sigma = check_number("process_sigma", process_sigma, allow_low=True)
-        self.likelihood_sigma = check_number("likelihood_sigma", likelihood_sigma)
-        self.init_sigma = check_number("init_sigma", init_sigma, allow_low=True)
+        self.process_sigma = check_number("process_sigma", process_sigma, allow_low=True,
+                                          high=MAX_PIXELS)
+        self.likelihood_sigma = check_number("likelihood_sigma", likelihood_sigma,
+                                             LIKELIHOOD_SIGMA[0], True, LIKELIHOOD_SIGMA[1])
+        self.init_sigma = check_number("init_sigma", init_sigma, allow_low=True,
+                                       high=MAX_PIXELS)
         self.v_ref = check_number("v_ref", v_ref)
         self.max_motion_weight = check_number("max_motion_weight", max_motion_weight,
                                          allow_low=True, high=1.0)
@@ -131,6 +172,7 @@ class _WindowParticleFilter:
                                else None)
         colour = (colour_image.array if self._source is not None
                   else check_image("colour_image", colour_image))
+        check_fits("colour_image", self.window_size, colour.shape)
         if self._motion_source is not None:
             if self._motion_source.shape != colour.shape:
                 raise ValueError(f"motion_image must have shape {colour.shape}, got "
@@ -253,6 +295,7 @@ class ParticleFilterTracker(_WindowParticleFilter):
                          likelihood_sigma=likelihood_sigma, init_sigma=init_sigma,
                          v_ref=v_ref, max_motion_weight=max_motion_weight)
 
+    @_unchanged_on_error
     def update(self, colour_image: np.ndarray, motion_image: np.ndarray | None = None
                ) -> np.ndarray:
         """One frame: propagate, weigh, estimate, resample. ``colour_image`` ``(H, W)`` is the
@@ -264,7 +307,7 @@ class ParticleFilterTracker(_WindowParticleFilter):
         self._propagate()
         x0, y0 = self._win.corner(self.particles)
         self._reach(x0, y0, 0)
-        mom = self._win.moments_of(flats, x0, y0)
+        mom = self._win.moments_of(flats, x0, y0, _image_names(flats))
         return self._weigh_and_estimate(self._log_likelihood(mom[:, 3]))
 
 
@@ -419,7 +462,8 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         x0 = np.array([p[0] for p in picks], dtype=np.intp)
         y0 = np.array([p[1] for p in picks], dtype=np.intp)
         flats = [(colour.ravel(), 1.0)]
-        x0, y0, _, mom = win.shift(flats, x0, y0, max(self.mean_shift_iter, 1), self.eps)
+        x0, y0, _, mom = win.shift(flats, x0, y0, max(self.mean_shift_iter, 1), self.eps,
+                                   "colour_image")
         allowed = self._allowed(mom[:, 3], x0, y0, colour)
         if not allowed.any():
             return None
@@ -430,14 +474,17 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
             x0, y0 = self._win.corner(self.estimate[None, :2])
             self._reach(x0, y0, max(self.mean_shift_iter, 1))
             _, _, _, mom = self._win.shift([(colour.ravel(), 1.0)], x0, y0,
-                                           max(self.mean_shift_iter, 1), self.eps)
+                                           max(self.mean_shift_iter, 1), self.eps,
+                                           "colour_image")
             mass = float(mom[0, 3])
             if mass <= 0.0:
-                raise EmptyWindowError("area is None and the first colour image holds no "
-                                       "weight in the initial window: pass area")
+                raise EmptyWindowError("area is None and the first colour_image holds no "
+                                       "weight in the window at position "
+                                       f"{tuple(self.estimate[:2].tolist())}: pass area")
             self.area = mass
         return self.area
 
+    @_unchanged_on_error
     def update(self, colour_image: np.ndarray, motion_image: np.ndarray | None = None,
                robots: ArrayLike | None = None, robot_radius_px: float | None = None) -> np.ndarray:
         """One frame (see the module docstring).
@@ -474,13 +521,14 @@ class MeanShiftParticleFilter(_WindowParticleFilter):
         x0, y0 = win.corner(self.particles)
         self._reach(x0, y0, self.mean_shift_iter)
         if self.mean_shift_iter > 0:
-            x0, y0, _, mom = win.shift(flats, x0, y0, self.mean_shift_iter, self.eps)
+            x0, y0, _, mom = win.shift(flats, x0, y0, self.mean_shift_iter, self.eps,
+                                       _image_names(flats))
             moved = win.centroids(mom, x0, y0)
             shift = moved - self.particles[:, :2]
             self.particles[:, :2] = moved
             self.particles[:, 2:] += shift  # v_t = p_t - p_{t-1}
         else:
-            mom = win.moments_of(flats, x0, y0)
+            mom = win.moments_of(flats, x0, y0, _image_names(flats))
         colour_mass = mom[:, 3] if len(flats) == 1 else win.gather(colour.ravel(), x0, y0).sum(1)
         allowed = self._allowed(colour_mass, x0, y0, colour)
         if not allowed.any():

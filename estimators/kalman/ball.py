@@ -25,7 +25,15 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..checks import check_points
+from ..checks import (
+    MAX_COORDINATE,
+    MAX_SPEED,
+    check_count,
+    check_flag,
+    check_points,
+    check_positive,
+    check_reals,
+)
 from ..models.measurement import PositionMeasurement
 from ..models.motion import FrictionBallMotion
 from ..protocol import check_order, check_time
@@ -71,9 +79,10 @@ class BallFilterConfig:
             100 mm/s).
         sigma_r: velocity noise per 40 ms cycle far from robots [m/s] (paper:
             ``delta_R`` = 100 mm/s).
-        collision_noise: use eq. 19, ``sigma_v = max(k (R + r) / d sigma_R, sigma_R)`` with
-            ``d`` the distance from the ball to the nearest robot, so the filter trusts the
-            model less where the ball may be hit.
+        collision_noise: ``True`` or ``False`` (a bool, not a number): use eq. 19,
+            ``sigma_v = max(k (R + r) / d sigma_R, sigma_R)`` with ``d`` the distance from the
+            ball to the nearest robot, so the filter trusts the model less where the ball may
+            be hit.
         gain_k, robot_radius, ball_radius: ``k`` = 10, ``R`` = 75 mm, ``r`` = 20 mm of eq. 19.
         gate: reject detections whose squared Mahalanobis distance exceeds this (false
             detections, outliers); None fuses everything.
@@ -92,6 +101,11 @@ class BallFilterConfig:
             phase, as in the paper.
         kick_speed: reset speed [m/s] above which a reset counts as a kick (two-phase model).
         history: seconds of frames kept to replay out-of-order arrivals.
+
+    Each field is checked when the configuration is made (``ValueError`` naming it): the
+    lengths are at most :data:`~estimators.checks.MAX_COORDINATE` and the speeds at most
+    :data:`~estimators.checks.MAX_SPEED` (:data:`POSITIVE_FIELDS`), so that their squares
+    stay finite.
     """
 
     deceleration: float = 0.23
@@ -112,30 +126,52 @@ class BallFilterConfig:
     history: float = 0.5
 
     def __post_init__(self) -> None:
-        for name in ("sigma_xy", "tau", "sigma_r", "gain_k", "robot_radius", "ball_radius",
-                     "kick_speed", "history", "maneuver_speed"):
-            v = getattr(self, name)
-            if not (math.isfinite(v) and v > 0.0):
-                raise ValueError(f"{name} must be finite and > 0, got {v!r}")
-        if self.gate is not None and not self.gate > 0:
-            raise ValueError(f"gate must be > 0 or None, got {self.gate!r}")
-        if self.maneuver_radius is not None and not (math.isfinite(self.maneuver_radius)
-                                                     and self.maneuver_radius > 0.0):
-            raise ValueError(f"maneuver_radius must be finite and > 0 [m], or None (no "
-                             f"maneuvers), got {self.maneuver_radius!r}")
-        if self.reset_after is not None and (not isinstance(self.reset_after, int)
-                                             or self.reset_after < 1):
-            raise ValueError(f"reset_after must be a positive integer or None, got "
-                             f"{self.reset_after!r}")
+        """Check every field (``ValueError`` naming it, nothing built); numbers are stored
+        as floats."""
+        def put(name: str, value: object) -> None:
+            object.__setattr__(self, name, value)
+
+        for name, high, unit in POSITIVE_FIELDS:
+            put(name, check_positive(name, getattr(self, name), unit=unit, high=high))
+        put("collision_noise", check_flag("collision_noise", self.collision_noise,
+                                          " (use eq. 19's collision noise)"))
+        if self.gate is not None:
+            put("gate", check_positive("gate", self.gate, unit=" or None (fuse everything)"))
+        if self.maneuver_radius is not None:
+            put("maneuver_radius", check_positive("maneuver_radius", self.maneuver_radius,
+                                                  unit=" [m] or None (no maneuvers)",
+                                                  high=MAX_COORDINATE))
+        if self.reset_after is not None:
+            put("reset_after", check_count("reset_after", self.reset_after, 1,
+                                           MAX_RESET_AFTER))
         if self.reset_after is not None and self.gate is None:
             raise ValueError("reset_after needs a gate: only gated-out detections trigger resets")
         if self.two_phase is not None:
-            a_slide, k = self.two_phase
+            what = "(sliding deceleration >= 0 [m/s^2], 0 < k_switch < 1) or None"
+            a_slide, k = check_reals("two_phase", self.two_phase, 2, what=what)
             if not (a_slide >= 0 and 0 < k < 1):
-                raise ValueError(f"two_phase must be (sliding deceleration >= 0, 0 < k_switch "
-                                 f"< 1), got {self.two_phase!r}")
+                raise ValueError(f"two_phase must be {what}, got {self.two_phase!r}")
+            put("two_phase", (float(a_slide), float(k)))
         FrictionBallMotion(self.deceleration, self.propagation)  # validates both
+        put("deceleration", float(self.deceleration))
 
+
+#: The largest gain ``k`` of eq. 19 (Zhao et al. 2012: 10).
+MAX_GAIN_K = 1e6
+
+#: The fields of :class:`BallFilterConfig` that are finite numbers > 0, their upper bounds
+#: (lengths within :data:`~estimators.checks.MAX_COORDINATE`, speeds within
+#: :data:`~estimators.checks.MAX_SPEED`: their squares and eq. 19's products stay finite)
+#: and their units.
+POSITIVE_FIELDS = (("sigma_xy", MAX_COORDINATE, " [m]"), ("tau", MAX_COORDINATE, " [m, m/s]"),
+                   ("sigma_r", MAX_SPEED, " [m/s]"), ("gain_k", MAX_GAIN_K, ""),
+                   ("robot_radius", MAX_COORDINATE, " [m]"),
+                   ("ball_radius", MAX_COORDINATE, " [m]"), ("kick_speed", MAX_SPEED, " [m/s]"),
+                   ("history", math.inf, " [s]"), ("maneuver_speed", MAX_SPEED, " [m/s]"))
+
+#: The most gated-out detections :attr:`BallFilterConfig.reset_after` may wait for (each
+#: takes three columns of a track row).
+MAX_RESET_AFTER = 1000
 
 
 class BallTrack(NamedTuple):

@@ -24,6 +24,7 @@ the state alone.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 
 import numpy as np
@@ -112,8 +113,11 @@ class KalmanFilter:
         semi-definite, ``x_pred`` a finite ``(n,)``; otherwise ``ValueError`` naming the
         argument, with the filter unchanged."""
         n = self.dim
-        self.predict_unchecked(check_matrix("F", F, n), _check_covariance("Q", Q, n),
-                               None if x_pred is None else check_vector("x_pred", x_pred, n))
+        F, Q = check_matrix("F", F, n), _check_covariance("Q", Q, n)
+        x_pred = None if x_pred is None else check_vector("x_pred", x_pred, n)
+        saved = self._saved()
+        self.predict_unchecked(F, Q, x_pred)
+        self._finite_or_restore(saved, "F, Q and x_pred")
 
     def predict_unchecked(self, F: np.ndarray, Q: np.ndarray,
                           x_pred: np.ndarray | None = None) -> None:
@@ -150,12 +154,16 @@ class KalmanFilter:
         Args:
             z: the measurement ``(m,)``, or None for a missed detection.
             H: measurement Jacobian ``(m, n)``.
-            R: measurement noise covariance ``(m, m)``, symmetric positive semi-definite.
+            R: measurement noise covariance ``(m, m)``, symmetric positive semi-definite
+                (``R = 0``, an exact measurement, is allowed while ``S = H P H^T + R`` is
+                positive definite; a singular ``S`` is refused naming ``R``).
             z_pred: ``h(x)`` for a nonlinear measurement (default ``H x``).
             residual: ``r(z, z_pred)`` replacing the subtraction (e.g. to wrap angles).
             gate: reject the measurement if ``d^2`` exceeds this (chi-square quantile).
 
-        Non-finite or mis-shaped arguments raise ``ValueError`` naming them, with the filter
+        Matrices and vectors may be any array-likes of the right shape (lists included).
+        Non-finite or mis-shaped arguments, and finite ones whose update overflows float64
+        (a measurement of 1e308), raise ``ValueError`` naming them, with the filter
         unchanged.
         """
         H = _floats("H", H)
@@ -169,7 +177,33 @@ class KalmanFilter:
             raise ValueError(f"gate must be None or a finite number >= 0, got {gate!r}")
         if z_pred is not None:
             z_pred = check_vector("z_pred", z_pred, m)
-        return self.update_unchecked(z, H, R, z_pred, residual, gate)
+        saved = self._saved()
+        try:
+            fused = self.update_unchecked(z, H, R, z_pred, residual, gate)
+        except np.linalg.LinAlgError:
+            self._restore(saved)
+            raise ValueError("R: the innovation covariance S = H P H^T + R is singular; R "
+                             "(with H and P) must make it positive definite, e.g. R > 0 "
+                             "where P is singular") from None
+        self._finite_or_restore(saved, "z, H and R")
+        return fused
+
+    def _saved(self) -> tuple:
+        return self.x, self.P, self.y, self.S, self.d2, self.missed, self.rejected
+
+    def _restore(self, saved: tuple) -> None:
+        self.x, self.P, self.y, self.S, self.d2, self.missed, self.rejected = saved
+
+    def _finite_or_restore(self, saved: tuple, names: str) -> None:
+        """Undo the step (the filter as ``saved``) and raise ``ValueError`` naming ``names``
+        if it left a non-finite state, covariance or distance: inputs each finite whose
+        products overflow float64 (e.g. a measurement of 1e308)."""
+        if np.isfinite(self.x).all() and np.isfinite(self.P).all() and (
+                self.d2 is None or math.isfinite(self.d2)):
+            return
+        self._restore(saved)
+        raise ValueError(f"{names} must be small enough that the filter stays finite: this "
+                         "step overflows float64 (the filter is left as it was)")
 
     def update_unchecked(self, z: np.ndarray | None, H: np.ndarray, R: np.ndarray,
                          z_pred: np.ndarray | None = None,

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from ..checks import MAX_COORDINATE, check_positive
 from ..protocol import check_order, check_time
 from ..tracking import MAX_SPEED_CHANGE, TrackQualityMixin, TrackTimes
 
@@ -31,11 +32,9 @@ class LeastSquaresBall(TrackQualityMixin):
     def __init__(self, window: int = 6, sigma_xy: float = 0.01) -> None:
         if not isinstance(window, int) or window < 2:
             raise ValueError(f"window must be an integer >= 2, got {window!r}")
-        if not (math.isfinite(sigma_xy) and sigma_xy > 0.0):
-            raise ValueError(f"sigma_xy must be a finite number > 0 [m], got {sigma_xy!r}")
         self.window = window
         #: The detections' noise [m] (per axis) that :meth:`covariance` assumes.
-        self.sigma_xy = float(sigma_xy)
+        self.sigma_xy = check_positive("sigma_xy", sigma_xy, unit=" [m]", high=MAX_COORDINATE)
         self.reset()
 
     def reset(self) -> None:

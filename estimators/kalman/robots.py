@@ -42,7 +42,7 @@ import math
 
 import numpy as np
 
-from ..checks import check_count
+from ..checks import MAX_COORDINATE, MAX_SPEED, check_count, check_sigma
 from ..compiled import kernel
 from ..exact import wrap_angle
 from ..models.measurement import MIN_SIGMA_THETA, MIN_SIGMA_XY, PoseMeasurement
@@ -162,10 +162,12 @@ class RobotTracker:
                  sigma_xy: float = 0.005, sigma_theta: float = 0.02,
                  sigma_v0: float = 2.0, measurement: PoseMeasurement | None = None) -> None:
         check_count("n", n, 0, MAX_ROBOTS)
-        for name, v in (("q_xy", q_xy), ("q_theta", q_theta), ("sigma_xy", sigma_xy),
-                        ("sigma_theta", sigma_theta), ("sigma_v0", sigma_v0)):
-            if not (math.isfinite(v) and v >= 0.0):
-                raise ValueError(f"{name} must be finite and >= 0, got {v!r}")
+        big = MAX_COORDINATE
+        q_xy = check_sigma("q_xy", q_xy, " [m^2/s^3]", big)
+        q_theta = check_sigma("q_theta", q_theta, " [rad^2/s^3]", big)
+        sigma_xy = check_sigma("sigma_xy", sigma_xy, " [m]", big)
+        sigma_theta = check_sigma("sigma_theta", sigma_theta, " [rad]", big)
+        sigma_v0 = check_sigma("sigma_v0", sigma_v0, " [m/s, rad/s]", MAX_SPEED)
         self.n = int(n)
         self.q = (float(q_xy), float(q_xy), float(q_theta))
         if measurement is not None:  # the sensor's own model: its R, not a copy of numbers

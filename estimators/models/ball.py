@@ -5,20 +5,26 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..checks import check_real
+from ..checks import MAX_COORDINATE, MAX_SPEED, check_real
 
 __all__ = ["FrictionBallModel"]
 
 
 def _states(state) -> np.ndarray:
-    """``state`` as a finite float array of shape ``(..., 4)``; ``ValueError`` otherwise."""
+    """``state`` as a float array of shape ``(..., 4)`` of finite rows ``(px, py, vx, vy)``
+    with positions within :data:`~estimators.checks.MAX_COORDINATE` [m] and velocity
+    components within :data:`~estimators.checks.MAX_SPEED` [m/s]; ``ValueError`` naming
+    ``state`` otherwise."""
     try:
         arr = np.asarray(state, dtype=np.float64)
     except (TypeError, ValueError):
         arr = None
-    if arr is None or arr.ndim < 1 or arr.shape[-1] != 4 or not np.all(np.isfinite(arr)):
-        raise ValueError(f"state must be finite (px, py, vx, vy) rows of shape (..., 4), got "
-                         f"{state!r}")
+    if arr is None or arr.ndim < 1 or arr.shape[-1] != 4 or not np.all(np.isfinite(arr)) or \
+            np.any(np.abs(arr[..., :2]) > MAX_COORDINATE) or \
+            np.any(np.abs(arr[..., 2:]) > MAX_SPEED):
+        raise ValueError(f"state must be finite (px, py, vx, vy) rows of shape (..., 4), "
+                         f"positions within {MAX_COORDINATE:g} m and velocities within "
+                         f"{MAX_SPEED:g} m/s, got {state!r}"[:300])
     return arr
 
 
@@ -45,7 +51,12 @@ class FrictionBallModel:
         self.deceleration = check_real("deceleration", deceleration, 0.0, unit=" m/s^2")
 
     def predict(self, state: np.ndarray, dt: float | np.ndarray) -> np.ndarray:
-        """State ``(..., 4)`` after ``dt`` seconds (``dt`` broadcasts against the batch)."""
+        """State ``(..., 4)`` after ``dt`` seconds (``dt`` broadcasts against the batch).
+        ``ValueError`` naming ``state`` for rows that are not finite, positions beyond
+        :data:`~estimators.checks.MAX_COORDINATE` [m] or velocities beyond
+        :data:`~estimators.checks.MAX_SPEED` [m/s], and naming ``state and dt`` where the
+        prediction itself leaves float range (a ball that never stops, ``deceleration = 0``,
+        after ``dt = inf``)."""
         state = _states(state)
         try:
             dt = np.asarray(dt, dtype=np.float64)
@@ -59,9 +70,14 @@ class FrictionBallModel:
         t_stop = np.where(a > 0, speed / max(a, 1e-300), np.inf)
         t = np.minimum(dt[..., None] if dt.ndim else dt, t_stop)
         direction = np.divide(v, speed, out=np.zeros_like(v), where=speed > 0)
-        travelled = speed * t - 0.5 * a * t * t
-        new_speed = np.maximum(speed - a * t, 0.0)
-        return np.concatenate([p + direction * travelled, direction * new_speed], axis=-1)
+        with np.errstate(over="ignore", invalid="ignore"):
+            travelled = speed * t - 0.5 * a * t * t
+            new_speed = np.maximum(speed - a * t, 0.0)
+            out = np.concatenate([p + direction * travelled, direction * new_speed], axis=-1)
+        if not np.isfinite(out).all():
+            raise ValueError(f"state and dt must keep the prediction finite: at deceleration "
+                             f"{a:g} m/s^2 the ball rolls beyond float range in dt={dt!r} s")
+        return out
 
     def stop_time(self, state: np.ndarray) -> np.ndarray:
         """Seconds until the ball stops (``inf`` without friction), shape ``(...)``."""

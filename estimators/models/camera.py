@@ -29,7 +29,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["HeadCamera"]
+from ..checks import MAX_PIXELS, check_count, check_real
+
+__all__ = ["HeadCamera", "MIN_HFOV"]
+
+#: The narrowest horizontal field of view [rad]: the focal length in pixels stays finite.
+MIN_HFOV = 1e-6
 
 
 @dataclass(frozen=True)
@@ -38,7 +43,7 @@ class HeadCamera:
 
     Attributes:
         height: camera height above the ground [m] (Xu et al. 2012: 0.56).
-        hfov: horizontal field of view [rad] (Xu et al. 2012: 51 degrees).
+        hfov: horizontal field of view [rad] in [MIN_HFOV, pi) (Xu et al. 2012: 51 degrees).
         width, height_px: image size [pixels] (Xu et al. 2012: 720 x 625 at 25 frames/s).
     """
 
@@ -52,13 +57,11 @@ class HeadCamera:
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
                 raise ValueError(f"{name} must be a whole number of pixels, got {value!r}")
-        if not 0.0 < self.height < 10.0:
-            raise ValueError(f"height must be in (0, 10) m, got {self.height!r}")
-        if not 0.0 < self.hfov < math.pi:
-            raise ValueError(f"hfov must be in (0, pi) rad, got {self.hfov!r}")
-        if self.width < 2 or self.height_px < 2:
-            raise ValueError(f"the image must be at least 2 x 2 pixels, got {self.width} x "
-                             f"{self.height_px}")
+            object.__setattr__(self, name, check_count(name, value, 2, MAX_PIXELS))
+        object.__setattr__(self, "height", check_real(
+            "height", self.height, 0.0, 10.0, low_open=True, high_open=True, unit=" m"))
+        object.__setattr__(self, "hfov", check_real(
+            "hfov", self.hfov, MIN_HFOV, math.pi, high_open=True, unit=" rad"))
 
     @property
     def focal_px(self) -> float:

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 
+from ..checks import check_positive
 from ..compiled import kernel
 from ..exact import hypot_exact
 
@@ -66,9 +67,9 @@ class FrictionBallMotion:
     dim = 4
 
     def __init__(self, deceleration: float, propagation: str = "jacobian") -> None:
-        if not (math.isfinite(deceleration) and deceleration >= 0.0):
-            raise ValueError(f"deceleration must be finite and >= 0 m/s^2, got {deceleration!r}")
-        if propagation not in ("jacobian", "rk"):
+        deceleration = check_positive("deceleration", deceleration, allow_zero=True,
+                                      unit=" m/s^2")
+        if not isinstance(propagation, str) or propagation not in ("jacobian", "rk"):
             raise ValueError(f"propagation must be one of ['jacobian', 'rk'], got "
                              f"{propagation!r}")
         self.deceleration = float(deceleration)

@@ -66,7 +66,16 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ..checks import MAX_PARTICLES, check_count, check_positive
+from ..checks import (
+    MAX_ACCELERATION,
+    MAX_COORDINATE,
+    MAX_PARTICLES,
+    MAX_SPEED,
+    check_count,
+    check_positive,
+    check_real,
+    check_reals,
+)
 from ..kalman.core import KalmanFilter
 from ..protocol import check_order, check_time
 from ..tracking import TrackQualityMixin, TrackTimes, prior_gain
@@ -77,6 +86,10 @@ __all__ = ["ParticleBallTracker", "CHI2_2DOF_9999"]
 
 #: 99.99 % quantile of the chi-square distribution with 2 degrees of freedom, ``-2 ln 1e-4``.
 CHI2_2DOF_9999 = 18.420680743952367
+
+#: The smallest ``init_speed_sigma`` [m/s]: its square stays a normal float (the Kalman
+#: start's covariance must be positive definite).
+MIN_SPEED_SIGMA = 1e-6
 
 #: A re-initialisation takes its velocity from the measurement before it if that is at most
 #: this old [s].
@@ -185,12 +198,11 @@ class ParticleBallTracker(TrackQualityMixin):
             raise TypeError("rng must be a numpy.random.Generator")
         PARTICLE_FILTERS.check(filter, "filter")
         check_count("n_particles", n_particles, 2, MAX_PARTICLES)
-        if threshold is not None and not 0.0 < threshold <= 1.0:
-            raise ValueError(f"threshold must be in (0, 1] or None, got {threshold!r}")
-        fs = np.asarray(fission_sigma, dtype=np.float64)
-        if fs.shape != (4,) or not np.isfinite(fs).all() or (fs < 0.0).any():
-            raise ValueError(f"fission_sigma must be four finite values >= 0 (px, py, vx, vy), "
-                             f"got {fission_sigma!r}")
+        if threshold is not None:
+            threshold = check_real("threshold", threshold, 0.0, 1.0, low_open=True,
+                                   unit=" (N_th / N) or None")
+        fs = check_reals("fission_sigma", fission_sigma, 4, 0.0, MAX_COORDINATE,
+                         "(px, py, vx, vy) [m, m, m/s, m/s]")
         if sfn_when not in ("above", "below"):
             raise ValueError(f"sfn_when must be 'above' or 'below', got {sfn_when!r}")
         if resample not in FBPF.RESAMPLE:
@@ -208,11 +220,14 @@ class ParticleBallTracker(TrackQualityMixin):
         self.rng = rng
         self.filter = filter
         self.n_particles = int(n_particles)
-        self.accel_sigma = check_positive("accel_sigma", accel_sigma)
-        self.deceleration = check_positive("deceleration", deceleration, allow_zero=True)
-        self.init_speed_sigma = check_positive("init_speed_sigma", init_speed_sigma)
+        self.accel_sigma = check_positive("accel_sigma", accel_sigma, unit=" [m/s^2]",
+                                          high=MAX_ACCELERATION)
+        self.deceleration = check_positive("deceleration", deceleration, allow_zero=True,
+                                           unit=" [m/s^2]", high=MAX_ACCELERATION)
+        self.init_speed_sigma = check_real("init_speed_sigma", init_speed_sigma,
+                                           MIN_SPEED_SIGMA, MAX_SPEED, unit=" m/s")
         self.max_lag = check_positive("max_lag", max_lag, allow_zero=True)
-        self.max_speed = check_positive("max_speed", max_speed)
+        self.max_speed = check_positive("max_speed", max_speed, unit=" [m/s]", high=MAX_SPEED)
         self.gate, self.reinit_after, self.lost_after = gate, int(reinit_after), lost_after
         self.kalman_start = int(kalman_start)
         kwargs: dict = {}

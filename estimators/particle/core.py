@@ -57,7 +57,7 @@ from ..registry import Registry
 from .filter_kernels import sfn_apply, sfn_children, systematic_indices, weigh, weighted_mean
 
 __all__ = ["BootstrapPF", "FBPF", "MFBPF", "PARTICLE_FILTERS", "systematic_resample", "sfn",
-           "ungm_model", "ungm_simulate"]
+           "ungm_model", "ungm_simulate", "measurement"]
 
 Transition = Callable[[np.ndarray, int, np.random.Generator], np.ndarray]
 Likelihood = Callable[[np.ndarray, np.ndarray], np.ndarray]
@@ -91,6 +91,20 @@ def sfn(particles: np.ndarray, weights: np.ndarray, rng: np.random.Generator,
     noise = (rng.standard_normal((n_children, d)) if n_children > 0
              else np.zeros((0, d)))
     return sfn_apply(particles, weights, order, children, noise, scale)
+
+
+def measurement(y: np.ndarray | float) -> np.ndarray:
+    """The measurement ``y`` of a particle filter's step as a float array; ``ValueError``
+    naming ``y`` unless it holds finite real numbers (an infinite measurement would weigh
+    every particle zero and leave the filter on its prior in silence)."""
+    try:
+        arr = np.asarray(y, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"y must be a real number or an array of real numbers (the "
+                         f"measurement), got {y!r}") from None
+    if not np.isfinite(arr).all():
+        raise ValueError(f"y must be finite, got {y!r}")
+    return arr
 
 
 class BootstrapPF:
@@ -135,7 +149,11 @@ class BootstrapPF:
         self.particles = x
 
     def _likelihood(self, y: np.ndarray) -> np.ndarray:
-        lik = np.asarray(self.likelihood(self.particles, y), dtype=np.float64)
+        try:
+            lik = np.asarray(self.likelihood(self.particles, y), dtype=np.float64)
+        except ValueError as err:
+            raise ValueError(f"y of shape {y.shape}: the likelihood cannot weigh the "
+                             f"particles with it ({err})") from err
         if lik.shape != (self.n,) or (lik < 0.0).any() or not np.isfinite(lik).all():
             raise ValueError(f"likelihood must return ({self.n},) finite non-negative values")
         return lik
@@ -150,7 +168,9 @@ class BootstrapPF:
 
     def step(self, y: np.ndarray | float) -> np.ndarray:
         """Advance one step with measurement ``y`` (:meth:`predict` then :meth:`correct`);
-        returns the state estimate ((d,))."""
+        returns the state estimate ((d,)). A measurement that is not finite is refused
+        before the particles move."""
+        y = measurement(y)
         self._propagate()
         return self.correct(y)
 
@@ -159,7 +179,7 @@ class BootstrapPF:
         estimate, then the filter's resampling and/or SFN (here: resampling when
         ``N_eff < N_th``). Returns the estimate ((d,))."""
         # Weights carry over between resamplings (uniform right after one).
-        w, total = weigh(self.weights, self._likelihood(np.asarray(y, dtype=np.float64)))
+        w, total = weigh(self.weights, self._likelihood(measurement(y)))
         # All particles impossible: keep the prior weights rather than divide by zero.
         w = w / total if total > 0.0 else np.full(self.n, 1.0 / self.n)
         self.weights = w
@@ -254,7 +274,7 @@ class MFBPF(FBPF):
 
     def correct(self, y: np.ndarray | float) -> np.ndarray:
         """Measurement update with MFBPF's bookkeeping (see the module docstring)."""
-        w, s = weigh(self.weights, self._likelihood(np.asarray(y, dtype=np.float64)))
+        w, s = weigh(self.weights, self._likelihood(measurement(y)))
         if s <= 0.0 or not math.isfinite(s):
             w, s = np.full(self.n, 1.0 / self.n), 1.0
         estimate = weighted_mean(w, self.particles, 1.0 / s)

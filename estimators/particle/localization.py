@@ -72,7 +72,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..checks import MAX_PARTICLES, check_count, check_real
+from ..checks import MAX_COORDINATE, MAX_PARTICLES, check_count, check_real, check_reals
 from ..fusion.triangulation import PoseHypotheses, SightingMemory, triangulate_sightings
 from .kld import kld_table
 from .landmarks import LandmarkTable
@@ -99,6 +99,9 @@ RECOVERIES = ("uniform", "triangulate")
 _SEED_MIN_XY, _SEED_MIN_THETA = 0.1, 0.05
 #: The bearing noise the seed assumes when the filter leaves bearings out [rad].
 _SEED_BEARING_SIGMA = math.radians(5.0)
+
+#: The smallest KLD ``delta``: ``1 - delta`` must differ from 1 (its normal quantile).
+MIN_DELTA = 1e-12
 
 
 def seed_poses(kinds: Sequence[str], points: np.ndarray, table: Mapping[str, np.ndarray],
@@ -180,6 +183,9 @@ class KLDConfig:
                              f"{self.bin_size!r}")
         for size in self.bin_size:
             check_real("bin_size", size, 0.0, low_open=True)
+        if self.delta < MIN_DELTA:
+            raise ValueError(f"delta must be >= {MIN_DELTA:g} (1 - delta < 1), got "
+                             f"{self.delta!r}")
         if not (0.0 < self.epsilon < 1.0 and 0.0 < self.delta < 1.0):
             raise ValueError(f"epsilon and delta must be in (0, 1), got {self.epsilon}, "
                              f"{self.delta}")
@@ -246,24 +252,21 @@ class KLDLocalizer:
         self._seed_table: dict = {}
         #: The latest recovery seed's hypotheses (None: none computed yet).
         self.last_seed: PoseHypotheses | None = None
-        x0, x1, y0, y1 = (float(b) for b in bounds)
-        if not (x0 < x1 and y0 < y1) or not all(map(math.isfinite, (x0, x1, y0, y1))):
-            raise ValueError(f"bounds must be (x_min, x_max, y_min, y_max) with min < max, "
-                             f"got {bounds}")
+        box = "(x_min, x_max, y_min, y_max) [m] with min < max"
+        x0, x1, y0, y1 = check_reals("bounds", bounds, 4, -MAX_COORDINATE, MAX_COORDINATE,
+                                     box).tolist()
+        if not (x0 < x1 and y0 < y1):
+            raise ValueError(f"bounds must be {box}, got {bounds!r}")
         self.bounds = (x0, x1, y0, y1)
         self.rng = rng
         self.cfg = config or KLDConfig()
         self.w_slow = self.w_fast = 0.0
+        sigma = check_reals("pose_sigma", pose_sigma, 3, 0.0, what="(m, m, rad)")
         if pose is None:
             self.particles = self._uniform(self.cfg.max_particles)
         else:
-            p = np.asarray(pose, dtype=np.float64)
-            if p.shape != (3,) or not np.isfinite(p).all():
-                raise ValueError(f"pose must be a finite (3,) array, got {pose!r}")
-            sigma = np.asarray(pose_sigma, dtype=np.float64)
-            if sigma.shape != (3,) or not (np.isfinite(sigma).all() and (sigma >= 0).all()):
-                raise ValueError(f"pose_sigma must be three finite numbers >= 0 (m, m, rad), "
-                                 f"got {pose_sigma!r}")
+            p = check_reals("pose", pose, 3, -MAX_COORDINATE, MAX_COORDINATE,
+                            "(x, y, theta) [m, m, rad]")
             n = self.cfg.min_particles
             self.particles = p + rng.normal(0.0, 1.0, (n, 3)) * sigma
         self.weights = np.full(len(self.particles), 1.0 / len(self.particles))

@@ -330,8 +330,12 @@ class BallImageTracker:
             k = 1 + int(np.argmax(stats[1:, cv2.CC_STAT_AREA]))
             if stats[k, cv2.CC_STAT_AREA] < 3:
                 return ()
-            w = max(5, int(stats[k, cv2.CC_STAT_WIDTH]))
-            h = max(5, int(stats[k, cv2.CC_STAT_HEIGHT]))
+            # The target's size, at most what keeps its search window inside the image (a
+            # robot right in front of the camera fills more than half of it).
+            w = min(max(5, int(stats[k, cv2.CC_STAT_WIDTH])),
+                    int(self.size[0] / self.WINDOW_SCALE))
+            h = min(max(5, int(stats[k, cv2.CC_STAT_HEIGHT])),
+                    int(self.size[1] / self.WINDOW_SCALE))
             self.tracker = tr = KalmanMeanShift(tuple(centroids[k]), (w, h),
                                                 image_size=self.size, fov=self.fov,
                                                 order=self.ORDER,

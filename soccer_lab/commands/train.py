@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from agents.runs.folders import RunRefused, TrainingStopped, read_run_config, run_folder
+from agents.runs.limits import check_saved_settings
 from agents.runs.training import TrainConfig, check_env_kwargs, checkpoint_steps, train
 from soccer_env.envs.registration import GOALKEEPER_ID
 from soccer_lab import extras
@@ -31,10 +32,12 @@ from soccer_lab.commands.train_options import given_fields, parser, refuse_optio
 __all__ = ["parser", "main", "train_config"]
 
 
-def _resumed_fields(p: argparse.ArgumentParser, resume: str) -> dict[str, Any]:
-    """The configuration of the run that checkpoint ``resume`` belongs to (its folder, or the
-    folder above ``checkpoints/``), without what describes that run only."""
-    ckpt = Path(resume)
+def _resumed_fields(p: argparse.ArgumentParser, args: argparse.Namespace) -> dict[str, Any]:
+    """The configuration of the run that checkpoint ``args.resume`` belongs to (its folder, or
+    the folder above ``checkpoints/``), without what describes that run only; settings that
+    the command line does not give must lie within the limits of
+    :mod:`agents.runs.limits` unless ``--trust``."""
+    ckpt = Path(args.resume)
     if not ckpt.is_file():
         p.error(f"--resume: no checkpoint at {ckpt}")
     run = run_folder(ckpt)
@@ -42,6 +45,8 @@ def _resumed_fields(p: argparse.ArgumentParser, resume: str) -> dict[str, Any]:
         p.error(f"--resume: no config.json in {run}")
     try:
         saved = read_run_config(run / "config.json")
+        check_saved_settings(saved, run / "config.json", given_fields(args, "sb3"),
+                             key_values(args.hp, "--hp"), args.trust)
     except (OSError, ValueError) as err:
         p.error(f"--resume: {err}")
     base = {k: v for k, v in saved.items()
@@ -134,7 +139,7 @@ def main(argv: list[str] | None = None) -> int:
     refuse_options(p, args, "sb3")
     # Before the configuration, whose checks read stable-baselines3's algorithms.
     extras.require("train")
-    base = _resumed_fields(p, args.resume) if args.resume else {}
+    base = _resumed_fields(p, args) if args.resume else {}
     algo = str(args.algo or base.get("algorithm", "")).upper().replace("-", "").replace("_", "")
     if algo == "RECURRENTPPO":
         extras.require("train --algo recurrent-ppo")

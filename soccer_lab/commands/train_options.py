@@ -152,6 +152,13 @@ TRAIN_OPTIONS: tuple[TrainOption, ...] = (
                 refused={"rllib": "sets stable-baselines3's subprocesses; with --backend "
                                   "rllib use --num-env-runners"},
                 settings={"type": int, "metavar": "N"}),
+    TrainOption("--worker-timeout", "seconds a worker subprocess may take to answer; one that "
+                "gives no reply in time (stopped, deadlocked, in an endless loop) ends training "
+                "as a worker that died does, with a checkpoint and the command that resumes "
+                "(at least 300 s until its first step) (default: {default})",
+                field="worker_timeout",
+                refused={"rllib": "sets stable-baselines3's subprocesses"},
+                settings={"type": float, "metavar": "SECONDS"}),
     TrainOption("--batched", "step the environments as one batch (shared pymunk spaces). "
                 "Goalkeeper-v0: the --n-envs environments in this process (native actions, "
                 "every keeper and observation mode, each environment perceiving on its own). "

@@ -34,6 +34,7 @@ from pathlib import Path
 from typing import Any
 
 from agents.runs.folders import RunRefused, TrainingStopped, read_run_config, run_folder
+from agents.runs.limits import check_saved_settings
 from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_lab import extras
 from soccer_lab.cli_args import env_kwargs_from_args, key_values
@@ -90,8 +91,11 @@ def _policy_mapping(p: argparse.ArgumentParser, args: argparse.Namespace, env_id
     return {"policy_mapping": mapping, "learner": team}
 
 
-def _resumed_fields(p: argparse.ArgumentParser, resume: str) -> dict[str, Any]:
-    """The configuration of the run that RLlib checkpoint ``resume`` belongs to."""
+def _resumed_fields(p: argparse.ArgumentParser, args: argparse.Namespace) -> dict[str, Any]:
+    """The configuration of the run that RLlib checkpoint ``args.resume`` belongs to; settings
+    that the command line does not give must lie within the limits of
+    :mod:`agents.runs.limits` unless ``--trust``."""
+    resume = args.resume
     ckpt = Path(resume)
     if not is_rllib_checkpoint(resume):
         p.error(f"--resume: no RLlib checkpoint at {ckpt} (a run's final_checkpoint or "
@@ -103,6 +107,11 @@ def _resumed_fields(p: argparse.ArgumentParser, resume: str) -> dict[str, Any]:
         p.error(f"--resume: no readable config.json in {run} ({err})")
     if saved.get("backend") != "rllib":
         p.error(f"--resume: {run} is not a run of --backend rllib")
+    try:
+        check_saved_settings(saved, run / "config.json", given_fields(args, "rllib"),
+                             key_values(args.hp, "--hp"), args.trust)
+    except ValueError as err:
+        p.error(f"--resume: {err}")
     base = {k: v for k, v in saved.items()
             if k not in ("backend", "command", "resumed_from", "versions")}
     # The run continues where it is, never where its config.json says.
@@ -133,7 +142,7 @@ def main(p: argparse.ArgumentParser, args: argparse.Namespace, argv: list[str] |
     """``soccer-env train --backend rllib`` with the parsed ``args`` of ``p``."""
     # Every check of the options comes before Ray is imported, so that it holds without it.
     _refuse_options(p, args)
-    base = _resumed_fields(p, args.resume) if args.resume else {}
+    base = _resumed_fields(p, args) if args.resume else {}
     fields = _config_fields(p, args, base)
     extras.require("train --backend rllib")
     try:

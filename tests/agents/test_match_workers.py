@@ -196,6 +196,40 @@ def test_a_match_that_raises_or_a_worker_that_dies_is_reported(no_hang):
     venv.close()
 
 
+def test_a_stopped_match_worker_is_reported_within_the_timeout(no_hang):
+    """SIGSTOP of a match worker (alive, answering nothing): WorkerError naming it and its
+    batch entries within the timeout, exit code None; close() returns at once and no worker
+    is left."""
+    import multiprocessing
+    import time
+
+    venv = make_match_vec_env(SHORT, n_matches=4, learner="blue", seed=0, workers=2,
+                              reply_timeout=1.0)
+    venv.reset()
+    venv.step(np.zeros((venv.num_envs, 6), np.float32))
+    os.kill(venv.processes[1].pid, signal.SIGSTOP)
+    t0 = time.monotonic()
+    with pytest.raises(WorkerError, match=r"rollout worker 1 .*environments 4-7\) stopped "
+                                          r"answering: no reply within 1 s .*SIGSTOP") as err:
+        venv.step(np.zeros((venv.num_envs, 6), np.float32))
+    assert time.monotonic() - t0 < 3.0
+    assert err.value.exitcode is None and err.value.environments == range(4, 8)
+    t0 = time.monotonic()
+    venv.close()
+    assert time.monotonic() - t0 < 0.5
+    assert not any(p.is_alive() for p in venv.processes)
+    assert not set(venv.processes) & set(multiprocessing.active_children())
+
+
+@pytest.mark.parametrize("timeout", [0, -2, float("inf"), "60"])
+def test_a_bad_reply_timeout_is_refused(timeout):
+    with pytest.raises(ValueError, match="reply_timeout must be a finite number of seconds "
+                                         "> 0, got"):
+        MatchWorkerVecEnv(SHORT, n_matches=2, workers=2, reply_timeout=timeout)
+    with pytest.raises(ValueError, match="reply_timeout must be a finite number of seconds"):
+        make_match_vec_env(SHORT, n_matches=2, workers=2, reply_timeout=timeout)
+
+
 @pytest.mark.skipif(not hasattr(os, "sched_getaffinity"), reason="no CPU affinity here")
 def test_workers_are_pinned_to_cpus_when_they_take_the_machine():
     usable = sorted(os.sched_getaffinity(0))

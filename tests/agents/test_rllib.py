@@ -142,6 +142,16 @@ def test_hyperparameters():
         RllibTrainConfig(env_id=MATCH_ID, actions="guard")
 
 
+def test_the_default_run_and_its_hyperparameters_lie_within_the_resume_limits():
+    from pathlib import Path
+
+    from agents.runs.limits import check_saved_settings, resume_options
+
+    saved = {**RllibTrainConfig().to_dict(), "hyperparams": dict(DEFAULT_HYPERPARAMS)}
+    check_saved_settings(saved, Path("config.json"))
+    assert resume_options(saved) == []
+
+
 def test_self_play_copies_when_the_steps_pass_a_multiple():
     class Group:
         def __init__(self):
@@ -209,6 +219,10 @@ def test_only_own_unchanged_checkpoints_load_without_trust(tmp_path, monkeypatch
         check_checkpoint(ckpt)
     (ckpt / "extra.pkl").unlink()
     check_checkpoint(ckpt)
+    (ckpt / "linked.pkl").symlink_to(tmp_path / "mine")  # a link could point anywhere
+    with pytest.raises(ValueError, match="holds a link, linked.pkl"):
+        check_checkpoint(ckpt)
+    (ckpt / "linked.pkl").unlink()
     # Someone else's key (another account or machine): refused.
     monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path / "theirs"))
     with pytest.raises(UnsafeFileError, match="no signing key"):

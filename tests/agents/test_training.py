@@ -78,3 +78,51 @@ def test_checkpoint_steps_reads_within_the_file_budget(tmp_path, monkeypatch):
     monkeypatch.setattr(files, "MAX_FILE_BYTES", 1000)
     with pytest.raises(UnsafeFileError, match="unpacks to"):
         checkpoint_steps(path)
+
+
+def test_worker_timeout_is_validated_and_an_older_config_without_it_resumes():
+    assert TrainConfig().worker_timeout == 60.0
+    cfg = TrainConfig(worker_timeout=5)
+    assert cfg.worker_timeout == 5.0 and TrainConfig.from_dict(cfg.to_dict()) == cfg
+    for bad in (0, -1.0, float("inf"), float("nan"), "30", True, None):
+        with pytest.raises(ValueError, match="worker_timeout must be a finite number of "
+                                             "seconds > 0"):
+            TrainConfig(worker_timeout=bad)
+    older = TrainConfig().to_dict()
+    del older["worker_timeout"]  # a config.json written before the setting existed
+    assert TrainConfig.from_dict(older).worker_timeout == 60.0
+
+
+@pytest.mark.slow
+def test_a_stopped_worker_ends_training_with_a_checkpoint(tmp_path, monkeypatch, no_hang):
+    """An environment that stops its own worker (SIGSTOP) mid-run: training ends within the
+    worker timeout as for a worker that died, naming the worker; the model of the last
+    completed update is saved and the message says how to resume."""
+    import time
+
+    from faulty_envs import HangingAfter
+
+    import agents.vec.factories as factories
+    from agents.runs.folders import TrainingStopped
+    from agents.runs.training import train
+
+    real = factories.goalkeeper_env_fn
+    monkeypatch.setattr(factories, "goalkeeper_env_fn",
+                        lambda *a, **k: HangingAfter(real(*a, **k), after=200, how="stop"))
+    cfg = TrainConfig(total_steps=10_000, n_envs=2, n_workers=2, worker_timeout=1.0,
+                      out=str(tmp_path / "run"), hyperparams={"n_steps": 64}, eval_every=0,
+                      checkpoint_every=0, progress_bar=False)
+    t0 = time.monotonic()
+    with pytest.raises(TrainingStopped) as err:
+        train(cfg)
+    assert time.monotonic() - t0 < 60.0
+    stopped = err.value
+    assert stopped.reason == "worker failed"
+    text = str(stopped)
+    assert "rollout worker 0" in text and "stopped answering: no reply within 1 s" in text
+    # As for an environment that raises at the same step: each environment's 201st step
+    # falls in the 4th rollout of 2 x 64 steps, so the checkpoint has 3 updates, 384 steps.
+    assert stopped.steps == 384
+    assert stopped.checkpoint == tmp_path / "run" / "checkpoints" / "model_384_steps.zip"
+    assert stopped.checkpoint.is_file()
+    assert f"--resume {stopped.checkpoint} --steps 10000" in text

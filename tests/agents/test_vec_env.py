@@ -2,12 +2,18 @@
 
 from __future__ import annotations
 
+import multiprocessing
+import os
+import re
+import signal
+import time
+
 import gymnasium as gym
 import numpy as np
 import pytest
 
 pytest.importorskip("stable_baselines3")
-from faulty_envs import FailingAfter  # noqa: E402
+from faulty_envs import FailingAfter, HangingAfter, SlowToBuild  # noqa: E402
 from stable_baselines3 import PPO  # noqa: E402
 from stable_baselines3.common.monitor import Monitor  # noqa: E402
 from stable_baselines3.common.utils import check_for_correct_spaces  # noqa: E402
@@ -108,6 +114,15 @@ def test_bad_arguments():
         WorkerVecEnv([make_keeper], n_workers=0)
 
 
+@pytest.mark.parametrize("timeout", [0, -1.0, float("inf"), float("nan"), "5", True, None])
+def test_a_reply_timeout_that_is_no_positive_number_of_seconds_is_refused(timeout):
+    before = set(multiprocessing.active_children())
+    with pytest.raises(ValueError, match=r"reply_timeout must be a finite number of seconds "
+                                         rf"> 0, got {re.escape(repr(timeout))}"):
+        WorkerVecEnv([make_keeper] * 2, n_workers=2, reply_timeout=timeout)
+    assert set(multiprocessing.active_children()) <= before  # refused before any start
+
+
 # -- faults ---------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("victim", [0, 1])
@@ -166,3 +181,88 @@ def test_workers_leave_ctrl_c_to_the_parent(no_hang):
         assert obs.shape[0] == 2 and all(p.is_alive() for p in venv.processes)
     finally:
         venv.close()
+
+
+def _no_children_left(venv) -> None:
+    """Every worker of ``venv`` has ended and none is among this process's children."""
+    assert not any(p.is_alive() for p in venv.processes)
+    assert not set(venv.processes) & set(multiprocessing.active_children())
+
+
+@pytest.mark.parametrize("victim", [0, 1])
+def test_a_stopped_worker_ends_the_run_within_the_timeout(victim, no_hang):
+    """SIGSTOP of either worker (alive, but answering nothing): the next step raises
+    WorkerError naming the worker, its environments and the timeout, within the timeout and
+    the time it takes to end the workers; close() returns at once and no worker is left."""
+    from agents.vec.workers import WorkerError
+
+    venv = WorkerVecEnv([make_keeper] * 4, n_workers=2, reply_timeout=1.0)
+    venv.reset()
+    venv.step(np.zeros((4, 6), np.float32))
+    os.kill(venv.processes[victim].pid, signal.SIGSTOP)
+    t0 = time.monotonic()
+    with pytest.raises(WorkerError, match=rf"rollout worker {victim} .*environments "
+                                          rf"{2 * victim}-{2 * victim + 1}\) stopped answering: "
+                                          r"no reply within 1 s .*SIGSTOP") as err:
+        venv.step(np.zeros((4, 6), np.float32))
+    elapsed = time.monotonic() - t0
+    assert 1.0 <= elapsed < 3.0, elapsed
+    assert err.value.worker == victim and err.value.environments == range(2 * victim,
+                                                                           2 * victim + 2)
+    assert err.value.exitcode is None and err.value.timeout == 1.0
+    t0 = time.monotonic()
+    venv.close()
+    assert time.monotonic() - t0 < 0.5
+    _no_children_left(venv)
+
+
+@pytest.mark.parametrize("how", ["loop", "deadlock"])
+def test_an_environment_that_hangs_in_step_ends_the_run(how, no_hang):
+    """An environment of worker 1 that never returns from a step (an endless loop, a
+    deadlock): WorkerError naming worker 1 within the timeout, every process ended."""
+    from agents.vec.workers import WorkerError
+
+    fns = [make_keeper, make_keeper, make_keeper, HangingAfter(make_keeper, after=2, how=how)]
+    venv = WorkerVecEnv(fns, n_workers=2, reply_timeout=1.5)
+    venv.reset()
+    for _ in range(2):
+        venv.step(np.zeros((4, 6), np.float32))
+    t0 = time.monotonic()
+    with pytest.raises(WorkerError, match=r"rollout worker 1 .*environments 2-3\) stopped "
+                                          r"answering: no reply within 1.5 s"):
+        venv.step(np.zeros((4, 6), np.float32))
+    assert time.monotonic() - t0 < 3.5
+    venv.close()
+    _no_children_left(venv)
+    with pytest.raises(RuntimeError, match="closed"):
+        venv.step(np.zeros((4, 6), np.float32))
+
+
+def test_close_ends_a_stopped_worker(monkeypatch, no_hang):
+    """close() with a stopped worker (no failure raised first) waits CLOSE_SECONDS for it,
+    then ends it: it returns, and no worker is left."""
+    from agents.vec import workers
+
+    monkeypatch.setattr(workers, "CLOSE_SECONDS", 0.5)
+    venv = WorkerVecEnv([make_keeper] * 2, n_workers=2)
+    venv.reset()
+    os.kill(venv.processes[0].pid, signal.SIGSTOP)
+    t0 = time.monotonic()
+    venv.close()
+    assert time.monotonic() - t0 < 0.5 + workers.KILL_SECONDS + 1.0
+    _no_children_left(venv)
+
+
+def test_start_up_gets_its_own_allowance(monkeypatch, no_hang):
+    """Until a worker has answered a step its replies get START_TIMEOUT, not the (shorter)
+    reply timeout: environments slower to build than the timeout start, and a worker
+    stopped before its first step is reported after START_TIMEOUT."""
+    from agents.vec import workers
+
+    venv = WorkerVecEnv([SlowToBuild(make_keeper, 0.5)] * 2, n_workers=2, reply_timeout=0.1)
+    venv.reset()
+    monkeypatch.setattr(workers, "START_TIMEOUT", 2.0)
+    os.kill(venv.processes[1].pid, signal.SIGSTOP)
+    with pytest.raises(workers.WorkerError, match=r"rollout worker 1 .*no reply within 2 s"):
+        venv.step(np.zeros((2, 6), np.float32))
+    _no_children_left(venv)

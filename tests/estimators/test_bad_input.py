@@ -183,3 +183,145 @@ def test_fusion_weights_refuse_distances_whose_weights_overflow(distances):
     with pytest.raises(ValueError, match=r"distances must be"):
         line_offset_variance(distances, 0.01)
     assert np.isfinite(fusion_weights([0.5, 3.0], "inverse_square")).all()
+
+
+def test_kalman_filter_accepts_lists_and_an_exact_measurement_and_refuses_a_singular_one():
+    """Array-likes are matrices; ``R = 0`` (an exact measurement) is fused exactly where
+    ``H P H^T`` is positive definite; a singular innovation covariance names ``R``."""
+    kf = _kf()
+    kf.predict([[1.0, 0.0], [0.0, 1.0]], [[0.0, 0.0], [0.0, 0.0]])
+    assert kf.update([0.5, -0.25], np.eye(2), np.zeros((2, 2)))
+    np.testing.assert_allclose(kf.x, [0.5, -0.25])
+    np.testing.assert_allclose(kf.P, np.zeros((2, 2)), atol=1e-12)
+    kf = _kf()
+    with pytest.raises(ValueError, match=r"R: the innovation covariance S = H P H\^T \+ R is "
+                                         r"singular"):
+        kf.update(np.ones(1), np.zeros((1, 2)), np.zeros((1, 1)))
+    np.testing.assert_array_equal(kf.P, np.eye(2))
+    assert kf.y is None and kf.missed == 0
+
+
+@pytest.mark.parametrize("step", ["update", "predict"])
+def test_kalman_filter_refuses_a_step_that_overflows_and_stays(step):
+    kf = _kf()
+    with pytest.raises(ValueError, match="small enough that the filter stays finite"):
+        if step == "update":
+            kf.update(np.full(2, 1e308), np.eye(2), np.eye(2))
+        else:
+            kf.predict(1e200 * np.eye(2), np.eye(2))
+    np.testing.assert_array_equal(kf.x, np.zeros(2))
+    np.testing.assert_array_equal(kf.P, np.eye(2))
+    assert kf.d2 is None
+    kf.update(np.ones(2), np.eye(2), np.eye(2))  # and it goes on
+    np.testing.assert_allclose(kf.x, [0.5, 0.5])
+
+
+@pytest.mark.parametrize("name", ["bootstrap", "fbpf", "mfbpf"])
+@pytest.mark.parametrize("y,match", [(INF, "y must be finite"), (NAN, "y must be finite"),
+                                     ("x", "y must be a real number"),
+                                     ([1.0, 2.0], r"y of shape \(2,\): the likelihood")])
+def test_particle_filters_refuse_a_measurement_that_weighs_nothing(name, y, match):
+    """``step(inf)`` used to weigh every particle zero and return the prior in silence."""
+    from estimators.particle.core import PARTICLE_FILTERS, ungm_model
+
+    transition, likelihood = ungm_model()
+    rng = np.random.default_rng(1)
+    pf = PARTICLE_FILTERS.get(name)(rng.normal(size=(64, 1)), transition, likelihood, rng)
+    pf.step(0.5)
+    particles, k = pf.particles.copy(), pf.k
+    with pytest.raises(ValueError, match=match):
+        pf.step(y)
+    if not match.startswith("y of shape"):  # refused before the particles move
+        np.testing.assert_array_equal(pf.particles, particles)
+        assert pf.k == k
+    assert np.isfinite(pf.step(0.4)).all()
+
+
+def _trackers():
+    from estimators.image.following import KalmanMeanShift, PlainMeanShift
+    from estimators.image.mspf import MeanShiftParticleFilter, ParticleFilterTracker
+
+    rng = np.random.default_rng(3)
+    return {
+        "plain": PlainMeanShift((35, 25), (10, 10)),
+        "kalman": KalmanMeanShift((35, 25), (10, 10), image_size=(80, 60), fov=(1.0, 0.8),
+                                  camera_height=0.5),
+        "kalman-paper": KalmanMeanShift((35, 25), (10, 10), image_size=(80, 60),
+                                        fov=(1.0, 0.8), order="paper"),
+        "mspf": MeanShiftParticleFilter((35, 25), (10, 10), rng, area=100.0),
+        "pf": ParticleFilterTracker((35, 25), (10, 10), rng),
+    }
+
+
+def _state(tracker) -> dict:
+    return {k: v.copy() if isinstance(v, np.ndarray) else v for k, v in vars(tracker).items()
+            if k not in ("kf", "_win", "rng", "_source", "_motion_source")} | (
+        {"kf": (tracker.kf.x.copy(), tracker.kf.P.copy())} if hasattr(tracker, "kf") else {})
+
+
+WEIGHTS = r"(weight|colour)_image must hold finite, non-negative weights"
+TOO_SMALL = (r"(weight|colour)_image must be at least 10 x 10 pixels \(w x h\) to hold the "
+             r"window, got shape \(1, 1\)")
+
+
+@pytest.mark.parametrize("kind", ["plain", "kalman", "kalman-paper", "mspf", "pf"])
+@pytest.mark.parametrize("bad,match", [
+    (np.full((60, 80), NAN), WEIGHTS), (np.full((60, 80), 1e308), WEIGHTS),
+    (np.full((60, 80), -1.0), WEIGHTS), (np.ones((1, 1)), TOO_SMALL)])
+def test_image_trackers_refuse_frames_that_are_no_weights_and_stay(kind, bad, match):
+    """NaN, overflowing or negative weights where a window reads them, or a frame smaller
+    than the window: ValueError naming the image, the tracker as it was (its next frame the
+    same as an untouched copy's)."""
+    import copy
+
+    if kind.startswith("kalman") and bad.shape == (1, 1):
+        match = r"weight_image must have shape \(60, 80\)"  # it knows its image size
+    good = np.zeros((60, 80))
+    good[20:30, 30:40] = 1.0
+    tracker = _trackers()[kind]
+    tracker.update(good)
+    twin = copy.deepcopy(tracker)
+    before = _state(tracker)
+    with pytest.raises(ValueError, match=match):
+        tracker.update(bad)
+    after = _state(tracker)
+    assert after.keys() == before.keys()
+    for key, value_before in before.items():
+        np.testing.assert_equal(after[key], value_before, err_msg=key)
+    np.testing.assert_array_equal(tracker.update(good), twin.update(good))
+
+
+def test_a_kalman_mean_shift_names_the_image_size_it_was_made_for():
+    tracker = _trackers()["kalman"]
+    with pytest.raises(ValueError, match=r"weight_image must have shape \(60, 80\), got "
+                                         r"\(10, 10\)"):
+        tracker.update(np.zeros((10, 10)))
+    np.testing.assert_array_equal(tracker.state, [35.0, 25.0, 0.0, 0.0])
+
+
+def test_ball_trackers_take_an_empty_frame_and_have_no_estimate_before_a_track():
+    """Accepted by design: a frame without a detection is a frame in which the ball was not
+    seen, and a tracker that has never seen the ball has no estimate (None)."""
+    from estimators import BallTracker, LeastSquaresBall
+
+    for make in (BallTracker, LeastSquaresBall):
+        tracker = make()
+        assert tracker.estimate(0.0) is None
+        tracker.update(0.0, np.zeros((0, 2)))
+        assert tracker.estimate(0.05) is None
+        tracker.update(0.1, np.array([[1.0, 2.0]]))
+        np.testing.assert_allclose(tracker.estimate(0.1)[:2], [1.0, 2.0], atol=1e-9)
+
+
+@pytest.mark.parametrize("deceleration,state,dt,match", [
+    (0.4, [0.0, 0.0, 0.0, 1.34e154], 0.0, r"state must be finite .* velocities within 10000"),
+    (0.4, [2e6, 0.0, 1.0, 0.0], 1.0, r"state must be finite .* positions within 1e\+06 m"),
+    (0.0, [0.0, 0.0, 1.0, 0.0], INF, r"state and dt must keep the prediction finite"),
+])
+def test_the_ball_model_refuses_a_prediction_that_overflows(deceleration, state, dt, match):
+    """A speed whose square overflows made NaN out of ``predict``; so did a ball that never
+    stops (no friction) predicted forever."""
+    model = FrictionBallModel(deceleration)
+    with pytest.raises(ValueError, match=match):
+        model.predict(state, dt)
+    assert np.isfinite(model.predict([0.0, 0.0, 1.0, 0.0], 1.0)).all()

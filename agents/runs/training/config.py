@@ -14,7 +14,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from agents.common.checks import check_counts
+from agents.common.checks import check_counts, positive_seconds
+from agents.common.processes import REPLY_TIMEOUT
 from agents.policies.action_maps import ACTION_MAPS
 from agents.sb3.algorithms import algorithm_name, algorithm_parameters
 from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
@@ -48,6 +49,11 @@ class TrainConfig:
             a resumed run counts the checkpoint's steps too.
         n_envs: environments (matches for the match) stepped in parallel.
         n_workers: worker processes for them (0: in this process).
+        worker_timeout: seconds a worker process may take to answer before training stops as
+            for a worker that died (finite, > 0; a worker stopped with ``SIGSTOP``,
+            deadlocked or in an endless loop): a checkpoint of the last completed update and
+            the command that resumes. Until its first step a worker gets at least
+            :data:`~agents.common.processes.START_TIMEOUT` (300 s) to start.
         seed: seeds the environments, the algorithm and torch.
         out: the run's folder.
         hyperparams: keyword arguments of the algorithm (over
@@ -98,6 +104,7 @@ class TrainConfig:
     total_steps: int = 1_000_000
     n_envs: int = 16
     n_workers: int = 2
+    worker_timeout: float = REPLY_TIMEOUT
     seed: int = 0
     out: str = "runs/keeper"
     hyperparams: dict[str, Any] = field(default_factory=dict)
@@ -126,6 +133,7 @@ class TrainConfig:
         check_counts(self, (("total_steps", 1), ("n_envs", 1), ("n_workers", 0),
                             ("checkpoint_every", 0), ("eval_every", 0), ("eval_episodes", 1),
                             ("self_play_every", 1), ("torch_threads", 1), ("frame_stack", 1)))
+        self.worker_timeout = positive_seconds(self.worker_timeout, "worker_timeout")
         known = algorithm_parameters(self.algorithm)
         unknown = sorted(set(self.hyperparams) - known)
         if unknown:

@@ -9,7 +9,8 @@ Goalkeeper-v0 runs in :class:`~agents.vec.workers.WorkerVecEnv` (``n_envs`` envi
 robot is a batch entry of one shared policy, against the ``opponent`` team; its ``n_envs``
 matches are split over ``n_workers`` processes
 (:class:`~agents.vec.match_workers.MatchWorkerVecEnv`, the same batches whatever the number of
-workers) or, with ``n_workers=0``, stepped in-process. The vectorised environments (and
+workers) or, with ``n_workers=0``, stepped in-process. A worker that gives no reply within
+``worker_timeout`` seconds fails the run as one that died. The vectorised environments (and
 stable-baselines3) are imported when a VecEnv is made, not with this module.
 """
 
@@ -40,7 +41,8 @@ def make_vec_env(cfg: TrainConfig) -> Any:
         return factories.make_match_vec_env(cfg.env_kwargs, cfg.n_envs, cfg.learner,
                                             "idle" if opponent == "self" else opponent,
                                             cfg.seed, workers=cfg.n_workers,
-                                            batched=cfg.batched)
+                                            batched=cfg.batched,
+                                            reply_timeout=cfg.worker_timeout)
     if cfg.batched:
         from agents.vec.batched import BatchedVecEnv
 
@@ -56,7 +58,7 @@ def make_vec_env(cfg: TrainConfig) -> Any:
     else:
         from agents.vec.workers import WorkerVecEnv
 
-        venv = WorkerVecEnv(fns, n_workers=cfg.n_workers)
+        venv = WorkerVecEnv(fns, n_workers=cfg.n_workers, reply_timeout=cfg.worker_timeout)
     venv.seed(cfg.seed)
     return venv
 

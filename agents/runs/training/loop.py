@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import os
 import platform
+import shlex
 import shutil
 import time
 from pathlib import Path
@@ -25,6 +26,7 @@ from agents.runs.folders import (
     check_steps_left,
     occupied_run_files,
 )
+from agents.runs.limits import resume_options
 from agents.runs.resolve import load_sb3
 from agents.runs.training.config import TrainConfig
 from agents.runs.training.environments import check_env_kwargs, learner_action_map, training_env
@@ -55,8 +57,8 @@ def train(cfg: TrainConfig, resume: str | os.PathLike | None = None,
     stable-baselines3 file as stable-baselines3 does (its pickled entries, a ``.pkl`` of
     statistics): only for files from a source you trust.
 
-    Ctrl-C, or a rollout worker that dies or whose environment raises, ends training with
-    :class:`~agents.runs.folders.TrainingStopped` after saving the model of the last
+    Ctrl-C, or a rollout worker that dies, stops answering or whose environment raises, ends
+    training with :class:`~agents.runs.folders.TrainingStopped` after saving the model of the last
     completed update in ``cfg.out/checkpoints/`` (its message has the ``--resume``
     command)."""
     import torch
@@ -169,7 +171,8 @@ def _stop(cfg: TrainConfig, model: Any, out: Path, last_update: Any, done_steps:
     norm = model.get_vec_normalize_env()
     if norm is not None:
         save_vecnormalize(norm, vecnormalize_path(checkpoint))
-    command = (f"soccer-env train --resume {checkpoint} --steps {cfg.total_steps}")
+    command = shlex.join(["soccer-env", "train", "--resume", str(checkpoint), "--steps",
+                          str(cfg.total_steps), *resume_options(cfg.to_dict())])
     return TrainingStopped(f"training {what}\nsaved the model of the last completed update "
                            f"({steps:,} steps) to {checkpoint}\ncontinue with: {command}",
                            reason, checkpoint, steps, command)

@@ -307,3 +307,17 @@ def test_world_placement_validated():
         w.reset(np.zeros((2, 3)))
     with pytest.raises(ValueError, match=r"commands must have shape \(1, 6\)"):
         w.step(np.zeros((1, 4)))
+
+
+def test_a_step_after_time_limit_truncation_goes_on_by_design():
+    """Gymnasium's TimeLimit truncates; the task has not ended, so a further step continues
+    the shot (finite results) and TimeLimit reports the truncation again."""
+    env = gym.make("soccer_env/Goalkeeper-v0", max_episode_steps=3)
+    env.reset(seed=0)
+    for _ in range(3):
+        *_, terminated, truncated, _ = env.step(np.zeros(6, np.float32))
+    assert truncated and not terminated
+    obs, reward, terminated, truncated, _ = env.step(np.zeros(6, np.float32))
+    assert truncated and np.all(np.isfinite(obs)) and np.isfinite(reward)
+    env.reset(seed=0)
+    assert not env.step(np.zeros(6, np.float32))[3]

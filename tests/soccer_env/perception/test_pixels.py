@@ -146,3 +146,19 @@ def test_an_unknown_detector_is_refused():
     with pytest.raises(ValueError, match=r"detector must be one of \['geometric', 'pixels'\]"):
         gym.make("soccer_env/Goalkeeper-v0", obs_mode="perceived",
                  perception={"detector": "camera"})
+
+
+def test_a_ball_filling_the_head_image_is_tracked_not_refused():
+    """A ball right below the camera fills more than half of the image: its search window
+    (twice the blob) is kept inside the image, and the tracker follows it frame after frame."""
+    from soccer_env import presets
+    from soccer_env.perception.pixels import BallImageTracker
+    from soccer_env.presets.images import COLOURS
+
+    tracker = BallImageTracker(presets.head_camera("kidsize"), presets.ball("kidsize"))
+    width, height = tracker.size
+    image = np.zeros((height, width, 3), dtype=np.uint8)
+    image[height // 8:, width // 10:] = COLOURS["orange"]
+    for _ in range(3):
+        found = tracker.detect(image, 0.0, 0.6, 0.0)
+        assert len(found) == 1 and np.all(np.isfinite(found[0]))

@@ -54,9 +54,10 @@ def test_train_evaluate_checkpoint_and_resume(tmp_path, capsys):
                                atol=1e-5)
 
     # Resume from the first checkpoint: the step count continues, the configuration is the
-    # run's own.
+    # run's own. Its save intervals are below what a run's config.json may set by itself, so
+    # they are given again (as the resume command a stopped run prints gives them).
     assert main(["train", "--resume", str(checkpoints[0]), "--steps", "3072",
-                 "--no-progress"]) == 0
+                 "--checkpoint-every", "1024", "--eval-every", "1024", "--no-progress"]) == 0
     summary = json.loads((run / "summary.json").read_text())
     assert summary["steps"] == 3072 and summary["trained_steps"] == 2048
     resumed = json.loads((run / "config.json").read_text())
@@ -70,7 +71,7 @@ def test_train_evaluate_checkpoint_and_resume(tmp_path, capsys):
     tuned = tmp_path / "tuned"
     assert main(["train", "--resume", str(run / "final_model.zip"), "--obs-mode", "truth",
                  "--hp", "ent_coef=0.01", "--steps", "4096", "--out", str(tuned),
-                 "--no-progress"]) == 0
+                 "--checkpoint-every", "0", "--eval-every", "0", "--no-progress"]) == 0
     cfg = json.loads((tuned / "config.json").read_text())
     assert cfg["env_kwargs"]["obs_mode"] == "truth" and cfg["hyperparams"]["ent_coef"] == 0.01
     assert load_sb3(tuned / "final_model.zip").ent_coef == 0.01
@@ -176,7 +177,8 @@ def test_recurrent_ppo_run_resumes_and_refuses_a_resume_with_nothing_to_train(tm
     capsys.readouterr()
     for steps in (["--steps", "256"], ["--steps", "100"], []):
         with pytest.raises(SystemExit):
-            main(["train", "--resume", str(run / "final_model.zip"), *steps, "--no-progress"])
+            main(["train", "--resume", str(run / "final_model.zip"), *steps, "--eval-every",
+                  "256", "--no-progress"])
         err = capsys.readouterr().err
         assert "leaves nothing to train" in err and "already trained 256 steps" in err, err
     assert "from its config.json" in err  # without --steps: the run's own total

@@ -15,6 +15,7 @@ MATCH = ["--env", "soccer_env/Match-v0"]
 @pytest.mark.parametrize("args, message", [
     (["--workers", "4"], "--workers sets stable-baselines3's subprocesses; with --backend "
                          "rllib use --num-env-runners"),
+    (["--worker-timeout", "30"], "--worker-timeout sets stable-baselines3's subprocesses"),
     (["--eval-every", "1000"], "--eval-every is stable-baselines3's periodic evaluation"),
     (["--eval-episodes", "10"], "--eval-episodes is for the periodic evaluation"),
     (["--eval-obs-mode", "raw"], "--eval-obs-mode is for the periodic evaluation"),
@@ -87,3 +88,28 @@ def test_the_option_table_sets_each_backends_fields():
     assert given_fields(args, "sb3") == {"total_steps": 5, "n_envs": 3, "n_workers": 1}
     assert given_fields(args, "rllib") == {"total_steps": 5, "n_envs": 3,
                                            "num_env_runners": 2}
+
+
+@pytest.mark.parametrize("value", ["0", "-5", "inf", "nan"])
+def test_sb3_refuses_a_worker_timeout_that_is_no_positive_number_of_seconds(tmp_path, value,
+                                                                           capsys):
+    pytest.importorskip("stable_baselines3")
+    with pytest.raises(SystemExit) as exc:
+        main(["train", "--worker-timeout", value, "--no-progress", "--out",
+              str(tmp_path / "x")])
+    assert exc.value.code == 2
+    assert "worker_timeout must be a finite number of seconds > 0" in capsys.readouterr().err
+    assert not (tmp_path / "x").exists()
+
+
+def test_worker_timeout_option_sets_the_configuration():
+    """--worker-timeout sets TrainConfig.worker_timeout; without it a new run, or a resumed
+    run whose config.json predates the setting, gets the default."""
+    pytest.importorskip("stable_baselines3")
+    from soccer_lab.commands.train import train_config
+    from soccer_lab.commands.train_options import given_fields, parser
+
+    args = parser().parse_args(["--worker-timeout", "12.5"])
+    assert given_fields(args, "sb3") == {"worker_timeout": 12.5}
+    assert train_config(args, {}).worker_timeout == 12.5
+    assert train_config(parser().parse_args([]), {"n_envs": 4}).worker_timeout == 60.0

@@ -58,17 +58,17 @@ def test_a_resumed_run_writes_where_the_user_says_not_where_its_files_say(tmp_pa
     assert config["out"] == str(original)  # the copy's file points at the original
     before = _mtimes(original)
     checkpoint = copy / "checkpoints" / "model_128_steps.zip"
-    assert main(["train", "--resume", str(checkpoint), "--steps", "384",
-                 "--no-progress"]) == 0
+    # The run's checkpoint interval is below what a received config.json may set: given again.
+    again = ["--steps", "384", "--checkpoint-every", "128", "--no-progress"]
+    assert main(["train", "--resume", str(checkpoint), *again]) == 0
     assert _mtimes(original) == before  # the original run untouched
     assert json.loads((copy / "summary.json").read_text())["steps"] == 384
     assert json.loads((copy / "config.json").read_text())["out"] == str(copy)
     # --out elsewhere: a fresh folder is written; one holding a run needs --force.
-    assert main(["train", "--resume", str(checkpoint), "--steps", "384", "--no-progress",
+    assert main(["train", "--resume", str(checkpoint), *again,
                  "--out", str(tmp_path / "branch")]) == 0
     with pytest.raises(SystemExit):
-        main(["train", "--resume", str(checkpoint), "--steps", "384", "--no-progress",
-              "--out", str(original)])
+        main(["train", "--resume", str(checkpoint), *again, "--out", str(original)])
     assert _mtimes(original) == before
 
 

@@ -40,9 +40,13 @@ def test_train_resume_and_refuse_others_checkpoints(tmp_path, monkeypatch, capsy
     assert (run / "checkpoints" / "checkpoint_100_steps" / "soccer_env_signature.json").is_file()
     assert (final / "soccer_env_signature.json").is_file()
 
-    # --resume continues the run in its folder (and picks the rllib backend by itself).
+    # --resume continues the run in its folder (and picks the rllib backend by itself). The
+    # run's checkpoint interval is below what its config.json may set: given again, as the
+    # printed command does.
+    assert "--steps 400 --checkpoint-every 100" in out
+    again = ["--checkpoint-every", "100"]
     assert main(["train", "--resume", str(run / "checkpoints" / "checkpoint_100_steps"),
-                 "--steps", "300", "--no-progress"]) == 0
+                 "--steps", "300", *again, "--no-progress"]) == 0
     assert "trained 200 steps" in capsys.readouterr().out
     lines = [json.loads(line) for line in (run / "results.jsonl").read_text().splitlines()]
     assert [r["steps"] for r in lines] == [100, 200, 200, 300]
@@ -50,11 +54,11 @@ def test_train_resume_and_refuse_others_checkpoints(tmp_path, monkeypatch, capsy
 
     # Nothing left to train; a checkpoint of another account (another signing key).
     with pytest.raises(SystemExit):
-        main(["train", "--resume", str(final), "--steps", "300"])
+        main(["train", "--resume", str(final), "--steps", "300", *again])
     assert "leaves nothing to train" in capsys.readouterr().err
     monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path / "someone_else"))
     with pytest.raises(SystemExit):
-        main(["train", "--resume", str(final), "--steps", "400"])
+        main(["train", "--resume", str(final), "--steps", "400", *again])
     err = capsys.readouterr().err
     assert "not a checkpoint of your own runs" in err and "--trust" in err
 
