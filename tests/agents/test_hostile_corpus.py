@@ -1,11 +1,13 @@
 """The hostile-file corpus (``tests/support/hostile_corpus.py``, which writes it and loads
 it): every file is refused, with a message that says why; none runs code; and loading all
 of them, one after the other in one process as ``soccer-env eval`` and ``soccer-env train
---resume`` do, keeps that process's peak memory under 512 MB and its writes under 10 MB.
+--resume`` do, adds less than 192 MB to what that process holds after its imports (512 MB
+in all on the reference machine) and writes less than 10 MB.
 
 The check runs in a subprocess with an address-space limit (a safety net: a regression
 fails with a MemoryError instead of taking the machine's memory); the peak is its
-``ru_maxrss``, the writes its ``/proc/self/io`` ``wchar``."""
+``VmHWM`` counted from the end of its imports, the writes its ``/proc/self/io``
+``wchar``."""
 
 from __future__ import annotations
 
@@ -22,9 +24,12 @@ import pytest
 pytest.importorskip("stable_baselines3")
 import hostile_corpus  # noqa: E402
 
-#: The aims: a process that loads any of the files peaks below this [MB] and writes less
-#: than this [bytes].
-PEAK_MB, WRITTEN_BYTES = 512, 10 * 2**20
+#: The aims: a process that loads any of the files peaks below 512 MB and writes less than
+#: 10 MB. What the imports hold resident (torch, stable-baselines3, the package) is not a
+#: file's cost and varies between installations (320 MB on the reference machine, 440 MB
+#: in a fresh virtual environment on /tmp), so the files' share is bounded: 512 MB less the
+#: reference machine's imports [MB].
+FILES_MB, WRITTEN_BYTES = 512 - 320, 10 * 2**20
 #: The subprocess's address space (torch alone reserves about 1.2 GB of it).
 ADDRESS_SPACE = 3 * 2**30
 
@@ -60,9 +65,9 @@ def test_no_hostile_file_runs_code_or_costs_what_its_size_does_not_promise(resul
     folder, _, lines = results
     assert not (folder / hostile_corpus.MARKER).exists()
     assert not any(r.get("ran_code") for r in lines)
-    assert lines[0]["peak_mb"] < PEAK_MB  # the imports alone
+    resident = lines[0]["peak_mb"]  # after the imports, where the peak starts afresh
     for result in lines[1:]:
-        assert result["peak_mb"] < PEAK_MB, result
+        assert result["peak_mb"] - resident < FILES_MB, (resident, result)
         assert result["written_bytes"] < WRITTEN_BYTES, result
     # Nothing was written into the received runs (a refused resume writes no checkpoint).
     for name in ("checkpoint_every", "checkpoint_bomb"):
