@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 PIP := $(BIN)/python -m pip
 
-.PHONY: demo test test-rllib bench lint docs clean
+.PHONY: demo test bench lint docs clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -33,24 +33,36 @@ demo: $(VENV)/.demo-installed
 test: $(VENV)/.dev-installed
 	$(BIN)/python -m pytest -n auto --dist worksteal
 
-# RLlib (the rllib extra) pins an older gymnasium than the other extras take, so its tests
-# (the files named test_*rllib*.py; the main suite skips them) run in an environment of their
-# own, one test at a time: each starts Ray, which is slow to start and uses both cores.
-RLLIB_VENV := .venv-rllib
-RLLIB_BIN := $(RLLIB_VENV)/bin
-RLLIB_TESTS = $(shell find tests -name 'test_*rllib*.py' | sort)
+# Libraries that pin versions the main environment cannot hold run their tests (the files
+# named test_*NAME*.py; the main suite skips them) in an environment of their own, .venv-NAME
+# with the NAME extra, torch==2.13.0 first as for the main one:
+# - RLlib (rllib) pins an older gymnasium; its tests run one at a time: each starts Ray,
+#   which is slow to start and uses both cores;
+# - BenchMARL (benchmarl) pins an older TorchRL than the clients extra;
+# - Tianshou (tianshou) requires virtualenv < 21, which caps filelock below the one the other
+#   extras take.
+OWN_ENVS := rllib benchmarl tianshou
 
-$(RLLIB_BIN)/python:
-	$(PYTHON) -m venv $(RLLIB_VENV)
-	$(RLLIB_BIN)/python -m pip install --quiet --upgrade pip
+.venv-%/bin/python:
+	$(PYTHON) -m venv .venv-$*
+	.venv-$*/bin/python -m pip install --quiet --upgrade pip
 
-$(RLLIB_VENV)/.installed: pyproject.toml | $(RLLIB_BIN)/python
-	$(RLLIB_BIN)/python -m pip install --quiet torch==2.13.0
-	$(RLLIB_BIN)/python -m pip install --quiet -e ".[rllib,dev]"
+.venv-%/.installed: pyproject.toml | .venv-%/bin/python
+	.venv-$*/bin/python -m pip install --quiet torch==2.13.0
+	.venv-$*/bin/python -m pip install --quiet -e ".[$*,dev]"
 	touch $@
 
-test-rllib: $(RLLIB_VENV)/.installed
-	$(RLLIB_BIN)/python -m pytest $(RLLIB_TESTS)
+own_tests = $(shell find tests -name 'test_*$(1)*.py' | sort)
+
+.PHONY: $(addprefix test-,$(OWN_ENVS))
+test-rllib: .venv-rllib/.installed
+	.venv-rllib/bin/python -m pytest $(call own_tests,rllib)
+
+test-benchmarl: .venv-benchmarl/.installed
+	.venv-benchmarl/bin/python -m pytest -n auto --dist worksteal $(call own_tests,benchmarl)
+
+test-tianshou: .venv-tianshou/.installed
+	.venv-tianshou/bin/python -m pytest $(call own_tests,tianshou)
 
 # The documentation site (mkdocs.yml, docs/): --strict fails on any warning (a broken link, a
 # page missing from the navigation, a reference or docstring that mkdocstrings cannot read).
@@ -68,4 +80,4 @@ lint: $(VENV)/.dev-installed
 	$(BIN)/ruff check soccer_env estimators agents soccer_lab tests benchmarks examples
 
 clean:
-	rm -rf $(VENV) $(RLLIB_VENV) demo_output bench_output .pytest_cache site
+	rm -rf $(VENV) $(addprefix .venv-,$(OWN_ENVS)) demo_output bench_output .pytest_cache site

@@ -5,7 +5,8 @@ The README's blocks run one by one, each in a namespace of its own; a documentat
 in order in one namespace, since a tutorial builds on its earlier blocks. Two kinds of block
 are not run: training examples (a ``.learn(`` or ``.train(`` call; shortened versions are in
 test_api and the RLlib tests) and blocks that import a library of an optional extra that is
-not installed (the RL libraries of "clients", Ray of "rllib").
+not installed (the RL libraries of "clients", Ray of "rllib", BenchMARL of "benchmarl",
+Tianshou of "tianshou", whose own environment runs its block: tests/examples).
 """
 
 import os
@@ -26,7 +27,8 @@ PAGES = sorted(DOCS.rglob("*.md"))
 #: The libraries of optional extras, by the extra that installs them: a block importing one
 #: is skipped where it is missing.
 OPTIONAL = {"torchrl": "clients", "tensordict": "clients", "supersuit": "clients",
-            "rl_zoo3": "clients", "ray": "rllib"}
+            "rl_zoo3": "clients", "pufferlib": "clients", "ray": "rllib",
+            "benchmarl": "benchmarl", "tianshou": "tianshou"}
 #: What a training example calls.
 TRAINING = (".learn(", ".train(")
 

@@ -1,21 +1,10 @@
-"""The environments and the match's policy mappings for RLlib (Ray's reinforcement-learning
-library), which samples on any number of machines of a Ray cluster.
+"""The policy mappings, callbacks and PPO configuration of the RLlib backend (Ray's
+reinforcement-learning library), which samples on any number of machines of a Ray cluster.
 
-RLlib builds environments on its *env runners*, Ray actors that the cluster places on any of
-its nodes, so it finds them by name in Ray's registry (:func:`ray.tune.registry.register_env`;
-the registry travels to every node). :func:`register_envs` registers:
-
-* ``"soccer_env/Goalkeeper-v0"`` (:func:`keeper_env`): the keeper task, ``env_config`` holding
-  its keyword arguments (``obs_mode``, ``perception``, ``shaping``, ...) and, optionally, the
-  learner's ``"actions"`` map and ``"frame_stack"`` as ``soccer-env train`` has them
-  (:func:`~agents.policies.wrappers.wrap_learner`);
-* ``"soccer_env/Match-v0"`` (:func:`match_env`): the PettingZoo match
-  (:func:`soccer_env.parallel_env`, ``env_config`` its keyword arguments) as an RLlib
-  ``MultiAgentEnv`` through RLlib's ``ParallelPettingZooEnv`` (:class:`MatchMultiAgentEnv`
-  fixes two bugs of it, see there).
-
-The environments hand RLlib small infos (:data:`KEEPER_INFOS`, :data:`MATCH_INFOS`): the truth
-and the belief of every step stay out of the episodes that env runners send to the learner.
+The environments are those of :mod:`agents.runs.rllib_envs` (their names are importable from
+here too): :class:`~agents.runs.rllib_envs.KeeperEnv` for ``"soccer_env/Goalkeeper-v0"`` and
+:class:`~agents.runs.rllib_envs.MatchEnv` for ``"soccer_env/Match-v0"``. A configuration names
+the class, so its checkpoints restore in a fresh process without registering anything.
 
 The match's agents map to RLlib modules (networks) in one of :data:`POLICY_MAPPINGS`:
 
@@ -28,7 +17,11 @@ The match's agents map to RLlib modules (networks) in one of :data:`POLICY_MAPPI
   :class:`SelfPlayCallback` copies from the learner when training starts and every
   ``self_play_every`` environment steps, after RLlib's own self-play example
   (``rllib/examples/multi_agent/self_play_*``; :func:`copy_module_weights` says where it
-  differs).
+  differs);
+* ``"fixed-opponent"``: module ``"main"`` learns and plays the ``learner`` team; the
+  environment itself plays the other team with a fixed policy, ``opponent`` (the scripted
+  team, idle robots or a numpy policy, see :func:`~agents.runs.rllib_envs.opponent_team`),
+  and RLlib sees the learner's robots only.
 
 :func:`ppo_config` puts it together (RLlib's new API stack)::
 
@@ -50,33 +43,43 @@ the keeper's save rate or the match's goals (:class:`SoccerMetricsCallback`).
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable, Mapping
 from typing import Any
 
-import gymnasium as gym
-from pettingzoo.utils.wrappers import BaseParallelWrapper
 from ray.rllib.algorithms.ppo import PPOConfig
 from ray.rllib.callbacks.callbacks import RLlibCallback
-from ray.rllib.env.wrappers.pettingzoo_env import ParallelPettingZooEnv
+from ray.rllib.connectors.env_to_module.mean_std_filter import (
+    MeanStdFilter as RLlibMeanStdFilter,
+)
 
-from agents.policies.action_maps import ACTION_MAPS
-from agents.policies.wrappers import wrap_learner
+from agents.policies.numpy_policy import NumpyPolicy
+from agents.runs.rllib_envs import (
+    ENV_CLASSES,
+    ENV_IDS,
+    KEEPER_INFOS,
+    MATCH_INFOS,
+    OPPONENT_NAMES,
+    KeeperEnv,
+    MatchEnv,
+    MatchMultiAgentEnv,
+    keeper_env,
+    match_env,
+    match_kwargs,
+    register_envs,
+)
+from agents.runs.rllib_filters import MeanStdFilter
 from agents.scripted import TEAMS
 from estimators.registry import Registry
 from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 
-__all__ = ["ENV_IDS", "KEEPER_INFOS", "MATCH_INFOS",
+__all__ = ["ENV_IDS", "ENV_CLASSES", "KEEPER_INFOS", "MATCH_INFOS",
            "POLICY_MAPPINGS", "DEFAULT_HYPERPARAMS", "register_envs", "keeper_env", "match_env",
-           "MatchMultiAgentEnv", "MatchPolicies", "match_policies", "ppo_config",
+           "KeeperEnv", "MatchEnv", "MatchMultiAgentEnv", "MatchPolicies", "match_policies",
+           "ppo_config", "fixed_opponent_config", "learner_module", "OPPONENT_NAMES",
+           "MeanStdFilter",
            "apply_hyperparams", "hyperparameter_names", "SelfPlayCallback", "self_play_callback",
            "NodeStepsCallback", "SoccerMetricsCallback", "copy_module_weights"]
-
-#: The environments :func:`register_envs` registers with RLlib.
-ENV_IDS = (GOALKEEPER_ID, MATCH_ID)
-#: What of the keeper's info RLlib gets.
-KEEPER_INFOS = ("outcome", "reward_terms", "shot_fired", "keeper_touched")
-#: What of every match agent's info RLlib gets.
-MATCH_INFOS = ("score", "event", "reward_terms")
 
 #: PPO settings over RLlib's defaults, chosen as stable-baselines3's PPO defaults that
 #: :mod:`agents.runs.training` uses (16 environments x 256 steps per update, minibatches of 512,
@@ -99,106 +102,6 @@ _RESERVED = {"env": "env_id", "env_config": "env_config", "policies": "policy_ma
 #: The configuration methods whose keyword arguments are hyperparameters.
 _HP_METHODS = ("training", "env_runners", "learners", "reporting", "fault_tolerance",
                "resources")
-
-
-# ------------------------------------------------------------------------------------------
-# Environments
-# ------------------------------------------------------------------------------------------
-
-class _SlimInfos(gym.Wrapper):
-    """The keeper with only :data:`KEEPER_INFOS` in its infos."""
-
-    def reset(self, **kwargs: Any) -> tuple[Any, dict[str, Any]]:
-        obs, info = self.env.reset(**kwargs)
-        return obs, {k: info[k] for k in KEEPER_INFOS if k in info}
-
-    def step(self, action: Any) -> tuple[Any, float, bool, bool, dict[str, Any]]:
-        obs, reward, term, trunc, info = self.env.step(action)
-        return obs, reward, term, trunc, {k: info[k] for k in KEEPER_INFOS if k in info}
-
-
-class _SlimMatchInfos(BaseParallelWrapper):
-    """The match with only :data:`MATCH_INFOS` in every agent's info."""
-
-    @staticmethod
-    def _slim(infos: Mapping[str, Mapping[str, Any]]) -> dict[str, dict[str, Any]]:
-        return {a: {k: info[k] for k in MATCH_INFOS if k in info} for a, info in infos.items()}
-
-    def reset(self, seed: int | None = None, options: dict | None = None):
-        obs, infos = self.env.reset(seed=seed, options=options)
-        return obs, self._slim(infos)
-
-    def step(self, actions: Mapping[str, Any]):
-        obs, rewards, terms, truncs, infos = self.env.step(actions)
-        return obs, rewards, terms, truncs, self._slim(infos)
-
-    def state(self) -> Any:
-        return self.env.state()
-
-
-def keeper_env(env_config: Mapping[str, Any] | None = None) -> gym.Env:
-    """Goalkeeper-v0 for RLlib: ``env_config`` holds its keyword arguments and, optionally,
-    ``"actions"`` (the learner's action map, :data:`~agents.policies.action_maps.ACTION_MAPS`,
-    default ``"native"``) and ``"frame_stack"`` (the last N observations side by side, default 1).
-    Infos hold :data:`KEEPER_INFOS` only."""
-    import soccer_env  # noqa: F401  (registers the environments in this process)
-
-    kwargs = dict(env_config or {})
-    actions = kwargs.pop("actions", "native")
-    frame_stack = kwargs.pop("frame_stack", 1)
-    if actions not in ACTION_MAPS:
-        raise ValueError(f"actions must be one of {list(ACTION_MAPS)}, got {actions!r}")
-    env = gym.make(GOALKEEPER_ID, **kwargs)
-    return wrap_learner(_SlimInfos(env), actions, int(frame_stack))
-
-
-class MatchMultiAgentEnv(ParallelPettingZooEnv):
-    """RLlib's ``ParallelPettingZooEnv`` with two of its bugs (Ray 2.60) fixed:
-
-    * it builds ``possible_agents`` and ``agents`` from a ``set`` of the agent names, so their
-      order differs from the environment's and from one process to the next (string hashes
-      are salted per process), and it never updates ``agents`` after a reset or a step (they
-      stay full after the match ended); here both follow the PettingZoo environment;
-    * its ``render()`` calls the PettingZoo environment's ``render(self.render_mode)``,
-      which takes no argument since PettingZoo's render API of 2022 (a ``TypeError``); here
-      it calls ``render()``.
-    """
-
-    def __init__(self, env: Any) -> None:
-        super().__init__(env)
-        self.possible_agents = list(env.possible_agents)
-        self.agents = list(env.agents)
-        self.render_mode = getattr(env, "render_mode", None)
-
-    def reset(self, *, seed: int | None = None, options: dict | None = None):
-        out = super().reset(seed=seed, options=options)
-        self.agents = list(self.par_env.agents)
-        return out
-
-    def step(self, action_dict: Mapping[str, Any]):
-        out = super().step(action_dict)
-        self.agents = list(self.par_env.agents)
-        return out
-
-    def render(self) -> Any:
-        return self.par_env.render()
-
-
-def match_env(env_config: Mapping[str, Any] | None = None) -> MatchMultiAgentEnv:
-    """The match for RLlib (:class:`MatchMultiAgentEnv`): ``env_config`` holds the keyword
-    arguments of :func:`soccer_env.parallel_env`. Infos hold :data:`MATCH_INFOS` only."""
-    import soccer_env
-
-    return MatchMultiAgentEnv(_SlimMatchInfos(soccer_env.parallel_env(**dict(env_config or {}))))
-
-
-def register_envs() -> None:
-    """Register :data:`ENV_IDS` with RLlib (Ray's registry; again is harmless). Call it
-    before building an algorithm on them (:func:`ppo_config` does)."""
-    from ray.tune.registry import register_env
-
-    register_env(GOALKEEPER_ID, keeper_env)
-    register_env(MATCH_ID, match_env)
 
 
 # ------------------------------------------------------------------------------------------
@@ -252,6 +155,13 @@ def _self_play(teams: dict[str, list[str]], learner: str) -> MatchPolicies:
     return MatchPolicies("self-play", ("main", "opponent"), ("main",), agent_module)
 
 
+def _fixed_opponent(teams: dict[str, list[str]], learner: str) -> MatchPolicies:
+    if not teams[learner]:
+        raise ValueError(f"the learner team {learner!r} has no robots")
+    return MatchPolicies("fixed-opponent", ("main",), ("main",),
+                         dict.fromkeys(teams[learner], "main"))
+
+
 #: The match's policy mappings (name -> factory of its :class:`MatchPolicies`).
 POLICY_MAPPINGS: Registry[Callable[[dict[str, list[str]], str], MatchPolicies]] = Registry(
     "policy mapping", [
@@ -262,14 +172,27 @@ POLICY_MAPPINGS: Registry[Callable[[dict[str, list[str]], str], MatchPolicies]] 
         ("self-play", _self_play, "module 'main' learns and plays the learner team; "
                                   "'opponent', a frozen copy of 'main' refreshed every "
                                   "self_play_every steps, plays the other team"),
+        ("fixed-opponent", _fixed_opponent, "module 'main' learns and plays the learner team; "
+                                            "the environment plays the other team with a "
+                                            "fixed policy (scripted, idle or a numpy policy)"),
     ])
+
+
+def learner_module(mapping: str, learner: str = "blue") -> str:
+    """The module of policy mapping ``mapping`` that plays team ``learner`` (and learns):
+    ``"shared"``, the team's own under ``"per-team"``, else ``"main"``."""
+    POLICY_MAPPINGS.check(mapping)
+    if mapping == "shared":
+        return "shared"
+    return learner if mapping == "per-team" else "main"
 
 
 def match_policies(env_config: Mapping[str, Any] | None = None, mapping: str = "shared",
                    learner: str = "blue") -> MatchPolicies:
     """The modules of policy mapping ``mapping`` (:data:`POLICY_MAPPINGS`) for the match of
-    ``env_config`` (keyword arguments of :func:`soccer_env.parallel_env`), ``learner`` being
-    the team that ``"self-play"``'s learning module plays.
+    ``env_config`` (keyword arguments of :func:`soccer_env.parallel_env`; the fixed opponent's
+    entries, :data:`~agents.runs.rllib_envs.MATCH_OPTIONS`, are left aside), ``learner`` being
+    the team that the learning module of ``"self-play"`` and ``"fixed-opponent"`` plays.
 
     A module that plays both teams (``"shared"``, and ``"self-play"`` whose copy plays the
     other team) needs teams of the same size and robots (``ValueError`` otherwise): an
@@ -279,10 +202,10 @@ def match_policies(env_config: Mapping[str, Any] | None = None, mapping: str = "
     POLICY_MAPPINGS.check(mapping)
     if learner not in TEAMS:
         raise ValueError(f"learner must be 'blue' or 'yellow', got {learner!r}")
-    env = soccer_env.parallel_env(**dict(env_config or {}))
+    env = soccer_env.parallel_env(**match_kwargs(env_config))
     try:
         teams = {t: [a for a in env.possible_agents if a.split("_")[0] == t] for t in TEAMS}
-        if mapping != "per-team" and teams["blue"] and teams["yellow"]:
+        if mapping in ("shared", "self-play") and teams["blue"] and teams["yellow"]:
             blue, yellow = teams["blue"][0], teams["yellow"][0]
             kinds = [type(spec).__name__ for spec in env.team_specs]
             same = (len(teams["blue"]) == len(teams["yellow"]) and kinds[0] == kinds[1]
@@ -474,37 +397,62 @@ def apply_hyperparams(config: PPOConfig, hyperparams: Mapping[str, Any] | None) 
     return config
 
 
-def _normalizer(multi_agent: bool) -> Callable[..., Any]:
-    """The env-to-module connector factory of ``normalize_obs``."""
-    def make(env: Any = None, spaces: Any = None, device: Any = None) -> Any:
-        from ray.rllib.connectors.env_to_module.mean_std_filter import MeanStdFilter
+def _normalizer(policies: MatchPolicies | None) -> Callable[..., Any]:
+    """The env-to-module connector factory of ``normalize_obs``: RLlib's ``MeanStdFilter``
+    for the keeper, :class:`MeanStdFilter` (statistics per module) for the match."""
+    agent_module = None if policies is None else dict(policies.agent_module)
 
-        return MeanStdFilter(multi_agent=multi_agent)
+    def make(env: Any = None, spaces: Any = None, device: Any = None) -> Any:
+        if agent_module is None:
+            return RLlibMeanStdFilter(multi_agent=False)
+        return MeanStdFilter(agent_module=agent_module)
 
     return make
 
 
+def fixed_opponent_config(env_config: Mapping[str, Any] | None, learner: str,
+                          opponent: Any) -> dict[str, Any]:
+    """The match's ``env_config`` with the fixed ``opponent`` playing the team other than
+    ``learner`` (:class:`~agents.runs.rllib_envs.MatchEnv`): ``"scripted"``, ``"idle"``, a
+    numpy policy, or the path of its file (``.npz``), which is read here, so that the env
+    runners on other machines need no copy of it (the policy travels in ``env_config``).
+    ``ValueError`` for any other opponent or a file that is no numpy policy."""
+    if isinstance(opponent, (str, os.PathLike)) and os.fspath(opponent).endswith(".npz"):
+        opponent = NumpyPolicy.load(opponent)
+    elif not (isinstance(opponent, NumpyPolicy) or opponent in OPPONENT_NAMES):
+        raise ValueError(f"policy mapping 'fixed-opponent' needs an opponent: one of "
+                         f"{list(OPPONENT_NAMES)}, a numpy policy or the path of its file "
+                         f"(.npz), got {opponent!r}")
+    return {**match_kwargs(env_config), "opponent": opponent, "learner": learner}
+
+
 def ppo_config(env_id: str = GOALKEEPER_ID, env_config: Mapping[str, Any] | None = None, *,
-               policy_mapping: str = "shared", learner: str = "blue",
+               policy_mapping: str = "shared", learner: str = "blue", opponent: Any = None,
                num_env_runners: int = 0, n_envs: int = 1, seed: int | None = 0,
                hyperparams: Mapping[str, Any] | None = None, normalize_obs: bool = True,
                self_play_every: int = 100_000) -> PPOConfig:
-    """RLlib's PPO (new API stack) on ``env_id`` (:data:`ENV_IDS`), registered here.
+    """RLlib's PPO (new API stack) on ``env_id`` (:data:`ENV_IDS`), the environment named by
+    its class (:data:`~agents.runs.rllib_envs.ENV_CLASSES`).
 
     Args:
         env_id: ``"soccer_env/Goalkeeper-v0"`` or ``"soccer_env/Match-v0"``.
         env_config: the environment's keyword arguments (see :func:`keeper_env`,
-            :func:`match_env`).
+            :class:`MatchEnv`).
         policy_mapping: the match: which module plays which robots
-            (:data:`POLICY_MAPPINGS`: ``"shared"``, ``"per-team"``, ``"self-play"``).
-        learner: the match under ``"self-play"``: the team that the learning module plays.
+            (:data:`POLICY_MAPPINGS`: ``"shared"``, ``"per-team"``, ``"self-play"``,
+            ``"fixed-opponent"``).
+        learner: the match under ``"self-play"`` and ``"fixed-opponent"``: the team that the
+            learning module plays.
+        opponent: the match under ``"fixed-opponent"``: the policy the environment plays
+            the other team with (:func:`fixed_opponent_config`).
         num_env_runners: env runners (Ray actors, 1 CPU each by default, placed on any node
             of the cluster); 0 samples in the driver.
         n_envs: environments per env runner.
         seed: seeds the environments, the networks and the sampling (None: unseeded).
         hyperparams: :func:`apply_hyperparams`'s (over :data:`DEFAULT_HYPERPARAMS`).
         normalize_obs: observations pass through RLlib's ``MeanStdFilter`` (running mean and
-            standard deviation, merged over the env runners and saved in checkpoints).
+            standard deviation, merged over the env runners and saved in checkpoints; for the
+            match one set per module, :class:`MeanStdFilter`).
         self_play_every: environment steps between copies of ``"main"`` into the frozen
             ``"opponent"`` under ``"self-play"``.
 
@@ -516,17 +464,22 @@ def ppo_config(env_id: str = GOALKEEPER_ID, env_config: Mapping[str, Any] | None
     for name, value, low in (("num_env_runners", num_env_runners, 0), ("n_envs", n_envs, 1)):
         if isinstance(value, bool) or not isinstance(value, int) or value < low:
             raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
-    register_envs()
+    if (opponent is not None) != (policy_mapping == "fixed-opponent"):
+        raise ValueError(f"opponent is for policy mapping 'fixed-opponent' (and needed there), "
+                         f"got opponent={opponent!r} with {policy_mapping!r}")
     multi_agent = env_id == MATCH_ID
+    env_config = dict(env_config or {})
+    if opponent is not None and multi_agent:
+        env_config = fixed_opponent_config(env_config, learner, opponent)
     callbacks: list[type[RLlibCallback]] = [NodeStepsCallback, SoccerMetricsCallback]
+    policies = match_policies(env_config, policy_mapping, learner) if multi_agent else None
     config = (PPOConfig()
-              .environment(env_id, env_config=dict(env_config or {}))
+              .environment(ENV_CLASSES[env_id], env_config=env_config)
               .env_runners(num_env_runners=num_env_runners, num_envs_per_env_runner=n_envs,
-                           env_to_module_connector=_normalizer(multi_agent)
+                           env_to_module_connector=_normalizer(policies)
                            if normalize_obs else None)
               .debugging(seed=seed))
-    if multi_agent:
-        policies = match_policies(env_config, policy_mapping, learner)
+    if policies is not None:
         config.multi_agent(policies=set(policies.modules), policy_mapping_fn=policies,
                            policies_to_train=list(policies.trained))
         if policies.mapping == "self-play":

@@ -10,36 +10,27 @@ A run is described by an :class:`RllibTrainConfig` and writes into its folder:
   iteration);
 * ``checkpoints/checkpoint_<steps>_steps/`` every ``checkpoint_every`` environment steps and
   ``final_checkpoint/``: RLlib checkpoints (``Algorithm.save_to_path``), each with
-  :data:`CHECKPOINT_INFO` (its steps and iteration, JSON) and :data:`SIGNATURE_FILE`;
+  :data:`CHECKPOINT_INFO` (its steps and iteration, JSON) and :data:`SIGNATURE_FILE`, signed
+  and checked as :mod:`agents.runs.rllib_checkpoints` says;
+* ``final_policy.npz``: the learning module's deterministic actor as a numpy policy
+  (:func:`~agents.runs.rllib_export.export_numpy`), which ``soccer-env eval``, the matches
+  and the ratings read, as they read the stable-baselines3 backend's;
 * ``summary.json``: steps, wall time, rate, the last iteration's metrics, the cluster's nodes
   and the environment steps each of them sampled in this run.
 
-RLlib checkpoints are pickles (``class_and_ctor_args.pkl``, the state files; cloudpickle
-underneath), and unpickling runs whatever code the file names. So every checkpoint a run
-writes is signed: :func:`sign_checkpoint` writes the SHA-256 digest of each of its files with
-an HMAC of them under a key kept in the user's configuration folder
-(:func:`checkpoint_key_path`, created on first use, readable by the user only), and
-:func:`check_checkpoint` loads (resumes from) only checkpoints signed with that key and not
-changed since: the user's own runs. Any other checkpoint (someone else's, one from another
-machine or account, or one edited since) raises :class:`~agents.policies.files.UnsafeFileError`
-unless ``trust=True`` (``--trust``), as the stable-baselines3 files that need unpickling do.
-
 ``resume`` continues from a checkpoint: the network, optimiser, observation statistics,
 counters and self-play copy are the checkpoint's, the rest (environment keyword arguments,
-hyperparameters, env runners) this configuration's, so a run can be moved to a larger
-cluster. ``total_steps`` counts the checkpoint's steps too.
+hyperparameters, env runners, a fixed opponent) this configuration's, so a run can be moved
+to a larger cluster. ``total_steps`` counts the checkpoint's steps too.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import hashlib
-import hmac
 import json
 import math
 import os
 import platform
-import secrets
 import shlex
 import shutil
 import socket
@@ -51,7 +42,6 @@ from typing import Any
 
 from agents.common.checks import check_counts
 from agents.policies.action_maps import ACTION_MAPS
-from agents.policies.files import TRUST_HELP, UnsafeFileError, read_json
 from agents.runs.folders import (
     RunRefused,
     TrainingStopped,
@@ -62,29 +52,36 @@ from agents.runs.folders import (
 from agents.runs.limits import resume_options
 from agents.runs.rllib import (
     ENV_IDS,
+    OPPONENT_NAMES,
     POLICY_MAPPINGS,
+    MatchEnv,
+    fixed_opponent_config,
     hyperparameter_names,
     keeper_env,
     match_policies,
     ppo_config,
 )
+from agents.runs.rllib_checkpoints import (
+    CHECKPOINT_INFO,
+    FINAL_CHECKPOINT,
+    SIGNATURE_FILE,
+    check_checkpoint,
+    checkpoint_key_path,
+    checkpoint_steps,
+    is_rllib_checkpoint,
+    load_checkpoint,
+    save_checkpoint,
+    sign_checkpoint,
+)
+from agents.runs.rllib_export import FINAL_POLICY, export_numpy
 from agents.scripted import TEAMS
 from soccer_env.envs.registration import GOALKEEPER_ID, MATCH_ID
 from soccer_env.validation import check_fields
 
 __all__ = ["RllibTrainConfig", "train", "check_env_kwargs", "sign_checkpoint",
            "check_checkpoint", "load_checkpoint", "checkpoint_key_path", "is_rllib_checkpoint",
-           "checkpoint_steps", "save_checkpoint", "connect", "CHECKPOINT_INFO",
-           "SIGNATURE_FILE", "FINAL_CHECKPOINT"]
-
-#: The JSON file in each checkpoint with its steps and iteration.
-CHECKPOINT_INFO = "soccer_env_checkpoint.json"
-#: The JSON file in each checkpoint with its files' digests and their HMAC.
-SIGNATURE_FILE = "soccer_env_signature.json"
-#: The last checkpoint of a run, in its folder.
-FINAL_CHECKPOINT = "final_checkpoint"
-#: RLlib's own file in every checkpoint folder.
-_RLLIB_METADATA = "rllib_checkpoint.json"
+           "checkpoint_steps", "save_checkpoint", "connect", "export_numpy", "CHECKPOINT_INFO",
+           "SIGNATURE_FILE", "FINAL_CHECKPOINT", "FINAL_POLICY"]
 
 
 @dataclass
@@ -106,7 +103,10 @@ class RllibTrainConfig:
             {"fcnet_hiddens": [128, 128]}}``.
         checkpoint_every: environment steps between checkpoints (0: the final one only).
         policy_mapping: the match's modules (:data:`agents.runs.rllib.POLICY_MAPPINGS`).
-        learner: the team of ``"self-play"``'s learning module.
+        learner: the team of the learning module of ``"self-play"`` and ``"fixed-opponent"``.
+        opponent: the fixed opponent of ``"fixed-opponent"`` (and of it only): ``"scripted"``,
+            ``"idle"`` or the path of a numpy policy file (``.npz``), which the environment
+            plays the other team with (:func:`agents.runs.rllib.fixed_opponent_config`).
         self_play_every: environment steps between copies of the learning module into the
             frozen opponent (``"self-play"``).
         actions, frame_stack: the keeper learner's action map and stacked observations, as
@@ -127,6 +127,7 @@ class RllibTrainConfig:
     checkpoint_every: int = 250_000
     policy_mapping: str = "shared"
     learner: str = "blue"
+    opponent: str | None = None
     self_play_every: int = 100_000
     actions: str = "native"
     frame_stack: int = 1
@@ -145,6 +146,7 @@ class RllibTrainConfig:
             raise ValueError(f"learner must be 'blue' or 'yellow', got {self.learner!r}")
         if self.env_id != MATCH_ID and self.policy_mapping != "shared":
             raise ValueError(f"policy_mapping {self.policy_mapping!r} is for {MATCH_ID}")
+        self._check_opponent()
         if self.actions not in ACTION_MAPS:
             raise ValueError(f"actions must be one of {list(ACTION_MAPS)}, got "
                              f"{self.actions!r}")
@@ -156,6 +158,21 @@ class RllibTrainConfig:
                              "train_batch_size_per_learner, minibatch_size, num_epochs, "
                              "entropy_coeff, model_config, num_learners")
 
+    def _check_opponent(self) -> None:
+        """``ValueError`` unless :attr:`opponent` is given with ``"fixed-opponent"`` (only),
+        and is one of its names or an existing ``.npz`` file."""
+        fixed = self.policy_mapping == "fixed-opponent"
+        if (self.opponent is not None) != fixed:
+            raise ValueError(f"opponent is for policy mapping 'fixed-opponent' (and needed "
+                             f"there), got opponent={self.opponent!r} with policy mapping "
+                             f"{self.policy_mapping!r}")
+        if fixed and self.opponent not in OPPONENT_NAMES and not (
+                str(self.opponent).endswith(".npz") and Path(self.opponent).is_file()):
+            raise ValueError(f"opponent must be one of {list(OPPONENT_NAMES)} or the path of a "
+                             f"numpy policy file (.npz), got {self.opponent!r}"
+                             + (" (no such file)" if str(self.opponent).endswith(".npz")
+                                else ""))
+
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> RllibTrainConfig:
         check_fields(cls, data, "RLlib training config")
@@ -165,7 +182,8 @@ class RllibTrainConfig:
         return dataclasses.asdict(self)
 
     def env_config(self) -> dict[str, Any]:
-        """The ``env_config`` of the registered environment (:mod:`agents.runs.rllib`)."""
+        """The ``env_config`` of the environment (:mod:`agents.runs.rllib_envs`); a fixed
+        opponent joins it in :func:`agents.runs.rllib.ppo_config`."""
         if self.env_id == GOALKEEPER_ID:
             return {**self.env_kwargs, "actions": self.actions, "frame_stack": self.frame_stack}
         return dict(self.env_kwargs)
@@ -173,7 +191,8 @@ class RllibTrainConfig:
     def ppo_config(self) -> Any:
         """This run's RLlib ``PPOConfig`` (:func:`agents.runs.rllib.ppo_config`)."""
         return ppo_config(self.env_id, self.env_config(), policy_mapping=self.policy_mapping,
-                          learner=self.learner, num_env_runners=self.num_env_runners,
+                          learner=self.learner, opponent=self.opponent,
+                          num_env_runners=self.num_env_runners,
                           n_envs=self.n_envs, seed=self.seed, hyperparams=self.hyperparams,
                           normalize_obs=self.normalize_obs,
                           self_play_every=self.self_play_every)
@@ -182,145 +201,14 @@ class RllibTrainConfig:
 def check_env_kwargs(cfg: RllibTrainConfig) -> None:
     """Build one environment of ``cfg`` here, so that bad keyword arguments fail before Ray
     starts, with the environment's own message (``TypeError`` or ``ValueError``); for the
-    match also its policy mapping (:func:`agents.runs.rllib.match_policies`)."""
+    match also its policy mapping (:func:`agents.runs.rllib.match_policies`) and its fixed
+    opponent (a numpy policy must read the match's observations)."""
     if cfg.env_id == MATCH_ID:
         match_policies(cfg.env_kwargs, cfg.policy_mapping, cfg.learner)
+        if cfg.opponent is not None:
+            MatchEnv(fixed_opponent_config(cfg.env_kwargs, cfg.learner, cfg.opponent)).close()
     else:
         keeper_env(cfg.env_config()).close()
-
-
-# ------------------------------------------------------------------------------------------
-# Checkpoints
-# ------------------------------------------------------------------------------------------
-
-def checkpoint_key_path() -> Path:
-    """The signing key's file: ``$XDG_CONFIG_HOME/soccer_env/checkpoint_key`` (by default
-    ``~/.config/soccer_env/checkpoint_key``)."""
-    base = os.environ.get("XDG_CONFIG_HOME") or Path.home() / ".config"
-    return Path(base) / "soccer_env" / "checkpoint_key"
-
-
-def _key(create: bool) -> bytes | None:
-    path = checkpoint_key_path()
-    if path.is_file():
-        return path.read_bytes()
-    if not create:
-        return None
-    path.parent.mkdir(parents=True, exist_ok=True)
-    key = secrets.token_bytes(32)
-    # Created readable and writable by the user only; never replaced once there.
-    try:
-        fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
-    except FileExistsError:  # another process made it meanwhile
-        return path.read_bytes()
-    with os.fdopen(fd, "wb") as fh:
-        fh.write(key)
-    return key
-
-
-def _digests(folder: Path) -> dict[str, str]:
-    """SHA-256 of every file under ``folder`` but the signature, by relative path (POSIX);
-    a link is refused (``ValueError``): it could point anywhere."""
-    out = {}
-    for path in sorted(folder.rglob("*")):
-        rel = path.relative_to(folder).as_posix()
-        if path.is_symlink():
-            raise ValueError(f"{folder} holds a link, {rel}: not a checkpoint this package "
-                             "wrote")
-        if path.is_file() and rel != SIGNATURE_FILE:
-            h = hashlib.sha256()
-            with open(path, "rb") as fh:
-                for block in iter(lambda: fh.read(1 << 20), b""):
-                    h.update(block)
-            out[rel] = h.hexdigest()
-    return out
-
-
-def _mac(key: bytes, digests: Mapping[str, str]) -> str:
-    message = json.dumps(digests, sort_keys=True).encode()
-    return hmac.new(key, message, hashlib.sha256).hexdigest()
-
-
-def sign_checkpoint(folder: str | os.PathLike) -> None:
-    """Sign the checkpoint ``folder`` with this user's key (see the module docstring)."""
-    folder = Path(folder)
-    digests = _digests(folder)
-    signature = {"scheme": "hmac-sha256 over the JSON of the files' sha256 digests",
-                 "files": digests, "mac": _mac(_key(create=True), digests)}
-    (folder / SIGNATURE_FILE).write_text(json.dumps(signature, indent=1))
-
-
-def is_rllib_checkpoint(path: str | os.PathLike) -> bool:
-    """Whether ``path`` is a folder holding an RLlib checkpoint."""
-    return Path(path).is_dir() and (Path(path) / _RLLIB_METADATA).is_file()
-
-
-def check_checkpoint(folder: str | os.PathLike, trust: bool = False) -> dict[str, Any]:
-    """The :data:`CHECKPOINT_INFO` of checkpoint ``folder`` (``{"steps", "agent_steps",
-    "iteration", ...}``), after checking that loading it is safe: signed with this user's
-    key and unchanged since. Raises :class:`~agents.policies.files.UnsafeFileError` for any
-    other checkpoint unless ``trust``, and ``ValueError`` for a folder that is not an RLlib
-    checkpoint of this package."""
-    folder = Path(folder)
-    if not is_rllib_checkpoint(folder):
-        raise ValueError(f"{folder} is not an RLlib checkpoint (a folder with "
-                         f"{_RLLIB_METADATA})")
-    if not trust:
-        reason = None
-        key = _key(create=False)
-        try:
-            signature = read_json(folder / SIGNATURE_FILE)
-            digests = _digests(folder)
-        except FileNotFoundError:
-            reason = "it is not signed"
-        except (ValueError, TypeError) as err:
-            reason = f"its signature cannot be read ({err})"
-        if reason is None and key is None:
-            reason = f"this account has no signing key ({checkpoint_key_path()})"
-        if reason is None and (not isinstance(signature, dict)
-                               or signature.get("files") != digests
-                               or not hmac.compare_digest(str(signature.get("mac")),
-                                                          _mac(key, digests))):
-            reason = ("its signature does not match: it was written under another key (by "
-                      "someone else, or on another machine or account) or changed since")
-        if reason is not None:
-            raise UnsafeFileError(
-                f"{folder} is not a checkpoint of your own runs: {reason}. RLlib checkpoints "
-                f"are pickles (cloudpickle): {TRUST_HELP}")
-    try:
-        return read_json(folder / CHECKPOINT_INFO)
-    except (OSError, ValueError) as err:
-        raise ValueError(f"{folder} has no readable {CHECKPOINT_INFO} ({err}): not a "
-                         "checkpoint of soccer-env train") from None
-
-
-def checkpoint_steps(folder: str | os.PathLike, trust: bool = False) -> int:
-    """The environment steps checkpoint ``folder`` has trained (:func:`check_checkpoint`)."""
-    return int(check_checkpoint(folder, trust)["steps"])
-
-
-def save_checkpoint(algo: Any, folder: str | os.PathLike, info: Mapping[str, Any]) -> Path:
-    """Save ``algo`` (``Algorithm.save_to_path``) into ``folder`` (replacing one there) with
-    ``info`` as :data:`CHECKPOINT_INFO`, and sign it."""
-    folder = Path(folder)
-    if folder.exists():
-        shutil.rmtree(folder)
-    algo.save_to_path(str(folder.resolve()))
-    (folder / CHECKPOINT_INFO).write_text(json.dumps(dict(info), indent=1))
-    sign_checkpoint(folder)
-    return folder
-
-
-def load_checkpoint(folder: str | os.PathLike, trust: bool = False) -> Any:
-    """The RLlib algorithm of checkpoint ``folder`` (``Algorithm.from_checkpoint``), once
-    :func:`check_checkpoint` finds it safe to load. Needs Ray running (``ray.init``)."""
-    from ray.rllib.algorithms.algorithm import Algorithm
-
-    from agents.runs.rllib import register_envs
-
-    check_checkpoint(folder, trust)
-    register_envs()
-    return Algorithm.from_checkpoint(str(Path(folder).resolve()))
 
 
 # ------------------------------------------------------------------------------------------
@@ -539,17 +427,29 @@ def _run(cfg: RllibTrainConfig, algo: Any, out: Path, existing: list[str],
     seconds = time.perf_counter() - t0
     by_node = _less(previous_by_node, start)
     final = save_checkpoint(algo, out / FINAL_CHECKPOINT, _info(cfg, metrics))
+    policy = _final_policy(final, out, log)
     summary = {
         "backend": "rllib", "steps": steps, "trained_steps": steps - done,
         "iterations": iterations, "seconds": seconds,
         "steps_per_s": (steps - done) / seconds if seconds > 0 else None,
         "last_iteration": metrics, "cluster_nodes": nodes, "steps_by_node": by_node,
-        "final_checkpoint": str(final),
+        "final_checkpoint": str(final), "final_policy": policy,
         "resume_command": _resume_command(cfg, final, steps),
         "files": sorted(p.name for p in out.iterdir()),
     }
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
     return summary
+
+
+def _final_policy(final: Path, out: Path, log: Callable[[str], None]) -> str | None:
+    """Write the final checkpoint's learning module as :data:`FINAL_POLICY` into ``out``;
+    its path, or None (said through ``log``) for a network that numpy cannot copy."""
+    try:
+        export_numpy(final, out / FINAL_POLICY, trust=True)
+    except ValueError as err:
+        log(f"no {FINAL_POLICY}: {err}")
+        return None
+    return str(out / FINAL_POLICY)
 
 
 def _node_steps(value: Any) -> dict[str, int]:
@@ -571,4 +471,4 @@ def _info(cfg: RllibTrainConfig, metrics: Mapping[str, Any]) -> dict[str, Any]:
             "agent_steps": int(metrics.get("agent_steps", 0)),
             "iteration": metrics.get("iteration"), "env_id": cfg.env_id,
             "policy_mapping": cfg.policy_mapping if cfg.env_id == MATCH_ID else None,
-            "learner": cfg.learner}
+            "learner": cfg.learner, "opponent": cfg.opponent}

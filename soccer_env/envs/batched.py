@@ -19,8 +19,8 @@ draws the same start, and steps through the same states up to the rounding of th
 (each world's coordinates are offset by its patch of the space: differences of about 1e-12 m,
 which contacts can amplify; tested). Finished environments reset at the next step
 (Gymnasium's ``NEXT_STEP`` autoreset: that step's action is ignored and it returns the new
-episode's first observation with reward 0), drawing their next episode from their own
-generator as a single environment's ``reset()`` does.
+episode's first observation with reward 0; see below for the other modes), drawing their next
+episode from their own generator as a single environment's ``reset()`` does.
 
 Perceived observations of SSL robots run as one batch
 (:class:`~soccer_env.perception.batched.FilteredPerceptionBatch`): the overhead cameras of
@@ -39,26 +39,36 @@ engines, heads and perception world by world, so a humanoid batch saves only the
 
 Scope: the geometric detector (not ``pixels``), no rendering. Other arguments are the tasks'.
 
-With ``autoreset_mode=AutoresetMode.SAME_STEP`` (``"SameStep"``) finished environments reset
-within the step that ends them, as stable-baselines3 expects
-(:class:`agents.vec.batched.BatchedVecEnv` adapts it).
+The batch answers as Gymnasium's ``SyncVectorEnv`` of the same single environments
+(``vectorization_mode="sync"``) does, in every autoreset mode (``autoreset_mode``:
+``NEXT_STEP``, the default; ``SAME_STEP``, which stable-baselines3 expects and
+:class:`agents.vec.batched.BatchedVecEnv` adapts, the finished environments' last observations
+in ``info["final_obs"]`` and their infos in ``info["final_info"]``; ``DISABLED``, where the
+caller resets finished environments with ``reset(options={"reset_mask": mask})``), with the
+same seeding (an int ``s`` seeds environment ``k`` with ``s + k``, a list each its own, None
+keeps the generators going) and the same ``reset_mask`` (only those environments reset). The
+time limit truncates as Gymnasium's ``TimeLimit`` does, terminated or not.
 
-Infos: at an episode's end, ``info["outcome"]`` (the task's outcome: the Goalkeeper's
-``"goal"``, ``"out"``, ``"stopped"``, ``"cleared"``, the Shootout's ``"goal"``, ``"saved"``,
-``"out"``; ``"truncated"`` at the time limit) and ``info["is_success"]``, with Gymnasium's
-``_outcome`` / ``_is_success`` masks; ``info["episode_steps"]`` every step.
+Infos: the single environments' keys, each an array over the batch with its ``_key`` mask, as
+``SyncVectorEnv`` aggregates them (:mod:`soccer_env.envs.batched_infos`): ``truth``,
+``estimate``, ``reward_terms``, ``outcome`` (``""`` while an episode goes on), the task's own
+entries (the Goalkeeper's ``shot``, ``shot_fired``, ``keeper_touched``; the Shootout's
+``start``, ``keeper_touched``), ``robot_state`` with humanoids and ``is_success`` where an
+episode terminated; with ``info_mode="flat"`` the flat keys of
+:mod:`soccer_env.envs.flat_info`. They are built in numpy over the batch from the batch's
+state, the batched perception's present beliefs and the rule kernels' reward terms.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-import gymnasium as gym
 import numpy as np
 from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
+from soccer_env.envs.batched_infos import BatchInfos, EpisodeTable, InfoParts
 from soccer_env.envs.goalkeeper import GoalkeeperEnv, fire_shot, place_episode
 from soccer_env.envs.registration import GOALKEEPER_ID, GYMNASIUM, SHOOTOUT_ID
 from soccer_env.envs.senses import Senses
@@ -72,11 +82,18 @@ from soccer_env.envs.task_rules import (
     goalkeeper_rows,
     shootout_rows,
 )
+from soccer_env.envs.vector_args import (
+    NotBatchable,
+    check_autoreset_mode,
+    reset_mask,
+    vector_or_sync,
+    vector_seeds,
+)
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
 from soccer_env.sim.commands import validate_actions
 from soccer_env.sim.heads import aim_heads
 from soccer_env.sim.referee import classify_exit
-from soccer_env.validation import check_int, check_seed
+from soccer_env.validation import check_int
 
 __all__ = ["BatchedTask", "GoalkeeperVectorEnv", "ShootoutVectorEnv", "NotBatchable",
            "make_vector", "make_shootout_vector"]
@@ -86,54 +103,32 @@ DEFAULT_MAX_STEPS = GYMNASIUM[GOALKEEPER_ID].max_episode_steps
 SHOOTOUT_MAX_STEPS = GYMNASIUM[SHOOTOUT_ID].max_episode_steps
 
 
-#: The tasks' outcome names by code, as object arrays to index with a batch's codes.
-_GOALKEEPER_OUTCOMES = np.array(GOALKEEPER_OUTCOMES, dtype=object)
-_SHOOTOUT_OUTCOMES = np.array(SHOOTOUT_OUTCOMES, dtype=object)
-
-class NotBatchable(ValueError):
-    """Goalkeeper-v0's arguments ask for what the batch does not run yet."""
-
-
 def make_vector(num_envs: int = 16, max_episode_steps: int | None = DEFAULT_MAX_STEPS,
                 **kwargs: Any) -> VectorEnv:
     """Goalkeeper-v0's ``vector_entry_point``: a :class:`GoalkeeperVectorEnv`, or, for
     arguments the batch does not run yet (the pixels detector, rendering), Gymnasium's
     ``SyncVectorEnv`` of single environments with a warning saying why, so that
     ``gymnasium.make_vec(id, num_envs=N)`` works for every configuration."""
-    return _vector_or_sync(GoalkeeperVectorEnv, GOALKEEPER_ID, num_envs,
-                           max_episode_steps, kwargs)
-
-
-def _vector_or_sync(cls: type, env_id: str, num_envs: int, max_episode_steps: int | None,
-                    kwargs: dict[str, Any]) -> VectorEnv:
-    """``cls(num_envs, ...)``, or a ``SyncVectorEnv`` of ``gymnasium.make(env_id, ...)`` with a
-    warning when the batch refuses the arguments (:class:`NotBatchable`)."""
-    try:
-        return cls(num_envs, max_episode_steps=max_episode_steps, **kwargs)
-    except NotBatchable as why:
-        gym.logger.warn(f"{env_id.split('/')[-1]} runs {num_envs} single environments in a "
-                        f"SyncVectorEnv: {why}")
-
-    def make() -> gym.Env:
-        return gym.make(env_id, max_episode_steps=max_episode_steps, **kwargs)
-
-    return gym.vector.SyncVectorEnv([make for _ in range(num_envs)])
+    return vector_or_sync(GoalkeeperVectorEnv, GOALKEEPER_ID, num_envs, max_episode_steps,
+                          kwargs)
 
 
 class BatchedTask(VectorEnv):
     """``num_envs`` episodes of a single-agent task stepped as one batch: what the batched
     tasks share (checks, seeding, the step's skeleton, autoreset, infos). A task implements
-    :meth:`_setup`, :meth:`_place`, :meth:`_begin`, :meth:`_commands`, :meth:`_judge` and
-    :meth:`_success`.
+    :meth:`_setup`, :meth:`_place`, :meth:`_begin`, :meth:`_commands`, :meth:`_judge`,
+    :meth:`_success` and :meth:`_task_entries`.
 
     Args:
         num_envs: environments (1..65536).
         max_episode_steps: the time limit (truncation), as the registration's.
         autoreset_mode: Gymnasium's ``NEXT_STEP`` (the default: a finished environment
-            resets at the next step, whose action it ignores) or ``SAME_STEP`` (it resets in
+            resets at the next step, whose action it ignores), ``SAME_STEP`` (it resets in
             the step that ends its episode, which returns the new episode's first observation,
             the last one in ``info["final_obs"]`` and the episode's infos in
-            ``info["final_info"]``; what stable-baselines3 expects).
+            ``info["final_info"]``; what stable-baselines3 expects) or ``DISABLED`` (finished
+            environments wait for ``reset(options={"reset_mask": mask})``; stepping one before
+            raises ``RuntimeError``).
         **kwargs: the task's arguments (the geometric detector, no ``render_mode``).
     """
 
@@ -141,16 +136,15 @@ class BatchedTask(VectorEnv):
     #: The single environment the batch plays and its registered id.
     TASK: type = GoalkeeperEnv
     TASK_ID = GOALKEEPER_ID
+    #: The task's outcome names by rule code (:mod:`~soccer_env.envs.task_rules`).
+    OUTCOMES: tuple[str | None, ...] = GOALKEEPER_OUTCOMES
 
     def __init__(self, num_envs: int = 16, max_episode_steps: int | None = DEFAULT_MAX_STEPS,
                  autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
                  **kwargs: Any) -> None:
         self.num_envs = check_int("num_envs", num_envs, 1, MAX_WORLDS)
-        modes = (AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP)
-        if autoreset_mode not in modes and autoreset_mode not in [m.value for m in modes]:
-            raise ValueError(f"autoreset_mode must be one of {[m.value for m in modes]}, got "
-                             f"{autoreset_mode!r}")
-        self._same_step = AutoresetMode(autoreset_mode) == AutoresetMode.SAME_STEP
+        self.autoreset_mode = check_autoreset_mode(autoreset_mode)
+        self._same_step = self.autoreset_mode == AutoresetMode.SAME_STEP
         self.max_episode_steps = (None if max_episode_steps is None else
                                   check_int("max_episode_steps", max_episode_steps, 1, 10**9))
         # A single environment checks every argument with its own messages and gives the
@@ -175,7 +169,7 @@ class BatchedTask(VectorEnv):
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
         self.metadata = {**self.TASK.metadata, **type(self).metadata,
-                         "autoreset_mode": AutoresetMode(autoreset_mode)}
+                         "autoreset_mode": self.autoreset_mode}
         self.render_mode = None
         self.spec = None
         n = self.num_envs
@@ -187,6 +181,12 @@ class BatchedTask(VectorEnv):
         # Perception, command channels (actuation latency and command loss, which apply in
         # truth mode too) and head control beside the physics.
         self._senses = Senses(probe, self.batch, n)
+        self._flying = np.zeros(n, dtype=bool)  # the balls in the air (see _airborne)
+        #: Flat infos (``info_mode="flat"``).
+        self.flat = probe.info_mode == "flat"
+        terms = tuple(probe._zero_terms())
+        self._infos = BatchInfos(n, w0.names, terms, self.OUTCOMES, self.flat, self._add_info)
+        self._no_terms = np.zeros((n, len(terms)))
         self._setup()
 
     def _streams(self, k: int, sensors_first: bool) -> None:
@@ -224,14 +224,22 @@ class BatchedTask(VectorEnv):
         ``(n, 6)`` (the task adds its other robots' actions)."""
         raise NotImplementedError
 
-    def _judge(self, act: np.ndarray, live: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """After the physics: every environment's outcome (an object array, None while the
-        episode goes on) and reward; ``live`` marks the environments that played this step
-        (the others restart)."""
+    def _judge(self, act: np.ndarray, live: np.ndarray
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """After the physics: every environment's outcome code (0 while the episode goes on;
+        :attr:`OUTCOMES` names them), reward and reward terms ``(n, T)`` (the single
+        environment's, in its order); ``live`` marks the environments that played this step
+        (the others restart: code, reward and terms 0)."""
         raise NotImplementedError
 
-    def _success(self, outcome: np.ndarray) -> np.ndarray:
-        """Whether each (terminal) outcome is a success."""
+    def _success(self, codes: np.ndarray) -> np.ndarray:
+        """Whether each (terminal) outcome code is a success."""
+        raise NotImplementedError
+
+    def _task_entries(self) -> dict[str, Any]:
+        """The task's own info entries as columns over the batch (dicts of them for the
+        single environment's dicts), in the single environment's order: its full entries, or
+        its flat ones (float64) with :attr:`flat`."""
         raise NotImplementedError
 
     # ------------------------------------------------------------------------------------
@@ -254,105 +262,136 @@ class BatchedTask(VectorEnv):
             if self._senses.heads[k] is not None:
                 self._senses.heads[k].reset()
 
-    def reset(self, *, seed: int | list[int] | None = None,
+    def reset(self, *, seed: int | list[int | None] | None = None,
               options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict[str, Any]]:
-        """Reset every environment: with ``seed`` an int, environment ``k`` is seeded with
+        """Reset every environment, or with ``options={"reset_mask": mask}`` (``(n,)`` bool)
+        those of the mask only: with ``seed`` an int, environment ``k`` is seeded with
         ``seed + k`` (a list gives each its own; None keeps the generators going, or seeds
-        them from the OS's entropy before the first reset)."""
+        them from the OS's entropy before the first reset). The first reset resets every
+        environment. Returns the observations and the reset environments' infos."""
         n = self.num_envs
-        if isinstance(seed, (list, tuple)):
-            if len(seed) != n:
-                raise ValueError(f"seed must be an int, None or a list of {n} seeds, got a "
-                                 f"list of {len(seed)}")
-            for s in seed:
-                check_seed(s)
-            seeds = list(seed)
+        seeds = vector_seeds(seed, n)
+        rows = reset_mask(options, n, type(self).__name__)
+        if rows is not None and not self._started:
+            raise RuntimeError("the first reset() starts every environment: call it without "
+                               "a reset_mask")
+        chosen = range(n) if rows is None else np.nonzero(rows)[0].tolist()
+        for k in chosen:
+            if seeds[k] is not None or not self._started:
+                self._rngs[k] = seeding.np_random(seeds[k])[0]
+        if rows is None:
+            placed = [self._place(k) for k in range(n)]
+            self.batch.reset(np.stack([p for p, _, _ in placed]),
+                             np.array([b for _, b, _ in placed], dtype=np.float64),
+                             self._world_rngs if self.batch.humanoid_indices else None)
+            self._steps[:] = 0
+            for k, (_, _, drawn) in enumerate(placed):
+                self._aim(k)
+                self._begin(k, drawn)
+                self._senses.start(k)
+            self._needs_reset[:] = False
         else:
-            check_seed(seed)
-            seeds = [None if seed is None else seed + k for k in range(n)]
-        for k, s in enumerate(seeds):
-            if s is not None or not self._started:
-                self._rngs[k] = seeding.np_random(s)[0]
-        placed = [self._place(k) for k in range(n)]
-        self.batch.reset(np.stack([p for p, _, _ in placed]),
-                         np.array([b for _, b, _ in placed], dtype=np.float64),
-                         self._world_rngs if self.batch.humanoid_indices else None)
-        self._steps[:] = 0
-        for k, (_, _, drawn) in enumerate(placed):
-            self._aim(k)
-            self._begin(k, drawn)
-            self._senses.start(k)
+            for k in chosen:
+                self._restart(k)
+            self._needs_reset[rows] = False
         self._senses.flush()
-        self._needs_reset[:] = False
         self._started = True
-        return self._observe(), {"episode_steps": self._steps.copy()}
+        self._airborne()
+        codes = np.zeros(n, dtype=np.int64)
+        infos = self._infos.build(self._parts(codes, self._no_terms, codes != 0), rows)
+        return self._observe(), infos
 
     # ------------------------------------------------------------------------------------
     # Stepping
     # ------------------------------------------------------------------------------------
 
-    def step(self, actions: np.ndarray):
-        if not self._started:
-            raise RuntimeError("call reset() before step()")
+    def _actions(self, actions: Any) -> np.ndarray:
+        """The learners' actions ``(n, 6)`` as float64, shape checked."""
         n = self.num_envs
         try:
-            act = np.asarray(actions, dtype=np.float64)
+            act = np.array(actions, dtype=np.float64)
         except (TypeError, ValueError):
             raise ValueError(f"actions must be ({n}, 6) numbers, got {actions!r}") from None
         if act.shape != (n, 6):
             names = ", ".join(self._model.action_names)
             raise ValueError(f"actions must have shape ({n}, 6) ({names}), got {act.shape}")
+        return act
+
+    def step(self, actions: np.ndarray):
+        if not self._started:
+            raise RuntimeError("call reset() before step()")
+        n = self.num_envs
+        act = self._actions(actions)
         restarting = self._needs_reset.copy()
+        if self.autoreset_mode == AutoresetMode.DISABLED and restarting.any():
+            raise RuntimeError(f"environments {np.nonzero(restarting)[0].tolist()} have ended: "
+                               "with autoreset_mode DISABLED, reset them with reset(options="
+                               "{'reset_mask': mask}) before stepping")
         live = ~restarting
-        act = act.copy()
         act[restarting] = 0.0  # a finished environment's action is ignored
         act = validate_actions(act, self._names, self._out_of_range)
         commands = self._commands(act)
         commands = self._senses.send(commands)
         self.batch.step(commands)
         self._steps += 1
-        outcome, rewards = self._judge(act, live)
+        codes, rewards, terms = self._judge(act, live)
         # (The batched perception advances with the episodes that start at the end of the step,
         # unless the final observations need it before.)
         self._senses.update(np.nonzero(live)[0], defer=not self._same_step)
-        outcome[restarting] = None
-        terminated = outcome != None  # noqa: E711 (element-wise)
+        terminated = codes != 0
         truncated = np.zeros(n, dtype=bool)
-        if self.max_episode_steps is not None:
-            truncated = live & ~terminated & (self._steps >= self.max_episode_steps)
-
-        infos: dict[str, Any] = {"episode_steps": self._steps.copy()}
+        if self.max_episode_steps is not None:  # (Gymnasium's TimeLimit: terminated or not)
+            truncated = live & (self._steps >= self.max_episode_steps)
         ended = terminated | truncated
-        if ended.any():
-            out = np.where(truncated, "truncated", outcome).astype(object)
-            out[~ended] = None
-            infos["outcome"], infos["_outcome"] = out, ended.copy()
-            infos["is_success"] = terminated & self._success(outcome)
-            infos["_is_success"] = terminated.copy()
-
+        infos: dict[str, Any] = {}
         if self._same_step and ended.any():
             # The finished environments start their next episode in this very step.
             last = self._observe()
             final_obs = np.full(n, None, dtype=object)
             for k in np.nonzero(ended)[0].tolist():
                 final_obs[k] = last[k]
-            infos = {"episode_steps": self._steps.copy(), "final_obs": final_obs,
-                     "_final_obs": ended.copy(),
-                     "final_info": {k: v for k, v in infos.items() if k != "episode_steps"},
+            infos = {"final_obs": final_obs, "_final_obs": ended.copy(),
+                     "final_info": self._infos.build(self._parts(codes, terms, terminated),
+                                                     ended),
                      "_final_info": ended.copy()}
             restarting = ended
+            codes = np.where(ended, 0, codes)
+            terms[ended] = 0.0
             ended = np.zeros(n, dtype=bool)
         # The environments that finished at the previous step (at this one, with SAME_STEP)
         # start their next episode now.
         for k in np.nonzero(restarting)[0].tolist():
             self._restart(k)
         self._senses.flush()
-        if restarting.any():
-            if not self._same_step:
-                rewards[restarting] = 0.0
-            infos["episode_steps"] = self._steps.copy()
+        if restarting.any() and not self._same_step:
+            rewards[restarting] = 0.0
         self._needs_reset = ended
+        infos.update(self._infos.build(self._parts(codes, terms, terminated & ~restarting)))
         return (self._observe(), rewards.astype(np.float64), terminated, truncated, infos)
+
+    def _parts(self, codes: np.ndarray, terms: np.ndarray, terminated: np.ndarray
+               ) -> InfoParts:
+        """What the infos are made of now (:class:`~soccer_env.envs.batched_infos.
+        InfoParts`): the batch's state, robot 0's present beliefs, the task's entries, and
+        the step's outcome ``codes``, reward ``terms`` and ``terminated`` episodes."""
+        batch = self.batch
+        state = batch.state
+        worlds = batch.worlds
+        ball = state[:, 0].copy()
+        # The ball's height: 0 but in flight (where it was in the air after the physics; an
+        # episode started since has its ball on the carpet).
+        ball[:, 2] = 0.0
+        if self._flying.any():
+            flying = np.nonzero(self._flying)[0].tolist()
+            ball[flying, 2] = [worlds[k].ball_height for k in flying]
+        robot_state, fallen = None, np.zeros(self.num_envs, dtype=bool)
+        if batch.humanoid_indices and not self.flat:
+            robot_state = [w.humanoid_state() for w in worlds]
+        elif 0 in batch.humanoid_indices:  # (robot 0 lies or gets up)
+            fallen[:] = [w.walk.fallen[w.walk.indices.index(0)] for w in worlds]
+        return InfoParts(batch.times, ball, state[:, 1:], self._senses.present(), terms, codes,
+                         self._success(codes), terminated, self._task_entries(), robot_state,
+                         fallen)
 
     def _exits(self, scored: int) -> np.ndarray:
         """``(n,)`` exit codes of the last step (:mod:`~soccer_env.envs.task_rules`):
@@ -365,8 +404,9 @@ class BatchedTask(VectorEnv):
         return codes
 
     def _airborne(self) -> np.ndarray:
-        """``(n,)`` whether each world's ball is in the air."""
-        return np.array([w.ball_airborne for w in self.batch.worlds])
+        """``(n,)`` whether each world's ball is in the air (kept for :meth:`_parts`)."""
+        self._flying = np.array([w.ball_airborne for w in self.batch.worlds])
+        return self._flying
 
     def _observe(self) -> np.ndarray:
         arrays = self._senses.arrays()
@@ -406,6 +446,7 @@ class GoalkeeperVectorEnv(BatchedTask):
         self._weights, self._geometry = probe._weights, probe._geometry
         n = self.num_envs
         self._shots: list[dict[str, Any]] = [{}] * n
+        self._shot_table = EpisodeTable(n)  # (the infos' "shot")
         self._delay = np.zeros(n)
         self._fired = np.zeros(n, dtype=bool)
         self._touched = np.zeros(n, dtype=bool)
@@ -419,6 +460,7 @@ class GoalkeeperVectorEnv(BatchedTask):
 
     def _begin(self, k: int, shot: dict[str, Any]) -> None:
         self._shots[k] = shot
+        self._shot_table.set(k, shot)
         self._delay[k] = shot["delay"]
         self._fired[k] = False
         self._touched[k] = False
@@ -438,20 +480,29 @@ class GoalkeeperVectorEnv(BatchedTask):
         full[:, 0] = act
         return self._model.commands(full.reshape(-1, 6)).reshape(n, N, 6)
 
-    def _judge(self, act: np.ndarray, live: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _judge(self, act: np.ndarray, live: np.ndarray
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         batch = self.batch
         # The attacker's shots due this step, and the keeper's touches.
         due = live & ~self._fired & (batch.times >= self._delay - 1e-9)
         for k in np.nonzero(due)[0].tolist():
             self._fire(k)
         self._touched |= batch.touched()[:, 0]
-        codes, rewards = goalkeeper_rows(self._exits(-1), self._fired, self._airborne(), live,
-                                         batch.state, act, self._weights, self._geometry,
-                                         self.control_dt)
-        return _GOALKEEPER_OUTCOMES[codes], rewards
+        return goalkeeper_rows(self._exits(-1), self._fired, self._airborne(), live,
+                               batch.state, act, self._weights, self._geometry,
+                               self.control_dt)
 
-    def _success(self, outcome: np.ndarray) -> np.ndarray:
-        return outcome != "goal"
+    def _success(self, codes: np.ndarray) -> np.ndarray:
+        return codes != EXIT_GOAL  # a save: any outcome but the goal
+
+    def _task_entries(self) -> dict[str, Any]:
+        shot = self._shot_table.columns
+        if self.flat:
+            return {"shot_fired": self._fired.astype(np.float64),
+                    "keeper_touched": self._touched.astype(np.float64),
+                    "shot_speed": shot["speed"].astype(np.float64),
+                    "shot_chip": shot["chip"].astype(np.float64)}
+        return {"shot": shot, "shot_fired": self._fired, "keeper_touched": self._touched}
 
 
 class ShootoutVectorEnv(BatchedTask):
@@ -468,6 +519,7 @@ class ShootoutVectorEnv(BatchedTask):
 
     TASK = ShootoutEnv
     TASK_ID = SHOOTOUT_ID
+    OUTCOMES = SHOOTOUT_OUTCOMES
 
     def _setup(self) -> None:
         probe = self.probe
@@ -478,6 +530,7 @@ class ShootoutVectorEnv(BatchedTask):
         n = self.num_envs
         self._keeper_touched = np.zeros(n, dtype=bool)
         self._ball_to_goal = np.zeros(n)
+        self._start_table = EpisodeTable(n)  # (the infos' "start")
 
     def _place(self, k: int) -> tuple[np.ndarray, tuple[float, float], dict[str, Any]]:
         rng = self._rngs[k]
@@ -486,6 +539,7 @@ class ShootoutVectorEnv(BatchedTask):
         return np.array([drawn["attacker"], drawn["keeper"]]), drawn["ball"], drawn
 
     def _begin(self, k: int, drawn: dict[str, Any]) -> None:
+        self._start_table.set(k, drawn)
         self._keeper_touched[k] = False
         bx, by = drawn["ball"]
         self._ball_to_goal[k] = goal_distance((float(bx), float(by)), self._goal)
@@ -508,21 +562,26 @@ class ShootoutVectorEnv(BatchedTask):
         both = np.stack([act, np.clip(keeper, -1.0, 1.0)], axis=1)
         return self._model.commands(both.reshape(-1, 6)).reshape(self.num_envs, 2, 6)
 
-    def _judge(self, act: np.ndarray, live: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _judge(self, act: np.ndarray, live: np.ndarray
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         batch = self.batch
         touched = batch.touched()
         self._keeper_touched = np.where(touched[:, 1], True,
                                         np.where(touched[:, 0], False, self._keeper_touched))
         sc = self.shaping
-        codes, rewards = shootout_rows(
+        return shootout_rows(
             self._exits(+1), self._keeper_touched, self._airborne(), live, batch.state,
             self._ball_to_goal, act, self._goal,
             (float(sc["ball_progress"]), float(sc["ball_distance"]), float(sc["action_cost"])),
             self.control_dt)
-        return _SHOOTOUT_OUTCOMES[codes], rewards
 
-    def _success(self, outcome: np.ndarray) -> np.ndarray:
-        return outcome == "goal"
+    def _success(self, codes: np.ndarray) -> np.ndarray:
+        return codes == EXIT_GOAL
+
+    def _task_entries(self) -> dict[str, Any]:
+        if self.flat:
+            return {"keeper_touched": self._keeper_touched.astype(np.float64)}
+        return {"start": self._start_table.columns, "keeper_touched": self._keeper_touched}
 
 
 def make_shootout_vector(num_envs: int = 16,
@@ -531,5 +590,5 @@ def make_shootout_vector(num_envs: int = 16,
     """Shootout-v0's ``vector_entry_point``: a :class:`ShootoutVectorEnv`, or Gymnasium's
     ``SyncVectorEnv`` of single environments (with a warning saying why) for arguments the
     batch does not run yet."""
-    return _vector_or_sync(ShootoutVectorEnv, SHOOTOUT_ID, num_envs,
-                           max_episode_steps, kwargs)
+    return vector_or_sync(ShootoutVectorEnv, SHOOTOUT_ID, num_envs, max_episode_steps,
+                          kwargs)

@@ -30,6 +30,12 @@ a single match's cost.
 Humanoid and mixed matches run too: the humanoids' walk engines, heads and perception match by
 match, so the batch saves their physics only.
 
+Infos: :meth:`MatchBatch.infos` gives every match's per-agent infos as a single match's
+``reset()`` and ``step()`` give them (``truth``, ``estimate``, ``reward_terms``, ``score``,
+``event``, ``robot_state`` with humanoids; or its flat infos), and ``step(actions,
+infos=True)`` the step's, those of a finished match taken before it starts over. They are built
+match by match, on request only.
+
 Scope: the geometric detector (not ``pixels``), no rendering.
 :class:`NotBatchable` names what is refused.
 """
@@ -42,13 +48,15 @@ from typing import Any
 import numpy as np
 
 from soccer_env.envs.batched import NotBatchable
-from soccer_env.envs.match import SoccerParallelEnv
+from soccer_env.envs.flat_info import NO_EVENT, as_float64, flat_common, flat_match
+from soccer_env.envs.match import MATCH_SHAPING, SoccerParallelEnv
 from soccer_env.envs.senses import Senses
-from soccer_env.envs.task_rules import match_rows
+from soccer_env.envs.task_rules import match_rows, match_terms
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
 from soccer_env.sim.commands import validate_actions
 from soccer_env.sim.heads import aim_heads
 from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff
+from soccer_env.state import Belief, WorldState, state_dict
 from soccer_env.validation import check_int, check_seed
 
 __all__ = ["MatchBatch", "MatchStep"]
@@ -63,25 +71,30 @@ class MatchStep:
         rewards: ``(M, N)`` float64 rewards (the goal reward plus the shaping terms).
         terminated: ``(M,)`` bool: the match clock reached ``match_duration``.
         truncated: ``(M,)`` bool: ``max_cycles`` reached (and not terminated).
-        events: ``(M,)`` object: the step's event of each match (None, ``"goal"``,
-            ``"touch"``, ``"goal_line"``, ``"over_bar"``).
+        events: ``(M,)`` object: the step's event of each match (``""`` for none,
+            ``"goal"``, ``"touch"``, ``"goal_line"``, ``"over_bar"``).
         scores: ``(M, 2)`` int goals of blue and yellow (of the finished match where one
             ended).
         lengths: ``(M,)`` int steps of each match so far (of the finished match where one
             ended).
         final_obs: ``{k: (N, obs_dim)}`` the last observation of each match that ended.
+        infos: with ``step(..., infos=True)``, each match's per-agent infos of the step, as
+            its single match's ``step()`` returns them (of the finished match where one
+            ended); else None.
     """
 
     __slots__ = ("obs", "rewards", "terminated", "truncated", "events", "scores", "lengths",
-                 "final_obs")
+                 "final_obs", "infos")
 
     def __init__(self, obs: np.ndarray, rewards: np.ndarray, terminated: np.ndarray,
                  truncated: np.ndarray, events: np.ndarray, scores: np.ndarray,
-                 lengths: np.ndarray, final_obs: dict[int, np.ndarray]) -> None:
+                 lengths: np.ndarray, final_obs: dict[int, np.ndarray],
+                 infos: list[dict[str, dict[str, Any]]] | None = None) -> None:
         self.obs, self.rewards = obs, rewards
         self.terminated, self.truncated = terminated, truncated
         self.events, self.scores, self.lengths = events, scores, lengths
         self.final_obs = final_obs
+        self.infos = infos
 
 
 class MatchBatch:
@@ -143,6 +156,14 @@ class MatchBatch:
         # truth mode too) and head control beside the physics.
         self._senses = Senses(probe, self.batch, n)
         self._builders = probe._builders
+        # What the infos of the latest step are made of: each match's event, scoring team
+        # (-1: none) and ball displacement along x [m]; ``_fresh``: no step since the match
+        # started (its reward terms are zero).
+        self._flat = probe.info_mode == "flat"
+        self._events = np.full(n, NO_EVENT, dtype=object)
+        self._scorers = np.full(n, -1, dtype=np.int64)
+        self._dx = np.zeros(n)
+        self._fresh = np.ones(n, dtype=bool)
 
     # ------------------------------------------------------------------------------------
     # Matches
@@ -174,6 +195,7 @@ class MatchBatch:
         self.score[k] = 0
         self.restart_team[k] = kickoff
         self.cycles[k] = 0
+        self._fresh[k] = True
         self._senses.start(k)
 
     def reset(self, seed: int | Sequence[int | None] | None = None) -> np.ndarray:
@@ -210,11 +232,12 @@ class MatchBatch:
     # Stepping
     # ------------------------------------------------------------------------------------
 
-    def step(self, actions: np.ndarray) -> MatchStep:
+    def step(self, actions: np.ndarray, infos: bool = False) -> MatchStep:
         """Step every match with ``actions`` ``(M, N, 6)`` (every robot's action in
         ``[-1, 1]``; outside values clipped or refused as ``out_of_range_actions`` says,
         non-finite ones refused, naming the robot and the match, before any match moves).
-        Matches that end start their next match in this step (see the module docstring)."""
+        Matches that end start their next match in this step (see the module docstring).
+        ``infos``: add the step's per-agent infos (:attr:`MatchStep.infos`)."""
         if not self._started:
             raise RuntimeError("call MatchBatch.reset() before step()")
         n, N = self.n_matches, self.n_robots
@@ -243,7 +266,7 @@ class MatchBatch:
         # The referee.
         self.cycles += 1
         self.restart_team[batch.touched().any(axis=1)] = -1
-        events = np.full(n, None, dtype=object)
+        events = np.full(n, NO_EVENT, dtype=object)
         scorer = np.full(n, -1, dtype=np.int64)
         for k, exit_ in batch.exits():
             world = batch.worlds[k]
@@ -261,6 +284,8 @@ class MatchBatch:
 
         self._senses.update(np.arange(n))
         rewards = self._rewards(scorer, events, ball_x_before)
+        self._events, self._scorers = events, scorer
+        self._fresh[:] = False
         obs = self._observe()
         terminated = batch.times >= self.match_duration - 1e-9
         truncated = np.zeros(n, dtype=bool)
@@ -269,6 +294,8 @@ class MatchBatch:
         scores, lengths = self.score.copy(), self.cycles.copy()
         final_obs: dict[int, np.ndarray] = {}
         ended = np.nonzero(terminated | truncated)[0].tolist()
+        step_infos = [self._match_infos(k) if k in ended else {} for k in range(n)] \
+            if infos else None
         if ended:
             for k in ended:
                 final_obs[k] = obs[k].copy()
@@ -277,7 +304,12 @@ class MatchBatch:
                 self._begin(k, kickoff)
             self._senses.flush()
             obs = self._observe()
-        return MatchStep(obs, rewards, terminated, truncated, events, scores, lengths, final_obs)
+        if step_infos is not None:
+            for k in range(n):
+                if k not in ended:
+                    step_infos[k] = self._match_infos(k)
+        return MatchStep(obs, rewards, terminated, truncated, events, scores, lengths, final_obs,
+                         step_infos)
 
     def _rewards(self, scorer: np.ndarray, events: np.ndarray,
                  ball_x_before: np.ndarray | None) -> np.ndarray:
@@ -286,10 +318,82 @@ class MatchBatch:
         sc = self.shaping
         state = self.batch.state
         dx = state[:, 0, 0] - ball_x_before if ball_x_before is not None else np.zeros(len(state))
-        return match_rows(state, self._teams, scorer, dx,
-                          events == None,  # noqa: E711 (element-wise)
+        self._dx = dx
+        return match_rows(state, self._teams, scorer, dx, events == NO_EVENT,
                           (float(sc["ball_progress"]), float(sc["ball_distance"])),
                           self.control_dt)
+
+    # ------------------------------------------------------------------------------------
+    # Infos
+    # ------------------------------------------------------------------------------------
+
+    def infos(self) -> list[dict[str, dict[str, Any]]]:
+        """Every match's per-agent infos now, as its single match gives them: after
+        :meth:`reset` (or a match's restart) its ``reset()`` infos, after a step its
+        ``step()`` infos (full or flat, as ``info_mode`` says)."""
+        return [self._match_infos(k) for k in range(self.n_matches)]
+
+    def _match_infos(self, k: int) -> dict[str, dict[str, Any]]:
+        """Match ``k``'s per-agent infos (``SoccerParallelEnv._infos``' for its state, the
+        latest step's reward terms and event, its score and beliefs)."""
+        world = self.batch.worlds[k]
+        state = world.snapshot()
+        agents = self.possible_agents
+        event = NO_EVENT if self._fresh[k] else self._events[k]
+        terms = self._terms(k, state)
+        beliefs = self._beliefs(k, state)
+        score = [int(v) for v in self.score[k].tolist()]
+        if self._flat:
+            game = flat_match(event, score, None)
+            walk = world.walk
+            out = {}
+            for i, a in enumerate(agents):
+                fallen = walk is not None and i in walk.indices and bool(
+                    walk.fallen[walk.indices.index(i)])
+                info = flat_common(state, beliefs[i], i, fallen, terms[i])
+                info.update(game)
+                out[a] = as_float64(info)
+            return out
+        truth = state.truth_dict()
+        estimates: dict[int, dict[str, Any]] = {}
+        robot_state = world.humanoid_state() if world.walk is not None else None
+        out = {}
+        for i, a in enumerate(agents):
+            b = beliefs[i]
+            if id(b) not in estimates:
+                estimates[id(b)] = truth if b is state else state_dict(b.time, b.ball,
+                                                                       b.robots, state.names)
+            out[a] = {"truth": truth, "estimate": estimates[id(b)], "reward_terms": terms[i],
+                      "score": {"blue": score[0], "yellow": score[1]}, "event": event}
+            if robot_state is not None:
+                out[a]["robot_state"] = robot_state
+        return out
+
+    def _terms(self, k: int, state: WorldState) -> list[dict[str, float]]:
+        """Match ``k``'s reward terms of every robot at its latest step (zeros before its
+        first), as the single match names them."""
+        if self._fresh[k]:
+            zero = dict.fromkeys(("goal", *MATCH_SHAPING), 0.0)
+            return [zero] * self.n_robots
+        sc = self.shaping
+        goal, progress, distance = match_terms(
+            (float(state.ball[0]), float(state.ball[1])), state.robots, state.teams,
+            int(self._scorers[k]), float(self._dx[k]), self._events[k] == NO_EVENT,
+            (float(sc["ball_progress"]), float(sc["ball_distance"])),
+            self.control_dt).T.tolist()
+        return [{"goal": g, "ball_progress": p, "ball_distance": d}
+                for g, p, d in zip(goal, progress, distance)]
+
+    def _beliefs(self, k: int, state: WorldState) -> list[Any]:
+        """Every robot's present belief in match ``k`` (``state`` itself in truth mode)."""
+        senses = self._senses
+        if senses.truth:
+            return [state] * self.n_robots
+        if senses.vision is not None:  # one belief for every robot of the match
+            times, ball, robots = senses.vision.present()
+            return [Belief(float(times[k]), ball[k], robots[k])] * self.n_robots
+        perception = senses.perceptions[k]
+        return [perception.current(i) for i in range(self.n_robots)]
 
     def _observe(self) -> np.ndarray:
         """``(M, N, obs_dim)`` observations with each team's game block

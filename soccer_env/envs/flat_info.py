@@ -1,7 +1,9 @@
 """Flat infos (``info_mode="flat"``): numbers only, under keys fixed for the environment.
 
 The default infos (``info_mode="full"``) hold nested dicts (the truth and the belief per
-robot, the drawn shot), strings (``outcome``, ``event``) and None. Libraries that turn every
+robot, the drawn shot) and strings (``outcome``, ``event``; :data:`NO_OUTCOME` and
+:data:`NO_EVENT`, the empty string, while nothing is to report: never None). Libraries that
+turn every
 info into a tensor or an array (TorchRL's ``PettingZooWrapper``, some vectorised loggers)
 need instead one flat mapping of numbers whose keys do not change from one step to the next.
 With ``info_mode="flat"`` every environment gives that: a ``dict[str, float]`` with the same
@@ -63,18 +65,28 @@ import numpy as np
 
 from soccer_env.sim.game import COMMANDS
 
-__all__ = ["INFO_MODES", "OUTCOME_CODES", "EVENT_CODES", "COMMON_KEYS", "MATCH_KEYS",
+__all__ = ["INFO_MODES", "NO_OUTCOME", "NO_EVENT", "OUTCOME_CODES", "EVENT_CODES",
+           "COMMON_KEYS", "MATCH_KEYS",
            "FLAT_GAME_KEYS", "flat_keys", "flat_common", "flat_match", "as_float64"]
 
 #: The values of ``info_mode``: the rich default (nested dicts, strings) or flat numbers.
 INFO_MODES = ("full", "flat")
 
-#: ``outcome`` of the single-agent tasks as a number (``None``: the episode goes on).
-OUTCOME_CODES: dict[str | None, int] = {None: 0, "goal": 1, "stopped": 2, "cleared": 3,
-                                        "out": 4, "saved": 5}
-#: ``event`` of the match as a number (``None``: nothing happened to the ball's play).
-EVENT_CODES: dict[str | None, int] = {None: 0, "goal": 1, "touch": 2, "goal_line": 3,
-                                      "over_bar": 4, "invalid_goal": 5}
+#: ``info["outcome"]`` of the single-agent tasks while the episode goes on: the empty string
+#: (false in a condition, as a string a tensor or array library takes like the outcomes'
+#: names; the tasks' rules say None internally).
+NO_OUTCOME = ""
+#: ``info["event"]`` of the match at a step where nothing ended the ball's play: the empty
+#: string.
+NO_EVENT = ""
+
+#: ``outcome`` of the single-agent tasks as a number (:data:`NO_OUTCOME`: the episode goes
+#: on).
+OUTCOME_CODES: dict[str, int] = {NO_OUTCOME: 0, "goal": 1, "stopped": 2, "cleared": 3,
+                                 "out": 4, "saved": 5}
+#: ``event`` of the match as a number (:data:`NO_EVENT`: nothing happened to the ball's play).
+EVENT_CODES: dict[str, int] = {NO_EVENT: 0, "goal": 1, "touch": 2, "goal_line": 3,
+                               "over_bar": 4, "invalid_goal": 5}
 
 #: The keys every environment's flat info starts with, in order.
 COMMON_KEYS = (
@@ -135,9 +147,11 @@ def flat_common(state: Any, belief: Any, robot: int, fallen: bool,
 
 def flat_match(event: str | None, score: list[int], game: Any) -> dict[str, float]:
     """The match's own flat entries, the same for every agent: :data:`MATCH_KEYS` for the
-    step's ``event`` and the ``score`` (blue's, yellow's goals) and, with a ``game``
-    controller (None: the simple referee), :data:`FLAT_GAME_KEYS`."""
-    out = {"event": float(EVENT_CODES[event]), "score_blue": float(score[0]),
+    step's ``event`` (None or :data:`NO_EVENT`: none) and the ``score`` (blue's, yellow's
+    goals) and, with a ``game`` controller (None: the simple referee),
+    :data:`FLAT_GAME_KEYS`."""
+    code = EVENT_CODES[NO_EVENT if event is None else event]
+    out = {"event": float(code), "score_blue": float(score[0]),
            "score_yellow": float(score[1])}
     if game is not None:
         out.update(game_command=float(COMMANDS.index(game.command)),

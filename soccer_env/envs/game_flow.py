@@ -172,21 +172,23 @@ class GameFlow:
 
     def info(self, score: list[int]) -> dict[str, Any]:
         """``info["game"]``: the referee state and the step's game events, with the
-        ``score`` (blue's and yellow's goals)."""
+        ``score`` (blue's and yellow's goals). What is not there reads as empty, never None:
+        ``""`` for no team, ``()`` for no next command and no designated position."""
         g, w = self.game, self.world
         teams = ("blue", "yellow")
 
-        def team_name(t: int) -> str | None:
-            return teams[t] if t >= 0 else None
+        def team_name(t: int) -> str:
+            return teams[t] if t >= 0 else ""
 
         events = [] if self.decision is None else self.decision.events
         kind, team = g.situation()
         out: dict[str, Any] = {
             "command": g.command, "command_team": team_name(g.command_team),
             "situation": kind, "situation_team": team_name(team),
-            "next_command": (None if g.next_command is None else
+            "next_command": (() if g.next_command is None else
                              (g.next_command[0], team_name(g.next_command[1]))),
-            "designated": g.designated, "in_play": bool(g.in_play), "stage": g.stage,
+            "designated": () if g.designated is None else g.designated,
+            "in_play": bool(g.in_play), "stage": g.stage,
             "stage_time_left": float(g.stage_time_left),
             "playing_time_left": float(g.playing_time_left),
             "events": [event_dict(e, w.names) for e in events],
@@ -205,8 +207,9 @@ class GameFlow:
 
 
 def event_dict(event: GameEvent, names: list[str]) -> dict[str, Any]:
-    """A game event as ``info["game"]["events"]`` holds it (team and robot by name)."""
+    """A game event as ``info["game"]["events"]`` holds it (team and robot by name, ``""``
+    for none)."""
     return {"kind": event.kind,
-            "team": None if event.team < 0 else ("blue", "yellow")[event.team],
-            "robot": None if event.robot < 0 else names[event.robot],
+            "team": "" if event.team < 0 else ("blue", "yellow")[event.team],
+            "robot": "" if event.robot < 0 else names[event.robot],
             "x": event.x, "y": event.y}

@@ -229,7 +229,7 @@ class GoalkeeperEnv(SingleAgentTask):
     ## Info
     Every step: ``truth`` (see :meth:`~soccer_env.state.WorldState.truth_dict`), ``estimate``
     (the perception's belief at the present time, same keys; the truth itself in truth mode),
-    ``reward_terms``, ``outcome`` (None until the end), ``shot`` (the drawn shot),
+    ``reward_terms``, ``outcome`` (``""`` until the end), ``shot`` (the drawn shot),
     ``shot_fired``, ``keeper_touched`` (the keeper has touched the ball this episode).
     With ``info_mode="flat"``: numbers only under fixed keys, the outcome as a code, and the
     task's ``shot_fired``, ``keeper_touched``, ``shot_speed``, ``shot_chip``

@@ -21,6 +21,7 @@ from soccer_env.envs.base import SoccerCore
 from soccer_env.envs.flat_info import (
     FLAT_GAME_KEYS,
     MATCH_KEYS,
+    NO_EVENT,
     as_float64,
     flat_common,
     flat_keys,
@@ -121,10 +122,12 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
     Every agent's info holds ``truth`` (the same dict for all agents: ball and every robot in
     field coordinates), ``estimate`` (the present-time belief of the agent's team, or for a
     humanoid its own, same keys), ``reward_terms``, ``score`` ``{"blue": int, "yellow":
-    int}`` and ``event`` (None, ``"goal"``, ``"touch"``, ``"goal_line"``, ``"over_bar"`` or,
-    with the game flow, ``"invalid_goal"``); with the game flow, ``game`` (the referee
-    state: ``command``, ``command_team``, ``situation``, ``situation_team``,
-    ``next_command``, ``designated``, ``in_play``, ``stage``, ``stage_time_left``,
+    int}`` and ``event`` (``""`` when nothing ended the ball's play, ``"goal"``,
+    ``"touch"``, ``"goal_line"``, ``"over_bar"`` or, with the game flow, ``"invalid_goal"``);
+    with the game flow, ``game`` (the referee state: ``command``, ``command_team``,
+    ``situation``, ``situation_team`` (``""`` for no team), ``next_command`` (``(command,
+    team)``, ``()`` for none), ``designated`` (``(x, y)``, ``()`` for none), ``in_play``,
+    ``stage``, ``stage_time_left``,
     ``playing_time_left``, the step's ``events`` as the SSL game controller names them, and
     per team ``goals``, ``fouls``, ``yellow_cards`` (time left of each [s]), ``red_cards``,
     ``placement_failures``, ``can_place``, ``robots_allowed``, ``off_field``);
@@ -525,7 +528,7 @@ class SoccerParallelEnv(SoccerCore, ParallelEnv):
                 estimates[key] = self._estimate(state, belief, truth)
             infos[a] = {"truth": truth, "estimate": estimates[key], "reward_terms": terms[a],
                         "score": {"blue": self.score[0], "yellow": self.score[1]},
-                        "event": event}
+                        "event": NO_EVENT if event is None else event}
             if robot_state is not None:
                 infos[a]["robot_state"] = robot_state
             if game is not None:

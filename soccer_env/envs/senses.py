@@ -178,6 +178,19 @@ class Senses:
             return state[:, 0], state[:, 1:]
         return None if self.vision is None else self.vision.beliefs()
 
+    def present(self, robot: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+        """Robot ``robot``'s belief at the present time in every environment (what a single
+        environment reports in ``info["estimate"]``): ``(times (n,) [s], ball (n, 6), robots
+        (n, N, 6))``, as :meth:`arrays` lays them out; None in truth mode (the estimate is
+        the truth)."""
+        if self.truth:
+            return None
+        if self.vision is not None:
+            return self.vision.present()
+        beliefs = [p.current(robot) for p in self.perceptions]
+        return (np.array([b.time for b in beliefs], dtype=np.float64),
+                np.stack([b.ball for b in beliefs]), np.stack([b.robots for b in beliefs]))
+
     def truth_arrays(self, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(times, balls (d, 3) x y z, robot poses (d, N, 3))`` of environments ``rows``,
         what the overhead cameras see."""

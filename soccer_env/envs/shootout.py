@@ -171,7 +171,7 @@ class ShootoutEnv(SingleAgentTask):
 
     ## Info
     Every step: ``truth``, ``estimate`` (the attacker's belief at the present time, same
-    keys), ``reward_terms``, ``outcome`` (None until the end), ``start`` (the drawn start),
+    keys), ``reward_terms``, ``outcome`` (``""`` until the end), ``start`` (the drawn start),
     ``keeper_touched`` (since the attacker's last touch); with humanoids ``robot_state``.
     With ``info_mode="flat"``: numbers only under fixed keys, the outcome as a code, and
     ``keeper_touched`` (:mod:`soccer_env.envs.flat_info`).

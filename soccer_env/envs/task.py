@@ -12,7 +12,13 @@ import gymnasium as gym
 import numpy as np
 
 from soccer_env.envs.base import SoccerCore
-from soccer_env.envs.flat_info import OUTCOME_CODES, as_float64, flat_common, flat_keys
+from soccer_env.envs.flat_info import (
+    NO_OUTCOME,
+    OUTCOME_CODES,
+    as_float64,
+    flat_common,
+    flat_keys,
+)
 from soccer_env.envs.registration import GYMNASIUM
 from soccer_env.envs.settings import EnvSettings
 from soccer_env.perception.base import OBS_MODES, PerceptionConfig
@@ -41,7 +47,8 @@ class SingleAgentTask(SoccerCore, gym.Env):
     :meth:`_build_learner`, then sets :attr:`builder` and ``observation_space``.
 
     The episode ends (terminated) when :meth:`_outcome` names an outcome; ``info["outcome"]``
-    names it and ``info["is_success"]`` says whether it is a success (:meth:`_success`).
+    names it (:data:`~soccer_env.envs.flat_info.NO_OUTCOME`, the empty string, before) and
+    ``info["is_success"]`` says whether it is a success (:meth:`_success`).
     Truncation is left to the registration's ``max_episode_steps``.
 
     With ``info_mode="flat"`` the info is :func:`~soccer_env.envs.flat_info.flat_common`'s
@@ -183,14 +190,14 @@ class SingleAgentTask(SoccerCore, gym.Env):
               ) -> dict[str, Any]:
         if self._flat:
             flat = flat_common(state, self._shown_belief, 0, self._fallen(0), terms)
-            flat["outcome"] = float(OUTCOME_CODES[outcome])
+            flat["outcome"] = float(OUTCOME_CODES[NO_OUTCOME if outcome is None else outcome])
             flat["is_success"] = 1.0 if outcome is not None and self._success(outcome) else 0.0
             self._flat_task_info(flat)
             return as_float64(flat)
         truth = state.truth_dict()
         info = {"truth": truth,
                 "estimate": self._estimate(state, self._shown_belief, truth),
-                "reward_terms": terms, "outcome": outcome}
+                "reward_terms": terms, "outcome": NO_OUTCOME if outcome is None else outcome}
         self._task_info(info)
         if self.world.walk is not None:
             info["robot_state"] = self.world.humanoid_state()

@@ -119,29 +119,34 @@ def goalkeeper_rows(exits: np.ndarray, fired: np.ndarray, airborne: np.ndarray,
                     live: np.ndarray, state: np.ndarray, actions: np.ndarray,
                     weights: tuple[float, float, float, float],
                     geometry: tuple[float, float, float, float, float], dt: float
-                    ) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`goalkeeper_outcome` and the reward of every environment: ``state`` ``(n, 1 +
-    N, >= 5)`` rows (the ball, then robot 0 the keeper), ``actions`` ``(n, >= 3)``; where
-    ``live`` is False the outcome is 0 and the reward 0. The reward is the outcome's (-1 for a
-    goal, +1 for any other end) plus the terms in :func:`goalkeeper_terms`' order, summed
-    from zero as the single environment sums its terms."""
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`goalkeeper_outcome`, the reward and the reward terms of every environment:
+    ``state`` ``(n, 1 + N, >= 5)`` rows (the ball, then robot 0 the keeper), ``actions``
+    ``(n, >= 3)``; where ``live`` is False the outcome is 0, the reward and the terms 0.
+    The terms ``(n, 5)`` are the outcome's (-1 for a goal, +1 for any other end, 0 while the
+    episode goes on), then :func:`goalkeeper_terms`' in its order; the reward is their sum
+    from zero, as the single environment sums its terms."""
     n = state.shape[0]
     codes = np.zeros(n, dtype=np.int64)
     rewards = np.zeros(n)
+    terms = np.zeros((n, 5))
     for k in range(n):
         if not live[k]:
             continue
         b = state[k, 0]
         code = goalkeeper_outcome(exits[k], fired[k], airborne[k], b[3], b[4])
         codes[k] = code
-        terms = goalkeeper_terms((b[0], b[1], b[3], b[4]), (state[k, 1, 0], state[k, 1, 1]),
-                                 (float(actions[k, 0]), float(actions[k, 1]),
-                                  float(actions[k, 2])), weights, geometry, dt)
-        total = 0.0 + (0.0 if code == 0 else (-1.0 if code == 1 else 1.0))
-        for term in terms:
-            total += term
+        shaping = goalkeeper_terms((b[0], b[1], b[3], b[4]), (state[k, 1, 0], state[k, 1, 1]),
+                                   (float(actions[k, 0]), float(actions[k, 1]),
+                                    float(actions[k, 2])), weights, geometry, dt)
+        first = 0.0 if code == 0 else (-1.0 if code == 1 else 1.0)
+        terms[k, 0] = first
+        total = 0.0 + first
+        for j in range(4):
+            terms[k, 1 + j] = shaping[j]
+            total += shaping[j]
         rewards[k] = total
-    return codes, rewards
+    return codes, rewards, terms
 
 
 @kernel
@@ -188,15 +193,17 @@ def shootout_rows(exits: np.ndarray, touched: np.ndarray, airborne: np.ndarray,
                   live: np.ndarray, state: np.ndarray, before: np.ndarray,
                   actions: np.ndarray, goal: tuple[float, float],
                   weights: tuple[float, float, float], dt: float
-                  ) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`shootout_outcome` and the reward of every environment (``state`` as in
-    :func:`goalkeeper_rows`, robot 0 the attacker); ``before`` ((n,), in place) takes each
-    ball's new distance to the goal. Where ``live`` is False the outcome is 0 and the
-    reward 0. The reward is the outcome's (+1 for a goal, -1 for any other end) plus the
-    terms in :func:`shootout_terms`' order, summed from zero."""
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`shootout_outcome`, the reward and the reward terms of every environment
+    (``state`` as in :func:`goalkeeper_rows`, robot 0 the attacker); ``before`` ((n,), in
+    place) takes each ball's new distance to the goal. Where ``live`` is False the outcome is
+    0, the reward and the terms 0. The terms ``(n, 4)`` are the outcome's (+1 for a goal, -1
+    for any other end, 0 while the episode goes on), then :func:`shootout_terms`' in its
+    order; the reward is their sum from zero."""
     n = state.shape[0]
     codes = np.zeros(n, dtype=np.int64)
     rewards = np.zeros(n)
+    terms = np.zeros((n, 4))
     for k in range(n):
         b = state[k, 0]
         code = shootout_outcome(exits[k], touched[k], airborne[k], b[3], b[4]) \
@@ -207,9 +214,10 @@ def shootout_rows(exits: np.ndarray, touched: np.ndarray, airborne: np.ndarray,
             (float(actions[k, 0]), float(actions[k, 1]), float(actions[k, 2])), weights, dt)
         before[k] = d
         if live[k]:
-            rewards[k] = 0.0 + (0.0 if code == 0 else (1.0 if code == 1 else -1.0)) \
-                + progress + dist + cost
-    return codes, rewards
+            first = 0.0 if code == 0 else (1.0 if code == 1 else -1.0)
+            terms[k, 0], terms[k, 1], terms[k, 2], terms[k, 3] = first, progress, dist, cost
+            rewards[k] = 0.0 + first + progress + dist + cost
+    return codes, rewards, terms
 
 
 @kernel

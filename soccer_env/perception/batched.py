@@ -99,6 +99,7 @@ class FilteredPerceptionBatch:
         self.ahead = pipe.ahead
         self._now = np.zeros(self.m)
         self._beliefs: tuple[np.ndarray, np.ndarray] | None = None
+        self._present: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
     def reset(self, rows, times, balls, robots, rngs: list[np.random.Generator]) -> None:
         """Start episodes in environments ``rows`` ``(d,)`` at ``times`` with the truth
@@ -125,22 +126,39 @@ class FilteredPerceptionBatch:
         frames = (delivered if not warm.count else warm if not delivered.count
                   else FrameBatch.join([delivered, warm]))
         self._consume(frames)
-        self._beliefs = None
+        self._beliefs = self._present = None
 
     def beliefs(self) -> tuple[np.ndarray, np.ndarray]:
         """Every environment's belief for its observation, predicted to its present plus
         :attr:`ahead`: ``(ball (m, 6), robots (m, N, 6))`` (``x, y, 0, vx, vy, 0`` for the
         ball, zeros before its first detection), read only."""
         if self._beliefs is None:
-            t = self._now + self.ahead
-            est, known = self.ball.estimate(t)
-            ball = np.zeros((self.m, 6))
-            ball[:, 0:2], ball[:, 3:5] = est[:, 0:2], est[:, 2:4]
-            ball[~known] = 0.0
-            robots = self.robots.estimate(t)
-            ball.flags.writeable = robots.flags.writeable = False
-            self._beliefs = (ball, robots)
+            self._beliefs = self._estimate(self._now + self.ahead)
         return self._beliefs
+
+    def present(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Every environment's belief at its present time (what a single environment reports
+        in ``info["estimate"]``): ``(times (m,) [s], ball (m, 6), robots (m, N, 6))``, laid
+        out as :meth:`beliefs`' (the same arrays when nothing is predicted ahead), read
+        only."""
+        if self._present is None:
+            if not self.ahead:
+                ball, robots = self.beliefs()
+            else:
+                ball, robots = self._estimate(self._now)
+            self._present = (self._now.copy(), ball, robots)
+        return self._present
+
+    def _estimate(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The filters' estimates at the times ``t`` ``(m,)`` [s]: ``(ball (m, 6), robots
+        (m, N, 6))``, read only (the ball zeros before its first detection)."""
+        est, known = self.ball.estimate(t)
+        ball = np.zeros((self.m, 6))
+        ball[:, 0:2], ball[:, 3:5] = est[:, 0:2], est[:, 2:4]
+        ball[~known] = 0.0
+        robots = self.robots.estimate(t)
+        ball.flags.writeable = robots.flags.writeable = False
+        return ball, robots
 
     def _consume(self, frames: FrameBatch) -> None:
         """``FilteredPerception.consume`` of every environment's frames: by capture time

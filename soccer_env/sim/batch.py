@@ -41,6 +41,7 @@ import numpy as np
 import pymunk
 import pymunk.batch as pbatch
 
+from estimators.exact import hypots
 from soccer_env.presets import BallSpec, FieldSpec, RobotSpec
 from soccer_env.sim.arena import BALL, HUMANOID, OUT, ROBOT, WALL
 from soccer_env.sim.chipmunk import lib as cp
@@ -418,7 +419,7 @@ class WorldBatch:
         it: ``v * vmax / speed``), the turn rate to ``max_angular_speed``, the body frame
         turned by the heading expected at mid-step."""
         vx, vy, w = c[..., 0], c[..., 1], c[..., 2]
-        speed = np.hypot(vx, vy)
+        speed = hypots(vx, vy)  # (World.step's math.hypot, bit for bit)
         fast = speed > self._vmax
         if fast.any():  # as World.step rounds it: v * vmax / speed
             safe = np.where(fast, speed, 1.0)

@@ -187,8 +187,8 @@ TRAIN_OPTIONS: tuple[TrainOption, ...] = (
                 "keep the best model as best_model.zip (0: never) (default: {default})",
                 field="eval_every",
                 refused={"rllib": "is stable-baselines3's periodic evaluation, which the rllib "
-                                  "backend does not run (evaluate a policy with soccer-env "
-                                  "eval)"},
+                                  "backend does not run (evaluate the run's final_policy.npz "
+                                  "with soccer-env eval)"},
                 settings={"type": int, "metavar": "STEPS"}),
     TrainOption("--eval-episodes", "sb3: shots of each periodic evaluation "
                 "(default: {default})", field="eval_episodes",
@@ -214,8 +214,10 @@ TRAIN_OPTIONS: tuple[TrainOption, ...] = (
     TrainOption("--opponent", f"match: {', '.join(OPPONENTS)} (self: a frozen copy of the "
                 "learner, refreshed as it trains) or the path of a numpy policy file (.npz, "
                 "e.g. a run's final_policy.npz); rllib: self (a frozen copy of the learning "
-                "module, refreshed every 100,000 steps) or learning (the other team learns a "
-                "module of its own) (default: {default}; rllib: self)", field="opponent"),
+                "module, refreshed every 100,000 steps), learning (the other team learns a "
+                "module of its own), or scripted, idle or a .npz file, which the environment "
+                "plays the other team with (default: {default}; rllib: self)",
+                field="opponent"),
     TrainOption("--resume", "continue from a checkpoint .zip, or a run's RLlib checkpoint "
                 "folder (its final_checkpoint or checkpoints/checkpoint_<steps>_steps; selects "
                 "--backend rllib); the rest of the configuration comes from its run's "

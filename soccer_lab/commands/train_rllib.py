@@ -9,21 +9,27 @@ robots play), ``--n-envs`` (environments per env runner), ``--seed``, ``--out``,
 and ``--no-progress``. The match's ``--learner`` and ``--opponent`` choose the policy mapping
 (:data:`agents.runs.rllib.POLICY_MAPPINGS`):
 
-=================================================  ===========  =============================
-options                                            mapping      modules
-=================================================  ===========  =============================
-``--learner both`` (the default)                   shared       ``shared`` plays every robot
-``--learner blue --opponent self`` (or no          self-play    ``main`` learns and plays
-``--opponent``)                                                 blue, ``opponent`` (a frozen
-                                                                copy of ``main``) yellow
-``--learner blue --opponent learning``             per-team     ``blue`` and ``yellow``, both
-                                                                learning
-=================================================  ===========  =============================
+=================================================  ==============  ==========================
+options                                            mapping         modules
+=================================================  ==============  ==========================
+``--learner both`` (the default)                   shared          ``shared`` plays every
+                                                                   robot
+``--learner blue --opponent self`` (or no          self-play       ``main`` learns and plays
+``--opponent``)                                                    blue, ``opponent`` (a
+                                                                   frozen copy of ``main``)
+                                                                   yellow
+``--learner blue --opponent learning``             per-team        ``blue`` and ``yellow``,
+                                                                   both learning
+``--learner blue --opponent scripted`` (``idle``,  fixed-opponent  ``main`` learns and plays
+a numpy policy file ``PATH.npz``)                                  blue; the environment
+                                                                   plays yellow with that
+                                                                   policy
+=================================================  ==============  ==========================
 
 The options that have no meaning with RLlib are refused, naming the option: ``--algo``
-other than ppo, ``--workers`` (use ``--num-env-runners``), ``--critic privileged``, the
+other than ppo, ``--workers`` (use ``--num-env-runners``), ``--critic privileged`` and the
 periodic evaluation (``--eval-every``, ``--eval-episodes``, ``--eval-obs-mode``,
-``--eval-perception``) and the stable-baselines3 opponents (scripted, idle, a numpy policy).
+``--eval-perception``; ``soccer-env eval`` reads the run's ``final_policy.npz``).
 """
 
 from __future__ import annotations
@@ -47,8 +53,9 @@ __all__ = ["main", "is_rllib_checkpoint", "REFUSED"]
 REFUSED = tuple((o.dest, o.flag, o.refused["rllib"]) for o in TRAIN_OPTIONS
                 if "rllib" in o.refused)
 
-#: ``--opponent`` values of the RLlib backend.
-OPPONENTS = ("self", "learning")
+#: ``--opponent`` values of the RLlib backend given by name (besides the path of a numpy policy
+#: file, ``.npz``): self-play, a learning module per team, or a fixed opponent.
+OPPONENTS = ("self", "learning", "scripted", "idle")
 
 
 def is_rllib_checkpoint(path: str | None) -> bool:
@@ -76,19 +83,23 @@ def _policy_mapping(p: argparse.ArgumentParser, args: argparse.Namespace, env_id
     if env_id != MATCH_ID:
         given = "--learner" if learner is not None else "--opponent"
         p.error(f"{given} is for {MATCH_ID}")
-    if opponent is not None and opponent not in OPPONENTS:
+    if opponent is not None and opponent not in OPPONENTS and not opponent.endswith(".npz"):
         p.error(f"--opponent {opponent}: with --backend rllib the opponent is 'self' (a "
-                "frozen copy of the learning module, refreshed as it trains) or 'learning' "
-                "(the other team learns a module of its own); scripted, idle and numpy "
-                "policy opponents are for the sb3 backend")
+                "frozen copy of the learning module, refreshed as it trains), 'learning' "
+                "(the other team learns a module of its own), 'scripted', 'idle' or the path "
+                "of a numpy policy file (.npz)")
     if learner == "both":
         if opponent is not None:
             p.error(f"--opponent {opponent} with --learner both: both teams play the one "
                     "shared learning module")
-        return {"policy_mapping": "shared"}
+        return {"policy_mapping": "shared", "opponent": None}
     team = learner or base.get("learner", "blue")
-    mapping = "per-team" if opponent == "learning" else "self-play"
-    return {"policy_mapping": mapping, "learner": team}
+    if opponent is None and base.get("policy_mapping") == "fixed-opponent":
+        return {"learner": team}  # the resumed run's opponent
+    if opponent in (None, "self", "learning"):
+        mapping = "per-team" if opponent == "learning" else "self-play"
+        return {"policy_mapping": mapping, "learner": team, "opponent": None}
+    return {"policy_mapping": "fixed-opponent", "learner": team, "opponent": opponent}
 
 
 def _resumed_fields(p: argparse.ArgumentParser, args: argparse.Namespace) -> dict[str, Any]:
@@ -172,6 +183,8 @@ def main(p: argparse.ArgumentParser, args: argparse.Namespace, argv: list[str] |
           f"{len(summary['steps_by_node'])} of the cluster's "
           f"{len(summary['cluster_nodes'])} node(s) sampled")
     print(f"final checkpoint: {summary['final_checkpoint']}")
+    if summary.get("final_policy"):
+        print(f"numpy policy (soccer-env eval, matches, ratings): {summary['final_policy']}")
     print(f"continue with: {summary['resume_command']}{address}")
     print(f"run folder: {cfg.out}")
     return 0

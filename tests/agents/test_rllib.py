@@ -105,7 +105,7 @@ def test_policy_mappings():
     selfplay = match_policies(config, "self-play", learner="yellow")
     assert selfplay.modules == ("main", "opponent") and selfplay.trained == ("main",)
     assert selfplay("yellow_1") == "main" and selfplay("blue_0") == "opponent"
-    assert list(POLICY_MAPPINGS) == ["shared", "per-team", "self-play"]
+    assert list(POLICY_MAPPINGS) == ["shared", "per-team", "self-play", "fixed-opponent"]
     # One network for both teams needs teams alike; per-team takes any.
     with pytest.raises(ValueError, match="equal size"):
         match_policies({"blue": 2, "yellow": 1}, "shared")

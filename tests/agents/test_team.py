@@ -231,7 +231,7 @@ def test_attacker_is_the_nearest_field_player_and_scores_past_an_idle_keeper():
     touched = np.zeros(6, dtype=bool)
     for _ in range(240):
         obs, _, _, _, info = env.step({**team(obs), **idle})
-        if info["blue_0"]["event"] is not None:
+        if info["blue_0"]["event"]:
             break
         touched |= env.world.touched
     assert info["blue_0"]["event"] == "goal" and env.score == [1, 0]

@@ -181,7 +181,7 @@ class TaskGame(Game):
         outcome = self.info.get("outcome")
         success = bool(self.info.get("is_success", False))
         if self.task == "keeper":
-            success = success or outcome is None  # time up without a goal
+            success = success or not outcome  # time up without a goal
             self.banner = "goal" if not success else "save"
             what = "goal" if not success else f"save ({outcome or 'time up'})"
         else:

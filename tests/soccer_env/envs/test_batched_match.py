@@ -50,7 +50,7 @@ def _compare(kwargs: dict, n: int, steps: int, seed: int) -> dict[str, int]:
             assert result.scores[k].tolist() == e.score, (t, k)
             np.testing.assert_allclose(result.rewards[k], [r[a] for a in agents], atol=1e-9)
             assert (result.terminated[k], result.truncated[k]) == (te[a0], tr[a0]), (t, k)
-            if event is not None:
+            if event:
                 counts[event] += 1
             if te[a0] or tr[a0]:
                 counts["end"] += 1

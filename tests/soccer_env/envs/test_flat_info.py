@@ -105,9 +105,9 @@ def test_goalkeeper_flat_shot_entries():
 
 
 def test_outcome_codes_cover_every_outcome():
-    assert set(OUTCOME_CODES) == {None, "goal", "stopped", "cleared", "out", "saved"}
-    assert set(EVENT_CODES) == {None, "goal", "touch", "goal_line", "over_bar", "invalid_goal"}
-    assert OUTCOME_CODES[None] == 0 == EVENT_CODES[None]
+    assert set(OUTCOME_CODES) == {"", "goal", "stopped", "cleared", "out", "saved"}
+    assert set(EVENT_CODES) == {"", "goal", "touch", "goal_line", "over_bar", "invalid_goal"}
+    assert OUTCOME_CODES[""] == 0 == EVENT_CODES[""]
     assert len(set(OUTCOME_CODES.values())) == len(OUTCOME_CODES)
 
 
@@ -197,3 +197,56 @@ def test_info_mode_default_is_full():
     env = gym.make("soccer_env/Goalkeeper-v0")
     assert env.unwrapped.info_mode == "full"
     assert isinstance(env.reset(seed=0)[1]["truth"], dict)
+
+
+def _nones(value, path="info"):
+    """The paths of every None in a (nested) info."""
+    if value is None:
+        return [path]
+    if isinstance(value, dict):
+        return [p for k, v in value.items() for p in _nones(v, f"{path}[{k!r}]")]
+    if isinstance(value, (list, tuple)):
+        return [p for k, v in enumerate(value) for p in _nones(v, f"{path}[{k}]")]
+    return []
+
+
+@pytest.mark.parametrize("env_id,kwargs", GYM_CASES[:3] + [GYM_CASES[4]])
+def test_full_infos_hold_no_none(env_id, kwargs):
+    """The full infos of every step hold no None (libraries that turn infos into arrays read
+    it as NaN): ``outcome`` is ``""`` until the episode's end, the estimate has values from
+    the first step (before any track)."""
+    env = gym.make(env_id, max_episode_steps=60, **kwargs)
+    info = env.reset(seed=1)[1]
+    assert info["outcome"] == "" and not _nones(info)
+    rng = np.random.default_rng(1)
+    for _ in range(120):
+        action = rng.uniform(-1, 1, 6).astype(np.float32)
+        _, _, terminated, truncated, info = env.step(action)
+        assert not _nones(info), _nones(info)
+        assert bool(info["outcome"]) == terminated
+        if terminated or truncated:
+            info = env.reset()[1]
+            assert not _nones(info)
+
+
+@pytest.mark.parametrize("kwargs", [MATCH_CASES[1],
+                                    {"blue": 3, "yellow": 3, "game": "ssl-2025-div-b"}])
+def test_match_infos_hold_no_none(kwargs):
+    """The match's per-agent infos: ``event`` is ``""`` at a step where nothing happened, and
+    the game flow's state says "none" with ``""`` (no team) and ``()`` (no next command, no
+    designated position)."""
+    env = soccer_env.parallel_env(max_cycles=150, **kwargs)
+    infos = env.reset(seed=2)[1]
+    assert not _nones(infos) and infos["blue_0"]["event"] == ""
+    rng = np.random.default_rng(2)
+    seen = set()
+    while env.agents:
+        infos = env.step({a: rng.uniform(-1, 1, 6) for a in env.agents})[4]
+        assert not _nones(infos), _nones(infos)
+        seen.add(infos["blue_0"]["event"])
+        if "game" in infos["blue_0"]:
+            g = infos["blue_0"]["game"]
+            seen.update((g["command_team"], g["next_command"], g["designated"]))
+    assert "" in seen
+    if "game" in kwargs:
+        assert () in seen

@@ -97,8 +97,8 @@ def test_goalkeeper_rows_equal_the_row_rule_bit_for_bit():
     state, exits, (flags), actions = _rows(1)
     fired, airborne, live = flags.T
     weights, dt = (2.0, 0.5, 0.1, 1.0), 0.016
-    codes, rewards = goalkeeper_rows(exits, fired, airborne, live, state, actions, weights,
-                                     GEOMETRY, dt)
+    codes, rewards, terms_out = goalkeeper_rows(exits, fired, airborne, live, state, actions,
+                                                weights, GEOMETRY, dt)
     for k in range(len(state)):
         b = state[k, 0]
         code = goalkeeper_outcome(exits[k], fired[k], airborne[k], b[3], b[4]) if live[k] \
@@ -110,6 +110,7 @@ def test_goalkeeper_rows_equal_the_row_rule_bit_for_bit():
             (b[0], b[1], b[3], b[4]), tuple(state[k, 1, :2]), tuple(actions[k, :3]), weights,
             GEOMETRY, dt)))
         assert rewards[k] == (float(sum(terms.values())) if live[k] else 0.0)
+        assert terms_out[k].tolist() == (list(terms.values()) if live[k] else [0.0] * 5)
     assert {0, 1, 2, 3, 4} <= set(codes.tolist())
 
 
@@ -119,8 +120,8 @@ def test_shootout_rows_equal_the_row_rule_bit_for_bit():
     goal, weights, dt = (4.5, 0.0), (1.0, 0.5, 0.1), 0.016
     before = np.random.default_rng(3).uniform(0.0, 9.0, len(state))
     was = before.copy()
-    codes, rewards = shootout_rows(exits, touched, airborne, live, state, before, actions, goal,
-                                   weights, dt)
+    codes, rewards, terms_out = shootout_rows(exits, touched, airborne, live, state, before,
+                                              actions, goal, weights, dt)
     for k in range(len(state)):
         b = state[k, 0]
         code = shootout_outcome(exits[k], touched[k], airborne[k], b[3], b[4]) if live[k] \
@@ -129,9 +130,10 @@ def test_shootout_rows_equal_the_row_rule_bit_for_bit():
         outcome = SHOOTOUT_OUTCOMES[code]
         *terms, d = shootout_terms((b[0], b[1]), tuple(state[k, 1, :2]), goal, was[k],
                                    tuple(actions[k, :3]), weights, dt)
-        reward = float(sum([0.0 if outcome is None else (1.0 if outcome == "goal" else -1.0),
-                            *terms]))
+        first = 0.0 if outcome is None else (1.0 if outcome == "goal" else -1.0)
+        reward = float(sum([first, *terms]))
         assert rewards[k] == (reward if live[k] else 0.0)
+        assert terms_out[k].tolist() == ([first, *terms] if live[k] else [0.0] * 4)
         assert before[k] == d
     assert {0, 1, 2, 3} <= set(codes.tolist())
 

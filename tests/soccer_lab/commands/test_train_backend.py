@@ -22,9 +22,9 @@ MATCH = ["--env", "soccer_env/Match-v0"]
     (["--eval-perception", "harsh"], "--eval-perception is for the periodic evaluation"),
     (["--algo", "sac"], "--algo sac: the rllib backend trains PPO only"),
     (["--critic", "privileged"], "--critic privileged is stable-baselines3's"),
-    ([*MATCH, "--opponent", "scripted"], "--opponent scripted: with --backend rllib the "
-                                         "opponent is 'self'"),
-    ([*MATCH, "--opponent", "runs/x/final_policy.npz"], "--opponent runs/x/final_policy.npz"),
+    ([*MATCH, "--opponent", "league"], "--opponent league: with --backend rllib the "
+                                       "opponent is 'self'"),
+    (["--opponent", "scripted"], "--opponent is for soccer_env/Match-v0"),
     ([*MATCH, "--learner", "both", "--opponent", "self"], "--opponent self with --learner "
                                                           "both"),
     (["--learner", "yellow"], "--learner is for soccer_env/Match-v0"),
