@@ -43,6 +43,8 @@ test: $(VENV)/.dev-installed
 #   extras take.
 OWN_ENVS := rllib benchmarl tianshou
 
+# (Precious: make would delete the interpreter of a pattern's intermediate target.)
+.PRECIOUS: .venv-%/bin/python
 .venv-%/bin/python:
 	$(PYTHON) -m venv .venv-$*
 	.venv-$*/bin/python -m pip install --quiet --upgrade pip
