@@ -10,10 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from fuzzing import ANYTHING, FAST, NUMBERS
-from fuzzing import accepted as _accepted
-from fuzzing import finite as _finite
-from fuzzing import named as _named
+from fuzzing import ANYTHING, FAST, NUMBERS, accepted, finite, named
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -49,12 +46,12 @@ def test_environment_constructors(kind, data):
     try:
         env = cls(**{name: value})
     except (ValueError, TypeError) as err:
-        assert _named(err, name), f"{name}={value!r}: {err}"
+        assert named(err, name), f"{name}={value!r}: {err}"
         return
     obs, info = env.reset(seed=0)
-    assert _finite(obs)
+    assert finite(obs)
     obs, reward, *_ = env.step(np.zeros(6, np.float32))
-    assert _accepted(_finite(obs) and math.isfinite(reward))
+    assert accepted(finite(obs) and math.isfinite(reward))
 
 
 @pytest.fixture(scope="module")
@@ -68,14 +65,14 @@ def test_goalkeeper_reset_and_step(keeper, seed, action):
     try:
         keeper.reset(seed=seed)
     except (ValueError, TypeError) as err:
-        assert _named(err, "seed"), f"seed={seed!r}: {err}"
+        assert named(err, "seed"), f"seed={seed!r}: {err}"
         keeper.reset(seed=0)
     try:
         obs, reward, term, trunc, info = keeper.step(action)
     except (ValueError, TypeError) as err:
-        assert _named(err, "action"), f"action={action!r}: {err}"
+        assert named(err, "action"), f"action={action!r}: {err}"
         return
-    assert _accepted(_finite(obs) and math.isfinite(reward))
+    assert accepted(finite(obs) and math.isfinite(reward))
 
 
 @pytest.fixture(scope="module")
@@ -92,14 +89,14 @@ def test_match_reset_and_step(match, seed, actions):
     try:
         match.reset(seed=seed)
     except (ValueError, TypeError) as err:
-        assert _named(err, "seed"), f"seed={seed!r}: {err}"
+        assert named(err, "seed"), f"seed={seed!r}: {err}"
         match.reset(seed=0)
     try:
         obs, rewards, *_ = match.step(actions)
     except (ValueError, TypeError) as err:
-        assert _named(err, "action"), f"actions={actions!r}: {err}"
+        assert named(err, "action"), f"actions={actions!r}: {err}"
         return
-    assert _accepted(_finite(obs) and _finite(rewards))
+    assert accepted(finite(obs) and finite(rewards))
 
 
 # -- estimators ------------------------------------------------------------------------------
@@ -118,13 +115,13 @@ def test_ball_trackers(make, feed, ask):
         try:
             tracker.update(t, z)
         except (ValueError, TypeError) as err:
-            assert _named(err, "t ", "t must", "detections", "obstacles"), f"{t!r}, {z!r}: {err}"
+            assert named(err, "t ", "t must", "detections", "obstacles"), f"{t!r}, {z!r}: {err}"
     try:
         est = tracker.estimate(ask)
     except (ValueError, TypeError) as err:
-        assert _named(err, "t must"), f"estimate({ask!r}): {err}"
+        assert named(err, "t must"), f"estimate({ask!r}): {err}"
         return
-    assert _accepted(est is None or _finite(est))
+    assert accepted(est is None or finite(est))
 
 
 @FAST
@@ -137,14 +134,14 @@ def test_particle_ball_tracker(feed, ask):
         try:
             tracker.update(t, z, sigma)
         except (ValueError, TypeError) as err:
-            assert _named(err, "t must", "z must", "sigma must"), f"{t!r}, {z!r}: {err}"
+            assert named(err, "t must", "z must", "sigma must"), f"{t!r}, {z!r}: {err}"
     for method in (tracker.predict_to, tracker.estimate, tracker.covariance):
         try:
             out = method(ask)
         except (ValueError, TypeError) as err:
-            assert _named(err, "t must"), f"{method.__name__}({ask!r}): {err}"
+            assert named(err, "t must"), f"{method.__name__}({ask!r}): {err}"
             continue
-        assert _accepted(out is None or _finite(out))
+        assert accepted(out is None or finite(out))
 
 
 @FAST
@@ -153,18 +150,18 @@ def test_robot_tracker(n, t, z, index, ask):
     try:
         tracker = RobotTracker(n)
     except (ValueError, TypeError) as err:
-        assert _named(err, "n must"), f"n={n!r}: {err}"
+        assert named(err, "n must"), f"n={n!r}: {err}"
         tracker = RobotTracker(2)
     try:
         tracker.update(t, z, index)
     except (ValueError, TypeError) as err:
-        assert _named(err, "t must", "z must", "index must", "z "), f"{t!r} {z!r}: {err}"
+        assert named(err, "t must", "z must", "index must", "z "), f"{t!r} {z!r}: {err}"
     try:
         out = tracker.estimate(ask)
     except (ValueError, TypeError) as err:
-        assert _named(err, "t must"), f"estimate({ask!r}): {err}"
+        assert named(err, "t must"), f"estimate({ask!r}): {err}"
         return
-    assert _accepted(_finite(out))
+    assert accepted(finite(out))
 
 
 @FAST
@@ -178,9 +175,9 @@ def test_kalman_filter(F, Q, z, R):
         try:
             call()
         except (ValueError, TypeError) as err:
-            assert _named(err, f"{name} must", f"{name} "), f"{name}: {err}"
+            assert named(err, f"{name} must", f"{name} "), f"{name}: {err}"
             continue
-        assert _accepted(_finite(kf.x) and _finite(kf.P))
+        assert accepted(finite(kf.x) and finite(kf.P))
 
 
 @FAST
@@ -189,14 +186,14 @@ def test_friction_ball_model(a, state):
     try:
         model = FrictionBallModel(a)
     except (ValueError, TypeError) as err:
-        assert _named(err, "deceleration"), f"{a!r}: {err}"
+        assert named(err, "deceleration"), f"{a!r}: {err}"
         return
     try:
         stop = model.stop_position(state)
     except (ValueError, TypeError) as err:
-        assert _named(err, "state"), f"{state!r}: {err}"
+        assert named(err, "state"), f"{state!r}: {err}"
         return
-    assert _accepted(not np.any(np.isnan(stop)))
+    assert accepted(not np.any(np.isnan(stop)))
 
 
 @FAST
@@ -205,6 +202,6 @@ def test_kld_config(name, value):
     try:
         KLDConfig(**{name: value})
     except (ValueError, TypeError) as err:
-        assert _named(err, name), f"{name}={value!r}: {err}"
+        assert named(err, name), f"{name}={value!r}: {err}"
         return
-    _accepted(True)
+    accepted(True)

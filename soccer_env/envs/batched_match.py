@@ -52,12 +52,13 @@ from soccer_env.envs.flat_info import NO_EVENT, as_float64, flat_common, flat_ma
 from soccer_env.envs.match import MATCH_SHAPING, SoccerParallelEnv
 from soccer_env.envs.senses import Senses
 from soccer_env.envs.task_rules import match_rows, match_terms
+from soccer_env.envs.vector_args import vector_seeds
 from soccer_env.sim.batch import MAX_WORLDS, WorldBatch
 from soccer_env.sim.commands import validate_actions
 from soccer_env.sim.heads import aim_heads
 from soccer_env.sim.referee import classify_exit, place_free_kick, place_kickoff
 from soccer_env.state import Belief, WorldState, state_dict
-from soccer_env.validation import check_int, check_seed
+from soccer_env.validation import check_int
 
 __all__ = ["MatchBatch", "MatchStep"]
 
@@ -206,16 +207,7 @@ class MatchBatch:
         seeds them from the OS's entropy before the first reset).
         """
         n = self.n_matches
-        if isinstance(seed, (list, tuple)):
-            if len(seed) != n:
-                raise ValueError(f"seed must be an int, None or a sequence of {n} seeds, got "
-                                 f"{len(seed)}")
-            for s in seed:
-                check_seed(s)
-            seeds = list(seed)
-        else:
-            check_seed(seed)
-            seeds = [None if seed is None else seed + k for k in range(n)]
+        seeds = vector_seeds(seed, n)
         for k, s in enumerate(seeds):
             if s is not None or not self._started:
                 self._rngs[k] = np.random.default_rng(s)
